@@ -1,0 +1,239 @@
+"""Arithmetic contexts: the step is written once against this small interface.
+
+A *context* plays the role of ``mpmath.mp``: it supplies elementary functions
+and the few decisions the algorithm needs.  A "value" is whatever the context
+computes with -- a 1-D numpy array over the batch (``FloatContext``), or an
+mpmath scalar (``MPContext``, ``IVContext``).  Ordinary ``+ - * /`` are used
+directly on values; everything else goes through the context:
+
+=====================  ====================================================
+``exp log log1p sqrt``  elementary functions (principal branches if complex)
+``ldexp(x, e)``         ``x * 2**e`` exactly
+``acosh_half_abs``      ``arccosh(|t 2**e| / 2)`` for a scaled trace
+``re_dot(a, b)``        ``Re(a * conj(b))`` (a real number/array)
+``positive(x)``         "certainly ``x > 0``" (bool or bool array)
+``any / all / neg``     reductions and negation of such conditions
+``select(c, f, g)``     ``f()`` where ``c`` else ``g()`` (lazy when scalar)
+``renormalize``         rescale a 2x2 matrix by a power of two (ball/float)
+=====================  ====================================================
+
+Decisions that only affect *accuracy* (which of two algebraically equal
+formulas to use, transport direction) may be taken on midpoints; decisions
+that affect *existence* (``|tr| > 2``, ``Etilde > 0``) use ``positive`` which
+for an interval context means "the whole interval is positive".  That is all
+a ball-arithmetic backend (python-flint ``arb``) needs to provide as well.
+"""
+
+from __future__ import annotations
+
+import math
+
+import mpmath
+import numpy as np
+
+__all__ = ["FloatContext", "MPContext", "IVContext", "FLOAT", "COMPLEX"]
+
+_LN2 = math.log(2.0)
+
+
+class FloatContext:
+    """numpy float64 (or complex128) arrays over a flattened batch axis."""
+
+    is_exact_scale = False
+
+    def __init__(self, dtype=np.float64):
+        self.dtype = np.dtype(dtype)
+        self.is_complex = self.dtype.kind == "c"
+
+    # elementary functions -------------------------------------------------
+    exp = staticmethod(np.exp)
+    log = staticmethod(np.log)
+    log1p = staticmethod(np.log1p)
+    sqrt = staticmethod(np.sqrt)
+
+    @staticmethod
+    def ldexp(x, e):
+        if isinstance(e, (int, np.integer)) and e == 0:
+            return x
+        return np.ldexp(x, e)
+
+    def acosh_half_abs(self, t, g, e):
+        """``arccosh(|t| 2**e / 2)`` given ``g = sqrt(t**2 - 4**(1-e))``.
+
+        For ``e == 0`` this uses ``log1p(h - 1 + sqrt((h-1)(h+1)))`` which is
+        accurate near the band edge ``h -> 1``; for scaled (huge) traces it
+        uses ``e ln 2 + log((|t| + g) / 2)``.
+        """
+        at = np.abs(t)
+        h = 0.5 * at
+        hm1 = h - 1.0
+        small = np.log1p(hm1 + 0.5 * g) if True else None  # g/2 = sqrt((h-1)(h+1)) when e == 0
+        big = np.asarray(e, dtype=float) * _LN2 + np.log(0.5 * (at + np.abs(g)))
+        return np.where(np.asarray(e) == 0, small, big)
+
+    def re_dot(self, a, b):
+        if self.is_complex:
+            return (a * np.conj(b)).real
+        return a * b
+
+    def positive(self, x):
+        if self.is_complex:
+            x = np.real(x)
+        return x > 0
+
+    @staticmethod
+    def any(c):
+        return bool(np.any(c))
+
+    @staticmethod
+    def all(c):
+        return bool(np.all(c))
+
+    @staticmethod
+    def neg(c):
+        return np.logical_not(c)
+
+    @staticmethod
+    def select(c, f, g):
+        if c is True or (isinstance(c, np.ndarray) and c.all()):
+            return f()
+        if c is False or (isinstance(c, np.ndarray) and not c.any()):
+            return g()
+        return np.where(c, f(), g())
+
+    @staticmethod
+    def sign_as_value(c):
+        """``+1`` where ``c`` else ``-1``."""
+        return np.where(c, 1.0, -1.0)
+
+    # scaling support for the monodromy product ----------------------------
+    def out_of_range(self, *xs):
+        """Mask of batch rows whose entries are non-finite or too large/small."""
+        m = np.zeros(np.shape(xs[0]), dtype=bool)
+        big = np.zeros(np.shape(xs[0]))
+        for x in xs:
+            ax = np.abs(x)
+            m |= ~np.isfinite(ax)
+            big = np.maximum(big, np.where(np.isfinite(ax), ax, 0.0))
+        return m | (big > 2.0**500) | (big < 2.0**-500)
+
+    @staticmethod
+    def renormalize(A, B, C, D, e):
+        mx = np.maximum(np.maximum(np.abs(A), np.abs(B)), np.maximum(np.abs(C), np.abs(D)))
+        _, k = np.frexp(mx)
+        k = np.where(mx > 0, k, 0)
+        return (np.ldexp(A, -k), np.ldexp(B, -k), np.ldexp(C, -k), np.ldexp(D, -k), e + k)
+
+    @staticmethod
+    def subset(x, mask):
+        if np.ndim(x) == 0:
+            return x
+        return x[mask]
+
+    @staticmethod
+    def merge(full, mask, part):
+        if np.ndim(full) == 0:
+            full = np.full(mask.shape, full)
+        full = np.array(full, copy=True)
+        full[mask] = part
+        return full
+
+    def isfinite_all(self, xs):
+        return all(bool(np.all(np.isfinite(x))) for x in xs)
+
+
+class MPContext:
+    """mpmath multiprecision scalars (``mpmath.mp``) at the current ``mp.dps``."""
+
+    is_exact_scale = True
+    is_complex = True  # mpmath switches to mpc on its own where needed
+
+    exp = staticmethod(mpmath.exp)
+    log = staticmethod(mpmath.log)
+    log1p = staticmethod(mpmath.log1p)
+
+    @staticmethod
+    def sqrt(x):
+        return mpmath.sqrt(x)
+
+    @staticmethod
+    def ldexp(x, e):
+        return mpmath.ldexp(mpmath.mpf(x), int(e))
+
+    @staticmethod
+    def acosh_half_abs(t, g, e):
+        return mpmath.acosh(abs(mpmath.ldexp(t, int(e))) / 2)
+
+    @staticmethod
+    def re_dot(a, b):
+        return mpmath.re(a * mpmath.conj(b))
+
+    @staticmethod
+    def positive(x):
+        return mpmath.im(x) == 0 and mpmath.re(x) > 0
+
+    any = staticmethod(bool)
+    all = staticmethod(bool)
+
+    @staticmethod
+    def neg(c):
+        return not c
+
+    @staticmethod
+    def select(c, f, g):
+        return f() if c else g()
+
+    @staticmethod
+    def sign_as_value(c):
+        return 1 if c else -1
+
+    @staticmethod
+    def out_of_range(*xs):
+        return False
+
+    @staticmethod
+    def renormalize(A, B, C, D, e):
+        return A, B, C, D, e
+
+    def isfinite_all(self, xs):
+        return all(mpmath.isfinite(x) for x in xs)
+
+
+class IVContext(MPContext):
+    """mpmath interval arithmetic (``mpmath.iv``) -- an experimental rigorous path.
+
+    Accuracy decisions use interval midpoints; existence decisions
+    (``positive``) require the whole interval to be positive.  Complex
+    continuation is not supported.
+    """
+
+    is_complex = False
+
+    exp = staticmethod(mpmath.iv.exp)
+    log = staticmethod(mpmath.iv.log)
+    log1p = staticmethod(mpmath.iv.log1p)
+    sqrt = staticmethod(mpmath.iv.sqrt)
+
+    @staticmethod
+    def ldexp(x, e):
+        return mpmath.iv.mpf(x) * mpmath.iv.mpf(2) ** int(e)
+
+    @staticmethod
+    def acosh_half_abs(t, g, e):
+        h = abs(t) / 2
+        return mpmath.iv.log(h + mpmath.iv.sqrt((h - 1) * (h + 1)))
+
+    @staticmethod
+    def re_dot(a, b):
+        return (a * b).mid
+
+    @staticmethod
+    def positive(x):
+        return x.a > 0
+
+    def isfinite_all(self, xs):
+        return all(mpmath.isfinite(x.a) and mpmath.isfinite(x.b) for x in xs)
+
+
+FLOAT = FloatContext(np.float64)
+COMPLEX = FloatContext(np.complex128)

@@ -1,0 +1,53 @@
+"""Typed errors of :mod:`symbt.numeric`.
+
+All are subclasses of the matching builtin so that generic ``except ValueError``
+code keeps working, but callers can tell *why* a step was refused:
+
+* :class:`InvalidInputError` -- the input is malformed (non-finite values,
+  mismatched shapes, ``N < 2``, ``branch`` not in ``{+1, -1}``, ...).
+* :class:`NoRealMapError` -- the input is fine but the real Bäcklund map does
+  not exist there: ``|tr L(lam_i)| <= 2`` at ``lam1 = lam0 + mu`` or
+  ``lam2 = lam0 - mu`` (a spectral parameter inside a band), or some
+  ``Etilde_j = E_j - x_j <= 0`` (``lam1`` and ``lam2`` lie in different
+  spectral gaps).  ``allow_complex=True`` returns the complex continuation
+  instead.
+* :class:`NumericRangeError` -- the float64 formulation cannot represent the
+  problem (``|q_{j+1} - q_j|`` beyond the exponent range, or an intermediate
+  that is not finite); use mpmath inputs.
+* :class:`QuadratureError` -- the quadrature for the flow coefficients did not
+  reach its tolerance.
+"""
+
+from __future__ import annotations
+
+__all__ = ["InvalidInputError", "NoRealMapError", "NumericRangeError", "QuadratureError"]
+
+
+class InvalidInputError(ValueError):
+    """Malformed input: non-finite values, bad shapes, N < 2, bad branch."""
+
+
+class NoRealMapError(ValueError):
+    """The real Bäcklund map does not exist at this (p, q, lam0, mu, branch).
+
+    Attributes
+    ----------
+    condition : str
+        ``"trace"`` (``|tr L(lam_i)| <= 2``) or ``"positivity"``
+        (some ``Etilde_j <= 0``, i.e. ``lam1``, ``lam2`` in different gaps).
+    where : tuple
+        Up to a few offending batch indices (empty for a single state).
+    """
+
+    def __init__(self, message, condition="", where=()):
+        super().__init__(message)
+        self.condition = condition
+        self.where = tuple(where)
+
+
+class NumericRangeError(OverflowError):
+    """The problem is outside the range of the float64 formulation."""
+
+
+class QuadratureError(ArithmeticError):
+    """Adaptive quadrature failed to meet its error estimate."""
