@@ -122,7 +122,8 @@ def rationalize_exponentials(expr, exp_symbols: Mapping[sp.Symbol, sp.Symbol] | 
         out = sp.Integer(1)
         for s, k in form.items():
             if s not in exp_symbols:
-                exp_symbols[s] = sp.Symbol(f"exp_{s.name}", positive=True)
+                # a Dummy: a user symbol that happens to be called ``exp_q`` must not collide
+                exp_symbols[s] = sp.Dummy(f"exp_{s.name}", positive=True)
             out *= exp_symbols[s] ** k
         return out
 
@@ -133,7 +134,7 @@ def rationalize_exponentials(expr, exp_symbols: Mapping[sp.Symbol, sp.Symbol] | 
 def _is_rational_in_symbols(expr) -> bool:
     """True if ``expr`` is built from symbols and numbers by +, *, integer powers."""
     if expr.is_Atom:
-        return expr.is_Symbol or expr.is_Rational
+        return bool(expr.is_Symbol or expr.is_Rational or expr is sp.I)
     if isinstance(expr, (sp.Add, sp.Mul)):
         return all(_is_rational_in_symbols(a) for a in expr.args)
     if isinstance(expr, sp.Pow):
@@ -144,24 +145,37 @@ def _is_rational_in_symbols(expr) -> bool:
 def reduce_modulo(numerator, relations: Mapping[sp.Symbol, sp.Expr]):
     """Reduce a polynomial modulo ``relations`` (symbol -> polynomial vanishing on it).
 
-    Each relation polynomial must be monic-able in its symbol; the remainder
-    of polynomial division in that symbol replaces the numerator.
+    The remainder of polynomial division by each relation in its symbol
+    replaces the numerator; passes are repeated until nothing changes, so a
+    relation may involve other constrained symbols (``e2 - e1``, ``e1**2 - x``).
+    The remainder differs from the numerator by a multiple of the relation, so
+    a zero remainder proves that the numerator vanishes wherever the relations do.
     """
     out = sp.expand(numerator)
-    for sym, rel in relations.items():
-        rel = sp.expand(rel)
-        if not out.has(sym):
-            continue
-        out = sp.rem(out, rel, sym)
-        out = sp.expand(out)
+    rels = {sym: sp.expand(rel) for sym, rel in relations.items()}
+    for _ in range(len(rels) + 2):
+        before = out
+        for sym, rel in rels.items():
+            if not out.has(sym) or sp.degree(rel, sym) < 1:
+                continue
+            out = sp.expand(sp.rem(out, rel, sym))
+        if out == before:
+            break
     return out
 
 
-def _exact(diff, relations) -> tuple[bool | None, str]:
-    """Try to decide ``diff == 0`` exactly.  Returns (decided_zero, method)."""
+def _exact(diff, relations) -> tuple[bool | None, str, bool]:
+    """Try to decide ``diff == 0`` exactly.
+
+    Returns ``(zero, method, definite)``: ``zero`` is None when the exact layer
+    does not apply, True when the difference reduces to 0; ``definite`` is True
+    when a nonzero result is a proof of falsity (a nonzero rational function
+    without relations: it cannot vanish identically -- the ``exp(s_i)`` are
+    algebraically independent over the rational functions of the ``s_i``).
+    """
     rat, mapping = rationalize_exponentials(diff)
     if not _is_rational_in_symbols(rat):
-        return None, ""
+        return None, "", False
     num, _den = sp.fraction(sp.cancel(sp.together(rat)))
     if relations:
         num = reduce_modulo(num, relations)
@@ -173,17 +187,36 @@ def _exact(diff, relations) -> tuple[bool | None, str]:
     if relations:
         parts.append("remainder mod " + ", ".join(f"{s}: {sp.sstr(r)}=0" for s, r in relations.items()))
     method = "exact: " + "; ".join(parts)
-    return (num == 0), method
+    zero = bool(num == 0)
+    return zero, method, (not zero and not relations)
 
 
 # --------------------------------------------------------------------------- numeric layer
 
 def _sample(sym: sp.Symbol, rng: random.Random):
-    """A random value for ``sym`` honouring its SymPy assumptions."""
+    """A random value for ``sym`` honouring its SymPy assumptions.
+
+    ``integer`` (with ``even``/``odd``, sign), ``positive``/``nonnegative``,
+    ``negative``/``nonpositive``, ``real`` (either sign), ``imaginary`` (purely
+    imaginary, either sign); anything else is sampled complex with imaginary
+    parts up to about 4 in size (beyond pi, so branch cuts of ``log`` are hit).
+    """
     a = sym.assumptions0
     if a.get("integer"):
-        lo, hi = (1, 9) if a.get("positive") else ((-9, -1) if a.get("negative") else (-9, 9))
-        return mpmath.mpf(rng.randint(lo, hi))
+        if a.get("positive") or a.get("nonnegative"):
+            lo, hi = 1, 9
+        elif a.get("negative") or a.get("nonpositive"):
+            lo, hi = -9, -1
+        else:
+            lo, hi = -9, 9
+        v = rng.randint(lo, hi)
+        if a.get("even") and v % 2:
+            v = v - 1 if v - 1 >= lo else v + 1
+        if a.get("odd") and not v % 2:
+            v = v + 1 if v + 1 <= hi else v - 1
+        if v == 0 and a.get("nonzero"):
+            v = 2 if a.get("even") else 1
+        return mpmath.mpf(v)
     # rational-ish values with many digits, kept away from 0 and from each other
     mag = mpmath.mpf(rng.randint(3, 30)) / 10 + mpmath.mpf(rng.random()) / 7
     if a.get("positive") or a.get("nonnegative"):
@@ -193,7 +226,10 @@ def _sample(sym: sp.Symbol, rng: random.Random):
     sign = 1 if rng.random() < 0.5 else -1
     if a.get("real") or a.get("extended_real"):
         return sign * mag
-    return mpmath.mpc(sign * mag, mpmath.mpf(rng.randint(-20, 20)) / 10 + mpmath.mpf(rng.random()) / 11)
+    if a.get("imaginary"):
+        return mpmath.mpc(0, sign * mag)
+    im = mpmath.mpf(rng.randint(-40, 40)) / 10 + mpmath.mpf(rng.random()) / 11
+    return mpmath.mpc(sign * mag, im)
 
 
 def _as_mp(x):
@@ -212,38 +248,76 @@ def _lambdify(args, expr):
     return sp.lambdify(plain, sp.sympify(expr).xreplace(dict(zip(args, plain))), "mpmath")
 
 
+_POLE_ERRORS = (ZeroDivisionError, ValueError, OverflowError, ArithmeticError)
+
+
+def _finite(v) -> bool:
+    try:
+        return bool(mpmath.isfinite(v))
+    except (TypeError, ValueError):
+        return False
+
+
+def _solve_order(relations, known):
+    """Order the constrained symbols so that each one's roots use only known symbols."""
+    known = set(known)
+    todo = dict(relations)
+    order = []
+    while todo:
+        progress = False
+        for s, rel in list(todo.items()):
+            roots = sp.solve(rel, s)
+            if not roots:
+                raise ValueError(f"cannot solve relation {rel} = 0 for {s}")
+            if all(r.free_symbols <= known for r in roots):
+                order.append((s, roots))
+                known.add(s)
+                del todo[s]
+                progress = True
+        if not progress:
+            raise ValueError("cyclic or unsolvable relations: " + ", ".join(map(str, todo)))
+    return order
+
+
 def _numeric(lhs, rhs, relations, digits, points, seed, fixed):
+    """Evaluate ``lhs - rhs`` at ``points`` admissible random points.
+
+    A point is admissible when both sides evaluate to finite numbers (poles,
+    ``nan`` and evaluation errors such as a gamma-function pole are resampled,
+    up to ``6*points + 10`` draws in all).  Returns ``(ok, worst_residual,
+    digits_agreeing, worst_point, points)``.
+    """
     syms = set(lhs.free_symbols) | set(rhs.free_symbols)
     for r in relations.values():
         syms |= r.free_symbols
     free = sorted(syms, key=lambda s: s.name)
-    constrained = [s for s in relations]
-    free = [s for s in free if s not in constrained and s not in fixed]
+    free = [s for s in free if s not in relations and s not in fixed]
     rng = random.Random(seed)
-    rel_solvers = {}
-    for s, rel in relations.items():
-        roots = sp.solve(rel, s)
-        if not roots:
-            raise ValueError(f"cannot solve relation {rel} for {s}")
-        rel_solvers[s] = [_lambdify(free + list(fixed), r) for r in roots]
-    args = free + list(fixed) + constrained
+    base = free + list(fixed)
+    order = _solve_order(relations, base)
+    constrained = [s for s, _ in order]
+    rel_solvers = []
+    for k, (s, roots) in enumerate(order):
+        rel_solvers.append([_lambdify(base + constrained[:k], r) for r in roots])
+    args = base + constrained
     f_l = _lambdify(args, lhs)
     f_r = _lambdify(args, rhs)
-    worst = (-1.0, None)
+    worst = (mpmath.mpf(-1), None)
     pts = []
     tol = mpmath.mpf(10) ** (-(digits - 8))
+    attempts = 0
     with mpmath.workdps(digits + 10):
-        for _ in range(points):
-            vals = [_sample(s, rng) for s in free] + [_as_mp(v) for v in fixed.values()]
-            cvals = []
-            for s in constrained:
-                sols = rel_solvers[s]
-                cvals.append(sols[rng.randrange(len(sols))](*vals))
-            allv = vals + cvals
+        while len(pts) < points and attempts < 6 * points + 10:
+            attempts += 1
+            allv = [_sample(s, rng) for s in free] + [_as_mp(v) for v in fixed.values()]
             try:
+                for sols in rel_solvers:
+                    allv.append(sols[rng.randrange(len(sols))](*allv))
                 lv, rv = f_l(*allv), f_r(*allv)
-            except ZeroDivisionError:
+            except _POLE_ERRORS:
                 continue
+            if not (_finite(lv) and _finite(rv)):
+                continue  # a pole or an undefined value: not a test of the identity
             scale = max(abs(lv), abs(rv), mpmath.mpf(1))
             res = abs(lv - rv) / scale
             point = {str(s): _fmt(v) for s, v in zip(args, allv)}
@@ -251,11 +325,16 @@ def _numeric(lhs, rhs, relations, digits, points, seed, fixed):
             if res > worst[0]:
                 worst = (res, point)
     if not pts:
-        raise ValueError("no admissible sample point (every point hit a pole)")
+        raise ValueError(f"no admissible sample point in {attempts} draws "
+                         "(every point hit a pole or an undefined value)")
     res, point = worst
     ok = res <= tol
     digits_agree = float(-mpmath.log10(res)) if res > 0 else float(digits)
-    return ok, float(res), min(digits_agree, float(digits)), point, pts
+    return bool(ok), float(res), min(digits_agree, float(digits)), point, pts
+
+
+def _undefined(expr) -> bool:
+    return bool(expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo))
 
 
 def decide(lhs, rhs=0, *, relations: Mapping[sp.Symbol, sp.Expr] | None = None,
@@ -278,25 +357,39 @@ def decide(lhs, rhs=0, *, relations: Mapping[sp.Symbol, sp.Expr] | None = None,
             raise ValueError(f"shape mismatch {lm.shape} vs {rm.shape}")
         parts = [decide(a, b, relations=relations, digits=digits, points=points, seed=seed,
                         exact=exact, fixed=fixed) for a, b in zip(lm, rm)]
+        if not parts:
+            return Decision("proved", "exact: empty matrices", 0.0, None)
         bad = [d for d in parts if not d.holds]
         if bad:
-            return bad[0]
+            return max(bad, key=lambda d: d.residual or 0.0)
         res = max((d.residual or 0.0) for d in parts)
         all_exact = all(d.exact for d in parts)
-        method = parts[0].method if all_exact else next(d.method for d in parts if not d.exact)
-        return Decision("proved" if all_exact else "verified", method, res,
-                        min((d.digits if d.digits is not None else digits) for d in parts),
-                        points=parts[0].points)
+        if all_exact:
+            return Decision("proved", parts[0].method, res, None)
+        numeric = [d for d in parts if not d.exact]
+        return Decision("verified", numeric[0].method, res,
+                        min((d.digits if d.digits is not None else digits) for d in numeric),
+                        points=numeric[0].points, note=numeric[0].note)
+    if _undefined(lhs) or _undefined(rhs):
+        return Decision("false", "undefined: a side contains nan, zoo or oo", None, None,
+                        note="a statement with an undefined side cannot hold")
     diff = lhs - rhs
-    method_exact = ""
+    method_exact, definite = "", False
     if exact:
-        zero, method_exact = _exact(diff, relations)
+        zero, method_exact, definite = _exact(diff, relations)
         if zero:
             return Decision("proved", method_exact, 0.0, None)
+        definite = definite and not fixed
     ok, res, dig, point, pts = _numeric(lhs, rhs, relations, digits, points, seed, fixed)
     nmethod = f"numeric: mpmath {digits} digits at {len(pts)} random points"
-    if ok:
+    if ok and not definite:
         note = "" if not method_exact else "exact reduction left a nonzero remainder; numeric screen agrees with zero"
         return Decision("verified", nmethod, res, dig, points=pts, note=note)
+    if definite:
+        method = method_exact + " left a nonzero rational function; worst point by " + nmethod
+        note = "exactly false: the difference is a nonzero rational function"
+        if ok:
+            note += f" (numerically tiny at the sample points: residual {res:.3g})"
+        return Decision("false", method, res, dig, counterexample=point, points=pts, note=note)
     method = nmethod if not method_exact else method_exact + "; counterexample by " + nmethod
     return Decision("false", method, res, dig, counterexample=point, points=pts)

@@ -67,7 +67,8 @@ class FloatContext:
         at = np.abs(t)
         h = 0.5 * at
         hm1 = h - 1.0
-        small = np.log1p(hm1 + 0.5 * g) if True else None  # g/2 = sqrt((h-1)(h+1)) when e == 0
+        # for e == 0, g / 2 = sqrt((h - 1)(h + 1)) exactly in exact arithmetic
+        small = np.log1p(hm1 + 0.5 * np.abs(g))
         big = np.asarray(e, dtype=float) * _LN2 + np.log(0.5 * (at + np.abs(g)))
         return np.where(np.asarray(e) == 0, small, big)
 

@@ -1,0 +1,64 @@
+"""Reproducible sample states for numeric claims (the paper's example and random ones).
+
+``admissible_states(N, trace_sign, count)`` draws (p, q, lam0, mu) at random
+(seeded) and keeps those where the real map exists (|tr L| > 2 at both
+lambda_1, lambda_2, with the requested sign of tr L there, and every
+e^{q~_j} > 0 for *both* branches).  Values are exact decimal strings turned
+into mpf at the working precision, so the points are the same at any dps.
+"""
+from __future__ import annotations
+
+import random
+
+import mpmath as mp
+
+from ..literal import literal_step
+
+__all__ = ["PAPER_EXAMPLE", "admissible_states", "paper_state"]
+
+#: The paper's Numerics example: p, q, lambda0, and the two values of mu of Figs. 1-2.
+PAPER_EXAMPLE = dict(p=("-20", "10", "1"), q=("1", "0", "0.9"), lam0="10", mu=("5", "2"))
+
+
+def paper_state(mu: str = "5"):
+    return ([mp.mpf(v) for v in PAPER_EXAMPLE["p"]], [mp.mpf(v) for v in PAPER_EXAMPLE["q"]],
+            mp.mpf(PAPER_EXAMPLE["lam0"]), mp.mpf(mu))
+
+
+def _real_map(p, q, lam0, mu, branch):
+    try:
+        pt, qt, info = literal_step(p, q, lam0, mu, branch)
+    except (ZeroDivisionError, ValueError):
+        return False, None
+    if not all(isinstance(e, mp.mpf) and e > 0 for e in info["E_new"]):
+        return False, info
+    return True, info
+
+
+def admissible_states(N: int, trace_sign: int, count: int, seed: int = 0):
+    """``count`` tuples ``(p, q, lam0, mu)`` (lists of mpf) with sign(tr L(lambda_i)) = ``trace_sign``."""
+    rng = random.Random(1000 * N + 10 * seed + (trace_sign > 0))
+    out = []
+    tries = 0
+    with mp.workdps(max(mp.mp.dps, 30)):
+        while len(out) < count:
+            tries += 1
+            if tries > 20000:
+                raise RuntimeError(f"no admissible state found for N={N}, sign={trace_sign}")
+            p = [f"{rng.uniform(-3, 3):.6f}" for _ in range(N)]
+            q = [f"{rng.uniform(-1.5, 1.5):.6f}" for _ in range(N)]
+            lam0 = f"{rng.uniform(-5, 5):.6f}"
+            mu = f"{rng.uniform(0.05, 0.8):.6f}"
+            state = ([mp.mpf(v) for v in p], [mp.mpf(v) for v in q], mp.mpf(lam0), mp.mpf(mu))
+            ok1, info = _real_map(*state, 1)
+            if not ok1:
+                continue
+            t1, t2 = info["tr1"], info["tr2"]
+            if not (isinstance(t1, mp.mpf) and isinstance(t2, mp.mpf)):
+                continue
+            if not (trace_sign * t1 > 2.2 and trace_sign * t2 > 2.2):
+                continue
+            if not _real_map(*state, -1)[0]:
+                continue
+            out.append((p, q, lam0, mu))
+    return [([mp.mpf(v) for v in p], [mp.mpf(v) for v in q], mp.mpf(l0), mp.mpf(m)) for p, q, l0, m in out]

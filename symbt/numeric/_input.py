@@ -1,0 +1,158 @@
+"""Input normalisation and validation shared by the public functions.
+
+float path: ``p, q`` are array-likes of identical shape ``batch + (N,)``; they
+are turned into lists of N contiguous 1-D float64 arrays over the flattened
+batch.  mpmath path (any argument an ``mpf``/``mpc``): ``p, q`` are flat
+sequences of length N, converted with ``mpmath.mpf``; ``mpmath.iv`` intervals
+select the interval context.
+"""
+
+from __future__ import annotations
+
+import numbers
+
+import mpmath
+import numpy as np
+
+from .context import FLOAT, IVContext, MPContext
+from .errors import InvalidInputError
+
+MP = MPContext()
+IV = IVContext()
+
+_MP_TYPES = (mpmath.mpf, mpmath.mpc)
+_IV_TYPE = type(mpmath.iv.mpf(1))
+
+
+def _kind(x):
+    """'iv', 'mp' or None for the mpmath-ness of a (possibly nested) object."""
+    if isinstance(x, np.ndarray):
+        if x.dtype != object:
+            return None
+        x = x.ravel().tolist()
+    if isinstance(x, _IV_TYPE):
+        return "iv"
+    if isinstance(x, _MP_TYPES):
+        return "mp"
+    if isinstance(x, (list, tuple)):
+        kinds = {_kind(v) for v in x}
+        if "iv" in kinds:
+            return "iv"
+        if "mp" in kinds:
+            return "mp"
+    return None
+
+
+def pick_context(*objs):
+    kinds = {_kind(o) for o in objs}
+    if "iv" in kinds:
+        return IV
+    if "mp" in kinds:
+        return MP
+    return FLOAT
+
+
+def _to_mp(ctx, seq, name):
+    if isinstance(seq, np.ndarray):
+        seq = seq.tolist()
+    if not isinstance(seq, (list, tuple)):
+        raise InvalidInputError("%s must be a flat sequence for mpmath inputs" % name)
+    out = []
+    for v in seq:
+        if isinstance(v, (list, tuple, np.ndarray)):
+            raise InvalidInputError("%s: mpmath inputs must be a single state (flat sequence)" % name)
+        try:
+            w = mpmath.iv.mpf(v) if ctx is IV else mpmath.mpmathify(v)
+        except (TypeError, ValueError) as exc:
+            raise InvalidInputError("%s: cannot convert %r" % (name, v)) from exc
+        if ctx is IV:
+            ok = mpmath.isfinite(w.a) and mpmath.isfinite(w.b)
+        else:
+            ok = mpmath.isfinite(w)
+            if isinstance(w, mpmath.mpc):
+                raise InvalidInputError("%s: complex input is not supported" % name)
+        if not ok:
+            raise InvalidInputError("%s contains a non-finite value" % name)
+        out.append(w)
+    return out
+
+
+def as_state_pair(p, q, *extra):
+    """Return ``(ctx, P, Q, batch_shape)`` with P, Q lists of per-site values."""
+    ctx = pick_context(p, q, *extra)
+    if ctx is not FLOAT:
+        P, Q = _to_mp(ctx, p, "p"), _to_mp(ctx, q, "q")
+        if len(P) != len(Q):
+            raise InvalidInputError("p and q have different lengths %d != %d" % (len(P), len(Q)))
+        if len(P) < 2:
+            raise InvalidInputError("need N >= 2 sites, got N = %d" % len(P))
+        return ctx, P, Q, ()
+    try:
+        pa = np.asarray(p, dtype=np.float64)
+        qa = np.asarray(q, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise InvalidInputError("p and q must be real numeric arrays") from exc
+    if np.iscomplexobj(np.asarray(p)) or np.iscomplexobj(np.asarray(q)):
+        raise InvalidInputError("complex p, q are not supported")
+    if pa.shape != qa.shape:
+        raise InvalidInputError("p and q shapes differ: %s vs %s" % (pa.shape, qa.shape))
+    if pa.ndim == 0:
+        raise InvalidInputError("p and q need a trailing site axis of length N >= 2")
+    N = pa.shape[-1]
+    if N < 2:
+        raise InvalidInputError("need N >= 2 sites, got N = %d" % N)
+    if not (np.all(np.isfinite(pa)) and np.all(np.isfinite(qa))):
+        raise InvalidInputError("p and q must be finite (found NaN or inf)")
+    shape = pa.shape[:-1]
+    pf = pa.reshape(-1, N).T
+    qf = qa.reshape(-1, N).T
+    P = [np.ascontiguousarray(pf[j]) for j in range(N)]
+    Q = [np.ascontiguousarray(qf[j]) for j in range(N)]
+    return FLOAT, P, Q, shape
+
+
+def prepare_scalar(ctx, x, shape, name):
+    """A real parameter (lam0, mu, lam) as a context value broadcast to the batch."""
+    if ctx is not FLOAT:
+        if isinstance(x, (list, tuple, np.ndarray)):
+            raise InvalidInputError("%s must be a scalar for mpmath inputs" % name)
+        try:
+            v = mpmath.iv.mpf(x) if ctx is IV else mpmath.mpmathify(x)
+        except (TypeError, ValueError) as exc:
+            raise InvalidInputError("%s: cannot convert %r" % (name, x)) from exc
+        if ctx is not IV and (isinstance(v, mpmath.mpc) or not mpmath.isfinite(v)):
+            raise InvalidInputError("%s must be a finite real number" % name)
+        return v
+    if isinstance(x, _MP_TYPES):
+        x = float(x)
+    try:
+        a = np.asarray(x, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise InvalidInputError("%s must be a real number or array" % name) from exc
+    if np.iscomplexobj(np.asarray(x)):
+        raise InvalidInputError("%s must be real" % name)
+    if not np.all(np.isfinite(a)):
+        raise InvalidInputError("%s must be finite" % name)
+    if a.ndim == 0:
+        return float(a)
+    try:
+        b = np.broadcast_to(a, shape)
+    except ValueError as exc:
+        raise InvalidInputError("%s of shape %s does not broadcast to the batch shape %s"
+                                % (name, a.shape, shape)) from exc
+    return np.ascontiguousarray(b).reshape(-1)
+
+
+def check_branch(branch):
+    if isinstance(branch, bool) or not isinstance(branch, numbers.Integral) or branch not in (1, -1):
+        raise InvalidInputError("branch must be +1 or -1, got %r" % (branch,))
+    return int(branch)
+
+
+def to_output(ctx, P, shape):
+    """Inverse of :func:`as_state_pair` for one list of per-site values."""
+    if ctx is not FLOAT and not isinstance(P[0], np.ndarray):
+        return [+v for v in P]
+    N = len(P)
+    arr = np.stack([np.broadcast_to(np.asarray(x), P[0].shape) for x in P], axis=-1)
+    return arr.reshape(tuple(shape) + (N,))

@@ -1,0 +1,99 @@
+r"""Generating function of the composed BT (eqs. ``xyqqt``, ``imptransf``, ``newgf``, ``vqqtmu``).
+
+Variables: :math:`E_j = e^{q_j}`, :math:`\tilde E_j = e^{\tilde q_j}` (positive), and
+:math:`\eta_j` treated as an *algebraic* symbol subject to
+
+.. math:: \eta_j^2 = \mu^2 + w_j,\qquad
+          w_j = (E_j - \tilde E_j)\,(\tilde E_{j-1}^{-1} - E_{j-1}^{-1})
+
+(eq. ``xyqqt`` and the display after it; indices mod N).  The sign of
+:math:`\eta_j` is *not* fixed by this relation; every identity below is proved
+modulo the relation, hence for both signs.  Derivatives of functions of
+:math:`\eta` use implicit differentiation,
+:math:`\partial\eta_j/\partial s = (\partial w_j/\partial s)/(2\eta_j)` and
+:math:`\partial\eta_j/\partial\mu = \mu/\eta_j`.
+
+Logarithms: :math:`(\eta+\mu)/(\eta-\mu) = (\eta+\mu)^2/w`, which is negative
+when :math:`w < 0`.  The real generating function uses
+:math:`\ln|(\eta+\mu)/(\eta-\mu)|`; it differs from any complex branch by a
+constant, so all derivatives below are the same.
+
+Example
+-------
+>>> g = GeneratingFunction(2)
+>>> g.relations[g.eta[0]]
+-E1*(-1/Et2 + 1/E2) + Et1*(-1/Et2 + 1/E2) + eta1**2 - mu**2
+"""
+from __future__ import annotations
+
+from functools import cached_property, lru_cache
+
+import sympy as sp
+
+from .darboux import lam0, mu
+
+__all__ = ["GeneratingFunction", "generating_function"]
+
+
+class GeneratingFunction:
+    """Symbolic F(q, q~, mu) of eq. ``newgf`` for an N-site periodic lattice."""
+
+    def __init__(self, N: int):
+        self.N = N
+        self.E = sp.symbols(f"E1:{N + 1}", positive=True)
+        self.Et = sp.symbols(f"Et1:{N + 1}", positive=True)
+        self.eta = sp.symbols(f"eta1:{N + 1}", real=True)
+        self.mu, self.lam0 = mu, lam0
+
+    def w(self, j: int):
+        """:math:`w_j` (0-based j; the neighbour j-1 is taken mod N)."""
+        k = (j - 1) % self.N
+        return (self.E[j] - self.Et[j]) * (1 / self.Et[k] - 1 / self.E[k])
+
+    @cached_property
+    def relations(self) -> dict:
+        return {self.eta[j]: sp.expand(self.eta[j] ** 2 - self.mu ** 2 - self.w(j)) for j in range(self.N)}
+
+    @cached_property
+    def F(self):
+        """Eq. ``newgf`` with q_k = log E_k, q~_k = log E~_k."""
+        mu, lam0 = self.mu, self.lam0
+        return sp.Add(*[mu * sp.log((e + mu) / (e - mu)) - 2 * e - lam0 * (sp.log(E) - sp.log(Et))
+                        for e, E, Et in zip(self.eta, self.E, self.Et)])
+
+    def total_derivative(self, expr, var):
+        """d expr / d var with every eta_j = eta_j(E, E~, mu) differentiated implicitly."""
+        out = sp.diff(expr, var)
+        for j, e in enumerate(self.eta):
+            de = sp.diff(expr, e)
+            if de == 0:
+                continue
+            dw = self.mu if var == self.mu else sp.diff(self.w(j), var) / 2
+            out += de * dw / e
+        return out
+
+    def dF_dq(self, j):
+        """:math:`\\partial F/\\partial q_j = E_j\\,dF/dE_j`."""
+        return self.E[j] * self.total_derivative(self.F, self.E[j])
+
+    def dF_dqt(self, j):
+        return self.Et[j] * self.total_derivative(self.F, self.Et[j])
+
+    def dF_dmu(self):
+        return self.total_derivative(self.F, self.mu)
+
+    def momenta_printed(self):
+        """Eq. ``imptransf`` as printed: (p_j, p~_j) in terms of eta, E, E~."""
+        N, lam0 = self.N, self.lam0
+        p, pt = [], []
+        for j in range(N):
+            n = (j + 1) % N
+            E, Et, e, en = self.E[j], self.Et[j], self.eta[j], self.eta[n]
+            pt.append(-lam0 - (Et * e + E * en) / (E - Et))
+            p.append(-lam0 - (Et * en + E * e) / (E - Et))
+        return p, pt
+
+
+@lru_cache(maxsize=None)
+def generating_function(N: int) -> GeneratingFunction:
+    return GeneratingFunction(N)
