@@ -82,6 +82,28 @@ class FloatContext:
             x = np.real(x)
         return x > 0
 
+    def all_positive(self, x):
+        """``all(x > 0)`` as a bool (a single reduction; NaN counts as failure)."""
+        if self.is_complex:
+            x = np.real(x)
+        return bool(np.min(x) > 0)
+
+    def align(self, g, ref):
+        """``+g`` or ``-g``, whichever satisfies ``Re(ref * conj(+-g)) >= 0``.
+
+        Returns ``(aligned_g, is_plus)``.
+        """
+        if self.is_complex:
+            plus = (ref * np.conj(g)).real >= 0
+            return np.where(plus, g, -g), plus
+        return np.copysign(g, ref), ref >= 0
+
+    def half_plane(self, a, g):
+        """``Re(a * conj(g)) >= 0`` for a principal square root ``g`` (real: ``a >= 0``)."""
+        if self.is_complex:
+            return (a * np.conj(g)).real >= 0
+        return a >= 0
+
     @staticmethod
     def any(c):
         return bool(np.any(c))
@@ -109,14 +131,25 @@ class FloatContext:
 
     # scaling support for the monodromy product ----------------------------
     def out_of_range(self, *xs):
-        """Mask of batch rows whose entries are non-finite or too large/small."""
-        m = np.zeros(np.shape(xs[0]), dtype=bool)
-        big = np.zeros(np.shape(xs[0]))
-        for x in xs:
+        """Mask of batch rows whose entries are non-finite or too large/small.
+
+        Returns ``False`` (cheaply, by reductions only) when all is fine.
+        """
+        arrays = [x for x in xs if np.ndim(x)]
+        if not arrays:
+            return False
+        big = max(float(np.max(np.abs(x) if self.is_complex else np.maximum(x.max(), -x.min())))
+                  for x in arrays)
+        if big < 2.0**500 and np.isfinite(big):
+            # det M = 1 forces max|entry| >~ 1 per row, so no per-row test needed
+            return False
+        mx = None
+        for x in arrays:
             ax = np.abs(x)
-            m |= ~np.isfinite(ax)
-            big = np.maximum(big, np.where(np.isfinite(ax), ax, 0.0))
-        return m | (big > 2.0**500) | (big < 2.0**-500)
+            ax = np.where(np.isfinite(ax), ax, np.inf)
+            mx = ax if mx is None else np.maximum(mx, ax)
+        shape = np.broadcast_shapes(*(np.shape(x) for x in arrays))
+        return np.broadcast_to((mx > 2.0**500) | (mx < 2.0**-500) | np.isnan(mx), shape)
 
     @staticmethod
     def renormalize(A, B, C, D, e):
@@ -172,6 +205,16 @@ class MPContext:
     @staticmethod
     def positive(x):
         return mpmath.im(x) == 0 and mpmath.re(x) > 0
+
+    def all_positive(self, x):
+        return self.positive(x)
+
+    def align(self, g, ref):
+        plus = self.re_dot(ref, g) >= 0
+        return (g if plus else -g), plus
+
+    def half_plane(self, a, g):
+        return self.re_dot(a, g) >= 0
 
     any = staticmethod(bool)
     all = staticmethod(bool)
@@ -231,6 +274,7 @@ class IVContext(MPContext):
     @staticmethod
     def positive(x):
         return x.a > 0
+
 
     def isfinite_all(self, xs):
         return all(mpmath.isfinite(x.a) and mpmath.isfinite(x.b) for x in xs)
