@@ -41,6 +41,8 @@ def _cmd_verify(args) -> int:
         report.write_json(results, args.json)
     if args.junit:
         report.write_junit(results, args.junit)
+    if args.markdown:
+        report._atomic_write(args.markdown, report.format_markdown(results))
     return 0 if report.summary(results)["ok"] else 1
 
 
@@ -76,6 +78,7 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--deep", action="store_true", help="include deep (minutes-long) claims")
     v.add_argument("--json", metavar="FILE", help="write results as JSON")
     v.add_argument("--junit", metavar="FILE", help="write JUnit XML")
+    v.add_argument("--markdown", metavar="FILE", help="write a Markdown table")
     v.add_argument("--no-cache", action="store_true", help="recompute every claim")
     v.add_argument("-j", "--jobs", type=int, default=None, help="worker processes (default: min(2, cores))")
     v.add_argument("-q", "--quiet", action="store_true")

@@ -19,11 +19,16 @@ here instead, in this order:
    assumptions of each symbol (a ``real`` symbol may be negative, a symbol
    without assumptions is sampled complex) and satisfying the relations (a
    constrained symbol is set to a root of its relation, with a random sign
-   for square roots).  If every relative residual is below ``10**-(digits-8)``
-   the identity is *verified numerically*; otherwise it is *false* and the
-   worst point is returned as a counterexample with its residual.
+   for square roots; relations may build on each other).  Points where a side
+   is not finite (poles, ``nan``, evaluation errors) are resampled.  If every
+   relative residual is below ``10**-(digits-8)`` the identity is *verified
+   numerically*; otherwise it is *false* and the worst point is returned as a
+   counterexample with its residual.
 
-The result says which of the two decided.
+The result says which of the two decided.  A difference that is a nonzero
+rational function (no relations, no ``fixed`` values) is *false* even when it
+is numerically tiny (``x + 10**-60`` vs ``x``): a nonzero rational function
+cannot vanish identically.  A side containing ``nan``/``zoo``/``oo`` is *false*.
 
 Example
 -------

@@ -16,7 +16,7 @@ import tempfile
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-__all__ = ["summary", "format_table", "to_json", "write_json", "write_junit", "residual_text"]
+__all__ = ["summary", "format_table", "format_markdown", "to_json", "write_json", "write_junit", "residual_text"]
 
 
 def summary(results) -> dict:
@@ -83,6 +83,16 @@ def format_table(results, *, width: int = 0) -> str:
         if o.detail:
             lines.append("  " + o.detail.strip().splitlines()[0][:300])
     return "\n".join(lines)
+
+
+def format_markdown(results) -> str:
+    """A Markdown table of the results (used for the README's claim table)."""
+    lines = ["| claim | equation | status | method | residual |", "|---|---|---|---|---|"]
+    for r in results:
+        o = r.outcome
+        eq = r.claim.equation.replace("|", "\\|")
+        lines.append(f"| `{r.claim.id}` | `{eq}` | {o.status} | {_short_method(o.method)} | {residual_text(o)} |")
+    return "\n".join(lines) + "\n"
 
 
 def to_json(results) -> dict:

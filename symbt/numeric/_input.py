@@ -87,6 +87,18 @@ def as_state_pair(p, q, *extra):
         if len(P) < 2:
             raise InvalidInputError("need N >= 2 sites, got N = %d" % len(P))
         return ctx, P, Q, ()
+    pa, qa, shape = validate_float_pair(p, q)
+    return FLOAT, sites(pa), sites(qa), shape
+
+
+def sites(a2d):
+    """Rows of the (N, B) transpose of a (B, N) array, as a list of contiguous arrays."""
+    t = np.ascontiguousarray(a2d.T)
+    return [t[j] for j in range(t.shape[0])]
+
+
+def validate_float_pair(p, q):
+    """Validated float64 ``(pa, qa, batch_shape)`` with ``pa``, ``qa`` of shape (B, N)."""
     try:
         pa = np.asarray(p, dtype=np.float64)
         qa = np.asarray(q, dtype=np.float64)
@@ -101,14 +113,10 @@ def as_state_pair(p, q, *extra):
     N = pa.shape[-1]
     if N < 2:
         raise InvalidInputError("need N >= 2 sites, got N = %d" % N)
-    if not (np.all(np.isfinite(pa)) and np.all(np.isfinite(qa))):
-        raise InvalidInputError("p and q must be finite (found NaN or inf)")
-    shape = pa.shape[:-1]
-    pf = pa.reshape(-1, N).T
-    qf = qa.reshape(-1, N).T
-    P = [np.ascontiguousarray(pf[j]) for j in range(N)]
-    Q = [np.ascontiguousarray(qf[j]) for j in range(N)]
-    return FLOAT, P, Q, shape
+    if not (np.isfinite(pa.sum()) and np.isfinite(qa.sum())):
+        if not (np.all(np.isfinite(pa)) and np.all(np.isfinite(qa))):
+            raise InvalidInputError("p and q must be finite (found NaN or inf)")
+    return pa.reshape(-1, N), qa.reshape(-1, N), pa.shape[:-1]
 
 
 def prepare_scalar(ctx, x, shape, name):

@@ -51,7 +51,7 @@ def neighbour_ratios(ctx, q):
     N = len(q)
     dq = [q[(j + 1) % N] - q[j] for j in range(N)]
     if not ctx.is_exact_scale:
-        worst = max(float(np.max(np.abs(np.real(d)))) if np.size(d) else 0.0 for d in dq)
+        worst = max(float(max(np.max(d), -np.min(d))) if np.size(d) else 0.0 for d in np.real(dq))
         if worst > MAX_DQ:
             raise NumericRangeError(
                 "|q_{j+1} - q_j| = %.4g exceeds the float64 range of the scaled "
@@ -61,7 +61,8 @@ def neighbour_ratios(ctx, q):
 
 def _product(ctx, a, r, renorm):
     # M = m_N ... m_1 applied to the identity; m_j = [[a_j, -1], [r_j, 0]].
-    A, B, C, D = a[0], -1.0 + 0.0 * a[0], r[0] + 0.0 * a[0], 0.0 * a[0]
+    # m_1 itself; B and D start as plain scalars (cheap broadcasting)
+    A, B, C, D = a[0], -1.0, r[0], 0.0
     e = 0
     if renorm:
         A, B, C, D, e = ctx.renormalize(A, B, C, D, e)
@@ -84,8 +85,10 @@ def monodromy(ctx, a, r):
         sa = [ctx.subset(x, bad) for x in a]
         sr = [ctx.subset(x, bad) for x in r]
         A2, B2, C2, D2, e2 = _product(ctx, sa, sr, renorm=True)
-        A, B, C, D = (ctx.merge(X, bad, X2) for X, X2 in ((A, A2), (B, B2), (C, C2), (D, D2)))
-        e = ctx.merge(np.zeros(np.shape(bad), dtype=np.int64), bad, e2)
+        shape = np.shape(bad)
+        A, B, C, D = (ctx.merge(np.broadcast_to(X, shape), bad, X2)
+                      for X, X2 in ((A, A2), (B, B2), (C, C2), (D, D2)))
+        e = ctx.merge(np.zeros(shape, dtype=np.int64), bad, e2)
     return A, B, C, D, e
 
 

@@ -63,7 +63,8 @@ from __future__ import annotations
 import mpmath
 import numpy as np
 
-from ._input import MP, IV, as_state_pair, check_branch, prepare_scalar, to_output
+from ._input import (IV, as_state_pair, check_branch, pick_context, prepare_scalar, sites,
+                     to_output, validate_float_pair)
 from .context import COMPLEX, FLOAT
 from .errors import NoRealMapError, NumericRangeError
 from .lax import monodromy, neighbour_ratios
@@ -76,9 +77,9 @@ _GUARD_DIGITS = 12
 class SlopeData:
     """Eigenvector data at one spectral parameter (internal, documented for tests).
 
-    ``u`` -- list of scaled slopes ``E_j * (slope)_j``, ``trace_ok`` -- mask
-    ``|tr| > 2``, ``forward`` -- transport direction used, ``logv`` -- ``log|v|``
-    of the selected eigenvalue (real contexts only), ``t, g, e`` -- scaled
+    ``u`` -- list of scaled slopes ``E_j * (slope)_j``, ``trace_ok`` -- the
+    scaled ``tr**2 - 4`` (positive iff ``|tr| > 2``), ``forward`` -- transport
+    direction used (selected eigenvalue has ``|v| >= 1``), ``t, g, e`` -- scaled
     trace, ``sqrt(t**2 - 4**(1-e))`` and exponent.
     """
 
@@ -113,21 +114,21 @@ def eigen_slopes(ctx, a, r, s, need_slopes=True):
     """
     A, B, C, D, e = monodromy(ctx, a, r)
     t = A + D
-    dl = A - D
     two = ctx.ldexp(2.0, -e) if not isinstance(e, int) or e else 2.0
-    disc = (t - two) * (t + two)
-    trace_ok = ctx.positive(disc)
+    disc = (t - two) * (t + two)          # tr^2 - 4 without cancellation (scaled)
     g = ctx.sqrt(disc)
-    data = SlopeData(trace_ok=trace_ok, t=t, g=g, e=e, u=None, forward=None)
-    c = ctx.re_dot(t, g)
-    fwd = (c <= 0) if s > 0 else (c >= 0)
+    data = SlopeData(trace_ok=disc, t=t, g=g, e=e, u=None, forward=None)
+    # |(t - s g)/2| >= 1  <=>  Re(t conj(s g)) <= 0  -> dominant -> transport forward
+    tg = ctx.half_plane(t, g)
+    fwd = ctx.neg(tg) if s > 0 else tg
     data.forward = fwd
     if not need_slopes:
         return data
-    cpos = ctx.re_dot(dl, g) >= 0
-    eps = ctx.sign_as_value(cpos)
-    k = dl + eps * g
-    target_is_k = cpos if s > 0 else ctx.neg(cpos)
+    dl = A - D
+    sg, plus = ctx.align(g, dl)           # k = dl + sign(dl) g has no cancellation
+    k = dl + sg
+    # roots of B u^2 - (A-D) u - C = 0 are k/(2B) and -2C/k; want (dl + s g)/(2B)
+    target_is_k = plus if s > 0 else ctx.neg(plus)
     u1 = ctx.select(target_is_k, lambda: k / (2 * B), lambda: -2 * C / k)
     if ctx.all(fwd):
         u = _forward(a, r, u1)
@@ -140,18 +141,19 @@ def eigen_slopes(ctx, a, r, s, need_slopes=True):
     return data
 
 
-def _where_text(mask, shape):
-    idx = np.flatnonzero(np.logical_not(np.asarray(mask)))
+def _where_text(mask, shape, offset=0):
+    idx = np.flatnonzero(np.logical_not(np.asarray(mask))) + offset
     if not shape or idx.size == 0:
         return (), ""
     where = [tuple(int(i) for i in np.unravel_index(k, shape)) for k in idx[:5]]
     return where, " (batch index %s%s)" % (", ".join(map(str, where)), ", ..." if idx.size > 5 else "")
 
 
-def step_core(ctx, P, Q, lam0, mu, branch, *, check_real=True, shape=()):
+def step_core(ctx, P, Q, lam0, mu, branch, *, check_real=True, shape=(), offset=0):
     """The step on per-site lists in context ``ctx``; returns ``(P~, Q~, aux)``.
 
-    ``aux`` holds ``u``, ``w``, ``d`` (lists) and the two :class:`SlopeData`.
+    ``aux`` holds ``u``, ``w``, ``gq = u/(u-w)`` (lists; ``eta_j = mu - 2 mu gq_j``)
+    and the two :class:`SlopeData`.
     Raises :class:`NoRealMapError` when ``check_real`` and the real map fails.
     """
     N = len(P)
@@ -163,35 +165,42 @@ def step_core(ctx, P, Q, lam0, mu, branch, *, check_real=True, shape=()):
     S2 = eigen_slopes(ctx, a2, r, -branch)
     if check_real:
         for name, S in (("lam1 = lam0 + mu", S1), ("lam2 = lam0 - mu", S2)):
-            if not ctx.all(S.trace_ok):
-                where, txt = _where_text(S.trace_ok, shape)
+            if not ctx.all_positive(S.trace_ok):
+                where, txt = _where_text(ctx.positive(S.trace_ok), shape, offset)
                 raise NoRealMapError(
                     "no real Bäcklund map: |tr L(%s)| <= 2, the spectral parameter lies "
                     "in a band%s" % (name, txt), condition="trace", where=where)
     u, w = S1.u, S2.u
-    d = [w[j] - u[j] for j in range(N)]
-    rho = [2 * mu / d[j] for j in range(N)]
+    two_mu = 2 * mu
+    dn = [u[j] - w[j] for j in range(N)]          # = -(z_j - y_j) E_j
+    xr = [two_mu / dn[j] for j in range(N)]       # = -x_j / E_j = Etilde_j / E_j - 1
     if check_real:
-        ok = None
-        for j in range(N):
-            okj = ctx.positive(1 - rho[j])
-            ok = okj if ok is None else (ok & okj if ctx is FLOAT else (ok and okj))
-        if not ctx.all(ok):
-            where, txt = _where_text(ok, shape)
+        bad = [j for j in range(N) if not ctx.all_positive(xr[j] + 1)]
+        if bad:
+            ok = ctx.positive(xr[bad[0]] + 1)
+            for j in bad[1:]:
+                ok = ok & ctx.positive(xr[j] + 1)
+            where, txt = _where_text(ok, shape, offset)
             raise NoRealMapError(
                 "no real Bäcklund map: some Etilde_j = E_j - x_j <= 0 (lam1 and lam2 "
                 "lie in different spectral gaps)%s" % txt, condition="positivity", where=where)
-    Qn = [Q[j] + ctx.log1p(-rho[j]) for j in range(N)]
-    gq = [u[j] / d[j] for j in range(N)]
-    Pn = [P[j] + 2 * mu * (gq[j] - gq[(j + 1) % N]) for j in range(N)]
-    aux = {"u": u, "w": w, "d": d, "S1": S1, "S2": S2}
+    Qn = [Q[j] + ctx.log1p(xr[j]) for j in range(N)]
+    gq = [u[j] / dn[j] for j in range(N)]         # = -u_j / d_j;  eta_j = mu - 2 mu gq_j
+    Pn = [P[j] + two_mu * (gq[(j + 1) % N] - gq[j]) for j in range(N)]
+    aux = {"u": u, "w": w, "S1": S1, "S2": S2, "gq": gq}
     return Pn, Qn, aux
 
 
-def _float_step(P, Q, lam0, mu, branch, allow_complex, shape):
+#: rows of the batch processed at once (keeps temporaries in cache; see benchmarks)
+BLOCK_ELEMENTS = 1 << 17
+
+
+def _float_block(pa, qa, lam0, mu, branch, allow_complex, shape, offset):
+    """Step for one block of rows ``pa, qa`` (B, N); returns (B, N) arrays."""
+    P, Q = sites(pa), sites(qa)
     with np.errstate(all="ignore"):
         try:
-            Pn, Qn, _ = step_core(FLOAT, P, Q, lam0, mu, branch, shape=shape)
+            Pn, Qn, _ = step_core(FLOAT, P, Q, lam0, mu, branch, shape=shape, offset=offset)
             ctx = FLOAT
         except NoRealMapError:
             if not allow_complex:
@@ -199,11 +208,42 @@ def _float_step(P, Q, lam0, mu, branch, allow_complex, shape):
             ctx = COMPLEX
             Pc = [x.astype(np.complex128) for x in P]
             Qc = [x.astype(np.complex128) for x in Q]
-            Pn, Qn, _ = step_core(COMPLEX, Pc, Qc, lam0, mu, branch, check_real=False, shape=shape)
-    if not ctx.isfinite_all(Pn + Qn):
-        raise NumericRangeError("non-finite intermediate in the float64 step "
-                                "(degenerate eigenvector or overflow); use mpmath inputs")
-    return Pn, Qn
+            Pn, Qn, _ = step_core(COMPLEX, Pc, Qc, lam0, mu, branch, check_real=False)
+        outp = np.stack(Pn, axis=-1)
+        outq = np.stack(Qn, axis=-1)
+        if not (np.isfinite(outp.sum()) and np.isfinite(outq.sum())):
+            if not (np.all(np.isfinite(outp)) and np.all(np.isfinite(outq))):
+                raise NumericRangeError(
+                    "non-finite intermediate in the float64 step (degenerate eigenvector "
+                    "or overflow); use mpmath inputs")
+    return outp, outq
+
+
+def _float_step(pa, qa, lam0, mu, branch, allow_complex, shape):
+    B, N = pa.shape
+    block = max(256, BLOCK_ELEMENTS // N)
+    outp = np.empty((B, N))
+    outq = np.empty((B, N))
+    for s0 in range(0, B, block):
+        sl = slice(s0, min(B, s0 + block))
+        l0 = lam0[sl] if np.ndim(lam0) else lam0
+        m = mu[sl] if np.ndim(mu) else mu
+        if np.ndim(m) and not np.all(m != 0):
+            nz = np.flatnonzero(m != 0)
+            rp, rq = pa[sl].copy(), qa[sl].copy()
+            if nz.size:
+                bp, bq = _float_block(pa[sl][nz], qa[sl][nz], l0[nz] if np.ndim(l0) else l0,
+                                      m[nz], branch, allow_complex, (), 0)
+                if np.iscomplexobj(bp):
+                    rp, rq = rp.astype(complex), rq.astype(complex)
+                rp[nz], rq[nz] = bp, bq
+            bp, bq = rp, rq
+        else:
+            bp, bq = _float_block(pa[sl], qa[sl], l0, m, branch, allow_complex, shape, s0)
+        if np.iscomplexobj(bp) and not np.iscomplexobj(outp):
+            outp, outq = outp.astype(complex), outq.astype(complex)
+        outp[sl], outq[sl] = bp, bq
+    return outp, outq
 
 
 def bt_step(p, q, lam0, mu, *, branch=1, allow_complex=False):
@@ -240,24 +280,19 @@ def bt_step(p, q, lam0, mu, *, branch=1, allow_complex=False):
     -0.0861422421882035
     """
     branch = check_branch(branch)
+    ctx = pick_context(p, q, lam0, mu)
+    if ctx is FLOAT:
+        pa, qa, shape = validate_float_pair(p, q)
+        lam0 = prepare_scalar(ctx, lam0, shape, "lam0")
+        mu = prepare_scalar(ctx, mu, shape, "mu")
+        N = pa.shape[-1]
+        if np.ndim(mu) == 0 and mu == 0:
+            return pa.reshape(shape + (N,)).copy(), qa.reshape(shape + (N,)).copy()
+        outp, outq = _float_step(pa, qa, lam0, mu, branch, allow_complex, shape)
+        return outp.reshape(shape + (N,)), outq.reshape(shape + (N,))
     ctx, P, Q, shape = as_state_pair(p, q, lam0, mu)
     lam0 = prepare_scalar(ctx, lam0, shape, "lam0")
     mu = prepare_scalar(ctx, mu, shape, "mu")
-    if ctx is FLOAT:
-        if np.ndim(mu) == 0 and mu == 0:
-            return to_output(ctx, P, shape).copy(), to_output(ctx, Q, shape).copy()
-        nz = None
-        if np.ndim(mu) > 0 and not np.all(mu != 0):
-            nz = mu != 0
-            Ps, Qs = [x[nz] for x in P], [x[nz] for x in Q]
-            l0s = lam0[nz] if np.ndim(lam0) else lam0
-            Pn, Qn = _float_step(Ps, Qs, l0s, mu[nz], branch, allow_complex, (int(nz.sum()),))
-            dt = Pn[0].dtype
-            Pn = [_merge(P[j], nz, Pn[j], dt) for j in range(len(P))]
-            Qn = [_merge(Q[j], nz, Qn[j], dt) for j in range(len(Q))]
-        else:
-            Pn, Qn = _float_step(P, Q, lam0, mu, branch, allow_complex, shape)
-        return to_output(ctx, Pn, shape), to_output(ctx, Qn, shape)
     # mpmath / interval path
     if mu == 0:
         return to_output(ctx, P, ()), to_output(ctx, Q, ())
@@ -270,9 +305,3 @@ def bt_step(p, q, lam0, mu, *, branch=1, allow_complex=False):
         if not ctx.isfinite_all(Pn + Qn):
             raise NumericRangeError("non-finite result in the mpmath step")
     return to_output(ctx, Pn, ()), to_output(ctx, Qn, ())
-
-
-def _merge(full, mask, part, dtype):
-    out = np.array(full, dtype=dtype, copy=True)
-    out[mask] = part
-    return out

@@ -1,0 +1,331 @@
+r"""Checking your own identities: ``check_identity(lhs, rhs)``.
+
+A thin, user-facing layer over :func:`symbt.proof.decide` (the engine that
+decides the paper's claims).  The answer is always one of three, never a
+silent "don't know":
+
+``proved``
+    the difference reduces to zero by exact rational arithmetic (after
+    ``exp``/``cosh``/``sinh`` of integer combinations of symbols become
+    monomials, and modulo the algebraic ``relations``); ``method`` names the
+    steps.
+``verified``
+    no exact reduction applied (logarithms, radicals, special functions, or a
+    nonzero remainder modulo relations), but the two sides agree to ``digits``
+    significant digits at ``points`` random points, drawn according to the
+    SymPy assumptions of each symbol; the points are listed.
+``false``
+    a counterexample: the worst point and the relative residual there (or a
+    nonzero rational function, which is false even if numerically tiny).
+
+Assumptions are respected: a ``real`` symbol may be negative, so
+``sqrt(x**2) == x`` is *false* for real ``x`` and *proved* for positive ``x``;
+a symbol without assumptions is sampled in the complex plane.
+
+Relations
+---------
+``relations`` says that some symbols are algebraic over the others.  Accepted forms:
+
+* a dict ``{eta: eta**2 - mu**2 - w}`` (symbol -> polynomial that vanishes) or
+  ``{eta: sp.Eq(eta**2, mu**2 + w)}``;
+* a list whose items are ``sp.Eq(...)``, ``(symbol, Eq)`` or ``(symbol, polynomial)``
+  pairs, or bare polynomials.
+
+For an ``Eq`` or polynomial without a named symbol the *constrained symbol* is
+chosen as follows: if one side of the ``Eq`` involves a single symbol
+(``Eq(eta**2, mu**2 + w)``), it is that symbol; otherwise it is the symbol of
+highest degree, and a tie is an error asking you to name it (dict or pair).
+The exact layer divides by the relation in the constrained symbol; the numeric
+layer sets the constrained symbol to a root of its relation (random root).
+
+Example
+-------
+>>> import sympy as sp
+>>> eta, mu, w = sp.symbols("eta mu w", real=True)
+>>> r = check_identity((eta - mu) * (eta + mu), w, relations=[sp.Eq(eta**2, mu**2 + w)])
+>>> r.status, bool(r)
+('proved', True)
+>>> x = sp.Symbol("x", real=True)
+>>> check_identity(sp.sqrt(x**2), x).status
+'false'
+>>> check_identity(sp.sqrt(x**2), x, assumptions={x: {"positive": True}}).status
+'proved'
+"""
+from __future__ import annotations
+
+import html
+from dataclasses import dataclass, field
+from typing import Any, Iterable, Mapping
+
+import sympy as sp
+
+from .proof import Decision, decide
+
+__all__ = ["IdentityResult", "check_identity", "normalize_relations", "apply_assumptions"]
+
+STATUSES = ("proved", "verified", "false")
+
+
+def _short(expr, limit: int = 80) -> str:
+    s = sp.sstr(expr)
+    return s if len(s) <= limit else s[: limit - 3] + "..."
+
+
+def _point_text(point: Mapping[str, Any] | None, limit: int = 6) -> str:
+    if not point:
+        return "-"
+    items = list(point.items())
+    txt = ", ".join(f"{k}={v}" for k, v in items[:limit])
+    return txt + (", ..." if len(items) > limit else "")
+
+
+@dataclass
+class IdentityResult:
+    """Outcome of :func:`check_identity`.
+
+    ``status`` is ``"proved"``, ``"verified"`` or ``"false"``; ``method`` says
+    how it was decided; ``residual`` is the worst relative residual of the
+    numeric screen (0 when proved); ``digits`` the number of significant
+    digits to which the sides agree (``None`` when proved); ``requested_digits``
+    the working precision asked for; ``points`` the sample points (symbol name
+    -> value as a string); ``counterexample`` the worst point when false.
+    ``bool(result)`` is true unless the identity is false.
+    """
+
+    status: str
+    method: str
+    residual: float | None = None
+    digits: float | None = None
+    points: list[dict[str, str]] = field(default_factory=list)
+    counterexample: dict[str, str] | None = None
+    note: str = ""
+    requested_digits: int = 50
+    lhs: Any = field(default=None, repr=False)
+    rhs: Any = field(default=None, repr=False)
+    decision: Decision | None = field(default=None, repr=False, compare=False)
+
+    def __post_init__(self):
+        if self.status not in STATUSES:
+            raise ValueError(f"unknown status {self.status!r}")
+
+    # -- truth --------------------------------------------------------------
+    def __bool__(self) -> bool:
+        return self.status != "false"
+
+    @property
+    def holds(self) -> bool:
+        return self.status != "false"
+
+    @property
+    def proved(self) -> bool:
+        return self.status == "proved"
+
+    # -- text ---------------------------------------------------------------
+    @property
+    def statement(self) -> str:
+        return f"{_short(self.lhs)} == {_short(self.rhs)}"
+
+    def summary(self) -> str:
+        """What decided, in words (without the statement)."""
+        if self.status == "proved":
+            return f"proved by {self.method}"
+        if self.status == "verified":
+            return (f"verified numerically to {self.requested_digits} digits at {len(self.points)} random "
+                    f"points (worst relative residual {self.residual:.1e}; {self.method})")
+        res = "undefined" if self.residual is None else f"{self.residual:.3g}"
+        return (f"false: counterexample {_point_text(self.counterexample)} "
+                f"(relative residual {res}; {self.method})")
+
+    def __str__(self) -> str:
+        return f"{self.statement}: {self.summary()}"
+
+    # -- rich display -----------------------------------------------------------
+    def _repr_html_(self) -> str:
+        from .display import STATUS_COLOURS
+
+        colour = STATUS_COLOURS.get(self.status, "#555")
+        e = html.escape
+        rows = [("method", e(self.method))]
+        if self.status == "verified":
+            rows.append(("residual", f"{self.residual:.2e} ({self.digits:.0f} digits agree, "
+                                     f"{self.requested_digits} requested)"))
+            pts = "<br>".join(e(_point_text(p)) for p in self.points)
+            rows.append(("points", pts))
+        elif self.status == "false":
+            rows.append(("residual", "undefined" if self.residual is None else f"{self.residual:.3g}"))
+            rows.append(("counterexample", e(_point_text(self.counterexample, limit=20))))
+        if self.note:
+            rows.append(("note", e(self.note)))
+        body = "".join(f"<tr><th style='text-align:left;padding-right:1em'>{k}</th><td>{v}</td></tr>"
+                       for k, v in rows)
+        return (f"<div class='symbt-identity symbt-{self.status}' style='border-left:4px solid {colour};"
+                f"padding:0.3em 0.8em;margin:0.3em 0'>"
+                f"<code>{e(self.statement)}</code> "
+                f"<span style='background:{colour};color:white;padding:0 0.4em;border-radius:3px'>"
+                f"{e(self.status)}</span><table>{body}</table></div>")
+
+    def _repr_latex_(self) -> str:
+        from .display import latex_text
+
+        rel = r"\neq" if self.status == "false" else "="
+        try:
+            stmt = f"{sp.latex(self.lhs)} {rel} {sp.latex(self.rhs)}"
+        except Exception:  # pragma: no cover - exotic objects
+            stmt = latex_text(self.statement)
+        return f"$\\displaystyle {stmt}\\quad \\text{{({latex_text(self.status)})}}$"
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"statement": self.statement, "status": self.status, "method": self.method,
+                "residual": self.residual, "digits": self.digits, "points": self.points,
+                "counterexample": self.counterexample, "note": self.note}
+
+
+# --------------------------------------------------------------------------- inputs
+
+def _symbol_lookup(exprs: Iterable[Any]) -> dict[str, sp.Symbol]:
+    out: dict[str, sp.Symbol] = {}
+    for e in exprs:
+        for s in getattr(e, "free_symbols", ()):
+            out.setdefault(s.name, s)
+    return out
+
+
+def apply_assumptions(assumptions: Mapping[Any, Mapping[str, bool]] | None, *exprs):
+    """Replace symbols by assumption-carrying ones.
+
+    ``assumptions`` maps a symbol (or its name) to an assumption dict, e.g.
+    ``{x: {"positive": True}}``; the new symbol keeps the name and combines the
+    old symbol's assumptions with the new ones (inconsistent ones raise
+    ``ValueError``).  Returns ``(replacement, exprs...)``.
+    """
+    if not assumptions:
+        return ({}, *exprs)
+    lookup = _symbol_lookup(exprs)
+    repl: dict[sp.Symbol, sp.Symbol] = {}
+    for key, extra in assumptions.items():
+        name = key if isinstance(key, str) else getattr(key, "name", None)
+        if name is None:
+            raise TypeError(f"assumptions keys must be symbols or names, not {key!r}")
+        old = key if isinstance(key, sp.Symbol) else lookup.get(name, sp.Symbol(name))
+        base = dict(getattr(old, "_assumptions_orig", {}) or {})
+        base.update(extra)
+        try:
+            new = sp.Symbol(name, **base)
+        except Exception as exc:  # InconsistentAssumptions
+            raise ValueError(f"inconsistent assumptions for {name}: {base}") from exc
+        repl[old] = new
+        if lookup.get(name) is not None and lookup[name] != old:
+            repl[lookup[name]] = new
+    out = []
+    for e in exprs:
+        if e is None:
+            out.append(e)
+        elif isinstance(e, sp.MatrixBase):
+            out.append(e.xreplace(repl))
+        else:
+            out.append(sp.sympify(e).xreplace(repl))  # xreplace re-evaluates: sqrt(x**2) -> x for x > 0
+    return (repl, *out)
+
+
+def _as_poly_expr(rel) -> sp.Expr:
+    if isinstance(rel, sp.Equality):
+        return sp.expand(rel.lhs - rel.rhs)
+    return sp.expand(sp.sympify(rel))
+
+
+def _pick_symbol(rel) -> sp.Symbol:
+    if isinstance(rel, sp.Equality):
+        for side in (rel.lhs, rel.rhs):
+            fs = side.free_symbols
+            if len(fs) == 1 and (rel.lhs.free_symbols | rel.rhs.free_symbols) != fs:
+                return next(iter(fs))
+    poly = _as_poly_expr(rel)
+    syms = sorted(poly.free_symbols, key=lambda s: s.name)
+    if not syms:
+        raise ValueError(f"relation {rel} involves no symbol")
+    degs = {s: sp.degree(poly, s) for s in syms}
+    top = max(degs.values())
+    best = [s for s in syms if degs[s] == top]
+    if len(best) > 1:
+        raise ValueError(f"relation {rel}: cannot tell which symbol it constrains "
+                         f"({', '.join(map(str, best))} all have degree {top}); name it with a dict "
+                         f"{{symbol: relation}} or a (symbol, relation) pair")
+    return best[0]
+
+
+def normalize_relations(relations) -> dict[sp.Symbol, sp.Expr]:
+    """Turn the accepted forms of ``relations`` into ``{symbol: polynomial}``.
+
+    >>> eta, mu, w = sp.symbols("eta mu w")
+    >>> normalize_relations([sp.Eq(eta**2, mu**2 + w)])
+    {eta: eta**2 - mu**2 - w}
+    >>> normalize_relations([(mu, sp.Eq(eta**2, mu**2 + w))])
+    {mu: eta**2 - mu**2 - w}
+    """
+    if not relations:
+        return {}
+    out: dict[sp.Symbol, sp.Expr] = {}
+    if isinstance(relations, Mapping):
+        items = list(relations.items())
+    else:
+        if isinstance(relations, (sp.Equality, sp.Expr)):
+            relations = [relations]
+        items = []
+        for item in relations:
+            if isinstance(item, tuple) and len(item) == 2 and isinstance(item[0], sp.Symbol):
+                items.append(item)
+            else:
+                items.append((_pick_symbol(item), item))
+    for sym, rel in items:
+        if not isinstance(sym, sp.Symbol):
+            raise TypeError(f"relation key must be a symbol, not {sym!r}")
+        poly = _as_poly_expr(rel)
+        if not poly.has(sym):
+            raise ValueError(f"relation {rel} does not involve {sym}")
+        if sym in out:
+            raise ValueError(f"two relations for {sym}")
+        out[sym] = poly
+    return out
+
+
+# --------------------------------------------------------------------------- entry point
+
+def check_identity(lhs, rhs=0, *, relations=None, assumptions=None, digits: int = 50,
+                   points: int = 8, seed: int = 1729, exact: bool = True,
+                   fixed: Mapping[Any, Any] | None = None) -> IdentityResult:
+    """Decide ``lhs == rhs`` (scalars or matrices); see the module docstring.
+
+    ``lhs`` may be an ``sp.Eq`` (then ``rhs`` is taken from it).  ``relations``:
+    algebraic side conditions (dict, list of ``Eq``, ``(symbol, Eq)`` pairs).
+    ``assumptions``: ``{symbol or name: {"positive": True, ...}}``.  ``digits``
+    and ``points``: precision and number of random points of the numeric
+    screen; ``seed`` makes it reproducible.  ``exact=False`` skips the exact
+    layer; ``fixed`` pins symbols to values in the numeric screen.
+    """
+    if isinstance(lhs, sp.Equality):
+        if not (isinstance(rhs, (int, float)) and rhs == 0):
+            raise ValueError("give either an Eq or lhs and rhs, not both")
+        lhs, rhs = lhs.lhs, lhs.rhs
+    lhs = lhs if isinstance(lhs, sp.MatrixBase) else sp.sympify(lhs)
+    rhs = rhs if isinstance(rhs, sp.MatrixBase) else sp.sympify(rhs)
+    rel_raw = normalize_relations(relations)
+    if isinstance(lhs, sp.MatrixBase) != isinstance(rhs, sp.MatrixBase):
+        if isinstance(lhs, sp.MatrixBase) and rhs == 0:
+            rhs = sp.zeros(*lhs.shape)
+        elif isinstance(rhs, sp.MatrixBase) and lhs == 0:
+            lhs = sp.zeros(*rhs.shape)
+    if assumptions:
+        rel_exprs = list(rel_raw.values()) + list(rel_raw.keys())
+        repl, lhs, rhs, *rest = apply_assumptions(assumptions, lhs, rhs, *rel_exprs)
+        n = len(rel_raw)
+        rel = {repl.get(k, k): v for k, v in zip(rest[n:], rest[:n])}
+        fixed = {repl.get(k, k): v for k, v in (fixed or {}).items()}
+    else:
+        rel = rel_raw
+    d = decide(lhs, rhs, relations=rel, digits=digits, points=points, seed=seed, exact=exact,
+               fixed=fixed)
+    status = {"proved": "proved", "verified": "verified", "false": "false"}[d.verdict]
+    return IdentityResult(status=status, method=d.method, residual=d.residual, digits=d.digits,
+                          points=list(d.points) if status != "proved" else [],
+                          counterexample=d.counterexample, note=d.note, requested_digits=digits,
+                          lhs=lhs, rhs=rhs, decision=d)

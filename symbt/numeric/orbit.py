@@ -1,0 +1,64 @@
+"""Orbits of the Bäcklund map: repeated :func:`~symbt.numeric.bt_step`.
+
+The map preserves ``tr L(lam)`` (all ``H_k``) and, being a canonical
+transformation that interpolates a Hamiltonian flow (paper Thm. 2, eq.
+``eqdisc``), its orbits lie on invariant tori; the centre of mass
+``Q = mean(q)`` drifts linearly.  Because each float64 step is accurate to a
+few ulps, the orbit error grows only through the (linear, integrable)
+dynamics: ~1e-12 relative after 3500 steps of the paper's example (see
+``tests/test_numeric_orbit.py``).
+
+Example
+-------
+>>> from symbt.numeric import bt_orbit
+>>> P, Q = bt_orbit([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0, 3)
+>>> P.shape
+(4, 3)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._input import check_branch, pick_context
+from .context import FLOAT
+from .errors import InvalidInputError
+from .step import bt_step
+
+__all__ = ["bt_orbit"]
+
+
+def bt_orbit(p, q, lam0, mu, n, *, branch=1):
+    """``n`` Bäcklund steps from ``(p, q)``; returns the ``n + 1`` states.
+
+    float64: arrays ``P, Q`` of shape ``(n + 1,) + p.shape`` with ``P[0] = p``.
+    mpmath: two lists of ``n + 1`` states (each a list of mpf).
+    Errors of any step (e.g. :class:`NoRealMapError`) propagate; the map
+    preserves the spectrum, so if the first step exists all later ones do too
+    (up to round-off at the boundary of existence).
+    """
+    branch = check_branch(branch)
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
+        raise InvalidInputError("n must be a non-negative integer, got %r" % (n,))
+    ctx = pick_context(p, q, lam0, mu)
+    if ctx is FLOAT:
+        p0 = np.asarray(p, dtype=np.float64)
+        q0 = np.asarray(q, dtype=np.float64)
+        pn, qn = bt_step(p0, q0, lam0, mu, branch=branch) if n else (p0, q0)
+        P = np.empty((n + 1,) + pn.shape, dtype=pn.dtype)
+        Q = np.empty_like(P)
+        P[0], Q[0] = p0, q0
+        if n:
+            P[1], Q[1] = pn, qn
+        for i in range(2, n + 1):
+            P[i], Q[i] = bt_step(P[i - 1], Q[i - 1], lam0, mu, branch=branch)
+        return P, Q
+    P, Q = [], []
+    pc, qc = bt_step(p, q, lam0, 0, branch=branch)  # validated copy at mp precision
+    P.append(pc)
+    Q.append(qc)
+    for _ in range(n):
+        pc, qc = bt_step(pc, qc, lam0, mu, branch=branch)
+        P.append(pc)
+        Q.append(qc)
+    return P, Q
