@@ -262,14 +262,14 @@ def normalize_relations(relations) -> dict[sp.Symbol, sp.Expr]:
     >>> normalize_relations([(mu, sp.Eq(eta**2, mu**2 + w))])
     {mu: eta**2 - mu**2 - w}
     """
-    if not relations:
+    if relations is None:
         return {}
+    if isinstance(relations, (sp.Equality, sp.Expr)):
+        relations = [relations]
     out: dict[sp.Symbol, sp.Expr] = {}
     if isinstance(relations, Mapping):
         items = list(relations.items())
     else:
-        if isinstance(relations, (sp.Equality, sp.Expr)):
-            relations = [relations]
         items = []
         for item in relations:
             if isinstance(item, tuple) and len(item) == 2 and isinstance(item[0], sp.Symbol):

@@ -20,7 +20,7 @@ import sympy as sp
 from ..literal import lax_matrix, literal_step
 from ..proof import decide
 from ..symbolic.darboux import lam0, mu
-from ..symbolic.toda import local_lax
+from ..symbolic.toda import lam, local_lax
 from .base import Outcome, claim, from_decision, judge, scene
 from .composed_map import DPS, NumDecision, _fmt_state, _states, eta_from_states
 from .samples import paper_state
@@ -30,7 +30,7 @@ scene("phi", "Phi = dF/dmu on the map: spectrality, Appendix B, the real branch 
 p = sp.Symbol("p_j", real=True)
 E, Et, En, Etn = sp.symbols("E_j Et_j E_jp1 Et_jp1", positive=True)
 eta_j, eta_n = sp.symbols("eta_j eta_jp1", real=True)
-lam = sp.Symbol("lambda")
+
 
 
 def phi_real(tr1, tr2, branch):

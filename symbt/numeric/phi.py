@@ -25,7 +25,7 @@ Examples
 14.8058092993
 >>> c = flow_coefficients([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0)
 >>> [round(float(v), 4) for v in c]          # the paper's caption: -0.005, -0.048, -0.512
-[-0.0051, -0.0485, -0.5117]
+[-0.005, -0.0485, -0.5121]
 """
 
 from __future__ import annotations

@@ -277,7 +277,7 @@ def bt_step(p, q, lam0, mu, *, branch=1, allow_complex=False):
     >>> with mpmath.workdps(30):
     ...     pt, qt = bt_step([mpmath.mpf(-20), 10, 1], [1, 0, mpmath.mpf('0.9')], 10, 5)
     ...     print(mpmath.nstr(qt[0], 15))
-    -0.0861422421882035
+    -0.0861422421882023
     """
     branch = check_branch(branch)
     ctx = pick_context(p, q, lam0, mu)

@@ -31,7 +31,7 @@ __all__ = [
 
 zeta = sp.Symbol("zeta")
 lam0, mu = sp.symbols("lambda0 mu", real=True)
-lam1, lam2 = sp.symbols("lambda1 lambda2")
+lam1, lam2 = sp.symbols("lambda1 lambda2", real=True)
 
 
 def single_darboux(alpha, beta, zeta_=zeta, lam_=lam) -> sp.Matrix:

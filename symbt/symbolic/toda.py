@@ -30,7 +30,7 @@ import sympy as sp
 
 __all__ = ["TodaModel", "toda_model", "local_lax"]
 
-lam = sp.Symbol("lambda")
+lam = sp.Symbol("lambda", real=True)
 
 
 def local_lax(lam_, p, E):
