@@ -15,7 +15,8 @@ from __future__ import annotations
 import html
 from typing import Any, Iterable
 
-__all__ = ["result_html", "result_latex", "scene_html", "latex_text", "STATUS_COLOURS"]
+__all__ = ["result_html", "result_latex", "result_text", "scene_html", "latex_text", "STATUS_COLOURS",
+           "Walkthrough"]
 
 STATUS_COLOURS = {
     "verified": "#2e7d32",   # green
@@ -151,3 +152,81 @@ def scene_html(results: Iterable[Any], *, title: str | None = None) -> str:
     cap = f"<caption>{_e(title)}</caption>" if title else ""
     return (f"<div class='symbt-scene'><table>{cap}<thead>{head}</thead><tbody>{''.join(rows)}"
             f"</tbody></table>{foot}</div>")
+
+
+def result_text(result) -> str:
+    """Plain-text rendering (terminal): status, id, label, statement, errata details."""
+    c, o = result.claim, result.outcome
+    lines = [f"[{o.status}] {c.id} (eq. {c.equation}): {c.statement}",
+             f"    method: {o.method}; residual {_residual(o)}"]
+    if o.printed:
+        lines.append(f"    printed:   {o.printed}")
+    if o.corrected:
+        lines.append(f"    corrected: {o.corrected}")
+    if o.counterexample:
+        lines.append(f"    counterexample: {_point(o.counterexample, limit=8)}")
+    if o.status == "failed" and o.detail:
+        lines.append(f"    detail: {o.detail.strip().splitlines()[0]}")
+    return "\n".join(lines)
+
+
+def _in_ipython() -> bool:
+    try:
+        from IPython import get_ipython
+    except ImportError:
+        return False
+    return get_ipython() is not None
+
+
+class Walkthrough:
+    """Helper for the ``derivations/`` scripts: show claims and objects, then pin the outcomes.
+
+    In Jupyter, :meth:`show` and :meth:`display` use rich display (claim cards,
+    LaTeX); in a terminal they print plain text.  :meth:`expect` raises
+    ``AssertionError`` if a shown claim's status differs from the expected one
+    (or an expected claim was not shown), so a changed outcome breaks the script.
+    """
+
+    def __init__(self):
+        from .claims import load_all
+
+        load_all()
+        self.shown: dict[str, str] = {}
+        self.rich = _in_ipython()
+
+    def display(self, *objs) -> None:
+        for obj in objs:
+            if self.rich:
+                from IPython.display import display
+
+                display(obj)
+            elif hasattr(obj, "claim") and hasattr(obj, "outcome"):
+                print(result_text(obj))
+            elif isinstance(obj, str):
+                print(obj)
+            else:
+                try:
+                    import sympy as sp
+
+                    print(sp.pretty(obj, use_unicode=True) if isinstance(obj, (sp.Basic, sp.MatrixBase))
+                          else str(obj))
+                except Exception:  # pragma: no cover
+                    print(obj)
+
+    def show(self, *claim_ids: str) -> None:
+        """Run the claims (registry ids) and display their results."""
+        from .claims import REGISTRY
+
+        for cid in claim_ids:
+            r = REGISTRY[cid].result()
+            self.shown[cid] = r.status
+            self.display(r)
+
+    def expect(self, expected: dict[str, str]) -> None:
+        """Assert that exactly the expected claims were shown, with the expected statuses."""
+        diffs = [f"{cid}: expected {st}, got {self.shown.get(cid, 'not shown')}"
+                 for cid, st in expected.items() if self.shown.get(cid) != st]
+        diffs += [f"{cid}: shown ({st}) but not expected" for cid, st in self.shown.items()
+                  if cid not in expected]
+        if diffs:
+            raise AssertionError("claim outcomes changed:\n  " + "\n  ".join(diffs))

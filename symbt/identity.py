@@ -67,7 +67,7 @@ STATUSES = ("proved", "verified", "false")
 
 
 def _short(expr, limit: int = 80) -> str:
-    s = sp.sstr(expr)
+    s = " ".join(sp.sstr(expr).split())  # matrices print on several lines
     return s if len(s) <= limit else s[: limit - 3] + "..."
 
 

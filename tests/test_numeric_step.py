@@ -129,9 +129,8 @@ def test_long_chains(N):
         case = outer_gap_case(rng, N, side=side)
         for branch in (1, -1):
             assert err(*case, branch=branch) <= TOL  # measured <= 1e-15
-    if N == 16:
-        case = random_gap_case(rng, N, pscale=40.0)  # an inner gap of a longer chain
-        assert err(*case) <= TOL
+    case = random_gap_case(rng, N, pscale=40.0)  # an inner gap of a longer chain
+    assert err(*case) <= TOL
 
 
 def test_shift_covariance_exact():
@@ -201,10 +200,6 @@ def test_mpmath_complex_continuation():
     assert any(isinstance(v, mpmath.mpc) for v in pt + qt)
     rp, rq = literal_step(p, q, lam0, mu)
     assert max(abs(a - b) for a, b in zip(pt, rp)) < 1e-10
-    # the complex map still preserves the trace
-    for lam in (0.5, 3):
-        assert abs(spectral_trace(lam, [complex(v) for v in pt] and pt, qt) - spectral_trace(lam, p, q)) < 1e-8 \
-            if False else True
     # float path returns complex128 with allow_complex
     fp, fq = bt_step(P0, Q0, lam0, mu, allow_complex=True)
     assert fp.dtype == np.complex128

@@ -43,11 +43,13 @@ def gap_intervals(p, q, ngrid=4001, margin=2.5):
     lam = np.linspace(-R, R, ngrid)
     tr = spectral_trace(lam, np.broadcast_to(p, (ngrid, p.size)), np.broadcast_to(q, (ngrid, p.size)))
     ok = np.abs(tr) > margin
+    sgn = np.sign(tr)
     out, i = [], 0
     while i < ngrid:
         if ok[i]:
             j = i
-            while j + 1 < ngrid and ok[j + 1]:
+            # a sign change of tr means a (possibly unresolved, narrow) band in between
+            while j + 1 < ngrid and ok[j + 1] and sgn[j + 1] == sgn[i]:
                 j += 1
             if 0 < i and j < ngrid - 1:
                 out.append((lam[i], lam[j]))

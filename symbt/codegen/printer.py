@@ -1,0 +1,160 @@
+"""A small, deterministic expression printer for the two emitted flavours.
+
+Only the node types the derivations produce are supported (``Add``, ``Mul``,
+``Pow`` with integer or half-integer exponent, ``exp``, ``log``, ``log1p``,
+``acosh``, ``sign``, ``Abs``, ``Piecewise``, relations, integers and
+rationals); anything else raises, so a derivation change can never slip an
+unprintable -- or a floating-point -- literal into the generated files.
+
+* ``numpy``: float64, elementwise (``np.where`` for ``Piecewise``); rational
+  constants are written ``(p/q)`` (Python rounds the quotient correctly).
+* ``mpmath``: every non-integer constant is an exact ratio evaluated at call
+  time, ``_Q(p, q) = mpmath.mpf(p)/q``, at the caller's precision; integers
+  are Python ints (exact).
+"""
+from __future__ import annotations
+
+import sympy as sp
+from sympy.codegen.cfunctions import log1p
+
+__all__ = ["ExprPrinter", "cse_block"]
+
+_FUNCS = {
+    "numpy": {sp.exp: "np.exp", sp.log: "np.log", log1p: "np.log1p", sp.acosh: "np.arccosh",
+              sp.sign: "np.sign", sp.Abs: "np.abs", "sqrt": "np.sqrt"},
+    "mpmath": {sp.exp: "mpmath.exp", sp.log: "mpmath.log", log1p: "mpmath.log1p", sp.acosh: "mpmath.acosh",
+               sp.sign: "mpmath.sign", sp.Abs: "abs", "sqrt": "mpmath.sqrt"},
+}
+_REL = {sp.GreaterThan: ">=", sp.StrictGreaterThan: ">", sp.LessThan: "<=", sp.StrictLessThan: "<"}
+
+# precedence: atom 4, power 3, unary minus / mul 2, add 1
+_ATOM, _POW, _MUL, _ADD, _REL_P = 4, 3, 2, 1, 0
+
+
+class ExprPrinter:
+    def __init__(self, flavour: str, names: dict):
+        if flavour not in _FUNCS:
+            raise ValueError(flavour)
+        self.flavour = flavour
+        self.funcs = _FUNCS[flavour]
+        self.names = names  # Symbol -> python identifier
+
+    # returns (text, precedence)
+    def _p(self, e):
+        if e.is_Symbol:
+            try:
+                return self.names[e], _ATOM
+            except KeyError:
+                raise ValueError(f"unbound symbol {e}") from None
+        if e.is_Integer:
+            v = int(e)
+            return (str(v), _ATOM) if v >= 0 else (f"({v})", _ATOM)
+        if e.is_Rational:
+            if self.flavour == "numpy":
+                return f"({e.p}/{e.q})", _ATOM
+            return f"_Q({e.p}, {e.q})", _ATOM
+        if e.is_Number or e.is_NumberSymbol:
+            raise ValueError(f"non-rational constant {e!r} in a derivation")
+        if e.is_Add:
+            return self._add(e), _ADD
+        if e.is_Mul:
+            return self._mul(e)
+        if e.is_Pow:
+            return self._pow(e)
+        if isinstance(e, sp.Piecewise):
+            return self._piecewise(e), _ATOM
+        if type(e) in _REL:
+            a = self._wrap(e.lhs, _ADD)
+            b = self._wrap(e.rhs, _ADD)
+            return f"{a} {_REL[type(e)]} {b}", _REL_P
+        f = self.funcs.get(type(e)) or self.funcs.get(e.func)
+        if f is not None and len(e.args) == 1:
+            return f"{f}({self.text(e.args[0])})", _ATOM
+        raise ValueError(f"cannot print {type(e).__name__}: {e}")
+
+    def text(self, e) -> str:
+        return self._p(sp.sympify(e))[0]
+
+    def _wrap(self, e, prec):
+        s, p = self._p(e)
+        return s if p > prec else f"({s})"
+
+    def _add(self, e):
+        parts = []
+        for i, t in enumerate(e.as_ordered_terms()):
+            c, rest = t.as_coeff_Mul()
+            if c.is_Number and c < 0:
+                s = self._wrap(-t, _ADD)
+                parts.append(f"-{s}" if i == 0 else f" - {s}")
+            else:
+                s = self._wrap(t, _ADD)
+                parts.append(s if i == 0 else f" + {s}")
+        return "".join(parts)
+
+    def _mul(self, e):
+        c, rest = e.as_coeff_Mul()
+        if c.is_Number and c < 0:
+            s = self._wrap(-e, _MUL)
+            return f"-{s}", _MUL
+        num, den = [], []
+        for f in sp.Mul.make_args(e):
+            if f.is_Pow and f.exp.is_Rational and f.exp.is_negative:
+                den.append(sp.Pow(f.base, -f.exp))
+            elif f.is_Rational and not f.is_Integer and self.flavour == "numpy":
+                if f.p != 1:
+                    num.append(sp.Integer(f.p))
+                den.append(sp.Integer(f.q))
+            else:
+                num.append(f)
+        ns = "*".join(self._wrap(f, _MUL) for f in num) if num else "1"
+        if not den:
+            return ns, _MUL
+        if len(den) == 1:
+            ds = self._wrap(den[0], _MUL)
+        else:
+            ds = "(" + "*".join(self._wrap(f, _MUL) for f in den) + ")"
+        return f"{ns}/{ds}", _MUL
+
+    def _pow(self, e):
+        b, x = e.base, e.exp
+        if b is sp.E:
+            return f"{self.funcs[sp.exp]}({self.text(x)})", _ATOM
+        if not x.is_Rational:
+            raise ValueError(f"non-rational exponent in {e}")
+        if x.is_negative:
+            return f"1/{self._wrap(sp.Pow(b, -x), _MUL)}", _MUL
+        if x == sp.Rational(1, 2):
+            return f"{self.funcs['sqrt']}({self.text(b)})", _ATOM
+        if x.is_Integer:
+            return f"{self._wrap(b, _POW)}**{int(x)}", _POW
+        if x.q == 2:
+            return f"{self.funcs['sqrt']}({self.text(b)})**{x.p}", _POW
+        raise ValueError(f"exponent {x} not supported")
+
+    def _piecewise(self, e):
+        *pairs, (last, cond) = e.args
+        if cond is not sp.true:
+            raise ValueError("Piecewise without a default branch")
+        out = self.text(last)
+        for val, cnd in reversed(pairs):
+            if self.flavour == "numpy":
+                out = f"np.where({self.text(cnd)}, {self.text(val)}, {out})"
+            else:
+                out = f"({self.text(val)} if {self.text(cnd)} else {out})"
+        return out
+
+
+def cse_block(exprs, names: dict, flavour: str, prefix: str = "t"):
+    """Common subexpressions of ``exprs`` (fixed names ``t0, t1, ...``, canonical order).
+
+    Returns ``(lines, outs)``: assignment lines and the printed reduced outputs.
+    """
+    syms = sp.numbered_symbols(prefix)
+    repl, reduced = sp.cse(list(exprs), symbols=syms, order="canonical")
+    names = dict(names)
+    pr = ExprPrinter(flavour, names)
+    lines = []
+    for s, v in repl:
+        lines.append(f"{s} = {pr.text(v)}")
+        names[s] = str(s)
+    return lines, [pr.text(r) for r in reduced]
