@@ -215,6 +215,22 @@ def _phi_grad_fd(N):
     return worst
 
 
+def _xy_printed(N):
+    """The emitted (rewritten) x, y vs the printed quotients of eq. xy (symbt.literal, 70 digits)."""
+    mod = _module(N)
+    worst = mp.mpf(0)
+    for p, q, l0, m in _map_states(N):
+        for b in (1, -1):
+            with mp.workdps(70):
+                info = literal_step(p, q, l0, m, b)[2]
+            with mp.workdps(MP_DPS):
+                x, y = mod.dapp_xy_mp(p, q, l0, m, b)
+            with mp.workdps(70):
+                worst = max(worst, abs(x - info["x_formula"]) / abs(info["x_formula"]),
+                            abs(y - info["y"][0]) / abs(info["y"][0]))
+    return worst
+
+
 for _N in (2, 3):
     def _make(N):
         for stem, fname, label, what in _FUNCS:
@@ -224,6 +240,11 @@ for _N in (2, 3):
 
             def check(N=N, fname=fname):
                 out = _compare(N, fname)
+                if fname == "dapp_xy" and out.status == "verified":
+                    r = _xy_printed(N)
+                    out.detail += f"; = eq. xy as printed (literal_step, 70 digits): {mp.nstr(r, 3)}"
+                    if r > MP_TOL:
+                        out.status = "failed"
                 if fname == "phi_grad" and out.status == "verified":
                     r = _phi_grad_fd(N)
                     out.detail += f"; vs mp.diff of the emitted Phi: {mp.nstr(r, 3)}"

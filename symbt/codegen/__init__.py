@@ -180,7 +180,10 @@ def main(argv=None) -> int:
                     help="write nothing; exit 1 if a generated file is missing, stale or edited by hand")
     ap.add_argument("--out", metavar="DIR", default=None, help=f"output directory (default {DEFAULT_OUT})")
     ap.add_argument("-q", "--quiet", action="store_true")
-    args = ap.parse_args(list(argv) if argv is not None else None)
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if argv[:1] == ["--"]:  # `symbt codegen -- --check` (argparse REMAINDER hands on the separator)
+        argv = argv[1:]
+    args = ap.parse_args(argv)
     if args.check:
         problems = check(args.out)
         for msg in problems:

@@ -206,7 +206,7 @@ def specs(N: int) -> tuple:
         (Output("integrand", (N,), tuple(lam ** k / sp.sqrt(disc(tl)) for k in range(N)), "[..., k]"),),
         "general"))
 
-    # --- scaled eigenvector slopes at every site (eqs. l1l2, xy; Appendix B) ---------------------------------------------------------------
+    # --- scaled eigenvector slopes u_j = E_j y_j, w_j = E_j z_j at every site (eqs. l1l2, xy) ----
     G1 = branch * sp.sqrt(disc(t_1))
     G2 = branch * sp.sqrt(disc(t_2))
     u, w = [], []
@@ -220,7 +220,7 @@ def specs(N: int) -> tuple:
                               (S(E[j] * s1).xreplace({gs: G1}), True)))
         w.append(sp.Piecewise((S(E[j] * f2).xreplace({gs: G2}), S(c2).xreplace({gs: G2})),
                               (S(E[j] * s2).xreplace({gs: G2}), True)))
-    # --- eq. xy: x, y of Dapp (unscaled, E_1 = exp(q_1)), from the stable slopes ----------
+    # --- eq. xy: x, y of Dapp (unscaled, E_1 = exp(q_1)), from the stable slopes -------------
     # y = (A1 - D1 + g1)/(2 B1) = u_1/E_1 and, with z = (A2 - D2 - g2)/(2 B2) = w_1/E_1,
     # the printed x = 2 B1 B2 (l2 - l1)/(B2 (A1-D1+g1) - B1 (A2-D2-g2)) = 2 mu/(z - y) = E_1 (2 mu/d_1).
     d = [w[j] - u[j] for j in range(N)]
@@ -231,7 +231,7 @@ def specs(N: int) -> tuple:
                        Output("y", (), (sp.exp(-q[0]) * u[0],), "y")),
         "general"))
 
-    # --- the step (eqs. xyqqt, imptransf)
+    # --- the step (eqs. xyqqt, imptransf) ---------------------------------------------------
     qt = tuple(q[j] + log1p(-2 * mu / d[j]) for j in range(N))
     pt = tuple(p[j] + 2 * mu * (u[j] / d[j] - u[(j + 1) % N] / d[(j + 1) % N]) for j in range(N))
     out.append(FunctionSpec(

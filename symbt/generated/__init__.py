@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: ecb672a329348b0f7bbd4b0501d0ffc3170a358f462153fee3cb55361972d4f5
-# symbt-codegen-content-sha256: bdd8a0f736eee27b4c9826ff551d13046d8a62f02c54a7810b98223c8842b2da
+# symbt-codegen-derivation-sha256: 35e3a0c1fb7dd3a58a3fb3033cb71d297b6e010b140d5ef2bfd974c86d23519e
+# symbt-codegen-content-sha256: 637264886eac7eb43fc3b20940623e13b2817e9ce764fd36c14e1f5786752083
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: toda2 (N=2)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: ecb672a329348b0f7bbd4b0501d0ffc3170a358f462153fee3cb55361972d4f5
-# symbt-codegen-content-sha256: 0f499701d957b57bd4ea5ef71bc6e1e7e3ec461c51122cad5df3bf85df280dbf
+# symbt-codegen-derivation-sha256: 35e3a0c1fb7dd3a58a3fb3033cb71d297b6e010b140d5ef2bfd974c86d23519e
+# symbt-codegen-content-sha256: a8f949aefa184bedb972a1b6dca446b1ab1651f8c0c9bf7f64c38455a086b141
 """Generated numeric code for the N=2 periodic Toda lattice (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -311,7 +311,7 @@ def ck_integrand(lam, p, q):
 
 
 def dapp_xy(p, q, lam0, mu, branch):
-    """x, y of the Darboux matrix (eq. xy as printed; gamma_i = b sqrt(tr_i^2 - 4)) (eq. xy, N=2).
+    """x, y of the Darboux matrix (eq. xy; gamma_i = b sqrt(tr_i^2 - 4); the printed quotients rewritten without cancellation: y = u_1 e^{-q_1}, x = 2 mu e^{q_1}/(w_1 - u_1)) (eq. xy, N=2).
 
     float64, vectorised: state arguments have shape (..., N), scalars broadcast against the batch shape; NaN outside the real domain.
 
@@ -337,25 +337,32 @@ def dapp_xy(p, q, lam0, mu, branch):
     q1 = q[..., 0]
     q2 = q[..., 1]
     with np.errstate(all="ignore"):
-        t0 = np.exp(q1)
-        t1 = t0*p2
-        t2 = lam0 + mu
-        t3 = t0*t2
-        t4 = -2*t1 - 2*t3
-        t5 = lam0 - mu
-        t6 = -t0*t5 - t1
-        t7 = q1 - q2
-        t8 = np.exp(t7)
-        t9 = p1*p2 - np.exp(-t7)
-        t10 = -t8 + t9
-        t11 = t10 - 2
-        t12 = t2*p1 + t2*p2 + t2**2
-        t13 = t10 + 2
-        t14 = t8 + t9
-        t15 = branch*np.sqrt((t11 + t12)*(t12 + t13)) + t12 + t14
-        t16 = t5*p1 + t5*p2 + t5**2
-        x = _pack([-(2*t4*t6*mu/(t15*t6 - (-t1 - t3)*(-branch*np.sqrt((t11 + t16)*(t13 + t16)) + t14 + t16)))], _batch, ())
-        y = _pack([t15/t4], _batch, ())
+        t0 = 2*mu
+        t1 = 2*lam0
+        t2 = 2*p2 + t1
+        t3 = q1 - q2
+        t4 = np.exp(t3)
+        t5 = p1*p2 - np.exp(-t3)
+        t6 = -t4 + t5
+        t7 = t6 - 2
+        t8 = lam0 + mu
+        t9 = t8*p1 + t8*p2 + t8**2
+        t10 = t6 + 2
+        t11 = branch*np.sqrt((t10 + t9)*(t7 + t9))
+        t12 = mu*p1
+        t13 = mu*p2
+        t14 = t1*mu
+        t15 = lam0**2 + lam0*p1 + lam0*p2 + mu**2 + t4 + t5
+        t16 = t12 + t13 + t14 + t15
+        t17 = t0*t4
+        t18 = 2*t4*p1 + t1*t4
+        t19 = np.where(t11*t16 >= 0, (t11 + t16)/(-t0 - t2), (-t17 - t18)/(-t11 + t16))
+        t20 = lam0 - mu
+        t21 = t20*p1 + t20*p2 + t20**2
+        t22 = branch*np.sqrt((t10 + t21)*(t21 + t7))
+        t23 = -t12 - t13 - t14 + t15
+        x = _pack([t0*np.exp(q1)/(-t19 + np.where(t22*t23 <= 0, (-t22 + t23)/(t0 - t2), (t17 - t18)/(t22 + t23)))], _batch, ())
+        y = _pack([t19*np.exp(-q1)], _batch, ())
     return x, y
 
 
@@ -635,7 +642,7 @@ def ck_integrand_mp(lam, p, q):
 
 
 def dapp_xy_mp(p, q, lam0, mu, branch):
-    """x, y of the Darboux matrix (eq. xy as printed; gamma_i = b sqrt(tr_i^2 - 4)) (eq. xy, N=2).
+    """x, y of the Darboux matrix (eq. xy; gamma_i = b sqrt(tr_i^2 - 4); the printed quotients rewritten without cancellation: y = u_1 e^{-q_1}, x = 2 mu e^{q_1}/(w_1 - u_1)) (eq. xy, N=2).
 
     mpmath at the current precision (single state; complex outside the real domain).
 
@@ -655,25 +662,32 @@ def dapp_xy_mp(p, q, lam0, mu, branch):
     lam0 = mpmath.mpmathify(lam0)
     mu = mpmath.mpmathify(mu)
     branch = _mp_branch(branch)
-    t0 = mpmath.exp(q1)
-    t1 = t0*p2
-    t2 = lam0 + mu
-    t3 = t0*t2
-    t4 = -2*t1 - 2*t3
-    t5 = lam0 - mu
-    t6 = -t0*t5 - t1
-    t7 = q1 - q2
-    t8 = mpmath.exp(t7)
-    t9 = p1*p2 - mpmath.exp(-t7)
-    t10 = -t8 + t9
-    t11 = t10 - 2
-    t12 = t2*p1 + t2*p2 + t2**2
-    t13 = t10 + 2
-    t14 = t8 + t9
-    t15 = branch*mpmath.sqrt((t11 + t12)*(t12 + t13)) + t12 + t14
-    t16 = t5*p1 + t5*p2 + t5**2
-    x = -(2*t4*t6*mu/(t15*t6 - (-t1 - t3)*(-branch*mpmath.sqrt((t11 + t16)*(t13 + t16)) + t14 + t16)))
-    y = t15/t4
+    t0 = 2*mu
+    t1 = 2*lam0
+    t2 = 2*p2 + t1
+    t3 = q1 - q2
+    t4 = mpmath.exp(t3)
+    t5 = p1*p2 - mpmath.exp(-t3)
+    t6 = -t4 + t5
+    t7 = t6 - 2
+    t8 = lam0 + mu
+    t9 = t8*p1 + t8*p2 + t8**2
+    t10 = t6 + 2
+    t11 = branch*mpmath.sqrt((t10 + t9)*(t7 + t9))
+    t12 = mu*p1
+    t13 = mu*p2
+    t14 = t1*mu
+    t15 = lam0**2 + lam0*p1 + lam0*p2 + mu**2 + t4 + t5
+    t16 = t12 + t13 + t14 + t15
+    t17 = t0*t4
+    t18 = 2*t4*p1 + t1*t4
+    t19 = ((t11 + t16)/(-t0 - t2) if t11*t16 >= 0 else (-t17 - t18)/(-t11 + t16))
+    t20 = lam0 - mu
+    t21 = t20*p1 + t20*p2 + t20**2
+    t22 = branch*mpmath.sqrt((t10 + t21)*(t21 + t7))
+    t23 = -t12 - t13 - t14 + t15
+    x = t0*mpmath.exp(q1)/(-t19 + ((-t22 + t23)/(t0 - t2) if t22*t23 <= 0 else (t17 - t18)/(t22 + t23)))
+    y = t19*mpmath.exp(-q1)
     return x, y
 
 

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: toda3 (N=3)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: ecb672a329348b0f7bbd4b0501d0ffc3170a358f462153fee3cb55361972d4f5
-# symbt-codegen-content-sha256: c9ba02dd043876ac4a4a59a067d885e60e763798c68df918a37fa1273f430063
+# symbt-codegen-derivation-sha256: 35e3a0c1fb7dd3a58a3fb3033cb71d297b6e010b140d5ef2bfd974c86d23519e
+# symbt-codegen-content-sha256: 875fc477be3d078a044bf537f6758b91b67ccb5baa4b3094b70bc9ad9bd8857f
 """Generated numeric code for the N=3 periodic Toda lattice (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -409,7 +409,7 @@ def ck_integrand(lam, p, q):
 
 
 def dapp_xy(p, q, lam0, mu, branch):
-    """x, y of the Darboux matrix (eq. xy as printed; gamma_i = b sqrt(tr_i^2 - 4)) (eq. xy, N=3).
+    """x, y of the Darboux matrix (eq. xy; gamma_i = b sqrt(tr_i^2 - 4); the printed quotients rewritten without cancellation: y = u_1 e^{-q_1}, x = 2 mu e^{q_1}/(w_1 - u_1)) (eq. xy, N=3).
 
     float64, vectorised: state arguments have shape (..., N), scalars broadcast against the batch shape; NaN outside the real domain.
 
@@ -437,44 +437,64 @@ def dapp_xy(p, q, lam0, mu, branch):
     q2 = q[..., 1]
     q3 = q[..., 2]
     with np.errstate(all="ignore"):
-        t0 = np.exp(q1)
+        t0 = 2*mu
         t1 = t0*p2
-        t2 = t1*p3
-        t3 = lam0 + mu
-        t4 = t1*t3
-        t5 = t0*p3
-        t6 = t3*t5
-        t7 = t3**2
-        t8 = t0*t7
-        t9 = q1 - q2
-        t10 = np.exp(q3 + t9)
-        t11 = 2*t10 - 2*t2 - 2*t4 - 2*t6 - 2*t8
-        t12 = lam0 - mu
-        t13 = t12**2
-        t14 = -t10 + t2
-        t15 = -t0*t13 - t1*t12 - t12*t5 - t14
-        t16 = -q3
-        t17 = np.exp(q1 + t16)
-        t18 = t17*p2
-        t19 = np.exp(-q2 - t16)
-        t20 = np.exp(-t9)
-        t21 = p1*p2
-        t22 = -t19*p1 - t20*p3 + t21*p3
-        t23 = -t18 + t22
-        t24 = t23 - 2
-        t25 = t17*t3
-        t26 = t3*p3
-        t27 = t26*p1 + t7*p1 + t26*p2 + t7*p2 + t7*p3 - t19*t3 - t20*t3 + t21*t3 + t3**3
-        t28 = -t25 + t27
-        t29 = t23 + 2
-        t30 = t18 + t22
-        t31 = branch*np.sqrt((t24 + t28)*(t28 + t29)) + t25 + t27 + t30
-        t32 = t12*t17
-        t33 = t12*p3
-        t34 = t13*p1 + t33*p1 + t13*p2 + t33*p2 + t13*p3 + t12**3 - t12*t19 - t12*t20 + t12*t21
-        t35 = -t32 + t34
-        x = _pack([-(2*t11*t15*mu/(t15*t31 - (-branch*np.sqrt((t24 + t35)*(t29 + t35)) + t30 + t32 + t34)*(-t14 - t4 - t6 - t8)))], _batch, ())
-        y = _pack([t31/t11], _batch, ())
+        t2 = t0*p3
+        t3 = lam0*mu
+        t4 = 4*t3
+        t5 = -q3
+        t6 = q2 + t5
+        t7 = np.exp(-t6)
+        t8 = lam0**2
+        t9 = 2*t8
+        t10 = mu**2
+        t11 = 2*t10
+        t12 = 2*lam0
+        t13 = p2*p3
+        t14 = t12*p2 + t12*p3 + t11 + 2*t13 - 2*t7 + t9
+        t15 = np.exp(q1 + t5)
+        t16 = t15*p2
+        t17 = np.exp(-q1 + q2)
+        t18 = t13*p1 - t7*p1 - t17*p3
+        t19 = -t16 + t18
+        t20 = t19 - 2
+        t21 = lam0 + mu
+        t22 = t21**2
+        t23 = t21*p1
+        t24 = t22*p1 + t22*p2 + t23*p2 + t22*p3 + t23*p3 + t13*t21 - t15*t21 - t17*t21 + t21**3 - t21*t7
+        t25 = t19 + 2
+        t26 = branch*np.sqrt((t20 + t24)*(t24 + t25))
+        t27 = mu**3
+        t28 = t15*mu
+        t29 = t17*mu
+        t30 = t7*mu
+        t31 = 3*t8*mu
+        t32 = mu*p1
+        t33 = t32*p2
+        t34 = t32*p3
+        t35 = t13*mu
+        t36 = 2*t3
+        t37 = t36*p1
+        t38 = t36*p2
+        t39 = t36*p3
+        t40 = t15*lam0
+        t41 = lam0*p1
+        t42 = lam0**3 + 3*t10*lam0 + t13*lam0 - t17*lam0 - t7*lam0 + t10*p1 + t8*p1 + t10*p2 + t41*p2 + t8*p2 + t10*p3 + t41*p3 + t8*p3 + t16 + t18 + t40
+        t43 = t27 + t28 - t29 - t30 + t31 + t33 + t34 + t35 + t37 + t38 + t39 + t42
+        t44 = 2*p1
+        t45 = t28*t44
+        t46 = t0*t16
+        t47 = 4*t40*mu
+        t48 = t11*t15 + t12*t16 + t15*t9 + t16*t44 + t40*t44 - 2*np.exp(t6)
+        t49 = np.where(t26*t43 >= 0, (t26 + t43)/(-t1 - t14 - t2 - t4), (-t45 - t46 - t47 - t48)/(-t26 + t43))
+        t50 = lam0 - mu
+        t51 = t50**2
+        t52 = t50*p1
+        t53 = t51*p1 + t51*p2 + t52*p2 + t51*p3 + t52*p3 + t13*t50 - t15*t50 - t17*t50 + t50**3 - t50*t7
+        t54 = branch*np.sqrt((t20 + t53)*(t25 + t53))
+        t55 = -t27 - t28 + t29 + t30 - t31 - t33 - t34 - t35 - t37 - t38 - t39 + t42
+        x = _pack([t0*np.exp(q1)/(-t49 + np.where(t54*t55 <= 0, (-t54 + t55)/(t1 - t14 + t2 + t4), (t45 + t46 + t47 - t48)/(t54 + t55)))], _batch, ())
+        y = _pack([t49*np.exp(-q1)], _batch, ())
     return x, y
 
 
@@ -931,7 +951,7 @@ def ck_integrand_mp(lam, p, q):
 
 
 def dapp_xy_mp(p, q, lam0, mu, branch):
-    """x, y of the Darboux matrix (eq. xy as printed; gamma_i = b sqrt(tr_i^2 - 4)) (eq. xy, N=3).
+    """x, y of the Darboux matrix (eq. xy; gamma_i = b sqrt(tr_i^2 - 4); the printed quotients rewritten without cancellation: y = u_1 e^{-q_1}, x = 2 mu e^{q_1}/(w_1 - u_1)) (eq. xy, N=3).
 
     mpmath at the current precision (single state; complex outside the real domain).
 
@@ -951,44 +971,64 @@ def dapp_xy_mp(p, q, lam0, mu, branch):
     lam0 = mpmath.mpmathify(lam0)
     mu = mpmath.mpmathify(mu)
     branch = _mp_branch(branch)
-    t0 = mpmath.exp(q1)
+    t0 = 2*mu
     t1 = t0*p2
-    t2 = t1*p3
-    t3 = lam0 + mu
-    t4 = t1*t3
-    t5 = t0*p3
-    t6 = t3*t5
-    t7 = t3**2
-    t8 = t0*t7
-    t9 = q1 - q2
-    t10 = mpmath.exp(q3 + t9)
-    t11 = 2*t10 - 2*t2 - 2*t4 - 2*t6 - 2*t8
-    t12 = lam0 - mu
-    t13 = t12**2
-    t14 = -t10 + t2
-    t15 = -t0*t13 - t1*t12 - t12*t5 - t14
-    t16 = -q3
-    t17 = mpmath.exp(q1 + t16)
-    t18 = t17*p2
-    t19 = mpmath.exp(-q2 - t16)
-    t20 = mpmath.exp(-t9)
-    t21 = p1*p2
-    t22 = -t19*p1 - t20*p3 + t21*p3
-    t23 = -t18 + t22
-    t24 = t23 - 2
-    t25 = t17*t3
-    t26 = t3*p3
-    t27 = t26*p1 + t7*p1 + t26*p2 + t7*p2 + t7*p3 - t19*t3 - t20*t3 + t21*t3 + t3**3
-    t28 = -t25 + t27
-    t29 = t23 + 2
-    t30 = t18 + t22
-    t31 = branch*mpmath.sqrt((t24 + t28)*(t28 + t29)) + t25 + t27 + t30
-    t32 = t12*t17
-    t33 = t12*p3
-    t34 = t13*p1 + t33*p1 + t13*p2 + t33*p2 + t13*p3 + t12**3 - t12*t19 - t12*t20 + t12*t21
-    t35 = -t32 + t34
-    x = -(2*t11*t15*mu/(t15*t31 - (-branch*mpmath.sqrt((t24 + t35)*(t29 + t35)) + t30 + t32 + t34)*(-t14 - t4 - t6 - t8)))
-    y = t31/t11
+    t2 = t0*p3
+    t3 = lam0*mu
+    t4 = 4*t3
+    t5 = -q3
+    t6 = q2 + t5
+    t7 = mpmath.exp(-t6)
+    t8 = lam0**2
+    t9 = 2*t8
+    t10 = mu**2
+    t11 = 2*t10
+    t12 = 2*lam0
+    t13 = p2*p3
+    t14 = t12*p2 + t12*p3 + t11 + 2*t13 - 2*t7 + t9
+    t15 = mpmath.exp(q1 + t5)
+    t16 = t15*p2
+    t17 = mpmath.exp(-q1 + q2)
+    t18 = t13*p1 - t7*p1 - t17*p3
+    t19 = -t16 + t18
+    t20 = t19 - 2
+    t21 = lam0 + mu
+    t22 = t21**2
+    t23 = t21*p1
+    t24 = t22*p1 + t22*p2 + t23*p2 + t22*p3 + t23*p3 + t13*t21 - t15*t21 - t17*t21 + t21**3 - t21*t7
+    t25 = t19 + 2
+    t26 = branch*mpmath.sqrt((t20 + t24)*(t24 + t25))
+    t27 = mu**3
+    t28 = t15*mu
+    t29 = t17*mu
+    t30 = t7*mu
+    t31 = 3*t8*mu
+    t32 = mu*p1
+    t33 = t32*p2
+    t34 = t32*p3
+    t35 = t13*mu
+    t36 = 2*t3
+    t37 = t36*p1
+    t38 = t36*p2
+    t39 = t36*p3
+    t40 = t15*lam0
+    t41 = lam0*p1
+    t42 = lam0**3 + 3*t10*lam0 + t13*lam0 - t17*lam0 - t7*lam0 + t10*p1 + t8*p1 + t10*p2 + t41*p2 + t8*p2 + t10*p3 + t41*p3 + t8*p3 + t16 + t18 + t40
+    t43 = t27 + t28 - t29 - t30 + t31 + t33 + t34 + t35 + t37 + t38 + t39 + t42
+    t44 = 2*p1
+    t45 = t28*t44
+    t46 = t0*t16
+    t47 = 4*t40*mu
+    t48 = t11*t15 + t12*t16 + t15*t9 + t16*t44 + t40*t44 - 2*mpmath.exp(t6)
+    t49 = ((t26 + t43)/(-t1 - t14 - t2 - t4) if t26*t43 >= 0 else (-t45 - t46 - t47 - t48)/(-t26 + t43))
+    t50 = lam0 - mu
+    t51 = t50**2
+    t52 = t50*p1
+    t53 = t51*p1 + t51*p2 + t52*p2 + t51*p3 + t52*p3 + t13*t50 - t15*t50 - t17*t50 + t50**3 - t50*t7
+    t54 = branch*mpmath.sqrt((t20 + t53)*(t25 + t53))
+    t55 = -t27 - t28 + t29 + t30 - t31 - t33 - t34 - t35 - t37 - t38 - t39 + t42
+    x = t0*mpmath.exp(q1)/(-t49 + ((-t54 + t55)/(t1 - t14 + t2 + t4) if t54*t55 <= 0 else (t45 + t46 + t47 - t48)/(t54 + t55)))
+    y = t49*mpmath.exp(-q1)
     return x, y
 
 

@@ -31,42 +31,22 @@ from __future__ import annotations
 
 import mpmath
 
+from ..literal import literal_step as _paper_route
+from ..literal import spectral_trace_mp
+
 __all__ = ["literal_step", "literal_trace"]
-
-
-def _monodromy(lam, p, E):
-    L = mpmath.eye(2)
-    for pj, Ej in zip(p, E):
-        L = mpmath.matrix([[lam + pj, -Ej], [1 / Ej, 0]]) * L
-    return L
 
 
 def literal_trace(lam, p, q):
     """``tr L(lam)`` from the literal 2x2 product (mpmath, current precision)."""
-    p = [mpmath.mpf(v) for v in p]
-    E = [mpmath.exp(mpmath.mpf(v)) for v in q]
-    L = _monodromy(mpmath.mpf(lam), p, E)
-    return L[0, 0] + L[1, 1]
+    return spectral_trace_mp(mpmath.mpf(lam), [mpmath.mpf(v) for v in p], [mpmath.mpf(v) for v in q])
 
 
 def _literal_once(p, q, lam0, mu, branch):
-    N = len(p)
-    E = [mpmath.exp(v) for v in q]
-    lam1, lam2 = lam0 + mu, lam0 - mu
-    L1, L2 = _monodromy(lam1, p, E), _monodromy(lam2, p, E)
-    tr1, tr2 = L1[0, 0] + L1[1, 1], L2[0, 0] + L2[1, 1]
-    g1 = branch * mpmath.sqrt(tr1**2 - 4)
-    g2 = branch * mpmath.sqrt(tr2**2 - 4)
-    y = [(L1[0, 0] - L1[1, 1] + g1) / (2 * L1[0, 1])]
-    z = [(L2[0, 0] - L2[1, 1] - g2) / (2 * L2[0, 1])]
-    for j in range(N - 1):
-        y.append(-1 / (E[j] * (lam1 + p[j] + E[j] * y[j])))
-        z.append(-1 / (E[j] * (lam2 + p[j] + E[j] * z[j])))
-    x = [2 * mu / (z[j] - y[j]) for j in range(N)]
-    eta = [x[j] * y[j] + mu for j in range(N)]
-    pt = [p[j] + eta[j] - eta[(j + 1) % N] for j in range(N)]
-    qt = [mpmath.log(E[j] - x[j]) for j in range(N)]
-    return pt, qt, (tr1, tr2)
+    # the paper's route itself lives in symbt.literal (shared with the claims); this module adds
+    # the automatic guard digits and the self-verification
+    pt, qt, info = _paper_route(p, q, lam0, mu, branch)
+    return pt, qt, (info["tr1"], info["tr2"])
 
 
 def literal_step(p, q, lam0, mu, *, branch=1, guard=None, verify=False):
