@@ -41,7 +41,6 @@ Example
 """
 from __future__ import annotations
 
-import math
 import random
 from dataclasses import dataclass, field
 from typing import Any, Mapping

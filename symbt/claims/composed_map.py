@@ -38,6 +38,22 @@ class NumDecision:
         self.note = ""
 
 
+def worst_over(cases, residual, *, method, dps=DPS, tol=mp.mpf(10) ** -40):
+    """Largest ``residual(state, branch)`` over ``cases`` at ``dps`` digits, as a :class:`NumDecision`."""
+    worst, bad = mp.mpf(0), None
+    with mp.workdps(dps):
+        for state, b in cases:
+            r = residual(state, b)
+            if r > worst:
+                worst, bad = r, _fmt_state(state, b)
+    return NumDecision(worst, tol=tol, method=method, counterexample=bad)
+
+
+def darboux_numeric(lv, l0, mu, x, y):
+    """Eq. ``D`` at a number ``lv`` (mpmath)."""
+    return mp.matrix([[lv - (l0 + mu) - x * y, -x], [y * (2 * mu + x * y), lv - (l0 - mu) + x * y]])
+
+
 def _states(N):
     return [(s, b) for sign in (+1, -1) for s in admissible_states(N, sign, 2) for b in (+1, -1)]
 
@@ -173,71 +189,61 @@ for _N in (2, 3):
                        sp.Matrix([(lam - lam1) * (lam - lam2), 0, 0, 0, 0]))
             if not d.holds:
                 return from_decision(d)
-            worst, bad = mp.mpf(0), None
-            with mp.workdps(DPS):
-                for state, b in _states(N):
-                    p, q, l0, mu = state
-                    _, _, info = literal_step(p, q, l0, mu, b)
-                    xx, yy = info["x_formula"], info["y"][0]
-                    for lv in (l0 + mu, l0 - mu):
-                        Dn = mp.matrix([[lv - (l0 + mu) - xx * yy, -xx],
-                                        [yy * (2 * mu + xx * yy), lv - (l0 - mu) + xx * yy]])
-                        adj = mp.matrix([[Dn[1, 1], -Dn[0, 1]], [-Dn[1, 0], Dn[0, 0]]])
-                        M = Dn * lax_matrix(lv, p, q) * adj
-                        scale = mp.mnorm(Dn, 1) * mp.mnorm(lax_matrix(lv, p, q), 1) * mp.mnorm(adj, 1)
-                        r = mp.mnorm(M, 1) / scale
-                        if r > worst:
-                            worst, bad = r, _fmt_state(state, b)
-            nd = NumDecision(worst, method=f"exact (kernels, det) + numeric {DPS} digits", counterexample=bad)
-            return Outcome("verified" if nd.holds else "failed", "exact: kernels and det; numeric: mpmath "
-                           f"{DPS} digits, D L adj D at l1, l2 on 8 states (both branches, both signs of tr)",
-                           residual=nd.residual, digits=nd.digits, counterexample=nd.counterexample)
+            def residual(state, b):
+                p, q, l0, mu = state
+                _, _, info = literal_step(p, q, l0, mu, b)
+                xx, yy = info["x_formula"], info["y"][0]
+                worst = mp.mpf(0)
+                for lv in (l0 + mu, l0 - mu):
+                    Dn = darboux_numeric(lv, l0, mu, xx, yy)
+                    adj = mp.matrix([[Dn[1, 1], -Dn[0, 1]], [-Dn[1, 0], Dn[0, 0]]])
+                    L = lax_matrix(lv, p, q)
+                    scale = mp.mnorm(Dn, 1) * mp.mnorm(L, 1) * mp.mnorm(adj, 1)
+                    worst = max(worst, mp.mnorm(Dn * L * adj, 1) / scale)
+                return worst
+
+            return from_decision(worst_over(
+                _states(N), residual,
+                method=f"exact: kernels and det; numeric: mpmath {DPS} digits, D L adj D at l1, l2 on 8 states "
+                       "(both branches, both signs of tr)"))
 
         @claim(f"new.n{N}", equation="new", scene="map", N=N,
                statement="L~(lambda) D(lambda) = D(lambda) L(lambda) where L~ is the Lax matrix of the image "
                          f"(p~, q~) of the explicit map (N={N})")
         def new_check():
-            worst, bad = mp.mpf(0), None
-            with mp.workdps(DPS):
-                for state, b in _states(N):
-                    p, q, l0, mu = state
-                    pt, qt, info = literal_step(p, q, l0, mu, b)
-                    xx, yy = info["x_formula"], info["y"][0]
-                    for lv in (mp.mpf("0.37"), mp.mpf("-1.91"), l0 + 3):
-                        Dn = mp.matrix([[lv - (l0 + mu) - xx * yy, -xx],
-                                        [yy * (2 * mu + xx * yy), lv - (l0 - mu) + xx * yy]])
-                        Lt, L = lax_matrix(lv, pt, qt), lax_matrix(lv, p, q)
-                        r = mp.mnorm(Lt * Dn - Dn * L, 1) / (mp.mnorm(Lt, 1) * mp.mnorm(Dn, 1))
-                        if r > worst:
-                            worst, bad = r, _fmt_state(state, b)
-            nd = NumDecision(worst)
-            return Outcome("verified" if nd.holds else "failed",
-                           f"numeric: mpmath {DPS} digits, 8 states x 3 lambdas (both branches, both signs of tr)",
-                           residual=nd.residual, digits=nd.digits, counterexample=nd.counterexample)
+            def residual(state, b):
+                p, q, l0, mu = state
+                pt, qt, info = literal_step(p, q, l0, mu, b)
+                xx, yy = info["x_formula"], info["y"][0]
+                worst = mp.mpf(0)
+                for lv in (mp.mpf("0.37"), mp.mpf("-1.91"), l0 + 3):
+                    Dn = darboux_numeric(lv, l0, mu, xx, yy)
+                    Lt, L = lax_matrix(lv, pt, qt), lax_matrix(lv, p, q)
+                    worst = max(worst, mp.mnorm(Lt * Dn - Dn * L, 1) / (mp.mnorm(Lt, 1) * mp.mnorm(Dn, 1)))
+                return worst
+
+            return from_decision(worst_over(_states(N), residual, method=f"numeric: mpmath {DPS} digits, 8 states "
+                                            "x 3 lambdas (both branches, both signs of tr)"))
 
         @claim(f"l1l2.n{N}", equation="l1l2", scene="map", N=N,
                statement="the kernels Omega_1, Omega_2 of D at l1, l2 are eigenvectors of L(l1), L(l2), "
                          f"with x, y recovered from the image (p~, q~) alone (N={N})")
         def l1l2_check():
-            worst, bad = mp.mpf(0), None
-            with mp.workdps(DPS):
-                for state, b in _states(N):
-                    p, q, l0, mu = state
-                    pt, qt, _ = literal_step(p, q, l0, mu, b)
-                    # x = e^{q1} - e^{q~1} (eq. xyqqt), eta_1 from eq. imptransf, y = (eta_1 - mu)/x
-                    xx = mp.exp(q[0]) - mp.exp(qt[0])
-                    eta1 = eta_from_states(p, q, pt, qt, l0)[0]
-                    yy = (eta1 - mu) / xx
-                    for lv, Om in ((l0 + mu, [mp.mpf(1), -yy]), (l0 - mu, [xx, -2 * mu - xx * yy])):
-                        L = lax_matrix(lv, p, q)
-                        LO = [L[0, 0] * Om[0] + L[0, 1] * Om[1], L[1, 0] * Om[0] + L[1, 1] * Om[1]]
-                        r = abs(_cross(LO, Om)) / (mp.mnorm(L, 1) * (abs(Om[0]) + abs(Om[1])) ** 2)
-                        if r > worst:
-                            worst, bad = r, _fmt_state(state, b)
-            nd = NumDecision(worst)
-            return Outcome("verified" if nd.holds else "failed",
-                           f"numeric: mpmath {DPS} digits, 8 states (both branches, both signs of tr)",
-                           residual=nd.residual, digits=nd.digits, counterexample=nd.counterexample)
+            def residual(state, b):
+                p, q, l0, mu = state
+                pt, qt, _ = literal_step(p, q, l0, mu, b)
+                # x = e^{q1} - e^{q~1} (eq. xyqqt), eta_1 from eq. imptransf, y = (eta_1 - mu)/x
+                xx = mp.exp(q[0]) - mp.exp(qt[0])
+                yy = (eta_from_states(p, q, pt, qt, l0)[0] - mu) / xx
+                worst = mp.mpf(0)
+                for lv, Om in ((l0 + mu, [mp.mpf(1), -yy]), (l0 - mu, [xx, -2 * mu - xx * yy])):
+                    L = lax_matrix(lv, p, q)
+                    LO = [L[0, 0] * Om[0] + L[0, 1] * Om[1], L[1, 0] * Om[0] + L[1, 1] * Om[1]]
+                    worst = max(worst, abs(_cross(LO, Om)) / (mp.mnorm(L, 1) * (abs(Om[0]) + abs(Om[1])) ** 2))
+                return worst
+
+            return from_decision(worst_over(_states(N), residual, method=f"numeric: mpmath {DPS} digits, 8 states "
+                                            "(both branches, both signs of tr)"))
 
         @claim(f"lam0mu.n{N}", equation="lam0mu", scene="map", N=N,
                statement="with l1 = l0 + mu, l2 = l0 - mu the map tends to the identity as mu -> 0, for "
@@ -273,20 +279,15 @@ for _N in (2, 3):
                statement="branch = -1 at mu equals branch = +1 at -mu, and inverts branch = +1: "
                          f"T_-(T_+(p,q)) = (p,q) (N={N})")
         def branches_check():
-            worst, bad = mp.mpf(0), None
-            with mp.workdps(DPS):
-                for state, b in _states(N)[::2]:
-                    p, q, l0, mu = state
-                    pp, qp, _ = literal_step(p, q, l0, mu, 1)
-                    pm, qm, _ = literal_step(p, q, l0, mu, -1)
-                    pn, qn, _ = literal_step(p, q, l0, -mu, 1)
-                    pb, qb, _ = literal_step(pp, qp, l0, mu, -1)
-                    r = max(max(_rel(a, c) for a, c in zip(pm + qm, pn + qn)),
-                            max(_rel(a, c) for a, c in zip(pb + qb, p + q)))
-                    if r > worst:
-                        worst, bad = r, _fmt_state(state, b)
-            nd = NumDecision(worst)
-            return Outcome("verified" if nd.holds else "failed", f"numeric: mpmath {DPS} digits, 4 states",
-                           residual=nd.residual, digits=nd.digits, counterexample=nd.counterexample)
+            def residual(state, b):
+                p, q, l0, mu = state
+                pp, qp, _ = literal_step(p, q, l0, mu, 1)
+                pm, qm, _ = literal_step(p, q, l0, mu, -1)
+                pn, qn, _ = literal_step(p, q, l0, -mu, 1)
+                pb, qb, _ = literal_step(pp, qp, l0, mu, -1)
+                return max(max(_rel(a, c) for a, c in zip(pm + qm, pn + qn)),
+                           max(_rel(a, c) for a, c in zip(pb + qb, p + q)))
+
+            return from_decision(worst_over(_states(N)[::2], residual, method=f"numeric: mpmath {DPS} digits, 4 states"))
 
     _make(_N)

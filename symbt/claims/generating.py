@@ -16,8 +16,8 @@ from ..proof import decide
 from ..symbolic.darboux import composed_darboux, lam0, local_relation_residual, mu
 from ..symbolic.generating import generating_function
 from ..symbolic.toda import lam
-from .base import Outcome, claim, from_decision, scene
-from .composed_map import DPS, NumDecision, _fmt_state, _states
+from .base import claim, from_decision, scene
+from .composed_map import DPS, _states, darboux_numeric, worst_over
 
 scene("generating", "generating function F of the composed map, its mu-derivative (local identities; N=2,3)")
 
@@ -94,29 +94,22 @@ for _N in (2, 3):
                statement="the composed map factorizes site by site: l_j(p~,q~) d_j = d_{j+1} l_j(p,q) with d_j "
                          f"of eq. daj, d_{{N+1}} = d_1 = D (N={N})")
         def nlocal_check():
-            worst, bad = mp.mpf(0), None
-            with mp.workdps(DPS):
-                for state, b in _states(N):
-                    pv, qv, l0, m = state
-                    ptv, qtv, info = literal_step(pv, qv, l0, m, b)
-                    l1, l2 = l0 + m, l0 - m
-                    for lv in (mp.mpf("0.3"), mp.mpf("-2.2")):
-                        for j in range(N):
-                            n = (j + 1) % N
+            def residual(state, b):
+                pv, qv, l0, m = state
+                ptv, qtv, info = literal_step(pv, qv, l0, m, b)
+                worst = mp.mpf(0)
+                for lv in (mp.mpf("0.3"), mp.mpf("-2.2")):
+                    for j in range(N):
+                        n = (j + 1) % N
+                        dj = darboux_numeric(lv, l0, m, info["x"][j], info["y"][j])
+                        dn = darboux_numeric(lv, l0, m, info["x"][n], info["y"][n])
+                        lt = mp.matrix([[lv + ptv[j], -mp.exp(qtv[j])], [mp.exp(-qtv[j]), 0]])
+                        lo = mp.matrix([[lv + pv[j], -mp.exp(qv[j])], [mp.exp(-qv[j]), 0]])
+                        worst = max(worst, mp.mnorm(lt * dj - dn * lo, 1) / (mp.mnorm(lt, 1) * mp.mnorm(dj, 1)))
+                return worst
 
-                            def dmat(k):
-                                x, y = info["x"][k], info["y"][k]
-                                return mp.matrix([[lv - l1 - x * y, -x], [y * (l1 - l2 + x * y), lv - l2 + x * y]])
-
-                            lt = mp.matrix([[lv + ptv[j], -mp.exp(qtv[j])], [mp.exp(-qtv[j]), 0]])
-                            lo = mp.matrix([[lv + pv[j], -mp.exp(qv[j])], [mp.exp(-qv[j]), 0]])
-                            r = mp.mnorm(lt * dmat(j) - dmat(n) * lo, 1) / (mp.mnorm(lt, 1) * mp.mnorm(dmat(j), 1))
-                            if r > worst:
-                                worst, bad = r, _fmt_state(state, b)
-            nd = NumDecision(worst, counterexample=bad)
-            return Outcome("verified" if nd.holds else "failed",
-                           f"numeric: mpmath {DPS} digits, every site, 8 states x 2 lambdas",
-                           residual=nd.residual, digits=nd.digits, counterexample=nd.counterexample)
+            return from_decision(worst_over(_states(N), residual,
+                                            method=f"numeric: mpmath {DPS} digits, every site, 8 states x 2 lambdas"))
 
         @claim(f"newgf.n{N}", equation="newgf", scene="generating", N=N,
                statement="F = sum_k (mu ln((eta_k+mu)/(eta_k-mu)) - 2 eta_k - l0 (q_k - q~_k)) satisfies "
@@ -141,30 +134,23 @@ for _N in (2, 3):
                statement="the composed BT is canonical (a generating function F(q, q~) exists): its Jacobian J "
                          f"satisfies J^T Omega J = Omega (N={N})")
         def gf_check():
-            worst, bad = mp.mpf(0), None
-            with mp.workdps(40):
-                for state, b in _states(N)[::3]:
-                    pv, qv, l0, m = state
-                    z0 = pv + qv
+            Om = mp.matrix(2 * N, 2 * N)
+            for i in range(N):
+                Om[i, N + i], Om[N + i, i] = 1, -1
 
-                    def f(k):
-                        return lambda *z: (lambda r: (r[0] + r[1])[k])(literal_step(list(z[:N]), list(z[N:]), l0, m, b))
+            def residual(state, b):
+                pv, qv, l0, m = state
 
-                    J = mp.matrix(2 * N, 2 * N)
-                    for k in range(2 * N):
-                        for i in range(2 * N):
-                            order = [0] * (2 * N)
-                            order[i] = 1
-                            J[k, i] = mp.diff(f(k), z0, tuple(order))
-                    Om = mp.matrix(2 * N, 2 * N)
-                    for i in range(N):
-                        Om[i, N + i], Om[N + i, i] = 1, -1
-                    r = mp.mnorm(J.T * Om * J - Om, 1) / mp.mnorm(J, 1) ** 2
-                    if r > worst:
-                        worst, bad = r, _fmt_state(state, b)
-            nd = NumDecision(worst, tol=mp.mpf(10) ** -25, counterexample=bad)
-            return Outcome("verified" if nd.holds else "failed",
-                           "numeric: mpmath.diff Jacobian at 40 digits, 3 states",
-                           residual=nd.residual, digits=nd.digits, counterexample=nd.counterexample)
+                def component(k):
+                    return lambda *z: (lambda r: (r[0] + r[1])[k])(literal_step(list(z[:N]), list(z[N:]), l0, m, b))
+
+                J = mp.matrix(2 * N, 2 * N)
+                for k in range(2 * N):
+                    for i in range(2 * N):
+                        J[k, i] = mp.diff(component(k), pv + qv, tuple(int(i == c) for c in range(2 * N)))
+                return mp.mnorm(J.T * Om * J - Om, 1) / mp.mnorm(J, 1) ** 2
+
+            return from_decision(worst_over(_states(N)[::3], residual, dps=40, tol=mp.mpf(10) ** -25,
+                                            method="numeric: mpmath.diff Jacobian at 40 digits, 3 states"))
 
     _make(_N)

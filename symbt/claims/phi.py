@@ -21,7 +21,7 @@ from ..literal import lax_matrix, literal_step
 from ..proof import decide
 from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import lam, local_lax
-from .base import Outcome, claim, from_decision, judge, scene
+from .base import claim, judge, scene
 from .composed_map import DPS, NumDecision, _fmt_state, _states, eta_from_states
 from .samples import paper_state
 
@@ -124,7 +124,7 @@ for _N in (2, 3):
                                    "gamma_i = branch*sqrt(tr_i^2-4): the log identity holds modulo 2*pi*i "
                                    "(real parts: Phi = ln|...|)",
                          corrected_check=lambda: corrected,
-                         detail=f"8 random states (both branches, both signs of tr)"
+                         detail="8 random states (both branches, both signs of tr)"
                                 + (" + the paper's example" if N == 3 else ""))
 
         @claim(f"newkmu.n{N}", equation="newkmu", scene="phi", N=N,

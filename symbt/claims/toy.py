@@ -5,7 +5,7 @@ from __future__ import annotations
 import sympy as sp
 
 from ..proof import decide
-from .base import claim, from_decision, judge, scene
+from .base import claim, from_decision, scene
 
 scene("toy", "Section 2's toy canonical transformation: F, dF/dmu, Phi^, K")
 

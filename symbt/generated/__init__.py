@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 35e3a0c1fb7dd3a58a3fb3033cb71d297b6e010b140d5ef2bfd974c86d23519e
-# symbt-codegen-content-sha256: 637264886eac7eb43fc3b20940623e13b2817e9ce764fd36c14e1f5786752083
+# symbt-codegen-derivation-sha256: 4d2bbd3f9a01701cebdd7e8c4787507839abfe1b2aa9d560506cd120b31799a2
+# symbt-codegen-content-sha256: 6c4c77225aa97e7a04d8134c8199116cc2efb77630796bdf1e2caa1ed187bc47
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

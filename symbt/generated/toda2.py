@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: toda2 (N=2)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 35e3a0c1fb7dd3a58a3fb3033cb71d297b6e010b140d5ef2bfd974c86d23519e
-# symbt-codegen-content-sha256: a8f949aefa184bedb972a1b6dca446b1ab1651f8c0c9bf7f64c38455a086b141
+# symbt-codegen-derivation-sha256: 4d2bbd3f9a01701cebdd7e8c4787507839abfe1b2aa9d560506cd120b31799a2
+# symbt-codegen-content-sha256: 1e769d5e0fb28c03ea06cf27f72b08c25068204b8993a6218a5396558b515b79
 """Generated numeric code for the N=2 periodic Toda lattice (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: toda3 (N=3)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 35e3a0c1fb7dd3a58a3fb3033cb71d297b6e010b140d5ef2bfd974c86d23519e
-# symbt-codegen-content-sha256: 875fc477be3d078a044bf537f6758b91b67ccb5baa4b3094b70bc9ad9bd8857f
+# symbt-codegen-derivation-sha256: 4d2bbd3f9a01701cebdd7e8c4787507839abfe1b2aa9d560506cd120b31799a2
+# symbt-codegen-content-sha256: 8cdbdd9612b14f07ab5a161e07797f09f5963490a375fd44d400e29099193d43
 """Generated numeric code for the N=3 periodic Toda lattice (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
