@@ -95,7 +95,14 @@ def build_parser() -> argparse.ArgumentParser:
     return ap
 
 
+_DELEGATED = {"codegen": "codegen", "bench": "bench", "figures": "figures"}
+
+
 def main(argv=None) -> int:
+    argv = list(sys.argv[1:] if argv is None else argv)
+    # delegated subcommands parse their own options (argparse.REMAINDER would not pass leading --flags)
+    if argv and argv[0] in _DELEGATED:
+        return importlib.import_module(f"symbt.{_DELEGATED[argv[0]]}").main(argv[1:])
     args = build_parser().parse_args(argv)
     return args.func(args)
 

@@ -9,7 +9,8 @@
 * Results are cached as JSON (no pickle) in ``$SYMBT_CACHE_DIR`` (default
   ``~/.cache/symbt``), one file per claim, keyed by a SHA-256 of the claim's
   id, the source of its module and of the layers below it (``symbt.proof``,
-  ``symbt.symbolic``, ``symbt.literal``, ``symbt.numeric``, ``symbt.generated``)
+  ``symbt.symbolic``, ``symbt.literal``, ``symbt.numeric``, ``symbt.codegen``, ``symbt.generated``, the
+  claims' base and sample modules)
   and the versions of Python, SymPy, mpmath and NumPy.  A corrupt or stale
   entry is recomputed; ``use_cache=False`` forces recomputation.
 * Independent claims run in a process pool (``jobs`` workers).
@@ -32,7 +33,8 @@ from .claims.base import Claim, ClaimResult, Outcome
 __all__ = ["select", "run", "ClaimResult", "cache_dir", "claim_key", "default_scenes"]
 
 _PKG = Path(__file__).resolve().parent
-_LAYERS = ("proof.py", "literal.py", "symbolic", "numeric", "generated", "claims/base.py")
+_LAYERS = ("proof.py", "literal.py", "symbolic", "numeric", "codegen", "generated", "claims/base.py",
+           "claims/samples.py")
 
 
 def cache_dir() -> Path:

@@ -101,7 +101,7 @@ class Jacobi:
 
     def abel(self, s, w):
         """u with sn u = s, cn u dn u = w (s real ball, w a ball), as in symbt.elliptic.abel."""
-        from flint import acb, arb
+        from flint import acb
 
         sr = s.real
         sg = 1 if float(sr.mid()) >= 0 else -1
@@ -183,7 +183,7 @@ def _mp_check(case, b):
        statement="addition formula (eq. addform), as printed and in the corrected branch-free form, certified "
                  "with Arb ball arithmetic from exact inputs (map, actions, Abel images, theta-function sn/cn/dn)")
 def addform_arb():
-    from flint import acb, arb
+    from flint import acb
 
     per = 4
     cases = _cases(per, 91)

@@ -293,7 +293,7 @@ for _N in (2, 3):
             return Outcome("verified" if ok else "failed", "numeric: emitted step vs literal and numeric routes",
                            residual=float(worst_mp), detail=detail)
 
-        @claim(f"codegen.files.n{N}", equation="xy", scene="codegen", N=N,
+        @claim(f"codegen.files.n{N}", equation="provenance", scene="codegen", N=N,
                where=f"symbt/generated/toda{N}.py header",
                statement="the generated module is present, not edited by hand and not stale "
                          f"(provenance hashes match the derivation sources) (N={N})")

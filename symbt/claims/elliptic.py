@@ -398,10 +398,10 @@ def addform():
                     stats[reg][1] += 1
                     if reg in ("inner", "outer-same"):  # the printed statement is about the real map
                         wp.add(rp, _fmt(st, b, reg, residual=rp))
-                        want = -1 if reg == "inner" else 1
-                        pred = mp.sign(st[1][0] - st[1][1]) == want and mp.sign(qt[0] - qt[1]) == want
-                        orient[0] += int(pred == (rp < TOL))
-                        orient[1] += 1
+                        if reg == "inner":
+                            pred = mp.sign(st[1][0] - st[1][1]) < 0 and mp.sign(qt[0] - qt[1]) < 0
+                            orient[0] += int(pred == (rp < TOL))
+                            orient[1] += 1
     rate = n_checks / (time.perf_counter() - t0)
     corrected = NumDecision(max(wc.r, wreal.r), method=f"numeric: mpmath {DPS} digits, Jacobi sn/cn/dn")
     if not corrected.holds:
@@ -421,11 +421,11 @@ def addform():
                  detail=f"{per} random cases per regime x 2 branches ({n_checks} checks, {rate:.0f} checks/s incl. the "
                         "map at 50 digits; q1-q2 of both signs). Printed (b = +1) holds in "
                         + ", ".join(f"{k}: {v[0]}/{v[1]}" for k, v in stats.items())
-                        + f". Where the map is real, the printed formula (b = +1) holds exactly when q1 - q2 < 0 "
-                          f"before and after the step in the inner regime, and q1 - q2 > 0 in the outer-same regime "
-                          f"(prediction matched in {orient[0]}/{orient[1]} cases): its sign is the reverse of the "
-                          "corrected one in the inner regime, compensated by the printed theta2 running backwards for "
-                          "q1 < q2; beyond |lambda| = 1 it uses mpmath's principal F (addform.continuation)")
+                        + f". In the inner regime (all F real) the printed formula (b = +1) holds exactly when "
+                          f"q1 - q2 < 0 before and after the step (prediction matched in {orient[0]}/{orient[1]} "
+                          "cases): its sign is the reverse of the corrected one, compensated by the printed theta2 "
+                          "running backwards for q1 < q2. In the outer-same regime it needs F beyond |z| = 1; with "
+                          "mpmath's principal F its truth depends on mp.dps (addform.continuation)")
 
 
 @claim("addform.regimes", equation="addform", scene="elliptic", N=2,
@@ -478,7 +478,6 @@ def regimes():
        statement="F(lambda_+-, k) in eq. addform/citn is meaningful for |lambda_+-| > 1 "
                  "(continuation of F(z,k) beyond |z| = 1)")
 def continuation():
-    z, m = mp.mpf(2), mp.mpf(3) / 7
     vals, abel_vals, resid = {}, {}, {}
     case = E.sample_case("outer-same", random.Random(8))
     for d in (30, 50, 80):
@@ -490,6 +489,23 @@ def continuation():
             st = _mpcase(case)
             I1, I2 = E.actions(st[0], st[1])
             resid[d] = (E.shift(I1, I2, st[2], st[3], 1)["du"], E.addition_residual(*st, 1))
+    # the printed addform in the outer-same regime, with mpmath's principal F, at several precisions
+    verdicts = {}
+    rng = random.Random(12)
+    oc = [E.sample_case("outer-same", rng, x_sign=sx) for sx in (1, -1, 1, -1)]
+    for d in (30, 50, 80):
+        with mp.workdps(d):
+            row = []
+            for c in oc:
+                st = _mpcase(c)
+                pt, qt, _ = literal_step(*st, 1)
+                I1, I2 = E.actions(st[0], st[1])
+                if mp.sign(st[1][0] - st[1][1]) != mp.sign(qt[0] - qt[1]):
+                    continue
+                rp = E.printed_addform_residual(st[0], st[1], pt, I2, st[2], st[3], I1)
+                row.append(("holds" if rp < mp.mpf(10) ** -(d - 10) else "fails")
+                           + (" (q1>q2)" if st[1][0] > st[1][1] else " (q1<q2)"))
+            verdicts[d] = row
     with mp.workdps(25):
         spread_pr = max(abs(vals[a] - vals[b]) for a in vals for b in vals)
         spread_ab = max(abs(x - y) for a in abel_vals for b in abel_vals for x, y in zip(abel_vals[a], abel_vals[b]))
@@ -511,4 +527,6 @@ def continuation():
                  corrected_check=lambda: corrected,
                  detail=f"mpmath principal value spread across 30/50/80 digits: {mp.nstr(spread_pr, 5)}; Abel map "
                         f"spread {mp.nstr(spread_ab, 3)}, step shift spread {mp.nstr(spread_du, 3)}; corrected "
-                        "addition residuals " + ", ".join(f"{d}: {mp.nstr(r[1], 3)}" for d, r in resid.items()))
+                        "addition residuals " + ", ".join(f"{d}: {mp.nstr(r[1], 3)}" for d, r in resid.items())
+                        + ". The printed addform on the same outer-same states (b = +1), by dps: "
+                        + "; ".join(f"{d}: {', '.join(v)}" for d, v in verdicts.items()))

@@ -102,11 +102,12 @@ def _literal_q(m, expr):
 
 
 def _cyclic_monodromy(m, lam_, j):
-    """``l_{j-1} ... l_1 l_N ... l_j`` (0-based j; j = 0 is L)."""
+    """``l_{j-1} ... l_1 l_N ... l_j`` (0-based j; j = 0 is L), expanded in lambda, then
+    ``lambda -> lam_`` (so ``lambda_0 + mu`` stays one quantity: no binomial cancellation)."""
     M = sp.eye(2)
     for k in list(range(j, m.N)) + list(range(0, j)):
-        M = local_lax(lam_, m.p[k], m.E[k]) * M
-    return M.applyfunc(sp.expand)
+        M = local_lax(m.lam, m.p[k], m.E[k]) * M
+    return M.applyfunc(sp.expand).xreplace({m.lam: lam_})
 
 
 def _state_args(m):

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 4d2bbd3f9a01701cebdd7e8c4787507839abfe1b2aa9d560506cd120b31799a2
-# symbt-codegen-content-sha256: 6c4c77225aa97e7a04d8134c8199116cc2efb77630796bdf1e2caa1ed187bc47
+# symbt-codegen-derivation-sha256: f70643afcccefa4c12ad96c8eba50e7eefeecdac2cd375297e0fe7c6f40ba9a3
+# symbt-codegen-content-sha256: 44be8ca80a0da63b2cc4180c820e218b306e200b8e0a3e480fe0048df6e8cd3f
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

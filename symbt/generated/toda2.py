@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: toda2 (N=2)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 4d2bbd3f9a01701cebdd7e8c4787507839abfe1b2aa9d560506cd120b31799a2
-# symbt-codegen-content-sha256: 1e769d5e0fb28c03ea06cf27f72b08c25068204b8993a6218a5396558b515b79
+# symbt-codegen-derivation-sha256: f70643afcccefa4c12ad96c8eba50e7eefeecdac2cd375297e0fe7c6f40ba9a3
+# symbt-codegen-content-sha256: 2b04cc9c29a76ec01800dfd206913cd6debbbf0aebee2ae2c6ea652d2550322b
 """Generated numeric code for the N=2 periodic Toda lattice (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -338,31 +338,27 @@ def dapp_xy(p, q, lam0, mu, branch):
     q2 = q[..., 1]
     with np.errstate(all="ignore"):
         t0 = 2*mu
-        t1 = 2*lam0
-        t2 = 2*p2 + t1
-        t3 = q1 - q2
-        t4 = np.exp(t3)
-        t5 = p1*p2 - np.exp(-t3)
-        t6 = -t4 + t5
-        t7 = t6 - 2
-        t8 = lam0 + mu
-        t9 = t8*p1 + t8*p2 + t8**2
-        t10 = t6 + 2
-        t11 = branch*np.sqrt((t10 + t9)*(t7 + t9))
-        t12 = mu*p1
-        t13 = mu*p2
-        t14 = t1*mu
-        t15 = lam0**2 + lam0*p1 + lam0*p2 + mu**2 + t4 + t5
-        t16 = t12 + t13 + t14 + t15
-        t17 = t0*t4
-        t18 = 2*t4*p1 + t1*t4
-        t19 = np.where(t11*t16 >= 0, (t11 + t16)/(-t0 - t2), (-t17 - t18)/(-t11 + t16))
-        t20 = lam0 - mu
-        t21 = t20*p1 + t20*p2 + t20**2
-        t22 = branch*np.sqrt((t10 + t21)*(t21 + t7))
-        t23 = -t12 - t13 - t14 + t15
-        x = _pack([t0*np.exp(q1)/(-t19 + np.where(t22*t23 <= 0, (-t22 + t23)/(t0 - t2), (t17 - t18)/(t22 + t23)))], _batch, ())
-        y = _pack([t19*np.exp(-q1)], _batch, ())
+        t1 = 2*lam0 + 2*p2
+        t2 = lam0 + mu
+        t3 = t2*p1 + t2*p2 + t2**2
+        t4 = q1 - q2
+        t5 = np.exp(t4)
+        t6 = p1*p2 - np.exp(-t4)
+        t7 = -t5 + t6
+        t8 = t3 + t7
+        t9 = branch*np.sqrt((t8 - 2)*(t8 + 2))
+        t10 = t5 + t6
+        t11 = t10 + t3
+        t12 = 2*t5
+        t13 = t12*p1
+        t14 = np.where(t11*t9 >= 0, (t11 + t9)/(-t0 - t1), (-t12*t2 - t13)/(t11 - t9))
+        t15 = lam0 - mu
+        t16 = t15*p1 + t15*p2 + t15**2
+        t17 = t16 + t7
+        t18 = branch*np.sqrt((t17 - 2)*(t17 + 2))
+        t19 = t10 + t16
+        x = _pack([t0*np.exp(q1)/(-t14 + np.where(t18*t19 <= 0, (-t18 + t19)/(t0 - t1), (-t12*t15 - t13)/(t18 + t19)))], _batch, ())
+        y = _pack([t14*np.exp(-q1)], _batch, ())
     return x, y
 
 
@@ -394,51 +390,44 @@ def bt_step(p, q, lam0, mu, branch):
     q2 = q[..., 1]
     with np.errstate(all="ignore"):
         t0 = 2*mu
-        t1 = 2*lam0
-        t2 = 2*p2 + t1
-        t3 = -t0 - t2
-        t4 = q1 - q2
-        t5 = np.exp(t4)
-        t6 = -t5
-        t7 = np.exp(-t4)
-        t8 = p1*p2
-        t9 = -t7 + t8
-        t10 = t6 + t9
-        t11 = t10 - 2
-        t12 = lam0 + mu
-        t13 = t12*p1 + t12*p2 + t12**2
-        t14 = t10 + 2
-        t15 = branch*np.sqrt((t11 + t13)*(t13 + t14))
-        t16 = lam0**2 + lam0*p1 + lam0*p2 + mu**2
-        t17 = t16 + t5 + t9
-        t18 = mu*p1
-        t19 = mu*p2
-        t20 = t1*mu
-        t21 = t18 + t19 + t20
-        t22 = t17 + t21
-        t23 = t0*t5
-        t24 = 2*p1
-        t25 = t1*t5 + t24*t5
-        t26 = -t15
-        t27 = np.where(t15*t22 >= 0, (t15 + t22)/t3, (-t23 - t25)/(t22 + t26))
-        t28 = t0 - t2
-        t29 = lam0 - mu
-        t30 = t29*p1 + t29*p2 + t29**2
-        t31 = branch*np.sqrt((t11 + t30)*(t14 + t30))
-        t32 = -t31
-        t33 = -t18 - t19 - t20
-        t34 = t17 + t33
-        t35 = 1/(-t27 + np.where(t31*t34 <= 0, (t32 + t34)/t28, (t23 - t25)/(t31 + t34)))
-        t36 = t0*t7
-        t37 = t1*t7 + t24*t7
-        t38 = t16 + t6 + t7 + t8
-        t39 = t21 + t38
-        t40 = np.where(t15*t39 >= 0, t7*(t15 + t39)/(-t36 - t37), t3*t7/(t26 + t39))
-        t41 = t33 + t38
-        t42 = 1/(-t40 + np.where(t31*t41 <= 0, t7*(t32 + t41)/(t36 - t37), t28*t7/(t31 + t41)))
-        t43 = -t27*t35 + t40*t42
-        p_new = _pack([p1 - t0*t43, p2 + t0*t43], _batch, (2,))
-        q_new = _pack([q1 + np.log1p(-(t0*t35)), q2 + np.log1p(-(t0*t42))], _batch, (2,))
+        t1 = 2*lam0 + 2*p2
+        t2 = -t0 - t1
+        t3 = q1 - q2
+        t4 = np.exp(-t3)
+        t5 = p1*p2
+        t6 = -t4 + t5
+        t7 = np.exp(t3)
+        t8 = -t7
+        t9 = lam0 + mu
+        t10 = t9*p1 + t9*p2 + t9**2
+        t11 = t10 + t8
+        t12 = t11 + t6
+        t13 = branch*np.sqrt((t12 - 2)*(t12 + 2))
+        t14 = t6 + t7
+        t15 = t10 + t14
+        t16 = 2*t7
+        t17 = t16*p1
+        t18 = -t13
+        t19 = np.where(t13*t15 >= 0, (t13 + t15)/t2, (-t16*t9 - t17)/(t15 + t18))
+        t20 = t0 - t1
+        t21 = lam0 - mu
+        t22 = t21*p1 + t21*p2 + t21**2
+        t23 = t22 + t8
+        t24 = t23 + t6
+        t25 = branch*np.sqrt((t24 - 2)*(t24 + 2))
+        t26 = -t25
+        t27 = t14 + t22
+        t28 = 1/(-t19 + np.where(t25*t27 <= 0, (t26 + t27)/t20, (-t16*t21 - t17)/(t25 + t27)))
+        t29 = 2*t4
+        t30 = t29*p1
+        t31 = t4 + t5
+        t32 = t11 + t31
+        t33 = np.where(t13*t32 >= 0, t4*(t13 + t32)/(-t29*t9 - t30), t2*t4/(t18 + t32))
+        t34 = t23 + t31
+        t35 = 1/(-t33 + np.where(t25*t34 <= 0, t4*(t26 + t34)/(-t21*t29 - t30), t20*t4/(t25 + t34)))
+        t36 = -t19*t28 + t33*t35
+        p_new = _pack([p1 - t0*t36, p2 + t0*t36], _batch, (2,))
+        q_new = _pack([q1 + np.log1p(-(t0*t28)), q2 + np.log1p(-(t0*t35))], _batch, (2,))
     return p_new, q_new
 
 
@@ -663,31 +652,27 @@ def dapp_xy_mp(p, q, lam0, mu, branch):
     mu = mpmath.mpmathify(mu)
     branch = _mp_branch(branch)
     t0 = 2*mu
-    t1 = 2*lam0
-    t2 = 2*p2 + t1
-    t3 = q1 - q2
-    t4 = mpmath.exp(t3)
-    t5 = p1*p2 - mpmath.exp(-t3)
-    t6 = -t4 + t5
-    t7 = t6 - 2
-    t8 = lam0 + mu
-    t9 = t8*p1 + t8*p2 + t8**2
-    t10 = t6 + 2
-    t11 = branch*mpmath.sqrt((t10 + t9)*(t7 + t9))
-    t12 = mu*p1
-    t13 = mu*p2
-    t14 = t1*mu
-    t15 = lam0**2 + lam0*p1 + lam0*p2 + mu**2 + t4 + t5
-    t16 = t12 + t13 + t14 + t15
-    t17 = t0*t4
-    t18 = 2*t4*p1 + t1*t4
-    t19 = ((t11 + t16)/(-t0 - t2) if t11*t16 >= 0 else (-t17 - t18)/(-t11 + t16))
-    t20 = lam0 - mu
-    t21 = t20*p1 + t20*p2 + t20**2
-    t22 = branch*mpmath.sqrt((t10 + t21)*(t21 + t7))
-    t23 = -t12 - t13 - t14 + t15
-    x = t0*mpmath.exp(q1)/(-t19 + ((-t22 + t23)/(t0 - t2) if t22*t23 <= 0 else (t17 - t18)/(t22 + t23)))
-    y = t19*mpmath.exp(-q1)
+    t1 = 2*lam0 + 2*p2
+    t2 = lam0 + mu
+    t3 = t2*p1 + t2*p2 + t2**2
+    t4 = q1 - q2
+    t5 = mpmath.exp(t4)
+    t6 = p1*p2 - mpmath.exp(-t4)
+    t7 = -t5 + t6
+    t8 = t3 + t7
+    t9 = branch*mpmath.sqrt((t8 - 2)*(t8 + 2))
+    t10 = t5 + t6
+    t11 = t10 + t3
+    t12 = 2*t5
+    t13 = t12*p1
+    t14 = ((t11 + t9)/(-t0 - t1) if t11*t9 >= 0 else (-t12*t2 - t13)/(t11 - t9))
+    t15 = lam0 - mu
+    t16 = t15*p1 + t15*p2 + t15**2
+    t17 = t16 + t7
+    t18 = branch*mpmath.sqrt((t17 - 2)*(t17 + 2))
+    t19 = t10 + t16
+    x = t0*mpmath.exp(q1)/(-t14 + ((-t18 + t19)/(t0 - t1) if t18*t19 <= 0 else (-t12*t15 - t13)/(t18 + t19)))
+    y = t14*mpmath.exp(-q1)
     return x, y
 
 
@@ -713,49 +698,42 @@ def bt_step_mp(p, q, lam0, mu, branch):
     mu = mpmath.mpmathify(mu)
     branch = _mp_branch(branch)
     t0 = 2*mu
-    t1 = 2*lam0
-    t2 = 2*p2 + t1
-    t3 = -t0 - t2
-    t4 = q1 - q2
-    t5 = mpmath.exp(t4)
-    t6 = -t5
-    t7 = mpmath.exp(-t4)
-    t8 = p1*p2
-    t9 = -t7 + t8
-    t10 = t6 + t9
-    t11 = t10 - 2
-    t12 = lam0 + mu
-    t13 = t12*p1 + t12*p2 + t12**2
-    t14 = t10 + 2
-    t15 = branch*mpmath.sqrt((t11 + t13)*(t13 + t14))
-    t16 = lam0**2 + lam0*p1 + lam0*p2 + mu**2
-    t17 = t16 + t5 + t9
-    t18 = mu*p1
-    t19 = mu*p2
-    t20 = t1*mu
-    t21 = t18 + t19 + t20
-    t22 = t17 + t21
-    t23 = t0*t5
-    t24 = 2*p1
-    t25 = t1*t5 + t24*t5
-    t26 = -t15
-    t27 = ((t15 + t22)/t3 if t15*t22 >= 0 else (-t23 - t25)/(t22 + t26))
-    t28 = t0 - t2
-    t29 = lam0 - mu
-    t30 = t29*p1 + t29*p2 + t29**2
-    t31 = branch*mpmath.sqrt((t11 + t30)*(t14 + t30))
-    t32 = -t31
-    t33 = -t18 - t19 - t20
-    t34 = t17 + t33
-    t35 = 1/(-t27 + ((t32 + t34)/t28 if t31*t34 <= 0 else (t23 - t25)/(t31 + t34)))
-    t36 = t0*t7
-    t37 = t1*t7 + t24*t7
-    t38 = t16 + t6 + t7 + t8
-    t39 = t21 + t38
-    t40 = (t7*(t15 + t39)/(-t36 - t37) if t15*t39 >= 0 else t3*t7/(t26 + t39))
-    t41 = t33 + t38
-    t42 = 1/(-t40 + (t7*(t32 + t41)/(t36 - t37) if t31*t41 <= 0 else t28*t7/(t31 + t41)))
-    t43 = -t27*t35 + t40*t42
-    p_new = [p1 - t0*t43, p2 + t0*t43]
-    q_new = [q1 + mpmath.log1p(-(t0*t35)), q2 + mpmath.log1p(-(t0*t42))]
+    t1 = 2*lam0 + 2*p2
+    t2 = -t0 - t1
+    t3 = q1 - q2
+    t4 = mpmath.exp(-t3)
+    t5 = p1*p2
+    t6 = -t4 + t5
+    t7 = mpmath.exp(t3)
+    t8 = -t7
+    t9 = lam0 + mu
+    t10 = t9*p1 + t9*p2 + t9**2
+    t11 = t10 + t8
+    t12 = t11 + t6
+    t13 = branch*mpmath.sqrt((t12 - 2)*(t12 + 2))
+    t14 = t6 + t7
+    t15 = t10 + t14
+    t16 = 2*t7
+    t17 = t16*p1
+    t18 = -t13
+    t19 = ((t13 + t15)/t2 if t13*t15 >= 0 else (-t16*t9 - t17)/(t15 + t18))
+    t20 = t0 - t1
+    t21 = lam0 - mu
+    t22 = t21*p1 + t21*p2 + t21**2
+    t23 = t22 + t8
+    t24 = t23 + t6
+    t25 = branch*mpmath.sqrt((t24 - 2)*(t24 + 2))
+    t26 = -t25
+    t27 = t14 + t22
+    t28 = 1/(-t19 + ((t26 + t27)/t20 if t25*t27 <= 0 else (-t16*t21 - t17)/(t25 + t27)))
+    t29 = 2*t4
+    t30 = t29*p1
+    t31 = t4 + t5
+    t32 = t11 + t31
+    t33 = (t4*(t13 + t32)/(-t29*t9 - t30) if t13*t32 >= 0 else t2*t4/(t18 + t32))
+    t34 = t23 + t31
+    t35 = 1/(-t33 + (t4*(t26 + t34)/(-t21*t29 - t30) if t25*t34 <= 0 else t20*t4/(t25 + t34)))
+    t36 = -t19*t28 + t33*t35
+    p_new = [p1 - t0*t36, p2 + t0*t36]
+    q_new = [q1 + mpmath.log1p(-(t0*t28)), q2 + mpmath.log1p(-(t0*t35))]
     return p_new, q_new
