@@ -67,15 +67,26 @@ def _versions() -> str:
     return f"py{sys.version_info[:3]} sympy{sympy.__version__} mpmath{mpmath.__version__} numpy{numpy.__version__}"
 
 
+def _claim_modules_used(mod) -> list:
+    """The claim's module and the sibling claim modules whose helpers it imports."""
+    used = {mod.__name__: mod}
+    for obj in vars(mod).values():
+        name = getattr(obj, "__module__", None)
+        if isinstance(name, str) and name.startswith("symbt.claims.") and name not in used:
+            used[name] = sys.modules.get(name)
+    return [used[k] for k in sorted(used) if used[k] is not None]
+
+
 def claim_key(c: Claim) -> str:
     """Hash of what determines the claim's outcome."""
     h = hashlib.sha256()
     h.update(c.id.encode())
     mod = inspect.getmodule(c.check)
-    try:
-        h.update(inspect.getsource(mod).encode())
-    except (OSError, TypeError):
-        h.update(repr(c).encode())
+    for m in _claim_modules_used(mod):
+        try:
+            h.update(inspect.getsource(m).encode())
+        except (OSError, TypeError):
+            h.update(repr(c).encode())
     h.update(_layer_digest().encode())
     h.update(_versions().encode())
     return h.hexdigest()
