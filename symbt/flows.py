@@ -179,7 +179,7 @@ def trace_gap(p, q, lo, hi):
     return min(abs(mp.polyval(coeffs, x)) - 2 for x in cands)
 
 
-def flow_coefficients_mp(p, q, lam0, mu, branch=1, *, check=True):
+def flow_coefficients_mp(p, q, lam0, mu, branch=1, *, check=True, ks=None):
     """``[c_0, ..., c_N]``, c_k = -b int_{lam0-mu}^{lam0+mu} lam^k / sqrt(tr L^2 - 4) dlam (eq. ``eqdisc``).
 
     The positive root is used for both signs of tr L; ``branch`` b = +1 is the
@@ -195,6 +195,9 @@ def flow_coefficients_mp(p, q, lam0, mu, branch=1, *, check=True):
     N = len(p)
     out = []
     for k in range(N + 1):
+        if ks is not None and k not in ks:
+            out.append(None)
+            continue
         f = lambda x, k=k: x ** k / mp.sqrt(mp.polyval(coeffs, x) ** 2 - 4)
         out.append(-branch * mp.quad(f, [lam0 - mu, lam0, lam0 + mu]))
     return out
@@ -415,11 +418,17 @@ def solve_parameters(p, q, c_target, *, mode="exact", indices=None, guess=None, 
     H = hamiltonians(p, q)
     coeffs = H[::-1]
 
+    memo = {}
+
     def cvec(x):
         l0, m = x
-        if m == 0 or trace_gap(p, q, l0 - m, l0 + m) <= 0:
-            return None
-        return flow_coefficients_mp(p, q, l0, m, 1, check=False)
+        key = (l0, m)
+        if key not in memo:
+            if m == 0 or trace_gap(p, q, l0 - m, l0 + m) <= 0:
+                memo[key] = None
+            else:
+                memo[key] = flow_coefficients_mp(p, q, l0, m, 1, check=False, ks=range(N))
+        return memo[key]
 
     def jac(x):
         return flow_coefficients_jacobian(p, q, x[0], x[1], 1)
@@ -462,7 +471,7 @@ def solve_parameters(p, q, c_target, *, mode="exact", indices=None, guess=None, 
     if sol is None:
         raise ValueError("solve_parameters: no admissible (lam0, mu) found from the initial guess")
     (l0, m), its = sol
-    c = cvec((l0, m))
+    c = flow_coefficients_mp(p, q, l0, m, 1, check=False)
     num = mp.fsum(a * b for a, b in zip(c[:N], c_target[:N]))
     kappa = num / mp.fsum(b ** 2 for b in c_target[:N])
     res = max(abs(c[k] - c_target[k]) for k in range(N))

@@ -51,7 +51,9 @@ def _cases(regimes, per, seed, *, both_x=True):
 def _fmt(state, b, reg=None, **extra):
     p, q, l0, m = state
     d = {"p": [mp.nstr(v, 17) for v in p], "q": [mp.nstr(v, 17) for v in q],
-         "lambda0": mp.nstr(l0, 17), "mu": mp.nstr(m, 17), "branch": b}
+         "lambda0": mp.nstr(l0, 17), "mu": mp.nstr(m, 17)}
+    if b is not None:
+        d["branch"] = b
     if reg:
         d["regime"] = reg
     d.update({k: (mp.nstr(v, 12) if not isinstance(v, (str, int)) else v) for k, v in extra.items()})
@@ -182,7 +184,7 @@ def brackets():
                         *(abs(e) for e in extra))
                 if name == "printed":
                     signs.setdefault(int(mp.sign(x)), mp.nstr(A[1][1], 5))
-                w.add(r, dict(_fmt(st, 0), **{"{I2,theta2}": mp.nstr(A[1][1], 8), "sign(q1-q2)": int(mp.sign(x))}))
+                w.add(r, dict(_fmt(st, None), **{"{I2,theta2}": mp.nstr(A[1][1], 8), "sign(q1-q2)": int(mp.sign(x))}))
     return judge(wp.decision(f"numeric: mp.diff at {DPS} digits, 4 states, both signs of q1-q2"),
                  printed="{I_j, theta_k} = delta_jk with theta2 = F(P,k)/sqrt(I2+2)",
                  corrected="holds only locally: {I2, F(P,k)/sqrt(I2+2)} = sgn(q1-q2). The globally defined angle is "
