@@ -42,7 +42,7 @@ import mpmath as mp
 __all__ = [
     "trace_polynomial", "hamiltonians", "trace", "trace_gradient", "phi_real", "phi_gradient",
     "flow_coefficients_mp", "flow_coefficients_jacobian", "hamiltonian_flow", "FlowResult",
-    "trace_gap", "solve_parameters", "NoRealFlowError",
+    "trace_gap", "solve_parameters", "NoRealFlowError", "hamilton_rhs_float", "hamilton_equations",
 ]
 
 
@@ -161,20 +161,22 @@ def phi_gradient(p, q, lam0, mu, branch):
 
 
 def trace_gap(p, q, lo, hi):
-    """min over [lo, hi] of |tr L(lam)| - 2 (exact: end points and real critical points / roots)."""
+    """min over [lo, hi] of |tr L(lam)| - 2 (end points and critical points), or 0 if tr L = +-2 somewhere."""
     H = hamiltonians(p, q)
     lo, hi = mp.mpmathify(lo), mp.mpmathify(hi)
     if lo > hi:
         lo, hi = hi, lo
     coeffs = H[::-1]
-    cands = [lo, hi]
-    for shift in (2, -2):  # crossings of tr = +-2 inside the interval
+    small = mp.mpf(10) ** (-mp.mp.dps // 2)
+    for shift in (2, -2):  # a root of tr = +-2 in [lo, hi] means |tr| <= 2 there: not admissible
         c = list(coeffs)
         c[-1] -= shift
-        cands += [r.real for r in mp.polyroots(c, maxsteps=200, extraprec=60) if abs(r.imag) < mp.mpf(10) ** (-mp.mp.dps // 2)]
+        if any(abs(r.imag) < small and lo <= r.real <= hi for r in mp.polyroots(c, maxsteps=200, extraprec=60)):
+            return mp.mpf(0)
+    cands = [lo, hi]
     d = [coeffs[i] * (len(coeffs) - 1 - i) for i in range(len(coeffs) - 1)]
     if len(d) > 1:
-        cands += [r.real for r in mp.polyroots(d, maxsteps=200, extraprec=60) if abs(r.imag) < mp.mpf(10) ** (-mp.mp.dps // 2)]
+        cands += [r.real for r in mp.polyroots(d, maxsteps=200, extraprec=60) if abs(r.imag) < small]
     cands = [x for x in cands if lo <= x <= hi]
     return min(abs(mp.polyval(coeffs, x)) - 2 for x in cands)
 
@@ -502,3 +504,32 @@ def _gauss_newton(F, J, x0, tol, maxit=80):
         if max(abs(d) for d in dx) * lam < tol:
             return x, it
     return x, maxit
+
+
+# --------------------------------------------------------------------------- float64 right-hand side
+
+def hamilton_rhs_float(N, c):
+    """A plain-Python ``f(t, y)`` for y = (q_1..q_N, p_1..p_N): Hamilton's equations of sum c_k H_k.
+
+    Generated as source from the same polynomials as :func:`hamiltonian_flow` (with the bond
+    variables a_j = exp(q_{j+1} - q_j) recomputed from q), for ``scipy.integrate.solve_ivp``.
+    """
+    c = [float(v) for v in c] + [0.0] * (N + 1 - len(c))
+    eqs = hamilton_equations(N, c)[:2 * N]
+    names = [f"p{j}" for j in range(N)] + [f"a{j}" for j in range(N)]
+
+    def term(e, v):
+        fac = [names[i] if k == 1 else f"{names[i]}**{k}" for i, k in enumerate(e) if k]
+        return "*".join([repr(float(v))] + fac)
+
+    lines = ["def f(t, y):",
+             "    " + ", ".join(f"q{j}" for j in range(N)) + ", " + ", ".join(f"p{j}" for j in range(N))
+             + " = y",
+             *[f"    a{j} = exp(q{(j + 1) % N} - q{j})" for j in range(N)],
+             "    return [" + ", ".join("(" + (" + ".join(term(e, v) for e, v in P.items()) or "0.0") + ")"
+                                     for P in eqs) + "]"]
+    ns = {"exp": __import__("math").exp}
+    exec("\n".join(lines), ns)
+    f = ns["f"]
+    f.source = "\n".join(lines)
+    return f
