@@ -33,7 +33,8 @@ from .claims.base import Claim, ClaimResult, Outcome
 __all__ = ["select", "run", "ClaimResult", "cache_dir", "claim_key", "default_scenes"]
 
 _PKG = Path(__file__).resolve().parent
-_LAYERS = ("proof.py", "literal.py", "symbolic", "numeric", "codegen", "generated", "claims/base.py",
+_LAYERS = ("proof.py", "literal.py", "flows.py", "elliptic.py", "symbolic", "numeric", "codegen", "generated",
+           "claims/base.py",
            "claims/samples.py")
 
 

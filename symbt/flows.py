@@ -357,7 +357,7 @@ def hamiltonian_flow(p, q, c, t, *, tol=None, order=None, max_steps=200000):
 
 # --------------------------------------------------------------------------- inverse problem
 
-def _newton(F, J, x0, tol, maxit=60):
+def _newton(F, J, x0, tol, maxit=40):
     x = [mp.mpmathify(v) for v in x0]
     for it in range(maxit):
         r = F(x)
@@ -462,9 +462,14 @@ def solve_parameters(p, q, c_target, *, mode="exact", indices=None, guess=None, 
         t0 = mp.polyval(coeffs, l0)
         m = -c_target[0] * mp.sqrt(abs(t0 ** 2 - 4)) / 2
         guess = (l0, m)
+    used = set(idx)
+    if {0, 1, 2} <= used and mode != "lstsq" and c_target[0] * c_target[2] <= c_target[1] ** 2:
+        # c_k are moments of the positive weight w = 1/sqrt(tr^2-4) on an interval: Cauchy-Schwarz
+        raise ValueError("solve_parameters: c_0 c_2 <= c_1^2 is never attained (Cauchy-Schwarz for the moments "
+                         "of 1/sqrt(tr^2-4) > 0)")
     l0g, mg = guess
     sol = None
-    for attempt in range(40):  # shrink mu until [lam0 - mu, lam0 + mu] avoids |tr| <= 2, then Newton
+    for attempt in range(16):  # shrink mu until [lam0 - mu, lam0 + mu] avoids |tr| <= 2, then Newton
         if F((l0g, mg)) is not None:
             sol = (_gauss_newton if mode == "lstsq" else _newton)(F, J, (l0g, mg), tol)
             if sol is not None:
