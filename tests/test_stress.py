@@ -73,7 +73,7 @@ def test_fast_kernel_matches_library_and_backends():
     # slow path (no real map) raises the library's typed error
     from symbt.numeric import NoRealMapError
     with pytest.raises(NoRealMapError):
-        fast_orbit(P0, Q0, 0.0, 0.5, 3)
+        fast_orbit(P0, Q0, -10.278, 0.002, 3)   # both lam_i inside the band near -10.28
 
 
 # --------------------------------------------------------------------------- 2. long orbits
