@@ -79,18 +79,24 @@ def test_fast_kernel_matches_library_and_backends():
 # --------------------------------------------------------------------------- 2. long orbits
 
 def test_1e5_steps_invariants_and_random_walk():
+    """1e5 steps (mu = 5): the state is advanced exactly as inside ``bt_orbit``
+    (relative coordinates, centre of mass removed).  Note: checking the *stored*
+    ``bt_orbit`` output instead measures the rounding of ``|q| ~ 1.5e4`` (the
+    centre of mass after 1e5 steps) to float64, ulp ~ 2e-12, which alone gives
+    ~1e-11 relative in H_0 -- a property of storing absolute positions, not drift.
+    """
     n = 10**5
-    P, Q = bt_orbit(P0, Q0, 10.0, 5.0, n)
-    H = invariants(P, Q - Q.mean(-1, keepdims=True))
-    H0 = invariants(P0, Q0)
-    rel = np.abs(H - H0) / np.abs(H0)
-    worst = rel.max(axis=0)
-    print("\n1e5 steps: max relative drift per invariant H_0, H_1, H_2 =", worst)
-    assert np.all(worst <= 1e-12), worst
-    steps, drift, rms, slope = invariant_drift_curve(n=n, members=8, npoints=30)
+    steps, drift, rms, slope, (P, Q) = invariant_drift_curve(n=n, members=8, npoints=30,
+                                                             keep_first=True)
+    H = invariants(P, Q)
+    H0 = invariants(P0, Q0 - Q0.mean())
+    worst = (np.abs(H - H0) / np.abs(H0)).max(axis=0)
+    print("\n1e5 steps of the paper's orbit: max relative drift of H_0, H_1, H_2 over all steps "
+          "(float64 evaluation) =", worst)
     print("RMS drift (8 orbits, 40-digit evaluation): n=%d %.2e, n=%d %.2e; log-log slope %.3f" % (
         steps[10], rms[10], steps[-1], rms[-1], slope))
-    assert rms[-1] <= 1e-12
+    assert np.all(worst <= 1e-12), worst
+    assert drift[-1, 0].max() <= 1e-12 and rms[-1] <= 1e-12   # member 0 = the paper's state
     assert slope < 0.75, slope
 
 

@@ -219,7 +219,10 @@ def fast_orbit(p, q, lam0, mu, n, *, branch=1, every=1, backend="auto"):
         Q[:] = q0
         return P, Q
     kern, _ = kernel_backend(backend)
-    status, _done = kern(p0, q0, float(lam0), float(mu), branch, n, every, P, Q)
+    try:
+        status, _done = kern(p0, q0, float(lam0), float(mu), branch, n, every, P, Q)
+    except (ZeroDivisionError, OverflowError, ValueError):   # degenerate slope / exp range
+        status = 3
     if status != 0:
         # slow path: the library orbit raises the typed errors / renormalises
         Pf, Qf = bt_orbit(p0, q0, lam0, mu, n, branch=branch)

@@ -79,7 +79,8 @@ def monodromy(ctx, a, r):
     Returns ``(A, B, C, D, e)``; ``e`` is ``0`` unless renormalisation was
     needed (float64) -- for mpmath it is always ``0``.
     """
-    A, B, C, D, e = _product(ctx, a, r, renorm=False)
+    with np.errstate(over="ignore", invalid="ignore"):   # out-of-range rows are redone below
+        A, B, C, D, e = _product(ctx, a, r, renorm=False)
     bad = ctx.out_of_range(A, B, C, D)
     if ctx.any(bad):
         sa = [ctx.subset(x, bad) for x in a]
@@ -129,6 +130,11 @@ def invariants(p, q):
     >>> [round(float(h), 12) for h in invariants([1.0, 2.0], [0.0, 0.0])]   # p1 p2 - 2, p1 + p2
     [0.0, 3.0]
     """
+    with np.errstate(over="ignore", invalid="ignore"):   # overflow -> NumericRangeError below
+        return _invariants(p, q)
+
+
+def _invariants(p, q):
     ctx, P, Q, shape = as_state_pair(p, q)
     N = len(P)
     r = neighbour_ratios(ctx, Q)
@@ -159,12 +165,14 @@ def invariants(p, q):
         D = [r[j] * c for c in B]
         A, B = nA, nB
     H = poly(N + 1)
-    for k, c in enumerate(A):
+    for k, c in enumerate(A):  # noqa: B007
         H[k] = H[k] + c
     for k, c in enumerate(D):
         H[k] = H[k] + c
     H = H[:N]
     if ctx is FLOAT:
         out = np.stack([np.asarray(h, dtype=float) for h in H], axis=-1)
+        if not np.all(np.isfinite(out)):
+            raise NumericRangeError("the invariants H_k overflow float64; use mpmath inputs")
         return out.reshape(shape + (N,))
     return list(H)

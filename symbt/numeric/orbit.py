@@ -45,7 +45,8 @@ def bt_orbit(p, q, lam0, mu, n, *, branch=1):
     if ctx is FLOAT:
         p0 = np.asarray(p, dtype=np.float64)
         q0 = np.asarray(q, dtype=np.float64)
-        pn, qn = bt_step(p0, q0, lam0, mu, branch=branch) if n else (p0, q0)
+        # n == 0: bt_step with mu = 0 still validates (no silent NaN passthrough)
+        pn, qn = bt_step(p0, q0, lam0, mu if n else 0.0, branch=branch)
         P = np.empty((n + 1,) + pn.shape, dtype=pn.dtype)
         Q = np.empty_like(P)
         P[0], Q[0] = p0, q0

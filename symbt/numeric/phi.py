@@ -167,6 +167,11 @@ def flow_coefficients(p, q, lam0, mu, *, branch=1, rtol=1e-13, max_intervals=400
     if ctx is FLOAT:
         P1 = [float(v[0]) for v in P]
         r1 = [float(v[0]) for v in r]
+        if lam0 - mu == lam0 + mu:
+            # |mu| below the spacing of floats at lam0: the integral is 2 mu f(lam0) to
+            # relative O(mu^2) (bisection would divide by the zero interval width)
+            vals, _ = _integrand(np.array([float(lam0)]), P1, r1, N)
+            return -branch * 2.0 * mu * vals[:, 0]
         I, err = _adaptive(P1, r1, lam0 - mu, lam0 + mu, N, rtol, max_intervals)
         return -branch * I
 
