@@ -775,7 +775,8 @@ def _plot(results, path):
     styles = {"scipy DOP853": ("o-", "C0"), "scipy RK45": ("s-", "C1"), "scipy LSODA": ("^-", "C2"),
               "Gauss-Legendre s=3 (order 6)": ("d-", "C3")}
     for ax, cr in zip(axes[0], cases):
-        runs = [r for r in cr["runs"] if "final_err" in r]
+        runs = [r for r in cr["runs"] if "final_err" in r
+                and not (cr.get("invalid_ode") and r.get("kind") == "ode")]  # invalid rows stay out
         for name, (mk, col) in styles.items():
             rr = sorted([r for r in runs if r["method"] == name], key=lambda r: r["time_s"])
             if rr:
@@ -795,9 +796,14 @@ def _plot(results, path):
         ax.set_xlabel("wall time [s]")
         ax.grid(True, which="major", alpha=0.3)
     axes[0][0].set_ylabel("final relative error")
-    axes[0][-1].legend(fontsize=7, loc="center")
+    handles = {}
+    for ax in axes[0]:  # one legend for the figure: every method that appears in some panel
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            handles.setdefault(lab, h)
+    fig.legend(list(handles.values()), list(handles.keys()), fontsize=8, loc="lower center",
+               ncol=min(len(handles), 8), frameon=False)
     fig.suptitle("Work-precision: Bäcklund map vs ODE solvers on the flow of sum c_k H_k", fontsize=10)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.08, 1, 1))
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     fig.savefig(path, dpi=110)
     plt.close(fig)
