@@ -39,6 +39,8 @@ from itertools import combinations
 
 import mpmath as mp
 
+from .literal import phi_from_traces
+
 __all__ = [
     "trace_polynomial", "hamiltonians", "trace", "trace_gradient", "phi_real", "phi_gradient",
     "flow_coefficients_mp", "flow_coefficients_jacobian", "hamiltonian_flow", "FlowResult",
@@ -141,8 +143,7 @@ def trace_gradient(lam, p, q):
 
 def phi_real(p, q, lam0, mu, branch):
     """Real Phi = -b (sgn tr1 arccosh(|tr1|/2) + sgn tr2 arccosh(|tr2|/2)), tr_i = tr L(lam0 +- mu)."""
-    t1, t2 = trace(lam0 + mu, p, q), trace(lam0 - mu, p, q)
-    return -branch * (mp.sign(t1) * mp.acosh(abs(t1) / 2) + mp.sign(t2) * mp.acosh(abs(t2) / 2))
+    return phi_from_traces(trace(lam0 + mu, p, q), trace(lam0 - mu, p, q), branch)
 
 
 def phi_gradient(p, q, lam0, mu, branch):
@@ -488,7 +489,6 @@ def solve_parameters(p, q, c_target, *, mode="exact", indices=None, guess=None, 
 
 def _gauss_newton(F, J, x0, tol, maxit=80):
     x = [mp.mpmathify(v) for v in x0]
-    prev = None
     for it in range(maxit):
         r = F(x)
         if r is None:

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import mpmath as mp
 
-__all__ = ["lax_matrix", "literal_step", "spectral_trace_mp"]
+__all__ = ["lax_matrix", "literal_step", "spectral_trace_mp", "phi_from_traces"]
 
 
 def lax_matrix(lam, p, q):
@@ -81,3 +81,12 @@ def literal_step(p, q, lam0, mu, branch: int = 1, *, gamma_signs=None):
     info = dict(x=xs, y=ys, z=zs, eta=eta, tr1=tr1, tr2=tr2, gamma1=g1, gamma2=g2,
                 E=E, E_new=Et, x_formula=x)
     return pt, qt, info
+
+
+def phi_from_traces(tr1, tr2, branch):
+    r"""The real Phi on the map of branch ``b`` from ``tr_i = tr L(lambda_i)`` (corrects eq. ``newkmu``).
+
+    :math:`\Phi = \sum_k \ln|(\eta_k+\mu)/(\eta_k-\mu)| = -b\,(\operatorname{sgn}(tr_1)\operatorname{arccosh}(|tr_1|/2)
+    + \operatorname{sgn}(tr_2)\operatorname{arccosh}(|tr_2|/2))` -- arccosh only ever sees arguments >= 1.
+    """
+    return -branch * (mp.sign(tr1) * mp.acosh(abs(tr1) / 2) + mp.sign(tr2) * mp.acosh(abs(tr2) / 2))

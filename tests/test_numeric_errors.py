@@ -93,7 +93,6 @@ def test_gaps_two_apart_same_trace_sign_are_rejected():
     # N = 3: gaps alternate in the sign of tr; take lam1, lam2 in the two
     # outer gaps of the same sign (N odd: lam -> -inf has tr < 0; use the
     # middle-ish structure by scanning) and check the map is refused.
-    rng = np.random.default_rng(5)
     p = np.array([-30.0, 0.0, 30.0])
     q = np.zeros(3)
     lam = np.linspace(-60, 60, 24001)
@@ -146,8 +145,25 @@ def test_no_silent_nan():
 
 
 def test_import_is_light():
-    code = ("import sys, symbt.numeric; "
+    # the whole numeric side: runtime, literal reference, elliptic helpers, flows, generated code
+    code = ("import sys, symbt.numeric, symbt.literal, symbt.elliptic, symbt.flows, "
+            "symbt.generated.toda2, symbt.generated.toda3; "
             "bad = [m for m in ('sympy', 'scipy', 'matplotlib') if m in sys.modules]; "
             "print(','.join(bad))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "", out.stdout
+
+
+def test_empty_batch_phi_and_interval_phi_and_parameter_overflow():
+    from symbt.numeric import phi
+
+    z = np.zeros((0, 3))
+    assert phi(z, z, 10.0, 5.0).shape == (0,)
+    ivs = [mpmath.iv.mpf(v) for v in (-20, 10, 1)]
+    with pytest.raises(InvalidInputError):
+        phi(ivs, [mpmath.iv.mpf(v) for v in (1, 0, 0.9)], 10, 5)
+    # lam0 and mu finite, lam0 + mu not: a range problem, not "lam1 in a band"
+    with pytest.raises(NumericRangeError):
+        bt_step(np.array([-20.0, 10.0, 1.0]), np.array([1.0, 0.0, 0.9]), 1e308, 1e308)
+    with pytest.raises(NumericRangeError):
+        phi(np.array([-20.0, 10.0, 1.0]), np.array([1.0, 0.0, 0.9]), 1e308, 1e308)

@@ -265,11 +265,7 @@ for _N in (2, 3):
         def step_literal(N=N):
             mod = _module(N)
             worst_mp, worst_num = mp.mpf(0), 0.0
-            numeric = None
-            try:
-                from ..numeric import bt_step as numeric
-            except Exception:  # helper module unavailable
-                numeric = None
+            from ..numeric import bt_step as numeric
             for p, q, l0, m in _map_states(N):
                 for b in (1, -1):
                     with mp.workdps(70):
@@ -279,17 +275,15 @@ for _N in (2, 3):
                     with mp.workdps(70):
                         for a, c in zip(ep + eq, lp + lq):
                             worst_mp = max(worst_mp, abs(a - c) / max(1, abs(c)))
-                    if numeric is not None:
-                        fp, fq = mod.bt_step(p, q, l0, m, b)
-                        np_, nq = numeric(p, q, l0, m, branch=b)
-                        ref = [float(v) for v in lp + lq]
-                        for a, c, r in zip(list(fp) + list(fq), list(np_) + list(nq), ref):
-                            worst_num = max(worst_num, abs(a - c) / (EPS * max(1.0, abs(r))))
-            ok = worst_mp <= MP_TOL and (numeric is None or worst_num <= STEP_VS_NUMERIC_ULPS)
+                    fp, fq = mod.bt_step(p, q, l0, m, b)
+                    np_, nq = numeric(p, q, l0, m, branch=b)
+                    ref = [float(v) for v in lp + lq]
+                    for a, c, r in zip(list(fp) + list(fq), list(np_) + list(nq), ref):
+                        worst_num = max(worst_num, abs(a - c) / (EPS * max(1.0, abs(r))))
+            ok = worst_mp <= MP_TOL and worst_num <= STEP_VS_NUMERIC_ULPS
             detail = (f"mpmath (50 digits) vs literal_step (70 digits): max rel. diff {mp.nstr(worst_mp, 3)}; "
-                      + (f"float64 emitted vs symbt.numeric.bt_step: max diff {worst_num:.1f} eps*max(1,|x|) "
-                         f"(tolerance {STEP_VS_NUMERIC_ULPS}: two independent float64 routes, each within a few eps*S)" if numeric is not None
-                         else "symbt.numeric.bt_step not importable: float comparison skipped"))
+                      + f"float64 emitted vs symbt.numeric.bt_step: max diff {worst_num:.1f} eps*max(1,|x|) "
+                        f"(tolerance {STEP_VS_NUMERIC_ULPS}: two independent float64 routes, each within a few eps*S)")
             return Outcome("verified" if ok else "failed", "numeric: emitted step vs literal and numeric routes",
                            residual=float(worst_mp), detail=detail)
 

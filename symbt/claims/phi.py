@@ -18,6 +18,7 @@ import mpmath as mp
 import sympy as sp
 
 from ..literal import lax_matrix, literal_step
+from ..literal import phi_from_traces as phi_real  # the corrected, real Phi (module docstring)
 from ..proof import decide
 from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import lam, local_lax
@@ -31,11 +32,6 @@ p = sp.Symbol("p_j", real=True)
 E, Et, En, Etn = sp.symbols("E_j Et_j E_jp1 Et_jp1", positive=True)
 eta_j, eta_n = sp.symbols("eta_j eta_jp1", real=True)
 
-
-
-def phi_real(tr1, tr2, branch):
-    """The corrected, real Phi on the map (see module docstring)."""
-    return -branch * (mp.sign(tr1) * mp.acosh(abs(tr1) / 2) + mp.sign(tr2) * mp.acosh(abs(tr2) / 2))
 
 
 def _map_cases(N):

@@ -96,11 +96,6 @@ def _shift(m, expr, expand=False):
     return sp.powsimp(expr.xreplace(sub), combine="exp", deep=True)
 
 
-def _literal_q(m, expr):
-    return sp.powsimp(sp.sympify(expr).xreplace({E: sp.exp(q) for E, q in zip(m.E, m.q)}),
-                      combine="exp", deep=True)
-
-
 def _cyclic_monodromy(m, lam_, j):
     """``l_{j-1} ... l_1 l_N ... l_j`` (0-based j; j = 0 is L), expanded in lambda, then
     ``lambda -> lam_`` (so ``lambda_0 + mu`` stays one quantity: no binomial cancellation)."""

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: f70643afcccefa4c12ad96c8eba50e7eefeecdac2cd375297e0fe7c6f40ba9a3
-# symbt-codegen-content-sha256: 44be8ca80a0da63b2cc4180c820e218b306e200b8e0a3e480fe0048df6e8cd3f
+# symbt-codegen-derivation-sha256: 8a5647d78d76daf7064eb6f965061db88401715bd2ad734addb4119759334b2f
+# symbt-codegen-content-sha256: 2dabb70c2d75b78143f9f957f875b6055db8a6e55ed7ee36acd76bc153bbd8ea
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: toda2 (N=2)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: f70643afcccefa4c12ad96c8eba50e7eefeecdac2cd375297e0fe7c6f40ba9a3
-# symbt-codegen-content-sha256: 2b04cc9c29a76ec01800dfd206913cd6debbbf0aebee2ae2c6ea652d2550322b
+# symbt-codegen-derivation-sha256: 8a5647d78d76daf7064eb6f965061db88401715bd2ad734addb4119759334b2f
+# symbt-codegen-content-sha256: b972f0ddca191a91a26f502d906bdf979c4dd252e19d2550ca45aaac4fd30ccd
 """Generated numeric code for the N=2 periodic Toda lattice (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: toda3 (N=3)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: f70643afcccefa4c12ad96c8eba50e7eefeecdac2cd375297e0fe7c6f40ba9a3
-# symbt-codegen-content-sha256: f2e969207a28d9ef20d38d9b63f040db9bfbf9f2f812cfad4e059f22a40f7ca1
+# symbt-codegen-derivation-sha256: 8a5647d78d76daf7064eb6f965061db88401715bd2ad734addb4119759334b2f
+# symbt-codegen-content-sha256: 36a965e0e1b5b42de54f975382e47403a576905957eccfd0c2a616b5409c4f78
 """Generated numeric code for the N=3 periodic Toda lattice (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

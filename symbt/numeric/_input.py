@@ -15,7 +15,7 @@ import mpmath
 import numpy as np
 
 from .context import FLOAT, IVContext, MPContext
-from .errors import InvalidInputError
+from .errors import InvalidInputError, NumericRangeError
 
 MP = MPContext()
 IV = IVContext()
@@ -164,3 +164,19 @@ def to_output(ctx, P, shape):
     N = len(P)
     arr = np.stack([np.broadcast_to(np.asarray(x), P[0].shape) for x in P], axis=-1)
     return arr.reshape(tuple(shape) + (N,))
+
+
+def prepare_spectral_pair(ctx, lam0, mu, shape):
+    """``(lam0, mu)`` as context values, with ``lam0 +- mu`` checked to be finite.
+
+    Each of ``lam0`` and ``mu`` may be finite while ``lam0 + mu`` overflows; that is a range
+    problem (:class:`NumericRangeError`), not a statement about the spectrum.
+    """
+    lam0 = prepare_scalar(ctx, lam0, shape, "lam0")
+    mu = prepare_scalar(ctx, mu, shape, "mu")
+    if ctx is FLOAT:
+        with np.errstate(over="ignore", invalid="ignore"):
+            ok = np.all(np.isfinite(lam0 + mu)) and np.all(np.isfinite(lam0 - mu))
+        if not ok:
+            raise NumericRangeError("lam0 +- mu overflows float64")
+    return lam0, mu

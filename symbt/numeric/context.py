@@ -124,18 +124,13 @@ class FloatContext:
             return g()
         return np.where(c, f(), g())
 
-    @staticmethod
-    def sign_as_value(c):
-        """``+1`` where ``c`` else ``-1``."""
-        return np.where(c, 1.0, -1.0)
-
     # scaling support for the monodromy product ----------------------------
     def out_of_range(self, *xs):
         """Mask of batch rows whose entries are non-finite or too large/small.
 
         Returns ``False`` (cheaply, by reductions only) when all is fine.
         """
-        arrays = [x for x in xs if np.ndim(x)]
+        arrays = [x for x in xs if np.ndim(x) and np.size(x)]
         if not arrays:
             return False
         big = max(float(np.max(np.abs(x) if self.is_complex else np.maximum(x.max(), -x.min())))
@@ -226,10 +221,6 @@ class MPContext:
     @staticmethod
     def select(c, f, g):
         return f() if c else g()
-
-    @staticmethod
-    def sign_as_value(c):
-        return 1 if c else -1
 
     @staticmethod
     def out_of_range(*xs):

@@ -167,7 +167,6 @@ if os.environ.get("SYMBT_NO_NUMBA", "") in ("", "0"):
         import numba as _numba
 
         _slopes_nb = _numba.njit(cache=False, fastmath=False)(_slopes)
-        _g = dict(_orbit_kernel.__globals__)
 
         def _make():
             src_globals = {"np": np, "math": math, "_slopes": _slopes_nb}
@@ -220,8 +219,10 @@ def fast_orbit(p, q, lam0, mu, n, *, branch=1, every=1, backend="auto"):
         return P, Q
     kern, _ = kernel_backend(backend)
     try:
-        status, _done = kern(p0, q0, float(lam0), float(mu), branch, n, every, P, Q)
-    except (ZeroDivisionError, OverflowError, ValueError):   # degenerate slope / exp range
+        # the pure-Python kernel computes with numpy scalars: make over/underflow raise, not warn
+        with np.errstate(over="raise", divide="raise", invalid="raise"):
+            status, _done = kern(p0, q0, float(lam0), float(mu), branch, n, every, P, Q)
+    except (ZeroDivisionError, OverflowError, ValueError, FloatingPointError):  # degenerate slope / exp range
         status = 3
     if status != 0:
         # slow path: the library orbit raises the typed errors / renormalises

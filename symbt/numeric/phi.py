@@ -36,7 +36,7 @@ import warnings
 import mpmath
 import numpy as np
 
-from ._input import as_state_pair, check_branch, prepare_scalar
+from ._input import IV, as_state_pair, check_branch, prepare_spectral_pair
 from .context import FLOAT
 from .errors import InvalidInputError, NoRealMapError, QuadratureError
 from .lax import monodromy, neighbour_ratios
@@ -54,8 +54,11 @@ def phi(p, q, lam0, mu, *, branch=1):
     """
     branch = check_branch(branch)
     ctx, P, Q, shape = as_state_pair(p, q, lam0, mu)
-    lam0 = prepare_scalar(ctx, lam0, shape, "lam0")
-    mu = prepare_scalar(ctx, mu, shape, "mu")
+    if ctx is IV:
+        raise InvalidInputError("phi takes float64 or mpf inputs (interval arithmetic covers bt_step only)")
+    lam0, mu = prepare_spectral_pair(ctx, lam0, mu, shape)
+    if ctx is FLOAT and 0 in shape:
+        return np.zeros(shape)  # an empty batch has an empty Φ
     r = neighbour_ratios(ctx, Q)
     out = 0
     with np.errstate(all="ignore"):
@@ -156,8 +159,7 @@ def flow_coefficients(p, q, lam0, mu, *, branch=1, rtol=1e-13, max_intervals=400
         raise InvalidInputError("flow_coefficients takes a single state (p, q of shape (N,))")
     if ctx is not FLOAT and not isinstance(P[0], mpmath.mpf):
         raise InvalidInputError("flow_coefficients does not support interval inputs")
-    lam0 = prepare_scalar(ctx, lam0, shape, "lam0")
-    mu = prepare_scalar(ctx, mu, shape, "mu")
+    lam0, mu = prepare_spectral_pair(ctx, lam0, mu, shape)
     N = len(P)
     if mu == 0:
         return np.zeros(N) if ctx is FLOAT else [mpmath.mpf(0)] * N

@@ -63,7 +63,7 @@ from __future__ import annotations
 import mpmath
 import numpy as np
 
-from ._input import (IV, as_state_pair, check_branch, pick_context, prepare_scalar, sites,
+from ._input import (IV, as_state_pair, check_branch, pick_context, prepare_spectral_pair, sites,
                      to_output, validate_float_pair)
 from .context import COMPLEX, FLOAT
 from .errors import NoRealMapError, NumericRangeError
@@ -201,11 +201,9 @@ def _float_block(pa, qa, lam0, mu, branch, allow_complex, shape, offset):
     with np.errstate(all="ignore"):
         try:
             Pn, Qn, _ = step_core(FLOAT, P, Q, lam0, mu, branch, shape=shape, offset=offset)
-            ctx = FLOAT
         except NoRealMapError:
             if not allow_complex:
                 raise
-            ctx = COMPLEX
             Pc = [x.astype(np.complex128) for x in P]
             Qc = [x.astype(np.complex128) for x in Q]
             Pn, Qn, _ = step_core(COMPLEX, Pc, Qc, lam0, mu, branch, check_real=False)
@@ -283,16 +281,14 @@ def bt_step(p, q, lam0, mu, *, branch=1, allow_complex=False):
     ctx = pick_context(p, q, lam0, mu)
     if ctx is FLOAT:
         pa, qa, shape = validate_float_pair(p, q)
-        lam0 = prepare_scalar(ctx, lam0, shape, "lam0")
-        mu = prepare_scalar(ctx, mu, shape, "mu")
+        lam0, mu = prepare_spectral_pair(ctx, lam0, mu, shape)
         N = pa.shape[-1]
         if np.ndim(mu) == 0 and mu == 0:
             return pa.reshape(shape + (N,)).copy(), qa.reshape(shape + (N,)).copy()
         outp, outq = _float_step(pa, qa, lam0, mu, branch, allow_complex, shape)
         return outp.reshape(shape + (N,)), outq.reshape(shape + (N,))
     ctx, P, Q, shape = as_state_pair(p, q, lam0, mu)
-    lam0 = prepare_scalar(ctx, lam0, shape, "lam0")
-    mu = prepare_scalar(ctx, mu, shape, "mu")
+    lam0, mu = prepare_spectral_pair(ctx, lam0, mu, shape)
     # mpmath / interval path
     if mu == 0:
         return to_output(ctx, P, ()), to_output(ctx, Q, ())
