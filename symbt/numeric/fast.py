@@ -37,7 +37,8 @@ import os
 
 import numpy as np
 
-from ._input import check_branch
+from ._input import check_branch, prepare_spectral_pair
+from .context import FLOAT
 from .errors import InvalidInputError
 from .orbit import bt_orbit
 
@@ -206,9 +207,12 @@ def fast_orbit(p, q, lam0, mu, n, *, branch=1, every=1, backend="auto"):
     q0 = np.ascontiguousarray(q, dtype=np.float64)
     if p0.ndim != 1 or p0.shape != q0.shape or p0.size < 2:
         raise InvalidInputError("fast_orbit takes one state: p, q of equal shape (N,), N >= 2")
-    if not (np.all(np.isfinite(p0)) and np.all(np.isfinite(q0))
-            and math.isfinite(float(lam0)) and math.isfinite(float(mu))):
+    if not (np.all(np.isfinite(p0)) and np.all(np.isfinite(q0))):
         raise InvalidInputError("non-finite input")
+    if np.ndim(lam0) or np.ndim(mu):
+        raise InvalidInputError("fast_orbit takes scalar lam0 and mu")
+    lam0, mu = prepare_spectral_pair(FLOAT, lam0, mu, ())  # typed errors for complex/non-finite/overflow
+    lam0, mu = float(lam0), float(mu)
     n, every = int(n), int(every)
     rows = 1 + -(-n // every)
     P = np.empty((rows, p0.size))

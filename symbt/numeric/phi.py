@@ -151,7 +151,12 @@ def flow_coefficients(p, q, lam0, mu, *, branch=1, rtol=1e-13, max_intervals=400
     and :class:`NoRealMapError` if ``|tr| <= 2`` somewhere on the interval
     (checked at every node and by requiring the real map to exist).
     mpmath inputs: ``mpmath.quad`` (tanh-sinh) per ``k`` at the current
-    precision, with its error estimate checked; returns a list of mpf.
+    precision, with its error estimate checked; if it stays above
+    ``10**(5 - dps)`` relative after a split and 10 more digits, a
+    ``RuntimeWarning`` is issued and the value returned (``mpmath.quad``
+    controls the absolute error, so tiny integrals, e.g. ``c_0 ~ 1e-149`` for
+    N = 64 far from the spectrum, may be only ~1e-11 relative accurate).
+    Returns a list of mpf.
     """
     branch = check_branch(branch)
     ctx, P, Q, shape = as_state_pair(p, q, lam0, mu)
