@@ -47,7 +47,8 @@ def _short_method(m: str) -> str:
         corr = m.split("| corrected:", 1)[-1].strip()
         return "corrected by " + _short_method(corr)
     if m.startswith("exact"):
-        return "exact" + (" +relations" if "remainder mod" in m else "") + (" (E=e^q)" if "exp->" in m else "")
+        return ("exact" + (" +relations" if "remainder mod" in m else "") + (" (E=e^q)" if "exp->" in m else "")
+                + (" + numeric" if "; numeric:" in m else ""))
     return m.split(";")[0][:40]
 
 
