@@ -17,7 +17,7 @@ from __future__ import annotations
 import mpmath as mp
 import sympy as sp
 
-from ..literal import lax_matrix, literal_step
+from ..literal import literal_step
 from ..literal import phi_from_traces as phi_real  # the corrected, real Phi (module docstring)
 from ..proof import decide
 from ..symbolic.darboux import lam0, mu
@@ -32,6 +32,15 @@ p = sp.Symbol("p_j", real=True)
 E, Et, En, Etn = sp.symbols("E_j Et_j E_jp1 Et_jp1", positive=True)
 eta_j, eta_n = sp.symbols("eta_j eta_jp1", real=True)
 
+
+
+def _ratios_on_map(state, b):
+    """``(eta_k+mu)/(eta_k-mu)`` on the map of branch ``b`` -- eta recovered from (p, q) and the image
+    alone (eq. imptransf) -- and the traces tr L(lambda_1), tr L(lambda_2)."""
+    pv, qv, l0, m = state
+    pt, qt, info = literal_step(pv, qv, l0, m, b)
+    ratios = [(e + m) / (e - m) for e in eta_from_states(pv, qv, pt, qt, l0)]
+    return ratios, mp.re(info["tr1"]), mp.re(info["tr2"])
 
 
 def _map_cases(N):
@@ -97,16 +106,13 @@ for _N in (2, 3):
             worst_prod, worst_log, bad = mp.mpf(0), mp.mpf(0), None
             with mp.workdps(DPS):
                 for state, b in _map_cases(N):
-                    pv, qv, l0, m = state
-                    pt, qt, info = literal_step(pv, qv, l0, m, b)
-                    eta = eta_from_states(pv, qv, pt, qt, l0)
-                    tr1, tr2 = info["tr1"], info["tr2"]
+                    ratios, tr1, tr2 = _ratios_on_map(state, b)
                     g1, g2 = b * mp.sqrt(tr1 ** 2 - 4), b * mp.sqrt(tr2 ** 2 - 4)
-                    prod = mp.fprod((e + m) / (e - m) for e in eta)
+                    prod = mp.fprod(ratios)
                     rhs = (tr1 - g1) / 2 * ((tr2 - g2) / 2)
                     worst_prod = max(worst_prod, abs(prod - rhs) / abs(rhs))
                     # nu-products are the eigenvalues of L(l1), L(l2) on the kernels (eq. l1l2)
-                    lhs_log = mp.fsum(mp.log((e + m) / (e - m)) for e in eta)
+                    lhs_log = mp.fsum(mp.log(x) for x in ratios)
                     rhs_log = mp.log((tr1 - g1) / 2) + mp.log((tr2 - g2) / 2)
                     r = abs(lhs_log - rhs_log)
                     if r > worst_log:
@@ -130,14 +136,10 @@ for _N in (2, 3):
             worst_pr, worst_re, bad = mp.mpf(0), mp.mpf(0), None
             with mp.workdps(DPS):
                 for state, b in _map_cases(N):
-                    pv, qv, l0, m = state
-                    pt, qt, _ = literal_step(pv, qv, l0, m, b)
-                    # Phi = dF/dmu (eq. vqqtmu) evaluated with eta recovered from (p, q) and the image
-                    eta = eta_from_states(pv, qv, pt, qt, l0)
-                    phi_c = mp.fsum(mp.log((e + m) / (e - m)) for e in eta)  # principal branch, as printed
-                    phi_r = mp.fsum(mp.log(abs((e + m) / (e - m))) for e in eta)
-                    tr1 = mp.re(mp.mpmathify(mp.fsum([lax_matrix(l0 + m, pv, qv)[0, 0], lax_matrix(l0 + m, pv, qv)[1, 1]])))
-                    tr2 = mp.re(mp.mpmathify(mp.fsum([lax_matrix(l0 - m, pv, qv)[0, 0], lax_matrix(l0 - m, pv, qv)[1, 1]])))
+                    # Phi = dF/dmu (eq. vqqtmu) on the map
+                    ratios, tr1, tr2 = _ratios_on_map(state, b)
+                    phi_c = mp.fsum(mp.log(x) for x in ratios)  # principal branch, as printed
+                    phi_r = mp.fsum(mp.log(abs(x)) for x in ratios)
                     printed = -mp.acosh(tr1 / 2) - mp.acosh(tr2 / 2)
                     r = abs(phi_c - printed) / max(1, abs(printed))
                     if r > worst_pr:
