@@ -34,8 +34,8 @@ import itertools
 
 import sympy as sp
 
-from symbt.display import Walkthrough
-from symbt.identity import check_identity
+from symbt.engine import Walkthrough
+from symbt.proof.identity import check_identity
 from symbt.symbolic.toda import local_lax, toda_model
 
 wt = Walkthrough()            # loads every claim module

@@ -30,8 +30,8 @@ except ImportError:  # running from a checkout without installing
 
 import sympy as sp
 
-from symbt.display import Walkthrough
-from symbt.identity import check_identity
+from symbt.engine import Walkthrough
+from symbt.proof.identity import check_identity
 from symbt.symbolic.darboux import (composed_darboux, darboux_composition, lam1, lam2,
                                     local_relation_residual, single_darboux, single_darboux_adjugate, zeta)
 from symbt.symbolic.toda import lam

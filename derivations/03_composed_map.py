@@ -31,10 +31,10 @@ except ImportError:  # running from a checkout without installing
 import mpmath as mp
 import sympy as sp
 
-from symbt.claims.samples import admissible_states
-from symbt.display import Walkthrough
-from symbt.identity import check_identity
-from symbt.literal import lax_matrix, literal_step
+from symbt.reference.samples import admissible_states
+from symbt.engine import Walkthrough
+from symbt.proof.identity import check_identity
+from symbt.reference.literal import lax_matrix, literal_step
 from symbt.symbolic.darboux import composed_darboux, lam1, lam2
 from symbt.symbolic.toda import lam
 

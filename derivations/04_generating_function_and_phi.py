@@ -32,10 +32,10 @@ import mpmath as mp
 import sympy as sp
 
 from symbt.claims.composed_map import eta_from_states
-from symbt.claims.samples import paper_state
-from symbt.display import Walkthrough
-from symbt.identity import check_identity
-from symbt.literal import literal_step
+from symbt.reference.samples import paper_state
+from symbt.engine import Walkthrough
+from symbt.proof.identity import check_identity
+from symbt.reference.literal import literal_step
 from symbt.symbolic.darboux import composed_darboux, lam0, local_relation_residual, mu
 from symbt.symbolic.generating import generating_function
 from symbt.symbolic.toda import lam, local_lax

@@ -36,8 +36,8 @@ except ImportError:  # running from a checkout without installing
 
 import sympy as sp
 
-from symbt.display import Walkthrough
-from symbt.identity import check_identity
+from symbt.engine import Walkthrough
+from symbt.proof.identity import check_identity
 
 wt = Walkthrough()            # loads every claim module
 show, display = wt.show, wt.display

@@ -31,9 +31,9 @@ except ImportError:  # running from a checkout without installing
 import mpmath as mp
 import sympy as sp
 
-from symbt.display import Walkthrough
-from symbt.identity import check_identity
-from symbt.literal import literal_step
+from symbt.engine import Walkthrough
+from symbt.proof.identity import check_identity
+from symbt.reference.literal import literal_step
 from symbt.symbolic.toda import toda_model
 
 wt = Walkthrough()            # loads every claim module

@@ -29,9 +29,9 @@ except ImportError:  # running from a checkout without installing
 
 import mpmath as mp
 
-from symbt.claims.samples import paper_state
-from symbt.display import Walkthrough
-from symbt.literal import spectral_trace_mp
+from symbt.reference.samples import paper_state
+from symbt.engine import Walkthrough
+from symbt.reference.literal import spectral_trace_mp
 
 wt = Walkthrough()            # loads every claim module
 show, display = wt.show, wt.display

@@ -18,8 +18,8 @@ import importlib
 __version__ = "0.1.0"
 
 _LAZY = {
-    "check_identity": ("symbt.identity", "check_identity"),
-    "IdentityResult": ("symbt.identity", "IdentityResult"),
+    "check_identity": ("symbt.proof.identity", "check_identity"),
+    "IdentityResult": ("symbt.proof.identity", "IdentityResult"),
     "decide": ("symbt.proof", "decide"),
     "verify": ("symbt.engine", "run"),
 }

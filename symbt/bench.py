@@ -45,7 +45,7 @@ Headline.  ``time(cheapest contender whose final error <= the BT's) / time(BT)``
 measured in the same run; if no contender reaches it, the ratio against the
 most accurate contender is reported together with its error.  At 50 digits
 the mpmath BT is compared with a Taylor-series integrator
-(:func:`symbt.flows.hamiltonian_flow`, exact Taylor coefficients by Cauchy
+(:func:`symbt.reference.taylor.hamiltonian_flow`, exact Taylor coefficients by Cauchy
 products; plus ``mpmath.odefun`` on a short horizon in the full run).
 """
 
@@ -64,14 +64,14 @@ from dataclasses import dataclass
 import mpmath
 import numpy as np
 
+from .paper import P_EXAMPLE, Q_EXAMPLE
 from .numeric import bt_orbit, bt_step, flow_coefficients, invariants, spectral_trace
 from .numeric.fast import HAVE_NUMBA, fast_orbit
 
 __all__ = ["main", "FlowField", "gauss_legendre_orbit", "Case", "CASES", "band_edge_case",
            "map_condition"]
 
-P_PAPER = (-20.0, 10.0, 1.0)
-Q_PAPER = (1.0, 0.0, 0.9)
+P_PAPER, Q_PAPER = P_EXAMPLE, Q_EXAMPLE
 
 
 @dataclass
@@ -562,11 +562,11 @@ def run_mp50(quick=False, log=print):
         out["bt"] = {"time_s": tbt, "repeats": reps, "err": err(bp[-1], bq[-1])}
         log("  BT mpmath 50 digits, %d steps: err %.2e, %.3e s" % (n, out["bt"]["err"], tbt))
         try:
-            from .flows import hamiltonian_flow
+            from .reference.taylor import hamiltonian_flow
             t0 = time.perf_counter()
             res = hamiltonian_flow(P0, Q0, list(c) + [0], n)
             tt = time.perf_counter() - t0
-            out["taylor"] = {"method": "symbt.flows.hamiltonian_flow (adaptive Taylor, Cauchy-product jets)",
+            out["taylor"] = {"method": "symbt.reference.taylor.hamiltonian_flow (adaptive Taylor, Cauchy-product jets)",
                              "time_s": tt, "repeats": 1, "err": err(res[0], res[1]),
                              "steps": getattr(res, "steps", None), "order": getattr(res, "order", None)}
             log("  Taylor (flows.hamiltonian_flow) t=%d: err %.2e, %.3e s, %s steps of order %s" % (

@@ -16,6 +16,7 @@ __all__ = ["main"]
 
 def _cmd_verify(args) -> int:
     from . import engine, report
+    from ._files import atomic_write
 
     try:
         claims = engine.select(args.scene or None, include_deep=args.deep)
@@ -42,7 +43,7 @@ def _cmd_verify(args) -> int:
     if args.junit:
         report.write_junit(results, args.junit)
     if args.markdown:
-        report._atomic_write(args.markdown, report.format_markdown(results))
+        atomic_write(args.markdown, report.format_markdown(results))
     return 0 if report.summary(results)["ok"] else 1
 
 
@@ -88,14 +89,14 @@ def build_parser() -> argparse.ArgumentParser:
     s.set_defaults(func=_cmd_scenes)
     for name, module, helptext in (("codegen", "codegen", "emit/check generated numeric modules"),
                                    ("bench", "bench", "work-precision benchmarks"),
-                                   ("figures", "figures", "regenerate the paper's figures")):
+                                   ("figures", "report.figures", "regenerate the paper's figures")):
         p = sub.add_parser(name, help=helptext, add_help=False)
         p.add_argument("rest", nargs=argparse.REMAINDER)
         p.set_defaults(func=_delegate(module))
     return ap
 
 
-_DELEGATED = {"codegen": "codegen", "bench": "bench", "figures": "figures"}
+_DELEGATED = {"codegen": "codegen", "bench": "bench", "figures": "report.figures"}
 
 
 def main(argv=None) -> int:

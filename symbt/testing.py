@@ -13,7 +13,7 @@ rejects identities that only pass the numeric screen.
 """
 from __future__ import annotations
 
-from .identity import IdentityResult, check_identity
+from .proof.identity import IdentityResult, check_identity
 
 __all__ = ["assert_identity", "IdentityAssertionError"]
 
@@ -43,10 +43,10 @@ def _message(r: IdentityResult, msg: str | None) -> str:
 
 def assert_identity(lhs, rhs=0, *, require: str = "verified", msg: str | None = None,
                     **kw) -> IdentityResult:
-    """Assert ``lhs == rhs`` with :func:`symbt.identity.check_identity`; return the result.
+    """Assert ``lhs == rhs`` with :func:`symbt.proof.identity.check_identity`; return the result.
 
     Keyword arguments (``relations``, ``assumptions``, ``digits``, ``points``,
-    ``seed``, ...) go to :func:`~symbt.identity.check_identity`.
+    ``seed``, ...) go to :func:`~symbt.proof.identity.check_identity`.
     ``require="verified"`` (default) accepts proved or numerically verified
     identities; ``require="proved"`` accepts only exact proofs.
     """

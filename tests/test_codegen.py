@@ -145,7 +145,7 @@ def test_mpmath_flavour_has_no_float_literals():
 # --------------------------------------------------------------------------- float64 vs mpmath
 
 def _states(N, n, seed):
-    from symbt.claims.samples import admissible_states
+    from symbt.reference.samples import admissible_states
     with mp.workdps(30):
         st = admissible_states(N, 1, n, seed=seed) + admissible_states(N, -1, n, seed=seed)
     P = np.array([[float(v) for v in s[0]] for s in st])

@@ -1,10 +1,10 @@
-"""HTML / LaTeX rendering of claim results (symbt.display)."""
+"""HTML / LaTeX rendering of claim results (symbt.report.html)."""
 from __future__ import annotations
 
 import html.parser
 
 from symbt.claims.base import Claim, ClaimResult, Outcome
-from symbt.display import STATUS_COLOURS, latex_text, result_html, result_latex, scene_html
+from symbt.report.html import STATUS_COLOURS, latex_text, result_html, result_latex, scene_html
 
 
 def _claim(**kw):

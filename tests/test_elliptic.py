@@ -1,4 +1,4 @@
-"""N = 2 action-angle variables and the elliptic addition formula (symbt.elliptic, claims elliptic/certified)."""
+"""N = 2 action-angle variables and the elliptic addition formula (symbt.reference.elliptic, claims elliptic/certified)."""
 from __future__ import annotations
 
 import random
@@ -6,8 +6,8 @@ import random
 import mpmath as mp
 import pytest
 
-from symbt import elliptic as E
-from symbt.literal import literal_step
+from symbt.reference import elliptic as E
+from symbt.reference.literal import literal_step
 
 
 def _mp(case):

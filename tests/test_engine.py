@@ -102,7 +102,7 @@ def test_cache_reuse_corruption_and_staleness(tmp_path, monkeypatch):
     assert not first.cached
     second = engine.run([c])[0].outcome
     assert second.cached and second.status == first.status
-    f = engine._cache_file(c)
+    f = engine.cache_file(c)
     f.write_text("{not json")
     assert not engine.run([c])[0].outcome.cached           # corrupt -> recomputed
     data = json.loads(f.read_text())

@@ -5,7 +5,7 @@ pytest.importorskip("matplotlib")
 pytest.importorskip("scipy")
 
 from symbt import cli  # noqa: E402
-from symbt.figures import paper_example_data  # noqa: E402
+from symbt.report.figures import paper_example_data  # noqa: E402
 
 
 def test_cli_figures_writes_two_pngs(tmp_path):

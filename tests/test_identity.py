@@ -5,7 +5,7 @@ import pytest
 import sympy as sp
 
 import symbt
-from symbt.identity import IdentityResult, check_identity, normalize_relations
+from symbt.proof.identity import IdentityResult, check_identity, normalize_relations
 
 x_real = sp.Symbol("x", real=True)
 x_pos = sp.Symbol("x", positive=True)
@@ -176,7 +176,7 @@ def test_rich_reprs_and_dict():
     assert r._repr_latex_().startswith("$") and r"\neq" in r._repr_latex_()
     assert r.to_dict()["status"] == "false"
     with pytest.raises(ValueError):
-        IdentityResult("unknown", "m")
+        IdentityResult(True, "unknown", "m")
 
 
 def test_seed_makes_it_reproducible():

@@ -146,7 +146,7 @@ def test_no_silent_nan():
 
 def test_import_is_light():
     # the whole numeric side: runtime, literal reference, elliptic helpers, flows, generated code
-    code = ("import sys, symbt.numeric, symbt.literal, symbt.elliptic, symbt.flows, "
+    code = ("import sys, symbt.numeric, symbt.reference.literal, symbt.reference.elliptic, symbt.reference.taylor, "
             "symbt.generated.toda2, symbt.generated.toda3; "
             "bad = [m for m in ('sympy', 'scipy', 'matplotlib') if m in sys.modules]; "
             "print(','.join(bad))")

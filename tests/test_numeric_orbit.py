@@ -21,7 +21,7 @@ import mpmath
 import numpy as np
 
 from symbt.numeric import bt_orbit, invariants
-from symbt.numeric.reference import literal_step
+from symbt.reference.literal import reference_step as literal_step
 from symbt.numeric.testing import state_error
 
 P0 = [-20.0, 10.0, 1.0]

@@ -7,7 +7,7 @@ import pytest
 from symbt.numeric import (NoRealMapError, bt_step, flow_coefficients, invariants, phi,
                            spectral_trace)
 from symbt.numeric.context import FLOAT
-from symbt.numeric.reference import literal_trace
+from symbt.reference.literal import literal_trace
 from symbt.numeric.step import step_core
 from symbt.numeric.testing import outer_gap_case, random_gap_case
 

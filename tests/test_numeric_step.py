@@ -1,6 +1,6 @@
 """One-step accuracy of the float64 Bäcklund map against independent mpmath references.
 
-Reference: ``symbt.numeric.reference.literal_step`` -- the paper's literal
+Reference: ``symbt.reference.literal.reference_step`` -- the paper's literal
 route (2x2 mpmath matrices, forward transport) at >= 50 digits plus automatic
 guard digits, i.e. a different algorithm from the one under test.  Error
 metric: ``symbt.numeric.testing.state_error`` (normwise relative, centre of
@@ -14,7 +14,7 @@ import pytest
 
 from symbt.numeric import NoRealMapError, bt_step, invariants, spectral_trace
 from symbt.numeric.context import FLOAT
-from symbt.numeric.reference import literal_step
+from symbt.reference.literal import reference_step as literal_step
 from symbt.numeric.step import step_core
 from symbt.numeric.testing import outer_gap_case, random_gap_case, state_error
 
@@ -38,7 +38,7 @@ def err(p, q, lam0, mu, branch=1):
 
 def test_paper_example_reference_numbers():
     # regression pins: 12-digit values of the literal route at 50 digits (computed once with
-    # symbt.literal.literal_step; test_paper_example_accuracy recomputes them at run time)
+    # symbt.reference.literal.literal_step; test_paper_example_accuracy recomputes them at run time)
     pt, qt = bt_step(P0, Q0, 10.0, 5.0)
     np.testing.assert_allclose(pt, [-19.9965676649, 9.78635494921, 1.21021271571], rtol=0, atol=2e-10)
     np.testing.assert_allclose(qt, [-0.0861422421882, 0.519849719775, 1.88339322702], rtol=0, atol=2e-12)

@@ -4,7 +4,7 @@ from __future__ import annotations
 import pytest
 import sympy as sp
 
-from symbt.identity import IdentityResult
+from symbt.proof.identity import IdentityResult
 from symbt.testing import IdentityAssertionError, assert_identity
 
 x = sp.Symbol("x", real=True)

@@ -1,15 +1,17 @@
-"""Theorems 1, 2 and the inverse problem (symbt.flows, symbt.claims.theorems, symbt.claims.inverse)."""
+"""Theorems 1, 2 and the inverse problem (symbt.reference.taylor, symbt.claims.theorems, symbt.claims.inverse)."""
 import random
 
 import mpmath as mp
 import pytest
 
 from symbt.claims import REGISTRY, load_all
-from symbt.claims.samples import admissible_states, paper_state
+from symbt.reference.samples import admissible_states, paper_state
 from symbt.claims.theorems import caption_constants, compare_iterates_with_flow
-from symbt.flows import (flow_coefficients_mp, hamiltonian_flow, hamiltonians, solve_parameters,
-                         trace, trace_gap, trace_gradient)
-from symbt.literal import spectral_trace_mp
+from symbt.reference.inverse import solve_parameters
+from symbt.reference.spectral import flow_coefficients_mp
+from symbt.reference.taylor import hamiltonian_flow
+from symbt.reference.trace import hamiltonians, trace, trace_gap, trace_gradient
+from symbt.reference.literal import spectral_trace_mp
 
 
 @pytest.fixture(scope="module", autouse=True)

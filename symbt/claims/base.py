@@ -91,7 +91,7 @@ class Claim:
     requires: tuple[str, ...] = ()
 
     def result(self) -> "ClaimResult":
-        """Run and wrap with the claim (renders richly in Jupyter, see :mod:`symbt.display`)."""
+        """Run and wrap with the claim (renders richly in Jupyter, see :mod:`symbt.report.html`)."""
         return ClaimResult(self, self.run())
 
     def run(self) -> Outcome:
@@ -130,11 +130,11 @@ class ClaimResult:
         return d
 
     def _repr_html_(self) -> str:
-        from ..display import result_html
+        from ..report.html import result_html
         return result_html(self)
 
     def _repr_latex_(self) -> str:
-        from ..display import result_latex
+        from ..report.html import result_latex
         return result_latex(self)
 
     def __repr__(self) -> str:

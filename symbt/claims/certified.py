@@ -2,7 +2,7 @@ r"""Certified (Arb ball arithmetic) checks of the N = 2 addition formula, eq. ``
 
 Optional extra ``python-flint``; the claims declare ``requires=("flint",)`` and are
 ``skipped`` without it.  Everything below runs in acb/arb balls from the exact decimal
-inputs (p, q, lambda0, mu) on: the literal map (the same route as :mod:`symbt.literal`),
+inputs (p, q, lambda0, mu) on: the literal map (the same route as :mod:`symbt.reference.literal`),
 the actions, the global angle, the Abel images of the two spectral-curve points, and Jacobi's
 sn, cn, dn built from Arb's theta functions (``acb.modular_theta``, which includes the factor
 pi in its argument):
@@ -23,9 +23,9 @@ import time
 
 import mpmath as mp
 
-from .. import elliptic as E
+from ..reference import elliptic as E
 from .base import Outcome, claim, judge, scene
-from .composed_map import NumDecision
+from ..proof import Verdict
 
 scene("certified", "Arb ball-arithmetic certificates for the N=2 addition formula (optional extra python-flint)")
 
@@ -100,7 +100,7 @@ class Jacobi:
         return (self.t3 / self.t2 * th1 / th4, self.t4 / self.t2 * th2 / th4, self.t4 / self.t3 * th3 / th4)
 
     def abel(self, s, w):
-        """u with sn u = s, cn u dn u = w (s real ball, w a ball), as in symbt.elliptic.abel."""
+        """u with sn u = s, cn u dn u = w (s real ball, w a ball), as in symbt.reference.elliptic.abel."""
         from flint import acb
 
         sr = s.real
@@ -129,7 +129,7 @@ def _arb_actions(p, q):
 
 
 def certified_residuals(case, b, *, flip=False):
-    """Balls of the three residuals of the corrected formula (see symbt.elliptic.addition_residual).
+    """Balls of the three residuals of the corrected formula (see symbt.reference.elliptic.addition_residual).
 
     ``flip=True`` negates the shift (a deliberately wrong formula, for tests)."""
     from flint import acb, arb
@@ -219,12 +219,13 @@ def addform_arb():
                 _mp_check(case, b)
     t_mp = time.perf_counter() - t0
     rate_arb, rate_mp = n / t_arb, n / t_mp
-    printed = NumDecision(mp.mpf(float(disproved_by)) if disproved else mp.mpf(0),
-                          method=f"certified: Arb {PREC} bits, printed residual ball excludes 0",
-                          counterexample=disproved)
-    corrected = NumDecision(mp.mpf(max_rad) if bad is None else mp.mpf(1),
-                            tol=mp.mpf(10) ** -35, method=f"certified: Arb {PREC} bits, all residual balls contain 0",
-                            counterexample=bad)
+    # a ball excluding 0 disproves the printed formula; all balls containing 0 (and tight) certify the correction
+    printed = Verdict(disproved is None, "certified", f"certified: Arb {PREC} bits, printed residual ball excludes 0",
+                      residual=float(disproved_by) if disproved else 0.0, counterexample=disproved,
+                      definite=disproved is not None)
+    corrected = Verdict(bad is None and max_rad <= 1e-35, "certified",
+                        f"certified: Arb {PREC} bits, all residual balls contain 0",
+                        residual=max_rad if bad is None else 1.0, counterexample=bad)
     out = judge(printed,
                 printed="F(P~,k) = F(P,k) + F(lambda_-,k) - F(lambda_+,k) (b = +1, inner regime: all arguments in "
                         "[-1, 1], F real)",
@@ -283,8 +284,9 @@ def addform_arb_real():
                         bad = dict(regime=reg, branch=b, p=case[0], q=case[1], lambda0=case[2], mu=case[3],
                                    residual=str(res))
     rate = n / (time.perf_counter() - t0)
-    d = NumDecision(mp.mpf(max_rad) if bad is None else mp.mpf(1), tol=mp.mpf(10) ** -35,
-                    method=f"certified: Arb {PREC} bits, elliptic_f with am = atan2(P, C)", counterexample=bad)
+    d = Verdict(bad is None and max_rad <= 1e-35, "certified",
+                f"certified: Arb {PREC} bits, elliptic_f with am = atan2(P, C)",
+                residual=max_rad if bad is None else 1.0, counterexample=bad)
     return Outcome("verified" if d.holds else "failed", d.method, residual=d.residual, digits=d.digits,
                    counterexample=d.counterexample,
                    detail=f"{n} checks (inner, outer-same, both branches, both signs of q1-q2): every ball contains 0 "

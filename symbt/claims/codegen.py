@@ -17,7 +17,7 @@ that both flavours see exactly the same input):
   along a CSE chain, each contributing at most ``~eps * S``);
 * mpmath flavour at 50 digits: ``|mp - ref| <= 1e-45 * S``.
 
-The emitted step is also compared with :func:`symbt.literal.literal_step`
+The emitted step is also compared with :func:`symbt.reference.literal.literal_step`
 (the paper's route at 70 digits) and, when importable, with
 :func:`symbt.numeric.bt_step` (float64).  Sample points: seeded random states
 (``admissible_states``: real map, both signs of tr L, both branches) and, for
@@ -33,9 +33,9 @@ import mpmath as mp
 import numpy as np
 import sympy as sp
 
-from ..literal import literal_step
+from ..reference.literal import literal_step
 from .base import Outcome, claim, failed, scene
-from .samples import admissible_states, paper_state
+from ..reference.samples import admissible_states, paper_state
 
 scene("codegen", "emitted numeric code (symbt codegen): generated numpy/mpmath modules vs their SymPy "
                  "sources, the literal map and symbt.numeric (N=2,3)")
@@ -217,7 +217,7 @@ def _phi_grad_fd(N):
 
 
 def _xy_printed(N):
-    """The emitted (rewritten) x, y vs the printed quotients of eq. xy (symbt.literal, 70 digits)."""
+    """The emitted (rewritten) x, y vs the printed quotients of eq. xy (symbt.reference.literal, 70 digits)."""
     mod = _module(N)
     worst = mp.mpf(0)
     for p, q, l0, m in _map_states(N):
@@ -260,7 +260,7 @@ for _N in (2, 3):
 
         @claim(f"codegen.step_literal.n{N}", equation="imptransf", scene="codegen", N=N,
                where=f"symbt/generated/toda{N}.py: bt_step, bt_step_mp",
-               statement="the emitted closed-form step equals the paper's route (symbt.literal.literal_step, "
+               statement="the emitted closed-form step equals the paper's route (symbt.reference.literal.literal_step, "
                          f"70 digits) and symbt.numeric.bt_step (float64), both branches (N={N})")
         def step_literal(N=N):
             mod = _module(N)

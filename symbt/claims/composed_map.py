@@ -13,40 +13,26 @@ from functools import lru_cache
 import mpmath as mp
 import sympy as sp
 
-from ..literal import lax_matrix, literal_step
-from ..proof import decide
+from ..reference.literal import lax_matrix, literal_step
+from ..proof import Verdict, Worst, decide
 from ..symbolic.darboux import composed_darboux, lam1, lam2
 from ..symbolic.toda import lam
 from .base import Outcome, claim, from_decision, judge, scene
-from .samples import admissible_states
+from ..reference.samples import admissible_states
 
 scene("map", "the composed two-parameter BT: Darboux matrix, explicit x, y, eigenvalues, branches (N=2,3)")
 
 DPS = 60
+TOL = mp.mpf(10) ** -40
 
 
-class NumDecision:
-    """A numeric verdict in the shape of :class:`symbt.proof.Decision`."""
-
-    def __init__(self, residual, *, tol=mp.mpf(10) ** -40, method="", counterexample=None):
-        self.residual = float(residual)
-        self.holds = residual <= tol
-        self.digits = float(-mp.log10(residual)) if residual > 0 else float(DPS)
-        self.method = method
-        self.counterexample = None if self.holds else counterexample
-        self.verdict = "verified" if self.holds else "false"
-        self.note = ""
-
-
-def worst_over(cases, residual, *, method, dps=DPS, tol=mp.mpf(10) ** -40):
-    """Largest ``residual(state, branch)`` over ``cases`` at ``dps`` digits, as a :class:`NumDecision`."""
-    worst, bad = mp.mpf(0), None
+def worst_over(cases, residual, *, method, dps=DPS, tol=TOL) -> Verdict:
+    """Largest ``residual(state, branch)`` over ``cases`` at ``dps`` digits, as a sampled :class:`Verdict`."""
+    w = Worst()
     with mp.workdps(dps):
         for state, b in cases:
-            r = residual(state, b)
-            if r > worst:
-                worst, bad = r, _fmt_state(state, b)
-    return NumDecision(worst, tol=tol, method=method, counterexample=bad)
+            w.add(residual(state, b), _fmt_state(state, b))
+    return w.verdict(method, tol=tol, dps=dps)
 
 
 def darboux_numeric(lv, l0, mu, x, y):
@@ -108,7 +94,7 @@ def _on_lattice(N, expr_of_generic):
     """Evaluate a generic statement on the actual N-site L at random points (50-digit screen)."""
     import random
 
-    from ..literal import lax_matrix
+    from ..reference.literal import lax_matrix
 
     L1, L2, tr1, tr2, g1, g2, x, y, Om1, Om2, rel = _xy_generic()
     lhs, rhs = expr_of_generic

@@ -1,8 +1,8 @@
 r"""N = 2: action-angle variables, their update and the addition formula (eqs. ``th1th2``, ``AA2``,
 ``citn``, ``linBts``, ``addform``).
 
-Helpers live in :mod:`symbt.elliptic` (sympy-free).  Cases are drawn per *regime* of
-:math:`s_\pm = (\lambda_0\pm\mu+I_1)/\sqrt{I_2-2}` (see :data:`symbt.elliptic.REGIMES`):
+Helpers live in :mod:`symbt.reference.elliptic` (sympy-free).  Cases are drawn per *regime* of
+:math:`s_\pm = (\lambda_0\pm\mu+I_1)/\sqrt{I_2-2}` (see :data:`symbt.reference.elliptic.REGIMES`):
 
 * ``inner``          both :math:`s_\pm\in(-1,1)` (tr L < -2 at both points): real map;
 * ``outer-same``     both :math:`|s_\pm|>1/k` on the same side (tr L > 2): real map;
@@ -12,7 +12,7 @@ Helpers live in :mod:`symbt.elliptic` (sympy-free).  Cases are drawn per *regime
 
 Printed statements are tested with branch b = +1 (the paper's implicit choice, see
 ``newkmu``); corrections are verified for both branches.  theta2 "global" is
-:func:`symbt.elliptic.angles` (am u = atan2(P, C)).
+:func:`symbt.reference.elliptic.angles` (am u = atan2(P, C)).
 """
 from __future__ import annotations
 
@@ -20,10 +20,10 @@ import random
 
 import mpmath as mp
 
-from .. import elliptic as E
-from ..literal import literal_step
+from ..reference import elliptic as E
+from ..reference.literal import literal_step
+from ..proof import Verdict, Worst
 from .base import Outcome, claim, judge, scene
-from .composed_map import NumDecision
 
 scene("elliptic", "N=2 action-angle variables, their update by the map, linearization and the elliptic "
                   "addition formula, by regime of lambda_+-")
@@ -65,26 +65,13 @@ def _wrap(d, period):
     return d - period * mp.nint(mp.re(d) / period)
 
 
-class _Worst:
-    def __init__(self):
-        self.r, self.ce = mp.mpf(0), None
-
-    def add(self, r, ce):
-        r = abs(mp.mpmathify(r))
-        if r > self.r or self.ce is None:
-            self.r, self.ce = max(self.r, r), ce
-
-    def decision(self, method, tol=TOL):
-        return NumDecision(self.r, tol=tol, method=method, counterexample=self.ce)
-
-
 # --------------------------------------------------------------------------- th1th2: actions, F, brackets
 
 @claim("th1th2.actions", equation="th1th2", scene="elliptic", N=2,
        statement="the actions I1 = (p1+p2)/2 and I2 = 2cosh(q1-q2) + ((p1-p2)/2)^2 are invariant under the map "
                  "(both branches, every regime of lambda_+-)")
 def actions_invariant():
-    w = _Worst()
+    w = Worst()
     with mp.workdps(DPS):
         for reg, st in _cases(E.REGIMES, 2, 11):
             for b in (1, -1):
@@ -92,7 +79,7 @@ def actions_invariant():
                 I, It = E.actions(st[0], st[1]), E.actions(pt, qt)
                 r = max(abs(I[0] - It[0]), abs(I[1] - It[1])) / max(1, abs(I[1]))
                 w.add(r, _fmt(st, b, reg))
-    d = w.decision(f"numeric: literal map at {DPS} digits, 20 cases x 2 branches")
+    d = w.verdict(f"numeric: literal map at {DPS} digits, 20 cases x 2 branches", tol=TOL, dps=DPS)
     out = Outcome("verified" if d.holds else "failed", d.method, residual=d.residual, digits=d.digits,
                   counterexample=d.counterexample,
                   detail="also where the image is not real (outer-opposite, mixed: some e^{q~_j} < 0; gap: complex), "
@@ -136,10 +123,9 @@ def which_F():
             for name, f in zip(res, (th_complete, th_inc, th_wrong_m)):
                 res[name] = max(res[name], abs(_bracket(lambda a, b_, c, d: E.actions([a, b_], [c, d])[1], f,
                                                         p + q) - 1))
-    printed = NumDecision(res["complete K(k)"], method="numeric: mp.diff brackets at 50 digits",
-                          counterexample={"reading": "F(z,k) = K(k) (complete)",
-                                          "|{I2,theta2} - 1|": mp.nstr(res["complete K(k)"], 5)})
-    corrected = NumDecision(max(alg, res["incomplete, parameter m=k^2"]), method="numeric: quadrature + mp.diff")
+    printed = Verdict.sampled(res["complete K(k)"], method="numeric: mp.diff brackets at 50 digits", counterexample={"reading": "F(z,k) = K(k) (complete)",
+                                          "|{I2,theta2} - 1|": mp.nstr(res["complete K(k)"], 5)}, tol=TOL, dps=DPS)
+    corrected = Verdict.sampled(max(alg, res["incomplete, parameter m=k^2"]), method="numeric: quadrature + mp.diff", tol=TOL, dps=DPS)
     return judge(printed,
                  printed="F(z,k) = complete elliptic integral of the first kind",
                  corrected="F(z,k) = int_0^z dt/sqrt((1-t^2)(1-k^2 t^2)) = mpmath.ellipf(asin z, m=k^2), the "
@@ -171,7 +157,7 @@ def brackets():
     th1 = lambda a, b, c, d: c + d  # noqa: E731
     th2p = lambda a, b, c, d: E.theta2_printed([a, b], [c, d])  # noqa: E731
     th2g = lambda a, b, c, d: E.angles([a, b], [c, d])[1]  # noqa: E731
-    wp, wg = _Worst(), _Worst()
+    wp, wg = Worst(), Worst()
     signs = {}
     with mp.workdps(DPS):
         for reg, st in _cases(["inner", "outer-same"], 2, 7):
@@ -185,14 +171,14 @@ def brackets():
                 if name == "printed":
                     signs.setdefault(int(mp.sign(x)), mp.nstr(A[1][1], 5))
                 w.add(r, dict(_fmt(st, None), **{"{I2,theta2}": mp.nstr(A[1][1], 8), "sign(q1-q2)": int(mp.sign(x))}))
-    return judge(wp.decision(f"numeric: mp.diff at {DPS} digits, 4 states, both signs of q1-q2"),
+    return judge(wp.verdict(f"numeric: mp.diff at {DPS} digits, 4 states, both signs of q1-q2", tol=TOL, dps=DPS),
                  printed="{I_j, theta_k} = delta_jk with theta2 = F(P,k)/sqrt(I2+2)",
                  corrected="holds only locally: {I2, F(P,k)/sqrt(I2+2)} = sgn(q1-q2). The globally defined angle is "
                            "theta2 = u/sqrt(I2+2) with sn u = P, cn u = 2sinh((q1-q2)/2)/sqrt(I2-2) (am u = "
                            "atan2(P, C), u mod 4K); it equals the printed one for q1 > q2, and "
                            "(2K - F(P,k))/sqrt(I2+2) for q1 < q2; with it {I_j, theta_k} = delta_jk and "
                            "{I1,I2} = {theta1,theta2} = 0 everywhere",
-                 corrected_check=lambda: wg.decision(f"numeric: mp.diff at {DPS} digits"),
+                 corrected_check=lambda: wg.verdict(f"numeric: mp.diff at {DPS} digits", tol=TOL, dps=DPS),
                  detail=f"printed {{I2,theta2}} by sign of q1-q2: {signs}; the printed theta2 is not differentiable "
                         "at q1 = q2 (P = +-1), where the orbit turns")
 
@@ -213,7 +199,7 @@ def _measured(st, b):
                  "(Theorem 2 for N=2)")
 def aa2():
     dps = 30
-    wp, wc = _Worst(), _Worst()
+    wp, wc = Worst(), Worst()
     with mp.workdps(dps):
         for reg, st in _cases(["inner", "outer-same"], 2, 21):
             l0, mu = st[2], st[3]
@@ -238,13 +224,13 @@ def aa2():
                     wp.add(max(abs(h1 - d1), abs(_wrap(h2 - d2, P2))),
                            _fmt(st, b, reg, dH_dI1=h1, dtheta1=d1, dH_dI2=h2, dtheta2=d2))
     tol = mp.mpf(10) ** -20
-    return judge(wp.decision(f"numeric: mp.quad + mp.diff at {dps} digits vs the literal map", tol=tol),
+    return judge(wp.verdict(f"numeric: mp.quad + mp.diff at {dps} digits vs the literal map", tol=tol, dps=DPS),
                  printed="H = int_{l0+mu}^{l0-mu} arccosh(((lambda+I1)^2-I2)/2) dlambda (principal arccosh)",
                  corrected="H = int_0^mu Phi dmu' = -b int_{l0-mu}^{l0+mu} sgn(T) arccosh(|T|/2) dlambda, "
                            "T = (lambda+I1)^2 - I2, with the real Phi of eq. newkmu (branch b): theta_j advance by "
                            "dH/dI_j exactly (theta2 the global angle, mod its period 4K/sqrt(I2+2)); this confirms "
                            "Theorem 2 for N=2. The printed H is right for b = +1 when tr L > 2 on [l0-mu, l0+mu]",
-                 corrected_check=lambda: wc.decision(f"numeric: mp.quad + mp.diff at {dps} digits", tol=tol),
+                 corrected_check=lambda: wc.verdict(f"numeric: mp.quad + mp.diff at {dps} digits", tol=tol, dps=DPS),
                  detail="regimes inner (tr L < -2 on the interval) and outer-same (tr L > 2), 2 states each, both "
                         "branches for the correction; printed tested with b = +1: for tr L < -2 the principal "
                         "arccosh carries i*pi and dH/dI_j has the wrong sign")
@@ -253,7 +239,7 @@ def aa2():
 @claim("citn.theta1", equation="citn", scene="elliptic", N=2,
        statement="theta~1 = theta1 + arccosh(((l0-mu+I1)^2-I2)/2) - arccosh(((l0+mu+I1)^2-I2)/2)")
 def citn_theta1():
-    wp, wc, wv = _Worst(), _Worst(), _Worst()
+    wp, wc, wv = Worst(), Worst(), Worst()
     with mp.workdps(DPS):
         for reg, st in _cases(["inner", "outer-same"], 4, 31):
             I1, I2 = E.actions(st[0], st[1])
@@ -266,12 +252,12 @@ def citn_theta1():
                     pr, _ = E.printed_shift(I1, I2, st[2], st[3])
                     wp.add(abs(pr - d1), _fmt(st, b, reg, printed=pr, measured=d1, tr_minus=sh["T2"],
                                               tr_plus=sh["T1"]))
-    return judge(wp.decision(f"numeric: literal map at {DPS} digits (b = +1)"),
+    return judge(wp.verdict(f"numeric: literal map at {DPS} digits (b = +1)", tol=TOL, dps=DPS),
                  printed="theta~1 = theta1 + arccosh(tr L(l0-mu)/2) - arccosh(tr L(l0+mu)/2)",
                  corrected="theta~1 = theta1 + b*(g(tr L(l0-mu)) - g(tr L(l0+mu))), g(T) = sgn(T) arccosh(|T|/2), "
                            "i.e. e^{theta~1 - theta1} = v(l1) v(l2) (the eigenvalues of eq. v1v2); = printed only "
                            "for b = +1 and tr L > 2",
-                 corrected_check=lambda: NumDecision(max(wc.r, wv.r), method=f"numeric: literal map at {DPS} digits"),
+                 corrected_check=lambda: Verdict.sampled(max(wc.residual, wv.residual), method=f"numeric: literal map at {DPS} digits", tol=TOL, dps=DPS),
                  detail="8 states (inner: tr L < -2 at both points, where (tr/2) < -1 and the principal arccosh is "
                         "complex with the wrong real sign; outer-same: tr L > 2), both branches for the correction; "
                         "e^{theta~1} = e^{theta1} v(l1) v(l2) holds in every regime (addform.n2)")
@@ -280,7 +266,7 @@ def citn_theta1():
 @claim("citn.theta2", equation="citn", scene="elliptic", N=2,
        statement="theta~2 = theta2 + (F((l0-mu+I1)/sqrt(I2-2),k) - F((l0+mu+I1)/sqrt(I2-2),k))/sqrt(I2+2)")
 def citn_theta2():
-    wp, wc = _Worst(), _Worst()
+    wp, wc = Worst(), Worst()
     stats = {}
     with mp.workdps(DPS):
         for reg, st in _cases(["inner", "outer-same"], 4, 41):
@@ -301,14 +287,14 @@ def citn_theta2():
                     stats[reg][1] += 1
                     wp.add(r, _fmt(st, b, reg, printed_increment=pr, measured=dpr,
                                    sign_q1_q2=int(mp.sign(st[1][0] - st[1][1]))))
-    return judge(wp.decision(f"numeric: literal map at {DPS} digits (b = +1, printed theta2, principal F)"),
+    return judge(wp.verdict(f"numeric: literal map at {DPS} digits (b = +1, printed theta2, principal F)", tol=TOL, dps=DPS),
                  printed="theta~2 = theta2 + (F(lambda_-,k) - F(lambda_+,k))/sqrt(I2+2), theta2 = F(P,k)/sqrt(I2+2)",
                  corrected="with the global angle theta2 = u/sqrt(I2+2) (th1th2.brackets): theta~2 = theta2 + "
                            "b*(Fr(lambda_+) - Fr(lambda_-))/sqrt(I2+2) mod 4K/sqrt(I2+2), Fr(s) = F(s,k) on |s| <= 1, "
                            "Fr(s) = -F(1/(k s),k) on |s| >= 1/k (= dH/dI2, claim AA2.n2). For b = +1 this is "
                            "(F(l+) - F(l-)) in the inner regime -- the printed sign is reversed there -- and "
                            "(F(1/(k l-)) - F(1/(k l+))) in the outer-same regime",
-                 corrected_check=lambda: wc.decision(f"numeric: literal map at {DPS} digits, both branches"),
+                 corrected_check=lambda: wc.verdict(f"numeric: literal map at {DPS} digits, both branches", tol=TOL, dps=DPS),
                  detail="printed holds in " + ", ".join(f"{k}: {v[0]}/{v[1]}" for k, v in stats.items())
                         + " cases (b = +1); failures: reversed sign (inner), q1-q2 < 0 (printed theta2 runs "
                           "backwards) and the wrap-around of F(P) in [-K, K]")
@@ -322,7 +308,7 @@ def citn_theta2():
 def lin_bts():
     n_it = 30
     dps = 60
-    wp, wc = _Worst(), _Worst()
+    wp, wc = Worst(), Worst()
     with mp.workdps(dps):
         for reg, st in _cases(["inner", "outer-same"], 1, 51):
             for b in (1, -1):
@@ -353,13 +339,13 @@ def lin_bts():
                                  abs(E.theta2_printed(p, q) - th2p0 - n * pr2))
                         wp.add(rp, _fmt(st, b, reg, n=n, printed_theta2_n=th2p0 + n * pr2,
                                         theta2_n=E.theta2_printed(p, q)))
-    return judge(wp.decision(f"numeric: {n_it} iterates of the literal map at {dps} digits (b = +1)"),
+    return judge(wp.verdict(f"numeric: {n_it} iterates of the literal map at {dps} digits (b = +1)", tol=TOL, dps=DPS),
                  printed="(theta_j)_n = (theta_j)_0 + n*(printed citn increment), theta2 = F(P,k)/sqrt(I2+2)",
                  corrected="I_n = I_0; (theta1)_n = (theta1)_0 + n*b*(g(tr L(l0-mu)) - g(tr L(l0+mu))); "
                            "(theta2)_n = (theta2)_0 + n*dtheta2 modulo 4K/sqrt(I2+2) for the global angle, "
                            "equivalently P_n = sn(u_0 + n du), cn(u_0 + n du) = 2sinh((q1-q2)_n/2)/sqrt(I2-2), "
                            "du = b(Fr(l+) - Fr(l-)) (citn.theta2)",
-                 corrected_check=lambda: wc.decision(f"numeric: {n_it} iterates at {dps} digits"),
+                 corrected_check=lambda: wc.verdict(f"numeric: {n_it} iterates at {dps} digits", tol=TOL, dps=DPS),
                  detail=f"{n_it} iterates on 4 orbits (inner, outer-same) x 2 branches: the linearization holds, but "
                         "the printed theta2 = F(P,k)/sqrt(I2+2) is bounded by K/sqrt(I2+2) and cannot grow linearly: "
                         "it must be the global angle, taken mod its period")
@@ -372,7 +358,7 @@ def lin_bts():
                  "lambda_+- = (l0 +- mu + I1)/sqrt(I2-2), k^2 = (I2-2)/(I2+2)")
 def addform():
     per = 8
-    wp, wc, wreal = _Worst(), _Worst(), _Worst()
+    wp, wc, wreal = Worst(), Worst(), Worst()
     stats = {}
     orient = [0, 0]
     import time
@@ -405,11 +391,11 @@ def addform():
                             orient[0] += int(pred == (rp < TOL))
                             orient[1] += 1
     rate = n_checks / (time.perf_counter() - t0)
-    corrected = NumDecision(max(wc.r, wreal.r), method=f"numeric: mpmath {DPS} digits, Jacobi sn/cn/dn")
+    corrected = Verdict.sampled(max(wc.residual, wreal.residual), method=f"numeric: mpmath {DPS} digits, Jacobi sn/cn/dn", tol=TOL, dps=DPS)
     if not corrected.holds:
-        corrected.counterexample = wc.ce if wc.r >= wreal.r else wreal.ce
-    return judge(wp.decision(f"numeric: literal map at {DPS} digits, principal F = ellipf(asin z, k^2) "
-                             "(b = +1, real regimes)"),
+        corrected.counterexample = wc.counterexample if wc.residual >= wreal.residual else wreal.counterexample
+    return judge(wp.verdict(f"numeric: literal map at {DPS} digits, principal F = ellipf(asin z, k^2) "
+                             "(b = +1, real regimes)", tol=TOL, dps=DPS),
                  printed="F(P~,k) = F(P,k) + F(lambda_-,k) - F(lambda_+,k)",
                  corrected="branch-free: sn(u + A(lambda_+) - A(lambda_-), k) = P~ and (cn dn)(u + A(lambda_+) - "
                            "A(lambda_-)) = 2 sinh(q~1-q~2)/sqrt(I2^2-4), where sn u = P, cn u = 2sinh((q1-q2)/2)/"
@@ -512,10 +498,8 @@ def continuation():
         spread_pr = max(abs(vals[a] - vals[b]) for a in vals for b in vals)
         spread_ab = max(abs(x - y) for a in abel_vals for b in abel_vals for x, y in zip(abel_vals[a], abel_vals[b]))
         spread_du = max(abs(resid[a][0] - resid[b][0]) for a in resid for b in resid)
-    printed = NumDecision(spread_pr, tol=mp.mpf(10) ** -25, method="numeric: mpmath ellipf(asin z, m) at 30/50/80 digits",
-                          counterexample={"z": "2", "m": "3/7", **{f"dps{d}": mp.nstr(v, 15) for d, v in vals.items()}})
-    corrected = NumDecision(max(spread_ab, spread_du), tol=mp.mpf(10) ** -25,
-                            method="numeric: symbt.elliptic.abel at 30/50/80 digits")
+    printed = Verdict.sampled(spread_pr, tol=mp.mpf(10) ** -25, method="numeric: mpmath ellipf(asin z, m) at 30/50/80 digits", counterexample={"z": "2", "m": "3/7", **{f"dps{d}": mp.nstr(v, 15) for d, v in vals.items()}}, dps=DPS)
+    corrected = Verdict.sampled(max(spread_ab, spread_du), tol=mp.mpf(10) ** -25, method="numeric: symbt.reference.elliptic.abel at 30/50/80 digits", dps=DPS)
     ok_res = all(r[1] < mp.mpf(10) ** -(d - 10) for d, r in resid.items())
     if not ok_res:
         corrected.holds = False
@@ -525,7 +509,7 @@ def continuation():
                            "sides give v and 2K - v). Deterministic continuation: the Abel map of the curve point "
                            "(z, w), w^2 = (1-z^2)(1-k^2 z^2): |z| <= 1: F(|z|); 1 < |z| <= 1/k: K + i F(asin sqrt((1 - "
                            "z^-2)/k'^2), k'^2); |z| >= 1/k: iK' + F(1/(k|z|)); times sgn z, then u or 2K - u by the sign "
-                           "of w = cn dn (symbt.elliptic.abel)",
+                           "of w = cn dn (symbt.reference.elliptic.abel)",
                  corrected_check=lambda: corrected,
                  detail=f"mpmath principal value spread across 30/50/80 digits: {mp.nstr(spread_pr, 5)}; Abel map "
                         f"spread {mp.nstr(spread_ab, 3)}, step shift spread {mp.nstr(spread_du, 3)}; corrected "

@@ -19,11 +19,13 @@ from __future__ import annotations
 
 import mpmath as mp
 
-from ..flows import flow_coefficients_mp, solve_parameters, trace_gap
+from ..reference.inverse import solve_parameters
+from ..reference.spectral import flow_coefficients_mp
+from ..reference.trace import trace_gap
+from ..proof import Verdict
 from .base import Outcome, claim, scene
 from .composed_map import _fmt_state
-from .samples import admissible_states, paper_state
-from .theorems import Dec
+from ..reference.samples import admissible_states, paper_state
 
 scene("inverse", "the inverse problem c_k -> (lam0, mu) on a fixed orbit (N=2 exact, N=3 two of three / "
                  "direction / least squares)")
@@ -72,7 +74,7 @@ def _round_trip(N, modes, full=True):
                  "solve_parameters recovers (lam0, mu, branch) from c computed at them (round trip, 50 digits)")
 def inverse_n2():
     worst, bad, n, its = _round_trip(2, [("exact", (0, 1))])
-    d = Dec(worst, DPS, counterexample=bad)
+    d = Verdict.sampled(worst, counterexample=bad, tol=mp.mpf(10) ** -(DPS - 10), dps=DPS)
     return Outcome("verified" if d.holds else "failed",
                    f"numeric: mpmath {DPS} digits; Newton on (lam0, signed mu) with the closed-form Jacobian, "
                    "started from the small-mu guess lam0 = c_1/c_0",
@@ -89,7 +91,7 @@ MODES3 = [("exact", (0, 1)), ("exact", (1, 2)), ("direction", None), ("lstsq", N
                  "orbit at lam0 = 10, mu = 5 (b = +1) and mu = 2 (b = -1), and a random state with tr > 2)")
 def inverse_n3():
     worst, bad, n, its = _round_trip(3, MODES3, full=False)
-    d = Dec(worst, DPS, counterexample=bad)
+    d = Verdict.sampled(worst, counterexample=bad, tol=mp.mpf(10) ** -(DPS - 10), dps=DPS)
     return Outcome("verified" if d.holds else "failed",
                    f"numeric: mpmath {DPS} digits; Newton / Gauss-Newton on (lam0, signed mu)",
                    residual=d.residual, digits=d.digits, counterexample=d.counterexample,
@@ -101,7 +103,7 @@ def inverse_n3():
                  "at mu = 5 and mu = 2, both branches), 4 modes each")
 def inverse_deep_n3():
     worst, bad, n, its = _round_trip(3, MODES3)
-    d = Dec(worst, DPS, counterexample=bad)
+    d = Verdict.sampled(worst, counterexample=bad, tol=mp.mpf(10) ** -(DPS - 10), dps=DPS)
     return Outcome("verified" if d.holds else "failed",
                    f"numeric: mpmath {DPS} digits; Newton / Gauss-Newton on (lam0, signed mu)",
                    residual=d.residual, digits=d.digits, counterexample=d.counterexample,

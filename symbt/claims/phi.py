@@ -17,14 +17,15 @@ from __future__ import annotations
 import mpmath as mp
 import sympy as sp
 
-from ..literal import literal_step
-from ..literal import phi_from_traces as phi_real  # the corrected, real Phi (module docstring)
+from ..reference.literal import literal_step
+from ..reference.literal import phi_from_traces as phi_real  # the corrected, real Phi (module docstring)
 from ..proof import decide
 from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import lam, local_lax
 from .base import claim, judge, scene
-from .composed_map import DPS, NumDecision, _fmt_state, _states, eta_from_states
-from .samples import paper_state
+from ..proof import Verdict
+from .composed_map import DPS, TOL, _fmt_state, _states, eta_from_states
+from ..reference.samples import paper_state
 
 scene("phi", "Phi = dF/dmu on the map: spectrality, Appendix B, the real branch of arccosh (N=2,3)")
 
@@ -117,8 +118,8 @@ for _N in (2, 3):
                     r = abs(lhs_log - rhs_log)
                     if r > worst_log:
                         worst_log, bad = r, _fmt_state(state, b)
-            printed = NumDecision(worst_log, method=f"numeric: principal logs at {DPS} digits", counterexample=bad)
-            corrected = NumDecision(worst_prod, method=f"numeric: products at {DPS} digits")
+            printed = Verdict.sampled(worst_log, method=f"numeric: principal logs at {DPS} digits", counterexample=bad, tol=TOL, dps=DPS)
+            corrected = Verdict.sampled(worst_prod, method=f"numeric: products at {DPS} digits", tol=TOL, dps=DPS)
             return judge(printed,
                          printed="sum_k ln((eta_k+mu)/(eta_k-mu)) = ln((tr1-gamma1)/2) + ln((tr2-gamma2)/2) "
                                  "(principal logarithms)",
@@ -146,8 +147,8 @@ for _N in (2, 3):
                         worst_pr, bad = r, dict(_fmt_state(state, b), tr1=mp.nstr(tr1, 12), tr2=mp.nstr(tr2, 12),
                                                 Phi=mp.nstr(phi_c, 15), printed=mp.nstr(printed, 15))
                     worst_re = max(worst_re, abs(phi_r - phi_real(tr1, tr2, b)) / max(1, abs(phi_r)))
-            printed_d = NumDecision(worst_pr, method=f"numeric: mpmath {DPS} digits on the map", counterexample=bad)
-            corrected_d = NumDecision(worst_re, method=f"numeric: mpmath {DPS} digits on the map")
+            printed_d = Verdict.sampled(worst_pr, method=f"numeric: mpmath {DPS} digits on the map", counterexample=bad, tol=TOL, dps=DPS)
+            corrected_d = Verdict.sampled(worst_re, method=f"numeric: mpmath {DPS} digits on the map", tol=TOL, dps=DPS)
             return judge(printed_d,
                          printed="Phi = -arccosh(tr L(l1)/2) - arccosh(tr L(l2)/2)",
                          corrected="real Phi = sum_k ln|(eta_k+mu)/(eta_k-mu)| = -branch*(sgn(tr1) arccosh(|tr1|/2) "

@@ -21,7 +21,7 @@ def _lax_claim(N):
     def check():
         m = toda_model(N)
         # independent evaluation: the matrix product in exp form at 50 digits vs the symbolic L
-        from ..literal import lax_matrix
+        from ..reference.literal import lax_matrix
         rng = random.Random(N)
         worst = mp.mpf(0)
         with mp.workdps(50):

@@ -30,8 +30,9 @@ import argparse
 import hashlib
 import os
 import sys
-import tempfile
 from pathlib import Path
+
+from .._files import atomic_write
 
 __all__ = ["main", "generate", "check", "render", "derivation_hash", "derivation_sources",
            "content_hash", "read_header", "TARGETS", "GENERATOR_VERSION", "DEFAULT_OUT"]
@@ -115,24 +116,6 @@ def render() -> dict[str, str]:
     return files
 
 
-def _atomic_write(path: Path, text: str) -> None:
-    data = text.encode("utf-8")
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-            fh.flush()
-            os.fsync(fh.fileno())
-        mask = os.umask(0)
-        os.umask(mask)
-        os.chmod(tmp, 0o666 & ~mask)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-
-
 def generate(out=None) -> list[Path]:
     """Render and write every generated file into ``out`` (default ``symbt/generated``)."""
     out = Path(out) if out is not None else DEFAULT_OUT
@@ -141,7 +124,7 @@ def generate(out=None) -> list[Path]:
     for name, text in render().items():
         path = out / name
         if not (path.exists() and path.read_bytes() == text.encode("utf-8")):
-            _atomic_write(path, text)
+            atomic_write(path, text)
         written.append(path)
     return written
 

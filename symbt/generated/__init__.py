@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 8a5647d78d76daf7064eb6f965061db88401715bd2ad734addb4119759334b2f
-# symbt-codegen-content-sha256: 2dabb70c2d75b78143f9f957f875b6055db8a6e55ed7ee36acd76bc153bbd8ea
+# symbt-codegen-derivation-sha256: 8edc09f4e1fd34d00ec316ec19708e1719fa11fea6afec2e508720771a69dac7
+# symbt-codegen-content-sha256: a35bf01a9529640f5d4a779491812b8a38c5ad667eb2cdc8802cf5da7b5518cb
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: toda2 (N=2)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 8a5647d78d76daf7064eb6f965061db88401715bd2ad734addb4119759334b2f
-# symbt-codegen-content-sha256: b972f0ddca191a91a26f502d906bdf979c4dd252e19d2550ca45aaac4fd30ccd
+# symbt-codegen-derivation-sha256: 8edc09f4e1fd34d00ec316ec19708e1719fa11fea6afec2e508720771a69dac7
+# symbt-codegen-content-sha256: 8af3873f6941667fd16d97bd725fd60b1c6b8c57d2b9575201c1fa890f73b630
 """Generated numeric code for the N=2 periodic Toda lattice (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: toda3 (N=3)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 8a5647d78d76daf7064eb6f965061db88401715bd2ad734addb4119759334b2f
-# symbt-codegen-content-sha256: 36a965e0e1b5b42de54f975382e47403a576905957eccfd0c2a616b5409c4f78
+# symbt-codegen-derivation-sha256: 8edc09f4e1fd34d00ec316ec19708e1719fa11fea6afec2e508720771a69dac7
+# symbt-codegen-content-sha256: 746593e365dc69eb55f8de7bd5e6f87f916fcbd9740e4a7d51ad30f187289037
 """Generated numeric code for the N=3 periodic Toda lattice (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -78,7 +78,7 @@ class TodaModel:
     # -- exp(q) <-> E -----------------------------------------------------
     def to_E(self, expr):
         """Replace ``exp(integer combination of q)`` (and cosh/sinh) by monomials in ``E``."""
-        from ..proof import rationalize_exponentials
+        from .rewriting import rationalize_exponentials
 
         out, _ = rationalize_exponentials(expr, dict(zip(self.q, self.E)))
         return out

@@ -16,6 +16,14 @@ float64 route is reformulated for stability).  It is sympy-free.
    :math:`\eta_j = x_j y_j + \mu`, :math:`\tilde p_j = p_j + \eta_j - \eta_{j+1}`
    (difference of the two lines of eq. ``imptransf``).
 
+:func:`reference_step` wraps the same route with automatic guard digits: the
+forward transport of step 4 is unstable for one of the two slopes (it runs
+against the contracting direction and loses about ``log10(|v_max|**2)`` digits
+per period), and ``E - x`` cancels for small ``mu``.  It works at ``mp.dps +
+guard`` digits, the guard chosen from the size of the traces, and can verify
+itself by re-running with more digits.  It is the slow, independent reference
+for :mod:`symbt.numeric` in the tests.
+
 Example
 -------
 >>> import mpmath as mp
@@ -28,7 +36,8 @@ from __future__ import annotations
 
 import mpmath as mp
 
-__all__ = ["lax_matrix", "literal_step", "spectral_trace_mp", "phi_from_traces"]
+__all__ = ["lax_matrix", "literal_step", "spectral_trace_mp", "phi_from_traces", "reference_step",
+           "literal_trace"]
 
 
 def lax_matrix(lam, p, q):
@@ -90,3 +99,43 @@ def phi_from_traces(tr1, tr2, branch):
     + \operatorname{sgn}(tr_2)\operatorname{arccosh}(|tr_2|/2))` -- arccosh only ever sees arguments >= 1.
     """
     return -branch * (mp.sign(tr1) * mp.acosh(abs(tr1) / 2) + mp.sign(tr2) * mp.acosh(abs(tr2) / 2))
+
+
+def literal_trace(lam, p, q):
+    """``tr L(lam)`` from the literal 2x2 product (mpmath, current precision)."""
+    return spectral_trace_mp(mp.mpf(lam), [mp.mpf(v) for v in p], [mp.mpf(v) for v in q])
+
+
+def reference_step(p, q, lam0, mu, *, branch=1, guard=None, verify=False):
+    """:func:`literal_step` with automatic guard digits; returns ``(p_new, q_new)`` as lists at ``mp.dps``.
+
+    ``guard`` extra decimal digits are used internally (default: 20 plus twice
+    ``log10`` of the larger trace, which bounds the loss of the unstable
+    forward transport).  With ``verify=True`` the computation is repeated with
+    25 more digits and an ``AssertionError`` is raised unless both agree to
+    ``mp.dps`` digits.  Complex results (no real map) are returned as mpc.
+    """
+    dps = mp.mp.dps
+    with mp.workdps(dps + 30):
+        P = [mp.mpf(v) for v in p]
+        Q = [mp.mpf(v) for v in q]
+        l0, m = mp.mpf(lam0), mp.mpf(mu)
+        t1 = literal_trace(l0 + m, P, Q)
+        t2 = literal_trace(l0 - m, P, Q)
+    if guard is None:
+        big = max(abs(t1), abs(t2), mp.mpf(10))
+        guard = 20 + 2 * int(mp.log10(big)) + 2 * len(P)
+    with mp.workdps(dps + guard):
+        P = [mp.mpf(v) for v in p]
+        Q = [mp.mpf(v) for v in q]
+        pt, qt, _ = literal_step(P, Q, mp.mpf(lam0), mp.mpf(mu), branch)
+    if verify:
+        with mp.workdps(dps + guard + 25):
+            P = [mp.mpf(v) for v in p]
+            Q = [mp.mpf(v) for v in q]
+            pt2, qt2, _ = literal_step(P, Q, mp.mpf(lam0), mp.mpf(mu), branch)
+            scale = max(abs(v) for v in pt + qt) + 1
+            diff = max(abs(a - b) for a, b in zip(pt + qt, pt2 + qt2))
+            if diff > scale * mp.mpf(10) ** (-dps):
+                raise AssertionError("literal reference not converged: %s" % mp.nstr(diff, 5))
+    return [+v for v in pt], [+v for v in qt]

@@ -5,7 +5,7 @@ Sympy-free: everything is mpmath at the current working precision.
 Conventions
 -----------
 * :math:`\{p_i, q_j\} = \delta_{ij}`, :math:`\dot x = \{H, x\}`; the map is
-  :func:`symbt.literal.literal_step` with branch ``b = +-1``.
+  :func:`symbt.reference.literal.literal_step` with branch ``b = +-1``.
 * :math:`I_1 = (p_1+p_2)/2`, :math:`I_2 = 2\cosh(q_1-q_2) + ((p_1-p_2)/2)^2 \ge 2`,
   :math:`\operatorname{tr}L(\lambda) = (\lambda+I_1)^2 - I_2`.
 * Modulus :math:`k` and *parameter* :math:`m = k^2 = (I_2-2)/(I_2+2)`.  mpmath's
@@ -238,7 +238,7 @@ def addition_residual(p, q, lam0, mu, branch, pt=None, qt=None, Et=None, du=None
 
     Checks sn(u + du) = P~, cn(u + du) dn(u + du) = 2 sinh(q~1 - q~2)/sqrt(I2^2-4) and
     e^{q~1+q~2} = e^{q1+q2} v(l1) v(l2); returns the largest relative residual.  ``pt``/``Et``
-    default to :func:`symbt.literal.literal_step`; ``du`` overrides the shift (negative tests).
+    default to :func:`symbt.reference.literal.literal_step`; ``du`` overrides the shift (negative tests).
     """
     if pt is None or Et is None:
         from .literal import literal_step

@@ -12,17 +12,16 @@ import random
 
 import mpmath as mp
 
-from ..literal import literal_step
+from ..paper import EXAMPLE
+from .literal import literal_step
 
-__all__ = ["PAPER_EXAMPLE", "admissible_states", "paper_state"]
-
-#: The paper's Numerics example: p, q, lambda0, and the two values of mu of Figs. 1-2.
-PAPER_EXAMPLE = dict(p=("-20", "10", "1"), q=("1", "0", "0.9"), lam0="10", mu=("5", "2"))
+__all__ = ["admissible_states", "paper_state"]
 
 
 def paper_state(mu: str = "5"):
-    return ([mp.mpf(v) for v in PAPER_EXAMPLE["p"]], [mp.mpf(v) for v in PAPER_EXAMPLE["q"]],
-            mp.mpf(PAPER_EXAMPLE["lam0"]), mp.mpf(mu))
+    """The paper's example ``(p, q, lam0, mu)`` as mpf at the current precision."""
+    return ([mp.mpf(v) for v in EXAMPLE["p"]], [mp.mpf(v) for v in EXAMPLE["q"]],
+            mp.mpf(EXAMPLE["lam0"]), mp.mpf(mu))
 
 
 def _real_map(p, q, lam0, mu, branch):

@@ -59,7 +59,8 @@ from typing import Any, Iterable, Mapping
 
 import sympy as sp
 
-from .proof import Decision, decide
+from .decide import decide
+from .verdict import STATUS_COLOURS, Verdict, latex_text
 
 __all__ = ["IdentityResult", "check_identity", "normalize_relations", "apply_assumptions"]
 
@@ -80,42 +81,28 @@ def _point_text(point: Mapping[str, Any] | None, limit: int = 6) -> str:
 
 
 @dataclass
-class IdentityResult:
-    """Outcome of :func:`check_identity`.
+class IdentityResult(Verdict):
+    """Outcome of :func:`check_identity`: a :class:`~symbt.proof.Verdict` with its statement.
 
-    ``status`` is ``"proved"``, ``"verified"`` or ``"false"``; ``method`` says
-    how it was decided; ``residual`` is the worst relative residual of the
-    numeric screen (0 when proved); ``digits`` the number of significant
-    digits to which the sides agree (``None`` when proved); ``requested_digits``
-    the working precision asked for; ``points`` the sample points (symbol name
-    -> value as a string); ``counterexample`` the worst point when false.
-    ``bool(result)`` is true unless the identity is false.
+    ``status`` is ``"proved"``, ``"verified"`` or ``"false"`` (the verdict);
+    ``evidence`` says how it was reached (``"proof"`` or ``"sampled"``);
+    ``method`` names the steps; ``residual`` is the worst relative residual of
+    the numeric screen (0 when proved); ``digits`` the number of significant
+    digits to which the sides agree (``None`` when proved);
+    ``requested_digits`` the working precision asked for; ``points`` the sample
+    points (symbol name -> value as a string); ``counterexample`` the worst
+    point when false.  ``bool(result)`` is true unless the identity is false.
     """
 
-    status: str
-    method: str
-    residual: float | None = None
-    digits: float | None = None
-    points: list[dict[str, str]] = field(default_factory=list)
-    counterexample: dict[str, str] | None = None
-    note: str = ""
     requested_digits: int = 50
     lhs: Any = field(default=None, repr=False)
     rhs: Any = field(default=None, repr=False)
-    decision: Decision | None = field(default=None, repr=False, compare=False)
-
-    def __post_init__(self):
-        if self.status not in STATUSES:
-            raise ValueError(f"unknown status {self.status!r}")
-
-    # -- truth --------------------------------------------------------------
-    def __bool__(self) -> bool:
-        return self.status != "false"
 
     @property
-    def holds(self) -> bool:
-        return self.status != "false"
+    def status(self) -> str:
+        return self.verdict
 
+    # -- truth ---------------------------------------------------------------
     @property
     def proved(self) -> bool:
         return self.status == "proved"
@@ -141,8 +128,6 @@ class IdentityResult:
 
     # -- rich display -----------------------------------------------------------
     def _repr_html_(self) -> str:
-        from .display import STATUS_COLOURS
-
         colour = STATUS_COLOURS.get(self.status, "#555")
         e = html.escape
         rows = [("method", e(self.method))]
@@ -165,8 +150,6 @@ class IdentityResult:
                 f"{e(self.status)}</span><table>{body}</table></div>")
 
     def _repr_latex_(self) -> str:
-        from .display import latex_text
-
         rel = r"\neq" if self.status == "false" else "="
         try:
             stmt = f"{sp.latex(self.lhs)} {rel} {sp.latex(self.rhs)}"
@@ -175,7 +158,8 @@ class IdentityResult:
         return f"$\\displaystyle {stmt}\\quad \\text{{({latex_text(self.status)})}}$"
 
     def to_dict(self) -> dict[str, Any]:
-        return {"statement": self.statement, "status": self.status, "method": self.method,
+        return {"statement": self.statement, "status": self.status, "evidence": self.evidence,
+                "method": self.method,
                 "residual": self.residual, "digits": self.digits, "points": self.points,
                 "counterexample": self.counterexample, "note": self.note}
 
@@ -324,8 +308,6 @@ def check_identity(lhs, rhs=0, *, relations=None, assumptions=None, digits: int 
         rel = rel_raw
     d = decide(lhs, rhs, relations=rel, digits=digits, points=points, seed=seed, exact=exact,
                fixed=fixed)
-    status = {"proved": "proved", "verified": "verified", "false": "false"}[d.verdict]
-    return IdentityResult(status=status, method=d.method, residual=d.residual, digits=d.digits,
-                          points=list(d.points) if status != "proved" else [],
-                          counterexample=d.counterexample, note=d.note, requested_digits=digits,
-                          lhs=lhs, rhs=rhs, decision=d)
+    return IdentityResult(d.holds, d.evidence, d.method, residual=d.residual, digits=d.digits,
+                          points=list(d.points) if not d.exact else [], counterexample=d.counterexample,
+                          note=d.note, definite=d.definite, requested_digits=digits, lhs=lhs, rhs=rhs)

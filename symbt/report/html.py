@@ -15,19 +15,11 @@ from __future__ import annotations
 import html
 from typing import Any, Iterable
 
-__all__ = ["result_html", "result_latex", "result_text", "scene_html", "latex_text", "STATUS_COLOURS",
-           "Walkthrough"]
+from ..proof.verdict import LATEX_COLOURS as _LATEX_COLOURS
+from ..proof.verdict import STATUS_COLOURS, latex_text
+from .text import point_text, residual_text, short_method, summary
 
-STATUS_COLOURS = {
-    "verified": "#2e7d32",   # green
-    "proved": "#2e7d32",
-    "erratum": "#b26a00",    # amber: the paper is wrong, the correction holds
-    "failed": "#c62828",     # red
-    "false": "#c62828",
-    "skipped": "#757575",    # grey
-}
-_LATEX_COLOURS = {"verified": "green", "proved": "green", "erratum": "orange",
-                  "failed": "red", "false": "red", "skipped": "gray"}
+__all__ = ["result_html", "result_latex", "scene_html", "latex_text", "STATUS_COLOURS"]
 
 _e = html.escape
 
@@ -39,20 +31,10 @@ def _badge(status: str) -> str:
 
 
 def _residual(out) -> str:
-    from .report import residual_text
-
     try:
         return residual_text(out)
     except Exception:  # pragma: no cover - malformed outcome
         return "-" if out.residual is None else f"{out.residual:.3g}"
-
-
-def _point(point: dict[str, Any] | None, limit: int = 12) -> str:
-    if not point:
-        return ""
-    items = list(point.items())
-    txt = ", ".join(f"{k} = {v}" for k, v in items[:limit])
-    return txt + (", ..." if len(items) > limit else "")
 
 
 def _rows(result) -> list[tuple[str, str]]:
@@ -66,7 +48,7 @@ def _rows(result) -> list[tuple[str, str]]:
     if o.corrected:
         rows.append(("corrected", f"<b>{_e(o.corrected)}</b>"))
     if o.counterexample:
-        rows.append(("counterexample", f"<code>{_e(_point(o.counterexample))}</code>"))
+        rows.append(("counterexample", f"<code>{_e(point_text(o.counterexample))}</code>"))
     rows.append(("method", _e(o.method)))
     res = _residual(o)
     if o.digits is not None and o.status != "verified":
@@ -95,17 +77,6 @@ def result_html(result) -> str:
             f"padding:0.3em 0.8em;margin:0.4em 0'>{head}<table>{body}</table></div>")
 
 
-_LATEX_ESC = {
-    "\\": r"\textbackslash{}", "{": r"\{", "}": r"\}", "#": r"\#", "$": r"\$", "%": r"\%",
-    "&": r"\&", "_": r"\_", "^": r"\textasciicircum{}", "~": r"\textasciitilde{}",
-}
-
-
-def latex_text(s: str) -> str:
-    """Escape plain text for use inside ``\\text{...}``."""
-    return "".join(_LATEX_ESC.get(ch, ch) for ch in str(s))
-
-
 def result_latex(result) -> str:
     """One claim result as LaTeX (a MathJax-compatible ``array`` of text lines)."""
     c, o = result.claim, result.outcome
@@ -119,15 +90,13 @@ def result_latex(result) -> str:
     if o.corrected:
         lines.append(rf"\text{{corrected: {t(o.corrected)}}}")
     if o.counterexample:
-        lines.append(rf"\text{{counterexample: {t(_point(o.counterexample, limit=6))}}}")
+        lines.append(rf"\text{{counterexample: {t(point_text(o.counterexample, limit=6))}}}")
     lines.append(rf"\text{{method: {t(o.method)}; residual {t(_residual(o))}}}")
     return r"$\begin{array}{l}" + r"\\ ".join(lines) + r"\end{array}$"
 
 
 def scene_html(results: Iterable[Any], *, title: str | None = None) -> str:
     """A table of claim results (one row each) with a summary line; errata show both statements."""
-    from .report import _short_method, summary
-
     results = list(results)
     head = ("<tr><th>claim</th><th>equation</th><th>status</th><th>method</th>"
             "<th>residual</th><th>statement</th></tr>")
@@ -141,10 +110,10 @@ def scene_html(results: Iterable[Any], *, title: str | None = None) -> str:
             if o.corrected:
                 stmt += f"<br><i>corrected:</i> <b>{_e(o.corrected)}</b>"
             if o.counterexample:
-                stmt += f"<br><i>counterexample:</i> <code>{_e(_point(o.counterexample, limit=6))}</code>"
+                stmt += f"<br><i>counterexample:</i> <code>{_e(point_text(o.counterexample, limit=6))}</code>"
         rows.append(f"<tr class='symbt-{_e(o.status)}'><td><code>{_e(c.id)}</code></td>"
                     f"<td><code>{_e(c.equation)}</code></td><td>{_badge(o.status)}</td>"
-                    f"<td>{_e(_short_method(o.method))}</td><td>{_e(_residual(o))}</td>"
+                    f"<td>{_e(short_method(o.method))}</td><td>{_e(_residual(o))}</td>"
                     f"<td style='text-align:left'>{stmt}</td></tr>")
     s = summary(results)
     foot = (f"<p>{s['total']} claims: {s['verified']} verified, {s['erratum']} erratum, "
@@ -152,81 +121,3 @@ def scene_html(results: Iterable[Any], *, title: str | None = None) -> str:
     cap = f"<caption>{_e(title)}</caption>" if title else ""
     return (f"<div class='symbt-scene'><table>{cap}<thead>{head}</thead><tbody>{''.join(rows)}"
             f"</tbody></table>{foot}</div>")
-
-
-def result_text(result) -> str:
-    """Plain-text rendering (terminal): status, id, label, statement, errata details."""
-    c, o = result.claim, result.outcome
-    lines = [f"[{o.status}] {c.id} (eq. {c.equation}): {c.statement}",
-             f"    method: {o.method}; residual {_residual(o)}"]
-    if o.printed:
-        lines.append(f"    printed:   {o.printed}")
-    if o.corrected:
-        lines.append(f"    corrected: {o.corrected}")
-    if o.counterexample:
-        lines.append(f"    counterexample: {_point(o.counterexample, limit=8)}")
-    if o.status == "failed" and o.detail:
-        lines.append(f"    detail: {o.detail.strip().splitlines()[0]}")
-    return "\n".join(lines)
-
-
-def _in_ipython() -> bool:
-    try:
-        from IPython import get_ipython
-    except ImportError:
-        return False
-    return get_ipython() is not None
-
-
-class Walkthrough:
-    """Helper for the ``derivations/`` scripts: show claims and objects, then pin the outcomes.
-
-    In Jupyter, :meth:`show` and :meth:`display` use rich display (claim cards,
-    LaTeX); in a terminal they print plain text.  :meth:`expect` raises
-    ``AssertionError`` if a shown claim's status differs from the expected one
-    (or an expected claim was not shown), so a changed outcome breaks the script.
-    """
-
-    def __init__(self):
-        from .claims import load_all
-
-        load_all()
-        self.shown: dict[str, str] = {}
-        self.rich = _in_ipython()
-
-    def display(self, *objs) -> None:
-        for obj in objs:
-            if self.rich:
-                from IPython.display import display
-
-                display(obj)
-            elif hasattr(obj, "claim") and hasattr(obj, "outcome"):
-                print(result_text(obj))
-            elif isinstance(obj, str):
-                print(obj)
-            else:
-                try:
-                    import sympy as sp
-
-                    print(sp.pretty(obj, use_unicode=True) if isinstance(obj, (sp.Basic, sp.MatrixBase))
-                          else str(obj))
-                except Exception:  # pragma: no cover
-                    print(obj)
-
-    def show(self, *claim_ids: str) -> None:
-        """Run the claims (registry ids) and display their results."""
-        from .claims import REGISTRY
-
-        for cid in claim_ids:
-            r = REGISTRY[cid].result()
-            self.shown[cid] = r.status
-            self.display(r)
-
-    def expect(self, expected: dict[str, str]) -> None:
-        """Assert that exactly the expected claims were shown, with the expected statuses."""
-        diffs = [f"{cid}: expected {st}, got {self.shown.get(cid, 'not shown')}"
-                 for cid, st in expected.items() if self.shown.get(cid) != st]
-        diffs += [f"{cid}: shown ({st}) but not expected" for cid, st in self.shown.items()
-                  if cid not in expected]
-        if diffs:
-            raise AssertionError("claim outcomes changed:\n  " + "\n  ".join(diffs))

@@ -8,10 +8,10 @@ gamma = +sqrt(tr^2 - 4) (the branch of eq. ``eqdisc`` and of the negative captio
 * Fig. 2 (``fig2.png``): continuous trajectories (grey) and BT iterates (black dots, at t = n)
   of p1 (left) and q1 - Q (right), mu = 5 (top) and mu = 2 (bottom).
 
-The c_k come from eq. ``eqdisc`` by mpmath quadrature (:func:`symbt.flows.flow_coefficients_mp`);
+The c_k come from eq. ``eqdisc`` by mpmath quadrature (:func:`symbt.reference.spectral.flow_coefficients_mp`);
 the flow is integrated by ``scipy.integrate.solve_ivp`` (DOP853, rtol = atol = 1e-12) on
-Hamilton's equations (:func:`symbt.flows.hamilton_rhs_float`); the iterates are
-:func:`symbt.numeric.bt_orbit` (float64), or a float loop over :func:`symbt.literal.literal_step`
+Hamilton's equations (:func:`symbt.reference.taylor.hamilton_rhs_float`); the iterates are
+:func:`symbt.numeric.bt_orbit` (float64), or a float loop over :func:`symbt.reference.literal.literal_step`
 if that is unavailable.  matplotlib and scipy are imported only here, inside :func:`main`.
 """
 from __future__ import annotations
@@ -21,22 +21,22 @@ import sys
 import time
 from pathlib import Path
 
+from ..paper import CAPTIONS, EXAMPLE, LAM0_EXAMPLE, P_EXAMPLE, Q_EXAMPLE
+
 __all__ = ["main", "paper_example_data"]
 
-P0 = (-20.0, 10.0, 1.0)
-Q0 = (1.0, 0.0, 0.9)
-LAM0 = 10.0
-PRINTED = {5.0: ("-0.005", "-0.048", "-0.512"), 2.0: ("-0.0018", "-0.0183", "-0.1849")}
+P0, Q0, LAM0 = P_EXAMPLE, Q_EXAMPLE, LAM0_EXAMPLE
+PRINTED = {float(mu): consts for mu, consts in CAPTIONS["fig:2"].items()}
 
 
 def _constants(mu):
     import mpmath as mp
 
-    from .flows import flow_coefficients_mp
+    from ..reference.spectral import flow_coefficients_mp
 
     with mp.workdps(30):
-        c = flow_coefficients_mp([mp.mpf(v) for v in ("-20", "10", "1")], [mp.mpf(v) for v in ("1", "0", "0.9")],
-                                 mp.mpf(10), mp.mpf(mu), 1)
+        c = flow_coefficients_mp([mp.mpf(v) for v in EXAMPLE["p"]], [mp.mpf(v) for v in EXAMPLE["q"]],
+                                 mp.mpf(EXAMPLE["lam0"]), mp.mpf(mu), 1)
     return [float(v) for v in c]
 
 
@@ -44,7 +44,7 @@ def _iterates(mu, n):
     import numpy as np
 
     try:
-        from .numeric import bt_orbit
+        from ..numeric import bt_orbit
     except ImportError:  # pragma: no cover - fallback while symbt.numeric is incomplete
         bt_orbit = None
     if bt_orbit is not None:
@@ -52,7 +52,7 @@ def _iterates(mu, n):
         return np.asarray(P, float), np.asarray(Q, float)
     import mpmath as mp  # pragma: no cover
 
-    from .literal import literal_step
+    from ..reference.literal import literal_step
     P, Q = [list(P0)], [list(Q0)]
     with mp.workdps(20):
         for _ in range(n):
@@ -66,7 +66,7 @@ def _flow(c, T, per_unit):
     import numpy as np
     from scipy.integrate import solve_ivp
 
-    from .flows import hamilton_rhs_float
+    from ..reference.taylor import hamilton_rhs_float
 
     f = hamilton_rhs_float(3, c)
     t_eval = np.linspace(0.0, T, int(round(T * per_unit)) + 1)

@@ -1,0 +1,115 @@
+"""Deciding identities: exact reduction first, high-precision random evaluation as screen.
+
+``sympy.simplify`` is neither fast nor a decision procedure: it may return an
+unsimplified expression that is in fact zero.  The claims of symbt are decided
+here instead, in this order:
+
+1. **Exact reduction.**  Hyperbolic functions are rewritten as exponentials,
+   and every ``exp(a_1 s_1 + ... + a_k s_k)`` with integer ``a_i`` becomes the
+   monomial ``S_1**a_1 ... S_k**a_k`` in fresh *positive* symbols
+   ``S_i = exp(s_i)`` (for the Toda lattice these are ``E_j = e^{q_j}``).  The
+   difference ``lhs - rhs`` is then a rational function; it is brought to one
+   fraction with ``together``/``cancel`` and its numerator is reduced modulo the
+   user's algebraic relations (e.g. ``eta**2 = mu**2 + w``) by polynomial
+   remainder in the constrained symbol.  A zero remainder *proves* the
+   identity.  This step is skipped when the difference is not rational after
+   the rewriting (logarithms, ``acosh``, radicals of non-symbols).
+2. **Numeric screen.**  The difference is evaluated with mpmath at ``digits``
+   significant digits at ``points`` random points drawn according to the SymPy
+   assumptions of each symbol (a ``real`` symbol may be negative, a symbol
+   without assumptions is sampled complex) and satisfying the relations (a
+   constrained symbol is set to a root of its relation, with a random sign
+   for square roots; relations may build on each other).  Points where a side
+   is not finite (poles, ``nan``, evaluation errors) are resampled.  If every
+   relative residual is below ``10**-(digits-8)`` the identity is *verified
+   numerically*; otherwise it is *false* and the worst point is returned as a
+   counterexample with its residual.
+
+The result says which of the two decided.  A difference that is a nonzero
+rational function (no relations, no ``fixed`` values) is *false* even when it
+is numerically tiny (``x + 10**-60`` vs ``x``): a nonzero rational function
+cannot vanish identically.  A side containing ``nan``/``zoo``/``oo`` is *false*.
+
+Example
+-------
+>>> import sympy as sp
+>>> from symbt.proof import decide
+>>> eta, mu, w = sp.symbols("eta mu w", real=True)
+>>> d = decide((eta - mu) * (eta + mu), w, relations={eta: eta**2 - mu**2 - w})
+>>> d.verdict, d.exact
+('proved', True)
+"""
+from __future__ import annotations
+
+from typing import Any, Mapping
+
+import sympy as sp
+
+from .exact import exact_zero
+from .screen import screen
+from .verdict import Verdict
+
+__all__ = ["decide"]
+
+
+def _undefined(expr) -> bool:
+    return bool(expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo))
+
+
+def decide(lhs, rhs=0, *, relations: Mapping[sp.Symbol, sp.Expr] | None = None,
+           digits: int = 50, points: int = 6, seed: int = 1729, exact: bool = True,
+           fixed: Mapping[sp.Symbol, Any] | None = None) -> Verdict:
+    """Decide ``lhs == rhs`` (scalars or matrices of equal shape).
+
+    ``relations`` maps a symbol to a polynomial that vanishes on it (the
+    symbol is algebraic over the others, e.g. ``{eta: eta**2 - mu**2 - w}``).
+    ``fixed`` pins symbols to given values in the numeric screen (e.g. a
+    parameter known to be of one sign).  ``exact=False`` skips the exact
+    layer (used for statements involving transcendental functions).
+    """
+    relations = dict(relations or {})
+    fixed = dict(fixed or {})
+    lhs, rhs = sp.sympify(lhs), sp.sympify(rhs)
+    if isinstance(lhs, sp.MatrixBase) or isinstance(rhs, sp.MatrixBase):
+        lm, rm = sp.Matrix(lhs), sp.Matrix(rhs)
+        if lm.shape != rm.shape:
+            raise ValueError(f"shape mismatch {lm.shape} vs {rm.shape}")
+        parts = [decide(a, b, relations=relations, digits=digits, points=points, seed=seed,
+                        exact=exact, fixed=fixed) for a, b in zip(lm, rm)]
+        if not parts:
+            return Verdict.proved("exact: empty matrices")
+        bad = [d for d in parts if not d.holds]
+        if bad:
+            return max(bad, key=lambda d: d.residual or 0.0)
+        res = max((d.residual or 0.0) for d in parts)
+        all_exact = all(d.exact for d in parts)
+        if all_exact:
+            return Verdict.proved(parts[0].method)
+        numeric = [d for d in parts if not d.exact]
+        return Verdict(True, "sampled", numeric[0].method, residual=res,
+                       digits=min((d.digits if d.digits is not None else digits) for d in numeric),
+                       points=numeric[0].points, note=numeric[0].note)
+    if _undefined(lhs) or _undefined(rhs):
+        return Verdict(False, "proof", "undefined: a side contains nan, zoo or oo", definite=True,
+                       note="a statement with an undefined side cannot hold")
+    diff = lhs - rhs
+    method_exact, definite = "", False
+    if exact:
+        zero, method_exact, definite = exact_zero(diff, relations)
+        if zero:
+            return Verdict.proved(method_exact)
+        definite = definite and not fixed
+    ok, res, dig, point, pts = screen(lhs, rhs, relations, digits, points, seed, fixed)
+    nmethod = f"numeric: mpmath {digits} digits at {len(pts)} random points"
+    if ok and not definite:
+        note = "" if not method_exact else "exact reduction left a nonzero remainder; numeric screen agrees with zero"
+        return Verdict(True, "sampled", nmethod, residual=res, digits=dig, points=pts, note=note)
+    if definite:
+        method = method_exact + " left a nonzero rational function; worst point by " + nmethod
+        note = "exactly false: the difference is a nonzero rational function"
+        if ok:
+            note += f" (numerically tiny at the sample points: residual {res:.3g})"
+        return Verdict(False, "proof", method, residual=res, digits=dig, counterexample=point, points=pts,
+                       note=note, definite=True)
+    method = nmethod if not method_exact else method_exact + "; counterexample by " + nmethod
+    return Verdict(False, "sampled", method, residual=res, digits=dig, counterexample=point, points=pts)

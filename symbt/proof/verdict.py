@@ -1,0 +1,136 @@
+r"""The one verdict type: what every decider returns and every reporter reads.
+
+A :class:`Verdict` says whether a statement holds *and how that was decided*
+(its ``evidence``):
+
+``"proof"``
+    an exact reduction (rational-function arithmetic modulo algebraic relations),
+    or a polynomial identity of degree ``d`` decided at ``d + 1`` points -- a
+    proof, and the ``method`` says which;
+``"certified"``
+    ball arithmetic: every residual ball contains 0 (holds), or some ball
+    excludes 0 (a certified counterexample);
+``"sampled"``
+    high-precision evaluation at finitely many points (``points``; for claims,
+    at every *domain cell*, see ``cells``).
+
+A false verdict carries the worst ``counterexample`` and its relative
+``residual``.  ``definite`` marks a falsity that is itself proved (a nonzero
+rational function, a ball excluding 0), not just observed at a sample.
+
+Like pytest's ``CallInfo``, the record is plain data: deciders build it, the
+claim layer turns verdicts into an :class:`~symbt.claims.Outcome`, and
+reporters only read.
+
+>>> v = Verdict.sampled(1e-55, tol=1e-40, method="numeric: 60 digits at 8 states")
+>>> v.holds, v.evidence, v.verdict, round(v.digits)
+(True, 'sampled', 'verified', 55)
+>>> Verdict.proved("exact: together/cancel").verdict
+'proved'
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass, field
+from typing import Any, Literal
+
+__all__ = ["Verdict", "Evidence", "EVIDENCE", "STATUS_COLOURS", "LATEX_COLOURS", "latex_text"]
+
+Evidence = Literal["proof", "certified", "sampled"]
+EVIDENCE: tuple[str, ...] = ("proof", "certified", "sampled")
+
+#: colours of statuses and verdicts, shared by every rich display (HTML reports, notebooks)
+STATUS_COLOURS = {
+    "verified": "#2e7d32",   # green
+    "proved": "#2e7d32",
+    "erratum": "#b26a00",    # amber: the paper is wrong, the correction holds
+    "failed": "#c62828",     # red
+    "false": "#c62828",
+    "skipped": "#757575",    # grey
+}
+LATEX_COLOURS = {"verified": "green", "proved": "green", "erratum": "orange",
+                 "failed": "red", "false": "red", "skipped": "gray"}
+_LATEX_ESC = {
+    "\\": r"\textbackslash{}", "{": r"\{", "}": r"\}", "#": r"\#", "$": r"\$", "%": r"\%",
+    "&": r"\&", "_": r"\_", "^": r"\textasciicircum{}", "~": r"\textasciitilde{}",
+}
+
+
+def latex_text(s: str) -> str:
+    """Escape plain text for use inside ``\\text{...}``."""
+    return "".join(_LATEX_ESC.get(ch, ch) for ch in str(s))
+
+
+def _as_float(x: Any) -> float:
+    return float(abs(x))
+
+
+@dataclass
+class Verdict:
+    """Whether a statement holds, how that was decided, and where it fails if it does."""
+
+    holds: bool
+    evidence: str
+    method: str
+    residual: float | None = None
+    digits: float | None = None
+    counterexample: dict[str, Any] | None = None
+    points: list[dict[str, str]] = field(default_factory=list)
+    note: str = ""
+    definite: bool = False
+    cells: list[dict[str, Any]] = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        if self.evidence not in EVIDENCE:
+            raise ValueError(f"unknown evidence {self.evidence!r}; expected one of {EVIDENCE}")
+        self.holds = bool(self.holds)
+
+    # -- constructors ---------------------------------------------------------
+    @classmethod
+    def proved(cls, method: str, *, note: str = "") -> "Verdict":
+        """An exact proof (residual 0)."""
+        return cls(True, "proof", method, residual=0.0, note=note)
+
+    @classmethod
+    def sampled(cls, residual: Any, *, tol: Any, method: str = "", counterexample: dict[str, Any] | None = None,
+                dps: float | None = None, points: list[dict[str, str]] | None = None,
+                note: str = "") -> "Verdict":
+        """A verdict from the worst relative ``residual`` over finitely many samples.
+
+        Holds iff ``residual <= tol``; ``digits`` is ``-log10(residual)`` (capped at
+        ``dps`` when given); the counterexample is kept only when it fails.
+        """
+        r = _as_float(residual)
+        holds = r <= _as_float(tol)
+        if r > 0:
+            digits = -math.log10(r)
+        else:
+            digits = float(dps) if dps is not None else math.inf
+        if dps is not None:
+            digits = min(digits, float(dps))
+        return cls(holds, "sampled", method, residual=r, digits=round(digits, 1),
+                   counterexample=None if holds else counterexample, points=list(points or []), note=note)
+
+    # -- views ----------------------------------------------------------------
+    @property
+    def verdict(self) -> str:
+        """``"proved"`` (exact proof), ``"verified"`` (holds otherwise) or ``"false"``."""
+        if not self.holds:
+            return "false"
+        return "proved" if self.evidence == "proof" else "verified"
+
+    @property
+    def exact(self) -> bool:
+        """True for a statement proved by exact reduction."""
+        return self.holds and self.evidence == "proof"
+
+    def __bool__(self) -> bool:
+        return self.holds
+
+    def to_dict(self) -> dict[str, Any]:
+        return asdict(self)
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> "Verdict":
+        known = set(cls.__dataclass_fields__)
+        return cls(**{k: v for k, v in d.items() if k in known})

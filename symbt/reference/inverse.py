@@ -1,0 +1,170 @@
+r"""The inverse problem of Theorem 2: which (lam0, mu, branch) samples a given flow sum_k c_k H_k.
+
+:func:`solve_parameters` solves :math:`c_k(\lambda_0,\mu) = c^{target}_k` by damped Newton
+(Gauss-Newton for least squares), with the closed-form Jacobian of the c_k.  The attainable
+set is limited by Cauchy-Schwarz for the moments of the positive weight
+:math:`1/\sqrt{\operatorname{tr}^2-4}`: :math:`c_0c_2 > c_1^2`.
+"""
+from __future__ import annotations
+
+import mpmath as mp
+
+from .spectral import flow_coefficients_jacobian, flow_coefficients_mp
+from .trace import hamiltonians, trace_gap
+
+__all__ = ["solve_parameters"]
+
+
+def _newton(F, J, x0, tol, maxit=40):
+    x = [mp.mpmathify(v) for v in x0]
+    for it in range(maxit):
+        r = F(x)
+        if r is None:
+            return None
+        Jm = mp.matrix(J(x))
+        if max(abs(v) for v in r) < tol:  # converged: one more (quadratically convergent) step, then stop
+            try:
+                dx = mp.lu_solve(Jm, -mp.matrix(r))
+                xn = [a + d for a, d in zip(x, dx)]
+                rn = F(xn)
+                if rn is not None and max(abs(v) for v in rn) <= max(abs(v) for v in r):
+                    x = xn
+            except ZeroDivisionError:
+                pass
+            return x, it + 1
+        try:
+            dx = mp.lu_solve(Jm, -mp.matrix(r)) if Jm.rows == Jm.cols else mp.qr_solve(Jm, -mp.matrix(r))[0]
+        except ZeroDivisionError:
+            return None
+        # damping: halve until the interval stays admissible and the residual decreases
+        lam = mp.mpf(1)
+        r0 = mp.sqrt(mp.fsum(v ** 2 for v in r))
+        while lam > mp.mpf(2) ** -30:
+            xn = [a + lam * d for a, d in zip(x, dx)]
+            rn = F(xn)
+            if rn is not None and mp.sqrt(mp.fsum(v ** 2 for v in rn)) < r0 * (1 - lam / 4) + tol:
+                x = xn
+                break
+            lam /= 2
+        else:
+            return None
+    r = F(x)
+    return (x, maxit) if r is not None and max(abs(v) for v in r) < tol else None
+
+
+def solve_parameters(p, q, c_target, *, mode="exact", indices=None, guess=None, tol=None):
+    r"""Find (lam0, mu, branch) whose BT samples the flow of sum_k c_k H_k through (p, q).
+
+    Uses the signed form c_k(lam0, mu) = -int_{lam0-mu}^{lam0+mu} lam^k/sqrt(tr^2-4) dlam
+    (branch b at mu>0 = branch +1 at b*mu), so the unknowns are (lam0, m) in R^2 and
+    ``branch = sign(m)``, ``mu = |m|``.
+
+    ``mode``:
+
+    * ``"exact"``: solve c_k = c_target[k] for k in ``indices`` (two indices;
+      default (0, 1) -- for N = 2 these are *all* non-trivial constants);
+    * ``"direction"``: match c up to a positive factor kappa (same trajectory,
+      time step kappa): c_k/c_r for the two k in ``indices`` other than r =
+      ``indices[-1]`` (N = 3 default (0, 1, 2), i.e. ratios to c_2);
+    * ``"lstsq"``: Gauss-Newton on sum_k (c_k - c_target_k)^2 over k < N.
+
+    Returns a dict with lam0, mu, branch, c (achieved), kappa (achieved/target
+    along the target direction), iterations, residual.  Raises ValueError if
+    Newton fails (no admissible solution near the initial guess).
+    """
+    N = len(p)
+    c_target = [mp.mpmathify(v) for v in c_target] + [mp.mpf(0)] * (N + 1 - len(c_target))
+    tol = mp.mpf(10) ** (-(mp.mp.dps - 8)) if tol is None else mp.mpf(tol)
+    H = hamiltonians(p, q)
+    coeffs = H[::-1]
+
+    memo = {}
+
+    def cvec(x):
+        l0, m = x
+        key = (l0, m)
+        if key not in memo:
+            if m == 0 or trace_gap(p, q, l0 - m, l0 + m) <= 0:
+                memo[key] = None
+            else:
+                memo[key] = flow_coefficients_mp(p, q, l0, m, 1, check=False, ks=range(N))
+        return memo[key]
+
+    def jac(x):
+        return flow_coefficients_jacobian(p, q, x[0], x[1], 1)
+
+    if mode == "exact":
+        idx = tuple(indices or (0, 1))
+        F = lambda x: (lambda c: None if c is None else [c[k] - c_target[k] for k in idx])(cvec(x))
+        J = lambda x: [list(jac(x)[k]) for k in idx]
+    elif mode == "direction":
+        idx = tuple(indices or tuple(range(N)))
+        r = idx[-1]
+        F = lambda x: (lambda c: None if c is None else
+                       [c[k] / c[r] - c_target[k] / c_target[r] for k in idx[:-1]])(cvec(x))
+
+        def J(x):
+            jj, c = jac(x), cvec(x)
+            return [[(jj[k][i] * c[r] - c[k] * jj[r][i]) / c[r] ** 2 for i in (0, 1)] for k in idx[:-1]]
+    elif mode == "lstsq":
+        idx = tuple(indices or tuple(range(N)))
+        w = [1 / max(abs(c_target[k]), mp.mpf(10) ** -30) for k in idx]  # relative residuals
+        F = lambda x: (lambda c: None if c is None else [wk * (c[k] - c_target[k]) for wk, k in zip(w, idx)])(cvec(x))
+        J = lambda x: [[wk * v for v in jac(x)[k]] for wk, k in zip(w, idx)]
+    else:
+        raise ValueError(f"unknown mode {mode!r}")
+
+    if guess is None:
+        # small-mu asymptotics: c_k ~ -2 m lam0^k / sqrt(tr(lam0)^2 - 4)  =>  lam0 ~ c_1/c_0
+        l0 = c_target[1] / c_target[0]
+        t0 = mp.polyval(coeffs, l0)
+        m = -c_target[0] * mp.sqrt(abs(t0 ** 2 - 4)) / 2
+        guess = (l0, m)
+    used = set(idx)
+    if {0, 1, 2} <= used and mode != "lstsq" and c_target[0] * c_target[2] <= c_target[1] ** 2:
+        # c_k are moments of the positive weight w = 1/sqrt(tr^2-4) on an interval: Cauchy-Schwarz
+        raise ValueError("solve_parameters: c_0 c_2 <= c_1^2 is never attained (Cauchy-Schwarz for the moments "
+                         "of 1/sqrt(tr^2-4) > 0)")
+    l0g, mg = guess
+    sol = None
+    for attempt in range(16):  # shrink mu until [lam0 - mu, lam0 + mu] avoids |tr| <= 2, then Newton
+        if F((l0g, mg)) is not None:
+            sol = (_gauss_newton if mode == "lstsq" else _newton)(F, J, (l0g, mg), tol)
+            if sol is not None:
+                break
+        mg /= 2
+    if sol is None:
+        raise ValueError("solve_parameters: no admissible (lam0, mu) found from the initial guess")
+    (l0, m), its = sol
+    c = flow_coefficients_mp(p, q, l0, m, 1, check=False)
+    num = mp.fsum(a * b for a, b in zip(c[:N], c_target[:N]))
+    kappa = num / mp.fsum(b ** 2 for b in c_target[:N])
+    res = max(abs(c[k] - c_target[k]) for k in range(N))
+    return dict(lam0=l0, mu=abs(m), branch=1 if m > 0 else -1, c=c, kappa=kappa, iterations=its,
+                residual=res)
+
+
+def _gauss_newton(F, J, x0, tol, maxit=80):
+    x = [mp.mpmathify(v) for v in x0]
+    for it in range(maxit):
+        r = F(x)
+        if r is None:
+            return None
+        Jm = mp.matrix(J(x))
+        dx = mp.qr_solve(Jm, -mp.matrix(r))[0]
+        lam = mp.mpf(1)
+        r0 = mp.fsum(v ** 2 for v in r)
+        while lam > mp.mpf(2) ** -30:
+            xn = [a + lam * d for a, d in zip(x, dx)]
+            rn = F(xn)
+            if rn is not None and mp.fsum(v ** 2 for v in rn) <= r0:
+                x = xn
+                break
+            lam /= 2
+        else:
+            return x, it
+        if max(abs(d) for d in dx) * lam < tol:
+            return x, it
+    return x, maxit
+
+
