@@ -1,33 +1,64 @@
 """symbt: Zullo's 'Bäcklund transformations and Hamiltonian flows', re-derived and checked.
 
-Layers (each imports only those above it):
+Layers, lowest first.  A module imports only from its own layer and the layers
+below it (``tests/test_architecture.py`` walks every import, function-level
+ones included, and fails on an upward import or a cycle):
 
-* :mod:`symbt.symbolic`  -- SymPy derivations (Toda model, Darboux matrices, F)
-* :mod:`symbt.proof`     -- deciding identities (exact reduction + 50-digit screen)
-* :mod:`symbt.claims`    -- the paper's statements as claims, grouped in scenes
-* :mod:`symbt.engine`    -- running scenes with caching and parallelism
-* :mod:`symbt.numeric`   -- sympy-free numeric runtime (float64 / mpmath)
-* :mod:`symbt.cli`       -- ``symbt verify``, ``symbt scenes``, ...
+====  =========================================  =============================================
+ 0    :mod:`symbt.paper`, :mod:`symbt._files`    the paper's numbers; the one atomic writer
+ 1    :mod:`symbt.symbolic`                      SymPy model of the lattice, Darboux matrices, F
+ 2    :mod:`symbt.proof`                         one Verdict type; exact and sampled deciders
+ 3    :mod:`symbt.numeric`                       sympy-free runtime: step, orbits, Phi, c_k
+ 4    :mod:`symbt.reference`                     independent high-precision routes (mpmath)
+ 5    :mod:`symbt.codegen`, :mod:`symbt.generated`  emitted numeric code and its generator
+ 6    :mod:`symbt.report`                        text, JSON, JUnit, Markdown, HTML, figures
+ 7    :mod:`symbt.claims`                        the paper's statements, as data, in scenes
+ 8    :mod:`symbt.engine`                        selection, cache, runner, walkthroughs
+ 9    :mod:`symbt.benchmarks`                    work-precision benchmarks
+10    :mod:`symbt.testing`, :mod:`symbt.cli`     front ends
+====  =========================================  =============================================
 
-Importing ``symbt`` is cheap: heavy submodules load on first use.
+:mod:`symbt.numeric` and :mod:`symbt.reference` never import SymPy.  Importing
+``symbt`` is cheap: the public names below load their layer on first use.
+
+>>> import symbt
+>>> symbt.verify                                  # doctest: +ELLIPSIS
+<function verify at ...>
 """
 from __future__ import annotations
 
 import importlib
+from typing import Any
 
 __version__ = "0.1.0"
 
+#: the layers, lowest first (see the module docstring); names are relative to ``symbt``
+LAYERS: tuple[tuple[str, ...], ...] = (
+    ("paper", "_files"),
+    ("symbolic",),
+    ("proof",),
+    ("numeric",),
+    ("reference",),
+    ("codegen", "generated"),
+    ("report",),
+    ("claims",),
+    ("engine",),
+    ("benchmarks", "bench"),
+    ("testing", "pytest_plugin", "cli", "__main__"),
+)
+
 _LAZY = {
-    "check_identity": ("symbt.proof.identity", "check_identity"),
-    "IdentityResult": ("symbt.proof.identity", "IdentityResult"),
+    "verify": ("symbt.engine", "verify"),
+    "check_identity": ("symbt.proof", "check_identity"),
+    "IdentityResult": ("symbt.proof", "IdentityResult"),
+    "Verdict": ("symbt.proof", "Verdict"),
     "decide": ("symbt.proof", "decide"),
-    "verify": ("symbt.engine", "run"),
 }
 
-__all__ = ["__version__", *_LAZY]
+__all__ = ["__version__", "LAYERS", *_LAZY]
 
 
-def __getattr__(name):
+def __getattr__(name: str) -> Any:
     if name in _LAZY:
         mod, attr = _LAZY[name]
         return getattr(importlib.import_module(mod), attr)

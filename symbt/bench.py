@@ -64,9 +64,9 @@ from dataclasses import dataclass
 import mpmath
 import numpy as np
 
-from .paper import P_EXAMPLE, Q_EXAMPLE
 from .numeric import bt_orbit, bt_step, flow_coefficients, invariants, spectral_trace
 from .numeric.fast import HAVE_NUMBA, fast_orbit
+from .paper import P_EXAMPLE, Q_EXAMPLE
 
 __all__ = ["main", "FlowField", "gauss_legendre_orbit", "Case", "CASES", "band_edge_case",
            "map_condition"]

@@ -7,8 +7,17 @@ import mpmath
 import numpy as np
 import pytest
 
-from symbt.numeric import (InvalidInputError, NoRealMapError, NumericRangeError, bt_orbit, bt_step,
-                           flow_coefficients, invariants, phi, spectral_trace)
+from symbt.numeric import (
+    InvalidInputError,
+    NoRealMapError,
+    NumericRangeError,
+    bt_orbit,
+    bt_step,
+    flow_coefficients,
+    invariants,
+    phi,
+    spectral_trace,
+)
 
 P0 = np.array([-20.0, 10.0, 1.0])
 Q0 = np.array([1.0, 0.0, 0.9])

@@ -21,8 +21,8 @@ import mpmath
 import numpy as np
 
 from symbt.numeric import bt_orbit, invariants
-from symbt.reference.literal import reference_step as literal_step
 from symbt.numeric.testing import state_error
+from symbt.reference.literal import reference_step as literal_step
 
 P0 = [-20.0, 10.0, 1.0]
 Q0 = [1.0, 0.0, 0.9]

@@ -4,12 +4,11 @@ import mpmath
 import numpy as np
 import pytest
 
-from symbt.numeric import (NoRealMapError, bt_step, flow_coefficients, invariants, phi,
-                           spectral_trace)
+from symbt.numeric import NoRealMapError, bt_step, flow_coefficients, invariants, phi, spectral_trace
 from symbt.numeric.context import FLOAT
-from symbt.reference.literal import literal_trace
 from symbt.numeric.step import step_core
 from symbt.numeric.testing import outer_gap_case, random_gap_case
+from symbt.reference.literal import literal_trace
 
 P0 = np.array([-20.0, 10.0, 1.0])
 Q0 = np.array([1.0, 0.0, 0.9])

@@ -14,9 +14,9 @@ import pytest
 
 from symbt.numeric import NoRealMapError, bt_step, invariants, spectral_trace
 from symbt.numeric.context import FLOAT
-from symbt.reference.literal import reference_step as literal_step
 from symbt.numeric.step import step_core
 from symbt.numeric.testing import outer_gap_case, random_gap_case, state_error
+from symbt.reference.literal import reference_step as literal_step
 
 # the acceptance bound for one-step normwise relative error; measured worst case is ~2e-15,
 # so the margin (50x) absorbs platform libm differences without hiding an O(1e-12) regression

@@ -33,8 +33,18 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from symbt.bench import band_edge_case, invariant_drift_curve, map_condition
-from symbt.numeric import (InvalidInputError, NoRealMapError, NumericRangeError, QuadratureError, bt_orbit,
-                           bt_step, flow_coefficients, invariants, phi, spectral_trace)
+from symbt.numeric import (
+    InvalidInputError,
+    NoRealMapError,
+    NumericRangeError,
+    QuadratureError,
+    bt_orbit,
+    bt_step,
+    flow_coefficients,
+    invariants,
+    phi,
+    spectral_trace,
+)
 from symbt.numeric.fast import HAVE_NUMBA, fast_orbit
 from symbt.numeric.testing import state_error
 

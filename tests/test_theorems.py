@@ -5,13 +5,13 @@ import mpmath as mp
 import pytest
 
 from symbt.claims import REGISTRY, load_all
-from symbt.reference.samples import admissible_states, paper_state
 from symbt.claims.theorems import caption_constants, compare_iterates_with_flow
 from symbt.reference.inverse import solve_parameters
+from symbt.reference.literal import spectral_trace_mp
+from symbt.reference.samples import admissible_states, paper_state
 from symbt.reference.spectral import flow_coefficients_mp
 from symbt.reference.taylor import hamiltonian_flow
 from symbt.reference.trace import hamiltonians, trace, trace_gap, trace_gradient
-from symbt.reference.literal import spectral_trace_mp
 
 
 @pytest.fixture(scope="module", autouse=True)

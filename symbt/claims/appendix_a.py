@@ -6,8 +6,15 @@ from __future__ import annotations
 import sympy as sp
 
 from ..proof import decide
-from ..symbolic.darboux import (composed_darboux, darboux_composition, lam1, lam2,
-                                single_darboux, single_darboux_adjugate, zeta)
+from ..symbolic.darboux import (
+    composed_darboux,
+    darboux_composition,
+    lam1,
+    lam2,
+    single_darboux,
+    single_darboux_adjugate,
+    zeta,
+)
 from ..symbolic.toda import lam
 from .base import claim, from_decision, scene
 

@@ -28,10 +28,12 @@ Writing a claim
 """
 from __future__ import annotations
 
+import functools
 import time
 import traceback
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
-from typing import Any, Callable
+from typing import Any
 
 __all__ = [
     "Claim", "ClaimResult", "Outcome", "claim", "REGISTRY", "SCENES", "scene",
@@ -64,7 +66,7 @@ class Outcome:
         return asdict(self)
 
     @classmethod
-    def from_dict(cls, d: dict[str, Any]) -> "Outcome":
+    def from_dict(cls, d: dict[str, Any]) -> Outcome:
         known = {f for f in cls.__dataclass_fields__}
         return cls(**{k: v for k, v in d.items() if k in known})
 
@@ -77,7 +79,11 @@ class Claim:
     label for an unlabelled statement, with ``where`` saying where it is);
     ``scene`` names the group the claim belongs to; ``N`` the lattice size it
     needs (``None`` = none or any); ``deep`` marks checks that need minutes and
-    are left out of the default run; ``requires`` lists optional modules.
+    are left out of the default run; ``requires`` lists optional modules;
+    ``source_equation`` is the paper label a derived artefact (e.g. emitted
+    code) comes from, when ``equation`` names the artefact itself.
+    ``func`` is the check as written (taking ``N`` for a family of sizes);
+    ``check`` is the zero-argument callable that runs it.
     """
 
     id: str
@@ -89,8 +95,10 @@ class Claim:
     where: str = ""
     deep: bool = False
     requires: tuple[str, ...] = ()
+    source_equation: str | None = None
+    func: Callable[..., Outcome] | None = field(default=None, compare=False, repr=False)
 
-    def result(self) -> "ClaimResult":
+    def result(self) -> ClaimResult:
         """Run and wrap with the claim (renders richly in Jupyter, see :mod:`symbt.report.html`)."""
         return ClaimResult(self, self.run())
 
@@ -151,19 +159,43 @@ def scene(name: str, description: str, *, deep: bool = False) -> None:
     SCENES.setdefault(name, {"description": description, "deep": deep})
 
 
-def claim(id: str, *, equation: str, statement: str, scene: str, N: int | None = None,
-          where: str = "", deep: bool = False, requires: tuple[str, ...] = (),
-          register: bool = True):
-    """Decorator turning ``check() -> Outcome`` into a registered :class:`Claim`."""
+def _for_size(text: str, N: int) -> str:
+    return text.replace("{N}", str(N))
 
-    def wrap(fn: Callable[[], Outcome]) -> Claim:
-        c = Claim(id=id, equation=equation, statement=statement, check=fn, scene=scene, N=N,
-                  where=where, deep=deep, requires=tuple(requires))
+
+def claim(id: str, *, equation: str, statement: str, scene: str, N: int | None = None,  # noqa: A002
+          sizes: tuple[int, ...] | None = None, where: str = "", deep: bool = False,
+          requires: tuple[str, ...] = (), source_equation: str | None = None, register: bool = True):
+    """Decorator turning a check into registered :class:`Claim` s (claims as data).
+
+    Without ``sizes`` the check takes no argument and one claim ``id`` is made
+    (``N`` records the lattice size it needs, if any).  With ``sizes=(2, 3)``
+    the check takes ``N`` and one claim per size is made, with id
+    ``f"{id}.n{N}"``; ``{N}`` in ``statement``, ``equation`` and ``where`` is
+    replaced by the size, and the check unchanged is returned, so it can be called
+    directly; the claims are in :data:`REGISTRY` (and on ``check.claims``).  Without
+    ``sizes`` the :class:`Claim` itself is returned.
+    """
+    if sizes is not None and N is not None:
+        raise ValueError("give either N (one claim) or sizes (one claim per size)")
+
+    def make(cid: str, n: int | None, check: Callable[[], Outcome], fn: Callable[..., Outcome]) -> Claim:
+        sub = (lambda t: _for_size(t, n)) if (sizes is not None and n is not None) else (lambda t: t)
+        c = Claim(id=cid, equation=sub(equation), statement=sub(statement), check=check, scene=scene, N=n,
+                  where=sub(where), deep=deep, requires=tuple(requires),
+                  source_equation=None if source_equation is None else sub(source_equation), func=fn)
         if register:
-            if id in REGISTRY:
-                raise ValueError(f"duplicate claim id {id}")
-            REGISTRY[id] = c
+            if cid in REGISTRY:
+                raise ValueError(f"duplicate claim id {cid}")
+            REGISTRY[cid] = c
         return c
+
+    def wrap(fn: Callable[..., Outcome]):
+        if sizes is None:
+            return make(id, N, fn, fn)
+        fn.claims = [make(f"{id}.n{n}", n, functools.partial(fn, n), fn)  # type: ignore[attr-defined]
+                     for n in sizes]
+        return fn
 
     return wrap
 

@@ -23,9 +23,9 @@ import time
 
 import mpmath as mp
 
+from ..proof import Verdict
 from ..reference import elliptic as E
 from .base import Outcome, claim, judge, scene
-from ..proof import Verdict
 
 scene("certified", "Arb ball-arithmetic certificates for the N=2 addition formula (optional extra python-flint)")
 

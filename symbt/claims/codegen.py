@@ -27,15 +27,15 @@ from __future__ import annotations
 
 import importlib
 import random
-from functools import lru_cache
+from functools import cache
 
 import mpmath as mp
 import numpy as np
 import sympy as sp
 
 from ..reference.literal import literal_step
-from .base import Outcome, claim, failed, scene
 from ..reference.samples import admissible_states, paper_state
+from .base import Outcome, claim, failed, scene
 
 scene("codegen", "emitted numeric code (symbt codegen): generated numpy/mpmath modules vs their SymPy "
                  "sources, the literal map and symbt.numeric (N=2,3)")
@@ -71,7 +71,7 @@ def _spec(N, name):
     return next(s for s in specs(N) if s.name == name)
 
 
-@lru_cache(maxsize=None)
+@cache
 def _map_states(N):
     """(p, q, lam0, mu) as float lists: 2 per sign of tr L (+ the paper's example for N = 3)."""
     with mp.workdps(30):

@@ -8,17 +8,17 @@ inverse.  Mixed signs give maps that do not tend to the identity as mu -> 0.
 """
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 import mpmath as mp
 import sympy as sp
 
-from ..reference.literal import lax_matrix, literal_step
 from ..proof import Verdict, Worst, decide
+from ..reference.literal import lax_matrix, literal_step
+from ..reference.samples import admissible_states
 from ..symbolic.darboux import composed_darboux, lam1, lam2
 from ..symbolic.toda import lam
 from .base import Outcome, claim, from_decision, judge, scene
-from ..reference.samples import admissible_states
 
 scene("map", "the composed two-parameter BT: Darboux matrix, explicit x, y, eigenvalues, branches (N=2,3)")
 
@@ -67,7 +67,7 @@ def eta_from_states(p, q, pt, qt, lam0):
     return out
 
 
-@lru_cache(maxsize=None)
+@cache
 def _xy_generic():
     """Eq. ``xy`` for two generic unimodular 2x2 matrices standing for L(l1), L(l2).
 

@@ -20,9 +20,9 @@ import random
 
 import mpmath as mp
 
+from ..proof import Verdict, Worst
 from ..reference import elliptic as E
 from ..reference.literal import literal_step
-from ..proof import Verdict, Worst
 from .base import Outcome, claim, judge, scene
 
 scene("elliptic", "N=2 action-angle variables, their update by the map, linearization and the elliptic "

@@ -11,8 +11,8 @@ from __future__ import annotations
 import mpmath as mp
 import sympy as sp
 
-from ..reference.literal import literal_step
 from ..proof import decide
+from ..reference.literal import literal_step
 from ..symbolic.darboux import composed_darboux, lam0, local_relation_residual, mu
 from ..symbolic.generating import generating_function
 from ..symbolic.toda import lam

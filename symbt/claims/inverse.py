@@ -19,13 +19,13 @@ from __future__ import annotations
 
 import mpmath as mp
 
+from ..proof import Verdict
 from ..reference.inverse import solve_parameters
+from ..reference.samples import admissible_states, paper_state
 from ..reference.spectral import flow_coefficients_mp
 from ..reference.trace import trace_gap
-from ..proof import Verdict
 from .base import Outcome, claim, scene
 from .composed_map import _fmt_state
-from ..reference.samples import admissible_states, paper_state
 
 scene("inverse", "the inverse problem c_k -> (lam0, mu) on a fixed orbit (N=2 exact, N=3 two of three / "
                  "direction / least squares)")

@@ -17,15 +17,14 @@ from __future__ import annotations
 import mpmath as mp
 import sympy as sp
 
+from ..proof import Verdict, decide
 from ..reference.literal import literal_step
 from ..reference.literal import phi_from_traces as phi_real  # the corrected, real Phi (module docstring)
-from ..proof import decide
+from ..reference.samples import paper_state
 from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import lam, local_lax
 from .base import claim, judge, scene
-from ..proof import Verdict
 from .composed_map import DPS, TOL, _fmt_state, _states, eta_from_states
-from ..reference.samples import paper_state
 
 scene("phi", "Phi = dF/dmu on the map: spectrality, Appendix B, the real branch of arccosh (N=2,3)")
 

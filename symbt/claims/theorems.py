@@ -26,14 +26,14 @@ from __future__ import annotations
 import mpmath as mp
 
 from ..paper import CAPTIONS
+from ..proof import Verdict
+from ..reference.literal import literal_step, spectral_trace_mp
+from ..reference.samples import admissible_states, paper_state
 from ..reference.spectral import flow_coefficients_mp, phi_gradient
 from ..reference.taylor import hamiltonian_flow
 from ..reference.trace import hamiltonians, trace, trace_gap
-from ..reference.literal import literal_step, spectral_trace_mp
-from ..proof import Verdict
 from .base import Outcome, claim, judge, scene
 from .composed_map import _fmt_state, eta_from_states
-from ..reference.samples import admissible_states, paper_state
 
 scene("theorem1", "Theorem 1 (eq. x): mu-derivative of the BT image = Hamiltonian vector field of Phi (N=2,3)")
 scene("theorem2", "Theorem 2 (eqs. Hdiscr, linearcomb, eqdisc, Hdis): n BT steps = time-n flow of sum c_k H_k; "

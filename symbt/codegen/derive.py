@@ -28,7 +28,7 @@ Branch ``b = +-1``: ``gamma_i = b sqrt(tr L(lambda_i)^2 - 4)`` (positive root) a
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 
 import sympy as sp
 from sympy.codegen.cfunctions import log1p
@@ -126,7 +126,7 @@ def _slope(M, g, sign):
     return A, B, C, D, first, second, sp.GreaterThan(sign * dl * g, 0)
 
 
-@lru_cache(maxsize=None)
+@cache
 def specs(N: int) -> tuple:
     """All emitted functions for the N-site lattice, in file order."""
     m = toda_model(N)

@@ -13,7 +13,7 @@ import inspect
 import json
 import os
 import sys
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
 
 from .._files import atomic_write
@@ -35,7 +35,7 @@ def cache_dir() -> Path:
     return Path(xdg) / "symbt"
 
 
-@lru_cache(maxsize=None)
+@cache
 def _layer_digest() -> str:
     h = hashlib.sha256()
     for name in _LAYERS:
@@ -48,7 +48,7 @@ def _layer_digest() -> str:
     return h.hexdigest()
 
 
-@lru_cache(maxsize=None)
+@cache
 def _versions() -> str:
     import mpmath
     import numpy
@@ -71,7 +71,7 @@ def claim_key(c: Claim) -> str:
     """Hash of what determines the claim's outcome."""
     h = hashlib.sha256()
     h.update(c.id.encode())
-    mod = inspect.getmodule(c.check)
+    mod = inspect.getmodule(c.func or c.check)
     for m in _claim_modules_used(mod):
         try:
             h.update(inspect.getsource(m).encode())

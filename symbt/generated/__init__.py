@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 8edc09f4e1fd34d00ec316ec19708e1719fa11fea6afec2e508720771a69dac7
-# symbt-codegen-content-sha256: a35bf01a9529640f5d4a779491812b8a38c5ad667eb2cdc8802cf5da7b5518cb
+# symbt-codegen-derivation-sha256: 45db38f73b4b5f46e2e35e7764abacf4c89385b65792a68f05bf0dcfc2293aaf
+# symbt-codegen-content-sha256: e3a53053cd4ad49c4b25ff434a4e60cfcf814791d1189a5a36ffa4c08833b110
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

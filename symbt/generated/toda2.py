@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: toda2 (N=2)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 8edc09f4e1fd34d00ec316ec19708e1719fa11fea6afec2e508720771a69dac7
-# symbt-codegen-content-sha256: 8af3873f6941667fd16d97bd725fd60b1c6b8c57d2b9575201c1fa890f73b630
+# symbt-codegen-derivation-sha256: 45db38f73b4b5f46e2e35e7764abacf4c89385b65792a68f05bf0dcfc2293aaf
+# symbt-codegen-content-sha256: aa5a14bd319e16e493eb9ce82743b9e3fda20934fb80c44095f80eb679b9363c
 """Generated numeric code for the N=2 periodic Toda lattice (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

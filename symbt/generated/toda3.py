@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: toda3 (N=3)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 8edc09f4e1fd34d00ec316ec19708e1719fa11fea6afec2e508720771a69dac7
-# symbt-codegen-content-sha256: 746593e365dc69eb55f8de7bd5e6f87f916fcbd9740e4a7d51ad30f187289037
+# symbt-codegen-derivation-sha256: 45db38f73b4b5f46e2e35e7764abacf4c89385b65792a68f05bf0dcfc2293aaf
+# symbt-codegen-content-sha256: c343ad895fdb8869ed6dd805e468d761d4ba9d65fd167b892de1b999aa322af8
 """Generated numeric code for the N=3 periodic Toda lattice (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

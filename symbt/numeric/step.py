@@ -63,8 +63,16 @@ from __future__ import annotations
 import mpmath
 import numpy as np
 
-from ._input import (IV, as_state_pair, check_branch, pick_context, prepare_spectral_pair, sites,
-                     to_output, validate_float_pair)
+from ._input import (
+    IV,
+    as_state_pair,
+    check_branch,
+    pick_context,
+    prepare_spectral_pair,
+    sites,
+    to_output,
+    validate_float_pair,
+)
 from .context import COMPLEX, FLOAT
 from .errors import NoRealMapError, NumericRangeError
 from .lax import monodromy, neighbour_ratios

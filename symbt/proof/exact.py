@@ -1,7 +1,7 @@
 """The exact layer: a difference reduced to zero as a rational function (see :mod:`symbt.proof`)."""
 from __future__ import annotations
 
-from typing import Mapping
+from collections.abc import Mapping
 
 import sympy as sp
 

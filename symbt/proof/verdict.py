@@ -87,14 +87,14 @@ class Verdict:
 
     # -- constructors ---------------------------------------------------------
     @classmethod
-    def proved(cls, method: str, *, note: str = "") -> "Verdict":
+    def proved(cls, method: str, *, note: str = "") -> Verdict:
         """An exact proof (residual 0)."""
         return cls(True, "proof", method, residual=0.0, note=note)
 
     @classmethod
     def sampled(cls, residual: Any, *, tol: Any, method: str = "", counterexample: dict[str, Any] | None = None,
                 dps: float | None = None, points: list[dict[str, str]] | None = None,
-                note: str = "") -> "Verdict":
+                note: str = "") -> Verdict:
         """A verdict from the worst relative ``residual`` over finitely many samples.
 
         Holds iff ``residual <= tol``; ``digits`` is ``-log10(residual)`` (capped at
@@ -131,6 +131,6 @@ class Verdict:
         return asdict(self)
 
     @classmethod
-    def from_dict(cls, d: dict[str, Any]) -> "Verdict":
+    def from_dict(cls, d: dict[str, Any]) -> Verdict:
         known = set(cls.__dataclass_fields__)
         return cls(**{k: v for k, v in d.items() if k in known})

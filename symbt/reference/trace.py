@@ -14,7 +14,6 @@ used everywhere else.
 """
 from __future__ import annotations
 
-from functools import lru_cache
 from itertools import combinations
 
 import mpmath as mp

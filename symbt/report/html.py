@@ -13,7 +13,8 @@ True
 from __future__ import annotations
 
 import html
-from typing import Any, Iterable
+from collections.abc import Iterable
+from typing import Any
 
 from ..proof.verdict import LATEX_COLOURS as _LATEX_COLOURS
 from ..proof.verdict import STATUS_COLOURS, latex_text

@@ -1,7 +1,6 @@
 """The terminal report: a table of claim results, the summary, the errata."""
 from __future__ import annotations
 
-
 __all__ = ["summary", "format_table", "residual_text", "short_method", "result_text", "point_text"]
 
 

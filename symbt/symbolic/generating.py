@@ -26,7 +26,7 @@ Example
 """
 from __future__ import annotations
 
-from functools import cached_property, lru_cache
+from functools import cache, cached_property
 
 import sympy as sp
 
@@ -94,6 +94,6 @@ class GeneratingFunction:
         return p, pt
 
 
-@lru_cache(maxsize=None)
+@cache
 def generating_function(N: int) -> GeneratingFunction:
     return GeneratingFunction(N)

@@ -6,7 +6,7 @@ rational functions (decided by ``cancel``, see :mod:`symbt.proof`).
 """
 from __future__ import annotations
 
-from typing import Mapping
+from collections.abc import Mapping
 
 import sympy as sp
 

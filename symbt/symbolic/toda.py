@@ -24,7 +24,7 @@ Example
 """
 from __future__ import annotations
 
-from functools import cached_property, lru_cache
+from functools import cache, cached_property
 
 import sympy as sp
 
@@ -106,7 +106,7 @@ class TodaModel:
                 [-self.d_q(H, i) for i in range(self.N)])
 
 
-@lru_cache(maxsize=None)
+@cache
 def toda_model(N: int) -> TodaModel:
     """Cached :class:`TodaModel` (derivations for one N are never redone)."""
     return TodaModel(N)
