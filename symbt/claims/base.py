@@ -35,6 +35,8 @@ from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
+from ..proof.verdict import EVIDENCE, Verdict
+
 __all__ = [
     "Claim", "ClaimResult", "Outcome", "claim", "REGISTRY", "SCENES", "scene",
     "from_decision", "judge", "skipped", "failed",
@@ -45,7 +47,17 @@ STATUSES = ("verified", "erratum", "failed", "skipped")
 
 @dataclass
 class Outcome:
-    """Result of one claim check (JSON-serialisable via :meth:`to_dict`)."""
+    """Result of one claim check (JSON-serialisable via :meth:`to_dict`).
+
+    ``evidence`` says how the statement reported as holding was decided
+    (``"proof"``, ``"certified"`` or ``"sampled"``, see :class:`symbt.proof.Verdict`):
+    the printed statement for ``verified``, the corrected one for ``erratum``, the
+    failing check for ``failed``.  ``cells`` is the per-domain-cell table of a
+    sampled check (``{"cell": {...}, "n", "printed_holds", "corrected_holds",
+    "worst_residual"}``), ``scope`` the sentence generated from it, and
+    ``n_scope`` the lattice sizes the claim covers (a list, or ``"all"`` with the
+    argument in ``detail``).
+    """
 
     status: str
     method: str
@@ -57,10 +69,16 @@ class Outcome:
     detail: str = ""
     seconds: float = 0.0
     cached: bool = False
+    evidence: str | None = None
+    cells: list[dict[str, Any]] = field(default_factory=list)
+    scope: str = ""
+    n_scope: list[int] | str | None = None
 
     def __post_init__(self):
         if self.status not in STATUSES:
             raise ValueError(f"unknown status {self.status!r}")
+        if self.evidence is not None and self.evidence not in EVIDENCE:
+            raise ValueError(f"unknown evidence {self.evidence!r}")
 
     def to_dict(self) -> dict[str, Any]:
         return asdict(self)
@@ -210,36 +228,38 @@ def failed(method: str, *, residual=None, detail: str = "", counterexample=None)
     return Outcome("failed", method, residual=residual, detail=detail, counterexample=counterexample)
 
 
-def from_decision(d, *, detail: str = "") -> Outcome:
-    """``verified`` if the :class:`~symbt.proof.Decision` holds, else ``failed`` with its counterexample."""
+def from_decision(d: Verdict, *, detail: str = "") -> Outcome:
+    """``verified`` if the :class:`~symbt.proof.Verdict` holds, else ``failed`` with its counterexample."""
     if d.holds:
-        return Outcome("verified", d.method, residual=d.residual, digits=d.digits,
-                       detail=(detail + (" " + d.note if d.note else "")).strip())
-    return Outcome("failed", d.method, residual=d.residual, digits=d.digits,
-                   counterexample=d.counterexample, detail=detail)
+        return Outcome("verified", d.method, residual=d.residual, digits=d.digits, evidence=d.evidence,
+                       cells=list(d.cells), detail=(detail + (" " + d.note if d.note else "")).strip())
+    return Outcome("failed", d.method, residual=d.residual, digits=d.digits, evidence=d.evidence,
+                   cells=list(d.cells), counterexample=d.counterexample, detail=detail)
 
 
-def judge(printed_decision, *, printed: str, corrected: str | None = None,
-          corrected_check: Callable[[], Any] | None = None, detail: str = "") -> Outcome:
+def judge(printed_decision: Verdict, *, printed: str, corrected: str | None = None,
+          corrected_check: Callable[[], Verdict] | None = None, detail: str = "") -> Outcome:
     """Check a statement *as printed*; if it fails, check the correction.
 
     ``printed_decision`` and the result of ``corrected_check`` are
-    :class:`~symbt.proof.Decision` objects (or anything with ``holds``,
-    ``method``, ``residual``, ``counterexample``).  Returns ``verified`` when
+    :class:`~symbt.proof.Verdict` objects.  Returns ``verified`` when
     the printed statement holds, ``erratum`` when it fails and the correction
     holds, ``failed`` otherwise.
     """
     if printed_decision.holds:
         return Outcome("verified", printed_decision.method, residual=printed_decision.residual,
-                       digits=getattr(printed_decision, "digits", None), printed=printed, detail=detail)
+                       digits=printed_decision.digits, printed=printed, detail=detail,
+                       evidence=printed_decision.evidence, cells=list(printed_decision.cells))
     if corrected_check is None:
         return Outcome("failed", printed_decision.method, residual=printed_decision.residual,
                        printed=printed, counterexample=printed_decision.counterexample,
+                       evidence=printed_decision.evidence, cells=list(printed_decision.cells),
                        detail=detail or "printed statement fails and no correction is known")
     cd = corrected_check()
     status = "erratum" if cd.holds else "failed"
     method = f"printed: {printed_decision.method} | corrected: {cd.method}"
     return Outcome(status, method, residual=printed_decision.residual,
-                   digits=getattr(cd, "digits", None), printed=printed, corrected=corrected,
-                   counterexample=printed_decision.counterexample,
+                   digits=cd.digits, printed=printed, corrected=corrected,
+                   counterexample=printed_decision.counterexample, evidence=cd.evidence,
+                   cells=list(cd.cells) or list(printed_decision.cells),
                    detail=(detail + ("" if cd.holds else f" correction also fails (residual {cd.residual})")).strip())

@@ -6,14 +6,30 @@
 * :class:`Worst` -- the worst residual over sampled points, as a verdict.
 
 Every decider returns a :class:`Verdict` whose ``evidence`` says how it was
-reached (``"proof"``, ``"certified"`` or ``"sampled"``).
+reached (``"proof"``, ``"certified"`` or ``"sampled"``).  The names load on
+first use: importing :mod:`symbt.proof.verdict` (the record type) does not
+import SymPy.
 """
 from __future__ import annotations
 
-from .decide import decide
-from .exact import reduce_modulo
-from .identity import IdentityResult, check_identity
-from .sampling import Worst
-from .verdict import EVIDENCE, Verdict
+import importlib
+from typing import Any
+
+_LAZY = {
+    "Verdict": ".verdict", "EVIDENCE": ".verdict",
+    "decide": ".decide", "reduce_modulo": ".exact",
+    "check_identity": ".identity", "IdentityResult": ".identity",
+    "Worst": ".sampling",
+}
 
 __all__ = ["Verdict", "EVIDENCE", "decide", "reduce_modulo", "check_identity", "IdentityResult", "Worst"]
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        return getattr(importlib.import_module(_LAZY[name], __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)
