@@ -17,7 +17,7 @@ from typing import Any
 
 _LAZY = {
     "Verdict": ".verdict", "EVIDENCE": ".verdict",
-    "decide": ".decide", "reduce_modulo": ".exact",
+    "decide": ".decider", "reduce_modulo": ".exact",
     "check_identity": ".identity", "IdentityResult": ".identity",
     "Worst": ".sampling",
 }

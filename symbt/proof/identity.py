@@ -60,7 +60,7 @@ from typing import Any
 
 import sympy as sp
 
-from .decide import decide
+from .decider import decide
 from .verdict import STATUS_COLOURS, Verdict, latex_text
 
 __all__ = ["IdentityResult", "check_identity", "normalize_relations", "apply_assumptions"]
