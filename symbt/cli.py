@@ -89,14 +89,15 @@ def build_parser() -> argparse.ArgumentParser:
     s.set_defaults(func=_cmd_scenes)
     for name, module, helptext in (("codegen", "codegen", "emit/check generated numeric modules"),
                                    ("bench", "bench", "work-precision benchmarks"),
-                                   ("figures", "report.figures", "regenerate the paper's figures")):
+                                   ("figures", "report.figures", "regenerate the paper's figures"),
+                                   ("mutate", "engine.mutate", "mutation testing of the claims' checks")):
         p = sub.add_parser(name, help=helptext, add_help=False)
         p.add_argument("rest", nargs=argparse.REMAINDER)
         p.set_defaults(func=_delegate(module))
     return ap
 
 
-_DELEGATED = {"codegen": "codegen", "bench": "bench", "figures": "report.figures"}
+_DELEGATED = {"codegen": "codegen", "bench": "bench", "figures": "report.figures", "mutate": "engine.mutate"}
 
 
 def main(argv=None) -> int:
