@@ -240,13 +240,17 @@ def _F(q: list, qt: list, signs: list, l0, m, *, real: bool):
     return total
 
 
+def _curve_residual(Lm: tuple, val) -> mp.mpf:
+    """det(L - val 1) = val^2 - tr L val + 1, relative."""
+    tr = Lm[0] + Lm[3]
+    return abs(val ** 2 - tr * val + 1) / (abs(val) ** 2 + abs(tr * val) + 1)
+
+
 def _eig_residual(Lm: tuple, val, vec: list) -> mp.mpf:
     """|L vec - val vec| and the characteristic polynomial at val, relative."""
     Lv = (Lm[0] * vec[0] + Lm[1] * vec[1], Lm[2] * vec[0] + Lm[3] * vec[1])
-    tr = Lm[0] + Lm[3]
     r1 = max(abs(Lv[0] - val * vec[0]), abs(Lv[1] - val * vec[1])) / (max(1, abs(val)) * max(abs(x) for x in vec))
-    r2 = abs(val ** 2 - tr * val + 1) / (abs(val) ** 2 + abs(tr * val) + 1)
-    return max(r1, r2)
+    return max(r1, _curve_residual(Lm, val))
 
 
 @claim("spe", equation="spe", scene="general", sizes=(2, 3), parts=_parts_spe,
@@ -259,14 +263,15 @@ def spe(N: int, parts: Parts, deep: bool = False) -> Outcome:
     eig = [lambdified((F0, Fmu, T1, T2), c["eig1"]), lambdified((F0, Fmu, T1, T2), c["eig2"])]
     pts = lambdified((lam0, mu), c["points"])
     table = CellTable(tol=float(TOL))
+    other_readings = mp.inf
     with mp.workdps(DPS):
         for cell, state, b, _, qt, info in map_images(N, per_cell(deep)):
             p, q, l0, m = state
             signs = [mp.sign(e) for e in info["eta"]]
             phi_c = mp.diff(lambda t: _F(q, qt, signs, l0, t, real=False), m)        # Phi, principal logs
             Lm = lax(point(l0, m), p, q)
-            val = dig(phi_c)
-            printed = abs(val ** 2 - (Lm[0] + Lm[3]) * val + 1) / (abs(val) ** 2 + abs((Lm[0] + Lm[3]) * val) + 1)
+            printed = _curve_residual(Lm, dig(phi_c))
+            other_readings = min(other_readings, _curve_residual(Lm, mp.exp(phi_c)), _curve_residual(Lm, phi_c))
             f0 = mp.diff(lambda t: _F(q, qt, signs, t, m, real=True), l0)
             fm = mp.diff(lambda t: _F(q, qt, signs, l0, t, real=True), m)
             l1, l2 = pts(l0, m)
@@ -283,7 +288,9 @@ def spe(N: int, parts: Parts, deep: bool = False) -> Outcome:
         corrected="with F(q, q~, l1, l2) of eq. newgf (ln|.|), l1,2 = l0 +- mu: sgn(tr L(l_i)) exp(dF/dl_i) is the "
                   "eigenvalue of L(l_i) on the kernel of D(l_i), so det(L(l_i) - sgn(tr_i) e^{dF/dl_i} 1) = 0, "
                   "i = 1, 2 (dF/dl_1,2 = (dF/dl0 +- dF/dmu)/2): digamma = sgn(tr) exp at the BT's own points; "
-                  "Phi = dF/dmu = ln|v(l1)| - ln|v'(l2)| involves both points"), N)
+                  "Phi = dF/dmu = ln|v(l1)| - ln|v'(l2)| involves both points",
+        detail=f"other readings at lambda = mu fail too: det(L(mu) - e^Phi) and det(L(mu) - Phi) are at least "
+               f"{mp.nstr(other_readings, 3)} (relative) at every sample"), N)
 
 
 # --------------------------------------------------------------------------- PoincareCartan
