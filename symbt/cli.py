@@ -90,14 +90,16 @@ def build_parser() -> argparse.ArgumentParser:
     for name, module, helptext in (("codegen", "codegen", "emit/check generated numeric modules"),
                                    ("bench", "bench", "work-precision benchmarks"),
                                    ("figures", "report.figures", "regenerate the paper's figures"),
-                                   ("mutate", "engine.mutate", "mutation testing of the claims' checks")):
+                                   ("mutate", "engine.mutate", "mutation testing of the claims' checks"),
+                                   ("coverage", "engine.coverage", "the paper's labelled displays: claims or reasons")):
         p = sub.add_parser(name, help=helptext, add_help=False)
         p.add_argument("rest", nargs=argparse.REMAINDER)
         p.set_defaults(func=_delegate(module))
     return ap
 
 
-_DELEGATED = {"codegen": "codegen", "bench": "bench", "figures": "report.figures", "mutate": "engine.mutate"}
+_DELEGATED = {"codegen": "codegen", "bench": "bench", "figures": "report.figures", "mutate": "engine.mutate",
+              "coverage": "engine.coverage"}
 
 
 def main(argv=None) -> int:
