@@ -42,23 +42,38 @@ class QuadratureNotConverged(ArithmeticError):
     """Composite Gauss-Legendre did not settle (an integrable singularity on the interval)."""
 
 
+@cache
+def _panel_rule(panels: int) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes and weights of ``panels`` equal 16-point Gauss-Legendre panels on [-1, 1]."""
+    mid = (2 * np.arange(panels) + 1) / panels - 1
+    return (mid[:, None] + _NODES[None, :] / panels).ravel(), np.tile(_WEIGHTS / panels, panels)
+
+
 def gl_integral(f: Callable[[np.ndarray], Any], a: float, b: float, *, rtol: float = 1e-13,
                 max_panels: int = 512) -> np.ndarray:
     """``int_a^b f`` for a vectorised ``f`` (values of shape ``(..., len(x))``), composite 16-point GL."""
     prev = None
     panels = 2
+    c, h = (a + b) / 2, (b - a) / 2
     while panels <= max_panels:
-        edges = np.linspace(a, b, panels + 1)
-        mid, half = (edges[1:] + edges[:-1]) / 2, (edges[1:] - edges[:-1]) / 2
-        x = (mid[:, None] + half[:, None] * _NODES[None, :]).ravel()
+        u, w = _panel_rule(panels)
+        x = c + h * u
         vals = np.asarray(f(x))
         if vals.shape[-1:] != (x.size,):
             vals = np.broadcast_to(vals[..., None], vals.shape + (x.size,))
-        est = (vals.reshape(vals.shape[:-1] + (panels, _NODES.size)) * _WEIGHTS).sum(-1) @ half
+        est = (vals @ w) * h
         if prev is not None and np.all(np.abs(est - prev) <= rtol * np.maximum(1.0, np.abs(est))):
             return est
         prev, panels = est, panels * 2
     raise QuadratureNotConverged(f"no convergence on [{a}, {b}] with {max_panels} panels")
+
+
+def horner(H, x):
+    """tr L(x) = sum_k H_k x^k (H ascending), vectorised."""
+    y = H[-1] + 0 * x
+    for h in H[-2::-1]:
+        y = y * x + h
+    return y
 
 
 def hamiltonians_float(p, q) -> np.ndarray:
@@ -83,7 +98,7 @@ def in_domain(H: np.ndarray, lo: float, hi: float) -> bool:
     """|tr L| > 2 on [lo, hi] (no root of tr = +-2 there), tr given by its coefficients H."""
     lo, hi = min(lo, hi), max(lo, hi)
     r = _crossings(tuple(float(h) for h in H))
-    return not np.any((r >= lo - 1e-12) & (r <= hi + 1e-12)) and abs(np.polyval(H[::-1], lo)) > 2
+    return not np.any((r >= lo - 1e-12) & (r <= hi + 1e-12)) and abs(horner(H, lo)) > 2
 
 
 def rel_diff(xs, ys) -> float:
@@ -146,7 +161,7 @@ def time_flow(p, q, c, t: float) -> tuple[list[float], list[float]]:
 # --------------------------------------------------------------------------- the constants and their inverse
 
 def _weight(H: np.ndarray, x: np.ndarray) -> np.ndarray:
-    return 1.0 / np.sqrt(np.polyval(H[::-1], x) ** 2 - 4)
+    return 1.0 / np.sqrt(horner(H, x) ** 2 - 4)
 
 
 def moments(H: np.ndarray, lam0: float, m: float, ks) -> np.ndarray | None:
@@ -174,46 +189,55 @@ def solve_signed(H: np.ndarray, target, *, mode: str = "exact", indices=(0, 1), 
     t = np.asarray(target, dtype=float)
     idx = list(indices)
     ks = sorted(set(idx))
+    w = {k: 1 / abs(t[k]) for k in idx}
 
-    def resid(x):
+    def resid(x, jac=False):
         c = moments(H, x[0], x[1], ks)
         if c is None:
-            return None, None
+            return None
         cv = dict(zip(ks, c))
+        if mode == "exact":
+            r = np.array([cv[k] - t[k] for k in idx])
+        elif mode == "direction":
+            r = np.array([cv[k] / cv[idx[-1]] - t[k] / t[idx[-1]] for k in idx[:-1]])
+        else:
+            r = np.array([w[k] * (cv[k] - t[k]) for k in idx])
+        if not jac:
+            return r
         J = dict(zip(ks, _jacobian(H, x[0], x[1], ks)))
         if mode == "exact":
-            return np.array([cv[k] - t[k] for k in idx]), np.array([J[k] for k in idx])
+            return r, np.array([J[k] for k in idx])
         if mode == "direction":
-            r = idx[-1]
-            return (np.array([cv[k] / cv[r] - t[k] / t[r] for k in idx[:-1]]),
-                    np.array([(J[k] * cv[r] - cv[k] * J[r]) / cv[r] ** 2 for k in idx[:-1]]))
-        w = {k: 1 / abs(t[k]) for k in idx}
-        return np.array([w[k] * (cv[k] - t[k]) for k in idx]), np.array([w[k] * J[k] for k in idx])
+            q = idx[-1]
+            return r, np.array([(J[k] * cv[q] - cv[k] * J[q]) / cv[q] ** 2 for k in idx[:-1]])
+        return r, np.array([w[k] * J[k] for k in idx])
 
     lam0 = t[1] / t[0]
-    m = -t[0] * np.sqrt(abs(np.polyval(H[::-1], lam0) ** 2 - 4)) / 2
+    m = -t[0] * np.sqrt(abs(horner(H, lam0) ** 2 - 4)) / 2
     x = np.array([lam0, m])
     for _ in range(40):
-        if resid(x)[0] is not None:
+        if resid(x) is not None:
             break
         x[1] /= 2
     else:
         raise ArithmeticError("no admissible initial guess")
+    scale = float(np.max(np.abs(t))) if mode == "exact" else 1.0
     for it in range(maxit):
-        r, J = resid(x)
-        dx = np.linalg.lstsq(J, -r, rcond=None)[0]
+        r, J = resid(x, jac=True)
         n0, step = np.linalg.norm(r), 1.0
+        if mode != "lstsq" and n0 <= 10 * tol * scale:  # at rounding level
+            return float(x[0]), float(x[1]), it
+        dx = np.linalg.lstsq(J, -r, rcond=None)[0]
+        if np.max(np.abs(dx)) <= tol * max(1.0, float(np.max(np.abs(x)))):
+            return float(x[0] + dx[0]), float(x[1] + dx[1]), it + 1
         while step > 2.0 ** -30:
-            xn = x + step * dx
-            rn, _ = resid(xn)
-            if rn is not None and np.linalg.norm(rn) <= n0 * (1 - step / 4) + tol:
+            rn = resid(x + step * dx)
+            if rn is not None and np.linalg.norm(rn) <= n0 * (1 - step / 4) + tol * scale:
                 break
             step /= 2
-        else:
-            if mode == "lstsq":
+        else:  # no descent: converged to rounding (or, for least squares, to the optimum)
+            if mode == "lstsq" or n0 <= 1e3 * tol * scale:
                 return float(x[0]), float(x[1]), it
             raise ArithmeticError("Newton: no descent")
-        x = xn
-        if np.max(np.abs(step * dx)) <= tol * max(1.0, float(np.max(np.abs(x)))):
-            return float(x[0]), float(x[1]), it + 1
+        x = x + step * dx
     raise ArithmeticError("Newton: no convergence")
