@@ -305,13 +305,18 @@ def _parts_Hdis() -> Parts:
                  context={"AA2": "compared with the printed H as complex numbers (N = 2, tr of eq. tn2)"})
 
 
-def _hdis_residual(side: dict, s: dict) -> float:
-    """dH/dH_k vs c_k(b) = -b int lam^k w (relative), and (N = 2) AA2's integral vs the printed H."""
+def _hdis_residual(side: dict, s: dict, real: bool = False) -> float:
+    """dH/dH_k vs c_k(b) = -b int lam^k w (relative), (N = 2) AA2's integral vs the printed H, and with
+    ``real`` the imaginary part of H (relative)."""
     N, lo, up = len(s["p"]), _limit(side["lower"], s), _limit(side["upper"], s)
     dh = _lamb((tr, lam, branch), _diff(side["integrand"], tr))
     lhs = gl_integral(lambda x: np.array([dh(_tr(s, x), x, s["b"]) * x ** j for j in range(N)]), lo, up)
     ref = moments(s["H"], s["l0"], s["b"] * s["mu"], range(N))
     r = float(np.max(np.abs(lhs - ref)) / np.max(np.abs(ref)))
+    if real:
+        h_side = _lamb((tr, lam, branch), side["integrand"])
+        H = gl_integral(lambda x: h_side(_tr(s, x), x, s["b"]), lo, up)
+        r = max(r, float(abs(np.imag(H)) / max(1.0, abs(H))))
     if N == 2:
         (p1, p2), (q1, q2) = s["p"], s["q"]
         i1, i2 = (p1 + p2) / 2, 2 * np.cosh(q1 - q2) + ((p1 - p2) / 2) ** 2
@@ -334,12 +339,12 @@ def hdis_check(parts: Parts, deep: bool = False) -> Outcome:
         for s in samples(N, per_cell(deep)):
             if not s["ok"]:
                 continue
-            table.add(dict(N=N, **s["cell"]), printed=_hdis_residual(parts.printed, s),
-                      corrected=_hdis_residual(parts.corrected, s), point=fmt_state(s["state"], s["b"]))
+            table.add(dict(N=str(N), **s["cell"]), printed=_hdis_residual(parts.printed, s),
+                      corrected=_hdis_residual(parts.corrected, s, real=True), point=fmt_state(s["state"], s["b"]))
     out = judge_cells(table, method="numeric: float64 Gauss-Legendre, d/dH_k under the integral (principal "
                                     "arccosh, complex) vs c_k = -b int lam^k/sqrt(tr^2-4)",
                       printed="H = -int_{lam0-mu}^{lam0+mu} arccosh(tr L/2) dlam with dH/dH_k = c_k of the BT",
-                      corrected="H = -b int_{lam0-mu}^{lam0+mu} sgn(tr L) arccosh(|tr L|/2) dlam (b = +1 for eq. "
-                                "eqdisc as printed); AA2's integral equals the printed H", dps=15)
+                      corrected="H = -b int_{lam0-mu}^{lam0+mu} sgn(tr L) arccosh(|tr L|/2) dlam, real (b = +1 for "
+                                "eq. eqdisc as printed); AA2's integral equals the printed H", dps=15)
     out.n_scope = [2, 3]
     return out
