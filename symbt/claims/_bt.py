@@ -25,7 +25,7 @@ from ..reference.literal import literal_step
 from ..reference.trace import trace_gradient
 from ._common import DPS, eta_from_states, literal_image, map_cells
 
-__all__ = ["images", "theorem1_data", "H", "fd_gradient"]
+__all__ = ["images", "theorem1_data", "inverse_etas", "H", "fd_gradient"]
 
 H = mp.mpf(10) ** -20  # finite-difference step (at DPS = 60 digits)
 
@@ -48,9 +48,8 @@ def _etas(P: list, Q: list, l0: Any, mu: Any, b: int) -> list:
 
 @cache
 def theorem1_data(N: int, count: int) -> tuple:
-    """Per sample a dict: cell, state, b, P, Q, dP, dQ (d/dmu), eta (at the image), eta_pm
-    (``eta_pm[i] = (eta at coordinate i + H, eta at coordinate i - H)``, coordinates p~ then q~),
-    tr1, tr2, grad1, grad2 (``(d tr/dp~, d tr/dq~)`` at lam0 + mu, lam0 - mu)."""
+    """Per sample a dict: cell, state, b, P, Q, dP, dQ (d/dmu), tr1, tr2, grad1, grad2 (``(d tr/dp~, d tr/dq~)``
+    at lam0 + mu, lam0 - mu)."""
     out = []
     with mp.workdps(DPS):
         for cell, state, b, P, Q, info in images(N, count):
@@ -59,6 +58,20 @@ def theorem1_data(N: int, count: int) -> tuple:
             minus = literal_step(p, q, l0, mu - H, b)
             dP = [(a - c) / (2 * H) for a, c in zip(plus[0], minus[0])]
             dQ = [(a - c) / (2 * H) for a, c in zip(plus[1], minus[1])]
+            out.append(dict(cell=cell, state=state, b=b, P=P, Q=Q, dP=dP, dQ=dQ,
+                            tr1=mp.re(info["tr1"]), tr2=mp.re(info["tr2"]),
+                            grad1=trace_gradient(l0 + mu, P, Q), grad2=trace_gradient(l0 - mu, P, Q)))
+    return tuple(out)
+
+
+@cache
+def inverse_etas(N: int, count: int) -> tuple:
+    """Per sample of :func:`theorem1_data`: ``(eta, eta_pm)`` -- the eta_k of the inverse map at the image and
+    ``eta_pm[i] = (eta at coordinate i + H, eta at coordinate i - H)`` (coordinates p~ then q~)."""
+    out = []
+    with mp.workdps(DPS):
+        for d in theorem1_data(N, count):
+            P, Q, (_, _, l0, mu), b = d["P"], d["Q"], d["state"], d["b"]
             eta_pm = []
             for i in range(2 * N):
                 pair = []
@@ -70,10 +83,7 @@ def theorem1_data(N: int, count: int) -> tuple:
                         Qv[i - N] += s * H
                     pair.append(_etas(Pv, Qv, l0, mu, b))
                 eta_pm.append(tuple(pair))
-            out.append(dict(cell=cell, state=state, b=b, P=P, Q=Q, dP=dP, dQ=dQ,
-                            eta=_etas(P, Q, l0, mu, b), eta_pm=tuple(eta_pm),
-                            tr1=mp.re(info["tr1"]), tr2=mp.re(info["tr2"]),
-                            grad1=trace_gradient(l0 + mu, P, Q), grad2=trace_gradient(l0 - mu, P, Q)))
+            out.append((_etas(P, Q, l0, mu, b), tuple(eta_pm)))
     return tuple(out)
 
 

@@ -24,7 +24,7 @@ import mpmath as mp
 import sympy as sp
 
 from ..proof.cells import CellTable
-from ._bt import H, fd_gradient, theorem1_data
+from ._bt import H, fd_gradient, inverse_etas, theorem1_data
 from ._common import DPS, fmt_state, judge_cells, lambdified, per_cell
 from .base import Outcome, Parts, claim, scene
 
@@ -70,17 +70,17 @@ def theorem1_check(N: int, parts: Parts, deep: bool = False) -> Outcome:
     table = CellTable(tol=TOL1)
     worst_hat = worst_tr = worst_val = mp.mpf(0)
     with mp.workdps(DPS):
-        for d in theorem1_data(N, per_cell(deep)):
+        for d, (etas, eta_pm) in zip(theorem1_data(N, per_cell(deep)), inverse_etas(N, per_cell(deep))):
             m = d["state"][3]
 
             def phi_hat(etas):
                 return mp.fsum(term(e, m) for e in etas)
 
-            g = [(phi_hat(a) - phi_hat(c)) / (2 * H) for a, c in d["eta_pm"]]
+            g = [(phi_hat(a) - phi_hat(c)) / (2 * H) for a, c in eta_pm]
             r_hat = _hamilton_residual(d, g[:N], g[N:], P["hamilton"])
             r_tr = _hamilton_residual(d, *_trace_gradient_of(phi, d), P["hamilton"])
             value = phi(d["tr1"], d["tr2"], d["b"])
-            real = mp.fsum(mp.log(abs((e + m) / (e - m))) for e in d["eta"])
+            real = mp.fsum(mp.log(abs((e + m) / (e - m))) for e in etas)
             r_val = max(abs(value - real) / max(1, abs(real)), abs(mp.im(value)))
             worst_hat, worst_tr, worst_val = max(worst_hat, r_hat), max(worst_tr, r_tr), max(worst_val, r_val)
             table.add(d["cell"], printed=max(r_hat, r_tr, r_val),
