@@ -46,7 +46,19 @@ def _lamb(args: tuple, expr):
     """``sympy.lambdify`` to numpy (memoised); DiracDelta (derivatives of sgn, |.|) is 0 off tr = 0."""
     expr = sp.sympify(expr).replace(sp.DiracDelta, lambda *a: sp.S.Zero)
     f = sp.lambdify(args, expr, "numpy")
-    return lambda *v: np.broadcast_to(np.asarray(f(*v), dtype=complex), np.shape(v[0]))
+
+    def g(*v):
+        with np.errstate(all="ignore"):  # principal branches at complex arguments; nan/inf judged by the caller
+            out = f(*(np.asarray(a, dtype=complex) if np.ndim(a) else a for a in v))
+        return np.broadcast_to(np.asarray(out, dtype=complex), np.shape(v[0]))
+    return g
+
+
+def rel_vec(a, b) -> float:
+    """max |a - b| / max |b| (inf when undefined)."""
+    with np.errstate(all="ignore"):
+        r = float(np.max(np.abs(np.asarray(a) - b)) / np.max(np.abs(b)))
+    return r if np.isfinite(r) else float("inf")
 
 
 @cache
@@ -100,7 +112,7 @@ def c_from_weight(weight, lower: float, upper: float, s: dict) -> np.ndarray:
 
 def _flow_residual(s: dict, c: np.ndarray, t: float) -> float:
     """Relative distance between the BT image and the time-t flow of sum c_k H_k (inf for complex c)."""
-    if np.max(np.abs(np.imag(c))) > 1e-12 * max(1e-300, np.max(np.abs(c))):
+    if not np.all(np.isfinite(c)) or np.max(np.abs(np.imag(c))) > 1e-12 * max(1e-300, np.max(np.abs(c))):
         return float("inf")
     fp, fq = time_flow(s["p"], s["q"], np.real(c), t)
     return rel_diff(fp + fq, s["image"])
@@ -255,7 +267,7 @@ def linearcomb_check(N: int, parts: Parts, deep: bool = False) -> Outcome:
             continue
         lhs, im = c_from_phi(P["Phi"], s, s["mu"])
         rhs = c_from_weight(P["weight"], _limit(P["lower"], s), _limit(P["upper"], s), s)
-        r = max(float(np.max(np.abs(lhs - rhs)) / np.max(np.abs(rhs))), im)
+        r = max(rel_vec(lhs, rhs), im)
         table.add(s["cell"], printed=r, point=fmt_state(s["state"], s["b"]))
     out = judge_cells(table, method="numeric: float64 Gauss-Legendre; d/dH_k under the integral (dPhi/dtr_i by "
                                     "SymPy) vs the weight integral", printed="d/dH_k int_0^mu Phi = -b int lam^k w",
@@ -312,7 +324,7 @@ def _hdis_residual(side: dict, s: dict, real: bool = False) -> float:
     dh = _lamb((tr, lam, branch), _diff(side["integrand"], tr))
     lhs = gl_integral(lambda x: np.array([dh(_tr(s, x), x, s["b"]) * x ** j for j in range(N)]), lo, up)
     ref = moments(s["H"], s["l0"], s["b"] * s["mu"], range(N))
-    r = float(np.max(np.abs(lhs - ref)) / np.max(np.abs(ref)))
+    r = rel_vec(lhs, ref)
     if real:
         h_side = _lamb((tr, lam, branch), side["integrand"])
         H = gl_integral(lambda x: h_side(_tr(s, x), x, s["b"]), lo, up)
