@@ -27,9 +27,10 @@ from ..reference.taylor import hamiltonian_flow
 from ..reference.trace import hamiltonians
 from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import lam
+from . import _flow
 from ._bt import images
 from ._common import fmt_state, judge_cells, per_cell
-from ._flow import flow_route, gl_integral, hamiltonians_float, in_domain, moments, rel_diff, time_flow
+from ._flow import gl_integral, hamiltonians_float, in_domain, moments, rel_diff, time_flow
 from .base import Outcome, Parts, claim, scene
 from .theorem1 import PHI_REAL, branch, tr1, tr2
 
@@ -119,7 +120,7 @@ def _flow_residual(s: dict, c: np.ndarray, t: float) -> float:
 
 
 def _route() -> str:
-    return ("heyoka.taylor_adaptive (float64)" if flow_route() == "heyoka"
+    return ("heyoka.taylor_adaptive (float64)" if _flow.flow_route() == "heyoka"
             else "symbt.reference.taylor (20 digits; heyoka not installed)")
 
 
