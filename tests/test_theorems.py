@@ -1,11 +1,12 @@
-"""Theorems 1, 2 and the inverse problem (symbt.reference.taylor, symbt.claims.theorems, symbt.claims.inverse)."""
+"""Theorems 1, 2 and the inverse problem (symbt.reference.taylor, symbt.claims.theorem1/theorem2/captions/inverse)."""
 import random
 
 import mpmath as mp
 import pytest
 
 from symbt.claims import REGISTRY, load_all
-from symbt.claims.theorems import caption_constants, compare_iterates_with_flow
+from symbt.claims.captions import caption_constants
+from symbt.claims.theorem2 import compare_iterates_with_flow
 from symbt.reference.inverse import solve_parameters
 from symbt.reference.literal import spectral_trace_mp
 from symbt.reference.samples import admissible_states, paper_state
