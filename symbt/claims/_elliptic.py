@@ -313,9 +313,9 @@ class ScopedTable(CellTable):
         return txt
 
 
-def outcome(table: CellTable, **kw: Any) -> Outcome:
-    """:func:`~symbt.claims._common.judge_cells` at :data:`DPS` digits, for N = 2."""
-    out = judge_cells(table, dps=DPS, **kw)
+def outcome(table: CellTable, *, dps: int = DPS, **kw: Any) -> Outcome:
+    """:func:`~symbt.claims._common.judge_cells` (digits capped at ``dps``), for N = 2."""
+    out = judge_cells(table, dps=dps, **kw)
     out.n_scope = [2]
     return out
 

@@ -84,7 +84,7 @@ def addform(parts: Parts, deep: bool = False):
             table.add(s.cell, printed=rp, corrected=rc, point=point(s, residual=rp))
             if s.cell["regime"] == "inner":  # all F real: where does the printed formula hold?
                 x0, x1 = mp.sign(st.q[0] - st.q[1]), mp.sign(mp.re(im.qt[0] - im.qt[1]))
-                pred = x0 == x1 and s.b * x0 == -1 and (x0 > 0 or mp.sign(st.P) == mp.sign(im.Pt))
+                pred = x0 == x1 and s.b * x0 == -1
                 inner[0] += int(pred == (rp <= TOL))
                 inner[1] += 1
     return outcome(table, method=f"numeric: the map at {DPS} digits; printed with mpmath's principal ellipf(asin z, "
@@ -96,11 +96,11 @@ def addform(parts: Parts, deep: bool = False):
                              "spectral-curve point (lambda, gamma) used by the map: sn A = (lambda+I1)/sqrt(I2-2), "
                              "cn A dn A = gamma/sqrt(I2^2-4), gamma = b sqrt(tr L^2 - 4); plus e^{q~1+q~2} = "
                              "e^{q1+q2} v(l1) v(l2)",
-                   detail="inner regime (all F real): the printed formula holds exactly where b sgn(q1-q2) = -1, "
-                          "the step keeps the sign of q1-q2 and, for q1 < q2, that of P (prediction matched at "
-                          f"{inner[0]}/{inner[1]} samples): for q1 > q2 the printed F(P) is u and the printed shift "
-                          "is the one of b = -1; for q1 < q2 F(P) = +-2K - u runs backwards and it is the one of "
-                          "b = +1. Beyond |z| = 1 the principal F sits on a cut (addform.continuation)")
+                   detail="inner regime (all F real): the printed formula holds exactly where b sgn(q1-q2) = -1 "
+                          f"and the step keeps the sign of q1-q2 (prediction matched at {inner[0]}/{inner[1]} "
+                          "samples): for q1 > q2 the printed F(P) is u and the printed shift is the one of b = -1; "
+                          "for q1 < q2 F(P) = +-2K - u runs backwards and it is the one of b = +1. Beyond |z| = 1 "
+                          "the principal F sits on a cut (addform.continuation)")
 
 
 # --------------------------------------------------------------------------- addform.regimes
@@ -203,6 +203,10 @@ def continuation(parts: Parts, deep: bool = False):
     fF = mp_fn([zz, m_], parts.printed["F"])
     fv = {zone: mp_fn([a_, m_], parts.corrected["v_" + zone]) for zone in ZONES}
     sheet = dict(zip(ZONES, parts.corrected["sheet"]))
+    # continuity along the real axis where the zones meet (|z| = 1 and 1/k), at the exact junctions
+    c = parts.corrected
+    jumps = mp_fn([m_], [c["v_in"].subs(a_, 1) - c["v_gap"].subs(a_, 1),
+                         c["v_gap"].subs(a_, 1 / sp.sqrt(m_)) - c["v_out"].subs(a_, 1 / sp.sqrt(m_))])
     table = CellTable(tol=TOL)
     eps = mp.mpf(10) ** -(DPS - 5)
     with mp.workdps(DPS):
@@ -219,7 +223,7 @@ def continuation(parts: Parts, deep: bool = False):
             sn, cd = _forward(u0, m, mp.mp.prec)
             if sheet[zone] != cell["sheet"]:  # the other sheet: 2K - u0, sn unchanged, cn dn negated
                 cd = -cd
-            rc = max(finite(sn - z), finite(cd - cell["sheet"] * W), drift)
+            rc = max(finite(sn - z), finite(cd - cell["sheet"] * W), drift, *(finite(j) for j in jumps(m)))
             table.add(cell, printed=rp, corrected=rc, point={"z": zs, "m": ms, "F(z)": mp.nstr(f0, 12),
                                                              "F(z+i0)-F(z-i0)": mp.nstr(rp, 5)})
     return outcome(table, method=f"numeric: mpmath {DPS} digits (one-sided limits z +- 1e-{DPS - 5} i; Jacobi "
@@ -229,8 +233,9 @@ def continuation(parts: Parts, deep: bool = False):
                    corrected="F(z,k) has no canonical value for real |z| > 1 (z on the branch cut of asin; the two "
                              "sides give v and 2K - v). Deterministic continuation: the Abel map of the curve point "
                              "(z, w), w^2 = (1-z^2)(1-k^2 z^2): v = F(|z|) (|z| <= 1), K + i F(asin sqrt((1 - "
-                             "z^-2)/k'^2), k'^2) (1 < |z| < 1/k), iK' + F(1/(k|z|)) (|z| >= 1/k); u = sgn(z) v, whose "
-                             "cn dn is +W, -W, -W (W the principal root), or 2K - u for the other sheet "
-                             "(symbt.reference.elliptic.abel); the same at DPS and DPS + 10 digits",
+                             "z^-2)/k'^2), k'^2) (1 < |z| < 1/k), iK' + F(1/(k|z|)) (|z| >= 1/k), continuous at "
+                             "|z| = 1 and 1/k; u = sgn(z) v, whose cn dn is +W, -W, -W (W the principal root), or "
+                             "2K - u for the other sheet (symbt.reference.elliptic.abel); the same at DPS and DPS + 10 "
+                             "digits",
                    detail="mpmath's value on the cut is one of the one-sided limits, chosen by rounding: it depends "
                           "on mp.dps (e.g. z = 2, m = 3/7: v at 30 and 80 digits, 2K - v at 50)")

@@ -84,7 +84,7 @@ def carlson_rf(x, y, z):
     if gmpy2 is None:
         return _rf_loop(x, y, z, mp.sqrt, mp.mpf(2) ** ((mp.mp.prec + 3) // 6 + 1))
     prec = mp.mp.prec + 10
-    with gmpy2.local_context(gmpy2.context(), precision=prec, real_prec=prec, imag_prec=prec):
+    with gmpy2.context(gmpy2.get_context(), precision=prec, real_prec=prec, imag_prec=prec):
         v = _rf_loop(_to_g(x), _to_g(y), _to_g(z), gmpy2.sqrt, gmpy2.mpfr(2) ** ((prec + 3) // 6 + 1))
     return _from_g(v)
 
