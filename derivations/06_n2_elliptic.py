@@ -104,6 +104,10 @@ display(f"reversed F(P) + F(l+) - F(l-) = {mp.nstr(F(P) + F(lam_p) - F(lam_m), 1
 # $\tilde\theta_1=\theta_1+b\,(g(\operatorname{tr}L(\lambda_0-\mu))-g(\operatorname{tr}L(\lambda_0+\mu)))$ with
 # $g(T)=\operatorname{sgn}(T)\operatorname{arccosh}(|T|/2)$, and $\tilde\theta_2$ advances by $\partial\mathcal H/\partial I_2$
 # for the global angle (modulo its period $4K/\sqrt{I_2+2}$) — confirming Theorem 2 for $N=2$.
+#
+# Each claim samples every *domain cell* — the regime of $(\lambda_-,\lambda_+)$, the branch $b=\pm1$ and the
+# sign of $q_1-q_2$ — and the scope printed with its outcome (where the printed formula holds) is generated
+# from that table; printed formulas are evaluated with principal branches and compared as complex numbers.
 
 # %%
 show("AA2.n2", "citn.theta1", "citn.theta2", "linBts")
