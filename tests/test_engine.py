@@ -123,9 +123,9 @@ def test_parallel_run_matches_serial():
 def test_cli_json_junit_and_exit_code(tmp_path):
     js, ju = tmp_path / "r.json", tmp_path / "r.xml"
     p = subprocess.run([sys.executable, "-m", "symbt", "verify", "--scene", "toda", "--scene", "appendix-a",
-                        "--json", str(js), "--junit", str(ju), "-j", "1"], capture_output=True, text=True)
+                        "--json", str(js), "--junit", str(ju), "-j", "1", "-v"], capture_output=True, text=True)
     assert p.returncode == 0, p.stdout + p.stderr
-    assert "claim" in p.stdout and "equation" in p.stdout
+    assert "claim" in p.stdout and "equation" in p.stdout and "evidence" in p.stdout  # -v: the full table
     data = json.loads(js.read_text())
     ids = {c["id"] for c in data["claims"]}
     assert {"lax.n2", "Hj.n4", "D1D2"} <= ids
