@@ -147,9 +147,11 @@ class _SymbtSession:
                 pairs = [(c, None) for c in select(names, include_deep=deep)]
             except KeyError as exc:
                 raise pytest.UsageError(f"--symbt-scene: {exc.args[0]}") from None
-        for claim, outcome in pairs:
-            items.append(ClaimItem.from_parent(session, name=claim.id, nodeid=f"symbt/{claim.scene}::{claim.id}",
-                                               claim=claim, outcome=outcome, use_cache=use_cache))
+        new = [ClaimItem.from_parent(session, name=claim.id, nodeid=f"symbt/{claim.scene}::{claim.id}",
+                                     claim=claim, outcome=outcome, use_cache=use_cache) for claim, outcome in pairs]
+        # report them as collected (the terminal's "collected N items", like any collector's items)
+        session.ihook.pytest_collectreport(report=pytest.CollectReport("symbt", "passed", None, new))
+        items.extend(new)
 
     def pytest_runtest_logreport(self, report: pytest.TestReport) -> None:
         props = dict(report.user_properties)

@@ -73,7 +73,7 @@ def write_manifest() -> None:
             "claims": [{**{k: (list(getattr(c, k)) if k == "requires" else getattr(c, k)) for k in _META},
                         "key": claim_key(c)} for c in claims],
             "scenes": {s: {"description": m.get("description", ""), "deep": bool(m.get("deep"))}
-                       for s, m in SCENES.items()}}
+                       for s, m in SCENES.items() if any(c.scene == s for c in claims)}}
     text = json.dumps(data, indent=0, sort_keys=True)
     path = manifest_path()
     try:
@@ -120,6 +120,8 @@ def cached_results(names: Sequence[str] | None = None, *, deep: bool = False) ->
     try:
         chosen = choose(claims, scenes, names, include_deep=deep)
     except KeyError:
+        return None
+    if not chosen:
         return None
     out = []
     for c in chosen:
