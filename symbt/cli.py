@@ -235,6 +235,7 @@ _DELEGATED = {"codegen": "codegen", "bench": "bench", "figures": "report.figures
 
 def main(argv=None) -> int:
     """Run the command line; returns the exit status (see the module docstring)."""
+    as_program = argv is None
     argv = list(sys.argv[1:] if argv is None else argv)
     debug = _pop_debug(argv) or os.environ.get("SYMBT_DEBUG", "") not in ("", "0")
     cmd = argv[0] if argv and not argv[0].startswith("-") else ""
@@ -258,7 +259,12 @@ def main(argv=None) -> int:
     except KeyboardInterrupt as exc:
         done = f" ({exc.finished} of {exc.total} claims finished; their outcomes are cached)" \
             if hasattr(exc, "finished") else ""
-        return fail(f"{prog}: interrupted{done}", EXIT_INTERRUPTED)
+        code = fail(f"{prog}: interrupted{done}", EXIT_INTERRUPTED)
+        if as_program:  # everything finished is on disk; skip tearing down SymPy's objects (most of a second)
+            sys.stdout.flush()
+            sys.stderr.flush()
+            os._exit(code)
+        return code
     except ImportError as exc:
         extra = _extra_for(exc)
         if extra is None:
