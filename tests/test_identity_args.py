@@ -35,7 +35,8 @@ def test_bad_options(kw, exc, words):
     assert words in str(info.value)
 
 
-@pytest.mark.parametrize("side", [None, object(), sp.sin, {1: 2}, {x}, b"x", [1, 2]], ids=repr)
+@pytest.mark.parametrize("side", [None, object(), sp.sin, {1: 2}, {x}, b"x", [1, 2]],
+                         ids=["None", "object", "sin", "dict", "set", "bytes", "list"])
 def test_sides_sympy_cannot_read_are_type_errors(side):
     with pytest.raises(TypeError, match="lhs must be a SymPy expression, number or matrix"):
         check_identity(side, 0)
