@@ -257,8 +257,8 @@ def main(argv=None) -> int:
     except UsageError as exc:
         return fail(str(exc), EXIT_USAGE)
     except KeyboardInterrupt as exc:
-        done = f" ({exc.finished} of {exc.total} claims finished; their outcomes are cached)" \
-            if hasattr(exc, "finished") else ""
+        finished, total = getattr(exc, "finished", None), getattr(exc, "total", None)
+        done = f" ({finished} of {total} claims finished; their outcomes are cached)" if total is not None else ""
         code = fail(f"{prog}: interrupted{done}", EXIT_INTERRUPTED)
         if as_program:  # everything finished is on disk; skip tearing down SymPy's objects (most of a second)
             sys.stdout.flush()

@@ -138,6 +138,7 @@ class _SymbtSession:
         deep = config.getoption("symbt_deep")
         use_cache = not config.getoption("symbt_no_cache")
         warm = cached_results(names, deep=deep) if use_cache else None
+        pairs: list[tuple[Any, Any]]
         if warm is not None:
             pairs = [(r.claim, r.outcome) for r in warm]
         else:
@@ -147,11 +148,13 @@ class _SymbtSession:
                 pairs = [(c, None) for c in select(names, include_deep=deep)]
             except KeyError as exc:
                 raise pytest.UsageError(f"--symbt-scene: {exc.args[0]}") from None
-        new = [ClaimItem.from_parent(session, name=claim.id, nodeid=f"symbt/{claim.scene}::{claim.id}",
-                                     claim=claim, outcome=outcome, use_cache=use_cache) for claim, outcome in pairs]
+        new: list[pytest.Item | pytest.Collector] = [
+            ClaimItem.from_parent(session, name=claim.id, nodeid=f"symbt/{claim.scene}::{claim.id}", claim=claim,
+                                  outcome=outcome, use_cache=use_cache)
+            for claim, outcome in pairs]
         # report them as collected (the terminal's "collected N items", like any collector's items)
         session.ihook.pytest_collectreport(report=pytest.CollectReport("symbt", "passed", None, new))
-        items.extend(new)
+        items.extend(i for i in new if isinstance(i, pytest.Item))
 
     def pytest_runtest_logreport(self, report: pytest.TestReport) -> None:
         props = dict(report.user_properties)

@@ -51,7 +51,8 @@ def test_extras_and_entry_points(pyproject):
     project = pyproject["project"]
     extras = project["optional-dependencies"]
     assert set(extras) == EXTRAS
-    assert {"jupytext", "nbconvert", "nbclient", "ipykernel"} <= {re.split(r"[<>=\[]", r)[0] for r in extras["notebooks"]}
+    notebooks = {re.split(r"[<>=\[]", r)[0] for r in extras["notebooks"]}
+    assert {"jupytext", "nbconvert", "nbclient", "ipykernel"} <= notebooks
     assert any(r.startswith("dask[distributed]") for r in extras["dask"])
     test_needs = {re.split(r"[<>=\[]", r)[0] for r in extras["test"]}
     assert {"pytest", "pytest-xdist", "jsonschema", "hypothesis"} <= test_needs

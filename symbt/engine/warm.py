@@ -128,12 +128,10 @@ def cached_results(names: Sequence[str] | None = None, *, deep: bool = False) ->
         if any("." in r for r in c.requires):
             return None  # find_spec of a submodule would import its parent
         missing = [r for r in c.requires if importlib.util.find_spec(r) is None]
-        if missing:
-            o = skipped(f"optional dependency missing: {', '.join(missing)}")
-        else:
-            o = read_entry(cache_file(c), keys[c.id])
-            if o is None:
-                return None
+        o = (skipped(f"optional dependency missing: {', '.join(missing)}") if missing
+             else read_entry(cache_file(c), keys[c.id]))
+        if o is None:
+            return None
         out.append(ClaimResult(c, o))
     return out
 

@@ -6,7 +6,7 @@ no residual): a missing value prints as ``-`` or is left out.
 >>> from symbt.claims.base import Claim, ClaimResult, Outcome
 >>> r = ClaimResult(Claim("t", "eq", "s", check=None, scene="demo"), Outcome("verified", "exact", 0.0))
 >>> print(format_short([r]))
-demo      1 claim: 1 verified
+demo    1 claim: 1 verified
 <BLANKLINE>
 1 claim: 1 verified, 0 errata, 0 failed, 0 skipped -- ok
 """
@@ -17,7 +17,8 @@ __all__ = ["summary", "summary_lines", "format_short", "format_table", "residual
 
 
 def summary(results) -> dict:
-    s = {k: 0 for k in ("verified", "erratum", "failed", "skipped")}
+    """Counts by status, ``total``, ``seconds`` (sum of the checks' times) and ``ok`` (no claim failed)."""
+    s: dict = {k: 0 for k in ("verified", "erratum", "failed", "skipped")}
     for r in results:
         s[r.outcome.status] += 1
     s["total"] = len(results)
