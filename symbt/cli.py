@@ -81,7 +81,11 @@ def _write_output(flag: str, path: str, text: str) -> None:
     from ._files import atomic_write
 
     if path == "-":
-        sys.stdout.write(text)
+        try:
+            sys.stdout.write(text)
+            sys.stdout.flush()
+        except BrokenPipeError:
+            _silence_stdout()
         return
     try:
         parent = Path(path).parent
@@ -120,22 +124,20 @@ def _cmd_verify(args) -> int:
         raise ModuleNotFoundError("No module named 'distributed'", name="distributed")
     jobs = args.jobs if args.jobs is not None else min(2, os.cpu_count() or 1)
     t0 = time.perf_counter()
-    results = None
-    try:
-        if not args.no_cache:
-            results = cached_results(args.scene or None, deep=args.deep)
-        if results is None:
-            from . import engine
-            from .report.progress import Progress
+    results = None if args.no_cache else cached_results(args.scene or None, deep=args.deep)
+    if results is None:
+        from . import engine
+        from .report.progress import Progress
 
+        try:
             claims = engine.select(args.scene or None, include_deep=args.deep)
-            bar = Progress(len(claims), enabled=not args.quiet)
-            try:
-                results = engine.run(claims, use_cache=not args.no_cache, jobs=jobs, progress=bar, dask=args.dask)
-            finally:
-                bar.close()
-    except KeyError as exc:
-        raise UsageError(f"symbt verify: {exc.args[0]}") from None
+        except KeyError as exc:
+            raise UsageError(f"symbt verify: {exc.args[0]}") from None
+        bar = Progress(len(claims), enabled=not args.quiet)
+        try:
+            results = engine.run(claims, use_cache=not args.no_cache, jobs=jobs, progress=bar, dask=args.dask)
+        finally:
+            bar.close()
     if not results:
         raise UsageError("symbt verify: no claims selected")
     wall = time.perf_counter() - t0

@@ -53,7 +53,7 @@ class Walkthrough:
         from .runner import run
 
         for cid in claim_ids:
-            r = run([REGISTRY[cid]])[0]
+            r = run([REGISTRY[cid]], manifest=False)[0]
             self.shown[cid] = r.status
             self.display(r)
 
