@@ -173,7 +173,8 @@ def _cmd_scenes(args) -> int:
 # --------------------------------------------------------------------------- parser and dispatch
 
 _DELEGATED_HELP = {"codegen": "emit/check generated numeric modules", "bench": "work-precision benchmarks",
-                   "figures": "regenerate the paper's figures"}
+                   "figures": "regenerate the paper's figures", "mutate": "mutation testing of the claims' checks",
+                   "coverage": "the paper's labelled displays: claims or reasons"}
 
 
 def _pop_debug(argv: list[str]) -> bool:
@@ -232,7 +233,8 @@ def build_parser() -> argparse.ArgumentParser:
     return ap
 
 
-_DELEGATED = {"codegen": "codegen", "bench": "bench", "figures": "report.figures"}
+_DELEGATED = {"codegen": "codegen", "bench": "bench", "figures": "report.figures", "mutate": "engine.mutate",
+              "coverage": "engine.coverage"}
 
 
 def main(argv=None) -> int:

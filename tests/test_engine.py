@@ -4,7 +4,6 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
-import mpmath as mp
 import pytest
 import sympy as sp
 
@@ -63,14 +62,27 @@ def test_exponential_identity_decided_exactly_by_E_substitution():
     assert d.verdict == "proved" and "exp->monomials" in d.method
 
 
-def test_wrong_branch_is_caught(monkeypatch):
+def test_wrong_branch_is_caught():
     """If the real Phi ignored the branch, the newkmu correction would no longer verify."""
     load_all()
-    import symbt.claims.phi as phi_mod
+    c = REGISTRY["newkmu.n2"]
+    parts = c.parts()
+    b = sp.Symbol("branch", real=True)
+    no_branch = parts.corrected["Phi"].subs(b, 1)
+    assert c.run_with(parts.replace("corrected", "Phi", no_branch)).status == "failed"
+    assert c.run_with(parts).status == "erratum"
 
-    monkeypatch.setattr(phi_mod, "phi_real", lambda t1, t2, b: -(mp.sign(t1) * mp.acosh(abs(t1) / 2)
-                                                                   + mp.sign(t2) * mp.acosh(abs(t2) / 2)))
-    assert REGISTRY["newkmu.n2"].run().status == "failed"
+
+def test_mutation_harness_kills_and_recognises_equivalents():
+    from symbt.engine.mutate import mutate_claim, summary
+
+    load_all()
+    rec = mutate_claim(REGISTRY["newkmu.n2"], limit=6, seed=1).to_dict()
+    assert rec["side"] == "corrected" and rec["mutants"] == 6
+    assert rec["killed"] + rec["equivalent_count"] + len(rec["survivors"]) == 6
+    assert rec["killed"] >= 1 and not rec["survivors"]
+    s = summary([rec])
+    assert s["mutants"] == 6 and s["score"] == 1.0
 
 
 def test_scene_selection_and_pseudo_scenes():

@@ -14,9 +14,11 @@ __all__ = ["REGISTRY", "SCENES", "Claim", "Outcome", "claim", "scene", "load_all
 
 # order = order of the report (follows the paper)
 CLAIM_MODULES = (
+    "section1",
     "toy",
     "toda_model",
     "single_bt",
+    "single_bt_map",
     "appendix_a",
     "composed_map",
     "generating",

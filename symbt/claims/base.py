@@ -29,6 +29,7 @@ Writing a claim
 from __future__ import annotations
 
 import functools
+import inspect
 import time
 import traceback
 from collections.abc import Callable
@@ -38,7 +39,7 @@ from typing import Any
 from ..proof.verdict import EVIDENCE, Verdict
 
 __all__ = [
-    "Claim", "ClaimResult", "Outcome", "claim", "REGISTRY", "SCENES", "scene",
+    "Claim", "ClaimResult", "Outcome", "Parts", "claim", "REGISTRY", "SCENES", "scene",
     "from_decision", "judge", "skipped", "failed",
 ]
 
@@ -89,6 +90,31 @@ class Outcome:
         return cls(**{k: v for k, v in d.items() if k in known})
 
 
+@dataclass
+class Parts:
+    """What a claim checks, as data: named statement parts, printed and corrected.
+
+    Values are SymPy expressions or matrices (the right-hand side of a printed
+    formula, a Darboux matrix, ...) or plain numbers (a branch sign, a printed
+    constant).  The claim's check reads them instead of hard-coding them, so the
+    mutation harness can rerun the same check on mutated parts.  ``printed``
+    holds what the paper prints; ``corrected`` what symbt verifies instead
+    (empty when the printed statement is right).  ``context`` holds fixed
+    ingredients that are not the statement (symbols, relations) and are never
+    mutated.
+    """
+
+    printed: dict[str, Any]
+    corrected: dict[str, Any] = field(default_factory=dict)
+    context: dict[str, Any] = field(default_factory=dict)
+
+    def replace(self, side: str, name: str, value: Any) -> Parts:
+        """A copy with ``side`` (``"printed"`` or ``"corrected"``) part ``name`` replaced."""
+        new = Parts(dict(self.printed), dict(self.corrected), self.context)
+        getattr(new, side)[name] = value
+        return new
+
+
 @dataclass(frozen=True)
 class Claim:
     """One checkable statement of the paper.
@@ -115,13 +141,30 @@ class Claim:
     requires: tuple[str, ...] = ()
     source_equation: str | None = None
     func: Callable[..., Outcome] | None = field(default=None, compare=False, repr=False)
+    parts: Callable[[], Parts] | None = field(default=None, compare=False, repr=False)
+    run_parts: Callable[[Parts], Outcome] | None = field(default=None, compare=False, repr=False)
+    deep_check: Callable[[], Outcome] | None = field(default=None, compare=False, repr=False)
 
     def result(self) -> ClaimResult:
         """Run and wrap with the claim (renders richly in Jupyter, see :mod:`symbt.report.html`)."""
         return ClaimResult(self, self.run())
 
-    def run(self) -> Outcome:
-        """Run the check, timing it; an exception becomes a ``failed`` outcome."""
+    def run(self, *, deep: bool = False) -> Outcome:
+        """Run the check, timing it; an exception becomes a ``failed`` outcome.
+
+        ``deep`` runs the claim's deep variant (more samples per cell) when it has one.
+        """
+        check = self.deep_check if (deep and self.deep_check is not None) else self.check
+        return self._timed(check)
+
+    def run_with(self, parts: Parts) -> Outcome:
+        """Run the check on other statement parts (used by ``symbt mutate``)."""
+        if self.run_parts is None:
+            raise TypeError(f"claim {self.id} exposes no statement parts")
+        run_parts = self.run_parts
+        return self._timed(lambda: run_parts(parts))
+
+    def _timed(self, check: Callable[[], Outcome]) -> Outcome:
         import importlib.util
 
         missing = [m for m in self.requires if importlib.util.find_spec(m) is None]
@@ -130,7 +173,7 @@ class Claim:
             out = skipped(f"optional dependency missing: {', '.join(missing)}")
         else:
             try:
-                out = self.check()
+                out = check()
             except Exception as exc:  # a crash is a failure, reported with its cause
                 out = failed("exception", detail=f"{type(exc).__name__}: {exc}\n{traceback.format_exc(limit=4)}")
         out.seconds = round(time.perf_counter() - t0, 4)
@@ -177,13 +220,18 @@ def scene(name: str, description: str, *, deep: bool = False) -> None:
     SCENES.setdefault(name, {"description": description, "deep": deep})
 
 
+def _with_parts(run_parts: Callable[..., Outcome], builder: Callable[[], Parts], **kw: Any) -> Outcome:
+    return run_parts(builder(), **kw)
+
+
 def _for_size(text: str, N: int) -> str:
     return text.replace("{N}", str(N))
 
 
 def claim(id: str, *, equation: str, statement: str, scene: str, N: int | None = None,  # noqa: A002
           sizes: tuple[int, ...] | None = None, where: str = "", deep: bool = False,
-          requires: tuple[str, ...] = (), source_equation: str | None = None, register: bool = True):
+          requires: tuple[str, ...] = (), source_equation: str | None = None,
+          parts: Callable[..., Parts] | None = None, register: bool = True):
     """Decorator turning a check into registered :class:`Claim` s (claims as data).
 
     Without ``sizes`` the check takes no argument and one claim ``id`` is made
@@ -193,15 +241,31 @@ def claim(id: str, *, equation: str, statement: str, scene: str, N: int | None =
     replaced by the size, and the check unchanged is returned, so it can be called
     directly; the claims are in :data:`REGISTRY` (and on ``check.claims``).  Without
     ``sizes`` the :class:`Claim` itself is returned.
+
+    ``parts`` (called with ``N`` for a family) builds the :class:`Parts` the check
+    reads; the check then takes them as its last argument: ``check(N, parts)``
+    (or ``check(parts)``).  A check may also take a keyword ``deep`` (more
+    samples per domain cell under ``symbt verify --deep``).
     """
     if sizes is not None and N is not None:
         raise ValueError("give either N (one claim) or sizes (one claim per size)")
 
-    def make(cid: str, n: int | None, check: Callable[[], Outcome], fn: Callable[..., Outcome]) -> Claim:
+    def make(cid: str, n: int | None, fn: Callable[..., Outcome]) -> Claim:
         sub = (lambda t: _for_size(t, n)) if (sizes is not None and n is not None) else (lambda t: t)
+        head: tuple[int, ...] = (n,) if sizes is not None and n is not None else ()
+        takes_deep = "deep" in inspect.signature(fn).parameters
+        builder = None if parts is None else functools.partial(parts, *head)
+        if builder is None:
+            run_parts = None
+            check = functools.partial(fn, *head)
+        else:
+            run_parts = functools.partial(fn, *head)
+            check = functools.partial(_with_parts, run_parts, builder)
+        deep_check = functools.partial(check, deep=True) if takes_deep else None
         c = Claim(id=cid, equation=sub(equation), statement=sub(statement), check=check, scene=scene, N=n,
                   where=sub(where), deep=deep, requires=tuple(requires),
-                  source_equation=None if source_equation is None else sub(source_equation), func=fn)
+                  source_equation=None if source_equation is None else sub(source_equation), func=fn,
+                  parts=builder, run_parts=run_parts, deep_check=deep_check)
         if register:
             if cid in REGISTRY:
                 raise ValueError(f"duplicate claim id {cid}")
@@ -210,9 +274,8 @@ def claim(id: str, *, equation: str, statement: str, scene: str, N: int | None =
 
     def wrap(fn: Callable[..., Outcome]):
         if sizes is None:
-            return make(id, N, fn, fn)
-        fn.claims = [make(f"{id}.n{n}", n, functools.partial(fn, n), fn)  # type: ignore[attr-defined]
-                     for n in sizes]
+            return make(id, N, fn)
+        fn.claims = [make(f"{id}.n{n}", n, fn) for n in sizes]  # type: ignore[attr-defined]
         return fn
 
     return wrap

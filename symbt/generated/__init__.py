@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 45db38f73b4b5f46e2e35e7764abacf4c89385b65792a68f05bf0dcfc2293aaf
-# symbt-codegen-content-sha256: e3a53053cd4ad49c4b25ff434a4e60cfcf814791d1189a5a36ffa4c08833b110
+# symbt-codegen-derivation-sha256: 04f566ad9fe8711cb1a8a22148327f7b72b93205273866a63267b69031f8b91d
+# symbt-codegen-content-sha256: f519a280457d82d366b27bd0060ece39648f857c871c2a0a9dcb4339278dd2be
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: toda2 (N=2)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 45db38f73b4b5f46e2e35e7764abacf4c89385b65792a68f05bf0dcfc2293aaf
-# symbt-codegen-content-sha256: aa5a14bd319e16e493eb9ce82743b9e3fda20934fb80c44095f80eb679b9363c
+# symbt-codegen-derivation-sha256: 04f566ad9fe8711cb1a8a22148327f7b72b93205273866a63267b69031f8b91d
+# symbt-codegen-content-sha256: d19768286dfe8bf33bc86b6d3f60254d4ee3de26aa1ab8d8ae88d1c477e945d1
 """Generated numeric code for the N=2 periodic Toda lattice (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

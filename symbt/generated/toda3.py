@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 1
 # symbt-codegen-target: toda3 (N=3)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 45db38f73b4b5f46e2e35e7764abacf4c89385b65792a68f05bf0dcfc2293aaf
-# symbt-codegen-content-sha256: c343ad895fdb8869ed6dd805e468d761d4ba9d65fd167b892de1b999aa322af8
+# symbt-codegen-derivation-sha256: 04f566ad9fe8711cb1a8a22148327f7b72b93205273866a63267b69031f8b91d
+# symbt-codegen-content-sha256: d8ea5ea9307e43649891fa89ce7c3b66ba143eb6c0889dc5259542cad1542380
 """Generated numeric code for the N=3 periodic Toda lattice (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -113,7 +113,7 @@ def screen(lhs, rhs, relations, digits, points, seed, fixed):
     order = _solve_order(relations, base)
     constrained = [s for s, _ in order]
     rel_solvers = []
-    for k, (s, roots) in enumerate(order):
+    for k, (_s, roots) in enumerate(order):
         rel_solvers.append([_lambdify(base + constrained[:k], r) for r in roots])
     args = base + constrained
     f_l = _lambdify(args, lhs)

@@ -94,7 +94,7 @@ class Verdict:
     @classmethod
     def sampled(cls, residual: Any, *, tol: Any, method: str = "", counterexample: dict[str, Any] | None = None,
                 dps: float | None = None, points: list[dict[str, str]] | None = None,
-                note: str = "") -> Verdict:
+                note: str = "", cells: list[dict[str, Any]] | None = None) -> Verdict:
         """A verdict from the worst relative ``residual`` over finitely many samples.
 
         Holds iff ``residual <= tol``; ``digits`` is ``-log10(residual)`` (capped at
@@ -102,14 +102,14 @@ class Verdict:
         """
         r = _as_float(residual)
         holds = r <= _as_float(tol)
+        digits: float | None
         if r > 0:
-            digits = -math.log10(r)
+            digits = -math.log10(r) if dps is None else min(-math.log10(r), float(dps))
         else:
-            digits = float(dps) if dps is not None else math.inf
-        if dps is not None:
-            digits = min(digits, float(dps))
-        return cls(holds, "sampled", method, residual=r, digits=round(digits, 1),
-                   counterexample=None if holds else counterexample, points=list(points or []), note=note)
+            digits = None if dps is None else float(dps)
+        return cls(holds, "sampled", method, residual=r, digits=None if digits is None else round(digits, 1),
+                   counterexample=None if holds else counterexample, points=list(points or []), note=note,
+                   cells=list(cells or []))
 
     # -- views ----------------------------------------------------------------
     @property

@@ -20,9 +20,12 @@ constant, so all derivatives below are the same.
 
 Example
 -------
+>>> import sympy as sp
 >>> g = GeneratingFunction(2)
->>> g.relations[g.eta[0]]
--E1*(-1/Et2 + 1/E2) + Et1*(-1/Et2 + 1/E2) + eta1**2 - mu**2
+>>> g.w(0) == (g.E[0] - g.Et[0]) * (1 / g.Et[1] - 1 / g.E[1])   # the neighbour of site 1 is 2 (mod 2)
+True
+>>> sp.expand(g.relations[g.eta[0]] - (g.eta[0]**2 - g.mu**2 - g.w(0)))
+0
 """
 from __future__ import annotations
 
