@@ -4,7 +4,6 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
-import mpmath as mp
 import pytest
 import sympy as sp
 
@@ -84,3 +83,93 @@ def test_mutation_harness_kills_and_recognises_equivalents():
     assert rec["killed"] >= 1 and not rec["survivors"]
     s = summary([rec])
     assert s["mutants"] == 6 and s["score"] == 1.0
+
+
+def test_scene_selection_and_pseudo_scenes():
+    load_all()
+    sel = engine.select(["n2"])
+    assert sel and all(c.N == 2 for c in sel)
+    sel = engine.select(["toda"])
+    assert {c.scene for c in sel} == {"toda"}
+    assert [c.id for c in engine.select(["tn2"])] == ["tn2"]
+    with pytest.raises(KeyError):
+        engine.select(["no-such-scene"])
+
+
+def test_n2_scene_builds_no_n3_model():
+    code = ("import sys; from symbt import engine; import symbt.symbolic.toda as t;"
+            "engine.run(engine.select(['tn2', 'th1th2.trace', 'lax.n2']), jobs=1, use_cache=False);"
+            "print(t.toda_model.cache_info().currsize);"
+            "print('scipy' in sys.modules, 'matplotlib' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split("\n")
+    assert out[0] == "1"          # only the N=2 model was built
+    assert out[1] == "False False"  # a symbolic scene imports neither scipy nor matplotlib
+
+
+def test_cache_reuse_corruption_and_staleness(tmp_path, monkeypatch):
+    monkeypatch.setenv("SYMBT_CACHE_DIR", str(tmp_path))
+    load_all()
+    c = REGISTRY["tn2"]
+    first = engine.run([c])[0].outcome
+    assert not first.cached
+    second = engine.run([c])[0].outcome
+    assert second.cached and second.status == first.status
+    f = engine.cache_file(c)
+    f.write_text("{not json")
+    assert not engine.run([c])[0].outcome.cached           # corrupt -> recomputed
+    data = json.loads(f.read_text())
+    data["key"] = "0" * 64
+    f.write_text(json.dumps(data))
+    assert not engine.run([c])[0].outcome.cached           # stale key -> recomputed
+    assert not engine.run([c], use_cache=False)[0].outcome.cached
+
+
+def test_parallel_run_matches_serial():
+    load_all()
+    claims = engine.select(["single-bt"])
+    a = [r.outcome.status for r in engine.run(claims, use_cache=False, jobs=1)]
+    b = [r.outcome.status for r in engine.run(claims, use_cache=False, jobs=2)]
+    assert a == b
+
+
+def test_cli_json_junit_and_exit_code(tmp_path):
+    js, ju = tmp_path / "r.json", tmp_path / "r.xml"
+    p = subprocess.run([sys.executable, "-m", "symbt", "verify", "--scene", "toda", "--scene", "appendix-a",
+                        "--json", str(js), "--junit", str(ju), "-j", "1", "-v"], capture_output=True, text=True)
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert "claim" in p.stdout and "equation" in p.stdout and "evidence" in p.stdout  # -v: the full table
+    data = json.loads(js.read_text())
+    ids = {c["id"] for c in data["claims"]}
+    assert {"lax.n2", "Hj.n4", "D1D2"} <= ids
+    for c in data["claims"]:
+        for key in ("id", "equation", "status", "method", "seconds", "residual"):
+            assert key in c
+        if c["status"] == "erratum":
+            assert c["printed"] and c["corrected"] and c["counterexample"]
+    assert data["summary"]["failed"] == 0 and data["summary"]["total"] == len(data["claims"])
+    root = ET.parse(ju).getroot()
+    cases = root.findall(".//testcase")
+    assert len(cases) == len(data["claims"])
+    p = subprocess.run([sys.executable, "-m", "symbt", "verify", "--scene", "nonexistent"], capture_output=True)
+    assert p.returncode == 2
+
+
+def test_failed_claim_gives_exit_status_1(tmp_path, monkeypatch):
+    from symbt import cli
+    from symbt.claims import base
+
+    @claim("zz.test.fails", equation="none", scene="zz-test", statement="1 = 2")
+    def c():
+        return from_decision(decide(sp.Integer(1), 2))
+
+    base.scene("zz-test", "temporary")
+    try:
+        assert cli.main(["verify", "--scene", "zz-test", "-q", "-j", "1"]) == 1
+    finally:
+        base.REGISTRY.pop("zz.test.fails")
+        base.SCENES.pop("zz-test")
+
+
+def test_outcome_roundtrip():
+    o = Outcome("erratum", "m", residual=1.0, printed="a", corrected="b", counterexample={"x": "1"})
+    assert Outcome.from_dict(json.loads(json.dumps(o.to_dict()))) == o

@@ -1,42 +1,76 @@
-"""Running claims: scene selection, on-disk cache, parallel execution.
+"""Running claims: scene selection, on-disk cache, parallel and distributed execution, the warm path.
 
 * A *scene* is a named group of claims (``symbt scenes`` lists them).  Running
   a scene runs only its claims; derivations are built lazily and memoised
   per lattice size (:func:`symbt.symbolic.toda.toda_model`), so an N=2 scene
   never builds an N=3 model, and a symbolic scene never imports scipy.
   Pseudo-scenes ``n2``, ``n3``, ``n4`` select claims by lattice size, and a
-  claim id selects itself.
+  claim id selects itself (:mod:`.select`).
 * Results are cached as JSON (no pickle) in ``$SYMBT_CACHE_DIR`` (default
   ``~/.cache/symbt``), one file per claim, keyed by a SHA-256 of the claim's
-  id, the source of its module and of the layers below it (``symbt.proof``,
-  ``symbt.symbolic``, ``symbt.reference.literal``, ``symbt.numeric``, ``symbt.codegen``, ``symbt.generated``, the
-  claims' base and sample modules)
-  and the versions of Python, SymPy, mpmath and NumPy.  A corrupt or stale
+  id, the source of its module and of the layers below it, and the versions of
+  Python and the libraries (:mod:`.cache`).  A corrupt, stale or wrongly shaped
   entry is recomputed; ``use_cache=False`` forces recomputation.
-* Independent claims run in a process pool (``jobs`` workers).
+* Independent claims run in a process pool (``jobs`` workers) or on a Dask
+  cluster (:mod:`.distributed`); every outcome is cached as it arrives, so an
+  interrupted run keeps what finished (:mod:`.runner`).
+* When every selected claim is cached and no source file changed, the results
+  are read without importing the claim modules, SymPy, NumPy or mpmath (:mod:`.warm`).
 """
 from __future__ import annotations
 
-from ..claims.base import ClaimResult
-from .cache import cache_dir, cache_file, claim_key
-from .runner import run
-from .select import default_scenes, select
-from .walkthrough import Walkthrough
+import importlib
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
 
-__all__ = ["verify", "select", "run", "ClaimResult", "cache_dir", "claim_key", "default_scenes", "Walkthrough"]
+if TYPE_CHECKING:
+    from ..claims.base import ClaimResult
+    from .runner import Progress
+
+from .select import choose, default_scenes, select  # cheap (claim metadata only); binds over the submodule
+
+# the rest loads on first use: the warm path (symbt verify with everything cached) imports only .warm
+_LAZY = {
+    "run": ".runner", "Interrupted": ".runner", "refresh_manifest": ".runner",
+    "cache_dir": ".cache", "cache_file": ".cache", "claim_key": ".cache",
+    "cached_results": ".warm", "Walkthrough": ".walkthrough", "ClaimResult": "..claims.base",
+}
+
+__all__ = ["verify", "select", "choose", "default_scenes", *_LAZY]
 
 
-def verify(scenes: list[str] | None = None, *, deep: bool = False, use_cache: bool = True,
-           jobs: int = 1, progress=None) -> list[ClaimResult]:
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        return getattr(importlib.import_module(_LAZY[name], __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)
+
+
+def verify(scenes: Sequence[str] | None = None, *, deep: bool = False, use_cache: bool = True,
+           jobs: int = 1, progress: Progress | None = None, dask: str | bool | None = None) -> list[ClaimResult]:
     """Select and run claims; the Python entry point behind ``symbt verify``.
 
     ``scenes`` are scene names, lattice sizes (``"n2"``) or claim ids (``None``:
     every default scene); ``deep`` adds the minutes-long claims; ``jobs``
-    worker processes.  Returns one :class:`ClaimResult` per claim, in the
-    paper's order.
+    worker processes; ``dask`` runs uncached claims on a Dask cluster (``True``:
+    a local one, or a scheduler address).  Returns one :class:`ClaimResult` per
+    claim, in the paper's order.  Unknown names raise ``KeyError``; ``jobs``
+    below 1 raises ``ValueError``.
 
     >>> import symbt
     >>> [r.status for r in symbt.verify(["tn2"], use_cache=False)]
     ['verified']
     """
-    return run(select(scenes, include_deep=deep), use_cache=use_cache, jobs=jobs, progress=progress)
+    from .runner import run
+    from .warm import cached_results
+
+    if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
+        raise ValueError(f"jobs must be a positive integer, not {jobs!r}")
+    if use_cache and dask is None and progress is None:
+        warm = cached_results(scenes, deep=deep)
+        if warm is not None:
+            return warm
+    return run(select(scenes, include_deep=deep), use_cache=use_cache, jobs=jobs, progress=progress, dask=dask)

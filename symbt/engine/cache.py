@@ -1,33 +1,50 @@
 """The on-disk cache of claim outcomes.
 
 Results are cached as JSON (no pickle) in ``$SYMBT_CACHE_DIR`` (default
-``~/.cache/symbt``), one file per claim, keyed by a SHA-256 of the claim's id,
-the source of its module (and of the sibling claim modules whose helpers it
-uses), the sources of the layers below the claims, and the versions of Python,
-SymPy, mpmath and NumPy.  A corrupt or stale entry is recomputed.
+``$XDG_CACHE_HOME/symbt`` or ``~/.cache/symbt``), one file per claim, keyed by a
+SHA-256 of the claim's id, the source of its module (and of the sibling claim
+modules whose helpers it uses), the sources of the layers below the claims, and
+the versions of Python and of the libraries a result can depend on
+(:func:`library_versions`, read from the installed distributions' metadata
+without importing them).
+
+An entry is used only if it parses, carries the current key and has the shape of
+an :class:`~symbt.claims.Outcome` (:func:`outcome_from_json`); anything else --
+missing, unreadable, corrupt, stale, or valid JSON of the wrong shape -- is
+recomputed.
+
+>>> outcome_from_json({"status": "verified", "method": "exact", "residual": 0.0}).status
+'verified'
+>>> outcome_from_json({"status": "verified", "method": "exact", "residual": "0"}) is None
+True
 """
 from __future__ import annotations
 
 import hashlib
-import inspect
 import json
 import os
 import sys
 from functools import cache
 from pathlib import Path
+from typing import Any
 
 from .._files import atomic_write
-from ..claims.base import Claim, Outcome
+from ..claims.base import STATUSES, Claim, Outcome
+from ..proof.verdict import EVIDENCE
 
-__all__ = ["cache_dir", "cache_file", "claim_key", "load_cached", "store"]
+__all__ = ["cache_dir", "cache_file", "claim_key", "load_cached", "store", "library_versions",
+           "outcome_from_json", "read_entry"]
 
 _PKG = Path(__file__).resolve().parent.parent
 #: the layers below the claims: a change to any of their sources invalidates every cached outcome
 _LAYERS = ("paper.py", "_files.py", "symbolic", "proof", "numeric", "reference", "codegen", "generated",
            "claims/base.py")
+#: distributions whose version can change a claim's outcome (absent ones count as "-")
+_LIBRARIES = ("sympy", "mpmath", "numpy", "scipy", "python-flint", "gmpy2")
 
 
 def cache_dir() -> Path:
+    """``$SYMBT_CACHE_DIR``, else ``$XDG_CACHE_HOME/symbt``, else ``~/.cache/symbt``."""
     base = os.environ.get("SYMBT_CACHE_DIR")
     if base:
         return Path(base)
@@ -48,13 +65,56 @@ def _layer_digest() -> str:
     return h.hexdigest()
 
 
-@cache
-def _versions() -> str:
-    import mpmath
-    import numpy
-    import sympy
+def _norm(name: str) -> str:
+    return name.lower().replace("-", "_").replace(".", "_")
 
-    return f"py{sys.version_info[:3]} sympy{sympy.__version__} mpmath{mpmath.__version__} numpy{numpy.__version__}"
+
+def _dist_versions_on_path() -> dict[str, str]:
+    """``{normalised name: version}`` from the ``*.dist-info`` / ``*.egg-info`` names on ``sys.path``.
+
+    The first entry of ``sys.path`` that holds a distribution wins, as for imports;
+    one directory listing per entry -- far cheaper than importing
+    :mod:`importlib.metadata` (which also needs to scan) or the libraries themselves.
+    """
+    found: dict[str, str] = {}
+    for entry in sys.path:
+        try:
+            names = os.listdir(entry or ".")
+        except OSError:
+            continue
+        for n in names:
+            for suffix in (".dist-info", ".egg-info"):
+                if n.endswith(suffix):
+                    stem = n[: -len(suffix)]
+                    name, _, version = stem.partition("-")
+                    if version:
+                        found.setdefault(_norm(name), version.split("-py")[0])
+    return found
+
+
+@cache
+def library_versions() -> str:
+    """Python and library versions that key the cache, e.g. ``"py3.11.7 sympy1.14.0 ... gmpy2-"``.
+
+    Read from distribution metadata on ``sys.path``, never by importing a library
+    (a warm ``symbt verify`` must not import SymPy, NumPy or mpmath).
+
+    >>> library_versions().startswith("py")
+    True
+    """
+    on_path = _dist_versions_on_path()
+    parts = [f"py{'.'.join(map(str, sys.version_info[:3]))}"]
+    for lib in _LIBRARIES:
+        v = on_path.get(_norm(lib))
+        if v is None:  # unusual layouts: ask importlib.metadata (still no import of the library)
+            try:
+                from importlib import metadata
+
+                v = metadata.version(lib)
+            except Exception:
+                v = "-"
+        parts.append(f"{lib}{v}")
+    return " ".join(parts)
 
 
 def _claim_modules_used(mod) -> list:
@@ -69,44 +129,104 @@ def _claim_modules_used(mod) -> list:
 
 def claim_key(c: Claim) -> str:
     """Hash of what determines the claim's outcome."""
+    import inspect
+
     h = hashlib.sha256()
     h.update(c.id.encode())
     mod = inspect.getmodule(c.func or c.check)
-    for m in _claim_modules_used(mod):
+    for m in _claim_modules_used(mod) if mod is not None else []:
         try:
             h.update(inspect.getsource(m).encode())
         except (OSError, TypeError):
             h.update(repr(c).encode())
+    if mod is None:
+        h.update(repr(c).encode())
     h.update(_layer_digest().encode())
-    h.update(_versions().encode())
+    h.update(library_versions().encode())
     return h.hexdigest()
 
 
-def cache_file(c: Claim) -> Path:
-    safe = "".join(ch if ch.isalnum() or ch in "-_." else "_" for ch in c.id)
+def cache_file(c: Claim | str) -> Path:
+    """The cache entry of a claim (or claim id)."""
+    cid = c if isinstance(c, str) else c.id
+    safe = "".join(ch if ch.isalnum() or ch in "-_." else "_" for ch in cid)
     return cache_dir() / f"{safe}.json"
 
 
-def load_cached(c: Claim) -> Outcome | None:
-    f = cache_file(c)
-    try:
-        data = json.loads(f.read_text())
-        if data.get("key") != claim_key(c):
+# --------------------------------------------------------------------------- shape of an entry
+
+def _number(v: Any) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+
+def _opt(test):
+    return lambda v: v is None or test(v)
+
+
+_FIELD_OK = {
+    "status": lambda v: v in STATUSES,
+    "method": lambda v: isinstance(v, str),
+    "residual": _opt(_number),
+    "digits": _opt(_number),
+    "printed": _opt(lambda v: isinstance(v, str)),
+    "corrected": _opt(lambda v: isinstance(v, str)),
+    "counterexample": _opt(lambda v: isinstance(v, dict)),
+    "detail": lambda v: isinstance(v, str),
+    "seconds": lambda v: _number(v) and v >= 0,
+    "cached": lambda v: isinstance(v, bool),
+    "evidence": lambda v: v is None or v in EVIDENCE,
+    "cells": lambda v: isinstance(v, list) and all(isinstance(x, dict) for x in v),
+    "scope": lambda v: isinstance(v, str),
+    "n_scope": _opt(lambda v: v == "all" or (isinstance(v, list) and all(isinstance(n, int) for n in v))),
+}
+
+
+def outcome_from_json(d: Any) -> Outcome | None:
+    """An :class:`Outcome` from its JSON form, or ``None`` if ``d`` does not have its shape.
+
+    ``status`` and ``method`` are required; every other field may be missing (its
+    default is used) but, if present, must have the right type.  Unknown keys are ignored.
+    """
+    if not isinstance(d, dict) or "status" not in d or "method" not in d:
+        return None
+    for k, ok in _FIELD_OK.items():
+        if k in d and not ok(d[k]):
             return None
-        out = Outcome.from_dict(data["outcome"])
-        out.cached = True
-        return out
-    except (OSError, ValueError, KeyError, TypeError):
-        return None  # missing, corrupt or stale: recompute
+    try:
+        return Outcome.from_dict(d)
+    except (TypeError, ValueError):
+        return None
+
+
+def read_entry(path: Path, key: str) -> Outcome | None:
+    """The outcome stored at ``path`` if the entry is well formed and carries ``key``."""
+    try:
+        data = json.loads(path.read_bytes())
+    except (OSError, ValueError):
+        return None
+    if not isinstance(data, dict) or data.get("key") != key:
+        return None
+    out = outcome_from_json(data.get("outcome"))
+    if out is None or out.status == "skipped":
+        return None
+    out.cached = True
+    return out
+
+
+def load_cached(c: Claim) -> Outcome | None:
+    """The cached outcome of ``c`` or ``None`` (missing, corrupt, stale or of the wrong shape)."""
+    return read_entry(cache_file(c), claim_key(c))
 
 
 def store(c: Claim, out: Outcome) -> None:
+    """Cache ``out`` at once (atomically); skipped outcomes are not cached, a read-only cache is no error."""
     if out.status == "skipped":
         return  # a skipped claim may run once its extra is installed
-    d = cache_dir()
     try:
-        d.mkdir(parents=True, exist_ok=True)
-        atomic_write(cache_file(c), json.dumps({"key": claim_key(c), "id": c.id, "outcome": out.to_dict()},
-                                                indent=1))
-    except OSError:
-        pass  # a read-only cache is not an error
+        cache_dir().mkdir(parents=True, exist_ok=True)
+        d = out.to_dict()
+        d["cached"] = False
+        atomic_write(cache_file(c), json.dumps({"key": claim_key(c), "id": c.id, "outcome": d}, indent=1,
+                                               default=str))
+    except (OSError, ValueError):
+        pass

@@ -49,9 +49,11 @@ class Walkthrough:
                     print(obj)
 
     def show(self, *claim_ids: str) -> None:
-        """Run the claims (registry ids) and display their results."""
+        """Run the claims (registry ids; cached outcomes are reused) and display their results."""
+        from .runner import run
+
         for cid in claim_ids:
-            r = REGISTRY[cid].result()
+            r = run([REGISTRY[cid]], manifest=False)[0]
             self.shown[cid] = r.status
             self.display(r)
 

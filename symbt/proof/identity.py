@@ -54,6 +54,7 @@ Example
 from __future__ import annotations
 
 import html
+import numbers
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -273,6 +274,59 @@ def normalize_relations(relations) -> dict[sp.Symbol, sp.Expr]:
     return out
 
 
+# --------------------------------------------------------------------------- argument checks
+
+def _positive_int(name: str, value: Any) -> None:
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"check_identity: {name} must be an int, not {type(value).__name__} ({value!r})")
+    if value <= 0:
+        raise ValueError(f"check_identity: {name} must be positive, got {value}")
+
+
+def _validate(*, digits, points, seed, exact, fixed, assumptions, relations) -> None:
+    """Clear ``TypeError`` / ``ValueError`` for arguments the deciders would misread.
+
+    >>> _validate(digits=0, points=8, seed=1, exact=True, fixed=None, assumptions=None, relations=None)
+    Traceback (most recent call last):
+    ...
+    ValueError: check_identity: digits must be positive, got 0
+    """
+    _positive_int("digits", digits)
+    _positive_int("points", points)
+    if isinstance(seed, bool) or not isinstance(seed, numbers.Integral):
+        raise TypeError(f"check_identity: seed must be an int, not {type(seed).__name__} ({seed!r})")
+    if not isinstance(exact, bool):
+        raise TypeError(f"check_identity: exact must be True or False, not {exact!r}")
+    for name, value in (("fixed", fixed), ("assumptions", assumptions)):
+        if value is not None and not isinstance(value, Mapping):
+            raise TypeError(f"check_identity: {name} must be a dict, not {type(value).__name__}")
+    if assumptions:
+        for key, extra in assumptions.items():
+            if not isinstance(extra, Mapping):
+                raise TypeError(f"check_identity: assumptions[{key!r}] must be a dict such as "
+                                f"{{'positive': True}}, not {extra!r}")
+    if relations is not None and (isinstance(relations, (str, bytes))
+                                  or not isinstance(relations, (Mapping, Iterable, sp.Basic))):
+        raise TypeError(f"check_identity: relations must be a dict, a list or an Eq, not {type(relations).__name__}")
+
+
+def _expr(name: str, value: Any):
+    """``value`` as a SymPy expression or matrix; ``TypeError`` for what SymPy cannot read."""
+    if isinstance(value, sp.MatrixBase):
+        return value
+    unreadable = value is None or isinstance(value, (bytes, bytearray, set, frozenset, dict))
+    if unreadable or (callable(value) and not isinstance(value, sp.Basic)):
+        raise TypeError(f"check_identity: {name} must be a SymPy expression, number or matrix, "
+                        f"not {type(value).__name__}")
+    try:
+        return sp.sympify(value, strict=not isinstance(value, str))
+    except (sp.SympifyError, TypeError, ValueError) as exc:
+        if isinstance(value, str):
+            raise ValueError(f"check_identity: cannot parse {name} {value!r}: {exc}") from exc
+        raise TypeError(f"check_identity: {name} must be a SymPy expression, number or matrix, "
+                        f"not {type(value).__name__} ({value!r})") from exc
+
+
 # --------------------------------------------------------------------------- entry point
 
 def check_identity(lhs, rhs=0, *, relations=None, assumptions=None, digits: int = 50,
@@ -286,13 +340,19 @@ def check_identity(lhs, rhs=0, *, relations=None, assumptions=None, digits: int 
     and ``points``: precision and number of random points of the numeric
     screen; ``seed`` makes it reproducible.  ``exact=False`` skips the exact
     layer; ``fixed`` pins symbols to values in the numeric screen.
+
+    Arguments are checked first: ``digits``, ``points`` and ``seed`` must be
+    integers (``digits`` and ``points`` positive), ``exact`` a bool, ``fixed`` and
+    ``assumptions`` dicts, and the sides something SymPy can read; otherwise
+    ``TypeError`` or ``ValueError`` says which argument is wrong.
     """
+    _validate(digits=digits, points=points, seed=seed, exact=exact, fixed=fixed, assumptions=assumptions,
+              relations=relations)
     if isinstance(lhs, sp.Equality):
         if not (isinstance(rhs, (int, float)) and rhs == 0):
             raise ValueError("give either an Eq or lhs and rhs, not both")
         lhs, rhs = lhs.lhs, lhs.rhs
-    lhs = lhs if isinstance(lhs, sp.MatrixBase) else sp.sympify(lhs)
-    rhs = rhs if isinstance(rhs, sp.MatrixBase) else sp.sympify(rhs)
+    lhs, rhs = _expr("lhs", lhs), _expr("rhs", rhs)
     rel_raw = normalize_relations(relations)
     if isinstance(lhs, sp.MatrixBase) != isinstance(rhs, sp.MatrixBase):
         if isinstance(lhs, sp.MatrixBase) and rhs == 0:

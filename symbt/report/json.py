@@ -1,26 +1,70 @@
-"""The JSON report (``symbt verify --json FILE``).
+"""The JSON report (``symbt verify --json FILE``, or ``--json -`` for stdout).
 
-Schema::
+The document validates against the JSON Schema shipped with the package,
+``symbt/report/verify.schema.json`` (:func:`schema`); ``schema_version``
+changes its major number when a field is removed or changes meaning, its minor
+number when a field is added::
 
-    {"claims": [{"id", "equation", "scene", "N", "statement", "where",
-                 "status", "method", "seconds", "residual", "digits",
-                 "printed", "corrected", "counterexample", "detail", "cached"}, ...],
-     "summary": {"total", "verified", "erratum", "failed", "skipped",
-                 "seconds", "ok"}}
+    {"schema_version": "1.0", "generator": "symbt 0.1.0",
+     "claims": [{"id", "equation", "scene", "N", "statement", "where",
+                 "status", "evidence", "method", "seconds", "residual", "digits",
+                 "printed", "corrected", "counterexample", "scope", "n_scope", "cells",
+                 "detail", "cached"}, ...],
+     "summary": {"total", "verified", "erratum", "failed", "skipped", "seconds", "ok"}}
+
+Non-finite numbers (a residual of ``inf``) are written as the strings ``"inf"``,
+``"-inf"``, ``"nan"`` (JSON has no such numbers); anything else that is not
+JSON (e.g. a SymPy number in a counterexample) as its ``str``.
+
+>>> from symbt.claims.base import Claim, ClaimResult, Outcome
+>>> r = ClaimResult(Claim("t", "eq", "s", check=None), Outcome("failed", "numeric", residual=float("inf")))
+>>> doc = to_json([r])
+>>> doc["schema_version"], doc["claims"][0]["residual"], doc["summary"]["ok"]
+('1.0', 'inf', False)
 """
 from __future__ import annotations
 
 import json
+import math
+from pathlib import Path
+from typing import Any
 
+from .. import __version__
 from .._files import atomic_write
 from .text import summary
 
-__all__ = ["to_json", "write_json"]
+__all__ = ["SCHEMA_VERSION", "SCHEMA_PATH", "schema", "to_json", "dumps", "write_json"]
+
+SCHEMA_VERSION = "1.0"
+SCHEMA_PATH = Path(__file__).with_name("verify.schema.json")
+
+
+def schema() -> dict:
+    """The JSON Schema (draft 2020-12) of the report."""
+    return json.loads(SCHEMA_PATH.read_text(encoding="utf-8"))
+
+
+def _plain(x: Any) -> Any:
+    if isinstance(x, float) and not math.isfinite(x):
+        return "nan" if math.isnan(x) else ("inf" if x > 0 else "-inf")
+    if isinstance(x, dict):
+        return {str(k): _plain(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_plain(v) for v in x]
+    if x is None or isinstance(x, (str, bool, int, float)):
+        return x
+    return str(x)
 
 
 def to_json(results) -> dict:
-    return {"claims": [r.to_dict() for r in results], "summary": summary(results)}
+    """The report as a JSON-ready dict."""
+    return _plain({"schema_version": SCHEMA_VERSION, "generator": f"symbt {__version__}",
+                   "claims": [r.to_dict() for r in results], "summary": summary(results)})
+
+
+def dumps(results) -> str:
+    return json.dumps(to_json(results), indent=2, allow_nan=False) + "\n"
 
 
 def write_json(results, path) -> None:
-    atomic_write(path, json.dumps(to_json(results), indent=2, default=str) + "\n")
+    atomic_write(path, dumps(results))

@@ -1,43 +1,67 @@
-"""JUnit XML: one ``<testcase>`` per claim, for CI systems."""
+"""JUnit XML: one ``<testcase>`` per claim, for CI systems.
+
+Text that XML 1.0 forbids (control characters other than tab, newline and
+carriage return; lone surrogates; U+FFFE, U+FFFF) is written as ``\\xNN`` /
+``\\uNNNN`` escapes, so a claim's detail can never make the file unreadable.
+
+>>> xml_safe("bell\\x07 and nul\\x00, tab\\t kept")
+'bell\\\\x07 and nul\\\\x00, tab\\t kept'
+"""
 from __future__ import annotations
 
 import json
+import re
 import xml.etree.ElementTree as ET
 
 from .._files import atomic_write
-from .text import residual_text, summary
+from .text import evidence_text, residual_text, summary
 
-__all__ = ["write_junit"]
+__all__ = ["write_junit", "junit_xml", "xml_safe"]
+
+_FORBIDDEN = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 
 
-def write_junit(results, path, *, suite: str = "symbt.verify") -> None:
-    """JUnit XML: one testcase per claim; ``failed`` -> <failure>, ``skipped`` -> <skipped>.
+def xml_safe(text) -> str:
+    """``text`` with every character XML 1.0 forbids replaced by a visible escape."""
+    s = "" if text is None else str(text)
+    return _FORBIDDEN.sub(lambda m: f"\\x{ord(m.group()):02x}" if ord(m.group()) < 0x100
+                          else f"\\u{ord(m.group()):04x}", s)
+
+
+def junit_xml(results, *, suite: str = "symbt.verify") -> str:
+    """JUnit XML text: one testcase per claim; ``failed`` -> <failure>, ``skipped`` -> <skipped>.
 
     Errata are passing test cases (the paper is wrong, the package is right);
-    their printed/corrected statements go to ``system-out``.
+    their printed/corrected statements and scope go to ``system-out``.
     """
     s = summary(results)
-    ts = ET.Element("testsuite", name=suite, tests=str(s["total"]), failures=str(s["failed"]),
+    ts = ET.Element("testsuite", name=xml_safe(suite), tests=str(s["total"]), failures=str(s["failed"]),
                     errors="0", skipped=str(s["skipped"]), time=f"{s['seconds']:.3f}")
     for r in results:
         o = r.outcome
-        tc = ET.SubElement(ts, "testcase", classname=f"symbt.{r.claim.scene}", name=r.claim.id,
-                           time=f"{o.seconds:.3f}")
-        info = [f"equation: {r.claim.equation}", f"status: {o.status}", f"method: {o.method}",
-                f"residual: {residual_text(o)}"]
+        tc = ET.SubElement(ts, "testcase", classname=xml_safe(f"symbt.{r.claim.scene}"), name=xml_safe(r.claim.id),
+                           time=f"{o.seconds or 0:.3f}")
+        info = [f"equation: {r.claim.equation}", f"status: {o.status}", f"evidence: {evidence_text(o)}",
+                f"method: {o.method}", f"residual: {residual_text(o)}"]
         if o.printed:
             info.append(f"printed: {o.printed}")
         if o.corrected:
             info.append(f"corrected: {o.corrected}")
+        if o.scope:
+            info.append(f"scope: {o.scope}")
         if o.counterexample:
-            info.append(f"counterexample: {json.dumps(o.counterexample)}")
+            info.append(f"counterexample: {json.dumps(o.counterexample, default=str)}")
         if o.status == "failed":
-            f = ET.SubElement(tc, "failure", message=f"{r.claim.id} (eq. {r.claim.equation}) failed")
-            f.text = "\n".join(info + [o.detail])
+            f = ET.SubElement(tc, "failure", message=xml_safe(f"{r.claim.id} (eq. {r.claim.equation}) failed"))
+            f.text = xml_safe("\n".join(info + [o.detail or ""]))
         elif o.status == "skipped":
-            ET.SubElement(tc, "skipped", message=o.detail or "skipped")
-        ET.SubElement(tc, "system-out").text = "\n".join(info)
+            ET.SubElement(tc, "skipped", message=xml_safe(o.detail or "skipped"))
+        ET.SubElement(tc, "system-out").text = xml_safe("\n".join(info))
     suites = ET.Element("testsuites")
     suites.append(ts)
     ET.indent(suites)
-    atomic_write(path, '<?xml version="1.0" encoding="utf-8"?>\n' + ET.tostring(suites, encoding="unicode") + "\n")
+    return '<?xml version="1.0" encoding="utf-8"?>\n' + ET.tostring(suites, encoding="unicode") + "\n"
+
+
+def write_junit(results, path, *, suite: str = "symbt.verify") -> None:
+    atomic_write(path, junit_xml(results, suite=suite))

@@ -1,16 +1,23 @@
 """A Markdown table of claim results (the README's claim table)."""
 from __future__ import annotations
 
-from .text import residual_text, short_method
+from .text import evidence_text, residual_text, short_method
 
 __all__ = ["format_markdown"]
 
 
 def format_markdown(results) -> str:
-    """A Markdown table of the results (used for the README's claim table)."""
-    lines = ["| claim | equation | status | method | residual |", "|---|---|---|---|---|"]
+    """A Markdown table of the results (used for the README's claim table).
+
+    >>> from symbt.claims.base import Claim, ClaimResult, Outcome
+    >>> r = ClaimResult(Claim("t", "a|b", "s", check=None), Outcome("verified", "exact", 0.0, evidence="proof"))
+    >>> print(format_markdown([r]).splitlines()[-1])
+    | `t` | `a\\|b` | verified | proof | exact | 0 (exact) |
+    """
+    lines = ["| claim | equation | status | evidence | method | residual |", "|---|---|---|---|---|---|"]
     for r in results:
         o = r.outcome
         eq = r.claim.equation.replace("|", "\\|")
-        lines.append(f"| `{r.claim.id}` | `{eq}` | {o.status} | {short_method(o.method)} | {residual_text(o)} |")
+        lines.append(f"| `{r.claim.id}` | `{eq}` | {o.status} | {evidence_text(o)} | "
+                     f"{short_method(o.method).replace('|', '/')} | {residual_text(o)} |")
     return "\n".join(lines) + "\n"

@@ -1,33 +1,63 @@
-"""The terminal report: a table of claim results, the summary, the errata."""
+"""The terminal report: a short report (default), the full table (``-v``), the summary lines.
+
+Every reporter tolerates outcomes with missing values (no evidence, no scope,
+no residual): a missing value prints as ``-`` or is left out.
+
+>>> from symbt.claims.base import Claim, ClaimResult, Outcome
+>>> r = ClaimResult(Claim("t", "eq", "s", check=None, scene="demo"), Outcome("verified", "exact", 0.0))
+>>> print(format_short([r]))
+demo    1 claim: 1 verified
+<BLANKLINE>
+1 claim: 1 verified, 0 errata, 0 failed, 0 skipped -- ok
+"""
 from __future__ import annotations
 
-__all__ = ["summary", "format_table", "residual_text", "short_method", "result_text", "point_text"]
+__all__ = ["summary", "summary_lines", "format_short", "format_table", "residual_text", "short_method",
+           "result_text", "point_text", "evidence_text"]
 
 
 def summary(results) -> dict:
-    s = {k: 0 for k in ("verified", "erratum", "failed", "skipped")}
+    """Counts by status, ``total``, ``seconds`` (sum of the checks' times) and ``ok`` (no claim failed)."""
+    s: dict = {k: 0 for k in ("verified", "erratum", "failed", "skipped")}
     for r in results:
         s[r.outcome.status] += 1
     s["total"] = len(results)
-    s["seconds"] = round(sum(r.outcome.seconds for r in results), 3)
+    s["seconds"] = round(sum(r.outcome.seconds or 0.0 for r in results), 3)
     s["ok"] = s["failed"] == 0
     return s
+
+
+def _plural(n: int, word: str) -> str:
+    return f"{n} {word}" + ("" if n == 1 else "s")
+
+
+def _errata(n: int) -> str:
+    return f"{n} errat{'um' if n == 1 else 'a'}"
 
 
 def residual_text(out) -> str:
     if out.status == "skipped":
         return "-"
-    if out.method.startswith("exact") and not out.residual:
+    if (out.method or "").startswith("exact") and not out.residual:
         return "0 (exact)"
     if out.residual is None:
         return "-"
-    txt = f"{out.residual:.1e}"
+    try:
+        txt = f"{out.residual:.1e}"
+    except (TypeError, ValueError):
+        return str(out.residual)
     if out.digits is not None and out.status == "verified":
         txt += f" ({out.digits:.0f} dig)"
     return txt
 
 
-def short_method(m: str) -> str:
+def evidence_text(out) -> str:
+    """``proof`` / ``certified`` / ``sampled``, or ``-`` when the outcome does not say."""
+    return getattr(out, "evidence", None) or "-"
+
+
+def short_method(m: str | None) -> str:
+    m = m or ""
     if m.startswith("printed:"):
         corr = m.split("| corrected:", 1)[-1].strip()
         return "corrected by " + short_method(corr)
@@ -35,40 +65,6 @@ def short_method(m: str) -> str:
         return ("exact" + (" +relations" if "remainder mod" in m else "") + (" (E=e^q)" if "exp->" in m else "")
                 + (" + numeric" if "; numeric:" in m else ""))
     return m.split(";")[0][:40]
-
-
-def format_table(results, *, width: int = 0) -> str:
-    rows = [("claim", "equation", "status", "method", "residual", "time")]
-    for r in results:
-        o = r.outcome
-        t = f"{o.seconds:.2f}s" + (" (cache)" if o.cached else "")
-        rows.append((r.claim.id, r.claim.equation, o.status, short_method(o.method), residual_text(o), t))
-    widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
-    lines = []
-    for k, row in enumerate(rows):
-        lines.append("  ".join(cell.ljust(widths[i]) for i, cell in enumerate(row)).rstrip())
-        if k == 0:
-            lines.append("  ".join("-" * w for w in widths))
-    s = summary(results)
-    lines.append("")
-    lines.append(f"{s['total']} claims: {s['verified']} verified, {s['erratum']} erratum, "
-                 f"{s['failed']} failed, {s['skipped']} skipped ({s['seconds']:.1f}s of checks)")
-    errata = [r for r in results if r.outcome.status in ("erratum", "failed")]
-    for r in errata:
-        o = r.outcome
-        lines.append("")
-        lines.append(f"[{o.status}] {r.claim.id} (eq. {r.claim.equation})")
-        if o.printed:
-            lines.append(f"  printed:   {o.printed}")
-        if o.corrected:
-            lines.append(f"  corrected: {o.corrected}")
-        if o.counterexample:
-            pt = ", ".join(f"{k}={v}" for k, v in list(o.counterexample.items())[:8])
-            lines.append(f"  counterexample: {pt}  (residual {o.residual:.3g})" if o.residual is not None
-                         else f"  counterexample: {pt}")
-        if o.detail:
-            lines.append("  " + o.detail.strip().splitlines()[0][:300])
-    return "\n".join(lines)
 
 
 def point_text(point, limit: int = 12) -> str:
@@ -80,17 +76,118 @@ def point_text(point, limit: int = 12) -> str:
     return txt + (", ..." if len(items) > limit else "")
 
 
+def _first_line(text: str | None, limit: int = 200) -> str:
+    lines = (text or "").strip().splitlines()
+    return lines[0][:limit] if lines else ""
+
+
+def summary_lines(results, *, wall: float | None = None) -> list[str]:
+    """The last lines of every terminal report: the counts, then time and cache use."""
+    s = summary(results)
+    verdict = "ok" if s["ok"] else "FAILED"
+    lines = [f"{_plural(s['total'], 'claim')}: {s['verified']} verified, {_errata(s['erratum'])}, "
+             f"{s['failed']} failed, {s['skipped']} skipped -- {verdict}"]
+    if wall is not None:
+        cached = sum(1 for r in results if r.outcome.cached)
+        lines.append(f"wall time {wall:.2f}s ({cached} of {s['total']} from the cache; "
+                     f"{s['seconds']:.1f}s of checks)")
+    return lines
+
+
+def _claim_line(r, width: int = 0) -> list[str]:
+    """One line for a claim that is not plainly verified (failed ones get their evidence below it)."""
+    c, o = r.claim, r.outcome
+    head = f"{o.status:8s} {c.id.ljust(width)}  eq. {c.equation}"
+    if o.status == "skipped":
+        return [f"{head}: {_first_line(o.detail) or 'no reason given'}"]
+    if o.status == "erratum":
+        scope = (o.scope or "").strip()
+        what = f"printed fails (residual {residual_text(o)}), corrected holds [{evidence_text(o)}]"
+        return [f"{head}: {what}" + (f"; {scope}" if scope else "")]
+    lines = [f"{head}: FAILED, residual {residual_text(o)} [{evidence_text(o)}]"]
+    if o.counterexample:
+        lines.append(f"    counterexample: {point_text(o.counterexample, limit=8)}")
+    if o.detail:
+        lines.append(f"    {_first_line(o.detail, 300)}")
+    return lines
+
+
+def format_short(results, *, wall: float | None = None) -> str:
+    """The default report: one line per scene, one per claim that is not verified, then the summary."""
+    scenes: dict[str, dict[str, int]] = {}
+    for r in results:
+        counts = scenes.setdefault(r.claim.scene, {})
+        counts[r.outcome.status] = counts.get(r.outcome.status, 0) + 1
+    width = max((len(s) for s in scenes), default=0)
+    lines = []
+    for name, counts in scenes.items():
+        total = sum(counts.values())
+        parts = [(_errata(counts[k]) if k == "erratum" else f"{counts[k]} {k}")
+                 for k in ("verified", "erratum", "failed", "skipped") if counts.get(k)]
+        lines.append(f"{name.ljust(width)}  {_plural(total, 'claim').rjust(9)}: {', '.join(parts)}")
+    odd = [r for r in results if r.outcome.status != "verified"]
+    if odd:
+        lines.append("")
+    width = max((len(r.claim.id) for r in odd), default=0)
+    for r in sorted(odd, key=lambda r: ("failed", "erratum", "skipped").index(r.outcome.status)):
+        lines.extend(_claim_line(r, width))
+    lines.append("")
+    lines.extend(summary_lines(results, wall=wall))
+    return "\n".join(lines)
+
+
+def format_table(results, *, wall: float | None = None) -> str:
+    """The full report (``symbt verify -v``): every claim, the errata and failures in full, the summary."""
+    rows = [("claim", "equation", "status", "evidence", "method", "residual", "time")]
+    for r in results:
+        o = r.outcome
+        t = f"{o.seconds or 0:.2f}s" + (" (cache)" if o.cached else "")
+        rows.append((r.claim.id, r.claim.equation, o.status, evidence_text(o), short_method(o.method),
+                     residual_text(o), t))
+    widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
+    lines = []
+    for k, row in enumerate(rows):
+        lines.append("  ".join(cell.ljust(widths[i]) for i, cell in enumerate(row)).rstrip())
+        if k == 0:
+            lines.append("  ".join("-" * w for w in widths))
+    for r in results:
+        o = r.outcome
+        if o.status == "verified":
+            continue
+        lines.append("")
+        lines.append(f"[{o.status}] {r.claim.id} (eq. {r.claim.equation})")
+        if o.status == "skipped":
+            lines.append(f"  reason: {_first_line(o.detail, 300) or 'no reason given'}")
+            continue
+        if o.printed:
+            lines.append(f"  printed:   {o.printed}")
+        if o.corrected:
+            lines.append(f"  corrected: {o.corrected}")
+        if o.scope:
+            lines.append(f"  scope:     {o.scope}")
+        if o.counterexample:
+            res = f"  (residual {o.residual:.3g})" if isinstance(o.residual, (int, float)) else ""
+            lines.append(f"  counterexample: {point_text(o.counterexample, limit=8)}{res}")
+        if o.detail:
+            lines.append("  " + _first_line(o.detail, 300))
+    lines.append("")
+    lines.extend(summary_lines(results, wall=wall))
+    return "\n".join(lines)
+
+
 def result_text(result) -> str:
     """Plain-text rendering (terminal): status, id, label, statement, errata details."""
     c, o = result.claim, result.outcome
     lines = [f"[{o.status}] {c.id} (eq. {c.equation}): {c.statement}",
-             f"    method: {o.method}; residual {residual_text(o)}"]
+             f"    method: {o.method}; residual {residual_text(o)}; evidence {evidence_text(o)}"]
     if o.printed:
         lines.append(f"    printed:   {o.printed}")
     if o.corrected:
         lines.append(f"    corrected: {o.corrected}")
+    if o.scope:
+        lines.append(f"    scope:     {o.scope}")
     if o.counterexample:
         lines.append(f"    counterexample: {point_text(o.counterexample, limit=8)}")
-    if o.status == "failed" and o.detail:
-        lines.append(f"    detail: {o.detail.strip().splitlines()[0]}")
+    if o.status in ("failed", "skipped") and o.detail:
+        lines.append(f"    {'detail' if o.status == 'failed' else 'reason'}: {_first_line(o.detail, 300)}")
     return "\n".join(lines)

@@ -1,0 +1,15 @@
+"""The unit of work shipped to a worker process or a Dask worker: one claim, by id."""
+from __future__ import annotations
+
+__all__ = ["run_claim"]
+
+
+def run_claim(claim_id: str) -> dict:
+    """Run one registered claim (loading the claim modules once per worker); its outcome as a dict.
+
+    Plain data in and out, so it pickles to any worker.
+    """
+    from ..claims import REGISTRY, load_all
+
+    load_all()
+    return REGISTRY[claim_id].run().to_dict()

@@ -1,0 +1,147 @@
+"""The warm path: report cached outcomes without importing the claims (no SymPy, NumPy, mpmath).
+
+After every run the engine writes a *manifest* into the cache directory: the
+claims' metadata (id, equation, statement, scene, N, ...; scenes and their
+descriptions) and each claim's cache key, stamped with a digest of the bytes of
+every source file of the package and the library versions
+(:func:`~symbt.engine.cache.library_versions`, read from metadata).  A later run
+hashes the sources again -- bytes only, nothing is imported -- and, if the
+manifest's stamp matches and every selected claim has a cache entry with the
+manifest's key, reports from those entries.  Anything else (a changed source
+file, a missing or stale entry, a claim that was skipped) returns ``None`` and
+the caller takes the normal path, which recomputes only what changed and writes
+a fresh manifest.
+
+A claim whose optional ``requires`` module is missing (checked with
+:func:`importlib.util.find_spec`, which imports nothing) is reported
+``skipped`` exactly as :meth:`Claim.run <symbt.claims.Claim.run>` would.
+"""
+from __future__ import annotations
+
+import hashlib
+import importlib.util
+import json
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from .._files import atomic_write
+from ..claims.base import Claim, ClaimResult, skipped
+from .cache import cache_dir, cache_file, library_versions, read_entry
+from .select import choose
+
+__all__ = ["source_digest", "manifest_path", "write_manifest", "read_manifest", "cached_results",
+           "scene_listing"]
+
+FORMAT = 1
+_PKG = Path(__file__).resolve().parent.parent
+_META = ("id", "equation", "statement", "scene", "N", "where", "deep", "requires", "source_equation")
+
+
+def source_digest() -> str:
+    """SHA-256 of the package's source files (paths and bytes), the library versions and the format."""
+    h = hashlib.sha256(f"symbt-manifest-{FORMAT}\0{library_versions()}\0".encode())
+    for f in sorted(_PKG.rglob("*.py")):
+        if "__pycache__" in f.parts:
+            continue
+        h.update(f.relative_to(_PKG).as_posix().encode() + b"\0")
+        h.update(f.read_bytes())
+    return h.hexdigest()
+
+
+def manifest_path() -> Path:
+    return cache_dir() / "manifest.json"
+
+
+def _packaged(c: Claim) -> bool:
+    """Only the package's own claims go into the manifest (not ones a test registered on the fly)."""
+    from ..claims import CLAIM_MODULES
+
+    fn = c.func or getattr(c.check, "func", c.check)
+    mod = getattr(fn, "__module__", None) or ""
+    return mod in {f"symbt.claims.{m}" for m in CLAIM_MODULES}
+
+
+def write_manifest() -> None:
+    """Record every registered claim of the package with its key (after :func:`load_all`)."""
+    from ..claims import REGISTRY, SCENES, load_all
+    from .cache import claim_key
+
+    load_all()
+    claims = [c for c in REGISTRY.values() if _packaged(c)]
+    data = {"format": FORMAT, "digest": source_digest(),
+            "claims": [{**{k: (list(getattr(c, k)) if k == "requires" else getattr(c, k)) for k in _META},
+                        "key": claim_key(c)} for c in claims],
+            "scenes": {s: {"description": m.get("description", ""), "deep": bool(m.get("deep"))}
+                       for s, m in SCENES.items() if any(c.scene == s for c in claims)}}
+    text = json.dumps(data, indent=0, sort_keys=True)
+    path = manifest_path()
+    try:
+        if path.is_file() and path.read_text(encoding="utf-8") == text:
+            return
+        cache_dir().mkdir(parents=True, exist_ok=True)
+        atomic_write(path, text)
+    except OSError:
+        pass  # a read-only cache is no error
+
+
+def _not_loaded() -> Any:  # pragma: no cover - a warm claim is never run
+    raise RuntimeError("claim metadata from the manifest; load the claims to run it")
+
+
+def read_manifest() -> tuple[list[Claim], dict[str, dict], dict[str, str]] | None:
+    """``(claims, scenes, keys)`` from a manifest that matches the current sources, else ``None``."""
+    try:
+        data = json.loads(manifest_path().read_bytes())
+        if not isinstance(data, dict) or data.get("format") != FORMAT or data.get("digest") != source_digest():
+            return None
+        claims, keys = [], {}
+        for d in data["claims"]:
+            meta = {k: d[k] for k in _META}
+            meta["requires"] = tuple(meta["requires"])
+            claims.append(Claim(check=_not_loaded, **meta))
+            keys[d["id"]] = str(d["key"])
+        scenes = {str(k): dict(v) for k, v in data["scenes"].items()}
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        return None
+    return claims, scenes, keys
+
+
+def cached_results(names: Sequence[str] | None = None, *, deep: bool = False) -> list[ClaimResult] | None:
+    """Every selected claim's result from the cache, or ``None`` if any is missing or stale.
+
+    ``None`` also for a name the manifest does not know (the caller's normal path
+    decides: a claim registered outside the package, or an unknown name).
+    """
+    m = read_manifest()
+    if m is None:
+        return None
+    claims, scenes, keys = m
+    try:
+        chosen = choose(claims, scenes, names, include_deep=deep)
+    except KeyError:
+        return None
+    if not chosen:
+        return None
+    out = []
+    for c in chosen:
+        if any("." in r for r in c.requires):
+            return None  # find_spec of a submodule would import its parent
+        missing = [r for r in c.requires if importlib.util.find_spec(r) is None]
+        o = (skipped(f"optional dependency missing: {', '.join(missing)}") if missing
+             else read_entry(cache_file(c), keys[c.id]))
+        if o is None:
+            return None
+        out.append(ClaimResult(c, o))
+    return out
+
+
+def scene_listing() -> tuple[list[Claim], dict[str, dict]]:
+    """Claims and scenes from the manifest if current, else by loading the claim modules."""
+    m = read_manifest()
+    if m is not None:
+        return m[0], m[1]
+    from ..claims import REGISTRY, SCENES, load_all
+
+    load_all()
+    return list(REGISTRY.values()), dict(SCENES)

@@ -1,0 +1,183 @@
+"""pytest plugin (entry point ``pytest11``, name ``symbt``): the paper's claims as test items.
+
+``pytest --symbt`` adds one test item per claim to the session (after your own
+tests), with the claim cache of ``symbt verify``:
+
+* ``verified`` -> passes;
+* ``erratum`` -> passes (the paper is wrong, the corrected statement holds); the
+  printed and corrected statements and the scope are recorded as the item's
+  user properties (``--junitxml`` writes them as ``<property>``) and listed in a
+  "symbt errata" section of the terminal summary;
+* ``failed`` -> fails, with the statement, counterexample and residual;
+* ``skipped`` -> skipped with its reason (e.g. an optional extra is missing).
+
+Options: ``--symbt-scene NAME`` (repeatable; a scene, claim id or ``nK``),
+``--symbt-deep`` (add the minutes-long claims), ``--symbt-no-cache``; each of them
+implies ``--symbt``.  Items are named ``symbt/<scene>::<claim id>`` and match
+``-k`` on the claim id, the scene and the equation label, and ``-m symbt``; ``-x``,
+``--junitxml`` and pytest-xdist's ``-n`` work as for any test.
+
+Without these options the plugin does nothing but offer the ``symbt_identity``
+fixture (:func:`symbt.testing.assert_identity`, imported on first use): this
+module imports only pytest and the standard library, so loading it costs nothing.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+import pytest
+
+__all__ = ["symbt_identity"]
+
+
+def pytest_addoption(parser: pytest.Parser) -> None:
+    g = parser.getgroup("symbt", "symbt: the paper's claims as test items")
+    g.addoption("--symbt", action="store_true", default=False, help="collect symbt's claims as test items")
+    g.addoption("--symbt-scene", action="append", default=None, metavar="NAME",
+                help="only this scene / claim id / nK (repeatable; implies --symbt)")
+    g.addoption("--symbt-deep", action="store_true", default=False,
+                help="include the minutes-long deep claims (implies --symbt)")
+    g.addoption("--symbt-no-cache", action="store_true", default=False,
+                help="recompute every claim (implies --symbt)")
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    opt = config.getoption
+    if opt("symbt") or opt("symbt_scene") or opt("symbt_deep") or opt("symbt_no_cache"):
+        config.addinivalue_line("markers", "symbt: a claim of symbt (added by pytest --symbt)")
+        config.pluginmanager.register(_SymbtSession(config), "symbt-session")
+
+
+@pytest.fixture
+def symbt_identity():
+    """:func:`symbt.testing.assert_identity`: ``symbt_identity(lhs, rhs=0, **kw)`` asserts an identity.
+
+    Raises ``AssertionError`` with the statement, the relative residual and a
+    counterexample when it is false; returns the ``IdentityResult`` otherwise.
+    """
+    from symbt.testing import assert_identity
+
+    return assert_identity
+
+
+class ClaimFailed(Exception):
+    """A claim's check failed; the message carries the counterexample and residual."""
+
+
+def _failure_message(claim: Any, out: Any) -> str:
+    from symbt.report.text import point_text, residual_text
+
+    lines = [f"claim {claim.id} (eq. {claim.equation}) failed: {claim.statement}",
+             f"  residual:  {residual_text(out)}",
+             f"  method:    {out.method}",
+             f"  evidence:  {out.evidence or '-'}"]
+    if out.counterexample:
+        lines.append(f"  counterexample: {point_text(out.counterexample, limit=20)}")
+    if out.printed:
+        lines.append(f"  printed:   {out.printed}")
+    if out.corrected:
+        lines.append(f"  corrected: {out.corrected}")
+    if out.detail:
+        lines.append("  detail:\n    " + "\n    ".join(out.detail.strip().splitlines()))
+    return "\n".join(lines)
+
+
+class ClaimItem(pytest.Item):
+    """One claim as a test item."""
+
+    def __init__(self, *, claim: Any, outcome: Any = None, use_cache: bool = True, **kw: Any):
+        super().__init__(**kw)
+        self.claim = claim
+        self._outcome = outcome  # known from the cache at collection (warm path)
+        self._use_cache = use_cache
+        self.add_marker("symbt")
+        self.extra_keyword_matches.update({claim.scene, claim.equation})
+
+    def runtest(self) -> None:
+        out = self._outcome
+        if out is None:
+            from symbt.claims import REGISTRY, load_all
+            from symbt.engine.runner import run
+
+            load_all()
+            out = run([REGISTRY[self.claim.id]], use_cache=self._use_cache, manifest=False)[0].outcome
+        props = [("symbt_status", out.status), ("symbt_evidence", out.evidence or "-"),
+                 ("symbt_method", out.method), ("symbt_residual", repr(out.residual)),
+                 ("symbt_cached", str(bool(out.cached)).lower())]
+        if out.status == "erratum":
+            props += [("symbt_printed", out.printed or ""), ("symbt_corrected", out.corrected or ""),
+                      ("symbt_scope", out.scope or ""), ("symbt_equation", self.claim.equation)]
+        self.user_properties.extend(props)
+        if out.status == "skipped":
+            pytest.skip(f"{self.claim.id}: {(out.detail or 'skipped').strip()}")
+        if out.status == "failed":
+            raise ClaimFailed(_failure_message(self.claim, out))
+
+    def repr_failure(self, excinfo, style=None):
+        if isinstance(excinfo.value, ClaimFailed):
+            return str(excinfo.value)
+        return super().repr_failure(excinfo, style=style)
+
+    def reportinfo(self):
+        return self.path, None, f"symbt claim {self.claim.id} (eq. {self.claim.equation})"
+
+
+class _SymbtSession:
+    """Active only with ``--symbt``: adds the items, collects the errata for the summary."""
+
+    def __init__(self, config: pytest.Config):
+        self.config = config
+        self.errata: list[dict[str, str]] = []
+
+    @pytest.hookimpl(tryfirst=True)  # before -k / -m deselect
+    def pytest_collection_modifyitems(self, session: pytest.Session, config: pytest.Config,
+                                      items: list[pytest.Item]) -> None:
+        from symbt.engine.warm import cached_results
+
+        names = config.getoption("symbt_scene")
+        deep = config.getoption("symbt_deep")
+        use_cache = not config.getoption("symbt_no_cache")
+        warm = cached_results(names, deep=deep) if use_cache else None
+        pairs: list[tuple[Any, Any]]
+        if warm is not None:
+            pairs = [(r.claim, r.outcome) for r in warm]
+        else:
+            from symbt.engine.select import select
+
+            try:
+                pairs = [(c, None) for c in select(names, include_deep=deep)]
+            except KeyError as exc:
+                raise pytest.UsageError(f"--symbt-scene: {exc.args[0]}") from None
+        new: list[pytest.Item | pytest.Collector] = [
+            ClaimItem.from_parent(session, name=claim.id, nodeid=f"symbt/{claim.scene}::{claim.id}", claim=claim,
+                                  outcome=outcome, use_cache=use_cache)
+            for claim, outcome in pairs]
+        # report them as collected (the terminal's "collected N items", like any collector's items)
+        session.ihook.pytest_collectreport(report=pytest.CollectReport("symbt", "passed", None, new))
+        items.extend(i for i in new if isinstance(i, pytest.Item))
+
+    def pytest_runtest_logreport(self, report: pytest.TestReport) -> None:
+        props = dict(report.user_properties)
+        if report.when == "call" and props.get("symbt_status") == "erratum":
+            self.errata.append({"nodeid": report.nodeid, **{k: str(v) for k, v in props.items()}})
+
+    def pytest_sessionfinish(self, session: pytest.Session) -> None:
+        try:
+            from symbt.engine.runner import refresh_manifest
+
+            refresh_manifest()
+        except Exception:  # pragma: no cover - the cache is an optimisation
+            pass
+
+    def pytest_terminal_summary(self, terminalreporter, exitstatus, config) -> None:
+        if not self.errata:
+            return
+        tr = terminalreporter
+        tr.section(f"symbt errata ({len(self.errata)}): the paper's statement fails, the correction holds")
+        for e in self.errata:
+            cid = e["nodeid"].rpartition("::")[2]
+            tr.write_line(f"{cid} (eq. {e.get('symbt_equation', '?')}) [{e.get('symbt_evidence', '-')}]")
+            tr.write_line(f"    printed:   {e.get('symbt_printed', '')}")
+            tr.write_line(f"    corrected: {e.get('symbt_corrected', '')}")
+            if e.get("symbt_scope"):
+                tr.write_line(f"    scope:     {e['symbt_scope']}")
