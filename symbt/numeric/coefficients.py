@@ -213,12 +213,14 @@ def _gauss_legendre(n: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 def adaptive_panels(rows: Callable[[np.ndarray], np.ndarray], a: float, b: float, rtol: float,
-                    max_intervals: int) -> list[tuple[float, float]]:
+                    max_intervals: int, groups: np.ndarray | None = None) -> list[tuple[float, float]]:
     """Panels of ``[a, b]`` on which 16- and 32-point Gauss--Legendre agree for every row.
 
     ``rows(nodes)`` returns the integrands (rows, nodes), already scaled to O(1) magnitudes;
     it raises :class:`NoRealMapError` where ``|tr| <= 2``.  Agreement is required to ``rtol``
-    relative to ``max(|local integral|, |whole integral| * width share)`` for each row.
+    relative to ``max(|local integral|, scale * width share)``, ``scale`` = the row's whole
+    integral, or the largest whole integral of its group (``groups[row]``: the components of
+    one vector are judged against the vector's size).
     """
     x16, w16 = _gauss_legendre(16)
     x32, w32 = _gauss_legendre(32)
@@ -228,7 +230,7 @@ def adaptive_panels(rows: Callable[[np.ndarray], np.ndarray], a: float, b: float
         return h * (rows(c + h * x32) @ w32), h * (rows(c + h * x16) @ w16)
 
     i32, i16 = rule(a, b)
-    scale = np.abs(i32)
+    scale = _group_scale(np.abs(i32), groups)
     todo = [(a, b, i32, i16)]
     done: list[tuple[float, float]] = []
     n = 1
@@ -247,6 +249,15 @@ def adaptive_panels(rows: Callable[[np.ndarray], np.ndarray], a: float, b: float
         n += 1
     done.sort(key=lambda t: min(t))
     return done
+
+
+def _group_scale(v: np.ndarray, groups: np.ndarray | None) -> np.ndarray:
+    if groups is None:
+        return v
+    out = v.copy()
+    for g in np.unique(groups):
+        out[groups == g] = np.max(v[groups == g])
+    return out
 
 
 def _trace_rows(P: Sequence[float], r: Sequence[float]) -> Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]:
@@ -283,12 +294,16 @@ def _row_scales(P: Sequence[float], r: Sequence[float], a: float, b: float, ks: 
 def flow_quadrature(p: Any, q: Any, lam0: float, mu: float, *, branch: int = 1, rtol: float = 1e-13,
                     max_intervals: int = 4000,
                     extra_rows: Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray] | None = None,
-                    check: bool = True) -> FlowQuadrature:
+                    compress: float | None = None, check: bool = True) -> FlowQuadrature:
     """The float64 quadrature rule behind :func:`flow_coefficients` (single float64 state).
 
     Panels are refined until every ``c_k`` integrand (k = 0..N, scaled) converges; if
-    ``extra_rows(lam, log2_inv, T)`` is given, its rows (already O(1)) must converge too --
-    :mod:`symbt.numeric.field` passes the integrand of the vector field.
+    ``extra_rows(lam, log2_inv, T)`` is given, its rows (O(1), one vector) must converge too --
+    :mod:`symbt.numeric.field` passes the integrand of the vector field.  ``compress`` (a
+    tolerance): replace the composite rule by the smallest single Gauss--Legendre rule on the
+    whole interval (8 to 128 nodes) whose integrals agree with the composite ones to ``compress``
+    (relative; the extra rows as one vector if given -- they define the field --, else every
+    ``c_k``; the composite 32-point panels are far more accurate than their 16-vs-32 estimate).
 
     >>> rule = flow_quadrature([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0)
     >>> [round(float(v), 4) for v in rule.moments(range(3))]
@@ -313,23 +328,37 @@ def flow_quadrature(p: Any, q: Any, lam0: float, mu: float, *, branch: int = 1, 
     E = _row_scales(Pl, r, a, b, ks)
     crow = _c_rows(Pl, r, ks, E)
     trace = _trace_rows(Pl, r)
+    groups = None
     if extra_rows is None:
         rows = crow
     else:
         def rows(lam: np.ndarray) -> np.ndarray:
             l2, T = trace(lam)
             return np.vstack([crow(lam), extra_rows(lam, l2, T)])
+        groups = np.r_[np.arange(N + 1), np.full(rows(np.array([0.5 * (a + b)])).shape[0] - N - 1, -1)]
     with np.errstate(all="ignore"):
-        panels = adaptive_panels(rows, a, b, rtol, max_intervals)
-    x32, w32 = _gauss_legendre(32)
-    lo = np.array([t[0] for t in panels])
-    hi = np.array([t[1] for t in panels])
-    c, h = 0.5 * (lo + hi), 0.5 * (hi - lo)
-    nodes = (c[:, None] + h[:, None] * x32[None, :]).ravel()
-    weights = (h[:, None] * w32[None, :]).ravel()
-    l2, T = trace(nodes)
-    _, e = scaled_trace(nodes, Pl, r)
-    with np.errstate(divide="ignore"):
+        panels = adaptive_panels(rows, a, b, rtol, max_intervals, groups)
+        x32, w32 = _gauss_legendre(32)
+        lo = np.array([t[0] for t in panels])
+        hi = np.array([t[1] for t in panels])
+        c, h = 0.5 * (lo + hi), 0.5 * (hi - lo)
+        nodes = (c[:, None] + h[:, None] * x32[None, :]).ravel()
+        weights = (h[:, None] * w32[None, :]).ravel()
+        if compress is not None:
+            judged = slice(None) if extra_rows is None else slice(N + 1, None)
+            ref = (rows(nodes) @ weights)[judged]
+            scale = _group_scale(np.abs(ref), None if groups is None else groups[judged])
+            for n in (8, 12, 16, 20, 24, 32, 40, 48, 56, 64, 80, 96, 112, 128):
+                if n >= nodes.size:
+                    break
+                x, w = _gauss_legendre(n)
+                nd, wt = 0.5 * (a + b) + 0.5 * (b - a) * x, 0.5 * (b - a) * w
+                if np.all(np.abs((rows(nd) @ wt)[judged] - ref) <= compress * np.maximum(np.abs(ref), scale)):
+                    nodes, weights = nd, wt
+                    panels = [(a, b)]
+                    break
+        l2, T = trace(nodes)
+        _, e = scaled_trace(nodes, Pl, r)
         log2_tr = np.log2(np.abs(T)) + e
     return FlowQuadrature(nodes, weights, l2, log2_tr, branch, N, len(panels))
 
