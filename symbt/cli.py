@@ -96,7 +96,7 @@ def build_parser() -> argparse.ArgumentParser:
     return ap
 
 
-_DELEGATED = {"codegen": "codegen", "bench": "bench", "figures": "report.figures"}
+_DELEGATED = {"codegen": "codegen", "bench": "benchmarks", "figures": "report.figures"}
 
 
 def main(argv=None) -> int:

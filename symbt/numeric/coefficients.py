@@ -441,7 +441,10 @@ def _coefficients_mp(P: list, Q: list, lam0: Any, mu: Any, branch: int, ks: list
         v = memo.get(lam)
         if v is None:
             t, _ = scaled_trace(lam, P, r)
-            v = memo[lam] = 1 / mpmath.sqrt((t - 2) * (t + 2))
+            disc = (t - 2) * (t + 2)
+            if not disc > 0:
+                raise NoRealMapError("|tr L(lam)| <= 2 inside [lam0 - mu, lam0 + mu]", condition="trace")
+            v = memo[lam] = 1 / mpmath.sqrt(disc)
         return v
 
     a, b = lam0 - mu, lam0 + mu
@@ -463,7 +466,5 @@ def _coefficients_mp(P: list, Q: list, lam0: Any, mu: Any, branch: int, ks: list
             if err > abs(val) * mpmath.mpf(10) ** (5 - dps):
                 warnings.warn("flow_coefficients: mpmath.quad error estimate %s (relative)"
                               % mpmath.nstr(err / abs(val), 3), RuntimeWarning, stacklevel=3)
-        if isinstance(val, mpmath.mpc):
-            raise NoRealMapError("|tr L(lam)| <= 2 inside [lam0 - mu, lam0 + mu]", condition="trace")
         out.append(-branch * mpmath.ldexp(+val, E))
     return out

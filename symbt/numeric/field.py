@@ -9,10 +9,11 @@ the initial state; constant along the flow).  Since ``tr L(lam) = sum_k H_k lam^
 
 with the quadrature rule of the ``c_k`` (:func:`~symbt.numeric.coefficients.flow_quadrature`,
 refined until this integrand converges too, then compressed to one Gauss--Legendre rule of
-``m`` nodes when that is as accurate).  The field is *exactly* the Hamiltonian vector field of
-``sum_k c~_k H_k`` with ``c~_k = sum_i W_i lam_i^k`` (the rule's ``c_k``, :attr:`FlowField.c`),
-and it avoids the cancellation of ``sum_k c_k grad H_k`` at large N (terms ``~1e30`` summing
-to ``O(1)`` at N = 64).
+``m`` nodes when that gives the same field).  The field is *exactly* the Hamiltonian vector field
+of ``sum_k c~_k H_k`` with ``c~_k = sum_i W_i lam_i^k`` (the rule's ``c_k``, :attr:`FlowField.c`),
+and it avoids the cancellation of ``sum_k c_k grad H_k`` at large N.  (With the compressed rule
+the tiny ``c~_k`` of small ``k`` at large N may differ from ``c_k`` in the 9th digit -- their
+terms do not change the field at the 1e-16 level; the composite rule gets them all.)
 
 ``grad tr`` at a node comes from forward and backward sweeps of the scaled transfer matrices
 ``m_j / s = [[(lam + p_j)/s, -1/s], [r_j/s, 0]]`` (``r_j = exp(q_{j+1} - q_j)``; ``s`` a power of
