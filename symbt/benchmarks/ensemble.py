@@ -76,7 +76,7 @@ def run_ensemble(quick: bool = False, log: Callable[[str], None] = print, hy: An
                                                              [mpmath.mpf(float(v)) for v in Q0[m]], lam0, mu,
                                                              check=False)]
     tried = []
-    chosen = None
+    chosen = 1e-16
     for tol in (1e-10, 1e-12, 1e-14, 1e-16):
         r = ensemble(hy, sys, P0, Q0, float(n), tol, quick, documented=False, pars=pars, only=picks)
         e = _errors(picks, P0, Q0, lam0, mu, n, r["Y"][:, 3:], r["Y"][:, :3], refs)

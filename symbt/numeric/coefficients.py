@@ -380,38 +380,37 @@ def flow_coefficients(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, ks
     interval (``c(-mu, b) = c(mu, -b)``).
     """
     branch = _branch(branch)
-    use_mp = _is_mp(p, q, lam0, mu)
-    if use_mp:
-        P, Q = _mp_seq(p, "p"), _mp_seq(q, "q")
-        if len(P) != len(Q) or len(P) < 2:
+    if _is_mp(p, q, lam0, mu):
+        Pm, Qm = _mp_seq(p, "p"), _mp_seq(q, "q")
+        if len(Pm) != len(Qm) or len(Pm) < 2:
             raise InvalidInputError("p and q must have the same length N >= 2")
-        lam0, mu = _mp_seq([lam0, mu], "lam0, mu")
-    else:
-        P, Q = _float_state(p, q)
-        if P.size < 2:
-            raise InvalidInputError("need N >= 2 sites, got N = %d" % P.size)
-        try:
-            lam0, mu = float(lam0), float(mu)
-        except (TypeError, ValueError) as exc:
-            raise InvalidInputError("lam0 and mu must be real numbers") from exc
-        if not (math.isfinite(lam0) and math.isfinite(mu)):
-            raise InvalidInputError("lam0 and mu must be finite")
-        if not (math.isfinite(lam0 + mu) and math.isfinite(lam0 - mu)):
-            raise NumericRangeError("lam0 +- mu overflows float64")
-    N = len(P)
-    ks = list(range(N)) if ks is None else [int(k) for k in ks]
-    if any(k < 0 or k > N for k in ks):
-        raise InvalidInputError("ks must lie in 0..N")
+        l0m, mum = _mp_seq([lam0, mu], "lam0, mu")
+        kl = _selection(ks, len(Pm))
+        if mum == 0:
+            return [mpmath.mpf(0)] * len(kl)
+        if check:
+            bt_step(Pm, Qm, l0m, mum, branch=branch)
+        return _coefficients_mp(Pm, Qm, l0m, mum, branch, kl)
+    P, Q = _float_state(p, q)
+    if P.size < 2:
+        raise InvalidInputError("need N >= 2 sites, got N = %d" % P.size)
+    try:
+        lam0, mu = float(lam0), float(mu)
+    except (TypeError, ValueError) as exc:
+        raise InvalidInputError("lam0 and mu must be real numbers") from exc
+    if not (math.isfinite(lam0) and math.isfinite(mu)):
+        raise InvalidInputError("lam0 and mu must be finite")
+    if not (math.isfinite(lam0 + mu) and math.isfinite(lam0 - mu)):
+        raise NumericRangeError("lam0 +- mu overflows float64")
+    kl = _selection(ks, P.size)
     if mu == 0:
-        return [mpmath.mpf(0)] * len(ks) if use_mp else np.zeros(len(ks))
+        return np.zeros(len(kl))
     if check:
-        bt_step(P if use_mp else np.asarray(P), Q if use_mp else np.asarray(Q), lam0, mu, branch=branch)
-    if use_mp:
-        return _coefficients_mp(P, Q, lam0, mu, branch, ks)
+        bt_step(P, Q, lam0, mu, branch=branch)
     r = neighbour_ratios_of(Q.tolist())
     Pl = P.tolist()
     a, b = lam0 - mu, lam0 + mu
-    kk = np.asarray(ks, dtype=float)
+    kk = np.asarray(kl, dtype=float)
     if a == b:
         # |mu| below the spacing of floats at lam0: the integral is 2 mu f(lam0) to relative O(mu^2)
         l2, _ = _trace_rows(Pl, r)(np.array([lam0]))
@@ -422,7 +421,7 @@ def flow_coefficients(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, ks
     with np.errstate(all="ignore"):
         panels = adaptive_panels(rows, a, b, rtol, max_intervals)
         x32, w32 = _gauss_legendre(32)
-        I = np.zeros(len(ks))
+        I = np.zeros(len(kl))
         for lo, hi in panels:
             c, h = 0.5 * (lo + hi), 0.5 * (hi - lo)
             I += h * (rows(c + h * x32) @ w32)
@@ -430,6 +429,13 @@ def flow_coefficients(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, ks
     if not np.all(np.isfinite(out)):
         raise NumericRangeError("a flow coefficient c_k overflows float64; use mpmath inputs")
     return out
+
+
+def _selection(ks: Iterable[int] | None, N: int) -> list[int]:
+    kl = list(range(N)) if ks is None else [int(k) for k in ks]
+    if any(k < 0 or k > N for k in kl):
+        raise InvalidInputError("ks must lie in 0..N")
+    return kl
 
 
 def _coefficients_mp(P: list, Q: list, lam0: Any, mu: Any, branch: int, ks: list[int]) -> list:

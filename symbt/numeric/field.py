@@ -128,9 +128,9 @@ def _node_gradient(lam: np.ndarray, log2_scale: np.ndarray, P: np.ndarray, R: np
     a = [(lam[:, None] + P[None, :, j]) * inv_s for j in range(N)]        # (m, B) each
     r = [R[None, :, j] * inv_s for j in range(N)]
     with np.errstate(over="ignore", under="ignore", invalid="ignore"):
-        da, dr = transfer_gradient(a, r, inv_s)
-        da = np.stack(np.broadcast_arrays(*da))
-        dr = np.stack(np.broadcast_arrays(*dr))
+        dal, drl = transfer_gradient(a, r, inv_s)
+        da = np.stack(np.broadcast_arrays(*dal))
+        dr = np.stack(np.broadcast_arrays(*drl))
         big = np.maximum(np.abs(da), np.abs(dr))
         ok = np.all(np.isfinite(big)) and np.all(big.max(axis=0) < _HI) and np.all(big.max(axis=0) > _LO)
     if not ok:
