@@ -31,7 +31,8 @@ print("RC", rc, "scipy" in sys.modules, "heyoka" in sys.modules)
 
 
 def test_runs_without_scipy_and_heyoka(tmp_path):
-    env = dict(os.environ, PYTHONPATH=ROOT + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    env = dict(os.environ, PYTHONPATH=ROOT + os.pathsep + os.environ.get("PYTHONPATH", ""),
+               SYMBT_NO_NUMBA="1")                                   # and without numba (plain-Python kernel)
     out = subprocess.run([sys.executable, "-c", BLOCKED, str(tmp_path)], capture_output=True, text=True, env=env,
                          timeout=300)
     assert out.returncode == 0, out.stderr
@@ -41,6 +42,7 @@ def test_runs_without_scipy_and_heyoka(tmp_path):
     res = json.loads((tmp_path / "bench.json").read_text())
     runs = res["cases"][0]["runs"]
     assert runs and all(r["kind"] == "bt" for r in runs)
+    assert not any("numba" in r["method"] for r in runs)
     assert all(r["final_err"] < 1e-11 for r in runs if "final_err" in r)
     assert res["cases"][0]["heyoka_skipped"] == "heyoka not installed"
 

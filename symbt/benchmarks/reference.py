@@ -73,7 +73,15 @@ def reference_states(p0: Any, q0: Any, lam0: Any, mu: Any, n: int, dps: int, bra
 
 
 def flow_constants(case: Case, dps: int = 30) -> np.ndarray:
-    """``c_0 .. c_{N-1}`` at ``dps`` digits (:func:`symbt.numeric.flow_coefficients`), rounded to float64."""
+    """``c_0 .. c_{N-1}`` for the ODE contenders, as float64.
+
+    N <= 8: at ``dps`` digits (mpmath path of :func:`symbt.numeric.flow_coefficients`), rounded;
+    larger N (whose contenders use :class:`~symbt.numeric.field.FlowField` and only report the
+    ``c_k``): the float64 path (relative accuracy ~1e-14, ``tests/test_bench_coefficients.py``).
+    """
+    if case.N > 8:
+        return np.asarray(flow_coefficients(np.array(case.p), np.array(case.q), case.lam0, case.mu,
+                                            branch=case.branch))
     with mpmath.workdps(dps):
         c = flow_coefficients([mpmath.mpf(v) for v in case.p], [mpmath.mpf(v) for v in case.q],
                               mpmath.mpf(case.lam0), mpmath.mpf(case.mu), branch=case.branch, check=False)
