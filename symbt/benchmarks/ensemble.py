@@ -60,7 +60,7 @@ def run_ensemble(quick: bool = False, log: Callable[[str], None] = print, hy: An
     log("  bt_orbit on (%d, 3), %d steps: %.3e s, max err %.1e (%d scored members)" % (M, n, secs, bt_err,
                                                                                        len(picks)))
     if hy is None:
-        out["heyoka_skipped"] = "heyoka not installed"
+        out["heyoka_skipped"] = "heyoka not run (not installed, or --no-heyoka)"
         return out
     from .heyoka_peer import ensemble
     from .heyoka_system import parametric_system

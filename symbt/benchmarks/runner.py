@@ -74,7 +74,7 @@ def run_case(case: Case, quick: bool = False, log: Callable[[str], None] = print
         out["heyoka_system"] = desc
         out["setup"]["heyoka_jit_s"] = sweep(hy, case, sys, t_eval, case.heyoka_tols, record, quick, log)
     elif case.heyoka_tols:
-        out["heyoka_skipped"] = "heyoka not installed"
+        out["heyoka_skipped"] = "heyoka not run (not installed, or --no-heyoka)"
     out["headline"] = headline(out)
     log("  headline: %s" % out["headline"]["text"])
     return out
