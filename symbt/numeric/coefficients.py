@@ -143,13 +143,18 @@ def scaled_trace(lam: Any, p: Sequence[Any], r: Sequence[Any]) -> tuple[Any, Any
     C = np.full_like(lam, r[0])
     D = np.zeros_like(lam)
     e = np.zeros(lam.shape, dtype=np.int64)
-    for j in range(1, len(p)):
-        a = lam + p[j]
-        A, B, C, D = a * A - C, a * B - D, r[j] * A, r[j] * B
-        _, s = np.frexp(np.maximum(np.maximum(np.abs(A), np.abs(B)), np.maximum(np.abs(C), np.abs(D))))
-        A, B, C, D = np.ldexp(A, -s), np.ldexp(B, -s), np.ldexp(C, -s), np.ldexp(D, -s)
-        e += s
-    return A + D, e
+    with np.errstate(over="ignore", invalid="ignore"):
+        for j in range(len(p)):
+            if j:
+                a = lam + p[j]
+                A, B, C, D = a * A - C, a * B - D, r[j] * A, r[j] * B
+            _, s = np.frexp(np.maximum(np.maximum(np.abs(A), np.abs(B)), np.maximum(np.abs(C), np.abs(D))))
+            A, B, C, D = np.ldexp(A, -s), np.ldexp(B, -s), np.ldexp(C, -s), np.ldexp(D, -s)
+            e += s
+        T = A + D
+    if not np.all(np.isfinite(T)):
+        raise NumericRangeError("tr L(lam) beyond the float64 range of the scaled product (|lam| ~ 1e308?)")
+    return T, e
 
 
 def _log2_inv_disc(T: np.ndarray, e: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -415,7 +420,11 @@ def flow_coefficients(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, ks
         # |mu| below the spacing of floats at lam0: the integral is 2 mu f(lam0) to relative O(mu^2)
         l2, _ = _trace_rows(Pl, r)(np.array([lam0]))
         L, sgn = _log2_rows(np.array([lam0]), l2, kk)
-        return -branch * 2.0 * mu * sgn[:, 0] * np.exp2(L[:, 0])
+        with np.errstate(all="ignore"):
+            out = -branch * 2.0 * mu * sgn[:, 0] * np.exp2(L[:, 0])
+        if not np.all(np.isfinite(out)):
+            raise NumericRangeError("a flow coefficient c_k overflows float64; use mpmath inputs")
+        return out
     E = _row_scales(Pl, r, a, b, kk)
     rows = _c_rows(Pl, r, kk, E)
     with np.errstate(all="ignore"):
