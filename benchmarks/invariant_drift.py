@@ -19,7 +19,7 @@ import json
 
 import numpy as np
 
-from symbt.bench import invariant_drift_curve
+from symbt.benchmarks import invariant_drift_curve
 
 
 def main():

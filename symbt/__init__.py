@@ -43,7 +43,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("report",),
     ("claims",),
     ("engine",),
-    ("benchmarks", "bench"),
+    ("benchmarks",),
     ("testing", "pytest_plugin", "cli", "__main__"),
 )
 

@@ -233,7 +233,7 @@ def build_parser() -> argparse.ArgumentParser:
     return ap
 
 
-_DELEGATED = {"codegen": "codegen", "bench": "bench", "figures": "report.figures", "mutate": "engine.mutate",
+_DELEGATED = {"codegen": "codegen", "bench": "benchmarks", "figures": "report.figures", "mutate": "engine.mutate",
               "coverage": "engine.coverage"}
 
 

@@ -32,7 +32,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from symbt.bench import band_edge_case, invariant_drift_curve, map_condition
+from symbt.benchmarks import band_edge_case, invariant_drift_curve, map_condition
 from symbt.numeric import (
     InvalidInputError,
     NoRealMapError,

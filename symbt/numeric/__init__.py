@@ -51,10 +51,11 @@ True
 >>> P, Q = bt_orbit(p, q, 10.0, 5.0, 100)      # shape (101, 3)
 """
 
+from .coefficients import flow_coefficients
 from .errors import InvalidInputError, NoRealMapError, NumericRangeError, QuadratureError
 from .lax import invariants, spectral_trace
 from .orbit import bt_orbit
-from .phi import flow_coefficients, phi
+from .phi import phi
 from .step import bt_step
 
 __all__ = [

@@ -1,15 +1,18 @@
 r"""Spectral quantities at high precision: the real Phi, its gradient and the flow coefficients c_k.
 
-* :func:`phi_real` -- :math:`\Phi = -b(\operatorname{sgn}\operatorname{tr}_1\operatorname{arccosh}|\operatorname{tr}_1|/2
-  + \operatorname{sgn}\operatorname{tr}_2\operatorname{arccosh}|\operatorname{tr}_2|/2)` at :math:`\lambda_0\pm\mu`;
+* :func:`phi_real` -- :math:`\Phi = -b(\operatorname{sgn}\operatorname{tr}_1
+  \operatorname{arccosh}|\operatorname{tr}_1|/2 + \operatorname{sgn}\operatorname{tr}_2
+  \operatorname{arccosh}|\operatorname{tr}_2|/2)` at :math:`\lambda_0\pm\mu`;
 * :func:`flow_coefficients_mp` -- the constants of eq. ``eqdisc``,
   :math:`c_k = -b\int_{\lambda_0-\mu}^{\lambda_0+\mu}\lambda^k/\sqrt{\operatorname{tr}L(\lambda)^2-4}\,d\lambda`
-  (positive root), by tanh-sinh quadrature, and their closed-form Jacobian in (lam0, mu).
+  (positive root), by the one routine :func:`symbt.numeric.flow_coefficients`, and their closed-form
+  Jacobian in (lam0, mu).
 """
 from __future__ import annotations
 
 import mpmath as mp
 
+from ..numeric import flow_coefficients
 from .literal import phi_from_traces
 from .trace import hamiltonians, trace, trace_gap, trace_gradient
 
@@ -45,23 +48,24 @@ def flow_coefficients_mp(p, q, lam0, mu, branch=1, *, check=True, ks=None):
 
     The positive root is used for both signs of tr L; ``branch`` b = +1 is the
     branch of the printed eq. ``eqdisc`` (see :mod:`symbt.claims.theorems`).
-    ``c_N`` multiplies H_N = 1 and does not move anything.  Raises
-    :class:`NoRealFlowError` if |tr L| <= 2 somewhere on the interval.
+    ``c_N`` multiplies H_N = 1 and does not move anything.  ``ks``: compute only
+    these k (the others are ``None``).  ``check``: raise :class:`NoRealFlowError`
+    if |tr L| <= 2 somewhere on the interval (decided on the polynomial tr L,
+    :func:`~symbt.reference.trace.trace_gap`).  The quadrature itself is the one
+    routine :func:`symbt.numeric.flow_coefficients` at the current ``mp.dps``
+    (scaled integrands, tanh-sinh); a negative ``mu`` is the reversed interval.
     """
     lam0, mu = mp.mpmathify(lam0), mp.mpmathify(mu)
     if check and trace_gap(p, q, lam0 - mu, lam0 + mu) <= 0:
         raise NoRealFlowError("|tr L| <= 2 inside [lam0 - mu, lam0 + mu]")
-    H = hamiltonians(p, q)
-    coeffs = H[::-1]
     N = len(p)
-    out = []
-    for k in range(N + 1):
-        if ks is not None and k not in ks:
-            out.append(None)
-            continue
-        f = lambda x, k=k: x ** k / mp.sqrt(mp.polyval(coeffs, x) ** 2 - 4)
-        out.append(-branch * mp.quad(f, [lam0 - mu, lam0, lam0 + mu]))
-    return out
+    want = list(range(N + 1)) if ks is None else [k for k in range(N + 1) if k in set(ks)]
+    if mu < 0:
+        mu, branch = -mu, -branch
+    vals = flow_coefficients([mp.mpmathify(v) for v in p], [mp.mpmathify(v) for v in q], lam0, mu,
+                             branch=branch, ks=want, check=False)
+    got = dict(zip(want, vals))
+    return [got.get(k) for k in range(N + 1)]
 
 
 def flow_coefficients_jacobian(p, q, lam0, mu, branch=1):

@@ -21,7 +21,7 @@ import mpmath as mp
 
 from .trace import bonds, trace_polynomial
 
-__all__ = ["hamilton_equations", "hamiltonian_flow", "FlowResult", "hamilton_rhs_float"]
+__all__ = ["hamilton_equations", "hamiltonian_flow", "FlowResult"]
 
 
 def _poly_G(N, c):
@@ -161,31 +161,3 @@ def hamiltonian_flow(p, q, c, t, *, tol=None, order=None, max_steps=200000):
     out = FlowResult(([+v for v in pn], [+v for v in qn]))
     out.steps, out.order = steps, K
     return out
-
-
-
-def hamilton_rhs_float(N, c):
-    """A plain-Python ``f(t, y)`` for y = (q_1..q_N, p_1..p_N): Hamilton's equations of sum c_k H_k.
-
-    Generated as source from the same polynomials as :func:`hamiltonian_flow` (with the bond
-    variables a_j = exp(q_{j+1} - q_j) recomputed from q), for ``scipy.integrate.solve_ivp``.
-    """
-    c = [float(v) for v in c] + [0.0] * (N + 1 - len(c))
-    eqs = hamilton_equations(N, c)[:2 * N]
-    names = [f"p{j}" for j in range(N)] + [f"a{j}" for j in range(N)]
-
-    def term(e, v):
-        fac = [names[i] if k == 1 else f"{names[i]}**{k}" for i, k in enumerate(e) if k]
-        return "*".join([repr(float(v))] + fac)
-
-    lines = ["def f(t, y):",
-             "    " + ", ".join(f"q{j}" for j in range(N)) + ", " + ", ".join(f"p{j}" for j in range(N))
-             + " = y",
-             *[f"    a{j} = exp(q{(j + 1) % N} - q{j})" for j in range(N)],
-             "    return [" + ", ".join("(" + (" + ".join(term(e, v) for e, v in P.items()) or "0.0") + ")"
-                                     for P in eqs) + "]"]
-    ns = {"exp": __import__("math").exp}
-    exec("\n".join(lines), ns)
-    f = ns["f"]
-    f.source = "\n".join(lines)
-    return f

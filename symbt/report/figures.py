@@ -8,9 +8,9 @@ gamma = +sqrt(tr^2 - 4) (the branch of eq. ``eqdisc`` and of the negative captio
 * Fig. 2 (``fig2.png``): continuous trajectories (grey) and BT iterates (black dots, at t = n)
   of p1 (left) and q1 - Q (right), mu = 5 (top) and mu = 2 (bottom).
 
-The c_k come from eq. ``eqdisc`` by mpmath quadrature (:func:`symbt.reference.spectral.flow_coefficients_mp`);
+The c_k come from eq. ``eqdisc`` at 30 digits (:func:`symbt.numeric.flow_coefficients`);
 the flow is integrated by ``scipy.integrate.solve_ivp`` (DOP853, rtol = atol = 1e-12) on
-Hamilton's equations (:func:`symbt.reference.taylor.hamilton_rhs_float`); the iterates are
+Hamilton's equations of sum_k c_k H_k (:class:`symbt.numeric.field.FlowField`); the iterates are
 :func:`symbt.numeric.bt_orbit` (float64), or a float loop over :func:`symbt.reference.literal.literal_step`
 if that is unavailable.  matplotlib and scipy are imported only here, inside :func:`main`.
 """
@@ -32,11 +32,11 @@ PRINTED = {float(mu): consts for mu, consts in CAPTIONS["fig:2"].items()}
 def _constants(mu):
     import mpmath as mp
 
-    from ..reference.spectral import flow_coefficients_mp
+    from ..numeric import flow_coefficients
 
     with mp.workdps(30):
-        c = flow_coefficients_mp([mp.mpf(v) for v in EXAMPLE["p"]], [mp.mpf(v) for v in EXAMPLE["q"]],
-                                 mp.mpf(EXAMPLE["lam0"]), mp.mpf(mu), 1)
+        c = flow_coefficients([mp.mpf(v) for v in EXAMPLE["p"]], [mp.mpf(v) for v in EXAMPLE["q"]],
+                              mp.mpf(EXAMPLE["lam0"]), mp.mpf(mu), branch=1, ks=range(4))
     return [float(v) for v in c]
 
 
@@ -62,13 +62,13 @@ def _iterates(mu, n):
     return np.array(P), np.array(Q)
 
 
-def _flow(c, T, per_unit):
+def _flow(mu, T, per_unit):
     import numpy as np
     from scipy.integrate import solve_ivp
 
-    from ..reference.taylor import hamilton_rhs_float
+    from ..numeric.field import FlowField
 
-    f = hamilton_rhs_float(3, c)
+    f = FlowField(list(P0), list(Q0), LAM0, mu, branch=1).rhs
     t_eval = np.linspace(0.0, T, int(round(T * per_unit)) + 1)
     sol = solve_ivp(f, (0.0, T), list(Q0) + list(P0), method="DOP853", rtol=1e-12, atol=1e-12, t_eval=t_eval)
     if not sol.success:
@@ -83,7 +83,7 @@ def paper_example_data(mu, n, T=None, per_unit=20):
     c = _constants(mu)
     P, Q = _iterates(mu, n)
     T = n if T is None else T
-    t, Pf, Qf = _flow(c, T, per_unit)
+    t, Pf, Qf = _flow(mu, T, per_unit)
     idx = np.arange(0, min(n, int(T)) + 1) * per_unit
     dev = float(max(np.abs(Pf[idx] - P[: len(idx)]).max(), np.abs(Qf[idx] - Q[: len(idx)]).max()))
     return dict(c=c, P=P, Q=Q, t=t, Pf=Pf, Qf=Qf, deviation=dev)

@@ -1,0 +1,83 @@
+"""Wall-clock timing and the machine description recorded with every run.
+
+:func:`timed`: one untimed warm-up call, then the median of repeats (5 below 0.2 s, 3 below
+1 s, else 1; ``quick``: 3 below 0.2 s, else 1).  :func:`best_time`: best of ``repeats`` batches of
+calls, each batch at least ``min_time / repeats`` long (throughput).
+
+>>> res, secs, reps = timed(lambda: sum(range(1000)))
+>>> res, reps
+(499500, 5)
+"""
+from __future__ import annotations
+
+import os
+import platform
+import statistics
+import time
+from collections.abc import Callable
+from typing import Any
+
+__all__ = ["timed", "best_time", "machine_info"]
+
+
+def timed(fn: Callable[[], Any], warm: Callable[[], Any] | None = None, quick: bool = False
+          ) -> tuple[Any, float, int]:
+    """``(result, median seconds, repeats)`` of ``fn()`` after one warm-up call of ``warm`` (or ``fn``)."""
+    (warm or fn)()
+    t0 = time.perf_counter()
+    res = fn()
+    times = [time.perf_counter() - t0]
+    reps = 1 if times[0] >= 1.0 else (3 if times[0] >= 0.2 else 5)
+    if quick:
+        reps = 1 if times[0] >= 0.2 else 3
+    for _ in range(reps - 1):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return res, statistics.median(times), len(times)
+
+
+def best_time(fn: Callable[[], Any], min_time: float, repeats: int = 5) -> float:
+    """Best time per call over ``repeats`` batches (each at least ``min_time / repeats`` seconds)."""
+    fn()
+    best = float("inf")
+    for _ in range(repeats):
+        reps, t0 = 0, time.perf_counter()
+        while True:
+            fn()
+            reps += 1
+            dt = time.perf_counter() - t0
+            if dt >= min_time / repeats:
+                break
+        best = min(best, dt / reps)
+    return best
+
+
+def _version(module: str) -> str | None:
+    try:
+        mod = __import__(module)
+    except Exception:
+        return None
+    return getattr(mod, "__version__", "?")
+
+
+def machine_info() -> dict:
+    """CPU, core count, platform and the versions of the numeric packages (None = not installed)."""
+    cpu = ""
+    try:
+        with open("/proc/cpuinfo") as fh:
+            for line in fh:
+                if line.startswith("model name"):
+                    cpu = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    info: dict = {"python": platform.python_version(), "cpu": cpu, "cores": os.cpu_count(),
+                  "platform": platform.platform()}
+    for mod in ("numpy", "mpmath", "scipy", "numba", "heyoka", "matplotlib"):
+        info[mod] = _version(mod)
+    try:
+        info["loadavg"] = list(os.getloadavg())
+    except OSError:
+        pass
+    return info
