@@ -98,9 +98,10 @@ def _write_output(flag: str, path: str, text: str) -> None:
 
 def _render(flag: str, results) -> str:
     if flag == "--json":
+        from .engine.coverage import coverage_of
         from .report.json import dumps
 
-        return dumps(results)
+        return dumps(results, coverage=coverage_of(results))
     if flag == "--junit":
         from .report.junit import junit_xml
 
@@ -135,7 +136,8 @@ def _cmd_verify(args) -> int:
             raise UsageError(f"symbt verify: {exc.args[0]}") from None
         bar = Progress(len(claims), enabled=not args.quiet)
         try:
-            results = engine.run(claims, use_cache=not args.no_cache, jobs=jobs, progress=bar, dask=args.dask)
+            results = engine.run(claims, use_cache=not args.no_cache, jobs=jobs, progress=bar, dask=args.dask,
+                                 deep=args.deep)
         finally:
             bar.close()
     if not results:

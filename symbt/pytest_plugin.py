@@ -85,11 +85,12 @@ def _failure_message(claim: Any, out: Any) -> str:
 class ClaimItem(pytest.Item):
     """One claim as a test item."""
 
-    def __init__(self, *, claim: Any, outcome: Any = None, use_cache: bool = True, **kw: Any):
+    def __init__(self, *, claim: Any, outcome: Any = None, use_cache: bool = True, deep: bool = False, **kw: Any):
         super().__init__(**kw)
         self.claim = claim
         self._outcome = outcome  # known from the cache at collection (warm path)
         self._use_cache = use_cache
+        self._deep = deep
         self.add_marker("symbt")
         self.extra_keyword_matches.update({claim.scene, claim.equation})
 
@@ -100,7 +101,8 @@ class ClaimItem(pytest.Item):
             from symbt.engine.runner import run
 
             load_all()
-            out = run([REGISTRY[self.claim.id]], use_cache=self._use_cache, manifest=False)[0].outcome
+            out = run([REGISTRY[self.claim.id]], use_cache=self._use_cache, manifest=False,
+                      deep=self._deep)[0].outcome
         props = [("symbt_status", out.status), ("symbt_evidence", out.evidence or "-"),
                  ("symbt_method", out.method), ("symbt_residual", repr(out.residual)),
                  ("symbt_cached", str(bool(out.cached)).lower())]
@@ -150,7 +152,7 @@ class _SymbtSession:
                 raise pytest.UsageError(f"--symbt-scene: {exc.args[0]}") from None
         new: list[pytest.Item | pytest.Collector] = [
             ClaimItem.from_parent(session, name=claim.id, nodeid=f"symbt/{claim.scene}::{claim.id}", claim=claim,
-                                  outcome=outcome, use_cache=use_cache)
+                                  outcome=outcome, use_cache=use_cache, deep=deep)
             for claim, outcome in pairs]
         # report them as collected (the terminal's "collected N items", like any collector's items)
         session.ihook.pytest_collectreport(report=pytest.CollectReport("symbt", "passed", None, new))

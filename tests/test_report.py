@@ -44,7 +44,7 @@ def _validate(doc):
 
 def test_json_report_validates_against_the_shipped_schema():
     doc = json.loads(dumps(_results()))        # through text: what a consumer reads
-    assert doc["schema_version"] == "1.0" and doc["generator"].startswith("symbt ")
+    assert doc["schema_version"] == "1.1" and doc["generator"].startswith("symbt ")
     _validate(doc)
     f = next(c for c in doc["claims"] if c["id"] == "f")
     assert f["residual"] == "inf" and f["evidence"] == "sampled"         # non-finite numbers as strings
@@ -153,3 +153,25 @@ def test_progress_bar_with_rich():
     p(_c("a"), Outcome("verified", "m"))
     p.close()
     assert "symbt verify" in buf.getvalue()
+
+
+def test_verify_json_carries_the_coverage_of_the_run(tmp_path):
+    """Every labelled display appears: with the claims of the run that check it, or with its reason."""
+    from symbt.engine import verify
+    from symbt.engine.coverage import coverage_of
+    from symbt.paper import DISPLAYS
+    from symbt.report.json import schema, to_json
+
+    results = verify(["tn2", "spec.n2"], use_cache=False)
+    cov = coverage_of(results)
+    assert set(cov) == {lab.label for lab in DISPLAYS}
+    assert cov["tn2"] == {"claims": [{"id": "tn2", "status": "verified"}]}
+    assert [c["id"] for c in cov["spec"]["claims"]] == ["spec.n2"]
+    assert "reason" in cov["rec"] and cov["rec"]["see"]
+    assert cov["Dapp"] == {"claims": []}          # a display whose claims were not selected
+    doc = to_json(results, coverage=cov)
+    jsonschema = pytest.importorskip("jsonschema")
+    jsonschema.validate(doc, schema())
+    doc["coverage"]["tn2"] = {"claims": [{"id": "tn2"}]}   # a claim without its status is not a coverage entry
+    with pytest.raises(jsonschema.ValidationError):
+        jsonschema.validate(doc, schema())

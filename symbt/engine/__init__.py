@@ -54,7 +54,8 @@ def verify(scenes: Sequence[str] | None = None, *, deep: bool = False, use_cache
     """Select and run claims; the Python entry point behind ``symbt verify``.
 
     ``scenes`` are scene names, lattice sizes (``"n2"``) or claim ids (``None``:
-    every default scene); ``deep`` adds the minutes-long claims; ``jobs``
+    every default scene); ``deep`` adds the minutes-long claims and runs every
+    claim's deep variant (64 instead of 16 samples per domain cell); ``jobs``
     worker processes; ``dask`` runs uncached claims on a Dask cluster (``True``:
     a local one, or a scheduler address).  Returns one :class:`ClaimResult` per
     claim, in the paper's order.  Unknown names raise ``KeyError``; ``jobs``
@@ -73,4 +74,5 @@ def verify(scenes: Sequence[str] | None = None, *, deep: bool = False, use_cache
         warm = cached_results(scenes, deep=deep)
         if warm is not None:
             return warm
-    return run(select(scenes, include_deep=deep), use_cache=use_cache, jobs=jobs, progress=progress, dask=dask)
+    return run(select(scenes, include_deep=deep), use_cache=use_cache, jobs=jobs, progress=progress, dask=dask,
+               deep=deep)

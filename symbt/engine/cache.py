@@ -127,12 +127,14 @@ def _claim_modules_used(mod) -> list:
     return [used[k] for k in sorted(used) if used[k] is not None]
 
 
-def claim_key(c: Claim) -> str:
-    """Hash of what determines the claim's outcome."""
+def claim_key(c: Claim, deep: bool = False) -> str:
+    """Hash of what determines the claim's outcome (its deep variant has its own key)."""
     import inspect
 
     h = hashlib.sha256()
     h.update(c.id.encode())
+    if deep and c.deep_check is not None:
+        h.update(b"\0deep")
     mod = inspect.getmodule(c.func or c.check)
     for m in _claim_modules_used(mod) if mod is not None else []:
         try:
@@ -146,11 +148,12 @@ def claim_key(c: Claim) -> str:
     return h.hexdigest()
 
 
-def cache_file(c: Claim | str) -> Path:
-    """The cache entry of a claim (or claim id)."""
+def cache_file(c: Claim | str, deep: bool = False) -> Path:
+    """The cache entry of a claim (or claim id); ``deep`` names the entry of its deep variant."""
     cid = c if isinstance(c, str) else c.id
     safe = "".join(ch if ch.isalnum() or ch in "-_." else "_" for ch in cid)
-    return cache_dir() / f"{safe}.json"
+    has_deep = deep and (isinstance(c, str) or c.deep_check is not None)
+    return cache_dir() / f"{safe}{'.deep' if has_deep else ''}.json"
 
 
 # --------------------------------------------------------------------------- shape of an entry
@@ -213,12 +216,12 @@ def read_entry(path: Path, key: str) -> Outcome | None:
     return out
 
 
-def load_cached(c: Claim) -> Outcome | None:
+def load_cached(c: Claim, deep: bool = False) -> Outcome | None:
     """The cached outcome of ``c`` or ``None`` (missing, corrupt, stale or of the wrong shape)."""
-    return read_entry(cache_file(c), claim_key(c))
+    return read_entry(cache_file(c, deep), claim_key(c, deep))
 
 
-def store(c: Claim, out: Outcome) -> None:
+def store(c: Claim, out: Outcome, deep: bool = False) -> None:
     """Cache ``out`` at once (atomically); skipped outcomes are not cached, a read-only cache is no error."""
     if out.status == "skipped":
         return  # a skipped claim may run once its extra is installed
@@ -226,7 +229,7 @@ def store(c: Claim, out: Outcome) -> None:
         cache_dir().mkdir(parents=True, exist_ok=True)
         d = out.to_dict()
         d["cached"] = False
-        atomic_write(cache_file(c), json.dumps({"key": claim_key(c), "id": c.id, "outcome": d}, indent=1,
+        atomic_write(cache_file(c, deep), json.dumps({"key": claim_key(c, deep), "id": c.id, "outcome": d}, indent=1,
                                                default=str))
     except (OSError, ValueError):
         pass

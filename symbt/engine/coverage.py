@@ -38,7 +38,7 @@ from typing import Any
 from .._files import atomic_write
 from ..paper import DISPLAYS, LABELS, Label
 
-__all__ = ["coverage_map", "scan_labels", "compare", "find_paper", "unlabelled_claims", "main"]
+__all__ = ["coverage_map", "coverage_of", "scan_labels", "compare", "find_paper", "unlabelled_claims", "main"]
 
 PAPER_RELATIVE = Path("shared") / "paper" / "backlund-toda.tex"
 _EQUATION_ENVS = {"equation", "equation*", "eqnarray", "eqnarray*", "align", "align*", "gather", "gather*",
@@ -163,6 +163,26 @@ def coverage_map(statuses: dict[str, str] | None = None, *, use_cache: bool = Tr
             out[lab.label] = {"reason": r.text, "see": list(r.see)}
         else:
             out[lab.label] = {}
+    return out
+
+
+def coverage_of(results: list) -> dict[str, dict[str, Any]]:
+    """The coverage of a verify run: every display with the claims *of this run* that check it, or its reason.
+
+    Reads only the results' claim metadata (no claim module is imported), so it also serves
+    the warm path.  A display whose claims were not selected, and that has no reason, maps
+    to ``{"claims": []}``.
+    """
+    from ..claims.coverage import REASONS
+
+    out: dict[str, dict[str, Any]] = {}
+    for lab in DISPLAYS:
+        hits = [{"id": r.claim.id, "status": r.outcome.status} for r in results
+                if lab.label in (r.claim.equation, r.claim.source_equation)]
+        if hits or lab.label not in REASONS:
+            out[lab.label] = {"claims": hits}
+        else:
+            out[lab.label] = {"reason": REASONS[lab.label].text, "see": list(REASONS[lab.label].see)}
     return out
 
 

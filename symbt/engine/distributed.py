@@ -24,7 +24,7 @@ __all__ = ["run_on_dask"]
 
 
 def run_on_dask(todo: Sequence[Claim], done: Callable[[Claim, Outcome], None], *, address: str | None = None,
-                workers: int = 2) -> None:
+                workers: int = 2, deep: bool = False) -> None:
     """Run ``todo`` on Dask and call ``done(claim, outcome)`` as each finishes.
 
     Raises ``ModuleNotFoundError`` (name ``distributed``) when Dask is not installed.
@@ -39,7 +39,7 @@ def run_on_dask(todo: Sequence[Claim], done: Callable[[Claim, Outcome], None], *
     try:
         tag = uuid.uuid4().hex[:8]
         ordered = sorted(todo, key=lambda c: -(c.N or 0))
-        futs = {client.submit(run_claim, c.id, key=f"symbt-{c.id}-{tag}", pure=False): c for c in ordered}
+        futs = {client.submit(run_claim, c.id, deep, key=f"symbt-{c.id}-{tag}", pure=False): c for c in ordered}
         for f in as_completed(list(futs)):
             c = futs[f]
             try:

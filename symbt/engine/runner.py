@@ -42,7 +42,7 @@ def _stop(pool) -> None:
         p.join(timeout=1.0)
 
 
-def _run_pool(todo: Sequence[Claim], jobs: int, done: Progress) -> None:
+def _run_pool(todo: Sequence[Claim], jobs: int, done: Progress, deep: bool = False) -> None:
     import multiprocessing as mp_
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
@@ -51,7 +51,7 @@ def _run_pool(todo: Sequence[Claim], jobs: int, done: Progress) -> None:
     try:
         # longest-first keeps every worker busy; N=3 derivations dominate
         ordered = sorted(todo, key=lambda c: -(c.N or 0))
-        futs = {pool.submit(run_claim, c.id): c for c in ordered}
+        futs = {pool.submit(run_claim, c.id, deep): c for c in ordered}
         for f in as_completed(futs):
             c = futs[f]
             try:
@@ -78,7 +78,7 @@ def refresh_manifest() -> None:
 
 
 def run(claims: Sequence[Claim], *, use_cache: bool = True, jobs: int = 1, progress: Progress | None = None,
-        dask: str | bool | None = None, manifest: bool = True) -> list[ClaimResult]:
+        dask: str | bool | None = None, manifest: bool = True, deep: bool = False) -> list[ClaimResult]:
     """Run ``claims`` (cached results reused unless ``use_cache=False``); results in the given order.
 
     ``jobs > 1`` runs the uncached claims in that many worker processes;
@@ -88,12 +88,14 @@ def run(claims: Sequence[Claim], *, use_cache: bool = True, jobs: int = 1, progr
     arrives (cached ones first).  Each computed outcome is cached at once; on
     Ctrl-C :class:`Interrupted` is raised after the workers are stopped.
     ``manifest=False`` leaves the warm path's manifest alone (callers running
-    claims one by one refresh it once, with :func:`refresh_manifest`).
+    claims one by one refresh it once, with :func:`refresh_manifest`).  ``deep``
+    runs each claim's deep variant (more samples per domain cell) where it has
+    one; its outcomes are cached apart from the default ones.
     """
     results: dict[str, Outcome] = {}
     todo = []
     for c in claims:
-        out = load_cached(c) if use_cache else None
+        out = load_cached(c, deep) if use_cache else None
         if out is not None:
             results[c.id] = out
             if progress:
@@ -103,7 +105,7 @@ def run(claims: Sequence[Claim], *, use_cache: bool = True, jobs: int = 1, progr
 
     def done(c: Claim, out: Outcome) -> None:
         results[c.id] = out
-        store(c, out)
+        store(c, out, deep)
         if progress:
             progress(c, out)
 
@@ -111,12 +113,13 @@ def run(claims: Sequence[Claim], *, use_cache: bool = True, jobs: int = 1, progr
         if todo and dask is not None and dask is not False:
             from .distributed import run_on_dask
 
-            run_on_dask(todo, done, address=dask if isinstance(dask, str) and dask else None, workers=jobs)
+            run_on_dask(todo, done, address=dask if isinstance(dask, str) and dask else None, workers=jobs,
+                        deep=deep)
         elif jobs > 1 and len(todo) > 1:
-            _run_pool(todo, jobs, done)
+            _run_pool(todo, jobs, done, deep)
         else:
             for c in todo:
-                done(c, c.run())
+                done(c, c.run(deep=deep))
     except KeyboardInterrupt as exc:
         raise Interrupted(len(results), len(claims)) from exc
     if manifest:

@@ -4,7 +4,7 @@ from __future__ import annotations
 __all__ = ["run_claim"]
 
 
-def run_claim(claim_id: str) -> dict:
+def run_claim(claim_id: str, deep: bool = False) -> dict:
     """Run one registered claim (loading the claim modules once per worker); its outcome as a dict.
 
     Plain data in and out, so it pickles to any worker.
@@ -12,4 +12,4 @@ def run_claim(claim_id: str) -> dict:
     from ..claims import REGISTRY, load_all
 
     load_all()
-    return REGISTRY[claim_id].run().to_dict()
+    return REGISTRY[claim_id].run(deep=deep).to_dict()

@@ -5,12 +5,13 @@ The document validates against the JSON Schema shipped with the package,
 changes its major number when a field is removed or changes meaning, its minor
 number when a field is added::
 
-    {"schema_version": "1.0", "generator": "symbt 0.1.0",
+    {"schema_version": "1.1", "generator": "symbt 0.1.0",
      "claims": [{"id", "equation", "scene", "N", "statement", "where",
                  "status", "evidence", "method", "seconds", "residual", "digits",
                  "printed", "corrected", "counterexample", "scope", "n_scope", "cells",
                  "detail", "cached"}, ...],
-     "summary": {"total", "verified", "erratum", "failed", "skipped", "seconds", "ok"}}
+     "summary": {"total", "verified", "erratum", "failed", "skipped", "seconds", "ok"},
+     "coverage": {label: {"claims": [{"id", "status"}, ...]} | {"reason", "see"}}}   # 1.1, optional
 
 Non-finite numbers (a residual of ``inf``) are written as the strings ``"inf"``,
 ``"-inf"``, ``"nan"`` (JSON has no such numbers); anything else that is not
@@ -20,7 +21,7 @@ JSON (e.g. a SymPy number in a counterexample) as its ``str``.
 >>> r = ClaimResult(Claim("t", "eq", "s", check=None), Outcome("failed", "numeric", residual=float("inf")))
 >>> doc = to_json([r])
 >>> doc["schema_version"], doc["claims"][0]["residual"], doc["summary"]["ok"]
-('1.0', 'inf', False)
+('1.1', 'inf', False)
 """
 from __future__ import annotations
 
@@ -35,7 +36,7 @@ from .text import summary
 
 __all__ = ["SCHEMA_VERSION", "SCHEMA_PATH", "schema", "to_json", "dumps", "write_json"]
 
-SCHEMA_VERSION = "1.0"
+SCHEMA_VERSION = "1.1"
 SCHEMA_PATH = Path(__file__).with_name("verify.schema.json")
 
 
@@ -56,15 +57,18 @@ def _plain(x: Any) -> Any:
     return str(x)
 
 
-def to_json(results) -> dict:
-    """The report as a JSON-ready dict."""
-    return _plain({"schema_version": SCHEMA_VERSION, "generator": f"symbt {__version__}",
-                   "claims": [r.to_dict() for r in results], "summary": summary(results)})
+def to_json(results, *, coverage: dict | None = None) -> dict:
+    """The report as a JSON-ready dict; ``coverage`` (label -> claims or reason) is added when given."""
+    doc = {"schema_version": SCHEMA_VERSION, "generator": f"symbt {__version__}",
+           "claims": [r.to_dict() for r in results], "summary": summary(results)}
+    if coverage is not None:
+        doc["coverage"] = coverage
+    return _plain(doc)
 
 
-def dumps(results) -> str:
-    return json.dumps(to_json(results), indent=2, allow_nan=False) + "\n"
+def dumps(results, *, coverage: dict | None = None) -> str:
+    return json.dumps(to_json(results, coverage=coverage), indent=2, allow_nan=False) + "\n"
 
 
-def write_json(results, path) -> None:
-    atomic_write(path, dumps(results))
+def write_json(results, path, *, coverage: dict | None = None) -> None:
+    atomic_write(path, dumps(results, coverage=coverage))
