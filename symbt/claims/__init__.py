@@ -20,6 +20,7 @@ CLAIM_MODULES = (
     "appendix_a",
     "composed_map",
     "generating",
+    "generating_map",
     "phi",
     "theorems",
     "elliptic",
