@@ -62,7 +62,7 @@ display(sp.factor(dj.det()))
 eta_sub = {yj: (eta_j - mu) / xj}
 display(check_identity(dj.subs(lam, L1).subs(eta_sub) * sp.Matrix([xj, mu - eta_j]), sp.zeros(2, 1)))
 display(check_identity(dj.subs(lam, L2).subs(eta_sub) * sp.Matrix([-xj, mu + eta_j]), sp.zeros(2, 1)))
-show("daj", "nlocal.n2", "nlocal.n3")
+show("daj", "nlocal.n2", "nlocal.n3", "nlocal.n4")
 
 # %% [markdown]
 # ## $x_j$, $y_j$ and $\eta_j$, eq. (`xyqqt`)
@@ -192,7 +192,8 @@ show("spec.n2", "spec.n3", "newkmu.n2", "newkmu.n3")
 
 # %%
 wt.expect({
-    "daj": "verified", "nlocal.n2": "verified", "nlocal.n3": "verified", "xyqqt": "verified",
+    "daj": "verified", "nlocal.n2": "verified", "nlocal.n3": "verified", "nlocal.n4": "verified",
+    "xyqqt": "verified",
     "imptransf": "verified", "newgf.n2": "verified", "newgf.n3": "verified", "newgf.n4": "verified",
     "GF.n2": "verified", "GF.n3": "verified", "vqqtmu.n2": "verified", "vqqtmu.n3": "verified",
     "vqqtmu.n4": "verified",

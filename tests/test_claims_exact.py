@@ -40,6 +40,7 @@ def test_size_families_record_their_size_and_deep_sizes_exist():
     for stem in ("lax", "tra", "Hj", "newgf", "vqqtmu"):
         assert not REGISTRY[f"{stem}.n4"].deep
         assert REGISTRY[f"{stem}.n5"].deep and REGISTRY[f"{stem}.n5"].N == 5
+    assert not REGISTRY["nlocal.n4"].deep and REGISTRY["nlocal.n5"].deep and REGISTRY["GF.n4"].deep
     assert run("lax.n4").n_scope == [4]
     assert run("Hj.n2").n_scope == [2]
 

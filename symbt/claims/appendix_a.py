@@ -15,6 +15,11 @@ is a 2x2 matrix, they hold for every N (``n_scope = "all"``).  The mathematics:
 * with :math:`y_1 = y_2 = y` the product depends on :math:`x = x_1-x_2` only and is eq. ``Dapp``.
 
 Every printed matrix or equation is a :class:`~symbt.claims.base.Parts` entry read by its check.
+
+>>> P = tiltil.parts()
+>>> swapped = (P.context["D1"] * P.context["Dhat2"]).applyfunc(sp.expand)   # D(l1) D^(l2): wrong order
+>>> tiltil.run_with(P.replace("printed", "composition", swapped)).status
+'failed'
 """
 from __future__ import annotations
 

@@ -1,5 +1,5 @@
 r"""The composed map sampled by domain cells: eqs. ``nlocal`` (site-by-site factorisation) and ``GF``
-(canonicity), N = 2, 3.
+(canonicity): nlocal for N = 2, 3, 4 (5 under ``--deep``), GF for N = 2, 3 (4, 5 under ``--deep``).
 
 ``nlocal``: on the map (the literal route of :mod:`symbt.reference.literal`, which finds :math:`x_j, y_j` by
 transporting kernels, Appendix B), every site satisfies
@@ -20,6 +20,10 @@ subtractive cancellation: at 40 digits with :math:`h = 10^{-20}` its truncation 
 :math:`O(h^2) = 10^{-40}` (relative); the rounding of the literal route (its forward transport loses about
 :math:`2\log_{10}|\operatorname{tr}L|` digits) stays below :math:`10^{-36}` on the samples, so the tolerance
 :math:`10^{-28}` keeps eight digits of margin while any wrong form or sign gives a residual of order one.
+
+>>> out = GF(2, _parts_gf(2))
+>>> out.status, out.evidence, [c["n"] for c in out.cells]
+('verified', 'sampled', [16, 16, 16, 16])
 """
 from __future__ import annotations
 
@@ -35,7 +39,6 @@ from ..symbolic.toda import lam
 from ._common import DPS, TOL, fmt_state, judge_cells, lambdified, map_cells, per_cell
 from .base import Parts, claim
 
-SIZES = (2, 3)
 x_s, y_s = sp.symbols("x_j y_j")
 GF_DPS = 40
 GF_STEP = mp.mpf(10) ** -20
@@ -69,9 +72,12 @@ def _parts_nlocal(N: int) -> Parts:
     return Parts(printed={"d": composed_darboux(x_s, y_s)})
 
 
-@claim("nlocal", equation="nlocal", scene="generating", sizes=SIZES, parts=_parts_nlocal,
-       statement="the composed map factorizes site by site: l_j(p~,q~) d_j = d_{j+1} l_j(p,q) with d_j "
-                 "of eq. daj, d_{N+1} = d_1 = D (N={N})")
+NLOCAL = ("the composed map factorizes site by site: l_j(p~,q~) d_j = d_{j+1} l_j(p,q) with d_j of eq. daj, "
+          "d_{N+1} = d_1 = D (N={N})")
+
+
+@claim("nlocal", equation="nlocal", scene="generating", sizes=(5,), deep=True, parts=_parts_nlocal, statement=NLOCAL)
+@claim("nlocal", equation="nlocal", scene="generating", sizes=(2, 3, 4), parts=_parts_nlocal, statement=NLOCAL)
 def nlocal(N: int, parts: Parts, deep: bool = False):
     d = parts.printed["d"]
     degree = 1 + max(sp.degree(e, lam) for e in d if e.has(lam))   # deg l_j + deg d_j
@@ -121,9 +127,12 @@ def _parts_gf(N: int) -> Parts:
     return Parts(printed={"a": sp.Integer(1), "b": sp.Integer(-1), "omega": sp.Matrix([[0, 1], [-1, 0]])})
 
 
-@claim("GF", equation="GF", scene="generating", sizes=SIZES, parts=_parts_gf,
-       statement="the composed BT is canonical (a generating function F(q, q~) with p = dF/dq, p~ = -dF/dq~ "
-                 "exists): its Jacobian J satisfies J^T Omega J = Omega and (q, q~) are coordinates (N={N})")
+GF_STATEMENT = ("the composed BT is canonical (a generating function F(q, q~) with p = dF/dq, p~ = -dF/dq~ exists): "
+                "its Jacobian J satisfies J^T Omega J = Omega and (q, q~) are coordinates (N={N})")
+
+
+@claim("GF", equation="GF", scene="generating", sizes=(4, 5), deep=True, parts=_parts_gf, statement=GF_STATEMENT)
+@claim("GF", equation="GF", scene="generating", sizes=(2, 3), parts=_parts_gf, statement=GF_STATEMENT)
 def GF(N: int, parts: Parts, deep: bool = False):
     P = parts.printed
     a, b_, om = complex(P["a"]), complex(P["b"]), [[complex(P["omega"][r, c]) for c in range(2)] for r in range(2)]

@@ -13,6 +13,10 @@ every N (``n_scope = "all"``): with periodic indices the local relations telesco
 :math:`\tilde L d_1 = d_1 L`, which ``ptp`` also checks at N = 3 as a witness.  The printed formulas are
 :class:`~symbt.claims.base.Parts` in the paper's exponential form (turned into :math:`E = e^q` for the
 exact decision).
+
+>>> out = dj.run()
+>>> out.status, out.n_scope
+('verified', 'all')
 """
 from __future__ import annotations
 
