@@ -18,7 +18,9 @@ These are per-site identities, proved for a generic site, hence for every N (``n
 (:math:`\partial F/\partial\mu = \sum_k\ln\frac{\eta_k+\mu}{\eta_k-\mu}`) are proved for each N = 2, 3, 4 (N = 5
 under ``--deep``) by implicit differentiation, :math:`\partial\eta_k = \partial w_k/(2\eta_k)`,
 :math:`\partial_\mu\eta_k = \mu/\eta_k`, modulo every :math:`\eta_k^2 = \mu^2+w_k` (either sign of each
-:math:`\eta_k`).  The map-sampled claims ``nlocal`` and ``GF`` are in :mod:`symbt.claims.generating_map`.
+:math:`\eta_k`); for ``newgf`` the two entries of site 1 are decided and the other sites follow by the cyclic
+relabelling :math:`k\to k+1`, which the check verifies maps F, the relations and eq. ``imptransf`` to themselves.
+The map-sampled claims ``nlocal`` and ``GF`` are in :mod:`symbt.claims.generating_map`.
 
 >>> out = imptransf.run()
 >>> out.status, out.evidence, out.n_scope

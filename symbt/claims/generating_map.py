@@ -18,8 +18,8 @@ the states themselves are sampled cell by cell (``map_cells``: branch x sign of 
 taken from the literal map by the complex step :math:`J e_i = \operatorname{Im} T(z + i h e_i)/h`, which has no
 subtractive cancellation: at 40 digits with :math:`h = 10^{-20}` its truncation error is
 :math:`O(h^2) = 10^{-40}` (relative); the rounding of the literal route (its forward transport loses about
-:math:`2\log_{10}|\operatorname{tr}L|` digits) stays below :math:`10^{-36}` on the samples, so the tolerance
-:math:`10^{-28}` keeps eight digits of margin while any wrong form or sign gives a residual of order one.
+:math:`2\log_{10}|\operatorname{tr}L|` digits) stays below :math:`10^{-35}` on the samples (N <= 5), so the
+tolerance :math:`10^{-28}` keeps seven digits of margin while any wrong form or sign gives a residual of order one.
 
 >>> out = GF(2, _parts_gf(2))
 >>> out.status, out.evidence, [c["n"] for c in out.cells]
