@@ -56,7 +56,7 @@ lam = m.lam
 display(local_lax(lam, m.p[0], m.E[0]))
 display(m.L)
 display(check_identity(m.L.det(), 1))
-show("lax.n2", "lax.n3")
+show("lax.n2", "lax.n3", "lax.n4")
 
 # %% [markdown]
 # ## Hamiltonians from the trace, eq. (`tra`)
@@ -68,7 +68,7 @@ m3 = toda_model(3)
 display(sp.Poly(m3.trace, lam).as_expr())
 for k, H in enumerate(m3.hamiltonians):
     display(f"H_{k} = {sp.sstr(sp.powsimp(m3.to_q(H)))}")
-show("tra.n2", "tra.n3")
+show("tra.n2", "tra.n3", "tra.n4")
 
 # %% [markdown]
 # ## Involution, eq. (`Hj`)
@@ -135,7 +135,8 @@ show("n3-hamiltonians.tra", "n3-hamiltonians.involution")
 
 # %%
 wt.expect({
-    "lax.n2": "verified", "lax.n3": "verified", "tra.n2": "verified", "tra.n3": "verified",
+    "lax.n2": "verified", "lax.n3": "verified", "lax.n4": "verified",
+    "tra.n2": "verified", "tra.n3": "verified", "tra.n4": "verified",
     "Hj.n2": "verified", "Hj.n3": "verified", "Hj.n4": "verified",
     "tn2": "verified", "th1th2.trace": "verified",
     "n3-hamiltonians.tra": "erratum", "n3-hamiltonians.involution": "erratum",

@@ -62,7 +62,7 @@ display(sp.factor(dj.det()))
 eta_sub = {yj: (eta_j - mu) / xj}
 display(check_identity(dj.subs(lam, L1).subs(eta_sub) * sp.Matrix([xj, mu - eta_j]), sp.zeros(2, 1)))
 display(check_identity(dj.subs(lam, L2).subs(eta_sub) * sp.Matrix([-xj, mu + eta_j]), sp.zeros(2, 1)))
-show("daj", "nlocal.n2", "nlocal.n3")
+show("daj", "nlocal.n2", "nlocal.n3", "nlocal.n4")
 
 # %% [markdown]
 # ## $x_j$, $y_j$ and $\eta_j$, eq. (`xyqqt`)
@@ -110,7 +110,7 @@ display(g.F)
 pp, ppt = g.momenta_printed()
 display(check_identity(g.dF_dq(0), pp[0], relations=g.relations))
 display(check_identity(-g.dF_dqt(1), ppt[1], relations=g.relations))
-show("newgf.n2", "newgf.n3", "GF.n2", "GF.n3")
+show("newgf.n2", "newgf.n3", "newgf.n4", "GF.n2", "GF.n3")
 
 # %% [markdown]
 # ## Its $\mu$-derivative, eq. (`vqqtmu`)
@@ -119,7 +119,7 @@ show("newgf.n2", "newgf.n3", "GF.n2", "GF.n3")
 
 # %%
 display(check_identity(g.dF_dmu(), sum(sp.log((e + mu) / (e - mu)) for e in g.eta), relations=g.relations))
-show("vqqtmu.n2", "vqqtmu.n3")
+show("vqqtmu.n2", "vqqtmu.n3", "vqqtmu.n4")
 
 # %% [markdown]
 # ## Appendix B: eq. (`2122`) — a sign
@@ -192,9 +192,11 @@ show("spec.n2", "spec.n3", "newkmu.n2", "newkmu.n3")
 
 # %%
 wt.expect({
-    "daj": "verified", "nlocal.n2": "verified", "nlocal.n3": "verified", "xyqqt": "verified",
-    "imptransf": "verified", "newgf.n2": "verified", "newgf.n3": "verified",
+    "daj": "verified", "nlocal.n2": "verified", "nlocal.n3": "verified", "nlocal.n4": "verified",
+    "xyqqt": "verified",
+    "imptransf": "verified", "newgf.n2": "verified", "newgf.n3": "verified", "newgf.n4": "verified",
     "GF.n2": "verified", "GF.n3": "verified", "vqqtmu.n2": "verified", "vqqtmu.n3": "verified",
+    "vqqtmu.n4": "verified",
     "2122": "erratum", "rte": "erratum",
     "spec.n2": "verified", "spec.n3": "erratum", "newkmu.n2": "erratum", "newkmu.n3": "erratum",
 })

@@ -22,6 +22,7 @@ CLAIM_MODULES = (
     "appendix_a",
     "composed_map",
     "generating",
+    "generating_map",
     "phi",
     "theorem1",
     "theorem2",
