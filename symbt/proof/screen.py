@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import random
+from functools import lru_cache
 
 import mpmath
 import sympy as sp
@@ -74,6 +75,33 @@ def _finite(v) -> bool:
         return False
 
 
+#: relations are solved in closed form (quartics at most) for the numeric screen
+MAX_RELATION_DEGREE = 4
+
+
+@lru_cache(maxsize=None)
+def _generic_roots(degree: int) -> tuple[tuple, list]:
+    a = sp.symbols(f"_c0:{degree + 1}")
+    x = sp.Dummy("x")
+    return a, list(sp.solve(sum(a[i] * x ** (degree - i) for i in range(degree + 1)), x))
+
+
+def _roots(rel, s) -> list:
+    """The roots of a polynomial relation in ``s``, by the closed form of a generic polynomial.
+
+    The coefficients are substituted into the generic solution instead of handing
+    ``rel`` to ``sympy.solve``, which would factor them -- and take forever on a
+    coefficient like ``exp(1000001 q / 1000000)`` (a polynomial of degree 1000001 in
+    ``exp(q / 1000000)``).
+    """
+    poly = sp.sympify(rel).as_poly(s)
+    if poly is None or not 1 <= poly.degree() <= MAX_RELATION_DEGREE:
+        raise ValueError(f"relation {rel} = 0 is not a polynomial of degree 1..{MAX_RELATION_DEGREE} in {s}")
+    a, generic = _generic_roots(poly.degree())
+    coeffs = dict(zip(a, poly.all_coeffs()))
+    return [r.xreplace(coeffs) for r in generic]
+
+
 def _solve_order(relations, known):
     """Order the constrained symbols so that each one's roots use only known symbols."""
     known = set(known)
@@ -82,7 +110,7 @@ def _solve_order(relations, known):
     while todo:
         progress = False
         for s, rel in list(todo.items()):
-            roots = sp.solve(rel, s)
+            roots = _roots(rel, s)
             if not roots:
                 raise ValueError(f"cannot solve relation {rel} = 0 for {s}")
             if all(r.free_symbols <= known for r in roots):
