@@ -16,11 +16,21 @@ code keeps working, but callers can tell *why* a step was refused:
   that is not finite); use mpmath inputs.
 * :class:`QuadratureError` -- the quadrature for the flow coefficients did not
   reach its tolerance.
+* :class:`MissingDependencyError` -- an optional backend (numba, python-flint,
+  dask) was requested but is not installed; an :class:`ImportError`.
+
+>>> from symbt.numeric import NoRealMapError
+>>> err = NoRealMapError("no real map", condition="trace", where=[(1,)])
+>>> isinstance(err, ValueError), err.condition, err.where
+(True, 'trace', ((1,),))
 """
 
 from __future__ import annotations
 
-__all__ = ["InvalidInputError", "NoRealMapError", "NumericRangeError", "QuadratureError"]
+from collections.abc import Iterable
+
+__all__ = ["InvalidInputError", "NoRealMapError", "NumericRangeError", "QuadratureError",
+           "MissingDependencyError"]
 
 
 class InvalidInputError(ValueError):
@@ -39,7 +49,7 @@ class NoRealMapError(ValueError):
         Up to a few offending batch indices (empty for a single state).
     """
 
-    def __init__(self, message, condition="", where=()):
+    def __init__(self, message: str, condition: str = "", where: Iterable[tuple[int, ...]] = ()) -> None:
         super().__init__(message)
         self.condition = condition
         self.where = tuple(where)
@@ -51,3 +61,7 @@ class NumericRangeError(OverflowError):
 
 class QuadratureError(ArithmeticError):
     """Adaptive quadrature failed to meet its error estimate."""
+
+
+class MissingDependencyError(ImportError):
+    """An optional dependency (numba, python-flint, dask) is needed for the requested feature."""

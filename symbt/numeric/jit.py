@@ -1,0 +1,111 @@
+"""Lazy numba compilation of the fused kernels of :mod:`symbt.numeric.kernels`.
+
+Nothing here imports numba at module import time: :func:`kernel` compiles on
+first use (a few seconds; cached on disk by numba's ``cache=True`` in a
+``__pycache__`` next to the source, or in numba's user-wide cache directory /
+``NUMBA_CACHE_DIR`` when the package directory is read-only; if no cache
+location works the kernels are compiled without caching).  Set
+``SYMBT_NO_NUMBA=1`` to force the numba-free paths (plain-Python single-orbit
+kernel, vectorised numpy ensembles).
+
+Example
+-------
+>>> from symbt.numeric.jit import kernel
+>>> run_block, backend = kernel("run_block", "python")
+>>> backend
+'python'
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+import threading
+import types
+from collections.abc import Callable
+from typing import Any
+
+from .errors import MissingDependencyError
+
+__all__ = ["numba_available", "kernel", "BACKENDS"]
+
+BACKENDS = ("auto", "numba", "python")
+
+_lock = threading.Lock()
+_compiled: dict[str, Callable[..., Any]] = {}
+_available: list[bool] = []
+
+
+def numba_available() -> bool:
+    """True if numba can be imported (and ``SYMBT_NO_NUMBA`` is not set); imports numba once.
+
+    >>> isinstance(numba_available(), bool)
+    True
+    """
+    if os.environ.get("SYMBT_NO_NUMBA", "") not in ("", "0"):
+        return False
+    if not _available:
+        ok = importlib.util.find_spec("numba") is not None
+        if ok:
+            try:
+                import numba  # noqa: F401
+            except Exception:  # pragma: no cover - broken installation
+                ok = False
+        _available.append(ok)
+    return _available[0]
+
+
+def _njit(fn: Callable[..., Any], **opts: Any) -> Callable[..., Any]:
+    import numba
+
+    try:
+        return numba.njit(cache=True, fastmath=False, error_model="numpy", **opts)(fn)  # type: ignore[no-any-return]
+    except Exception:  # pragma: no cover - no writable cache location
+        return numba.njit(cache=False, fastmath=False, error_model="numpy", **opts)(fn)  # type: ignore[no-any-return]
+
+
+def _clone(fn: Callable[..., Any], **overrides: Any) -> Callable[..., Any]:
+    """``fn`` with its module globals overridden (to call the compiled helpers)."""
+    from . import kernels
+
+    g = dict(vars(kernels))
+    g.update(overrides)
+    return types.FunctionType(fn.__code__, g, fn.__name__, fn.__defaults__, fn.__closure__)
+
+
+def _compile_all() -> None:
+    import numba
+
+    from . import kernels
+
+    position = _njit(kernels._position)
+    slopes1 = _njit(kernels._slopes1)
+    anchor1 = _njit(kernels._anchor1)
+    orbit = _njit(_clone(kernels.orbit, _slopes1=slopes1, _anchor1=anchor1, _position=position))
+    slopes = _njit(kernels._slopes)
+    anchor = _njit(kernels._anchor)
+    run_block = _njit(_clone(kernels.run_block, _slopes=slopes, _anchor=anchor, _position=position))
+    ens = _njit(_clone(kernels.ensemble, run_block=run_block, prange=numba.prange), parallel=True)
+    _compiled.update(orbit=orbit, run_block=run_block, ensemble=ens)
+
+
+def kernel(name: str, backend: str = "auto") -> tuple[Callable[..., Any], str]:
+    """The kernel ``name`` (``"orbit"``, ``"run_block"`` or ``"ensemble"``) for ``backend`` and the backend used.
+
+    ``backend``: ``"auto"`` (numba when available, else plain Python),
+    ``"numba"`` (:class:`MissingDependencyError` without numba) or ``"python"``.
+    """
+    from . import kernels
+
+    if backend not in BACKENDS:
+        from .errors import InvalidInputError
+
+        raise InvalidInputError("backend must be one of %s, got %r" % (BACKENDS, backend))
+    if backend == "python" or (backend == "auto" and not numba_available()):
+        return getattr(kernels, name), "python"
+    if not numba_available():
+        raise MissingDependencyError("the numba backend needs numba: pip install 'symbt[fast]'")
+    with _lock:
+        if not _compiled:
+            _compile_all()
+    return _compiled[name], "numba"

@@ -1,0 +1,149 @@
+r"""High precision, fast: mpmath in, mpmath out, python-flint's Arb inside.
+
+For mpmath input :func:`~symbt.numeric.bt_step` and :func:`~symbt.numeric.bt_orbit`
+pick the fastest backend present:
+
+* ``"flint"`` (python-flint installed): :func:`~symbt.numeric.step.step_core`
+  on Arb balls (:data:`~symbt.numeric.arb.ARB_MID`, decisions on midpoints)
+  at ``mp.prec + guard`` bits, the state kept in Arb between the steps of an
+  orbit; results are the midpoints rounded to the caller's ``mp.prec``.
+  ``allow_complex`` uses complex balls (``acb``).
+* ``"mpmath"``: the same step on mpmath numbers (mpmath itself uses gmpy2
+  when installed: ``mpmath.libmp.BACKEND == 'gmpy'``).
+
+Guard bits: ``40`` for a step (like the mpmath path's 12 digits) and
+``40 + 2 log2(n)`` for an ``n``-step orbit (the orbit error grows like
+``n**2`` ulps).  Both paths agree to the working precision
+(``tests/test_numeric_mpfast.py``, against ``reference_step`` at more digits).
+
+Example
+-------
+>>> import mpmath
+>>> from symbt.numeric.mpfast import mp_orbit
+>>> with mpmath.workdps(50):
+...     P, Q = mp_orbit([-20, 10, 1], [1, 0, mpmath.mpf("0.9")], 10, 5, 10, every=10)
+...     print(mpmath.nstr(Q[-1][0], 20))
+0.49085150918338141214
+"""
+
+from __future__ import annotations
+
+import importlib.util
+from collections.abc import Callable
+from typing import Any
+
+import mpmath
+
+from ._input import IV, as_state_pair, prepare_spectral_pair, to_output
+from .errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError
+from .kernels import stored_steps
+from .step import _mp_step, step_core
+
+__all__ = ["flint_available", "mp_backend", "mp_orbit", "MP_BACKENDS", "GUARD_BITS"]
+
+#: accepted ``backend`` values for mpmath input
+MP_BACKENDS = ("auto", "flint", "mpmath")
+GUARD_BITS = 40
+_flint: list[bool] = []
+
+
+def flint_available() -> bool:
+    """True if python-flint can be imported (imported once, on first call).
+
+    >>> isinstance(flint_available(), bool)
+    True
+    """
+    if not _flint:
+        ok = importlib.util.find_spec("flint") is not None
+        if ok:
+            try:
+                import flint  # noqa: F401
+            except Exception:  # pragma: no cover - broken installation
+                ok = False
+        _flint.append(ok)
+    return _flint[0]
+
+
+def _to_mp(x: Any) -> Any:
+    """An Arb ball (or complex ball) as an mpmath number at the current precision (its midpoint)."""
+    from flint import acb
+
+    if isinstance(x, acb):
+        if x.imag.is_zero():
+            return mpmath.mpf(x.real)
+        return mpmath.mpc(x.real, x.imag)
+    return mpmath.mpf(x)
+
+
+def _flint_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
+                allow_complex: bool) -> tuple[list[Any], list[Any]]:
+    from flint import acb, arb
+
+    from .arb import ACB, ARB_MID, flint_prec
+
+    with flint_prec(mpmath.mp.prec + GUARD_BITS):
+        Pa, Qa, l0, m = [arb(x) for x in P], [arb(x) for x in Q], arb(lam0), arb(mu)
+        try:
+            Pn, Qn, _ = step_core(ARB_MID, Pa, Qa, l0, m, branch)
+        except NoRealMapError:
+            if not allow_complex:
+                raise
+            Pn, Qn, _ = step_core(ACB, [acb(x) for x in Pa], [acb(x) for x in Qa], acb(l0), acb(m), branch,
+                                  check_real=False)
+        if not ARB_MID.isfinite_all(Pn + Qn):
+            raise NumericRangeError("non-finite result in the Arb step (degenerate eigenvector?)")
+    return [_to_mp(x) for x in Pn], [_to_mp(x) for x in Qn]
+
+
+def mp_backend(backend: str = "auto") -> Callable[..., tuple[list[Any], list[Any]]] | None:
+    """The fast mpmath step for ``backend`` (``None``: use the plain mpmath path).
+
+    >>> mp_backend("mpmath") is None
+    True
+    """
+    if backend not in MP_BACKENDS:
+        raise InvalidInputError("backend for mpmath input must be one of %s, got %r" % (MP_BACKENDS, backend))
+    if backend == "mpmath":
+        return None
+    if not flint_available():
+        if backend == "flint":
+            raise MissingDependencyError("the flint backend needs python-flint: pip install 'symbt[certified]'")
+        return None
+    return _flint_step
+
+
+def mp_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, every: int = 1,
+             backend: str = "auto") -> tuple[list[list[Any]], list[list[Any]]]:
+    """``n`` steps from one mpmath state; lists of the stored states (mpf at ``mp.dps``).
+
+    Stored states as for float64 orbits (steps ``0, every, ...`` and ``n``).
+    """
+    ctx, P, Q, _ = as_state_pair(p, q, lam0, mu)
+    lam0, mu = prepare_spectral_pair(ctx, lam0, mu, ())
+    keep = set(stored_steps(n, every))
+    outP, outQ = [to_output(ctx, P, ())], [to_output(ctx, Q, ())]
+    fast = None if ctx is IV else mp_backend(backend)
+    if mu == 0 or n == 0:
+        return outP * len(keep), outQ * len(keep)
+    if fast is None:
+        pc, qc = P, Q
+        for i in range(1, n + 1):
+            pc, qc = _mp_step(ctx, pc, qc, lam0, mu, branch, False)
+            if i in keep:
+                outP.append(pc)
+                outQ.append(qc)
+        return outP, outQ
+    from flint import arb
+
+    from .arb import ARB_MID, flint_prec
+
+    with flint_prec(mpmath.mp.prec + GUARD_BITS + 2 * n.bit_length()):
+        Pa, Qa, l0, m = [arb(x) for x in P], [arb(x) for x in Q], arb(lam0), arb(mu)
+        for i in range(1, n + 1):
+            Pa, Qa, _ = step_core(ARB_MID, Pa, Qa, l0, m, branch)
+            if not ARB_MID.isfinite_all(Pa + Qa):
+                raise NumericRangeError("non-finite result in the Arb step %d (degenerate eigenvector?)" % i)
+            if i in keep:
+                outP.append([mpmath.mpf(x) for x in Pa])
+                outQ.append([mpmath.mpf(x) for x in Qa])
+    return outP, outQ
