@@ -6,7 +6,9 @@ pick the fastest backend present:
 * ``"flint"`` (python-flint installed): :func:`~symbt.numeric.step.step_core`
   on Arb balls (:data:`~symbt.numeric.arb.ARB_MID`, decisions on midpoints)
   at ``mp.prec + guard`` bits, the state kept in Arb between the steps of an
-  orbit; results are the midpoints rounded to the caller's ``mp.prec``.
+  orbit as exact midpoints (the radii are dropped after every step: this is
+  midpoint arithmetic, a wide ball would make Arb trim its midpoint);
+  results are the midpoints rounded to the caller's ``mp.prec``.
   ``allow_complex`` uses complex balls (``acb``).
 * ``"mpmath"``: the same step on mpmath numbers (mpmath itself uses gmpy2
   when installed: ``mpmath.libmp.BACKEND == 'gmpy'``).
@@ -141,6 +143,9 @@ def mp_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, eve
         Pa, Qa, l0, m = [arb(x) for x in P], [arb(x) for x in Q], arb(lam0), arb(mu)
         for i in range(1, n + 1):
             Pa, Qa, _ = step_core(ARB_MID, Pa, Qa, l0, m, branch)
+            # midpoint arithmetic: drop the radii, else they grow with the steps and Arb trims the
+            # midpoints to the accuracy the radius justifies
+            Pa, Qa = [x.mid() for x in Pa], [x.mid() for x in Qa]
             if not ARB_MID.isfinite_all(Pa + Qa):
                 raise NumericRangeError("non-finite result in the Arb step %d (degenerate eigenvector?)" % i)
             if i in keep:
