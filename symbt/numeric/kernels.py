@@ -303,6 +303,8 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
         for j in range(N):
             jn = j + 1 if j + 1 < N else 0
             p[j] = p[j] + two_mu * (gq[jn] - gq[j])
+            if not abs(p[j]) < 1e300:
+                return RANGE
             x = xr[j]
             d = (xr[jn] - x) / (1.0 + x)
             r[j] = r[j] + r[j] * d
@@ -317,7 +319,10 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
         if i % every == 0 or i == n:
             for j in range(N):
                 outP[row, j] = p[j]
-                outQ[row, j] = _position(qh[j], ql[j], X[j])
+                y = _position(qh[j], ql[j], X[j])
+                if not abs(y) < 1e300:
+                    return RANGE
+                outQ[row, j] = y
             row += 1
     return OK
 
@@ -380,7 +385,10 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
         for j in range(N):
             jn = j + 1 if j + 1 < N else 0
             for k in range(B):
-                p[j, k] = p[j, k] + tm[k] * (gq[jn, k] - gq[j, k])
+                pn = p[j, k] + tm[k] * (gq[jn, k] - gq[j, k])
+                p[j, k] = pn
+                s1 = st[k]
+                st[k] = s1 if (s1 != OK or abs(pn) < 1e300) else RANGE
                 x = xr[j, k]
                 d = (xr[jn, k] - x) / (1.0 + x)
                 r[j, k] = r[j, k] + r[j, k] * d
@@ -400,7 +408,10 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
             for k in range(B):
                 for j in range(N):
                     outP[row, i0 + k, j] = p[j, k]
-                    outQ[row, i0 + k, j] = _position(qh[j, k], ql[j, k], X[j, k])
+                    y = _position(qh[j, k], ql[j, k], X[j, k])
+                    outQ[row, i0 + k, j] = y
+                    if not abs(y) < 1e300:
+                        st[k] = st[k] if st[k] != OK else RANGE
             row += 1
         nbad = 0
         for k in range(B):
