@@ -60,8 +60,12 @@ class ArbContext:
 
     is_exact_scale = True
     is_complex = False
-    exp, log, log1p, sqrt = (staticmethod(f) for f in (arb.exp, arb.log, arb.log1p, arb.sqrt))
-    nan, inf = staticmethod(arb.nan), staticmethod(arb.pos_inf)
+    exp: Any = staticmethod(arb.exp)
+    log: Any = staticmethod(arb.log)
+    log1p: Any = staticmethod(arb.log1p)
+    sqrt: Any = staticmethod(arb.sqrt)
+    nan: Any = staticmethod(arb.nan)
+    inf: Any = staticmethod(arb.pos_inf)
 
     def __init__(self, certain: bool) -> None:
         self.certain = certain
@@ -130,8 +134,12 @@ class AcbContext(ArbContext):
     """Complex balls (principal branches) for the complex continuation; decisions on midpoints."""
 
     is_complex = True
-    exp, log, log1p, sqrt = (staticmethod(f) for f in (acb.exp, acb.log, acb.log1p, acb.sqrt))
-    nan, inf = staticmethod(lambda: acb(arb.nan())), staticmethod(lambda: acb(arb.pos_inf()))
+    exp = staticmethod(acb.exp)
+    log = staticmethod(acb.log)
+    log1p = staticmethod(acb.log1p)
+    sqrt = staticmethod(acb.sqrt)
+    nan = staticmethod(lambda: acb(arb.nan()))
+    inf = staticmethod(lambda: acb(arb.pos_inf()))
 
     def positive(self, x: Any) -> bool:
         return bool(x.imag.is_zero() and x.real.mid() > 0)

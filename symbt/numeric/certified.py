@@ -35,7 +35,7 @@ Example
 >>> with mpmath.workdps(30):
 ...     P, Q, Pr, Qr = bt_orbit(["-20", "10", "1"], ["1", "0", "0.9"], 10, 5, 20, certified=True, every=10)
 ...     print(mpmath.nstr(P[-1][0], 12), float(max(Pr[-1] + Qr[-1])) < 1e-29)
--15.6154213453 True
+8.38673489171 True
 """
 
 from __future__ import annotations

@@ -183,7 +183,7 @@ class FloatContext:
         if big < 2.0**500 and np.isfinite(big):
             # det M = 1 forces max|entry| >~ 1 per row, so no per-row test needed
             return False
-        mx = None
+        mx: Any = None
         for x in arrays:
             ax = np.abs(x)
             ax = np.where(np.isfinite(ax), ax, np.inf)
@@ -313,7 +313,10 @@ class IVContext(MPContext):
     log = staticmethod(mpmath.iv.log)
     log1p = staticmethod(mpmath.iv.log1p)
     sqrt = staticmethod(mpmath.iv.sqrt)
-    div = staticmethod(operator.truediv)
+
+    @staticmethod
+    def div(a: Any, b: Any) -> Any:
+        return a / b
 
     @staticmethod
     def ldexp(x: Any, e: Any) -> Any:

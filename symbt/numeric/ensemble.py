@@ -232,9 +232,9 @@ def float_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, 
     if shape == () and backend != "numpy":
         if mu == 0 or n == 0:
             return np.repeat(pa, rows, axis=0), np.repeat(qa, rows, axis=0)
-        P1, Q1, st = _single(np.ascontiguousarray(pa[0]), np.ascontiguousarray(qa[0]), float(lam0),
-                             float(mu), branch, n, every, backend)
-        if st == OK:
+        P1, Q1, st1 = _single(np.ascontiguousarray(pa[0]), np.ascontiguousarray(qa[0]), float(lam0),
+                              float(mu), branch, n, every, backend)
+        if st1 == OK:
             return P1, Q1
     P = np.empty((rows, M, N))
     Q = np.empty((rows, M, N))

@@ -59,9 +59,9 @@ def _njit(fn: Callable[..., Any], **opts: Any) -> Callable[..., Any]:
     import numba
 
     try:
-        return numba.njit(cache=True, fastmath=False, error_model="numpy", **opts)(fn)  # type: ignore[no-any-return]
+        return numba.njit(cache=True, fastmath=False, error_model="numpy", **opts)(fn)
     except Exception:  # pragma: no cover - no writable cache location
-        return numba.njit(cache=False, fastmath=False, error_model="numpy", **opts)(fn)  # type: ignore[no-any-return]
+        return numba.njit(cache=False, fastmath=False, error_model="numpy", **opts)(fn)
 
 
 def _clone(fn: Callable[..., Any], **overrides: Any) -> Callable[..., Any]:

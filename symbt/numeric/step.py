@@ -116,11 +116,14 @@ class SlopeData:
 
     __slots__ = ("u", "trace_ok", "forward", "t", "g", "e")
 
-    def __init__(self, **kw: Any) -> None:
-        self.u: list[Any] | None = None
-        self.forward: Any = None
-        for k, v in kw.items():
-            setattr(self, k, v)
+    def __init__(self, *, trace_ok: Any = None, t: Any = None, g: Any = None, e: Any = 0,
+                 u: list[Any] | None = None, forward: Any = None) -> None:
+        self.trace_ok = trace_ok
+        self.t = t
+        self.g = g
+        self.e = e
+        self.u = u
+        self.forward = forward
 
 
 def _forward(ctx: Context, a: Sequence[Any], r: Sequence[Any], u1: Any) -> list[Any]:
