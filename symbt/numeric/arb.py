@@ -41,12 +41,24 @@ __all__ = ["ArbContext", "AcbContext", "ARB_MID", "ARB_CERTAIN", "ACB", "Uncerta
 
 
 class Uncertain(ArithmeticError):
-    """An existence decision could not be made on a ball (it contains the boundary)."""
+    """An existence decision could not be made on a ball (it contains the boundary).
+
+    >>> try:
+    ...     ARB_CERTAIN.positive(arb(0, 1))
+    ... except Uncertain:
+    ...     print("undecided")
+    undecided
+    """
 
 
 @contextlib.contextmanager
 def flint_prec(bits: int) -> Iterator[None]:
-    """Set python-flint's working precision (bits) for the block, restoring it afterwards."""
+    """Set python-flint's working precision (bits) for the block, restoring it afterwards.
+
+    >>> with flint_prec(200):
+    ...     print(flint.ctx.prec)
+    200
+    """
     old = flint.ctx.prec
     flint.ctx.prec = int(bits)
     try:
@@ -56,7 +68,11 @@ def flint_prec(bits: int) -> Iterator[None]:
 
 
 class ArbContext:
-    """Real balls; ``certain=True`` decides existence only when it holds on the whole ball."""
+    """Real balls; ``certain=True`` decides existence only when it holds on the whole ball.
+
+    >>> ArbContext(certain=False).positive(arb(1, 5)), ArbContext(certain=True).positive(arb(-1, 0.5))
+    (True, False)
+    """
 
     is_exact_scale = True
     is_complex = False
@@ -131,7 +147,11 @@ class ArbContext:
 
 
 class AcbContext(ArbContext):
-    """Complex balls (principal branches) for the complex continuation; decisions on midpoints."""
+    """Complex balls (principal branches) for the complex continuation; decisions on midpoints.
+
+    >>> ACB.sqrt(acb(-4)), ACB.positive(acb(1, 1))
+    (2.00000000000000j, False)
+    """
 
     is_complex = True
     exp = staticmethod(acb.exp)

@@ -198,6 +198,11 @@ def certified_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int =
     Raises :class:`NoRealMapError` (certainly no real map),
     :class:`NumericRangeError` (not certifiable below ``max_prec``),
     :class:`InvalidInputError`, :class:`MissingDependencyError` (no python-flint).
+
+    >>> with mpmath.workdps(20):
+    ...     P, Q, Pr, Qr = certified_orbit([-20, 10, 1], [1, 0, "0.9"], 10, 5, 1)
+    >>> mpmath.nstr(P[1][0], 10), float(Pr[1][0]) < 1e-19
+    ('-19.99656766', True)
     """
     from ._input import check_branch
     from .orbit import check_steps

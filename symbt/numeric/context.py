@@ -50,7 +50,11 @@ __all__ = ["Context", "FloatContext", "MPContext", "IVContext", "FLOAT", "COMPLE
 
 
 class Context(Protocol):
-    """The interface :func:`~symbt.numeric.step.step_core` is written against (see module docstring)."""
+    """The interface :func:`~symbt.numeric.step.step_core` is written against (see module docstring).
+
+    >>> isinstance(FLOAT.is_exact_scale, bool) and callable(MPContext.div)
+    True
+    """
 
     is_exact_scale: bool
     is_complex: bool
@@ -81,7 +85,11 @@ _LN2 = math.log(2.0)
 
 
 class FloatContext:
-    """numpy float64 (or complex128) arrays over a flattened batch axis."""
+    """numpy float64 (or complex128) arrays over a flattened batch axis.
+
+    >>> FLOAT.all_positive(np.array([1.0, 2.0])), COMPLEX.is_complex
+    (True, True)
+    """
 
     is_exact_scale = False
 
@@ -217,7 +225,11 @@ class FloatContext:
 
 
 class MPContext:
-    """mpmath multiprecision scalars (``mpmath.mp``) at the current ``mp.dps``."""
+    """mpmath multiprecision scalars (``mpmath.mp``) at the current ``mp.dps``.
+
+    >>> MPContext().positive(mpmath.mpc(1, 1)), MPContext.div(0, 0)
+    (False, mpf('nan'))
+    """
 
     is_exact_scale = True
     is_complex = True  # mpmath switches to mpc on its own where needed
@@ -305,6 +317,9 @@ class IVContext(MPContext):
     (``positive``) require the whole interval to be positive.  Complex
     continuation is not supported.  (For certified orbits use the Arb
     contexts of :mod:`symbt.numeric.arb`.)
+
+    >>> IVContext.positive(mpmath.iv.mpf([-1, 2]))
+    False
     """
 
     is_complex = False

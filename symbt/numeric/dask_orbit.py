@@ -71,6 +71,11 @@ def dask_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, chunks: Any = "aut
     length-``M`` arrays; ``chunks``: states per chunk (an int, a tuple of
     chunk sizes or ``"auto"``; ignored for dask input, whose row chunks are
     used).  ``every``, ``branch``, ``backend`` as for :func:`~symbt.numeric.bt_orbit`.
+
+    >>> P, Q = dask_orbit(np.tile([-20.0, 10, 1], (3, 1)), np.tile([1.0, 0, 0.9], (3, 1)), 10.0, 5.0, 4,
+    ...                   chunks=2, every=4)
+    >>> P.shape, [round(float(v), 6) for v in P[-1, 0].compute()] == [round(float(v), 6) for v in P[-1, 2].compute()]
+    ((2, 3, 3), True)
     """
     from ._input import check_branch
 

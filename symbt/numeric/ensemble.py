@@ -222,6 +222,10 @@ def float_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, 
     ``backend``: ``"auto"``, ``"numba"``, ``"python"`` (plain-Python kernel;
     for ensembles the block kernel, slow -- for tests) or ``"numpy"`` (the
     general path only).
+
+    >>> P, Q = float_orbit(np.tile([-20.0, 10, 1], (2, 1)), np.tile([1.0, 0, 0.9], (2, 1)), 10.0, [5.0, 0.0], 3)
+    >>> P.shape, bool(np.array_equal(P[3, 1], P[0, 1]))       # mu = 0: the identity
+    ((4, 2, 3), True)
     """
     if backend not in ORBIT_BACKENDS:
         raise InvalidInputError("backend must be one of %s, got %r" % (ORBIT_BACKENDS, backend))

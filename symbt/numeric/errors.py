@@ -34,7 +34,11 @@ __all__ = ["InvalidInputError", "NoRealMapError", "NumericRangeError", "Quadratu
 
 
 class InvalidInputError(ValueError):
-    """Malformed input: non-finite values, bad shapes, N < 2, bad branch."""
+    """Malformed input: non-finite values, bad shapes, N < 2, bad branch.
+
+    >>> issubclass(InvalidInputError, ValueError)
+    True
+    """
 
 
 class NoRealMapError(ValueError):
@@ -46,7 +50,11 @@ class NoRealMapError(ValueError):
         ``"trace"`` (``|tr L(lam_i)| <= 2``) or ``"positivity"``
         (some ``Etilde_j <= 0``, i.e. ``lam1``, ``lam2`` in different gaps).
     where : tuple
-        Up to a few offending batch indices (empty for a single state).
+        Offending batch indices (empty for a single state): up to five for
+        :func:`~symbt.numeric.bt_step`, all of them for ensemble orbits.
+
+    >>> NoRealMapError("no map", condition="trace").where
+    ()
     """
 
     def __init__(self, message: str, condition: str = "", where: Iterable[tuple[int, ...]] = ()) -> None:
@@ -56,12 +64,24 @@ class NoRealMapError(ValueError):
 
 
 class NumericRangeError(OverflowError):
-    """The problem is outside the range of the float64 formulation."""
+    """The problem is outside the range of the float64 formulation (or not certifiable).
+
+    >>> issubclass(NumericRangeError, OverflowError)
+    True
+    """
 
 
 class QuadratureError(ArithmeticError):
-    """Adaptive quadrature failed to meet its error estimate."""
+    """Adaptive quadrature failed to meet its error estimate.
+
+    >>> issubclass(QuadratureError, ArithmeticError)
+    True
+    """
 
 
 class MissingDependencyError(ImportError):
-    """An optional dependency (numba, python-flint, dask) is needed for the requested feature."""
+    """An optional dependency (numba, python-flint, dask) is needed for the requested feature.
+
+    >>> issubclass(MissingDependencyError, ImportError)
+    True
+    """

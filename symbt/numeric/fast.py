@@ -59,6 +59,10 @@ def fast_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, e
     states after ``every, 2 every, ...`` steps and always the final state
     (``rows = 1 + ceil(n / every)``), exactly as ``bt_orbit(..., every=every)``.
     ``backend`` in {"auto", "numba", "python"} selects the kernel.
+
+    >>> P, Q = fast_orbit([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0, 10, every=5, backend="python")
+    >>> P.shape
+    (3, 3)
     """
     from .ensemble import float_orbit
 

@@ -94,6 +94,9 @@ def kernel(name: str, backend: str = "auto") -> tuple[Callable[..., Any], str]:
 
     ``backend``: ``"auto"`` (numba when available, else plain Python),
     ``"numba"`` (:class:`MissingDependencyError` without numba) or ``"python"``.
+
+    >>> kernel("ensemble", "python")[0].__name__
+    'ensemble'
     """
     from . import kernels
 

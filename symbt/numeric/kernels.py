@@ -265,6 +265,12 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
     """Single-state version of :func:`run_block` (identical arithmetic); returns the status.
 
     ``outP, outQ`` have shape (rows, N) (see :func:`orbit_rows`).
+
+    >>> P, Q = np.empty((2, 3)), np.empty((2, 3))
+    >>> orbit(np.array([-20.0, 10, 1]), np.array([1.0, 0, 0.9]), 15.0, 5.0, 10.0, 1, 1, 1, ANCHOR, P, Q)
+    0
+    >>> round(float(Q[1, 0]), 8)
+    -0.08614224
     """
     N = p0.shape[0]
     p = p0.copy()
@@ -334,6 +340,13 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
     ``lam1 = lam0 + mu``, ``lam2 = lam0 - mu``, ``two_mu = 2 mu`` per state;
     stored states (see :func:`orbit_rows`) go to ``outP, outQ`` (rows, M, N);
     ``status[i]`` is set (0 ok, else the first failure, see module docstring).
+    Example: see the module docstring.
+
+    >>> st = np.zeros(1, np.int64)
+    >>> run_block(np.zeros((1, 2)), np.zeros((1, 2)), np.ones(1), -np.ones(1), 2 * np.ones(1), 1, 1, 1, ANCHOR,
+    ...           np.empty((2, 1, 2)), np.empty((2, 1, 2)), st, 0, 1)
+    >>> int(st[0])                      # tr L(1) = 1 - 2 = -1: lam1 = 1 lies in a band
+    1
     """
     N = P0.shape[1]
     B = i1 - i0
@@ -424,7 +437,15 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
 
 def ensemble(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, n: int, every: int,
              anchor: int, block: int, outP: F64, outQ: F64, status: I64) -> None:
-    """:func:`run_block` over all blocks of ``block`` states (``prange`` when compiled)."""
+    """:func:`run_block` over all blocks of ``block`` states (``prange`` when compiled).
+
+    >>> M = 3
+    >>> P, Q, st = np.empty((2, M, 3)), np.empty((2, M, 3)), np.zeros(M, np.int64)
+    >>> ensemble(np.tile([-20.0, 10, 1], (M, 1)), np.tile([1.0, 0, 0.9], (M, 1)), np.full(M, 15.0),
+    ...          np.full(M, 5.0), np.full(M, 10.0), 1, 1, 1, ANCHOR, 2, P, Q, st)
+    >>> st.tolist(), bool(np.all(P[1] == P[1, 0]))
+    ([0, 0, 0], True)
+    """
     M = P0.shape[0]
     nb = (M + block - 1) // block
     for b in prange(nb):

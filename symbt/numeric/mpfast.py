@@ -119,6 +119,11 @@ def mp_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, eve
     """``n`` steps from one mpmath state; lists of the stored states (mpf at ``mp.dps``).
 
     Stored states as for float64 orbits (steps ``0, every, ...`` and ``n``).
+
+    >>> with mpmath.workdps(40):
+    ...     P, Q = mp_orbit([-20, 10, 1], [1, 0, mpmath.mpf("0.9")], 10, 5, 2, backend="mpmath")
+    >>> len(P), mpmath.nstr(P[1][0], 10)
+    (3, '-19.99656766')
     """
     ctx, P, Q, _ = as_state_pair(p, q, lam0, mu)
     lam0, mu = prepare_spectral_pair(ctx, lam0, mu, ())

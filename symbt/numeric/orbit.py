@@ -94,6 +94,11 @@ def bt_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, eve
     ensembles :class:`NoRealMapError` lists in ``where`` every state without a
     real map.  The map preserves the spectrum, so if the first step exists all
     later ones do too (up to round-off at the boundary of existence).
+
+    >>> import numpy as np
+    >>> P, Q = bt_orbit(np.tile([-20.0, 10, 1], (4, 1)), np.tile([1.0, 0, 0.9], (4, 1)), 10.0, 5.0, 100, every=50)
+    >>> P.shape                                      # (stored states, ensemble, sites)
+    (3, 4, 3)
     """
     branch = check_branch(branch)
     n, every = check_steps(n, every)
