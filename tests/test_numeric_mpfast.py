@@ -114,3 +114,25 @@ def test_intervals_still_take_the_interval_path():
     iv = mpmath.iv
     P, Q = bt_orbit([iv.mpf(v) for v in (-20, 10, 1)], [iv.mpf(v) for v in (1, 0, 0.9)], 10, 5, 2)
     assert len(P) == 3 and all(hasattr(v, "delta") for v in P[-1])
+
+
+def test_fused_arb_step_is_step_core_on_arb_midpoints():
+    """The fused Arb step performs step_core's operations in the same order: identical balls."""
+    from flint import arb
+
+    from symbt.numeric.arb import ARB_MID, flint_prec
+    from symbt.numeric.mpfast import arb_step
+    from symbt.numeric.step import step_core
+
+    rng = np.random.default_rng(21)
+    with flint_prec(250):
+        for N in (2, 3, 6):
+            for branch in (1, -1):
+                p, q, lam0, mu = random_gap_case(rng, N)
+                P, Q = [arb(float(v)) for v in p], [arb(float(v)) for v in q]
+                a = arb_step(P, Q, arb(lam0), arb(mu), branch)
+                b = step_core(ARB_MID, P, Q, arb(lam0), arb(mu), branch)[:2]
+                for x, y in zip(a[0] + a[1], b[0] + b[1]):
+                    assert x.mid() == y.mid() and x.rad() == y.rad()
+        with pytest.raises(NoRealMapError, match="different spectral gaps"):
+            arb_step([arb(-20), arb(10), arb(1)], [arb(1), arb(0), arb(0.9)], arb(22.5), arb(17.5), 1)

@@ -113,11 +113,11 @@ class ArbContext:
         return a * b
 
     def align(self, g: Any, ref: Any) -> tuple[Any, bool]:
-        plus = bool(self.re_dot(ref, g).mid() >= 0)
+        plus = (ref.mid() >= 0) == (g.mid() >= 0)     # sign of ref * g, without the product
         return (g if plus else -g), plus
 
     def half_plane(self, a: Any, g: Any) -> bool:
-        return bool(self.re_dot(a, g).mid() >= 0)
+        return bool((a.mid() >= 0) == (g.mid() >= 0))
 
     def any(self, c: Any) -> bool:
         return bool(c)
@@ -169,6 +169,13 @@ class AcbContext(ArbContext):
 
     def re_dot(self, a: Any, b: Any) -> Any:
         return (a * b.conjugate()).real
+
+    def align(self, g: Any, ref: Any) -> tuple[Any, bool]:
+        plus = bool(self.re_dot(ref, g).mid() >= 0)
+        return (g if plus else -g), plus
+
+    def half_plane(self, a: Any, g: Any) -> bool:
+        return bool(self.re_dot(a, g).mid() >= 0)
 
 
 ARB_MID = ArbContext(certain=False)

@@ -41,7 +41,7 @@ from .errors import InvalidInputError, MissingDependencyError, NoRealMapError, N
 from .kernels import stored_steps
 from .step import _mp_step, step_core
 
-__all__ = ["flint_available", "mp_backend", "mp_orbit", "MP_BACKENDS", "GUARD_BITS"]
+__all__ = ["flint_available", "mp_backend", "mp_orbit", "arb_step", "MP_BACKENDS", "GUARD_BITS"]
 
 #: accepted ``backend`` values for mpmath input
 MP_BACKENDS = ("auto", "flint", "mpmath")
@@ -66,33 +66,109 @@ def flint_available() -> bool:
     return _flint[0]
 
 
+def _mpf(x: Any, _fme: Any = mpmath.libmp.from_man_exp, _make: Any = mpmath.mp.make_mpf) -> Any:
+    """The midpoint of an Arb ball as an mpf rounded (to nearest) to the current ``mp.prec``."""
+    if not x.is_finite():
+        return mpmath.mpf(x)
+    man, exp = x.mid().man_exp()
+    return _make(_fme(int(man), int(exp), mpmath.mp.prec, "n"))
+
+
 def _to_mp(x: Any) -> Any:
     """An Arb ball (or complex ball) as an mpmath number at the current precision (its midpoint)."""
     from flint import acb
 
     if isinstance(x, acb):
         if x.imag.is_zero():
-            return mpmath.mpf(x.real)
-        return mpmath.mpc(x.real, x.imag)
-    return mpmath.mpf(x)
+            return _mpf(x.real)
+        return mpmath.mpc(_mpf(x.real), _mpf(x.imag))
+    return _mpf(x)
+
+
+def _div(a: Any, b: Any) -> Any:
+    if b.is_zero():                      # projective infinity, as every context (rare)
+        from .arb import ARB_MID
+
+        return ARB_MID.div(a, b)
+    return a / b
+
+
+def _slopes(a: list[Any], r: list[Any], s: int, name: str) -> list[Any]:
+    """:func:`~symbt.numeric.step.eigen_slopes` for real Arb midpoints, fused (same operations, same order)."""
+    N = len(a)
+    A, B, C, D = a[0], -1.0, r[0], 0.0
+    for j in range(1, N):
+        A, B, C, D = a[j] * A - C, a[j] * B - D, r[j] * A, r[j] * B
+    t = A + D
+    disc = (t - 2.0) * (t + 2.0)
+    if not disc.mid() > 0:
+        raise NoRealMapError("no real Bäcklund map: |tr L(%s)| <= 2, the spectral parameter lies in a band"
+                             % name, condition="trace")
+    g = disc.sqrt()
+    gpos = g.mid() >= 0
+    tg = (t.mid() >= 0) == gpos
+    fwd = (not tg) if s > 0 else tg
+    dl = A - D
+    plus = (dl.mid() >= 0) == gpos
+    k = dl + (g if plus else -g)
+    u1 = _div(k, 2 * B) if (plus if s > 0 else not plus) else _div(-2 * C, k)
+    u = [u1]
+    if fwd:
+        for j in range(N - 1):
+            u.append(_div(-r[j], a[j] + u[j]))
+        return u
+    u += [None] * (N - 1)
+    nxt = u1
+    for j in range(N - 1, 0, -1):
+        nxt = u[j] = -a[j] - _div(r[j], nxt)
+    return u
+
+
+def arb_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int) -> tuple[list[Any], list[Any]]:
+    """One step on real Arb balls with midpoint decisions: ``step_core(ARB_MID, ...)`` fused.
+
+    Performs exactly the operations of :func:`~symbt.numeric.step.step_core` in the same order
+    (bit-identical results, ``tests/test_numeric_mpfast.py``) without the context indirection
+    (about twice as fast); raises the same :class:`NoRealMapError`.
+
+    >>> from flint import arb
+    >>> P, Q = arb_step([arb(-20), arb(10), arb(1)], [arb(1), arb(0), arb("0.9")], arb(10), arb(5), 1)
+    >>> P[0].str(8, radius=False)
+    '-19.996568'
+    """
+    N = len(P)
+    r = [(Q[(j + 1) % N] - Q[j]).exp() for j in range(N)]
+    lam1, lam2 = lam0 + mu, lam0 - mu
+    u = _slopes([lam1 + pj for pj in P], r, branch, "lam1 = lam0 + mu")
+    w = _slopes([lam2 + pj for pj in P], r, -branch, "lam2 = lam0 - mu")
+    two_mu = 2 * mu
+    dn = [u[j] - w[j] for j in range(N)]
+    xr = [_div(two_mu, dn[j]) for j in range(N)]
+    if not all((x + 1).mid() > 0 for x in xr):
+        raise NoRealMapError("no real Bäcklund map: some Etilde_j = E_j - x_j <= 0 (lam1 and lam2 lie in "
+                             "different spectral gaps)", condition="positivity")
+    Qn = [Q[j] + xr[j].log1p() for j in range(N)]
+    gq = [_div(u[j], dn[j]) for j in range(N)]
+    Pn = [P[j] + two_mu * (gq[(j + 1) % N] - gq[j]) for j in range(N)]
+    return Pn, Qn
 
 
 def _flint_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
                 allow_complex: bool) -> tuple[list[Any], list[Any]]:
     from flint import acb, arb
 
-    from .arb import ACB, ARB_MID, flint_prec
+    from .arb import ACB, flint_prec
 
     with flint_prec(mpmath.mp.prec + GUARD_BITS):
         Pa, Qa, l0, m = [arb(x) for x in P], [arb(x) for x in Q], arb(lam0), arb(mu)
         try:
-            Pn, Qn, _ = step_core(ARB_MID, Pa, Qa, l0, m, branch)
+            Pn, Qn = arb_step(Pa, Qa, l0, m, branch)
         except NoRealMapError:
             if not allow_complex:
                 raise
             Pn, Qn, _ = step_core(ACB, [acb(x) for x in Pa], [acb(x) for x in Qa], acb(l0), acb(m), branch,
                                   check_real=False)
-        if not ARB_MID.isfinite_all(Pn + Qn):
+        if not all(x.is_finite() for x in Pn + Qn):
             raise NumericRangeError("non-finite result in the Arb step (degenerate eigenvector?)")
     return [_to_mp(x) for x in Pn], [_to_mp(x) for x in Qn]
 
@@ -142,18 +218,18 @@ def mp_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, eve
         return outP, outQ
     from flint import arb
 
-    from .arb import ARB_MID, flint_prec
+    from .arb import flint_prec
 
     with flint_prec(mpmath.mp.prec + GUARD_BITS + 2 * n.bit_length()):
         Pa, Qa, l0, m = [arb(x) for x in P], [arb(x) for x in Q], arb(lam0), arb(mu)
         for i in range(1, n + 1):
-            Pa, Qa, _ = step_core(ARB_MID, Pa, Qa, l0, m, branch)
+            Pa, Qa = arb_step(Pa, Qa, l0, m, branch)
             # midpoint arithmetic: drop the radii, else they grow with the steps and Arb trims the
             # midpoints to the accuracy the radius justifies
             Pa, Qa = [x.mid() for x in Pa], [x.mid() for x in Qa]
-            if not ARB_MID.isfinite_all(Pa + Qa):
+            if not all(x.is_finite() for x in Pa + Qa):
                 raise NumericRangeError("non-finite result in the Arb step %d (degenerate eigenvector?)" % i)
             if i in keep:
-                outP.append([mpmath.mpf(x) for x in Pa])
-                outQ.append([mpmath.mpf(x) for x in Qa])
+                outP.append([_mpf(x) for x in Pa])
+                outQ.append([_mpf(x) for x in Qa])
     return outP, outQ
