@@ -66,9 +66,7 @@ def _njit(fn: Callable[..., Any], **opts: Any) -> Callable[..., Any]:
 
 def _clone(fn: Callable[..., Any], **overrides: Any) -> Callable[..., Any]:
     """``fn`` with its module globals overridden (to call the compiled helpers)."""
-    from . import kernels
-
-    g = dict(vars(kernels))
+    g = dict(fn.__globals__)
     g.update(overrides)
     return types.FunctionType(fn.__code__, g, fn.__name__, fn.__defaults__, fn.__closure__)
 
@@ -76,16 +74,18 @@ def _clone(fn: Callable[..., Any], **overrides: Any) -> Callable[..., Any]:
 def _compile_all() -> None:
     import numba
 
-    from . import kernels
+    from . import kernels as K
+    from . import kernels_block as KB
 
-    position = _njit(kernels._position)
-    slopes1 = _njit(kernels._slopes1)
-    anchor1 = _njit(kernels._anchor1)
-    orbit = _njit(_clone(kernels.orbit, _slopes1=slopes1, _anchor1=anchor1, _position=position))
-    slopes = _njit(kernels._slopes)
-    anchor = _njit(kernels._anchor)
-    run_block = _njit(_clone(kernels.run_block, _slopes=slopes, _anchor=anchor, _position=position))
-    ens = _njit(_clone(kernels.ensemble, run_block=run_block, prange=numba.prange), parallel=True)
+    small = {name: _njit(getattr(K, name), inline="always") for name in ("_logf", "_dd_add")}
+    small["_dd_position"] = _njit(_clone(K._dd_position, **small), inline="always")
+    slopes1 = _njit(K._slopes1)
+    anchor1 = _njit(_clone(K._anchor1, **small))
+    orbit = _njit(_clone(K.orbit, _slopes1=slopes1, _anchor1=anchor1, **small))
+    slopes = _njit(KB._slopes)
+    anchor = _njit(_clone(KB._anchor, **small))
+    run_block = _njit(_clone(KB.run_block, _slopes=slopes, _anchor=anchor, **small))
+    ens = _njit(_clone(KB.ensemble, run_block=run_block, prange=numba.prange), parallel=True)
     _compiled.update(orbit=orbit, run_block=run_block, ensemble=ens)
 
 
@@ -98,14 +98,14 @@ def kernel(name: str, backend: str = "auto") -> tuple[Callable[..., Any], str]:
     >>> kernel("ensemble", "python")[0].__name__
     'ensemble'
     """
-    from . import kernels
+    from . import kernels, kernels_block
 
     if backend not in BACKENDS:
         from .errors import InvalidInputError
 
         raise InvalidInputError("backend must be one of %s, got %r" % (BACKENDS, backend))
     if backend == "python" or (backend == "auto" and not numba_available()):
-        return getattr(kernels, name), "python"
+        return getattr(kernels if name == "orbit" else kernels_block, name), "python"
     if not numba_available():
         raise MissingDependencyError("the numba backend needs numba: pip install 'symbt[fast]'")
     with _lock:
