@@ -9,6 +9,7 @@ select the interval context.
 
 from __future__ import annotations
 
+import math
 import numbers
 from collections.abc import Sequence
 from typing import Any
@@ -24,6 +25,7 @@ MP = MPContext()
 IV = IVContext()
 
 _MP_TYPES = (mpmath.mpf, mpmath.mpc)
+_REAL_SCALARS = frozenset([float, int, np.float64, np.float32, np.int64, np.int32])
 _IV_TYPE = type(mpmath.iv.mpf(1))
 
 
@@ -174,6 +176,11 @@ def prepare_scalar(ctx: Context, x: Any, shape: tuple[int, ...], name: str) -> A
         if ctx is not IV and (isinstance(v, mpmath.mpc) or not mpmath.isfinite(v)):
             raise InvalidInputError("%s must be a finite real number" % name)
         return v
+    if type(x) in _REAL_SCALARS:          # fast path: plain real scalars
+        v = float(x)
+        if not math.isfinite(v):
+            raise InvalidInputError("%s must be finite" % name)
+        return v
     if _is_complex(x):
         raise InvalidInputError("%s must be real" % name)
     if isinstance(x, _MP_TYPES):
@@ -229,7 +236,10 @@ def prepare_spectral_pair(ctx: Context, lam0: Any, mu: Any, shape: tuple[int, ..
     """
     lam0 = prepare_scalar(ctx, lam0, shape, "lam0")
     mu = prepare_scalar(ctx, mu, shape, "mu")
-    if ctx is FLOAT:
+    if ctx is FLOAT and type(lam0) is float and type(mu) is float:
+        if not (math.isfinite(lam0 + mu) and math.isfinite(lam0 - mu)):
+            raise NumericRangeError("lam0 +- mu overflows float64")
+    elif ctx is FLOAT:
         with np.errstate(over="ignore", invalid="ignore"):
             ok = np.all(np.isfinite(lam0 + mu)) and np.all(np.isfinite(lam0 - mu))
         if not ok:

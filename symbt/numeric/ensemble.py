@@ -127,45 +127,58 @@ def _general_block(p0: F64, q0: F64, lam0: Any, mu: Any, branch: int, n: int, ev
     fail = np.zeros(m, np.int64)
     P[0, idx] = p0
     Q[0, idx] = q0
-    # carry the centre of mass separately (compensated two-sum), see bt_orbit's history:
-    # the rounding of q at |q| ~ 500 would otherwise perturb the relative coordinates
-    c_hi = np.mean(q0, axis=-1, keepdims=True)
-    c_lo = np.zeros_like(c_hi)
-    qr = q0 - c_hi
-    pc = p0.copy()
+    # site lists (what step_core takes); the centre of mass is carried separately (compensated
+    # two-sum): the rounding of q at |q| ~ 500 would otherwise perturb the relative coordinates
+    c_hi = np.mean(q0, axis=-1)
+    c_lo = np.zeros(m)
+    pc = [p0[:, j].copy() for j in range(N)]
+    qr = [q0[:, j] - c_hi for j in range(N)]
     alive = np.arange(m)
     row = 1
     for i in range(1, n + 1):
-        a = alive
-        dq = np.roll(qr[a], -1, axis=1) - qr[a]
-        far = ~(np.max(np.abs(dq), axis=1) <= MAX_DQ)
-        if far.any():
-            status[a[far]], fail[a[far]] = RANGE, i
-            a = a[~far]
-        if a.size:
-            with np.errstate(all="ignore"):
-                Pn, Qn, aux = step_core(FLOAT, list(pc[a].T.copy()), list(qr[a].T.copy()), _take(lam0, a),
-                                        _take(mu, a), branch, check_real=False)
-                pos = np.logical_and.reduce([np.asarray(x) + 1 > 0 for x in aux["xr"]])
-                pn = np.stack(Pn, axis=-1)
-                qn = np.stack(Qn, axis=-1)
-                fin = np.isfinite(pn).all(axis=1) & np.isfinite(qn).all(axis=1)
-            code = np.select([~(aux["S1"].trace_ok > 0), ~(aux["S2"].trace_ok > 0), ~pos, ~fin],
-                             [TRACE1, TRACE2, POSITIVITY, RANGE], OK)
-            good = code == OK
-            status[a[~good]], fail[a[~good]] = code[~good], i
-            a = a[good]
-            s = np.mean(qn[good], axis=-1, keepdims=True)
-            qr[a] = qn[good] - s
-            pc[a] = pn[good]
-            t = c_hi[a] + s                                       # two-sum (Knuth)
-            bp = t - c_hi[a]
-            c_lo[a] = c_lo[a] + ((c_hi[a] - (t - bp)) + (s - bp))
-            c_hi[a] = t
-        alive = a
+        full = alive.size == m
+        Ps = pc if full else [x[alive] for x in pc]
+        Qs = qr if full else [x[alive] for x in qr]
+        L0, MU = (lam0, mu) if full else (_take(lam0, alive), _take(mu, alive))
+        with np.errstate(all="ignore"):
+            far = np.maximum.reduce([np.abs(Qs[(j + 1) % N] - Qs[j]) for j in range(N)]) > MAX_DQ
+            far = far | ~np.isfinite(np.add.reduce(Ps) + np.add.reduce(Qs))
+            if far.any():            # beyond the float64 range of the scaled formulation
+                keep = ~far
+                status[alive[far]], fail[alive[far]] = RANGE, i
+                alive = alive[keep]
+                Ps, Qs = [x[keep] for x in Ps], [x[keep] for x in Qs]
+                L0, MU = _take(L0, np.flatnonzero(keep)), _take(MU, np.flatnonzero(keep))
+                full = False
+            if alive.size == 0:
+                break
+            Pn, Qn, aux = step_core(FLOAT, Ps, Qs, L0, MU, branch, check_real=False)
+            t1, t2 = aux["S1"].trace_ok > 0, aux["S2"].trace_ok > 0
+            pos = np.logical_and.reduce([x + 1 > 0 for x in aux["xr"]])
+            fin = np.isfinite(np.add.reduce(Pn) + np.add.reduce(Qn))
+            good = t1 & t2 & pos & fin
+        if not good.all():
+            bad = ~good
+            code = np.select([~t1[bad], ~t2[bad], ~pos[bad]], [TRACE1, TRACE2, POSITIVITY], RANGE)
+            status[alive[bad]], fail[alive[bad]] = code, i
+            Pn, Qn = [x[good] for x in Pn], [x[good] for x in Qn]
+            alive = alive[good]
+            full = False
+        s = np.add.reduce(Qn) / N
+        t = (c_hi if full else c_hi[alive]) + s                          # two-sum (Knuth)
+        hi = c_hi if full else c_hi[alive]
+        bp = t - hi
+        lo = (c_lo if full else c_lo[alive]) + ((hi - (t - bp)) + (s - bp))
+        if full:
+            pc, qr, c_hi, c_lo = Pn, [x - s for x in Qn], t, lo
+        else:
+            for j in range(N):
+                pc[j][alive] = Pn[j]
+                qr[j][alive] = Qn[j] - s
+            c_hi[alive], c_lo[alive] = t, lo
         if i % every == 0 or i == n:
-            P[row, idx] = pc
-            Q[row, idx] = c_hi + (c_lo + qr)
+            P[row, idx] = np.stack(pc, axis=-1)
+            Q[row, idx] = np.stack([c_hi + (c_lo + x) for x in qr], axis=-1)
             row += 1
         if alive.size == 0:
             break

@@ -37,15 +37,13 @@ _available: list[bool] = []
 
 
 def numba_available() -> bool:
-    """True if numba can be imported (and ``SYMBT_NO_NUMBA`` is not set); imports numba once.
+    """True if numba can be imported and ``SYMBT_NO_NUMBA`` is not set (both read once, on first call).
 
     >>> isinstance(numba_available(), bool)
     True
     """
-    if os.environ.get("SYMBT_NO_NUMBA", "") not in ("", "0"):
-        return False
     if not _available:
-        ok = importlib.util.find_spec("numba") is not None
+        ok = os.environ.get("SYMBT_NO_NUMBA", "") in ("", "0") and importlib.util.find_spec("numba") is not None
         if ok:
             try:
                 import numba  # noqa: F401
@@ -98,17 +96,18 @@ def kernel(name: str, backend: str = "auto") -> tuple[Callable[..., Any], str]:
     >>> kernel("ensemble", "python")[0].__name__
     'ensemble'
     """
-    from . import kernels, kernels_block
+    if backend == "python" or (backend == "auto" and not numba_available()):
+        from . import kernels, kernels_block
 
+        return getattr(kernels if name == "orbit" else kernels_block, name), "python"
     if backend not in BACKENDS:
         from .errors import InvalidInputError
 
         raise InvalidInputError("backend must be one of %s, got %r" % (BACKENDS, backend))
-    if backend == "python" or (backend == "auto" and not numba_available()):
-        return getattr(kernels if name == "orbit" else kernels_block, name), "python"
     if not numba_available():
         raise MissingDependencyError("the numba backend needs numba: pip install 'symbt[fast]'")
-    with _lock:
-        if not _compiled:
-            _compile_all()
+    if not _compiled:
+        with _lock:
+            if not _compiled:
+                _compile_all()
     return _compiled[name], "numba"

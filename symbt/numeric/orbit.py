@@ -37,6 +37,7 @@ import numpy as np
 
 from ._input import check_branch, pick_context
 from .context import FLOAT
+from .ensemble import float_orbit
 from .errors import InvalidInputError
 
 __all__ = ["bt_orbit", "check_steps"]
@@ -112,8 +113,6 @@ def bt_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, eve
     if ctx is FLOAT:
         if backend in ("flint", "mpmath"):
             raise InvalidInputError("backend %r needs mpmath inputs" % backend)
-        from .ensemble import float_orbit
-
         return float_orbit(p, q, lam0, mu, n, branch=branch, every=every, backend=backend)
     from .mpfast import mp_orbit
 
