@@ -182,8 +182,8 @@ def _output(balls: list[Any]) -> tuple[list[Any], list[Any]]:
 
 
 def certified_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, every: int = 1,
-                    tol: Any = None, prec: int | None = None,
-                    max_prec: int = DEFAULT_MAX_PREC) -> tuple[list[list[Any]], list[list[Any]],
+                    tol: Any = None, prec: int | None = None, max_prec: int = DEFAULT_MAX_PREC,
+                    info: dict[str, Any] | None = None) -> tuple[list[list[Any]], list[list[Any]],
                                                                list[list[Any]], list[list[Any]]]:
     """Certified ``n``-step orbit: ``(P, Q, P_rad, Q_rad)``, lists over the stored states.
 
@@ -193,7 +193,9 @@ def certified_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int =
     ``tol``: absolute radius target (default: one unit in the last place of
     each returned value, relative to ``max(1, |x|)``); ``prec``: first working
     precision (bits, default ``mp.prec + 32``); ``max_prec``: cap of the
-    automatic increase.  Stored states as in :func:`~symbt.numeric.bt_orbit`.
+    automatic increase; ``info``: a dict that receives ``passes`` (the working
+    precisions tried, bits) and ``prec`` (the one that succeeded).  Stored
+    states as in :func:`~symbt.numeric.bt_orbit`.
 
     Raises :class:`NoRealMapError` (certainly no real map),
     :class:`NumericRangeError` (not certifiable below ``max_prec``),
@@ -218,11 +220,17 @@ def certified_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int =
     out_prec = mpmath.mp.prec
     keep = set(stored_steps(n, every))
     work = int(prec) if prec is not None else out_prec + 32
+    passes: list[int] = []
+    if info is not None:
+        info["passes"] = passes
     for _ in range(_ATTEMPTS):
         if work > max_prec:
             break
+        passes.append(work)
         ok, stored, hist, done = _run(p, q, lam0, mu, n, branch, keep, work, tol, out_prec)
         if ok:
+            if info is not None:
+                info["prec"] = work
             Pm, Qm, Pr, Qr = [], [], [], []
             for Pb, Qb in stored:
                 a, b = _output(Pb)

@@ -30,7 +30,8 @@ from typing import Any
 import mpmath
 import numpy as np
 
-__all__ = ["best_of", "kernel_overhead", "ensemble_throughput", "mp_speed", "certified_growth", "main"]
+__all__ = ["best_of", "kernel_overhead", "ensemble_throughput", "mp_speed", "certified_growth", "certified_time",
+           "main"]
 
 P0, Q0, LAM0, MU = [-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0
 
@@ -80,11 +81,12 @@ def ensemble_throughput(M: int = 10_000, n: int = 200, repeat: int = 3) -> dict[
         import numba
 
         bt_orbit(p[:8], q[:8], LAM0, MU, 2, backend="numba")
-        for threads in sorted({1, numba.config.NUMBA_NUM_THREADS}):
+        most = numba.get_num_threads()
+        for threads in sorted({1, most}):
             numba.set_num_threads(threads)
             t = best_of(lambda: bt_orbit(p, q, LAM0, MU, n, every=n, backend="numba"), repeat)
             out["numba_%dthreads" % threads] = M * n / t
-        numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
+        numba.set_num_threads(most)
     nn = max(1, n // 10)
     out["numpy"] = M * nn / best_of(lambda: bt_orbit(p, q, LAM0, MU, nn, every=nn, backend="numpy"), 1)
     return out
@@ -127,25 +129,16 @@ def certified_growth(prec: int = 400, steps: tuple[int, ...] = (1, 10, 25, 50, 1
     return out
 
 
-def _certified_time(n: int, tol: float, dps: int) -> tuple[float, float, int]:
-    from . import certified
+def certified_time(n: int, tol: float, dps: int) -> tuple[float, float, int]:
+    """``(seconds, max radius, working precision)`` of a certified ``n``-step orbit (paper's example)."""
+    from .certified import certified_orbit
 
-    used = []
-    run = certified._run
-
-    def spy(*a: Any) -> Any:
-        used.append(a[7])
-        return run(*a)
-
-    certified._run = spy
-    try:
-        with mpmath.workdps(dps):
-            t = time.perf_counter()
-            _, _, Pr, Qr = certified.certified_orbit(P0, Q0, LAM0, MU, n, every=n, tol=tol)
-            t = time.perf_counter() - t
-    finally:
-        certified._run = run
-    return t, float(max(Pr[-1] + Qr[-1])), used[-1]
+    info: dict[str, Any] = {}
+    with mpmath.workdps(dps):
+        t = time.perf_counter()
+        _, _, Pr, Qr = certified_orbit(P0, Q0, LAM0, MU, n, every=n, tol=tol, info=info)
+        t = time.perf_counter() - t
+    return t, float(max(Pr[-1] + Qr[-1])), int(info["prec"])
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -165,7 +158,7 @@ def main(argv: list[str] | None = None) -> None:
               % (dps, m["mpmath"] * 1e3, m.get("flint", float("nan")) * 1e3, m.get("speedup", float("nan"))))
     print("4. certified radius growth at 400 bits:", ", ".join("n=%d %.1e" % sr for sr in certified_growth()))
     for n, tol, dps in ((100, 1e-30, 50),) + (() if args.quick else ((3500, 1e-15, 30),)):
-        t, r, prec = _certified_time(n, tol, dps)
+        t, r, prec = certified_time(n, tol, dps)
         print("   certified %d steps, tol %.0e (mp.dps %d): %.2f s, working precision %d bits, max radius %.2e"
               % (n, tol, dps, t, prec, r))
 
