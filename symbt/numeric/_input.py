@@ -12,14 +12,16 @@ from __future__ import annotations
 import math
 import numbers
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import mpmath
 import numpy as np
-import numpy.typing as npt
 
 from .context import FLOAT, Context, IVContext, MPContext
 from .errors import InvalidInputError, NumericRangeError
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 MP = MPContext()
 IV = IVContext()

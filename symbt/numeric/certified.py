@@ -40,8 +40,8 @@ Example
 
 from __future__ import annotations
 
-import fractions
 import math
+import numbers
 from typing import Any
 
 import mpmath
@@ -68,10 +68,10 @@ def _ball(x: Any, name: str) -> Any:
         raise InvalidInputError("%s: booleans are not numbers here" % name)
     if isinstance(x, (complex, np.complexfloating, mpmath.mpc)):
         raise InvalidInputError("%s: complex input is not supported (the real map takes real states)" % name)
-    if isinstance(x, fractions.Fraction):
-        return arb(x.numerator) / arb(x.denominator)
     if isinstance(x, (int, np.integer)):
         return arb(int(x))
+    if isinstance(x, numbers.Rational):                       # fractions.Fraction
+        return arb(int(x.numerator)) / arb(int(x.denominator))
     if isinstance(x, (float, np.floating)):
         if not math.isfinite(x):
             raise InvalidInputError("%s contains a non-finite value" % name)

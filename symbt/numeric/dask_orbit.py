@@ -28,14 +28,16 @@ True
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import numpy.typing as npt
 
 from .errors import InvalidInputError, MissingDependencyError, NoRealMapError
 from .kernels import orbit_rows
 from .orbit import check_steps
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 __all__ = ["dask_orbit"]
 

@@ -32,10 +32,9 @@ Example
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import numpy.typing as npt
 
 from ._input import prepare_spectral_pair, validate_float_pair
 from .context import FLOAT
@@ -45,10 +44,14 @@ from .kernels import ANCHOR, OK, POSITIVITY, RANGE, TRACE1, TRACE2, orbit_rows
 from .lax import MAX_DQ
 from .step import BLOCK_ELEMENTS, step_core
 
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    F64 = npt.NDArray[np.float64]
+    I64 = npt.NDArray[np.int64]
+
 __all__ = ["float_orbit", "kernel_step", "general_orbit", "raise_for_status", "ORBIT_BACKENDS"]
 
-F64 = npt.NDArray[np.float64]
-I64 = npt.NDArray[np.int64]
 #: accepted ``backend`` values for float64 orbits
 ORBIT_BACKENDS = ("auto", "numba", "python", "numpy")
 _PY_ERRORS = (FloatingPointError, ZeroDivisionError, OverflowError, ValueError)

@@ -23,15 +23,17 @@ Example
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import numpy.typing as npt
 
 from ._input import check_branch
 from .errors import InvalidInputError
 from .jit import kernel, numba_available
 from .orbit import check_steps
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 __all__ = ["fast_orbit", "kernel_backend"]  # and HAVE_NUMBA (lazy, see __getattr__)
 

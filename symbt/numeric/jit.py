@@ -18,9 +18,7 @@ Example
 
 from __future__ import annotations
 
-import importlib.util
 import os
-import threading
 import types
 from collections.abc import Callable
 from typing import Any
@@ -31,8 +29,8 @@ __all__ = ["numba_available", "kernel", "BACKENDS"]
 
 BACKENDS = ("auto", "numba", "python")
 
-_lock = threading.Lock()
 _compiled: dict[str, Callable[..., Any]] = {}
+_LOCK: dict[str, Any] = {}
 _available: list[bool] = []
 
 
@@ -43,6 +41,8 @@ def numba_available() -> bool:
     True
     """
     if not _available:
+        import importlib.util
+
         ok = os.environ.get("SYMBT_NO_NUMBA", "") in ("", "0") and importlib.util.find_spec("numba") is not None
         if ok:
             try:
@@ -107,7 +107,9 @@ def kernel(name: str, backend: str = "auto") -> tuple[Callable[..., Any], str]:
     if not numba_available():
         raise MissingDependencyError("the numba backend needs numba: pip install 'symbt[fast]'")
     if not _compiled:
-        with _lock:
+        import threading
+
+        with _LOCK.setdefault("lock", threading.Lock()):
             if not _compiled:
                 _compile_all()
     return _compiled[name], "numba"

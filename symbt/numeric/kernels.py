@@ -48,18 +48,21 @@ Example
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
-import numpy.typing as npt
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    F64 = npt.NDArray[np.float64]
+    I64 = npt.NDArray[np.int64]
 
 __all__ = ["orbit", "orbit_rows", "stored_steps", "ANCHOR", "OK", "TRACE1", "TRACE2", "POSITIVITY", "RANGE"]
 
 OK, TRACE1, TRACE2, POSITIVITY, RANGE = 0, 1, 2, 3, 4
 #: steps between re-anchoring ``r`` to ``exp`` of the accumulated positions
 ANCHOR = 16
-
-F64 = npt.NDArray[np.float64]
-I64 = npt.NDArray[np.int64]
 
 
 def orbit_rows(n: int, every: int) -> int:

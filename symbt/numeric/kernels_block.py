@@ -23,10 +23,14 @@ Example
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .kernels import F64, I64, OK, POSITIVITY, RANGE, TRACE1, TRACE2, _dd_add, _dd_position, _logf
+from .kernels import OK, POSITIVITY, RANGE, TRACE1, TRACE2, _dd_add, _dd_position, _logf
+
+if TYPE_CHECKING:
+    from .kernels import F64, I64
 
 __all__ = ["run_block", "ensemble"]
 

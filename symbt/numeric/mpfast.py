@@ -30,7 +30,6 @@ Example
 
 from __future__ import annotations
 
-import importlib.util
 from collections.abc import Callable
 from typing import Any
 
@@ -56,6 +55,8 @@ def flint_available() -> bool:
     True
     """
     if not _flint:
+        import importlib.util
+
         ok = importlib.util.find_spec("flint") is not None
         if ok:
             try:

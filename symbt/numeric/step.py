@@ -76,11 +76,10 @@ True
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import mpmath
 import numpy as np
-import numpy.typing as npt
 
 from ._input import (
     IV,
@@ -94,6 +93,11 @@ from ._input import (
 from .context import COMPLEX, FLOAT, Context
 from .errors import InvalidInputError, NoRealMapError, NumericRangeError
 from .lax import monodromy, neighbour_ratios
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    F64 = npt.NDArray[np.float64]
 
 __all__ = ["bt_step", "step_core", "eigen_slopes", "SlopeData", "STEP_BACKENDS"]
 
@@ -257,7 +261,6 @@ def step_core(ctx: Context, P: Sequence[Any], Q: Sequence[Any], lam0: Any, mu: A
 #: rows of the batch processed at once (keeps temporaries in cache; see benchmarks)
 BLOCK_ELEMENTS = 1 << 17
 
-F64 = npt.NDArray[np.float64]
 
 
 def _float_block(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_complex: bool,

@@ -14,15 +14,17 @@ the output ``q~ = fl(q + increment)`` (``<= ulp(|q|)/2`` per entry) is included.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import mpmath
 import numpy as np
-import numpy.typing as npt
 
 from .errors import NoRealMapError
 from .lax import spectral_trace
 from .step import bt_step
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 __all__ = ["state_error", "gap_intervals", "random_gap_case", "outer_gap_case"]
 
