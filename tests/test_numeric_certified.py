@@ -125,6 +125,8 @@ def test_input_kinds_and_errors(monkeypatch):
             certified_orbit(P_DEC, Q_DEC, 10, 5, 1, tol=-1)
         with pytest.raises(InvalidInputError):
             bt_orbit([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0, 3, tol=1e-10)    # tol without certified
+        with pytest.raises(InvalidInputError):
+            bt_orbit(P_DEC, Q_DEC, 10, 5, 3, certified=True, backend="numba")
     from symbt.numeric import certified as cert
 
     monkeypatch.setattr(cert, "flint_available", lambda: False)

@@ -106,6 +106,8 @@ def bt_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, eve
     if certified:
         from .certified import certified_orbit
 
+        if backend != "auto":
+            raise InvalidInputError("certified orbits always use Arb ball arithmetic (backend=%r given)" % backend)
         return certified_orbit(p, q, lam0, mu, n, branch=branch, every=every, tol=tol)
     if tol is not None:
         raise InvalidInputError("tol is only used with certified=True")
