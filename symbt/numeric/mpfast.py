@@ -30,6 +30,7 @@ Example
 
 from __future__ import annotations
 
+import operator
 from collections.abc import Callable
 from typing import Any
 
@@ -75,6 +76,12 @@ def _mpf(x: Any, _fme: Any = mpmath.libmp.from_man_exp, _make: Any = mpmath.mp.m
     return _make(_fme(int(man), int(exp), mpmath.mp.prec, "n"))
 
 
+def _mpf_exact(x: Any, prec: int, _fme: Any = mpmath.libmp.from_man_exp, _make: Any = mpmath.mp.make_mpf) -> Any:
+    """:func:`_mpf` for a finite ball of radius zero (no ``mid()`` needed)."""
+    man, exp = x.man_exp()
+    return _make(_fme(int(man), int(exp), prec, "n"))
+
+
 def _to_mp(x: Any) -> Any:
     """An Arb ball (or complex ball) as an mpmath number at the current precision (its midpoint)."""
     from flint import acb
@@ -86,6 +93,10 @@ def _to_mp(x: Any) -> Any:
     return _mpf(x)
 
 
+class _Retry(ArithmeticError):
+    """Internal: the fast step met a division by an exact zero."""
+
+
 def _div(a: Any, b: Any) -> Any:
     if b.is_zero():                      # projective infinity, as every context (rare)
         from .arb import ARB_MID
@@ -94,43 +105,46 @@ def _div(a: Any, b: Any) -> Any:
     return a / b
 
 
-def _slopes(a: list[Any], r: list[Any], s: int, name: str) -> list[Any]:
+def _slopes(a: list[Any], r: list[Any], s: int, name: str, dv: Callable[[Any, Any], Any]) -> list[Any]:
     """:func:`~symbt.numeric.step.eigen_slopes` for real Arb midpoints, fused (same operations, same order)."""
     N = len(a)
-    A, B, C, D = a[0], -1.0, r[0], 0.0
-    for j in range(1, N):
+    # m_2 m_1 written out: a_1 (-1) - 0 = -a_1 and r_1 (-1) = -r_1 exactly, as step_core computes them
+    A, B, C, D = a[1] * a[0] - r[0], -a[1], r[1] * a[0], -r[1]
+    for j in range(2, N):
         A, B, C, D = a[j] * A - C, a[j] * B - D, r[j] * A, r[j] * B
     t = A + D
     disc = (t - 2.0) * (t + 2.0)
     if not disc.mid() > 0:
         raise NoRealMapError("no real Bäcklund map: |tr L(%s)| <= 2, the spectral parameter lies in a band"
                              % name, condition="trace")
-    g = disc.sqrt()
-    gpos = g.mid() >= 0
-    tg = (t.mid() >= 0) == gpos
+    g = disc.sqrt()                      # g > 0: the sign tests with g reduce to those of t and dl
+    tg = t.mid() >= 0
     fwd = (not tg) if s > 0 else tg
     dl = A - D
-    plus = (dl.mid() >= 0) == gpos
+    plus = dl.mid() >= 0
     k = dl + (g if plus else -g)
-    u1 = _div(k, 2 * B) if (plus if s > 0 else not plus) else _div(-2 * C, k)
+    u1 = dv(k, 2 * B) if (plus if s > 0 else not plus) else dv(-2 * C, k)
     u = [u1]
     if fwd:
         for j in range(N - 1):
-            u.append(_div(-r[j], a[j] + u[j]))
+            u.append(dv(-r[j], a[j] + u[j]))
         return u
     u += [None] * (N - 1)
     nxt = u1
     for j in range(N - 1, 0, -1):
-        nxt = u[j] = -a[j] - _div(r[j], nxt)
+        nxt = u[j] = -a[j] - dv(r[j], nxt)
     return u
 
 
-def arb_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int) -> tuple[list[Any], list[Any]]:
+def arb_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
+             dv: Callable[[Any, Any], Any] = operator.truediv) -> tuple[list[Any], list[Any]]:
     """One step on real Arb balls with midpoint decisions: ``step_core(ARB_MID, ...)`` fused.
 
     Performs exactly the operations of :func:`~symbt.numeric.step.step_core` in the same order
-    (bit-identical results, ``tests/test_numeric_mpfast.py``) without the context indirection
-    (about twice as fast); raises the same :class:`NoRealMapError`.
+    (bit-identical midpoints, ``tests/test_numeric_mpfast.py``) without the context indirection;
+    raises the same :class:`NoRealMapError`.  ``dv`` divides: plain division (fast; a division by
+    an exact zero gives a non-finite result) or :func:`_div` (a projective infinity, as
+    ``ARB_MID.div``) -- callers redo a non-finite step with ``dv=_div``.
 
     >>> from flint import arb
     >>> P, Q = arb_step([arb(-20), arb(10), arb(1)], [arb(1), arb(0), arb("0.9")], arb(10), arb(5), 1)
@@ -140,17 +154,34 @@ def arb_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int) -> tup
     N = len(P)
     r = [(Q[(j + 1) % N] - Q[j]).exp() for j in range(N)]
     lam1, lam2 = lam0 + mu, lam0 - mu
-    u = _slopes([lam1 + pj for pj in P], r, branch, "lam1 = lam0 + mu")
-    w = _slopes([lam2 + pj for pj in P], r, -branch, "lam2 = lam0 - mu")
+    u = _slopes([lam1 + pj for pj in P], r, branch, "lam1 = lam0 + mu", dv)
+    w = _slopes([lam2 + pj for pj in P], r, -branch, "lam2 = lam0 - mu", dv)
     two_mu = 2 * mu
     dn = [u[j] - w[j] for j in range(N)]
-    xr = [_div(two_mu, dn[j]) for j in range(N)]
+    xr = [dv(two_mu, dn[j]) for j in range(N)]
     if not all((x + 1).mid() > 0 for x in xr):
+        if dv is not _div and not all(x.is_finite() for x in xr):
+            raise _Retry                     # a division by an exact zero: redo with projective division
         raise NoRealMapError("no real Bäcklund map: some Etilde_j = E_j - x_j <= 0 (lam1 and lam2 lie in "
                              "different spectral gaps)", condition="positivity")
     Qn = [Q[j] + xr[j].log1p() for j in range(N)]
-    gq = [_div(u[j], dn[j]) for j in range(N)]
+    gq = [dv(u[j], dn[j]) for j in range(N)]
     Pn = [P[j] + two_mu * (gq[(j + 1) % N] - gq[j]) for j in range(N)]
+    return Pn, Qn
+
+
+def _safe_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int) -> tuple[list[Any], list[Any]]:
+    """:func:`arb_step` with plain division, redone with projective division if not finite;
+    :class:`NumericRangeError` if still not finite."""
+    try:
+        Pn, Qn = arb_step(P, Q, lam0, mu, branch)
+        ok = all(x.is_finite() for x in Pn + Qn)
+    except _Retry:
+        ok = False
+    if not ok:
+        Pn, Qn = arb_step(P, Q, lam0, mu, branch, _div)
+        if not all(x.is_finite() for x in Pn + Qn):
+            raise NumericRangeError("non-finite result in the Arb step (degenerate eigenvector?)")
     return Pn, Qn
 
 
@@ -163,7 +194,7 @@ def _flint_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
     with flint_prec(mpmath.mp.prec + GUARD_BITS):
         Pa, Qa, l0, m = [arb(x) for x in P], [arb(x) for x in Q], arb(lam0), arb(mu)
         try:
-            Pn, Qn = arb_step(Pa, Qa, l0, m, branch)
+            Pn, Qn = _safe_step(Pa, Qa, l0, m, branch)
         except NoRealMapError:
             if not allow_complex:
                 raise
@@ -224,13 +255,12 @@ def mp_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, eve
     with flint_prec(mpmath.mp.prec + GUARD_BITS + 2 * n.bit_length()):
         Pa, Qa, l0, m = [arb(x) for x in P], [arb(x) for x in Q], arb(lam0), arb(mu)
         for i in range(1, n + 1):
-            Pa, Qa = arb_step(Pa, Qa, l0, m, branch)
+            Pa, Qa = _safe_step(Pa, Qa, l0, m, branch)
             # midpoint arithmetic: drop the radii, else they grow with the steps and Arb trims the
             # midpoints to the accuracy the radius justifies
             Pa, Qa = [x.mid() for x in Pa], [x.mid() for x in Qa]
-            if not all(x.is_finite() for x in Pa + Qa):
-                raise NumericRangeError("non-finite result in the Arb step %d (degenerate eigenvector?)" % i)
             if i in keep:
-                outP.append([_mpf(x) for x in Pa])
-                outQ.append([_mpf(x) for x in Qa])
+                prec = mpmath.mp.prec
+                outP.append([_mpf_exact(x, prec) for x in Pa])
+                outQ.append([_mpf_exact(x, prec) for x in Qa])
     return outP, outQ

@@ -7,7 +7,9 @@ Measures, in one process (ratios are what survives a noisy machine):
 2. ensemble throughput (``N = 3``, ``M = 10**4``, ``every = n``): the numba
    block kernel on all cores and the vectorised numpy path, in
    system-steps per second;
-3. 10 steps at 50 and 100 digits: the plain mpmath path vs the Arb fast path;
+3. 10 steps at 50 and 100 digits: the plain mpmath path vs the Arb fast path,
+   and (heyoka installed) heyoka.real integrating the flow the map interpolates
+   (``sum_k c_k H_k`` for time 10) at the same precision, tolerance ``10**-dps``;
 4. certified orbits: radius growth at a fixed precision and the precision /
    time the automatic choice needs for a target radius.
 
@@ -30,8 +32,8 @@ from typing import Any
 import mpmath
 import numpy as np
 
-__all__ = ["best_of", "kernel_overhead", "ensemble_throughput", "mp_speed", "certified_growth", "certified_time",
-           "main"]
+__all__ = ["best_of", "kernel_overhead", "ensemble_throughput", "mp_speed", "heyoka_flow", "certified_growth",
+           "certified_time", "main"]
 
 P0, Q0, LAM0, MU = [-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0
 
@@ -109,6 +111,56 @@ def mp_speed(dps: int, n: int = 10, repeat: int = 10) -> dict[str, float]:
     return out
 
 
+def heyoka_flow(dps: int, n: int = 10) -> dict[str, float]:
+    """heyoka.real for the flow of ``sum_k c_k H_k`` over time ``n`` (= ``n`` steps of the map).
+
+    Returns ``{"seconds": propagation time, "compile": ..., "error": max |heyoka - Arb orbit|}``;
+    empty without heyoka.  ``c_k = -int lam^k / sqrt(tr^2 - 4)`` by ``mpmath.quad``.
+    """
+    try:
+        import heyoka as hy
+    except ImportError:
+        return {}
+    from . import bt_orbit, spectral_trace
+
+    N, prec = 3, int(dps * 3.33) + 1
+    with mpmath.workdps(dps + 15):
+        p0, q0 = [mpmath.mpf(v) for v in ("-20", "10", "1")], [mpmath.mpf(v) for v in ("1", "0", "0.9")]
+        c = [-mpmath.quad(lambda x, k=k: x ** k / mpmath.sqrt(spectral_trace(x, p0, q0) ** 2 - 4),
+                          [LAM0 - MU, LAM0 + MU]) for k in range(N)]
+        cs = [mpmath.nstr(v, dps + 12) for v in c]
+    qs = hy.make_vars(*["q%d" % j for j in range(N)])
+    ps = hy.make_vars(*["p%d" % j for j in range(N)])
+    r = [hy.exp(qs[(j + 1) % N] - qs[j]) for j in range(N)]
+
+    def add(a: list[Any], b: list[Any]) -> list[Any]:
+        return [(a[i] if i < len(a) else 0.0) + (b[i] if i < len(b) else 0.0) for i in range(max(len(a), len(b)))]
+
+    A, B, C, D = [ps[0], 1.0], [-1.0], [r[0]], [0.0]        # scaled monodromy, polynomials in lam
+    for j in range(1, N):
+        nA = add(add([x * ps[j] for x in A], [0.0] + A), [-x for x in C])
+        nB = add(add([x * ps[j] for x in B], [0.0] + B), [-x for x in D])
+        A, B, C, D = nA, nB, [x * r[j] for x in A], [x * r[j] for x in B]
+    H = add(A, D)[:N]
+    G = sum(hy.expression(hy.real(cs[k], prec)) * H[k] for k in range(N))
+    eqs = [(qs[j], hy.diff(G, ps[j])) for j in range(N)] + [(ps[j], -hy.diff(G, qs[j])) for j in range(N)]
+    t = time.perf_counter()
+    ta = hy.taylor_adaptive(eqs, [hy.real(v, prec) for v in ("1", "0", "0.9", "-20", "10", "1")], fp_type=hy.real,
+                            prec=prec, tol=hy.real("1e-%d" % dps, prec), compact_mode=True)
+    comp = time.perf_counter() - t
+    run = float("inf")
+    for _ in range(3):                                    # best of three, from the same initial state
+        ta.time = hy.real(0, prec)
+        ta.state[:] = [hy.real(v, prec) for v in ("1", "0", "0.9", "-20", "10", "1")]
+        t = time.perf_counter()
+        ta.propagate_until(hy.real(n, prec))
+        run = min(run, time.perf_counter() - t)
+    with mpmath.workdps(dps):
+        P, Q = bt_orbit(p0, q0, 10, 5, n, every=n)
+        err = max(abs(mpmath.mpf(str(x)) - y) for x, y in zip(ta.state, Q[-1] + P[-1]))
+    return {"seconds": run, "compile": comp, "error": float(err)}
+
+
 def certified_growth(prec: int = 400, steps: tuple[int, ...] = (1, 10, 25, 50, 100, 150)) -> list[tuple[int, float]]:
     """``(step, max radius)`` of the naive Arb enclosure at a fixed precision (exact input, paper's example)."""
     from flint import arb
@@ -154,8 +206,13 @@ def main(argv: list[str] | None = None) -> None:
     print("2. ensemble N=3 M=1e4: " + ", ".join("%s %.3g system-steps/s" % kv for kv in e.items()))
     for dps in (50, 100):
         m = mp_speed(dps)
-        print("3. %d digits, 10 steps: mpmath %.2f ms, Arb %.3f ms (x%.1f)"
-              % (dps, m["mpmath"] * 1e3, m.get("flint", float("nan")) * 1e3, m.get("speedup", float("nan"))))
+        h = heyoka_flow(dps)
+        m2 = mp_speed(dps)                 # again, right after heyoka (the machine's load drifts)
+        arb_ms = min(m.get("flint", float("nan")), m2.get("flint", float("nan"))) * 1e3
+        print("3. %d digits, 10 steps: mpmath %.2f ms, Arb %.3f ms (x%.1f)%s"
+              % (dps, m["mpmath"] * 1e3, arb_ms, m["mpmath"] * 1e3 / arb_ms,
+                 "; heyoka.real %.1f ms (x%.0f slower than Arb), error vs Arb %.1e"
+                 % (h["seconds"] * 1e3, h["seconds"] * 1e3 / arb_ms, h["error"]) if h else ""))
     print("4. certified radius growth at 400 bits:", ", ".join("n=%d %.1e" % sr for sr in certified_growth()))
     for n, tol, dps in ((100, 1e-30, 50),) + (() if args.quick else ((3500, 1e-15, 30),)):
         t, r, prec = certified_time(n, tol, dps)
