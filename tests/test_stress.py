@@ -9,8 +9,10 @@
    ``<= 1e-12`` relative, and the drift grows like a random walk (log-log slope
    of the RMS drift vs n well below 1); the curve is plotted by
    ``benchmarks/invariant_drift.py``.
-3. Fuzzing (hypothesis, > 1e4 examples in all): ``bt_step``, ``bt_orbit``,
-   ``fast_orbit``, ``phi``, ``invariants``, ``spectral_trace`` and
+3. Fuzzing (hypothesis, > 1e4 examples in all): ``bt_step``, ``bt_orbit``
+   (fused single-state kernel, fused ensemble kernel with per-state ``lam0, mu``
+   and ``every``, the general numpy path, the Arb fast path for mpmath input,
+   certified orbits), ``fast_orbit``, ``phi``, ``invariants``, ``spectral_trace`` and
    ``flow_coefficients`` return finite values or raise a documented typed error
    (``ValueError`` subclasses -- ``InvalidInputError``, ``NoRealMapError`` --,
    ``NumericRangeError``, and ``QuadratureError`` for the quadrature); never NaN/inf,
@@ -217,3 +219,88 @@ def test_fuzz_mpmath_step(s):
         out = _check(bt_step, P, Q, lam0, mu, branch=branch)
     if out is not None:
         assert all(mpmath.isfinite(v) for v in out[0] + out[1])
+
+
+@_cfg(300)
+@given(states(allow_batch=False), st.integers(0, 24), st.integers(1, 9))
+def test_fuzz_fast_orbit_every_against_general_path(s, n, every):
+    """Fused kernel (``every``) and general path: both finite or typed; if both succeed they agree to the
+    orbit's round-off (relative to the state's size)."""
+    p, q, lam0, mu, branch = s
+    a = _check(bt_orbit, p, q, lam0, mu, n, branch=branch, every=every)
+    b = _check(bt_orbit, p, q, lam0, mu, n, branch=branch, every=every, backend="numpy")
+    if a is not None:
+        assert a[0].shape == (1 + -(-n // every),) + p.shape
+    if a is not None and b is not None and n <= 5:
+        scale = 1.0 + np.abs(np.r_[b[0][0], b[1][0] - b[1][0].mean()]).max()
+        # a few steps: the two formulations differ by round-off amplified by the map's conditioning
+        assert np.all(np.abs(a[0] - b[0]) <= 1e-6 * scale * (1 + np.abs(b[0])))
+
+
+@st.composite
+def ensembles(draw):
+    N = draw(st.integers(2, 12))
+    M = draw(st.integers(1, 9))
+    rows = [draw(states(allow_batch=False, allow_bad=False)) for _ in range(M)]
+    rows = [r for r in rows if r[0].size == rows[0][0].size] or rows[:1]
+    p = np.array([r[0][:N] if r[0].size >= N else np.resize(r[0], N) for r in rows])
+    q = np.array([r[1][:N] if r[1].size >= N else np.resize(r[1], N) for r in rows])
+    lam0 = np.array([r[2] for r in rows])
+    mu = np.array([r[3] for r in rows])
+    if draw(st.booleans()):
+        lam0, mu = float(lam0[0]), float(mu[0])
+    if draw(st.integers(0, 20)) == 0:
+        p.flat[draw(st.integers(0, p.size - 1))] = draw(bad)
+    return p, q, lam0, mu, rows[0][4]
+
+
+@_cfg(300)
+@given(ensembles(), st.integers(0, 12), st.integers(1, 5), st.sampled_from(["auto", "numpy"]))
+def test_fuzz_ensemble_kernel(s, n, every, backend):
+    """The fused ensemble kernel (prange over blocks) and the numpy path: finite or typed, ``where`` inside
+    the batch."""
+    p, q, lam0, mu, branch = s
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        try:
+            P, Q = bt_orbit(p, q, lam0, mu, n, branch=branch, every=every, backend=backend)
+        except NoRealMapError as e:
+            assert e.where and all(0 <= w[0] < p.shape[0] for w in e.where)
+            return
+        except ALLOWED:
+            return
+    assert P.shape == Q.shape == (1 + -(-n // every),) + p.shape
+    assert np.all(np.isfinite(P)) and np.all(np.isfinite(Q)), "silent non-finite ensemble orbit"
+
+
+@_cfg(250)
+@given(states(allow_batch=False, allow_bad=False), st.integers(0, 3))
+def test_fuzz_mp_fast_path(s, n):
+    """mpmath input through python-flint's Arb (and the plain mpmath path): finite or typed."""
+    pytest.importorskip("flint")
+    p, q, lam0, mu, branch = s
+    with mpmath.workdps(25):
+        P = [mpmath.mpf(float(v)) for v in p]
+        Q = [mpmath.mpf(float(v)) for v in q]
+        for backend in ("flint", "mpmath"):
+            out = _check(bt_step, P, Q, lam0, mu, branch=branch, backend=backend)
+            if out is not None:
+                assert all(mpmath.isfinite(v) for v in out[0] + out[1])
+        orb = _check(bt_orbit, P, Q, lam0, mu, n, branch=branch)
+        if orb is not None:
+            assert len(orb[0]) == n + 1 and all(mpmath.isfinite(v) for row in orb[0] + orb[1] for v in row)
+
+
+@pytest.mark.slow
+@_cfg(120)
+@given(states(allow_batch=False, allow_bad=False), st.integers(0, 2))
+def test_fuzz_certified(s, n):
+    """Certified orbits: finite midpoints and radii, or a typed error (no silent NaN, no untyped crash)."""
+    pytest.importorskip("flint")
+    from symbt.numeric import certified_orbit
+
+    p, q, lam0, mu, branch = s
+    with mpmath.workdps(20):
+        out = _check(certified_orbit, list(p), list(q), lam0, mu, n, branch=branch, max_prec=1500)
+    if out is not None:
+        assert all(mpmath.isfinite(v) for rows in out for row in rows for v in row)

@@ -2,7 +2,21 @@ r"""Numerics of the two-parameter Bäcklund maps of the periodic Toda chain.
 
 sympy-, scipy- and matplotlib-free; float64 (numpy, batched) and mpmath paths
 share one implementation written against a small arithmetic *context*
-(:mod:`symbt.numeric.context`; ``mpmath.iv`` intervals work experimentally).
+(:mod:`symbt.numeric.context`; python-flint Arb balls in :mod:`symbt.numeric.arb`,
+``mpmath.iv`` intervals experimentally).
+
+Backends (chosen automatically; optional extras are imported lazily)
+--------------------------------------------------------------------
+* float64, one state: the fused kernel :mod:`symbt.numeric.kernels` (numba
+  when installed, compiled on first use and cached; plain Python otherwise);
+* float64 ensembles ``(M, N)``: the fused block kernel on all cores (numba) or
+  vectorised numpy (:mod:`symbt.numeric.ensemble`); ``every=k`` stores every
+  k-th state; :func:`dask_orbit` maps ensembles onto dask chunks;
+* mpmath numbers: Arb at the caller's precision plus guard bits via
+  python-flint (:mod:`symbt.numeric.mpfast`), else mpmath (gmpy2-backed when
+  installed);
+* ``bt_orbit(..., certified=True)`` / :func:`certified_orbit`: rigorous
+  enclosures from Arb ball arithmetic (:mod:`symbt.numeric.certified`).
 
 Conventions
 -----------
@@ -28,7 +42,8 @@ bad branch), :class:`NoRealMapError` (``|tr L(lam_i)| <= 2``, or some
 ``Etilde_j <= 0`` -- ``lam1``, ``lam2`` in different spectral gaps; its
 ``condition`` and ``where`` attributes say which and for which batch rows),
 :class:`NumericRangeError` (beyond float64 range, e.g. ``|q_{j+1} - q_j| > 700``),
-:class:`QuadratureError`.  Results are never silently NaN/inf.  ``mu = 0``
+:class:`QuadratureError`, :class:`MissingDependencyError` (an ``ImportError``: a
+requested optional backend is not installed).  Results are never silently NaN/inf.  ``mu = 0``
 returns copies of the input.
 
 Accuracy
@@ -51,8 +66,11 @@ True
 >>> P, Q = bt_orbit(p, q, 10.0, 5.0, 100)      # shape (101, 3)
 """
 
+from .certified import certified_orbit
 from .coefficients import flow_coefficients
-from .errors import InvalidInputError, NoRealMapError, NumericRangeError, QuadratureError
+from .dask_orbit import dask_orbit
+from .errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError, QuadratureError
+from .field import FlowField
 from .lax import invariants, spectral_trace
 from .orbit import bt_orbit
 from .phi import phi
@@ -61,12 +79,16 @@ from .step import bt_step
 __all__ = [
     "bt_step",
     "bt_orbit",
+    "certified_orbit",
+    "dask_orbit",
     "invariants",
     "spectral_trace",
     "phi",
     "flow_coefficients",
+    "FlowField",
     "InvalidInputError",
     "NoRealMapError",
     "NumericRangeError",
     "QuadratureError",
+    "MissingDependencyError",
 ]

@@ -9,22 +9,29 @@ select the interval context.
 
 from __future__ import annotations
 
+import math
 import numbers
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
 
 import mpmath
 import numpy as np
 
-from .context import FLOAT, IVContext, MPContext
+from .context import FLOAT, Context, IVContext, MPContext
 from .errors import InvalidInputError, NumericRangeError
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
 
 MP = MPContext()
 IV = IVContext()
 
 _MP_TYPES = (mpmath.mpf, mpmath.mpc)
+_REAL_SCALARS = frozenset([float, int, np.float64, np.float32, np.int64, np.int32])
 _IV_TYPE = type(mpmath.iv.mpf(1))
 
 
-def _kind(x):
+def _kind(x: Any) -> str | None:
     """'iv', 'mp' or None for the mpmath-ness of a (possibly nested) object."""
     if isinstance(x, np.ndarray):
         if x.dtype != object:
@@ -43,7 +50,13 @@ def _kind(x):
     return None
 
 
-def pick_context(*objs):
+def pick_context(*objs: Any) -> Context:
+    """The context of the inputs: interval, mpmath or float64.
+
+    >>> import mpmath
+    >>> type(pick_context([1.0, 2.0], [mpmath.mpf(1), 0])).__name__
+    'MPContext'
+    """
     kinds = {_kind(o) for o in objs}
     if "iv" in kinds:
         return IV
@@ -52,7 +65,7 @@ def pick_context(*objs):
     return FLOAT
 
 
-def _to_mp(ctx, seq, name):
+def _to_mp(ctx: Context, seq: Any, name: str) -> list[Any]:
     if isinstance(seq, np.ndarray):
         seq = seq.tolist()
     if not isinstance(seq, (list, tuple)):
@@ -77,8 +90,13 @@ def _to_mp(ctx, seq, name):
     return out
 
 
-def as_state_pair(p, q, *extra):
-    """Return ``(ctx, P, Q, batch_shape)`` with P, Q lists of per-site values."""
+def as_state_pair(p: Any, q: Any, *extra: Any) -> tuple[Context, list[Any], list[Any], tuple[int, ...]]:
+    """Return ``(ctx, P, Q, batch_shape)`` with P, Q lists of per-site values.
+
+    >>> ctx, P, Q, shape = as_state_pair([[1.0, 2.0]] * 3, [[0.0, 0.0]] * 3)
+    >>> len(P), P[0].shape, shape
+    (2, (3,), (3,))
+    """
     ctx = pick_context(p, q, *extra)
     if ctx is not FLOAT:
         P, Q = _to_mp(ctx, p, "p"), _to_mp(ctx, q, "q")
@@ -91,21 +109,46 @@ def as_state_pair(p, q, *extra):
     return FLOAT, sites(pa), sites(qa), shape
 
 
-def sites(a2d):
-    """Rows of the (N, B) transpose of a (B, N) array, as a list of contiguous arrays."""
+def sites(a2d: npt.NDArray[Any]) -> list[npt.NDArray[Any]]:
+    """Rows of the (N, B) transpose of a (B, N) array, as a list of contiguous arrays.
+
+    >>> [x.tolist() for x in sites(np.array([[1.0, 2.0], [3.0, 4.0]]))]
+    [[1.0, 3.0], [2.0, 4.0]]
+    """
     t = np.ascontiguousarray(a2d.T)
     return [t[j] for j in range(t.shape[0])]
 
 
-def validate_float_pair(p, q):
-    """Validated float64 ``(pa, qa, batch_shape)`` with ``pa``, ``qa`` of shape (B, N)."""
+def _is_complex(x: Any) -> bool:
+    """True for complex input of any kind (numpy complex arrays/scalars, Python complex, mpc)."""
+    if isinstance(x, (complex, np.complexfloating, mpmath.mpc)):
+        return True
+    if isinstance(x, np.ndarray):
+        if x.dtype.kind == "c":
+            return True
+        if x.dtype != object:
+            return False
+        x = x.ravel().tolist()
+    if isinstance(x, (list, tuple)):
+        return any(_is_complex(v) for v in x)
+    return False
+
+
+def validate_float_pair(p: Any, q: Any) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], tuple[int, ...]]:
+    """Validated float64 ``(pa, qa, batch_shape)`` with ``pa``, ``qa`` of shape (B, N).
+
+    Complex input of any kind is refused (:class:`InvalidInputError`), never cast.
+
+    >>> validate_float_pair([1.0, 2.0], [0.0, 0.0])[2]
+    ()
+    """
+    if _is_complex(p) or _is_complex(q):
+        raise InvalidInputError("complex p, q are not supported (the real map takes real states)")
     try:
         pa = np.asarray(p, dtype=np.float64)
         qa = np.asarray(q, dtype=np.float64)
     except (TypeError, ValueError) as exc:
         raise InvalidInputError("p and q must be real numeric arrays") from exc
-    if np.iscomplexobj(np.asarray(p)) or np.iscomplexobj(np.asarray(q)):
-        raise InvalidInputError("complex p, q are not supported")
     if pa.shape != qa.shape:
         raise InvalidInputError("p and q shapes differ: %s vs %s" % (pa.shape, qa.shape))
     if pa.ndim == 0:
@@ -119,8 +162,12 @@ def validate_float_pair(p, q):
     return pa.reshape(-1, N), qa.reshape(-1, N), pa.shape[:-1]
 
 
-def prepare_scalar(ctx, x, shape, name):
-    """A real parameter (lam0, mu, lam) as a context value broadcast to the batch."""
+def prepare_scalar(ctx: Context, x: Any, shape: tuple[int, ...], name: str) -> Any:
+    """A real parameter (lam0, mu, lam) as a context value broadcast to the batch.
+
+    >>> prepare_scalar(FLOAT, 2, (), "lam0")
+    2.0
+    """
     if ctx is not FLOAT:
         if isinstance(x, (list, tuple, np.ndarray)):
             raise InvalidInputError("%s must be a scalar for mpmath inputs" % name)
@@ -131,14 +178,19 @@ def prepare_scalar(ctx, x, shape, name):
         if ctx is not IV and (isinstance(v, mpmath.mpc) or not mpmath.isfinite(v)):
             raise InvalidInputError("%s must be a finite real number" % name)
         return v
+    if type(x) in _REAL_SCALARS:          # fast path: plain real scalars
+        v = float(x)
+        if not math.isfinite(v):
+            raise InvalidInputError("%s must be finite" % name)
+        return v
+    if _is_complex(x):
+        raise InvalidInputError("%s must be real" % name)
     if isinstance(x, _MP_TYPES):
         x = float(x)
     try:
         a = np.asarray(x, dtype=np.float64)
     except (TypeError, ValueError) as exc:
         raise InvalidInputError("%s must be a real number or array" % name) from exc
-    if np.iscomplexobj(np.asarray(x)):
-        raise InvalidInputError("%s must be real" % name)
     if not np.all(np.isfinite(a)):
         raise InvalidInputError("%s must be finite" % name)
     if a.ndim == 0:
@@ -151,14 +203,23 @@ def prepare_scalar(ctx, x, shape, name):
     return np.ascontiguousarray(b).reshape(-1)
 
 
-def check_branch(branch):
+def check_branch(branch: Any) -> int:
+    """``branch`` as +1 or -1, else :class:`InvalidInputError`.
+
+    >>> check_branch(-1)
+    -1
+    """
     if isinstance(branch, bool) or not isinstance(branch, numbers.Integral) or branch not in (1, -1):
         raise InvalidInputError("branch must be +1 or -1, got %r" % (branch,))
     return int(branch)
 
 
-def to_output(ctx, P, shape):
-    """Inverse of :func:`as_state_pair` for one list of per-site values."""
+def to_output(ctx: Context, P: Sequence[Any], shape: tuple[int, ...]) -> Any:
+    """Inverse of :func:`as_state_pair` for one list of per-site values.
+
+    >>> to_output(FLOAT, [np.array([1.0]), np.array([2.0])], (1,)).tolist()
+    [[1.0, 2.0]]
+    """
     if ctx is not FLOAT and not isinstance(P[0], np.ndarray):
         return [+v for v in P]
     N = len(P)
@@ -166,15 +227,21 @@ def to_output(ctx, P, shape):
     return arr.reshape(tuple(shape) + (N,))
 
 
-def prepare_spectral_pair(ctx, lam0, mu, shape):
+def prepare_spectral_pair(ctx: Context, lam0: Any, mu: Any, shape: tuple[int, ...]) -> tuple[Any, Any]:
     """``(lam0, mu)`` as context values, with ``lam0 +- mu`` checked to be finite.
 
     Each of ``lam0`` and ``mu`` may be finite while ``lam0 + mu`` overflows; that is a range
     problem (:class:`NumericRangeError`), not a statement about the spectrum.
+
+    >>> prepare_spectral_pair(FLOAT, 10, 5, ())
+    (10.0, 5.0)
     """
     lam0 = prepare_scalar(ctx, lam0, shape, "lam0")
     mu = prepare_scalar(ctx, mu, shape, "mu")
-    if ctx is FLOAT:
+    if ctx is FLOAT and type(lam0) is float and type(mu) is float:
+        if not (math.isfinite(lam0 + mu) and math.isfinite(lam0 - mu)):
+            raise NumericRangeError("lam0 +- mu overflows float64")
+    elif ctx is FLOAT:
         with np.errstate(over="ignore", invalid="ignore"):
             ok = np.all(np.isfinite(lam0 + mu)) and np.all(np.isfinite(lam0 - mu))
         if not ok:

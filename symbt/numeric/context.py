@@ -8,6 +8,9 @@ directly on values; everything else goes through the context:
 
 =====================  ====================================================
 ``exp log log1p sqrt``  elementary functions (principal branches if complex)
+``div(a, b)``           ``a / b``; division by an exact zero gives an (unsigned,
+                        projective) infinity as in IEEE arithmetic, so an
+                        eigenvector slope may pass through infinity
 ``ldexp(x, e)``         ``x * 2**e`` exactly
 ``acosh_half_abs``      ``arccosh(|t 2**e| / 2)`` for a scaled trace
 ``re_dot(a, b)``        ``Re(a * conj(b))`` (a real number/array)
@@ -21,27 +24,78 @@ Decisions that only affect *accuracy* (which of two algebraically equal
 formulas to use, transport direction) may be taken on midpoints; decisions
 that affect *existence* (``|tr| > 2``, ``Etilde > 0``) use ``positive`` which
 for an interval context means "the whole interval is positive".  That is all
-a ball-arithmetic backend (python-flint ``arb``) needs to provide as well.
+a ball-arithmetic backend (python-flint ``arb``, :mod:`symbt.numeric.arb`)
+provides as well.
+
+Example
+-------
+>>> from symbt.numeric.context import MPContext
+>>> ctx = MPContext()
+>>> ctx.div(1, 0), ctx.positive(ctx.sqrt(4) - 1)
+(mpf('+inf'), True)
 """
 
 from __future__ import annotations
 
 import math
+import operator
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any, Protocol
 
 import mpmath
 import numpy as np
 
-__all__ = ["FloatContext", "MPContext", "IVContext", "FLOAT", "COMPLEX"]
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+__all__ = ["Context", "FloatContext", "MPContext", "IVContext", "FLOAT", "COMPLEX"]
+
+
+class Context(Protocol):
+    """The interface :func:`~symbt.numeric.step.step_core` is written against (see module docstring).
+
+    >>> isinstance(FLOAT.is_exact_scale, bool) and callable(MPContext.div)
+    True
+    """
+
+    is_exact_scale: bool
+    is_complex: bool
+
+    def exp(self, x: Any) -> Any: ...
+    def log(self, x: Any) -> Any: ...
+    def log1p(self, x: Any) -> Any: ...
+    def sqrt(self, x: Any) -> Any: ...
+    def div(self, a: Any, b: Any) -> Any: ...
+    def ldexp(self, x: Any, e: Any) -> Any: ...
+    def acosh_half_abs(self, t: Any, g: Any, e: Any) -> Any: ...
+    def re_dot(self, a: Any, b: Any) -> Any: ...
+    def positive(self, x: Any) -> Any: ...
+    def all_positive(self, x: Any) -> bool: ...
+    def align(self, g: Any, ref: Any) -> tuple[Any, Any]: ...
+    def half_plane(self, a: Any, g: Any) -> Any: ...
+    def any(self, c: Any) -> bool: ...
+    def all(self, c: Any) -> bool: ...
+    def neg(self, c: Any) -> Any: ...
+    def select(self, c: Any, f: Callable[[], Any], g: Callable[[], Any]) -> Any: ...
+    def out_of_range(self, *xs: Any) -> Any: ...
+    def renormalize(self, A: Any, B: Any, C: Any, D: Any, e: Any) -> tuple[Any, Any, Any, Any, Any]: ...
+    def subset(self, x: Any, mask: Any) -> Any: ...
+    def merge(self, full: Any, mask: Any, part: Any) -> Any: ...
+    def isfinite_all(self, xs: Sequence[Any]) -> bool: ...
 
 _LN2 = math.log(2.0)
 
 
 class FloatContext:
-    """numpy float64 (or complex128) arrays over a flattened batch axis."""
+    """numpy float64 (or complex128) arrays over a flattened batch axis.
+
+    >>> FLOAT.all_positive(np.array([1.0, 2.0])), COMPLEX.is_complex
+    (True, True)
+    """
 
     is_exact_scale = False
 
-    def __init__(self, dtype=np.float64):
+    def __init__(self, dtype: npt.DTypeLike = np.float64) -> None:
         self.dtype = np.dtype(dtype)
         self.is_complex = self.dtype.kind == "c"
 
@@ -50,14 +104,15 @@ class FloatContext:
     log = staticmethod(np.log)
     log1p = staticmethod(np.log1p)
     sqrt = staticmethod(np.sqrt)
+    div = staticmethod(operator.truediv)   # IEEE: x / 0 = +-inf (callers silence the warning)
 
     @staticmethod
-    def ldexp(x, e):
+    def ldexp(x: Any, e: Any) -> Any:
         if isinstance(e, (int, np.integer)) and e == 0:
             return x
         return np.ldexp(x, e)
 
-    def acosh_half_abs(self, t, g, e):
+    def acosh_half_abs(self, t: Any, g: Any, e: Any) -> Any:
         """``arccosh(|t| 2**e / 2)`` given ``g = sqrt(t**2 - 4**(1-e))``.
 
         For ``e == 0`` this uses ``log1p(h - 1 + sqrt((h-1)(h+1)))`` which is
@@ -72,23 +127,23 @@ class FloatContext:
         big = np.asarray(e, dtype=float) * _LN2 + np.log(0.5 * (at + np.abs(g)))
         return np.where(np.asarray(e) == 0, small, big)
 
-    def re_dot(self, a, b):
+    def re_dot(self, a: Any, b: Any) -> Any:
         if self.is_complex:
             return (a * np.conj(b)).real
         return a * b
 
-    def positive(self, x):
+    def positive(self, x: Any) -> Any:
         if self.is_complex:
             x = np.real(x)
         return x > 0
 
-    def all_positive(self, x):
+    def all_positive(self, x: Any) -> bool:
         """``all(x > 0)`` as a bool (a single reduction; NaN counts as failure)."""
         if self.is_complex:
             x = np.real(x)
         return bool(np.min(x) > 0)
 
-    def align(self, g, ref):
+    def align(self, g: Any, ref: Any) -> tuple[Any, Any]:
         """``+g`` or ``-g``, whichever satisfies ``Re(ref * conj(+-g)) >= 0``.
 
         Returns ``(aligned_g, is_plus)``.
@@ -98,26 +153,26 @@ class FloatContext:
             return np.where(plus, g, -g), plus
         return np.copysign(g, ref), ref >= 0
 
-    def half_plane(self, a, g):
+    def half_plane(self, a: Any, g: Any) -> Any:
         """``Re(a * conj(g)) >= 0`` for a principal square root ``g`` (real: ``a >= 0``)."""
         if self.is_complex:
             return (a * np.conj(g)).real >= 0
         return a >= 0
 
     @staticmethod
-    def any(c):
+    def any(c: Any) -> bool:
         return bool(np.any(c))
 
     @staticmethod
-    def all(c):
+    def all(c: Any) -> bool:
         return bool(np.all(c))
 
     @staticmethod
-    def neg(c):
+    def neg(c: Any) -> Any:
         return np.logical_not(c)
 
     @staticmethod
-    def select(c, f, g):
+    def select(c: Any, f: Callable[[], Any], g: Callable[[], Any]) -> Any:
         if c is True or (isinstance(c, np.ndarray) and c.all()):
             return f()
         if c is False or (isinstance(c, np.ndarray) and not c.any()):
@@ -125,7 +180,7 @@ class FloatContext:
         return np.where(c, f(), g())
 
     # scaling support for the monodromy product ----------------------------
-    def out_of_range(self, *xs):
+    def out_of_range(self, *xs: Any) -> Any:
         """Mask of batch rows whose entries are non-finite or too large/small.
 
         Returns ``False`` (cheaply, by reductions only) when all is fine.
@@ -138,7 +193,7 @@ class FloatContext:
         if big < 2.0**500 and np.isfinite(big):
             # det M = 1 forces max|entry| >~ 1 per row, so no per-row test needed
             return False
-        mx = None
+        mx: Any = None
         for x in arrays:
             ax = np.abs(x)
             ax = np.where(np.isfinite(ax), ax, np.inf)
@@ -147,32 +202,36 @@ class FloatContext:
         return np.broadcast_to((mx > 2.0**500) | (mx < 2.0**-500) | np.isnan(mx), shape)
 
     @staticmethod
-    def renormalize(A, B, C, D, e):
+    def renormalize(A: Any, B: Any, C: Any, D: Any, e: Any) -> tuple[Any, Any, Any, Any, Any]:
         mx = np.maximum(np.maximum(np.abs(A), np.abs(B)), np.maximum(np.abs(C), np.abs(D)))
         _, k = np.frexp(mx)
         k = np.where(mx > 0, k, 0)
         return (np.ldexp(A, -k), np.ldexp(B, -k), np.ldexp(C, -k), np.ldexp(D, -k), e + k)
 
     @staticmethod
-    def subset(x, mask):
+    def subset(x: Any, mask: Any) -> Any:
         if np.ndim(x) == 0:
             return x
         return x[mask]
 
     @staticmethod
-    def merge(full, mask, part):
+    def merge(full: Any, mask: Any, part: Any) -> Any:
         if np.ndim(full) == 0:
             full = np.full(mask.shape, full)
         full = np.array(full, copy=True)
         full[mask] = part
         return full
 
-    def isfinite_all(self, xs):
+    def isfinite_all(self, xs: Sequence[Any]) -> bool:
         return all(bool(np.all(np.isfinite(x))) for x in xs)
 
 
 class MPContext:
-    """mpmath multiprecision scalars (``mpmath.mp``) at the current ``mp.dps``."""
+    """mpmath multiprecision scalars (``mpmath.mp``) at the current ``mp.dps``.
+
+    >>> MPContext().positive(mpmath.mpc(1, 1)), MPContext.div(0, 0)
+    (False, mpf('nan'))
+    """
 
     is_exact_scale = True
     is_complex = True  # mpmath switches to mpc on its own where needed
@@ -182,55 +241,74 @@ class MPContext:
     log1p = staticmethod(mpmath.log1p)
 
     @staticmethod
-    def sqrt(x):
+    def sqrt(x: Any) -> Any:
         return mpmath.sqrt(x)
 
     @staticmethod
-    def ldexp(x, e):
+    def div(a: Any, b: Any) -> Any:
+        if b == 0:
+            return mpmath.nan if a == 0 else mpmath.inf
+        return a / b
+
+    @staticmethod
+    def ldexp(x: Any, e: Any) -> Any:
         return mpmath.ldexp(mpmath.mpf(x), int(e))
 
     @staticmethod
-    def acosh_half_abs(t, g, e):
+    def acosh_half_abs(t: Any, g: Any, e: Any) -> Any:
         return mpmath.acosh(abs(mpmath.ldexp(t, int(e))) / 2)
 
     @staticmethod
-    def re_dot(a, b):
+    def re_dot(a: Any, b: Any) -> Any:
         return mpmath.re(a * mpmath.conj(b))
 
     @staticmethod
-    def positive(x):
-        return mpmath.im(x) == 0 and mpmath.re(x) > 0
+    def positive(x: Any) -> bool:
+        return bool(mpmath.im(x) == 0 and mpmath.re(x) > 0)
 
-    def all_positive(self, x):
+    def all_positive(self, x: Any) -> bool:
         return self.positive(x)
 
-    def align(self, g, ref):
+    def align(self, g: Any, ref: Any) -> tuple[Any, Any]:
         plus = self.re_dot(ref, g) >= 0
         return (g if plus else -g), plus
 
-    def half_plane(self, a, g):
+    def half_plane(self, a: Any, g: Any) -> Any:
         return self.re_dot(a, g) >= 0
 
-    any = staticmethod(bool)
-    all = staticmethod(bool)
+    @staticmethod
+    def any(c: Any) -> bool:
+        return bool(c)
 
     @staticmethod
-    def neg(c):
+    def all(c: Any) -> bool:
+        return bool(c)
+
+    @staticmethod
+    def neg(c: Any) -> Any:
         return not c
 
     @staticmethod
-    def select(c, f, g):
+    def select(c: Any, f: Callable[[], Any], g: Callable[[], Any]) -> Any:
         return f() if c else g()
 
     @staticmethod
-    def out_of_range(*xs):
+    def out_of_range(*xs: Any) -> Any:
         return False
 
     @staticmethod
-    def renormalize(A, B, C, D, e):
+    def renormalize(A: Any, B: Any, C: Any, D: Any, e: Any) -> tuple[Any, Any, Any, Any, Any]:
         return A, B, C, D, e
 
-    def isfinite_all(self, xs):
+    @staticmethod
+    def subset(x: Any, mask: Any) -> Any:
+        return x
+
+    @staticmethod
+    def merge(full: Any, mask: Any, part: Any) -> Any:
+        return part
+
+    def isfinite_all(self, xs: Sequence[Any]) -> bool:
         return all(mpmath.isfinite(x) for x in xs)
 
 
@@ -239,7 +317,11 @@ class IVContext(MPContext):
 
     Accuracy decisions use interval midpoints; existence decisions
     (``positive``) require the whole interval to be positive.  Complex
-    continuation is not supported.
+    continuation is not supported.  (For certified orbits use the Arb
+    contexts of :mod:`symbt.numeric.arb`.)
+
+    >>> IVContext.positive(mpmath.iv.mpf([-1, 2]))
+    False
     """
 
     is_complex = False
@@ -250,24 +332,27 @@ class IVContext(MPContext):
     sqrt = staticmethod(mpmath.iv.sqrt)
 
     @staticmethod
-    def ldexp(x, e):
+    def div(a: Any, b: Any) -> Any:
+        return a / b
+
+    @staticmethod
+    def ldexp(x: Any, e: Any) -> Any:
         return mpmath.iv.mpf(x) * mpmath.iv.mpf(2) ** int(e)
 
     @staticmethod
-    def acosh_half_abs(t, g, e):
+    def acosh_half_abs(t: Any, g: Any, e: Any) -> Any:
         h = abs(t) / 2
         return mpmath.iv.log(h + mpmath.iv.sqrt((h - 1) * (h + 1)))
 
     @staticmethod
-    def re_dot(a, b):
+    def re_dot(a: Any, b: Any) -> Any:
         return (a * b).mid
 
     @staticmethod
-    def positive(x):
-        return x.a > 0
+    def positive(x: Any) -> bool:
+        return bool(x.a > 0)
 
-
-    def isfinite_all(self, xs):
+    def isfinite_all(self, xs: Sequence[Any]) -> bool:
         return all(mpmath.isfinite(x.a) and mpmath.isfinite(x.b) for x in xs)
 
 

@@ -16,15 +16,29 @@ code keeps working, but callers can tell *why* a step was refused:
   that is not finite); use mpmath inputs.
 * :class:`QuadratureError` -- the quadrature for the flow coefficients did not
   reach its tolerance.
+* :class:`MissingDependencyError` -- an optional backend (numba, python-flint,
+  dask) was requested but is not installed; an :class:`ImportError`.
+
+>>> from symbt.numeric import NoRealMapError
+>>> err = NoRealMapError("no real map", condition="trace", where=[(1,)])
+>>> isinstance(err, ValueError), err.condition, err.where
+(True, 'trace', ((1,),))
 """
 
 from __future__ import annotations
 
-__all__ = ["InvalidInputError", "NoRealMapError", "NumericRangeError", "QuadratureError"]
+from collections.abc import Iterable
+
+__all__ = ["InvalidInputError", "NoRealMapError", "NumericRangeError", "QuadratureError",
+           "MissingDependencyError"]
 
 
 class InvalidInputError(ValueError):
-    """Malformed input: non-finite values, bad shapes, N < 2, bad branch."""
+    """Malformed input: non-finite values, bad shapes, N < 2, bad branch.
+
+    >>> issubclass(InvalidInputError, ValueError)
+    True
+    """
 
 
 class NoRealMapError(ValueError):
@@ -36,18 +50,38 @@ class NoRealMapError(ValueError):
         ``"trace"`` (``|tr L(lam_i)| <= 2``) or ``"positivity"``
         (some ``Etilde_j <= 0``, i.e. ``lam1``, ``lam2`` in different gaps).
     where : tuple
-        Up to a few offending batch indices (empty for a single state).
+        Offending batch indices (empty for a single state): up to five for
+        :func:`~symbt.numeric.bt_step`, all of them for ensemble orbits.
+
+    >>> NoRealMapError("no map", condition="trace").where
+    ()
     """
 
-    def __init__(self, message, condition="", where=()):
+    def __init__(self, message: str, condition: str = "", where: Iterable[tuple[int, ...]] = ()) -> None:
         super().__init__(message)
         self.condition = condition
         self.where = tuple(where)
 
 
 class NumericRangeError(OverflowError):
-    """The problem is outside the range of the float64 formulation."""
+    """The problem is outside the range of the float64 formulation (or not certifiable).
+
+    >>> issubclass(NumericRangeError, OverflowError)
+    True
+    """
 
 
 class QuadratureError(ArithmeticError):
-    """Adaptive quadrature failed to meet its error estimate."""
+    """Adaptive quadrature failed to meet its error estimate.
+
+    >>> issubclass(QuadratureError, ArithmeticError)
+    True
+    """
+
+
+class MissingDependencyError(ImportError):
+    """An optional dependency (numba, python-flint, dask) is needed for the requested feature.
+
+    >>> issubclass(MissingDependencyError, ImportError)
+    True
+    """

@@ -34,10 +34,13 @@ True
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import Any
+
 import numpy as np
 
 from ._input import as_state_pair, prepare_scalar
-from .context import FLOAT
+from .context import FLOAT, Context
 from .errors import NumericRangeError
 
 __all__ = ["spectral_trace", "invariants", "neighbour_ratios", "monodromy"]
@@ -46,8 +49,14 @@ __all__ = ["spectral_trace", "invariants", "neighbour_ratios", "monodromy"]
 MAX_DQ = 700.0
 
 
-def neighbour_ratios(ctx, q):
-    """``r_j = exp(q_{j+1} - q_j)`` (cyclic) as a list of context values."""
+def neighbour_ratios(ctx: Context, q: Sequence[Any]) -> list[Any]:
+    """``r_j = exp(q_{j+1} - q_j)`` (cyclic) as a list of context values.
+
+    >>> import mpmath
+    >>> from symbt.numeric._input import MP
+    >>> [mpmath.nstr(x, 6) for x in neighbour_ratios(MP, [mpmath.mpf(0), mpmath.mpf(1)])]
+    ['2.71828', '0.367879']
+    """
     N = len(q)
     dq = [q[(j + 1) % N] - q[j] for j in range(N)]
     if not ctx.is_exact_scale:
@@ -59,7 +68,7 @@ def neighbour_ratios(ctx, q):
     return [ctx.exp(d) for d in dq]
 
 
-def _product(ctx, a, r, renorm):
+def _product(ctx: Context, a: Sequence[Any], r: Sequence[Any], renorm: bool) -> tuple[Any, Any, Any, Any, Any]:
     # M = m_N ... m_1 applied to the identity; m_j = [[a_j, -1], [r_j, 0]].
     # m_1 itself; B and D start as plain scalars (cheap broadcasting)
     A, B, C, D = a[0], -1.0, r[0], 0.0
@@ -73,12 +82,18 @@ def _product(ctx, a, r, renorm):
     return A, B, C, D, e
 
 
-def monodromy(ctx, a, r):
+def monodromy(ctx: Context, a: Sequence[Any], r: Sequence[Any]) -> tuple[Any, Any, Any, Any, Any]:
     """Scaled monodromy ``M = 2**e (A, B; C, D)`` for site lists ``a_j = lam + p_j``, ``r_j``.
 
     Returns ``(A, B, C, D, e)``; ``e`` is ``0`` unless renormalisation was
     needed (float64) -- for mpmath it is always ``0``.
+
+    >>> A, B, C, D, e = monodromy(FLOAT, [np.array([2.0]), np.array([3.0])], [np.array([1.0]), np.array([1.0])])
+    >>> float((A + D)[0]), e                           # tr = a1 a2 - r1 - r2
+    (4.0, 0)
     """
+    if ctx.is_exact_scale:
+        return _product(ctx, a, r, renorm=False)
     with np.errstate(over="ignore", invalid="ignore"):   # out-of-range rows are redone below
         A, B, C, D, e = _product(ctx, a, r, renorm=False)
     bad = ctx.out_of_range(A, B, C, D)
@@ -93,7 +108,7 @@ def monodromy(ctx, a, r):
     return A, B, C, D, e
 
 
-def spectral_trace(lam, p, q):
+def spectral_trace(lam: Any, p: Any, q: Any) -> Any:
     """``tr L(lam)`` for a state (or batch of states) ``(p, q)``; O(N) per state.
 
     ``lam`` is a scalar (or broadcastable to the batch shape).  float64 inputs
@@ -118,7 +133,7 @@ def spectral_trace(lam, p, q):
     return A + D
 
 
-def invariants(p, q):
+def invariants(p: Any, q: Any) -> Any:
     """Conserved quantities ``H_0, ..., H_{N-1}`` (coefficients of ``tr L``; ``H_N = 1``).
 
     O(N^2) per state, no N x N matrices: the entries of the scaled monodromy
@@ -134,13 +149,13 @@ def invariants(p, q):
         return _invariants(p, q)
 
 
-def _invariants(p, q):
+def _invariants(p: Any, q: Any) -> Any:
     ctx, P, Q, shape = as_state_pair(p, q)
     N = len(P)
     r = neighbour_ratios(ctx, Q)
     zero = 0.0 * P[0]
 
-    def poly(n):
+    def poly(n: int) -> list[Any]:
         return [zero] * n
 
     # polynomials as lists of coefficients (index = power of lam)

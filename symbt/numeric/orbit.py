@@ -1,13 +1,22 @@
-"""Orbits of the Bäcklund map: repeated :func:`~symbt.numeric.bt_step`.
+"""Orbits of the Bäcklund map: ``n`` steps of :func:`~symbt.numeric.bt_step` in one call.
 
 The map preserves ``tr L(lam)`` (all ``H_k``) and, being a canonical
 transformation that interpolates a Hamiltonian flow (paper Thm. 2, eq.
 ``eqdisc``), its orbits lie on invariant tori; the centre of mass
 ``Q = mean(q)`` drifts linearly.  Because each float64 step is accurate to a
 few ulps, the orbit error grows only through the (linear, integrable)
-dynamics.  The float64 orbit carries the centre of mass separately (see
-:func:`bt_orbit`), which keeps the 3500-step error of the paper's example near
-the conditioning of the orbit itself (see ``tests/test_numeric_orbit.py``).
+dynamics (``~ eps n^2``; see ``tests/test_numeric_orbit.py``).
+
+Backends (picked automatically, see :func:`bt_orbit`):
+
+* float64, one state: the fused kernel (:mod:`.kernels`, numba if installed);
+* float64 ensemble ``(M, N)``: the fused block kernel on all cores (numba) or
+  the vectorised numpy path (:mod:`.ensemble`); ``every=k`` stores every k-th
+  state only;
+* mpmath numbers: python-flint's Arb at the caller's precision plus guard
+  bits (:mod:`.mpfast`), else mpmath;
+* ``certified=True``: rigorous enclosures by Arb ball arithmetic
+  (:mod:`.certified`).
 
 Example
 -------
@@ -15,69 +24,98 @@ Example
 >>> P, Q = bt_orbit([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0, 3)
 >>> P.shape
 (4, 3)
+>>> P, Q = bt_orbit([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0, 3500, every=3500)
+>>> P.shape                                     # the initial and the final state
+(2, 3)
 """
 
 from __future__ import annotations
+
+from typing import Any, Literal, overload
 
 import numpy as np
 
 from ._input import check_branch, pick_context
 from .context import FLOAT
+from .ensemble import float_orbit
 from .errors import InvalidInputError
-from .step import bt_step
 
-__all__ = ["bt_orbit"]
+__all__ = ["bt_orbit", "check_steps"]
 
 
-def bt_orbit(p, q, lam0, mu, n, *, branch=1):
-    """``n`` Bäcklund steps from ``(p, q)``; returns the ``n + 1`` states.
+def check_steps(n: Any, every: Any) -> tuple[int, int]:
+    """Validated ``(n, every)``: non-negative and positive integers.
 
-    float64: arrays ``P, Q`` of shape ``(n + 1,) + p.shape`` with ``P[0] = p``.
-    mpmath: two lists of ``n + 1`` states (each a list of mpf).
-    Errors of any step (e.g. :class:`NoRealMapError`) propagate; the map
-    preserves the spectrum, so if the first step exists all later ones do too
-    (up to round-off at the boundary of existence).
+    >>> check_steps(10, 3)
+    (10, 3)
     """
-    branch = check_branch(branch)
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
         raise InvalidInputError("n must be a non-negative integer, got %r" % (n,))
+    if isinstance(every, bool) or not isinstance(every, (int, np.integer)) or every < 1:
+        raise InvalidInputError("every must be a positive integer, got %r" % (every,))
+    return int(n), int(every)
+
+
+@overload
+def bt_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = ..., every: int = ...,
+             backend: str = ..., certified: Literal[False] = ..., tol: Any = ...) -> tuple[Any, Any]: ...
+
+
+@overload
+def bt_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = ..., every: int = ...,
+             backend: str = ..., certified: Literal[True], tol: Any = ...) -> tuple[Any, Any, Any, Any]: ...
+
+
+def bt_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, every: int = 1,
+             backend: str = "auto", certified: bool = False, tol: Any = None) -> tuple[Any, ...]:
+    """``n`` Bäcklund steps from ``(p, q)``; returns the stored states.
+
+    Parameters
+    ----------
+    p, q : float64 array_like of shape ``batch + (N,)`` (one state or an
+        ensemble), or flat sequences of mpmath numbers (one state); with
+        ``certified=True`` also exact decimal strings.
+    lam0, mu : real (float64 ensembles: also arrays broadcastable to ``batch``).
+    n : number of steps.  every : store the states after ``0, every, 2 every,
+        ...`` steps and always the last one (``every=n``: initial and final).
+    branch : +1 or -1 (inverse map).
+    backend : ``"auto"`` (fastest available) or float64 ``"numba"``,
+        ``"python"``, ``"numpy"`` (general path only); mpmath ``"flint"`` or
+        ``"mpmath"``.
+    certified, tol : see :func:`symbt.numeric.certified.certified_orbit`;
+        returns ``(P, Q, P_rad, Q_rad)``.
+
+    Returns
+    -------
+    float64: arrays ``P, Q`` of shape ``(rows,) + batch + (N,)`` with
+    ``P[0] = p`` (``rows = n + 1`` for ``every=1``).  mpmath: two lists of
+    ``rows`` states (each a list of mpf at the current ``mp.dps``).
+
+    Errors of any step propagate as the typed errors of :func:`bt_step`; for
+    ensembles :class:`NoRealMapError` lists in ``where`` every state without a
+    real map.  The map preserves the spectrum, so if the first step exists all
+    later ones do too (up to round-off at the boundary of existence).
+
+    >>> import numpy as np
+    >>> P, Q = bt_orbit(np.tile([-20.0, 10, 1], (4, 1)), np.tile([1.0, 0, 0.9], (4, 1)), 10.0, 5.0, 100, every=50)
+    >>> P.shape                                      # (stored states, ensemble, sites)
+    (3, 4, 3)
+    """
+    branch = check_branch(branch)
+    n, every = check_steps(n, every)
+    if certified:
+        from .certified import certified_orbit
+
+        if backend != "auto":
+            raise InvalidInputError("certified orbits always use Arb ball arithmetic (backend=%r given)" % backend)
+        return certified_orbit(p, q, lam0, mu, n, branch=branch, every=every, tol=tol)
+    if tol is not None:
+        raise InvalidInputError("tol is only used with certified=True")
     ctx = pick_context(p, q, lam0, mu)
     if ctx is FLOAT:
-        p0 = np.asarray(p, dtype=np.float64)
-        q0 = np.asarray(q, dtype=np.float64)
-        # n == 0: bt_step with mu = 0 still validates (no silent NaN passthrough)
-        pn, qn = bt_step(p0, q0, lam0, mu if n else 0.0, branch=branch)
-        P = np.empty((n + 1,) + pn.shape, dtype=pn.dtype)
-        Q = np.empty_like(P)
-        P[0], Q[0] = p0, q0
-        if n == 0:
-            return P, Q
-        # Carry the centre of mass separately: the dynamics only sees qr = q - c
-        # with |qr| = O(1); c (which drifts linearly) is accumulated with a
-        # compensated (two-sum) sum.  Without this the rounding of q~ = fl(q + dq)
-        # at |q| ~ 500 perturbs the relative coordinates by ulp(500) per step and
-        # the orbit error grows ~100x faster.
-        c_hi = np.mean(q0, axis=-1, keepdims=True)
-        c_lo = np.zeros_like(c_hi)
-        qr = q0 - c_hi
-        pc = p0
-        for i in range(1, n + 1):
-            pc, qr = bt_step(pc, qr, lam0, mu, branch=branch)
-            s = np.mean(qr, axis=-1, keepdims=True)
-            qr = qr - s
-            t = c_hi + s                                   # two-sum (Knuth)
-            bp = t - c_hi
-            c_lo = c_lo + ((c_hi - (t - bp)) + (s - bp))
-            c_hi = t
-            P[i] = pc
-            Q[i] = c_hi + (c_lo + qr)
-        return P, Q
-    P, Q = [], []
-    pc, qc = bt_step(p, q, lam0, 0, branch=branch)  # validated copy at mp precision
-    P.append(pc)
-    Q.append(qc)
-    for _ in range(n):
-        pc, qc = bt_step(pc, qc, lam0, mu, branch=branch)
-        P.append(pc)
-        Q.append(qc)
-    return P, Q
+        if backend in ("flint", "mpmath"):
+            raise InvalidInputError("backend %r needs mpmath inputs" % backend)
+        return float_orbit(p, q, lam0, mu, n, branch=branch, every=every, backend=backend)
+    from .mpfast import mp_orbit
+
+    return mp_orbit(p, q, lam0, mu, n, branch=branch, every=every, backend=backend)

@@ -46,6 +46,21 @@ Existence: the real map needs ``|tr L(lam_i)| > 2`` and ``2 mu / d_j < 1`` for a
 result with ``allow_complex=True``).  ``branch = -1`` is the inverse of
 ``branch = +1`` and equals ``branch = +1`` at ``-mu``.
 
+Degenerate eigenvectors.  A slope is a point of the projective line: where an
+eigenvector is ``(0, 1)`` the slope is infinite (e.g. ``lam + p_j = 0`` on the
+backward transport).  Every context divides IEEE-style (``x / 0 = inf``,
+``x / inf = 0``, :meth:`~symbt.numeric.context.MPContext.div`), so such a slope
+passes through infinity and the read-out takes its limit (``xr_j = 2 mu / d_j = 0``)
+on the float64, mpmath and Arb paths alike.
+
+Backends.  One float64 state goes through the fused kernel
+(:mod:`symbt.numeric.kernels`; numba if installed), batches through the
+vectorised numpy code below, mpmath numbers through python-flint's Arb at
+the caller's precision plus guard bits when python-flint is installed
+(:mod:`symbt.numeric.mpfast`), else through mpmath.  Whatever the kernel does
+not handle (no real map, renormalisation, non-finite intermediates) is
+recomputed by the general path, which raises the typed errors.
+
 Example
 -------
 >>> import numpy as np
@@ -60,6 +75,9 @@ True
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any
+
 import mpmath
 import numpy as np
 
@@ -69,17 +87,23 @@ from ._input import (
     check_branch,
     pick_context,
     prepare_spectral_pair,
-    sites,
     to_output,
     validate_float_pair,
 )
-from .context import COMPLEX, FLOAT
-from .errors import NoRealMapError, NumericRangeError
+from .context import COMPLEX, FLOAT, Context
+from .errors import InvalidInputError, NoRealMapError, NumericRangeError
 from .lax import monodromy, neighbour_ratios
 
-__all__ = ["bt_step", "step_core", "SlopeData"]
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    F64 = npt.NDArray[np.float64]
+
+__all__ = ["bt_step", "step_core", "eigen_slopes", "SlopeData", "STEP_BACKENDS"]
 
 _GUARD_DIGITS = 12
+#: accepted values of ``backend`` (float64: auto/numba/python/numpy; mpmath: auto/flint/mpmath)
+STEP_BACKENDS = ("auto", "numba", "python", "numpy", "flint", "mpmath")
 
 
 class SlopeData:
@@ -89,43 +113,59 @@ class SlopeData:
     scaled ``tr**2 - 4`` (positive iff ``|tr| > 2``), ``forward`` -- transport
     direction used (selected eigenvalue has ``|v| >= 1``), ``t, g, e`` -- scaled
     trace, ``sqrt(t**2 - 4**(1-e))`` and exponent.
+
+    >>> SlopeData(t=3.0, g=2.2, e=0, trace_ok=5.0).t
+    3.0
     """
 
     __slots__ = ("u", "trace_ok", "forward", "t", "g", "e")
 
-    def __init__(self, **kw):
-        for k, v in kw.items():
-            setattr(self, k, v)
+    def __init__(self, *, trace_ok: Any = None, t: Any = None, g: Any = None, e: Any = 0,
+                 u: list[Any] | None = None, forward: Any = None) -> None:
+        self.trace_ok = trace_ok
+        self.t = t
+        self.g = g
+        self.e = e
+        self.u = u
+        self.forward = forward
 
 
-def _forward(a, r, u1):
+def _forward(ctx: Context, a: Sequence[Any], r: Sequence[Any], u1: Any) -> list[Any]:
     u = [u1]
     for j in range(len(a) - 1):
-        u.append(-r[j] / (a[j] + u[j]))
+        u.append(ctx.div(-r[j], a[j] + u[j]))
     return u
 
 
-def _backward(a, r, u1):
+def _backward(ctx: Context, a: Sequence[Any], r: Sequence[Any], u1: Any) -> list[Any]:
     N = len(a)
-    u = [None] * N
+    u: list[Any] = [None] * N
     u[0] = nxt = u1
     for j in range(N - 1, 0, -1):
-        nxt = u[j] = -a[j] - r[j] / nxt
+        nxt = u[j] = -a[j] - ctx.div(r[j], nxt)
     return u
 
 
-def eigen_slopes(ctx, a, r, s, need_slopes=True):
+def eigen_slopes(ctx: Context, a: Sequence[Any], r: Sequence[Any], s: int, need_slopes: bool = True) -> SlopeData:
     """Slopes of the eigenvector with eigenvalue ``(tr - s*sqrt(tr^2-4))/2`` at every site.
 
     ``a_j = lam + p_j``; ``s = +1`` gives the paper's ``y`` (for ``branch=+1``),
     ``s = -1`` its ``z``.  See the module docstring for the formulas.
+
+    >>> import mpmath
+    >>> from symbt.numeric._input import MP
+    >>> from symbt.numeric.lax import neighbour_ratios
+    >>> r = neighbour_ratios(MP, [mpmath.mpf(1), mpmath.mpf(0), mpmath.mpf("0.9")])
+    >>> S = eigen_slopes(MP, [15 + p for p in (-20, 10, 1)], r, 1)     # lam1 = 15, the paper's example
+    >>> mpmath.nstr(S.t, 8), [mpmath.nstr(x, 6) for x in S.u], S.forward
+    ('-2021.2173', ['-0.0694993', '0.0725672', '-0.0980994'], True)
     """
     A, B, C, D, e = monodromy(ctx, a, r)
     t = A + D
     two = ctx.ldexp(2.0, -e) if not isinstance(e, int) or e else 2.0
     disc = (t - two) * (t + two)          # tr^2 - 4 without cancellation (scaled)
     g = ctx.sqrt(disc)
-    data = SlopeData(trace_ok=disc, t=t, g=g, e=e, u=None, forward=None)
+    data = SlopeData(trace_ok=disc, t=t, g=g, e=e)
     # |(t - s g)/2| >= 1  <=>  Re(t conj(s g)) <= 0  -> dominant -> transport forward
     tg = ctx.half_plane(t, g)
     fwd = ctx.neg(tg) if s > 0 else tg
@@ -137,32 +177,50 @@ def eigen_slopes(ctx, a, r, s, need_slopes=True):
     k = dl + sg
     # roots of B u^2 - (A-D) u - C = 0 are k/(2B) and -2C/k; want (dl + s g)/(2B)
     target_is_k = plus if s > 0 else ctx.neg(plus)
-    u1 = ctx.select(target_is_k, lambda: k / (2 * B), lambda: -2 * C / k)
+    u1 = ctx.select(target_is_k, lambda: ctx.div(k, 2 * B), lambda: ctx.div(-2 * C, k))
     if ctx.all(fwd):
-        u = _forward(a, r, u1)
+        u = _forward(ctx, a, r, u1)
     elif not ctx.any(fwd):
-        u = _backward(a, r, u1)
+        u = _backward(ctx, a, r, u1)
     else:
-        uf, ub = _forward(a, r, u1), _backward(a, r, u1)
+        uf, ub = _forward(ctx, a, r, u1), _backward(ctx, a, r, u1)
         u = [np.where(fwd, x, y) for x, y in zip(uf, ub)]
     data.u = u
     return data
 
 
-def _where_text(mask, shape, offset=0):
-    idx = np.flatnonzero(np.logical_not(np.asarray(mask))) + offset
+def where_text(ok: Any, shape: tuple[int, ...], offset: int = 0,
+               index: npt.NDArray[np.intp] | None = None) -> tuple[list[tuple[int, ...]], str]:
+    """Batch indices (in ``shape``) of the rows where ``ok`` is False, and a message suffix.
+
+    ``index`` maps local rows to flat rows of the batch (else ``row + offset``).
+
+    >>> where_text([True, False, True], (3,))
+    ([(1,)], ' (batch index (1,))')
+    """
+    idx = np.flatnonzero(np.logical_not(np.asarray(ok)))
+    idx = index[idx] if index is not None else idx + offset
     if not shape or idx.size == 0:
-        return (), ""
+        return [], ""
     where = [tuple(int(i) for i in np.unravel_index(k, shape)) for k in idx[:5]]
     return where, " (batch index %s%s)" % (", ".join(map(str, where)), ", ..." if idx.size > 5 else "")
 
 
-def step_core(ctx, P, Q, lam0, mu, branch, *, check_real=True, shape=(), offset=0):
+def step_core(ctx: Context, P: Sequence[Any], Q: Sequence[Any], lam0: Any, mu: Any, branch: int, *,
+              check_real: bool = True, shape: tuple[int, ...] = (), offset: int = 0,
+              index: npt.NDArray[np.intp] | None = None) -> tuple[list[Any], list[Any], dict[str, Any]]:
     """The step on per-site lists in context ``ctx``; returns ``(P~, Q~, aux)``.
 
-    ``aux`` holds ``u``, ``w``, ``gq = u/(u-w)`` (lists; ``eta_j = mu - 2 mu gq_j``)
-    and the two :class:`SlopeData`.
-    Raises :class:`NoRealMapError` when ``check_real`` and the real map fails.
+    ``aux`` holds ``u``, ``w``, ``xr = 2 mu / (u - w)`` (``Etilde_j / E_j = 1 + xr_j``),
+    ``gq = u/(u-w)`` (lists; ``eta_j = mu - 2 mu gq_j``) and the two :class:`SlopeData`.
+    Raises :class:`NoRealMapError` when ``check_real`` and the real map fails
+    (its ``where`` from ``shape`` and ``offset``/``index``, see :func:`where_text`).
+
+    >>> import mpmath
+    >>> from symbt.numeric._input import MP
+    >>> P, Q, aux = step_core(MP, [mpmath.mpf(-20), 10, 1], [1, 0, mpmath.mpf('0.9')], 10, 5, 1)
+    >>> mpmath.nstr(P[0], 8), sorted(aux)
+    ('-19.996568', ['S1', 'S2', 'gq', 'u', 'w', 'xr'])
     """
     N = len(P)
     r = neighbour_ratios(ctx, Q)
@@ -174,28 +232,29 @@ def step_core(ctx, P, Q, lam0, mu, branch, *, check_real=True, shape=(), offset=
     if check_real:
         for name, S in (("lam1 = lam0 + mu", S1), ("lam2 = lam0 - mu", S2)):
             if not ctx.all_positive(S.trace_ok):
-                where, txt = _where_text(ctx.positive(S.trace_ok), shape, offset)
+                where, txt = where_text(ctx.positive(S.trace_ok), shape, offset, index)
                 raise NoRealMapError(
                     "no real Bäcklund map: |tr L(%s)| <= 2, the spectral parameter lies "
                     "in a band%s" % (name, txt), condition="trace", where=where)
     u, w = S1.u, S2.u
+    assert u is not None and w is not None
     two_mu = 2 * mu
     dn = [u[j] - w[j] for j in range(N)]          # = -(z_j - y_j) E_j
-    xr = [two_mu / dn[j] for j in range(N)]       # = -x_j / E_j = Etilde_j / E_j - 1
+    xr = [ctx.div(two_mu, dn[j]) for j in range(N)]   # = -x_j / E_j = Etilde_j / E_j - 1
     if check_real:
         bad = [j for j in range(N) if not ctx.all_positive(xr[j] + 1)]
         if bad:
             ok = ctx.positive(xr[bad[0]] + 1)
             for j in bad[1:]:
                 ok = ok & ctx.positive(xr[j] + 1)
-            where, txt = _where_text(ok, shape, offset)
+            where, txt = where_text(ok, shape, offset, index)
             raise NoRealMapError(
                 "no real Bäcklund map: some Etilde_j = E_j - x_j <= 0 (lam1 and lam2 "
                 "lie in different spectral gaps)%s" % txt, condition="positivity", where=where)
     Qn = [Q[j] + ctx.log1p(xr[j]) for j in range(N)]
-    gq = [u[j] / dn[j] for j in range(N)]         # = -u_j / d_j;  eta_j = mu - 2 mu gq_j
+    gq = [ctx.div(u[j], dn[j]) for j in range(N)]     # = -u_j / d_j;  eta_j = mu - 2 mu gq_j
     Pn = [P[j] + two_mu * (gq[(j + 1) % N] - gq[j]) for j in range(N)]
-    aux = {"u": u, "w": w, "S1": S1, "S2": S2, "gq": gq}
+    aux = {"u": u, "w": w, "xr": xr, "S1": S1, "S2": S2, "gq": gq}
     return Pn, Qn, aux
 
 
@@ -203,12 +262,17 @@ def step_core(ctx, P, Q, lam0, mu, branch, *, check_real=True, shape=(), offset=
 BLOCK_ELEMENTS = 1 << 17
 
 
-def _float_block(pa, qa, lam0, mu, branch, allow_complex, shape, offset):
-    """Step for one block of rows ``pa, qa`` (B, N); returns (B, N) arrays."""
-    P, Q = sites(pa), sites(qa)
+
+def _float_block(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_complex: bool,
+                 shape: tuple[int, ...], index: npt.NDArray[np.intp]) -> tuple[npt.NDArray[Any], npt.NDArray[Any]]:
+    """Step for one block of rows ``pa, qa`` (B, N); returns (B, N) arrays.
+
+    ``index`` holds the flat batch index of every row (for :class:`NoRealMapError`'s ``where``).
+    """
+    P, Q = list(pa.T.copy()), list(qa.T.copy())
     with np.errstate(all="ignore"):
         try:
-            Pn, Qn, _ = step_core(FLOAT, P, Q, lam0, mu, branch, shape=shape, offset=offset)
+            Pn, Qn, _ = step_core(FLOAT, P, Q, lam0, mu, branch, shape=shape, index=index)
         except NoRealMapError:
             if not allow_complex:
                 raise
@@ -225,34 +289,46 @@ def _float_block(pa, qa, lam0, mu, branch, allow_complex, shape, offset):
     return outp, outq
 
 
-def _float_step(pa, qa, lam0, mu, branch, allow_complex, shape):
+def _float_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_complex: bool,
+                shape: tuple[int, ...]) -> tuple[npt.NDArray[Any], npt.NDArray[Any]]:
     B, N = pa.shape
     block = max(256, BLOCK_ELEMENTS // N)
-    outp = np.empty((B, N))
-    outq = np.empty((B, N))
+    outp: npt.NDArray[Any] = pa.copy()
+    outq: npt.NDArray[Any] = qa.copy()
+    rows = np.arange(B)
     for s0 in range(0, B, block):
         sl = slice(s0, min(B, s0 + block))
-        l0 = lam0[sl] if np.ndim(lam0) else lam0
         m = mu[sl] if np.ndim(mu) else mu
-        if np.ndim(m) and not np.all(m != 0):
-            nz = np.flatnonzero(m != 0)
-            rp, rq = pa[sl].copy(), qa[sl].copy()
-            if nz.size:
-                bp, bq = _float_block(pa[sl][nz], qa[sl][nz], l0[nz] if np.ndim(l0) else l0,
-                                      m[nz], branch, allow_complex, (), 0)
-                if np.iscomplexobj(bp):
-                    rp, rq = rp.astype(complex), rq.astype(complex)
-                rp[nz], rq[nz] = bp, bq
-            bp, bq = rp, rq
-        else:
-            bp, bq = _float_block(pa[sl], qa[sl], l0, m, branch, allow_complex, shape, s0)
+        l0 = lam0[sl] if np.ndim(lam0) else lam0
+        # rows with mu == 0 are the identity (copies, already in place)
+        nz = np.flatnonzero(m != 0) if np.ndim(m) else (np.arange(sl.stop - s0) if m != 0 else np.arange(0))
+        if nz.size == 0:
+            continue
+        full = nz.size == sl.stop - s0
+        sub = (lambda x: x[sl]) if full else (lambda x: x[sl][nz])
+        bp, bq = _float_block(sub(pa), sub(qa), sub(l0) if np.ndim(l0) else l0, sub(m) if np.ndim(m) else m,
+                              branch, allow_complex, shape, sub(rows))
         if np.iscomplexobj(bp) and not np.iscomplexobj(outp):
             outp, outq = outp.astype(complex), outq.astype(complex)
-        outp[sl], outq[sl] = bp, bq
+        if full:
+            outp[sl], outq[sl] = bp, bq
+        else:
+            outp[s0 + nz], outq[s0 + nz] = bp, bq
     return outp, outq
 
 
-def bt_step(p, q, lam0, mu, *, branch=1, allow_complex=False):
+def _mp_step(ctx: Context, P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
+             allow_complex: bool) -> tuple[list[Any], list[Any]]:
+    """The plain mpmath (or interval) step at ``mp.dps`` + guard digits."""
+    with mpmath.workdps(mpmath.mp.dps + _GUARD_DIGITS):
+        Pn, Qn, _ = step_core(ctx, P, Q, lam0, mu, branch, check_real=not allow_complex or ctx is IV)
+        if not ctx.isfinite_all(Pn + Qn):
+            raise NumericRangeError("non-finite result in the mpmath step (degenerate eigenvector?)")
+    return to_output(ctx, Pn, ()), to_output(ctx, Qn, ())
+
+
+def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_complex: bool = False,
+            backend: str = "auto") -> tuple[Any, Any]:
     """One Bäcklund step of the periodic Toda chain.
 
     Parameters
@@ -265,6 +341,9 @@ def bt_step(p, q, lam0, mu, *, branch=1, allow_complex=False):
     allow_complex : return the complex continuation instead of raising
         :class:`NoRealMapError` (float path: complex128 arrays; mpmath: mpc
         values where needed).
+    backend : ``"auto"`` (default: the fastest available), or force one:
+        float64 ``"numba"``/``"python"`` (fused kernel, one state only) or
+        ``"numpy"``; mpmath ``"flint"`` (Arb, python-flint) or ``"mpmath"``.
 
     Returns
     -------
@@ -273,7 +352,8 @@ def bt_step(p, q, lam0, mu, *, branch=1, allow_complex=False):
 
     Raises
     ------
-    InvalidInputError, NoRealMapError, NumericRangeError
+    InvalidInputError, NoRealMapError, NumericRangeError (and
+    :class:`MissingDependencyError` for a forced backend that is not installed)
 
     ``mu == 0`` returns copies of the input.  The algorithm and its stability
     are described in the module docstring of :mod:`symbt.numeric.step`.
@@ -286,26 +366,35 @@ def bt_step(p, q, lam0, mu, *, branch=1, allow_complex=False):
     -0.0861422421882023
     """
     branch = check_branch(branch)
+    if backend not in STEP_BACKENDS:
+        raise InvalidInputError("backend must be one of %s, got %r" % (STEP_BACKENDS, backend))
     ctx = pick_context(p, q, lam0, mu)
     if ctx is FLOAT:
+        if backend in ("flint", "mpmath"):
+            raise InvalidInputError("backend %r needs mpmath inputs" % backend)
         pa, qa, shape = validate_float_pair(p, q)
         lam0, mu = prepare_spectral_pair(ctx, lam0, mu, shape)
         N = pa.shape[-1]
         if np.ndim(mu) == 0 and mu == 0:
             return pa.reshape(shape + (N,)).copy(), qa.reshape(shape + (N,)).copy()
+        if shape == () and backend != "numpy":
+            from .ensemble import kernel_step
+
+            out = kernel_step(pa[0], qa[0], float(lam0), float(mu), branch, backend)
+            if out is not None:
+                return out
         outp, outq = _float_step(pa, qa, lam0, mu, branch, allow_complex, shape)
         return outp.reshape(shape + (N,)), outq.reshape(shape + (N,))
+    if backend in ("numba", "python", "numpy"):
+        raise InvalidInputError("backend %r needs float64 inputs" % backend)
     ctx, P, Q, shape = as_state_pair(p, q, lam0, mu)
     lam0, mu = prepare_spectral_pair(ctx, lam0, mu, shape)
-    # mpmath / interval path
     if mu == 0:
         return to_output(ctx, P, ()), to_output(ctx, Q, ())
-    with mpmath.workdps(mpmath.mp.dps + _GUARD_DIGITS):
-        try:
-            Pn, Qn, _ = step_core(ctx, P, Q, lam0, mu, branch,
-                                  check_real=not allow_complex or ctx is IV)
-        except ZeroDivisionError as exc:
-            raise NumericRangeError("degenerate eigenvector (division by zero)") from exc
-        if not ctx.isfinite_all(Pn + Qn):
-            raise NumericRangeError("non-finite result in the mpmath step")
-    return to_output(ctx, Pn, ()), to_output(ctx, Qn, ())
+    if ctx is not IV:
+        from .mpfast import mp_backend
+
+        fast: Callable[..., tuple[list[Any], list[Any]]] | None = mp_backend(backend)
+        if fast is not None:
+            return fast(P, Q, lam0, mu, branch, allow_complex)
+    return _mp_step(ctx, P, Q, lam0, mu, branch, allow_complex)

@@ -13,6 +13,9 @@ the output ``q~ = fl(q + increment)`` (``<= ulp(|q|)/2`` per entry) is included.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
 import mpmath
 import numpy as np
 
@@ -20,11 +23,18 @@ from .errors import NoRealMapError
 from .lax import spectral_trace
 from .step import bt_step
 
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
 __all__ = ["state_error", "gap_intervals", "random_gap_case", "outer_gap_case"]
 
 
-def state_error(p, q, p_ref, q_ref):
-    """Normwise relative error of a float state against an mpmath reference."""
+def state_error(p: Any, q: Any, p_ref: Sequence[Any], q_ref: Sequence[Any]) -> float:
+    """Normwise relative error of a float state against an mpmath reference.
+
+    >>> state_error([1.0, 2.0], [0.0, 0.0], [1, 2], [0, 0])
+    0.0
+    """
     with mpmath.workdps(max(40, mpmath.mp.dps)):
         P = [mpmath.mpf(float(v)) for v in np.ravel(p)]
         Qv = [mpmath.mpf(float(v)) for v in np.ravel(q)]
@@ -34,8 +44,12 @@ def state_error(p, q, p_ref, q_ref):
         return float(mpmath.sqrt(num / den))
 
 
-def gap_intervals(p, q, ngrid=4001, margin=2.5):
-    """Intervals of a grid where ``|tr L| > margin`` (candidate spectral gaps)."""
+def gap_intervals(p: Any, q: Any, ngrid: int = 4001, margin: float = 2.5) -> list[tuple[float, float]]:
+    """Intervals of a grid where ``|tr L| > margin`` (candidate spectral gaps).
+
+    >>> [(round(float(a), 1), round(float(b), 1)) for a, b in gap_intervals([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9])]
+    [(-10.3, -0.8), (-0.8, 20.1)]
+    """
     p = np.asarray(p, float)
     q = np.asarray(q, float)
     dq = np.diff(np.r_[q, q[0]])
@@ -59,12 +73,18 @@ def gap_intervals(p, q, ngrid=4001, margin=2.5):
     return out
 
 
-def random_gap_case(rng, N, pscale=5.0, qscale=1.0, mu=None, tries=200):
+def random_gap_case(rng: np.random.Generator, N: int, pscale: float = 5.0, qscale: float = 1.0,
+                    mu: float | None = None, tries: int = 200) -> tuple[npt.NDArray[np.float64],
+                                                                           npt.NDArray[np.float64], float, float]:
     """Random ``(p, q, lam0, mu)`` with ``lam0 +- mu`` inside one *inner* gap.
 
     Points stay 10 % of the gap width away from its (grid) edges; the case is
     accepted only if the real map exists for both branches.  ``mu`` (if given)
     is capped at 0.3 gap widths; its sign is random.
+
+    >>> p, q, lam0, mu = random_gap_case(np.random.default_rng(0), 3)
+    >>> p.shape, isinstance(lam0, float)
+    ((3,), True)
     """
     for _ in range(tries):
         p = rng.normal(size=N) * pscale
@@ -90,8 +110,14 @@ def random_gap_case(rng, N, pscale=5.0, qscale=1.0, mu=None, tries=200):
     raise RuntimeError("no case found")
 
 
-def outer_gap_case(rng, N, pscale=5.0, qscale=1.0, side=1):
-    """Random case with ``lam0 +- mu`` beyond the spectrum (unbounded gap)."""
+def outer_gap_case(rng: np.random.Generator, N: int, pscale: float = 5.0, qscale: float = 1.0,
+                   side: int = 1) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], float, float]:
+    """Random case with ``lam0 +- mu`` beyond the spectrum (unbounded gap).
+
+    >>> p, q, lam0, mu = outer_gap_case(np.random.default_rng(0), 4)
+    >>> abs(lam0) > abs(mu) > 0
+    True
+    """
     p = rng.normal(size=N) * pscale
     q = rng.normal(size=N) * qscale
     dq = np.diff(np.r_[q, q[0]])

@@ -1,0 +1,305 @@
+r"""float64 orbits: fused kernel for one state or an ensemble, the general path, per-state errors.
+
+:func:`float_orbit` (behind :func:`~symbt.numeric.bt_orbit` for float64 input)
+
+* one state (``p`` of shape ``(N,)``, scalar ``lam0, mu``): the single-orbit
+  kernel of :mod:`.kernels` (numba if installed, else the same source as plain
+  Python);
+* an ensemble (``p`` of shape ``batch + (N,)``; ``lam0, mu`` scalars or
+  broadcastable to ``batch``): the block kernel, ``prange`` over blocks of
+  states on all cores (numba), else the vectorised numpy general path;
+* every state the kernel does not finish (no real map, renormalisation,
+  non-finite intermediates) is recomputed from the start by the *general
+  path*: :func:`~symbt.numeric.step.step_core` on numpy arrays, with the
+  monodromy renormalised where needed, the centre of mass carried
+  separately (compensated sum), and a status per state.  The general path
+  decides the error: :class:`NoRealMapError` if some state has no real map
+  (``where`` lists *all* such states, ``condition`` is that of the first),
+  else :class:`NumericRangeError`.
+
+Stored states: steps ``0, every, 2 every, ...`` and always the last one
+(:func:`~symbt.numeric.kernels.stored_steps`), shape ``(rows,) + batch + (N,)``.
+
+Example
+-------
+>>> import numpy as np
+>>> from symbt.numeric.ensemble import float_orbit
+>>> P, Q = float_orbit(np.array([-20.0, 10.0, 1.0]), np.array([1.0, 0.0, 0.9]), 10.0, 5.0, 100, every=50)
+>>> P1, _ = float_orbit([-20.0, 10, 1], [1.0, 0, 0.9], 10.0, 5.0, 50)
+>>> P.shape, bool(np.array_equal(P[1], P1[-1]))
+((3, 3), True)
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ._input import prepare_spectral_pair, validate_float_pair
+from .context import FLOAT
+from .errors import InvalidInputError, NoRealMapError, NumericRangeError
+from .jit import kernel, numba_available
+from .kernels import ANCHOR, OK, POSITIVITY, RANGE, TRACE1, TRACE2, orbit_rows
+from .lax import MAX_DQ
+from .step import BLOCK_ELEMENTS, step_core
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    F64 = npt.NDArray[np.float64]
+    I64 = npt.NDArray[np.int64]
+
+__all__ = ["float_orbit", "kernel_step", "general_orbit", "raise_for_status", "ORBIT_BACKENDS"]
+
+#: accepted ``backend`` values for float64 orbits
+ORBIT_BACKENDS = ("auto", "numba", "python", "numpy")
+_PY_ERRORS = (FloatingPointError, ZeroDivisionError, OverflowError, ValueError)
+
+
+def _block_rows(N: int) -> int:
+    """States per block of the ensemble kernel (the block's work arrays stay in L1)."""
+    return max(8, min(64, 2048 // N))
+
+
+def _single(p: F64, q: F64, lam0: float, mu: float, branch: int, n: int, every: int,
+            backend: str) -> tuple[F64, F64, int]:
+    fn, be = kernel("orbit", backend)
+    rows = orbit_rows(n, every)
+    P = np.empty((rows, p.size))
+    Q = np.empty((rows, p.size))
+    args = (p, q, lam0 + mu, lam0 - mu, 2.0 * mu, branch, n, every, ANCHOR, P, Q)
+    if be == "numba":
+        return P, Q, int(fn(*args))
+    try:   # the plain-Python kernel computes on numpy scalars: make IEEE exceptions raise
+        with np.errstate(all="raise"):
+            st = int(fn(*args))
+    except _PY_ERRORS:
+        st = RANGE
+    return P, Q, st
+
+
+def kernel_step(p: F64, q: F64, lam0: float, mu: float, branch: int,
+                backend: str = "auto") -> tuple[F64, F64] | None:
+    """One step of one state by the fused kernel, or ``None`` if the kernel cannot finish it.
+
+    >>> import numpy as np
+    >>> pt, qt = kernel_step(np.array([-20.0, 10.0, 1.0]), np.array([1.0, 0.0, 0.9]), 10.0, 5.0, 1)
+    >>> np.round(qt, 8).tolist()
+    [-0.08614224, 0.51984972, 1.88339323]
+    """
+    P, Q, st = _single(p, q, lam0, mu, branch, 1, 1, "auto" if backend == "auto" else backend)
+    return (P[1], Q[1]) if st == OK else None
+
+
+def general_orbit(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, n: int, every: int,
+                  P: F64, Q: F64, rows: npt.NDArray[np.intp]) -> tuple[I64, I64]:
+    """The general (numpy) path for the states ``rows`` of ``pa, qa``; fills ``P[:, rows], Q[:, rows]``.
+
+    ``lam0, mu``: floats or arrays of shape (M,).  Returns ``(status, step)``
+    per state of ``rows`` (status codes of :mod:`.kernels`; ``step`` = the
+    step that failed).
+
+    >>> import numpy as np
+    >>> P, Q = np.empty((3, 1, 3)), np.empty((3, 1, 3))
+    >>> st, k = general_orbit(np.array([[-20.0, 10, 1]]), np.array([[1.0, 0, 0.9]]), 10.0, 5.0, 1, 2, 1,
+    ...                       P, Q, np.arange(1))
+    >>> st.tolist(), np.round(P[1, 0], 8).tolist()
+    ([0], [-19.99656766, 9.78635495, 1.21021272])
+    """
+    N = pa.shape[1]
+    status = np.zeros(rows.size, np.int64)
+    fail = np.zeros(rows.size, np.int64)
+    block = max(256, BLOCK_ELEMENTS // N)
+    for b0 in range(0, rows.size, block):
+        idx = rows[b0:b0 + block]
+        st, fs = _general_block(pa[idx], qa[idx], _take(lam0, idx), _take(mu, idx), branch, n, every, P, Q, idx)
+        status[b0:b0 + block] = st
+        fail[b0:b0 + block] = fs
+    return status, fail
+
+
+def _take(x: Any, idx: npt.NDArray[np.intp]) -> Any:
+    return x[idx] if np.ndim(x) else x
+
+
+def _general_block(p0: F64, q0: F64, lam0: Any, mu: Any, branch: int, n: int, every: int,
+                   P: F64, Q: F64, idx: npt.NDArray[np.intp]) -> tuple[I64, I64]:
+    m, N = p0.shape
+    status = np.zeros(m, np.int64)
+    fail = np.zeros(m, np.int64)
+    P[0, idx] = p0
+    Q[0, idx] = q0
+    # site lists (what step_core takes); the centre of mass is carried separately (compensated
+    # two-sum): the rounding of q at |q| ~ 500 would otherwise perturb the relative coordinates
+    c_hi = np.mean(q0, axis=-1)
+    c_lo = np.zeros(m)
+    pc = [p0[:, j].copy() for j in range(N)]
+    qr = [q0[:, j] - c_hi for j in range(N)]
+    alive = np.arange(m)
+    row = 1
+    for i in range(1, n + 1):
+        full = alive.size == m
+        Ps = pc if full else [x[alive] for x in pc]
+        Qs = qr if full else [x[alive] for x in qr]
+        L0, MU = (lam0, mu) if full else (_take(lam0, alive), _take(mu, alive))
+        with np.errstate(all="ignore"):
+            far = np.maximum.reduce([np.abs(Qs[(j + 1) % N] - Qs[j]) for j in range(N)]) > MAX_DQ
+            far = far | ~np.isfinite(np.add.reduce(Ps) + np.add.reduce(Qs))
+            if far.any():            # beyond the float64 range of the scaled formulation
+                keep = ~far
+                status[alive[far]], fail[alive[far]] = RANGE, i
+                alive = alive[keep]
+                Ps, Qs = [x[keep] for x in Ps], [x[keep] for x in Qs]
+                L0, MU = _take(L0, np.flatnonzero(keep)), _take(MU, np.flatnonzero(keep))
+                full = False
+            if alive.size == 0:
+                break
+            Pn, Qn, aux = step_core(FLOAT, Ps, Qs, L0, MU, branch, check_real=False)
+            t1, t2 = aux["S1"].trace_ok > 0, aux["S2"].trace_ok > 0
+            pos = np.logical_and.reduce([x + 1 > 0 for x in aux["xr"]])
+            fin = np.isfinite(np.add.reduce(Pn) + np.add.reduce(Qn))
+            good = t1 & t2 & pos & fin
+        if not good.all():
+            bad = ~good
+            code = np.select([~t1[bad], ~t2[bad], ~pos[bad]], [TRACE1, TRACE2, POSITIVITY], RANGE)
+            status[alive[bad]], fail[alive[bad]] = code, i
+            Pn, Qn = [x[good] for x in Pn], [x[good] for x in Qn]
+            alive = alive[good]
+            full = False
+        s = np.add.reduce(Qn) / N
+        t = (c_hi if full else c_hi[alive]) + s                          # two-sum (Knuth)
+        hi = c_hi if full else c_hi[alive]
+        bp = t - hi
+        lo = (c_lo if full else c_lo[alive]) + ((hi - (t - bp)) + (s - bp))
+        if full:
+            pc, qr, c_hi, c_lo = Pn, [x - s for x in Qn], t, lo
+        else:
+            for j in range(N):
+                pc[j][alive] = Pn[j]
+                qr[j][alive] = Qn[j] - s
+            c_hi[alive], c_lo[alive] = t, lo
+        if i % every == 0 or i == n:
+            P[row, idx] = np.stack(pc, axis=-1)
+            Q[row, idx] = np.stack([c_hi + (c_lo + x) for x in qr], axis=-1)
+            row += 1
+        if alive.size == 0:
+            break
+    return status, fail
+
+
+_MESSAGES = {
+    TRACE1: "no real Bäcklund map: |tr L(lam1 = lam0 + mu)| <= 2, the spectral parameter lies in a band",
+    TRACE2: "no real Bäcklund map: |tr L(lam2 = lam0 - mu)| <= 2, the spectral parameter lies in a band",
+    POSITIVITY: "no real Bäcklund map: some Etilde_j = E_j - x_j <= 0 (lam1 and lam2 lie in different "
+                "spectral gaps)",
+    RANGE: "the float64 orbit left the range of the scaled formulation (|q_{j+1} - q_j| > 700, overflow "
+           "or a non-finite intermediate); use mpmath inputs",
+}
+
+
+def raise_for_status(status: I64, step: I64, shape: tuple[int, ...]) -> None:
+    """Raise the typed error for the failed states (``status != 0``), if any.
+
+    :class:`NoRealMapError` if some state has no real map (``where``: all of
+    them as batch indices; ``condition`` of the first), else
+    :class:`NumericRangeError`.
+
+    >>> import numpy as np
+    >>> try:
+    ...     raise_for_status(np.array([0, 3, 1]), np.array([0, 4, 1]), (3,))
+    ... except NoRealMapError as e:
+    ...     print(e.condition, e.where)
+    positivity ((1,), (2,))
+    """
+    bad = np.flatnonzero(status != OK)
+    if bad.size == 0:
+        return
+    nomap = bad[np.isin(status[bad], (TRACE1, TRACE2, POSITIVITY))]
+    sel = nomap if nomap.size else bad
+    first = int(sel[0])
+    code = int(status[first])
+    where = [tuple(int(i) for i in np.unravel_index(k, shape)) for k in sel] if shape else []
+    txt = " (at step %d" % step[first]
+    if shape:
+        txt += "; batch index %s%s; %d state(s) in all" % (
+            ", ".join(map(str, where[:5])), ", ..." if len(where) > 5 else "", len(where))
+    txt += ")"
+    if nomap.size:
+        raise NoRealMapError(_MESSAGES[code] + txt, condition="positivity" if code == POSITIVITY else "trace",
+                             where=where)
+    raise NumericRangeError(_MESSAGES[RANGE] + txt)
+
+
+def float_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, every: int = 1,
+                backend: str = "auto") -> tuple[F64, F64]:
+    """``n`` steps of the float64 map from one state or an ensemble (see module docstring).
+
+    ``backend``: ``"auto"``, ``"numba"``, ``"python"`` (plain-Python kernel;
+    for ensembles the block kernel, slow -- for tests) or ``"numpy"`` (the
+    general path only).
+
+    >>> P, Q = float_orbit(np.tile([-20.0, 10, 1], (2, 1)), np.tile([1.0, 0, 0.9], (2, 1)), 10.0, [5.0, 0.0], 3)
+    >>> P.shape, bool(np.array_equal(P[3, 1], P[0, 1]))       # mu = 0: the identity
+    ((4, 2, 3), True)
+    """
+    if backend not in ORBIT_BACKENDS:
+        raise InvalidInputError("backend must be one of %s, got %r" % (ORBIT_BACKENDS, backend))
+    pa, qa, shape = validate_float_pair(p, q)
+    lam0, mu = prepare_spectral_pair(FLOAT, lam0, mu, shape)
+    M, N = pa.shape
+    rows = orbit_rows(n, every)
+    if shape == () and backend != "numpy":
+        if mu == 0 or n == 0:
+            return np.repeat(pa, rows, axis=0), np.repeat(qa, rows, axis=0)
+        P1, Q1, st1 = _single(np.ascontiguousarray(pa[0]), np.ascontiguousarray(qa[0]), float(lam0),
+                              float(mu), branch, n, every, backend)
+        if st1 == OK:
+            return P1, Q1
+    P = np.empty((rows, M, N))
+    Q = np.empty((rows, M, N))
+    status = np.zeros(M, np.int64)
+    step = np.zeros(M, np.int64)
+    muv = np.broadcast_to(mu, (M,))
+    act = np.flatnonzero(muv != 0) if n else np.arange(0)
+    idle = np.flatnonzero(muv == 0) if n else np.arange(M)
+    P[:, idle] = pa[idle]
+    Q[:, idle] = qa[idle]
+    todo = act
+    use_kernel = shape != () and (backend in ("numba", "python") or (backend == "auto" and numba_available()))
+    if use_kernel and act.size:
+        _ensemble(pa, qa, lam0, mu, branch, n, every, backend, act, P, Q, status)
+        todo = act[status[act] != OK]
+    if todo.size:
+        st, fs = general_orbit(pa, qa, lam0, mu, branch, n, every, P, Q, todo)
+        status[todo], step[todo] = st, fs
+    raise_for_status(status, step, shape)
+    return P.reshape((rows,) + shape + (N,)), Q.reshape((rows,) + shape + (N,))
+
+
+def _ensemble(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, n: int, every: int, backend: str,
+              act: npt.NDArray[np.intp], P: F64, Q: F64, status: I64) -> None:
+    fn, be = kernel("ensemble", "numba" if backend == "auto" else backend)
+    M, N = pa.shape
+    full = act.size == M
+    l0 = np.broadcast_to(lam0, (M,))[act]
+    m = np.broadcast_to(mu, (M,))[act]
+    p0 = np.ascontiguousarray(pa if full else pa[act])
+    q0 = np.ascontiguousarray(qa if full else qa[act])
+    rows = P.shape[0]
+    outP = P if full else np.empty((rows, act.size, N))
+    outQ = Q if full else np.empty((rows, act.size, N))
+    st = np.zeros(act.size, np.int64)
+    args = (p0, q0, l0 + m, l0 - m, 2.0 * m, branch, n, every, ANCHOR, _block_rows(N), outP, outQ, st)
+    if be == "numba":
+        fn(*args)
+    else:
+        try:
+            with np.errstate(all="raise"):
+                fn(*args)
+        except _PY_ERRORS:
+            st[:] = RANGE
+    if not full:
+        P[:, act] = outP
+        Q[:, act] = outQ
+    status[act] = st

@@ -1,0 +1,249 @@
+r"""Fused float64 orbit kernels: plain-Python source, compiled by numba on demand (:mod:`.jit`).
+
+One arithmetic in two layouts: :func:`orbit` (one state, scalar code; this
+module) and :func:`~symbt.numeric.kernels_block.run_block` /
+:func:`~symbt.numeric.kernels_block.ensemble` (blocks of states, ``prange``
+over blocks).  Both perform the same operations in the same order, so an
+ensemble member equals the single-state orbit bit for bit, and the
+plain-Python and numba versions are identical bit for bit too (IEEE doubles,
+libm ``sqrt/exp/log/log1p``, no ``fastmath``; ``tests/test_numeric_fast.py``).
+
+The step is that of :mod:`symbt.numeric.step` (scaled eigenvector slopes,
+each transported in its contracting direction, cancellation-free read-out).
+
+Orbit variables.  The dynamics carries the neighbour ratios
+``r_j = exp(q_{j+1} - q_j)`` (all a step needs) and updates them as the map
+does, ``r~_j = r_j (1 + xr_{j+1}) / (1 + xr_j)`` with ``1 + xr_j = Etilde_j / E_j``,
+computed as ``r_j + r_j d_j``, ``d_j = (xr_{j+1} - xr_j) / (1 + xr_j)``.  The
+positions accumulate the factors ``F_j = prod(1 + xr_j)`` in double-double
+(``F <- F + F xr``, no rounding of ``1 + xr``: small ``mu`` loses nothing) and
+are flushed into a double-double ``q = qh + ql`` (``log F``) every ``anchor``
+steps, when ``r`` is also re-anchored to ``exp`` of the double-double
+differences.  Stored states read ``q = qh + ql + log F`` without touching the
+state, so the orbit does not depend on ``every`` (bit for bit).  The inner step
+has no transcendental function except two square roots and vectorises over
+the states of a block; the rounding per step stays at the level of the
+exp/log1p formulation (``O(eps)`` in ``log r``) and ``q`` never rounds the
+increments against ``|q|`` (the centre of mass can drift to ``|q| ~ 1e3``
+without perturbing the relative coordinates).  After one step the result
+equals :func:`~symbt.numeric.step.step_core`'s to an ulp.
+
+Status codes per state (first failure wins): ``0`` ok, ``1``/``2``
+``|tr L(lam1/lam2)| <= 2``, ``3`` some ``Etilde_j <= 0``, ``4`` range problem
+(monodromy entries beyond ``1e290``, ``|q_{j+1} - q_j| > 700``, a non-finite
+intermediate such as a degenerate eigenvector).  The drivers recompute every
+failing state with the general path, which decides the error.
+
+Example
+-------
+>>> import numpy as np
+>>> from symbt.numeric.kernels import orbit, orbit_rows, ANCHOR
+>>> P, Q = np.empty((orbit_rows(2, 1), 3)), np.empty((orbit_rows(2, 1), 3))
+>>> orbit(np.array([-20.0, 10.0, 1.0]), np.array([1.0, 0.0, 0.9]), 15.0, 5.0, 10.0, 1, 2, 1, ANCHOR, P, Q)
+0
+>>> np.round(P[1], 8).tolist()
+[-19.99656766, 9.78635495, 1.21021272]
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    F64 = npt.NDArray[np.float64]
+    I64 = npt.NDArray[np.int64]
+
+__all__ = ["orbit", "orbit_rows", "stored_steps", "ANCHOR", "OK", "TRACE1", "TRACE2", "POSITIVITY", "RANGE"]
+
+OK, TRACE1, TRACE2, POSITIVITY, RANGE = 0, 1, 2, 3, 4
+#: steps between re-anchoring ``r`` to ``exp`` of the accumulated positions
+ANCHOR = 16
+
+
+def orbit_rows(n: int, every: int) -> int:
+    """Number of stored states: steps ``0, every, 2 every, ...`` and always ``n``.
+
+    >>> orbit_rows(10, 3), orbit_rows(9, 3), orbit_rows(0, 5)
+    (5, 4, 1)
+    """
+    return 1 + -(-n // every)
+
+
+def stored_steps(n: int, every: int) -> list[int]:
+    """The step numbers of the stored states (see :func:`orbit_rows`).
+
+    >>> stored_steps(10, 3)
+    [0, 3, 6, 9, 10]
+    """
+    out = list(range(0, n + 1, every))
+    if out[-1] != n:
+        out.append(n)
+    return out
+
+
+def _logf(fh: float, fl: float) -> float:
+    """``log(fh + fl)`` for a double-double factor (NaN outside ``(1e-300, 1e300)``).
+
+    >>> _logf(1.0, 0.0), round(_logf(2.0, 0.0), 12)
+    (0.0, 0.69314718056)
+    """
+    if not (fh > 1e-300 and fh < 1e300):
+        return math.nan
+    return math.log(fh) + math.log1p(fl / fh)
+
+
+def _dd_add(hi: float, lo: float, s: float) -> tuple[float, float]:
+    """``(hi + lo) + s`` as a renormalised double-double (two-sum, ``|lo|`` below an ulp of ``hi``).
+
+    >>> _dd_add(1.0, 0.0, 2.0 ** -60)
+    (1.0, 8.673617379884035e-19)
+    """
+    t = hi + s
+    bp = t - hi
+    lo = lo + ((hi - (t - bp)) + (s - bp))
+    h2 = t + lo
+    return h2, lo - (h2 - t)
+
+
+def _dd_position(qh: float, ql: float, fh: float, fl: float) -> float:
+    """The position ``qh + ql + log F`` rounded once (the state is not changed)."""
+    h, lo = _dd_add(qh, ql, _logf(fh, fl))
+    return h + lo
+
+
+def _slopes1(p: F64, r: F64, lam: float, s: int, u: F64, code: int) -> int:
+    """One state of :func:`_slopes` (same operations in the same order); returns the status."""
+    N = p.shape[0]
+    A = lam + p[0]
+    Bm = -1.0
+    C = r[0]
+    D = 0.0
+    for j in range(1, N):
+        a = lam + p[j]
+        a0 = A
+        b0 = Bm
+        A = a * a0 - C
+        Bm = a * b0 - D
+        C = r[j] * a0
+        D = r[j] * b0
+    t = A + D
+    if not (abs(A) < 1e290 and abs(Bm) < 1e290 and abs(C) < 1e290 and abs(D) < 1e290
+            and (abs(A) > 1e-290 or abs(Bm) > 1e-290)):
+        return RANGE
+    disc = (t - 2.0) * (t + 2.0)
+    if not disc > 0.0:
+        return code
+    g = math.sqrt(disc)
+    dl = A - D
+    plus = dl >= 0.0
+    kk = dl + (g if plus else -g)
+    tk = plus == (s > 0)
+    num = kk if tk else -2.0 * C
+    den = 2.0 * Bm if tk else kk
+    u[0] = num / den
+    if (t < 0.0) if s > 0 else (t >= 0.0):
+        for j in range(N - 1):
+            u[j + 1] = -r[j] / (lam + p[j] + u[j])
+    else:
+        for j in range(N - 1, 0, -1):
+            jn = j + 1 if j + 1 < N else 0
+            u[j] = -(lam + p[j]) - r[j] / u[jn]
+    return OK
+
+
+def _anchor1(qh: F64, ql: F64, fh: F64, fl: F64, r: F64, p: F64) -> int:
+    """Flush ``F`` into ``q`` and re-anchor ``r = exp(dq)`` (one state); returns the status."""
+    N = qh.shape[0]
+    for j in range(N):
+        s = _logf(fh[j], fl[j])
+        if not abs(s) < 1e300:
+            return RANGE
+        qh[j], ql[j] = _dd_add(qh[j], ql[j], s)
+        fh[j] = 1.0
+        fl[j] = 0.0
+    for j in range(N):
+        jn = j + 1 if j + 1 < N else 0
+        dq = (qh[jn] - qh[j]) + (ql[jn] - ql[j])
+        if not (abs(dq) <= 700.0 and abs(p[j]) < 1e300 and abs(qh[j]) < 1e300):
+            return RANGE
+        r[j] = math.exp(dq)
+    return OK
+
+
+def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int, n: int, every: int,
+          anchor: int, outP: F64, outQ: F64) -> int:
+    """``n`` steps of one state; stores the states of :func:`stored_steps` in ``outP, outQ`` (rows, N).
+
+    ``lam1 = lam0 + mu``, ``lam2 = lam0 - mu``, ``two_mu = 2 mu``.  Returns
+    the status (0 ok, else the first failure, see the module docstring).
+
+    >>> P, Q = np.empty((2, 3)), np.empty((2, 3))
+    >>> orbit(np.array([-20.0, 10, 1]), np.array([1.0, 0, 0.9]), 15.0, 5.0, 10.0, 1, 1, 1, ANCHOR, P, Q)
+    0
+    >>> round(float(Q[1, 0]), 8)
+    -0.08614224
+    """
+    N = p0.shape[0]
+    p = p0.copy()
+    qh = q0.copy()
+    ql = np.zeros(N)
+    fh = np.ones(N)
+    fl = np.zeros(N)
+    r = np.empty(N)
+    u = np.empty(N)
+    w = np.empty(N)
+    xr = np.empty(N)
+    gq = np.empty(N)
+    for j in range(N):
+        outP[0, j] = p0[j]
+        outQ[0, j] = q0[j]
+    st = _anchor1(qh, ql, fh, fl, r, p)
+    if st != OK:
+        return st
+    row = 1
+    for i in range(1, n + 1):
+        st = _slopes1(p, r, lam1, branch, u, TRACE1)
+        if st != OK:
+            return st
+        st = _slopes1(p, r, lam2, -branch, w, TRACE2)
+        if st != OK:
+            return st
+        for j in range(N):
+            dn = u[j] - w[j]
+            x = two_mu / dn
+            xr[j] = x
+            gq[j] = u[j] / dn
+            if not abs(x) < 1e300:
+                return RANGE
+            if not x + 1.0 > 0.0:
+                return POSITIVITY
+        for j in range(N):
+            jn = j + 1 if j + 1 < N else 0
+            p[j] = p[j] + two_mu * (gq[jn] - gq[j])
+            x = xr[j]
+            d = (xr[jn] - x) / (1.0 + x)
+            r[j] = r[j] + r[j] * d
+            a = fh[j]
+            t = a * x
+            s = a + t
+            bp = s - a
+            fl[j] = fl[j] + fl[j] * x + ((a - (s - bp)) + (t - bp))
+            fh[j] = s
+        if i % anchor == 0:
+            st = _anchor1(qh, ql, fh, fl, r, p)
+            if st != OK:
+                return st
+        if i % every == 0 or i == n:
+            for j in range(N):
+                y = _dd_position(qh[j], ql[j], fh[j], fl[j])
+                if not (abs(y) < 1e300 and abs(p[j]) < 1e300):
+                    return RANGE
+                outP[row, j] = p[j]
+                outQ[row, j] = y
+            row += 1
+    return OK

@@ -1,0 +1,236 @@
+r"""Block layout of the fused float64 kernels: many states at once (numba ``prange`` over blocks).
+
+The arithmetic of :func:`symbt.numeric.kernels.orbit`, operation for
+operation, on a *block* of ``B`` states held site-major, ``x[j, k]`` with the
+state index ``k`` innermost: every loop over ``k`` is a plain elementwise
+loop without calls or reductions that LLVM vectorises (AVX2: 4 states per
+instruction), and a block's work arrays stay in L1.  A state that fails gets
+its status set and is carried along (its values are garbage and discarded);
+the block stops when all of its states have failed.
+
+Example
+-------
+>>> import numpy as np
+>>> from symbt.numeric.kernels import ANCHOR, orbit_rows
+>>> P, Q, st = np.empty((2, 2, 3)), np.empty((2, 2, 3)), np.zeros(2, np.int64)
+>>> ones = np.ones(2)
+>>> run_block(np.tile([-20.0, 10, 1], (2, 1)), np.tile([1.0, 0, 0.9], (2, 1)), 15 * ones, 5 * ones, 10 * ones,
+...           1, 1, 1, ANCHOR, P, Q, st, 0, 2)
+>>> st.tolist(), np.round(P[1, 1], 8).tolist()
+([0, 0], [-19.99656766, 9.78635495, 1.21021272])
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .kernels import OK, POSITIVITY, RANGE, TRACE1, TRACE2, _dd_add, _dd_position, _logf
+
+if TYPE_CHECKING:
+    from .kernels import F64, I64
+
+__all__ = ["run_block", "ensemble"]
+
+prange = range  # the ensemble kernel is compiled with numba.prange in its place
+
+
+def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64, C: F64, D: F64,
+            u1: F64, fw: I64, status: I64, code: int) -> None:
+    """Scaled eigenvector slopes ``u[j, k]`` at ``lam[k]`` for sign ``s`` (see :mod:`.step`)."""
+    N, B = p.shape
+    for k in range(B):
+        A[k] = lam[k] + p[0, k]
+        Bm[k] = -1.0
+        C[k] = r[0, k]
+        D[k] = 0.0
+    for j in range(1, N):
+        for k in range(B):
+            a = lam[k] + p[j, k]
+            a0 = A[k]
+            b0 = Bm[k]
+            A[k] = a * a0 - C[k]
+            Bm[k] = a * b0 - D[k]
+            C[k] = r[j, k] * a0
+            D[k] = r[j, k] * b0
+    spos = s > 0
+    nf = 0
+    for k in range(B):
+        a_ = A[k]
+        b_ = Bm[k]
+        c_ = C[k]
+        d_ = D[k]
+        t = a_ + d_
+        inrange = (abs(a_) < 1e290 and abs(b_) < 1e290 and abs(c_) < 1e290 and abs(d_) < 1e290
+                   and (abs(a_) > 1e-290 or abs(b_) > 1e-290))
+        disc = (t - 2.0) * (t + 2.0)
+        bad = RANGE if not inrange else (code if not disc > 0.0 else OK)
+        st = status[k]
+        status[k] = st if st != OK else bad
+        g = math.sqrt(disc if disc > 0.0 else 0.0)
+        dl = a_ - d_
+        plus = dl >= 0.0
+        kk = dl + (g if plus else -g)
+        tk = plus == spos                      # the wanted root is k / (2B), else -2C / k
+        num = kk if tk else -2.0 * c_
+        den = 2.0 * b_ if tk else kk
+        u1[k] = num / den
+        f = (t < 0.0) if spos else (t >= 0.0)  # dominant eigenvalue: transport forward
+        fw[k] = 1 if f else 0
+        nf += fw[k]
+    for k in range(B):
+        u[0, k] = u1[k]
+    if nf > 0:
+        for j in range(N - 1):
+            for k in range(B):
+                u[j + 1, k] = -r[j, k] / (lam[k] + p[j, k] + u[j, k])
+    if nf < B:
+        dst = tmp if nf > 0 else u
+        for k in range(B):
+            dst[0, k] = u1[k]
+        for j in range(N - 1, 0, -1):
+            jn = j + 1 if j + 1 < N else 0
+            for k in range(B):
+                dst[j, k] = -(lam[k] + p[j, k]) - r[j, k] / dst[jn, k]
+        if nf > 0:
+            for j in range(1, N):
+                for k in range(B):
+                    if fw[k] == 0:
+                        u[j, k] = tmp[j, k]
+
+
+def _anchor(qh: F64, ql: F64, fh: F64, fl: F64, r: F64, p: F64, status: I64) -> None:
+    """Flush ``F`` into ``q`` and re-anchor ``r = exp(dq)`` (every state of the block)."""
+    N, B = qh.shape
+    for k in range(B):
+        for j in range(N):
+            s = _logf(fh[j, k], fl[j, k])
+            if not abs(s) < 1e300:
+                status[k] = status[k] if status[k] != OK else RANGE
+                s = 0.0
+            qh[j, k], ql[j, k] = _dd_add(qh[j, k], ql[j, k], s)
+            fh[j, k] = 1.0
+            fl[j, k] = 0.0
+        for j in range(N):
+            jn = j + 1 if j + 1 < N else 0
+            dq = (qh[jn, k] - qh[j, k]) + (ql[jn, k] - ql[j, k])
+            if not (abs(dq) <= 700.0 and abs(p[j, k]) < 1e300 and abs(qh[j, k]) < 1e300):
+                status[k] = status[k] if status[k] != OK else RANGE
+                dq = 0.0
+            r[j, k] = math.exp(dq)
+
+
+def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, n: int, every: int,
+              anchor: int, outP: F64, outQ: F64, status: I64, i0: int, i1: int) -> None:
+    """``n`` steps of the states ``i0 <= i < i1`` of ``(P0, Q0)`` (shape (M, N)).
+
+    ``lam1 = lam0 + mu``, ``lam2 = lam0 - mu``, ``two_mu = 2 mu`` per state;
+    stored states (see :func:`~symbt.numeric.kernels.orbit_rows`) go to
+    ``outP, outQ`` (rows, M, N); ``status[i]`` is set (0 ok, else the first failure).
+
+    >>> from symbt.numeric.kernels import ANCHOR
+    >>> st = np.zeros(1, np.int64)
+    >>> run_block(np.zeros((1, 2)), np.zeros((1, 2)), np.ones(1), -np.ones(1), 2 * np.ones(1), 1, 1, 1, ANCHOR,
+    ...           np.empty((2, 1, 2)), np.empty((2, 1, 2)), st, 0, 1)
+    >>> int(st[0])                      # tr L(1) = 1 - 2 = -1: lam1 = 1 lies in a band
+    1
+    """
+    N = P0.shape[1]
+    B = i1 - i0
+    p = np.empty((N, B))
+    qh = np.empty((N, B))
+    ql = np.zeros((N, B))
+    fh = np.ones((N, B))
+    fl = np.zeros((N, B))
+    r = np.empty((N, B))
+    u = np.empty((N, B))
+    w = np.empty((N, B))
+    tmp = np.empty((N, B))
+    xr = np.empty((N, B))
+    gq = np.empty((N, B))
+    A = np.empty(B)
+    Bm = np.empty(B)
+    C = np.empty(B)
+    D = np.empty(B)
+    u1 = np.empty(B)
+    fw = np.empty(B, np.int64)
+    st = np.zeros(B, np.int64)
+    l1 = np.empty(B)
+    l2 = np.empty(B)
+    tm = np.empty(B)
+    for k in range(B):
+        l1[k] = lam1[i0 + k]
+        l2[k] = lam2[i0 + k]
+        tm[k] = two_mu[i0 + k]
+        for j in range(N):
+            p[j, k] = P0[i0 + k, j]
+            qh[j, k] = Q0[i0 + k, j]
+            outP[0, i0 + k, j] = P0[i0 + k, j]
+            outQ[0, i0 + k, j] = Q0[i0 + k, j]
+    _anchor(qh, ql, fh, fl, r, p, st)
+    row = 1
+    for i in range(1, n + 1):
+        _slopes(p, r, l1, branch, u, tmp, A, Bm, C, D, u1, fw, st, TRACE1)
+        _slopes(p, r, l2, -branch, w, tmp, A, Bm, C, D, u1, fw, st, TRACE2)
+        for j in range(N):
+            for k in range(B):
+                dn = u[j, k] - w[j, k]
+                x = tm[k] / dn
+                xr[j, k] = x
+                gq[j, k] = u[j, k] / dn
+                bad = RANGE if not abs(x) < 1e300 else (POSITIVITY if not x + 1.0 > 0.0 else OK)
+                s0 = st[k]
+                st[k] = s0 if s0 != OK else bad
+        for j in range(N):
+            jn = j + 1 if j + 1 < N else 0
+            for k in range(B):
+                p[j, k] = p[j, k] + tm[k] * (gq[jn, k] - gq[j, k])
+                x = xr[j, k]
+                d = (xr[jn, k] - x) / (1.0 + x)
+                r[j, k] = r[j, k] + r[j, k] * d
+                a = fh[j, k]
+                t = a * x
+                s = a + t
+                bp = s - a
+                fl[j, k] = fl[j, k] + fl[j, k] * x + ((a - (s - bp)) + (t - bp))
+                fh[j, k] = s
+        if i % anchor == 0:
+            _anchor(qh, ql, fh, fl, r, p, st)
+        if i % every == 0 or i == n:
+            for k in range(B):
+                for j in range(N):
+                    y = _dd_position(qh[j, k], ql[j, k], fh[j, k], fl[j, k])
+                    if not (abs(y) < 1e300 and abs(p[j, k]) < 1e300):
+                        st[k] = st[k] if st[k] != OK else RANGE
+                    outP[row, i0 + k, j] = p[j, k]
+                    outQ[row, i0 + k, j] = y
+            row += 1
+        nbad = 0
+        for k in range(B):
+            nbad += 1 if st[k] != OK else 0
+        if nbad == B:
+            break
+    for k in range(B):
+        status[i0 + k] = st[k]
+
+
+def ensemble(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, n: int, every: int,
+             anchor: int, block: int, outP: F64, outQ: F64, status: I64) -> None:
+    """:func:`run_block` over all blocks of ``block`` states (``prange`` when compiled).
+
+    >>> from symbt.numeric.kernels import ANCHOR
+    >>> M = 3
+    >>> P, Q, st = np.empty((2, M, 3)), np.empty((2, M, 3)), np.zeros(M, np.int64)
+    >>> ensemble(np.tile([-20.0, 10, 1], (M, 1)), np.tile([1.0, 0, 0.9], (M, 1)), np.full(M, 15.0),
+    ...          np.full(M, 5.0), np.full(M, 10.0), 1, 1, 1, ANCHOR, 2, P, Q, st)
+    >>> st.tolist(), bool(np.all(P[1] == P[1, 0]))
+    ([0, 0, 0], True)
+    """
+    M = P0.shape[0]
+    nb = (M + block - 1) // block
+    for b in prange(nb):
+        i0 = b * block
+        i1 = min(M, i0 + block)
+        run_block(P0, Q0, lam1, lam2, two_mu, branch, n, every, anchor, outP, outQ, status, i0, i1)
