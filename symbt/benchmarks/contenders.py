@@ -47,12 +47,16 @@ def make_field(case: Case, c: np.ndarray) -> tuple[Callable, str, FlowField | No
 
 
 def _kernel_falls_back(case: Case, backend: str) -> bool:
+    """Does one step of ``case`` leave the fused kernel (then fast_orbit runs the general path)?"""
+    from ..numeric.kernels import ANCHOR
+
     kern, _ = kernel_backend(backend)
     P = np.empty((2, case.N))
     Q = np.empty((2, case.N))
     with np.errstate(all="ignore"):
         try:
-            status, _ = kern(np.array(case.p), np.array(case.q), case.lam0, case.mu, case.branch, 1, 1, P, Q)
+            status = kern(np.array(case.p), np.array(case.q), case.lam0 + case.mu, case.lam0 - case.mu,
+                          2.0 * case.mu, case.branch, 1, 1, ANCHOR, P, Q)
         except (ArithmeticError, ValueError):
             return True
     return status != 0
