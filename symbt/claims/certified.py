@@ -62,24 +62,20 @@ def _ball(v):
 
 
 def arb_step(p, q, lam0_, mu_, b):
-    """The map (N = 2) in acb balls from decimal strings: (p~, e^{q~}), the route of ``step2``."""
-    p = [_ball(v) for v in p]
-    E_ = [_ball(v).exp() for v in q]
-    lam0_, mu_ = _ball(lam0_), _ball(mu_)
-    l1, l2 = lam0_ + mu_, lam0_ - mu_
+    """The map (N = 2) in acb balls from decimal strings: (p~, e^{q~}).
 
-    def abd(lam):  # L = l_2 l_1, l_j = [[lam + p_j, -E_j], [1/E_j, 0]]
-        return (lam + p[1]) * (lam + p[0]) - E_[1] / E_[0], -(lam + p[1]) * E_[0], -E_[0] / E_[1]
+    This is :func:`symbt.numeric.step.step_core` -- the step written once against an
+    arithmetic context -- run on python-flint's complex balls (:data:`symbt.numeric.arb.ACB`,
+    principal branches, the complex continuation where the real map does not exist).
+    Its choices between algebraically equal formulas are made on midpoints, so every
+    ball still encloses the exact image.
+    """
+    from ..numeric.arb import ACB
+    from ..numeric.step import step_core
 
-    (A1, B1, D1), (A2, B2, D2) = abd(l1), abd(l2)
-    g1, g2 = b * ((A1 + D1) ** 2 - 4).sqrt(), b * ((A2 + D2) ** 2 - 4).sqrt()
-    y = (A1 - D1 + g1) / (2 * B1)
-    x = 2 * B1 * B2 * (l2 - l1) / (B2 * (A1 - D1 + g1) - B1 * (A2 - D2 - g2))
-    z0 = y + 2 * mu_ / x
-    ys, zs = [y, -1 / (E_[0] * (l1 + p[0] + E_[0] * y))], [z0, -1 / (E_[0] * (l2 + p[0] + E_[0] * z0))]
-    xs = [2 * mu_ / (zz - yy) for yy, zz in zip(ys, zs)]
-    eta = [xx * yy + mu_ for xx, yy in zip(xs, ys)]
-    return [p[0] + eta[0] - eta[1], p[1] + eta[1] - eta[0]], [e - xx for e, xx in zip(E_, xs)]
+    P, Q = [_ball(v) for v in p], [_ball(v) for v in q]
+    Pn, Qn, _ = step_core(ACB, P, Q, _ball(lam0_), _ball(mu_), b, check_real=False)
+    return list(Pn), [x.exp() for x in Qn]
 
 
 class Jacobi:
