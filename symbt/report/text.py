@@ -94,6 +94,27 @@ def summary_lines(results, *, wall: float | None = None) -> list[str]:
     return lines
 
 
+def cell_summary(o) -> str:
+    """A compact form of the generated scope: in how many domain cells the printed statement holds.
+
+    >>> from symbt.claims.base import Outcome
+    >>> o = Outcome("erratum", "m", cells=[{"cell": {"b": 1}, "n": 16, "printed_holds": 16, "corrected_holds": 16},
+    ...                                    {"cell": {"b": -1}, "n": 16, "printed_holds": 3, "corrected_holds": 16}])
+    >>> cell_summary(o)
+    'printed holds in 1 of 2 cells (partly in 1); corrected in all 2'
+    """
+    cells = [c for c in (o.cells or []) if isinstance(c, dict) and c.get("n")]
+    if not cells:
+        return ""
+    full = sum(1 for c in cells if c.get("printed_holds") == c["n"])
+    part = sum(1 for c in cells if 0 < (c.get("printed_holds") or 0) < c["n"])
+    txt = f"printed holds in {full} of {len(cells)} cells" + (f" (partly in {part})" if part else "")
+    if any("corrected_holds" in c for c in cells):
+        bad = sum(1 for c in cells if c.get("corrected_holds") != c["n"])
+        txt += f"; corrected in all {len(cells)}" if not bad else f"; corrected FAILS in {bad}"
+    return txt
+
+
 def _claim_line(r, width: int = 0) -> list[str]:
     """One line for a claim that is not plainly verified (failed ones get their evidence below it)."""
     c, o = r.claim, r.outcome
@@ -101,7 +122,7 @@ def _claim_line(r, width: int = 0) -> list[str]:
     if o.status == "skipped":
         return [f"{head}: {_first_line(o.detail) or 'no reason given'}"]
     if o.status == "erratum":
-        scope = (o.scope or "").strip()
+        scope = cell_summary(o) or (o.scope or "").strip()
         what = f"printed fails (residual {residual_text(o)}), corrected holds [{evidence_text(o)}]"
         return [f"{head}: {what}" + (f"; {scope}" if scope else "")]
     lines = [f"{head}: FAILED, residual {residual_text(o)} [{evidence_text(o)}]"]
