@@ -212,7 +212,7 @@ def _monodromy(av, R):
 
 
 def _forward(av, R, u1):
-    """Slopes at sites 2..N by the Moebius action of m_j (kernel 'forward')."""
+    """Slopes at sites 2 to N by the Moebius action of m_j (kernel 'forward')."""
     us = [u1]
     for j in range(N - 1):
         a, r, u = av[j], R[j], us[j]
@@ -221,7 +221,7 @@ def _forward(av, R, u1):
 
 
 def _backward(av, R, u1):
-    """Slopes at sites N..2 by the inverse action, from u_{N+1} = u_1 (kernel 'backward')."""
+    """Slopes at sites N down to 2 by the inverse action, from u_{N+1} = u_1 (kernel 'backward')."""
     us = [u1] + [None] * (N - 1)
     un = u1
     for j in range(N - 1, 0, -1):

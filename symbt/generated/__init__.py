@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 21f22ffeb25425c7f4096d48b4355cdcb8961e5c1eeb741fe1cd3d0b999babb4
-# symbt-codegen-content-sha256: 2a37ece9a178d09207414434fb605816e75a51f74024bac78378c8b8126dfe6c
+# symbt-codegen-derivation-sha256: fec80d30b0e4919f1ff6eef00a6c08839b3ac5d26249b29ae8a1ac1e36ea7b52
+# symbt-codegen-content-sha256: 4898206a0668d25802d0c1a1476387ff1e63342da01a61dfdab73cd5dadcaeb7
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

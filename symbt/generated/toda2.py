@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 21f22ffeb25425c7f4096d48b4355cdcb8961e5c1eeb741fe1cd3d0b999babb4
-# symbt-codegen-content-sha256: 077d508e3a532970cd500c2f86d0888a39aada3820a21f13fe2687521d863710
+# symbt-codegen-derivation-sha256: fec80d30b0e4919f1ff6eef00a6c08839b3ac5d26249b29ae8a1ac1e36ea7b52
+# symbt-codegen-content-sha256: 69b0d364315ae61e0b9803c40fe38ad3418845bb310090791ed14b824b527ff9
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 21f22ffeb25425c7f4096d48b4355cdcb8961e5c1eeb741fe1cd3d0b999babb4
-# symbt-codegen-content-sha256: a10e8fbbe3e46312efbee4c863a46689d036a0b08c3d3484fa8c41227c6ec791
+# symbt-codegen-derivation-sha256: fec80d30b0e4919f1ff6eef00a6c08839b3ac5d26249b29ae8a1ac1e36ea7b52
+# symbt-codegen-content-sha256: d83f04195c0b2985a6ace0f4211e9fce25cfe1751ce54c2688450e7059e97fe7
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
