@@ -37,7 +37,7 @@ class _Parser(argparse.ArgumentParser):
         raise _UsageError(message)
 
 
-def _parser():
+def _parser() -> argparse.ArgumentParser:
     ap = _Parser(prog="symbt codegen", description="emit (or check) the generated numeric code "
                  "(symbt/generated/toda{N}.py, or C with --target c) of the symbt checkout you stand in")
     ap.add_argument("--n", type=int, nargs="+", metavar="N", default=list(TARGETS),
@@ -74,7 +74,7 @@ def _delegate_argv(argv: list[str], out: Path | None) -> list[str]:
     return res + (["--out", str(out)] if out is not None else [])
 
 
-def main(argv=None) -> int:
+def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv[:1] == ["--"]:  # `symbt codegen -- --check`
         argv = argv[1:]
@@ -97,10 +97,11 @@ def main(argv=None) -> int:
                 return _fail(f"--project {args.project}: not a symbt checkout (needs pyproject.toml with "
                              "name = \"symbt\" and a symbt/ package)")
         else:
-            root = find_project()
-            if root is None:
+            found = find_project()
+            if found is None:
                 return _fail(f"no symbt checkout at or above {Path.cwd()} (a pyproject.toml naming symbt "
                              "with a symbt/ package); use --project DIR, or --installed for the installed package")
+            root = found
         pkg = root / "symbt"
         if pkg.resolve() != imported.resolve():
             if os.environ.get(DELEGATED_ENV):

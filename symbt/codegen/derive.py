@@ -391,8 +391,9 @@ def _build(N: int, rewrite: bool) -> tuple:
     # assumptions on sqrt(huge polynomial) would take minutes for N = 8.
     out["phi_tr"] = _fill(I["phi_tr"], [[phi_of(tr1, tr2)]], [disc(tr1), disc(tr2)])
     l1, l2 = lam0 + mu, lam0 - mu
+    defs: tuple = ()
     if rewrite:
-        t_1, t_2, tl, defs = S(X(T.tr, l1)), S(X(T.tr, l2)), S(X(T.tr, lam)), ()
+        t_1, t_2, tl = S(X(T.tr, l1)), S(X(T.tr, l2)), S(X(T.tr, lam))
     else:
         t_1, t_2, tl = sp.symbols("T1 T2 Tl", real=True)
         defs = ((t_1, X(T.tr, l1)), (t_2, X(T.tr, l2)))
@@ -437,7 +438,7 @@ def _build(N: int, rewrite: bool) -> tuple:
         qt = [q[j] + log1p(-2 * mu / d[j]) for j in range(N)]
         pt = [p[j] + 2 * mu * (u[j] / d[j] - u[(j + 1) % N] / d[(j + 1) % N]) for j in range(N)]
         pos = [1 - 2 * mu / d[j] for j in range(N)]
-        sdefs = ()
+        sdefs: tuple = ()
     else:         # the paper's route: eq. xy as printed, x_j = 2 mu/(z_j - y_j), E~ = E - x, eta = x y + mu
         g1, g2 = sp.symbols("G1 G2", real=True)
         sdefs = defs + ((g1, G1), (g2, G2))

@@ -2,9 +2,9 @@
 kernels of :mod:`.kernels` printed in, plus numpy and mpmath wrappers with the same signatures,
 guards and errors as the closed form.
 
-Cost per state: O(N) for the trace, Phi, the step and Dapp's x, y; O(N^2) for the invariants and
-the gradient of Phi... O(N^3) for the Hamiltonian fields and the flow field (products of
-polynomials in lambda).  Emission itself is independent of N up to the constant ``N = ...``.
+Cost per state: O(N) for the trace, Phi and its gradient, the step and Dapp's x, y; O(N^2) for
+the invariants; O(N^3) for the Hamiltonian fields and the flow field (products of polynomials in
+lambda).  Emission itself is independent of N up to the constant ``N = ...``.
 
 >>> "def _monodromy(av, R):" in loop_module_body(5)
 True

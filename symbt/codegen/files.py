@@ -72,7 +72,7 @@ def render(ns=TARGETS, target: str = "python") -> dict[str, str]:
     return files
 
 
-def generate(out=None, ns=TARGETS, target: str = "python") -> list[Path]:
+def generate(out: str | Path | None = None, ns=TARGETS, target: str = "python") -> list[Path]:
     """Render and write the files into ``out`` (default ``symbt/generated``; required for C)."""
     if out is None and target == "c":
         raise ValueError("the C target needs an output directory (--out DIR)")
@@ -87,7 +87,7 @@ def generate(out=None, ns=TARGETS, target: str = "python") -> list[Path]:
     return written
 
 
-def check(out=None, ns=TARGETS, target: str = "python", dhash: str | None = None) -> list[str]:
+def check(out: str | Path | None = None, ns=TARGETS, target: str = "python", dhash: str | None = None) -> list[str]:
     """Problems with the generated files in ``out`` (empty list = up to date).  SymPy-free."""
     if out is None and target == "c":
         raise ValueError("the C target needs an output directory (--out DIR)")

@@ -13,7 +13,9 @@ formulas inside the loops are the SymPy expressions built here (printed by
   ``tr^2 - 4 = (tr - 2)(tr + 2)``;
 * *eigenvector slopes*: ``M (1, -u)^T = nu (1, -u)^T`` iff ``B u^2 - (A - D) u - C = 0``;
   with ``det M = 1`` the roots ``(A - D + s g)/(2B)`` (``g^2 = tr^2 - 4``) are, without
-  cancellation, ``k/(2B)`` and ``-2C/k``, ``k = (A - D) + sign(A - D) g``;
+  cancellation, ``k/(2B)`` and ``-2C/k``, ``k = (A - D) + sign(A - D) g``; the eigenvalue of
+  ``(A - D + s g)/(2B)`` is ``(tr - s g)/2``, of modulus >= 1 (the slope attracts under forward
+  transport) iff ``s tr < 0``;
 * *transport* of a slope by ``m_j`` (Möbius action): ``u' = -r/(a + u)``, and its inverse
   ``u = -a - r/u'``;
 * *derivatives of the trace*: with ``P`` the product of the sites before ``j`` and
@@ -22,7 +24,9 @@ formulas inside the loops are the SymPy expressions built here (printed by
   rule ``d tr/dq_j = r_{j-1} d tr/dr_{j-1} - r_j d tr/dr_j``;
 * *read-out* of the step from the scaled slopes ``u_j = E_j y_j``, ``w_j = E_j z_j``,
   ``d_j = w_j - u_j``: ``q~_j - q_j = log1p(-2 mu/d_j)``,
-  ``eta_j = mu + 2 mu u_j/d_j``, ``p~_j - p_j = eta_j - eta_{j+1}``.
+  ``eta_j = mu + 2 mu u_j/d_j``, ``p~_j - p_j = eta_j - eta_{j+1}``; the guard
+  ``E~_j/E_j = 1 - 2 mu/d_j > 0``; Dapp's ``x = e^{q_1} 2 mu/d_1``, ``y = e^{-q_1} u_1``;
+* the real Phi and its gradient from the two traces (as in :mod:`symbt.codegen.derive`).
 
 >>> k = kernels()
 >>> k["update"]
@@ -31,6 +35,7 @@ formulas inside the loops are the SymPy expressions built here (printed by
 from __future__ import annotations
 
 from functools import cache
+from typing import Any
 
 import sympy as sp
 from sympy.codegen.cfunctions import log1p
@@ -61,7 +66,7 @@ def _zero(expr, what):
 @cache
 def kernels() -> dict:
     """Name -> SymPy expression (or tuple of them) for every one-site kernel (see the module doc)."""
-    out = {}
+    out: dict[str, Any] = {}
     # scaled transfer matrix from the local Lax matrix of the model
     l = local_lax(_lam, _p, _E)
     m = (sp.diag(1, _En) * l * sp.diag(1, 1 / _E)).applyfunc(sp.cancel)

@@ -130,7 +130,8 @@ def evaluate_source(N: int, name: str, pt: dict, dps: int = REF_DPS) -> list:
     """The SymPy source of every output of ``name`` at ``pt`` (inputs taken exactly), at ``dps`` digits."""
     spec = next(s for s in sources(N) if s.name == name)
     with mp.workdps(dps):
-        env, memo = {}, {}
+        env: dict = {}
+        memo: dict = {}
         for a in spec.args:
             vals = pt[a.name] if a.kind == "state" else [pt[a.name]]
             for s, v in zip(a.symbols, vals):

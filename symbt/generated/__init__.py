@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: fec80d30b0e4919f1ff6eef00a6c08839b3ac5d26249b29ae8a1ac1e36ea7b52
-# symbt-codegen-content-sha256: 4898206a0668d25802d0c1a1476387ff1e63342da01a61dfdab73cd5dadcaeb7
+# symbt-codegen-derivation-sha256: 2f7d3e123738c8c2d9de6b20d8589bdf412e50063ee912bc7dc6332aeaa9da87
+# symbt-codegen-content-sha256: 5277a9ef2d922623687cd5faf63615034d32de79a5a47d31066fa20a8d5187b4
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

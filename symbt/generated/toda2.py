@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: fec80d30b0e4919f1ff6eef00a6c08839b3ac5d26249b29ae8a1ac1e36ea7b52
-# symbt-codegen-content-sha256: 69b0d364315ae61e0b9803c40fe38ad3418845bb310090791ed14b824b527ff9
+# symbt-codegen-derivation-sha256: 2f7d3e123738c8c2d9de6b20d8589bdf412e50063ee912bc7dc6332aeaa9da87
+# symbt-codegen-content-sha256: 6e9c0c93e8de1ed24aa9fb4859657505f24632b6df9d5448c4d2d19eefde4b05
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

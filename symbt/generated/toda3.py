@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: fec80d30b0e4919f1ff6eef00a6c08839b3ac5d26249b29ae8a1ac1e36ea7b52
-# symbt-codegen-content-sha256: d83f04195c0b2985a6ace0f4211e9fce25cfe1751ce54c2688450e7059e97fe7
+# symbt-codegen-derivation-sha256: 2f7d3e123738c8c2d9de6b20d8589bdf412e50063ee912bc7dc6332aeaa9da87
+# symbt-codegen-content-sha256: 3a55630306f40a58b4f7242b8eea4d405852b5ccb00fe224e03ff5789ee7da34
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
