@@ -1,43 +1,67 @@
-"""`symbt codegen`: deterministic output, --check (missing / edited / stale), sympy-free
-imports, and float64 vs mpmath agreement of the generated modules."""
+"""`symbt codegen`: deterministic output, --check (missing / edited / stale, any --n), sympy-free
+imports, the command acting on the checkout it is run in, one-line usage errors."""
 from __future__ import annotations
 
 import os
+import re
 import shutil
+import stat
 import subprocess
 import sys
 from pathlib import Path
 
-import mpmath as mp
-import numpy as np
 import pytest
 
 import symbt.codegen as cg
-from symbt.generated import toda2, toda3
+from symbt.codegen import provenance
 
 ROOT = Path(__file__).resolve().parents[1]
 GEN = ROOT / "symbt" / "generated"
 FILES = ("__init__.py", "toda2.py", "toda3.py")
 
 
-def _env(**extra):
+def _env(pythonpath=ROOT, **extra):
     env = dict(os.environ)
-    env["PYTHONPATH"] = str(ROOT) + os.pathsep + env.get("PYTHONPATH", "")
+    env["PYTHONPATH"] = str(pythonpath) + os.pathsep + env.get("PYTHONPATH", "")
+    env.pop(cg.project.DELEGATED_ENV, None)
     env.update(extra)
     return env
 
 
+@pytest.fixture(scope="session")
+def launcher(tmp_path_factory):
+    """Like the `symbt` console script: sys.path[0] is the script's directory, not the working directory
+    (`python -m symbt` run from a checkout would import that checkout)."""
+    path = tmp_path_factory.mktemp("bin") / "symbt_launcher.py"
+    path.write_text("import sys\nfrom symbt.cli import main\nsys.exit(main())\n")
+    return path
+
+
+def _run(args, cwd=ROOT, pythonpath=ROOT, timeout=600, **extra):
+    return subprocess.run([sys.executable, str(_LAUNCHER[0]), "codegen", *args], cwd=cwd,
+                          env=_env(pythonpath, **extra), capture_output=True, text=True, timeout=timeout)
+
+
+_LAUNCHER: list = []
+
+
+@pytest.fixture(autouse=True)
+def _use_launcher(launcher):
+    _LAUNCHER[:] = [launcher]
+
+
 @pytest.fixture(scope="module")
 def fresh(tmp_path_factory):
-    """Generate once in-process into a temporary directory."""
+    """Default files and toda5 (transfer-matrix form), generated in-process into a temporary directory."""
     out = tmp_path_factory.mktemp("gen")
-    assert cg.main(["--out", str(out), "-q"]) == 0
+    assert cg.main(["--project", str(ROOT), "--out", str(out), "-q"]) == 0
+    assert cg.main(["--project", str(ROOT), "--out", str(out), "--n", "5", "-q"]) == 0
     return out
 
 
-def _copy(src, dst):
+def _copy(src, dst, names=FILES):
     dst.mkdir(exist_ok=True)
-    for name in FILES:
+    for name in names:
         shutil.copy2(src / name, dst / name)
     return dst
 
@@ -47,10 +71,9 @@ def _copy(src, dst):
 def test_generation_is_deterministic(fresh, tmp_path):
     # a second run in another process with a different hash seed: byte-identical output
     out2 = tmp_path / "gen2"
-    r = subprocess.run([sys.executable, "-m", "symbt.codegen", "--out", str(out2), "-q"],
-                       env=_env(PYTHONHASHSEED="12345"), capture_output=True, text=True, timeout=300)
+    r = _run(["--out", str(out2), "--n", "2", "3", "5", "-q"], PYTHONHASHSEED="12345")
     assert r.returncode == 0, r.stderr
-    for name in FILES:
+    for name in FILES + ("toda5.py",):
         assert (fresh / name).read_bytes() == (out2 / name).read_bytes(), name
 
 
@@ -61,27 +84,39 @@ def test_committed_files_equal_fresh_generation(fresh):
 
 
 def test_no_temporary_files_left(fresh):
-    assert sorted(p.name for p in fresh.iterdir()) == sorted(FILES)
+    assert sorted(p.name for p in fresh.iterdir()) == sorted(FILES + ("toda5.py",))
+
+
+def test_forms_and_package_listing(fresh):
+    assert cg.form_of(3) == "closed" and cg.form_of(cg.LOOP_FROM) == "transfer-matrix"
+    assert cg.read_header((fresh / "toda3.py").read_text())["target"] == "toda3 (N=3, closed form)"
+    assert cg.read_header((fresh / "toda5.py").read_text())["target"] == "toda5 (N=5, transfer-matrix form)"
+    from symbt.generated import modules
+    assert modules() == ("toda2", "toda3")
 
 
 # --------------------------------------------------------------------------- --check
 
-def test_check_passes_on_committed_files(capsys):
-    assert cg.main(["--check"]) == 0
+def test_check_passes_on_committed_files():
     assert cg.check() == []
+    assert cg.main(["--check", "--project", str(ROOT), "-q"]) == 0
 
 
 def test_check_via_python_m_symbt():
-    r = subprocess.run([sys.executable, "-m", "symbt", "codegen", "--check"], env=_env(),
+    r = subprocess.run([sys.executable, "-m", "symbt", "codegen", "--check"], cwd=ROOT, env=_env(),
                        capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stdout + r.stderr
+    assert "up to date" in r.stdout and str(ROOT) in r.stdout
+    assert _run(["--check"]).returncode == 0
 
 
 def test_check_detects_hand_edit(tmp_path, capsys):
     out = _copy(GEN, tmp_path / "g")
     f = out / "toda2.py"
-    f.write_text(f.read_text().replace("t0 = q1 - q2", "t0 = q2 - q1", 1))
-    assert cg.main(["--check", "--out", str(out)]) == 1
+    text = f.read_text()
+    assert "t0 = " in text
+    f.write_text(text.replace("t0 = ", "t0 = 1.0 + ", 1))
+    assert cg.main(["--check", "--project", str(ROOT), "--out", str(out)]) == 1
     err = capsys.readouterr().err
     assert "toda2.py" in err and "edited by hand" in err
     assert "toda3.py" not in err
@@ -90,7 +125,7 @@ def test_check_detects_hand_edit(tmp_path, capsys):
 def test_check_detects_missing_file(tmp_path, capsys):
     out = _copy(GEN, tmp_path / "g")
     (out / "toda3.py").unlink()
-    assert cg.main(["--check", "--out", str(out)]) == 1
+    assert cg.main(["--check", "--project", str(ROOT), "--out", str(out)]) == 1
     err = capsys.readouterr().err
     assert "toda3.py" in err and "missing" in err
 
@@ -100,9 +135,9 @@ def test_check_detects_stale_derivation(tmp_path, monkeypatch, capsys):
     # simulate an edit of a derivation source: one more (changed) file among the sources
     extra = tmp_path / "changed_derivation.py"
     extra.write_text("x = 1\n")
-    real = cg.derivation_sources
-    monkeypatch.setattr(cg, "derivation_sources", lambda: real() + [extra])
-    assert cg.main(["--check", "--out", str(out)]) == 1
+    real = provenance.derivation_sources
+    monkeypatch.setattr(provenance, "derivation_sources", lambda pkg=None: real(pkg) + [extra])
+    assert cg.main(["--check", "--project", str(ROOT), "--out", str(out)]) == 1
     err = capsys.readouterr().err
     for name in FILES:
         assert f"{name}: stale" in err
@@ -110,115 +145,147 @@ def test_check_detects_stale_derivation(tmp_path, monkeypatch, capsys):
     assert all("stale" in m for m in cg.check(out, dhash="0" * 64))
 
 
+def test_check_takes_the_n_list(fresh, tmp_path, capsys):
+    out = _copy(fresh, tmp_path / "g", ("__init__.py", "toda5.py"))
+    assert cg.main(["--check", "--project", str(ROOT), "--out", str(out), "--n", "5", "-q"]) == 0
+    assert cg.main(["--check", "--project", str(ROOT), "--out", str(out), "-q"]) == 1   # default 2 3: missing
+    assert "toda2.py: missing" in capsys.readouterr().err
+    f = out / "toda5.py"
+    f.write_text(f.read_text().replace("for j in range(N - 1):", "for j in range(N - 2):", 1))
+    assert cg.main(["--check", "--project", str(ROOT), "--out", str(out), "--n", "5"]) == 1
+    assert "toda5.py: edited by hand" in capsys.readouterr().err
+
+
 def test_header_format():
     text = (GEN / "toda3.py").read_text()
     head = cg.read_header(text)
     assert head["generator"] == cg.GENERATOR_VERSION
-    assert head["target"] == "toda3 (N=3)"
+    assert head["target"] == "toda3 (N=3, closed form)"
     assert len(head["derivation-sha256"]) == 64 and len(head["content-sha256"]) == 64
     assert head["content-sha256"] == cg.content_hash(text)
+    assert head["derivation-sha256"] == cg.derivation_hash()
 
 
 # --------------------------------------------------------------------------- sympy-free
 
-def test_generated_modules_import_without_sympy():
+def test_generated_modules_import_without_sympy(fresh):
     code = ("import sys, importlib.util\n"
-            "for name in ('toda2', 'toda3'):\n"
-            f"    spec = importlib.util.spec_from_file_location(name, {str(GEN)!r} + '/' + name + '.py')\n"
+            f"for path in ({str(GEN / 'toda2.py')!r}, {str(GEN / 'toda3.py')!r}, {str(fresh / 'toda5.py')!r}):\n"
+            "    spec = importlib.util.spec_from_file_location('m', path)\n"
             "    m = importlib.util.module_from_spec(spec); spec.loader.exec_module(m)\n"
-            "    m.bt_step([-20.0, 10.0, 1.0][:m.N], [1.0, 0.0, 0.9][:m.N], 10.0, 5.0, 1)\n"
+            "    m.bt_step(([-20.0, 10.0, 1.0] + [0.0] * 5)[:m.N], ([1.0, 0.0, 0.9] + [0.0] * 5)[:m.N], 10.0, 5.0, 1)\n"
             "import symbt.generated.toda2, symbt.generated.toda3\n"
+            "import symbt.codegen; assert symbt.codegen.check() == []   # --check needs no SymPy\n"
             "assert 'sympy' not in sys.modules, 'sympy was imported'\n"
             "print('ok')\n")
     r = subprocess.run([sys.executable, "-c", code], env=_env(), capture_output=True, text=True, timeout=60)
     assert r.returncode == 0 and "ok" in r.stdout, r.stderr
 
 
-def test_mpmath_flavour_has_no_float_literals():
-    import re
+def test_emitted_imports_are_numpy_and_mpmath_only(fresh):
+    for path in (GEN / "toda2.py", GEN / "toda3.py", fresh / "toda5.py"):
+        imports = re.findall(r"^\s*(?:import|from)\s+([\w.]+)", path.read_text(), re.M)
+        assert set(imports) == {"mpmath", "numpy"}, (path.name, imports)
+
+
+_FLOAT = re.compile(r"(?<![\w.])\d+\.\d*(?![\w])|\de[-+]?\d")
+
+
+def test_mpmath_flavour_has_no_float_literals(fresh):
     for name in ("toda2.py", "toda3.py"):
         text = (GEN / name).read_text()
-        body = text[text.index("def invariants_mp"):]
-        assert not re.search(r"(?<![\w.])\d+\.\d*(?![\w])|\de[-+]?\d", body), name
+        body = text[text.index("def invariants_mp"):text.index("def bt_orbit(")]
+        assert not _FLOAT.search(body), name
+    # transfer-matrix form: the code shared with the mpmath flavour (ops, polynomials, core loops)
+    text = (fresh / "toda5.py").read_text()
+    shared = (text[text.index("class _MpOps"):text.index("_NP, _MP =")]
+              + text[text.index("class _ListPoly"):text.index("class _ArrayPoly")]
+              + text[text.index("def _cols("):text.index("def invariants(")])
+    assert not _FLOAT.search(shared)
 
 
-# --------------------------------------------------------------------------- float64 vs mpmath
+# --------------------------------------------------------------------------- usage errors
 
-def _states(N, n, seed):
-    from symbt.reference.samples import admissible_states
-    with mp.workdps(30):
-        st = admissible_states(N, 1, n, seed=seed) + admissible_states(N, -1, n, seed=seed)
-    P = np.array([[float(v) for v in s[0]] for s in st])
-    Q = np.array([[float(v) for v in s[1]] for s in st])
-    return P, Q, np.array([float(s[2]) for s in st]), np.array([float(s[3]) for s in st])
-
-
-def _flat(x):
-    outs = x if isinstance(x, tuple) else (x,)
-    res = []
-    for o in outs:
-        if isinstance(o, list):
-            for v in o:
-                res += [float(t) for t in v] if isinstance(v, list) else [float(v)]
-        else:
-            res.append(float(o))
-    return res
+def _one_line_error(r):
+    assert r.returncode == 2, r.stdout + r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("symbt codegen: error:"), r.stderr
+    assert "Traceback" not in r.stderr
+    return lines[0]
 
 
-@pytest.mark.parametrize("mod", [toda2, toda3], ids=["n2", "n3"])
-def test_float64_matches_mpmath_on_random_points(mod):
-    N = mod.N
-    rng = np.random.default_rng(N)
-    P, Q, L0, MU = _states(N, 3, seed=5)
-    B = np.where(np.arange(len(P)) % 2 == 0, 1.0, -1.0)
-    C = rng.uniform(-1, 1, size=P.shape)
-    calls = {
-        "invariants": lambda i: (P[i], Q[i]),
-        "spectral_trace": lambda i: (L0[i] + MU[i], P[i], Q[i]),
-        "hamiltonian_fields": lambda i: (P[i], Q[i]),
-        "flow_field": lambda i: (C[i], P[i], Q[i]),
-        "phi": lambda i: (P[i], Q[i], L0[i], MU[i], int(B[i])),
-        "phi_grad": lambda i: (P[i], Q[i], L0[i], MU[i], int(B[i])),
-        "ck_integrand": lambda i: (L0[i] - MU[i], P[i], Q[i]),
-        "dapp_xy": lambda i: (P[i], Q[i], L0[i], MU[i], int(B[i])),
-        "bt_step": lambda i: (P[i], Q[i], L0[i], MU[i], int(B[i])),
-    }
-    batch_args = {
-        "invariants": (P, Q), "spectral_trace": (L0 + MU, P, Q), "hamiltonian_fields": (P, Q),
-        "flow_field": (C, P, Q), "phi": (P, Q, L0, MU, B), "phi_grad": (P, Q, L0, MU, B),
-        "ck_integrand": (L0 - MU, P, Q), "dapp_xy": (P, Q, L0, MU, B), "bt_step": (P, Q, L0, MU, B),
-    }
-    for name, args_of in calls.items():
-        fb = getattr(mod, name)(*batch_args[name])          # vectorised over the batch
-        fb = fb if isinstance(fb, tuple) else (fb,)
-        for i in range(len(P)):
-            with mp.workdps(40):
-                ref = _flat(getattr(mod, name + "_mp")(*[list(a) if isinstance(a, np.ndarray) else a
-                                                           for a in args_of(i)]))
-            got = np.concatenate([np.asarray(o[i]).reshape(-1) for o in fb])
-            single = np.concatenate([np.asarray(o).reshape(-1) for o in
-                                     (lambda r: r if isinstance(r, tuple) else (r,))(getattr(mod, name)(*args_of(i)))])
-            np.testing.assert_array_equal(got, single, err_msg=f"{name}: batch != single")
-            np.testing.assert_allclose(got, ref, rtol=1e-12, atol=1e-12, err_msg=f"{name}[{i}]")
-    # phi_tr (no state)
-    t1, t2 = np.array([2.5, -7.0, 31.0]), np.array([-2.2, 3.0, -40.0])
-    got = mod.phi_tr(t1, t2, np.array([1, -1, 1]))
-    for k in range(3):
-        with mp.workdps(40):
-            ref = mod.phi_tr_mp(t1[k], t2[k], [1, -1, 1][k])
-        assert abs(got[k] - float(ref)) <= 1e-13 * max(1, abs(float(ref)))
+def test_no_project_found_is_a_one_line_error(tmp_path):
+    msg = _one_line_error(_run(["--check"], cwd=tmp_path))
+    assert "no symbt checkout" in msg and "--installed" in msg
+    msg = _one_line_error(_run(["--check", "--project", str(tmp_path)], cwd=tmp_path))
+    assert "not a symbt checkout" in msg
 
 
-def test_broadcasting_and_paper_example():
-    p = np.array([[-20.0, 10.0, 1.0]] * 4).reshape(2, 2, 3)
-    q = np.array([[1.0, 0.0, 0.9]] * 4).reshape(2, 2, 3)
-    pt, qt = toda3.bt_step(p, q, 10.0, np.array([[5.0], [2.0]]), 1)
-    assert pt.shape == (2, 2, 3) and qt.shape == (2, 2, 3)
-    np.testing.assert_allclose(pt[0, 0], [-19.99656766, 9.78635495, 1.21021272], atol=5e-9)
-    H = toda3.invariants(p, q)
-    Ht = toda3.invariants(pt, qt)
-    np.testing.assert_allclose(H, Ht, rtol=1e-12, atol=1e-10)   # the step preserves tr L
-    with pytest.raises(ValueError):
-        toda3.bt_step(p, q, 10.0, 5.0, 0)
-    with pytest.raises(ValueError):
-        toda3.invariants([1.0, 2.0], [0.0, 0.0])
+@pytest.mark.skipif(os.name != "posix" or os.geteuid() == 0, reason="needs a non-root POSIX user for permissions")
+def test_unwritable_output_is_a_one_line_error(tmp_path):
+    out = tmp_path / "ro"
+    out.mkdir()
+    out.chmod(stat.S_IRUSR | stat.S_IXUSR)
+    try:
+        msg = _one_line_error(_run(["--out", str(out), "--n", "5"]))
+        assert "cannot write" in msg
+    finally:
+        out.chmod(stat.S_IRWXU)
+
+
+def test_output_path_that_is_a_file_is_a_one_line_error(tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("not a directory\n")
+    msg = _one_line_error(_run(["--out", str(blocker / "sub"), "--n", "5"]))
+    assert "cannot write" in msg
+
+
+@pytest.mark.parametrize("args, text", [(["--n", "1"], ">= 2"), (["--target", "c"], "--out"),
+                                        (["--target", "fortran"], "invalid choice"), (["--bogus"], "unrecognized")])
+def test_bad_options_are_one_line_errors(args, text):
+    assert text in _one_line_error(_run(args))
+
+
+# --------------------------------------------------------------------------- the checkout, not site-packages
+
+@pytest.fixture(scope="module")
+def checkout(tmp_path_factory):
+    """A copy of the source tree (pyproject.toml + symbt/); Python imports ROOT's symbt, not the copy's,
+    as after `pip install .`."""
+    root = tmp_path_factory.mktemp("checkout")
+    shutil.copy2(ROOT / "pyproject.toml", root / "pyproject.toml")
+    shutil.copytree(ROOT / "symbt", root / "symbt", ignore=shutil.ignore_patterns("__pycache__"))
+    (root / "docs").mkdir()
+    return root
+
+
+def test_checkout_check_acts_on_the_checkout(checkout):
+    r = _run(["--check"], cwd=checkout / "docs")          # found by walking up from a subdirectory
+    assert r.returncode == 0, r.stderr
+    assert f"checkout {checkout}" in r.stdout
+
+
+def test_checkout_hand_edit_and_stale_derivation_are_caught(checkout):
+    gen = checkout / "symbt" / "generated" / "toda2.py"
+    original = gen.read_text()
+    gen.write_text(original.replace("t0 = ", "t0 = 2*", 1))
+    try:
+        r = _run(["--check"], cwd=checkout)
+        assert r.returncode == 1 and f"{gen}: edited by hand" in r.stderr, r.stdout + r.stderr
+        r = _run(["--check", "--installed"], cwd=checkout)   # the imported package is untouched
+        assert r.returncode == 0 and str(GEN) in r.stdout, r.stdout + r.stderr
+    finally:
+        gen.write_text(original)
+    src = checkout / "symbt" / "symbolic" / "toda.py"
+    src.write_text(src.read_text() + "\n# an edit of a derivation source\n")
+    r = _run(["--check"], cwd=checkout)
+    assert r.returncode == 1 and f"{gen}: stale" in r.stderr, r.stdout + r.stderr
+    # regenerating writes into the checkout, from the checkout's sources; the imported package is untouched
+    before = {p.name: p.read_bytes() for p in GEN.glob("*.py")}
+    r = _run(["--n", "2", "-q"], cwd=checkout)
+    assert r.returncode == 0, r.stderr
+    assert cg.read_header(gen.read_text())["derivation-sha256"] == provenance.derivation_hash(pkg=checkout / "symbt")
+    assert cg.read_header(gen.read_text())["derivation-sha256"] != cg.derivation_hash()
+    assert {p.name: p.read_bytes() for p in GEN.glob("*.py")} == before
+    r = _run(["--check", "--n", "2"], cwd=checkout)
+    assert r.returncode == 0, r.stderr

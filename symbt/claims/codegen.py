@@ -1,303 +1,236 @@
-r"""Emitted numeric code (``symbt codegen``): the generated modules against their sources.
+r"""Emitted numeric code (``symbt codegen``): the generated modules against their SymPy sources.
 
-For every emitted function ``f`` of ``symbt/generated/toda{2,3}.py`` (see
-:mod:`symbt.codegen.derive`) and every sample point ``x`` (float64 values, so
-that both flavours see exactly the same input):
+One claim per emitted function of ``symbt/generated/toda{N}.py`` and per N emitted by default
+(``symbt.codegen.TARGETS``); the claim's ``equation`` names the generated function
+(``toda{N}.bt_step``), ``source_equation`` the paper label it is derived from.
 
-* reference: the SymPy source expression of ``f`` evaluated with 60-digit
-  Floats (independent of the printer and of CSE);
-* *condition scale* ``S = |f| + sum_i max(|x_i|, 1) |df/dx_i|`` (central
-  differences of the emitted mpmath function at 50 digits): the size of the
-  change of ``f`` under relative-or-absolute input perturbations of one unit.
-  A float64 evaluation that is backward stable up to a few roundings per input
-  is within a few ``eps * S`` of the truth; for well-conditioned points ``S`` is
-  a small multiple of ``|f|``, near zeros of ``f`` it keeps the test meaningful;
-* numpy flavour: ``|f64 - ref| <= F64_TOL_ULPS * eps * S`` (``F64_TOL_ULPS = 16``:
-  a handful of roundings of the inputs and of every ``exp``/``sqrt``/``acosh``
-  along a CSE chain, each contributing at most ``~eps * S``);
-* mpmath flavour at 50 digits: ``|mp - ref| <= 1e-45 * S``.
+For every function ``f`` and sample point ``x`` (float64 values, so that both flavours see
+exactly the same input; see :mod:`symbt.codegen.verify`):
 
-The emitted step is also compared with :func:`symbt.reference.literal.literal_step`
-(the paper's route at 70 digits) and, when importable, with
-:func:`symbt.numeric.bt_step` (float64).  Sample points: seeded random states
-(``admissible_states``: real map, both signs of tr L, both branches) and, for
-N = 3, the paper's example.
+* reference: the SymPy source of ``f`` (:func:`symbt.codegen.derive.sources`, the model
+  itself, before any rewriting for float64) evaluated with mpmath at 80 digits;
+* *condition scale* ``S = |f| + sum_i max(|x_i|, 1) |df/dx_i|`` (central differences of the
+  emitted mpmath function at 50 digits);
+* numpy flavour: ``|f64 - ref| <= 16 eps S``; mpmath flavour at 50 digits: ``<= 1e-45 S``.
+
+Further: ``phi_grad`` against numerical differentiation of the emitted ``phi``; ``dapp_xy``
+against the printed eq. ``xy`` (``literal_step``, 70 digits); ``bt_step`` against the paper's
+route (``literal_step``, 70 digits), :func:`symbt.numeric.bt_step` and, normwise, the 50-digit
+:func:`symbt.reference.literal.reference_step` (<= 1e-12); ``bt_orbit`` (centre of mass carried)
+against a 50-digit orbit; the files' provenance hashes.  Sample points: seeded admissible states
+(real map, both signs of tr L, both branches) and, for N = 3, the paper's example.
 """
 from __future__ import annotations
 
 import importlib
-import random
-from functools import cache
 
 import mpmath as mp
 import numpy as np
-import sympy as sp
 
+from ..codegen import TARGETS, check, derivation_hash
 from ..reference.literal import literal_step
-from ..reference.samples import admissible_states, paper_state
 from .base import Outcome, claim, failed, scene
 
 scene("codegen", "emitted numeric code (symbt codegen): generated numpy/mpmath modules vs their SymPy "
-                 "sources, the literal map and symbt.numeric (N=2,3)")
+                 "sources, the literal map, the 50-digit step and symbt.numeric (N=2,3)")
 
-F64_TOL_ULPS = 16
 STEP_VS_NUMERIC_ULPS = 64
-MP_TOL = mp.mpf(10) ** -45
-REF_DPS, MP_DPS = 60, 50
-EPS = float(np.finfo(np.float64).eps)
-
-# claim id stem, emitted function name, paper label, what it computes (static: no derivation at import)
-_FUNCS = (
-    ("invariants", "invariants", "tra", "H_0..H_{N-1}, the coefficients of tr L(lambda)"),
-    ("trace", "spectral_trace", "tra", "tr L(lambda)"),
-    ("fields", "hamiltonian_fields", "tra", "the Hamiltonian vector fields of H_0..H_{N-1}"),
-    ("flow", "flow_field", "eqdisc", "the vector field of sum_k c_k H_k"),
-    ("phi_tr", "phi_tr", "newkmu", "real Phi = -b(sgn(tr1) arccosh(|tr1|/2) + sgn(tr2) arccosh(|tr2|/2))"),
-    ("phi", "phi", "newkmu", "real Phi(p, q, lambda0, mu, b)"),
-    ("phi_grad", "phi_grad", "newkmu", "grad_(p,q) Phi (also = numerical derivative of the emitted Phi)"),
-    ("integrand", "ck_integrand", "eqdisc", "the c_k integrand lambda^k / sqrt(tr L(lambda)^2 - 4)"),
-    ("xy", "dapp_xy", "xy", "Dapp's x and y (eq. xy as printed, both branches)"),
-    ("step", "bt_step", "imptransf", "the closed-form BT step (p, q) -> (p~, q~)"),
-)
+STEP_NORMWISE_TOL = 1e-12
+ORBIT_STEPS = 300
 
 
 def _module(N):
     return importlib.import_module(f"symbt.generated.toda{N}")
 
 
-def _spec(N, name):
-    from ..codegen.derive import specs
+def _compare(N, name) -> Outcome:
+    from ..codegen import verify
 
-    return next(s for s in specs(N) if s.name == name)
-
-
-@cache
-def _map_states(N):
-    """(p, q, lam0, mu) as float lists: 2 per sign of tr L (+ the paper's example for N = 3)."""
-    with mp.workdps(30):
-        st = admissible_states(N, 1, 2) + admissible_states(N, -1, 2)
-        if N == 3:
-            st.append(paper_state("5"))
-    return [([float(v) for v in p], [float(v) for v in q], float(l0), float(m)) for p, q, l0, m in st]
+    r = verify.compare(_module(N), N, name)
+    worst_m = r["worst_mp"]
+    return Outcome("verified" if r["ok"] else "failed", "numeric: emitted vs SymPy source",
+                   residual=max(r["worst_f64"] * verify.EPS, float(worst_m)),
+                   digits=float(-mp.log10(worst_m)) if worst_m > 0 else float(verify.REF_DPS),
+                   detail=r["detail"], counterexample=r["bad"])
 
 
-def _points(spec, N):
-    """List of argument dicts (python floats / lists of floats / branch ints)."""
-    rng = random.Random(7919 * N + len(spec.name))
-    kinds = {a.name for a in spec.args}
-    pts = []
-    if "lam0" in kinds:
-        for p, q, l0, m in _map_states(N):
-            for b in (1, -1):
-                pts.append(dict(p=p, q=q, lam0=l0, mu=m, branch=b))
-    elif "lam" in kinds:
-        for p, q, l0, m in _map_states(N):
-            for lv in (l0 + m, l0 - m):
-                pts.append(dict(lam=lv, p=p, q=q))
-    elif "tr1" in kinds:
-        for _ in range(6):
-            t1, t2 = (rng.choice((1, -1)) * rng.uniform(2.2, 40) for _ in range(2))
-            pts.append(dict(tr1=t1, tr2=t2, branch=rng.choice((1, -1))))
-    else:
-        for _ in range(6):
-            pt = dict(p=[rng.uniform(-3, 3) for _ in range(N)], q=[rng.uniform(-1.5, 1.5) for _ in range(N)])
-            if "c" in kinds:
-                pt["c"] = [rng.uniform(-1, 1) for _ in range(N)]
-            pts.append(pt)
-    return pts
-
-
-def _flat(out):
-    """Flatten the (tuple of) outputs of an emitted function into a list of scalars."""
-    outs = out if isinstance(out, tuple) else (out,)
-    res = []
-    for o in outs:
-        if isinstance(o, np.ndarray):
-            res += [float(v) for v in o.reshape(-1)]
-        elif isinstance(o, list):
-            for v in o:
-                res += v if isinstance(v, list) else [v]
-        else:
-            res.append(o)
-    return res
-
-
-def _reference(spec, pt):
-    """The SymPy source of every output at 60 digits (inputs are the exact float64 values)."""
-    subs = {}
-    for a in spec.args:
-        vals = pt[a.name] if a.kind == "state" else [pt[a.name]]
-        for s, v in zip(a.symbols, vals):
-            subs[s] = sp.Integer(v) if a.kind == "branch" else sp.Float(mp.mpf(v), REF_DPS)
-    out = []
-    with mp.workdps(REF_DPS):
-        for o in spec.outputs:
-            for e in o.exprs:
-                v = sp.sympify(e).xreplace(subs).evalf(REF_DPS)
-                out.append(mp.mpmathify(complex(v)) if not v.is_real else mp.mpf(v))
+def _also(out: Outcome, ok: bool, text: str) -> Outcome:
+    out.detail += "; " + text
+    if not ok:
+        out.status = "failed"
     return out
 
 
-def _scale(spec, fn_mp, pt, ref):
-    """S_k = |f_k| + sum_i max(|x_i|, 1) |df_k/dx_i| (central differences of the mpmath flavour)."""
-    S = [abs(r) for r in ref]
-    with mp.workdps(MP_DPS):
-        for a in spec.args:
-            if a.kind == "branch":
-                continue
-            n = len(pt[a.name]) if a.kind == "state" else 1
-            for i in range(n):
-                x0 = mp.mpf(pt[a.name][i] if a.kind == "state" else pt[a.name])
-                h = mp.mpf(10) ** -18 * max(abs(x0), 1)
-                vals = []
-                for sgn in (1, -1):
-                    args = {k: (list(v) if isinstance(v, list) else v) for k, v in pt.items()}
-                    if a.kind == "state":
-                        args[a.name][i] = x0 + sgn * h
-                    else:
-                        args[a.name] = x0 + sgn * h
-                    vals.append(_flat(fn_mp(**args)))
-                for k in range(len(S)):
-                    S[k] += max(abs(x0), 1) * abs(vals[0][k] - vals[1][k]) / (2 * h)
-    return S
+@claim("codegen.invariants", equation="toda{N}.invariants", source_equation="tra", scene="codegen", sizes=TARGETS,
+       where="symbt/generated/toda{N}.py: invariants, invariants_mp",
+       statement="emitted invariants (numpy float64 and mpmath) = its SymPy source: H_0..H_{N-1}, the "
+                 "coefficients of tr L(lambda) (N={N})")
+def invariants(N: int) -> Outcome:
+    return _compare(N, "invariants")
 
 
-def _compare(N, name):
-    spec = _spec(N, name)
-    mod = _module(N)
-    fn, fn_mp = getattr(mod, name), getattr(mod, name + "_mp")
-    worst_f, worst_m, bad_f, bad_m = 0.0, mp.mpf(0), None, None
-    npts = 0
-    for pt in _points(spec, N):
-        ref = _reference(spec, pt)
-        S = _scale(spec, fn_mp, pt, ref)
-        with np.errstate(all="ignore"):
-            f64 = _flat(fn(**pt))
-        with mp.workdps(MP_DPS):
-            fm = _flat(fn_mp(**pt))
-        with mp.workdps(REF_DPS):
-            for k, (r, s) in enumerate(zip(ref, S)):
-                s = max(s, mp.mpf(10) ** -300)
-                ef = float(abs(mp.mpf(f64[k]) - r) / (EPS * s))
-                em = abs(mp.mpmathify(fm[k]) - r) / s
-                if not ef <= worst_f:
-                    worst_f, bad_f = ef, dict(point=repr(pt), output=k, ref=mp.nstr(r, 17), f64=repr(f64[k]))
-                if em > worst_m:
-                    worst_m, bad_m = em, dict(point=repr(pt), output=k, ref=mp.nstr(r, 30), mp=mp.nstr(fm[k], 30))
-        npts += 1
-    ok = worst_f <= F64_TOL_ULPS and worst_m <= MP_TOL
-    detail = (f"{npts} points x {len(ref)} outputs; numpy: max |f64 - ref| = {worst_f:.2f} eps*S "
-              f"(tolerance {F64_TOL_ULPS}); mpmath at {MP_DPS} digits: max |mp - ref|/S = {mp.nstr(worst_m, 3)} "
-              f"(tolerance 1e-45); ref = SymPy source at {REF_DPS} digits, "
-              "S = |f| + sum_i max(|x_i|,1)|df/dx_i|")
-    return Outcome("verified" if ok else "failed", "numeric: emitted vs SymPy source",
-                   residual=max(worst_f * EPS, float(worst_m)),
-                   digits=float(-mp.log10(worst_m)) if worst_m > 0 else float(REF_DPS),
-                   detail=detail, counterexample=None if ok else (bad_f if worst_f > F64_TOL_ULPS else bad_m))
+@claim("codegen.trace", equation="toda{N}.spectral_trace", source_equation="tra", scene="codegen", sizes=TARGETS,
+       where="symbt/generated/toda{N}.py: spectral_trace, spectral_trace_mp",
+       statement="emitted spectral_trace (numpy float64 and mpmath) = its SymPy source: tr L(lambda) (N={N})")
+def spectral_trace(N: int) -> Outcome:
+    return _compare(N, "spectral_trace")
 
 
-def _phi_grad_fd(N):
-    """dPhi/dx of the emitted gradient vs numerical differentiation of the emitted Phi (both signs of tr)."""
-    mod = _module(N)
-    worst = mp.mpf(0)
-    with mp.workdps(MP_DPS):
-        for p, q, l0, m in _map_states(N):
-            for b in (1, -1):
-                gp, gq = mod.phi_grad_mp(p, q, l0, m, b)
-                for i in range(N):
-                    for which, g in (("p", gp[i]), ("q", gq[i])):
-                        def f(t, which=which, i=i):
-                            pp, qq = list(map(mp.mpf, p)), list(map(mp.mpf, q))
-                            (pp if which == "p" else qq)[i] = t
-                            return mod.phi_mp(pp, qq, l0, m, b)
-                        x0 = mp.mpf((p if which == "p" else q)[i])
-                        d = mp.diff(f, x0)
-                        worst = max(worst, abs(d - g) / max(1, abs(g)))
+@claim("codegen.fields", equation="toda{N}.hamiltonian_fields", source_equation="tra", scene="codegen",
+       sizes=TARGETS, where="symbt/generated/toda{N}.py: hamiltonian_fields, hamiltonian_fields_mp",
+       statement="emitted hamiltonian_fields (numpy float64 and mpmath) = its SymPy source: the Hamiltonian "
+                 "vector fields of H_0..H_{N-1} (N={N})")
+def hamiltonian_fields(N: int) -> Outcome:
+    return _compare(N, "hamiltonian_fields")
+
+
+@claim("codegen.flow", equation="toda{N}.flow_field", source_equation="eqdisc", scene="codegen", sizes=TARGETS,
+       where="symbt/generated/toda{N}.py: flow_field, flow_field_mp",
+       statement="emitted flow_field (numpy float64 and mpmath) = its SymPy source: the vector field of "
+                 "sum_k c_k H_k (N={N})")
+def flow_field(N: int) -> Outcome:
+    return _compare(N, "flow_field")
+
+
+@claim("codegen.phi_tr", equation="todaN.phi_tr", source_equation="newkmu", scene="codegen",
+       where="symbt/generated/toda{2,3}.py: phi_tr, phi_tr_mp",
+       statement="emitted phi_tr (numpy float64 and mpmath) = its SymPy source: real Phi = -b(sgn(tr1) "
+                 "arccosh(|tr1|/2) + sgn(tr2) arccosh(|tr2|/2)) (the same in every toda{N}: checked in each)")
+def phi_tr() -> Outcome:
+    outs = [_compare(N, "phi_tr") for N in TARGETS]
+    worst = max(outs, key=lambda o: o.residual or 0.0)
+    worst.detail = f"toda{TARGETS}: " + worst.detail
+    if any(o.status != "verified" for o in outs):
+        worst.status = "failed"
     return worst
 
 
-def _xy_printed(N):
-    """The emitted (rewritten) x, y vs the printed quotients of eq. xy (symbt.reference.literal, 70 digits)."""
+@claim("codegen.phi", equation="toda{N}.phi", source_equation="newkmu", scene="codegen", sizes=TARGETS,
+       where="symbt/generated/toda{N}.py: phi, phi_mp",
+       statement="emitted phi (numpy float64 and mpmath) = its SymPy source: real Phi(p, q, lambda0, mu, b) (N={N})")
+def phi(N: int) -> Outcome:
+    return _compare(N, "phi")
+
+
+@claim("codegen.phi_grad", equation="toda{N}.phi_grad", source_equation="newkmu", scene="codegen", sizes=TARGETS,
+       where="symbt/generated/toda{N}.py: phi_grad, phi_grad_mp",
+       statement="emitted phi_grad (numpy float64 and mpmath) = its SymPy source, and = the numerical "
+                 "derivative (mp.diff, 50 digits) of the emitted Phi (N={N})")
+def phi_grad(N: int) -> Outcome:
+    from ..codegen import verify
+
+    out = _compare(N, "phi_grad")
+    r = verify.phi_grad_vs_fd(_module(N), N)
+    return _also(out, r <= mp.mpf(10) ** -40, f"vs mp.diff of the emitted Phi: {mp.nstr(r, 3)} (tolerance 1e-40)")
+
+
+@claim("codegen.integrand", equation="toda{N}.ck_integrand", source_equation="eqdisc", scene="codegen",
+       sizes=TARGETS, where="symbt/generated/toda{N}.py: ck_integrand, ck_integrand_mp",
+       statement="emitted ck_integrand (numpy float64 and mpmath) = its SymPy source: the c_k integrand "
+                 "lambda^k / sqrt(tr L(lambda)^2 - 4) (N={N})")
+def ck_integrand(N: int) -> Outcome:
+    return _compare(N, "ck_integrand")
+
+
+@claim("codegen.xy", equation="toda{N}.dapp_xy", source_equation="xy", scene="codegen", sizes=TARGETS,
+       where="symbt/generated/toda{N}.py: dapp_xy, dapp_xy_mp",
+       statement="emitted dapp_xy (numpy float64 and mpmath) = its SymPy source, Dapp's x and y, and = eq. xy "
+                 "as printed (literal_step, 70 digits), both branches (N={N})")
+def dapp_xy(N: int) -> Outcome:
+    from ..codegen import verify
+
+    out = _compare(N, "dapp_xy")
+    r = verify.xy_vs_printed(_module(N), N)
+    return _also(out, r <= verify.MP_TOL, f"= eq. xy as printed (literal_step, 70 digits): {mp.nstr(r, 3)}")
+
+
+@claim("codegen.step", equation="toda{N}.bt_step", source_equation="imptransf", scene="codegen", sizes=TARGETS,
+       where="symbt/generated/toda{N}.py: bt_step, bt_step_mp",
+       statement="emitted bt_step (numpy float64 and mpmath) = its SymPy source: one BT step (p, q) -> (p~, q~) "
+                 "(N={N})")
+def bt_step(N: int) -> Outcome:
+    return _compare(N, "bt_step")
+
+
+@claim("codegen.step_literal", equation="toda{N}.bt_step", source_equation="imptransf", scene="codegen",
+       sizes=TARGETS, where="symbt/generated/toda{N}.py: bt_step, bt_step_mp",
+       statement="the emitted step equals the paper's route (symbt.reference.literal.literal_step, 70 digits) "
+                 "and symbt.numeric.bt_step (float64), both branches (N={N})")
+def step_literal(N: int) -> Outcome:
+    from ..codegen import verify
+    from ..numeric import bt_step as numeric
+
     mod = _module(N)
-    worst = mp.mpf(0)
-    for p, q, l0, m in _map_states(N):
+    worst_mp, worst_num = mp.mpf(0), 0.0
+    for p, q, l0, m in verify.map_states(N):
         for b in (1, -1):
             with mp.workdps(70):
-                info = literal_step(p, q, l0, m, b)[2]
-            with mp.workdps(MP_DPS):
-                x, y = mod.dapp_xy_mp(p, q, l0, m, b)
+                lp, lq, _ = literal_step(p, q, l0, m, b)
+            with mp.workdps(verify.MP_DPS):
+                ep, eq = mod.bt_step_mp(p, q, l0, m, b)
             with mp.workdps(70):
-                worst = max(worst, abs(x - info["x_formula"]) / abs(info["x_formula"]),
-                            abs(y - info["y"][0]) / abs(info["y"][0]))
-    return worst
+                for a, c in zip(ep + eq, lp + lq):
+                    worst_mp = max(worst_mp, abs(a - c) / max(1, abs(c)))
+            fp, fq = mod.bt_step(p, q, l0, m, b)
+            np_, nq = numeric(p, q, l0, m, branch=b)
+            ref = [float(v) for v in lp + lq]
+            for a, c, r in zip(list(fp) + list(fq), list(np_) + list(nq), ref):
+                worst_num = max(worst_num, abs(a - c) / (verify.EPS * max(1.0, abs(r))))
+    ok = worst_mp <= verify.MP_TOL and worst_num <= STEP_VS_NUMERIC_ULPS
+    detail = (f"mpmath (50 digits) vs literal_step (70 digits): max rel. diff {mp.nstr(worst_mp, 3)}; "
+              f"float64 emitted vs symbt.numeric.bt_step: max diff {worst_num:.1f} eps*max(1,|x|) "
+              f"(tolerance {STEP_VS_NUMERIC_ULPS}: two independent float64 routes, each within a few eps*S)")
+    return Outcome("verified" if ok else "failed", "numeric: emitted step vs literal and numeric routes",
+                   residual=float(worst_mp), detail=detail)
 
 
-for _N in (2, 3):
-    def _make(N):
-        for stem, fname, label, what in _FUNCS:
-            if stem == "phi_tr" and N == 3:
-                continue  # phi_tr does not depend on N: checked once
-            cid = f"codegen.{stem}" + ("" if stem == "phi_tr" else f".n{N}")
+@claim("codegen.step_accuracy", equation="toda{N}.bt_step", source_equation="imptransf", scene="codegen",
+       sizes=TARGETS, where="symbt/generated/toda{N}.py: bt_step",
+       statement="the emitted float64 bt_step is within 1e-12 normwise (||x - x_ref|| / ||x_ref||, x = (p~, q~)) "
+                 "of the 50-digit step symbt.reference.literal.reference_step on admissible states, both "
+                 "branches (N={N})")
+def step_accuracy(N: int) -> Outcome:
+    from ..codegen import verify
 
-            def check(N=N, fname=fname):
-                out = _compare(N, fname)
-                if fname == "dapp_xy" and out.status == "verified":
-                    r = _xy_printed(N)
-                    out.detail += f"; = eq. xy as printed (literal_step, 70 digits): {mp.nstr(r, 3)}"
-                    if r > MP_TOL:
-                        out.status = "failed"
-                if fname == "phi_grad" and out.status == "verified":
-                    r = _phi_grad_fd(N)
-                    out.detail += f"; vs mp.diff of the emitted Phi: {mp.nstr(r, 3)}"
-                    if r > mp.mpf(10) ** -40:
-                        out.status = "failed"
-                return out
+    err = verify.step_accuracy(_module(N), N)
+    return Outcome("verified" if err <= STEP_NORMWISE_TOL else "failed", "numeric: float64 step vs 50 digits",
+                   residual=err, detail=f"max normwise relative error {err:.2e} (tolerance {STEP_NORMWISE_TOL:g}) "
+                                        f"over {len(verify.map_states(N))} states x 2 branches")
 
-            claim(cid, equation=label, scene="codegen", N=None if stem == "phi_tr" else N,
-                  where="symbt/generated/" + f"toda{N}.py: {fname}, {fname}_mp",
-                  statement=f"emitted {fname} (numpy float64 and mpmath) = its SymPy source: {what}"
-                            + ("" if stem == "phi_tr" else f" (N={N})"))(check)
 
-        @claim(f"codegen.step_literal.n{N}", equation="imptransf", scene="codegen", N=N,
-               where=f"symbt/generated/toda{N}.py: bt_step, bt_step_mp",
-               statement="the emitted closed-form step equals the paper's route (symbt.reference.literal.literal_step, "
-                         f"70 digits) and symbt.numeric.bt_step (float64), both branches (N={N})")
-        def step_literal(N=N):
-            mod = _module(N)
-            worst_mp, worst_num = mp.mpf(0), 0.0
-            from ..numeric import bt_step as numeric
-            for p, q, l0, m in _map_states(N):
-                for b in (1, -1):
-                    with mp.workdps(70):
-                        lp, lq, _ = literal_step(p, q, l0, m, b)
-                    with mp.workdps(MP_DPS):
-                        ep, eq = mod.bt_step_mp(p, q, l0, m, b)
-                    with mp.workdps(70):
-                        for a, c in zip(ep + eq, lp + lq):
-                            worst_mp = max(worst_mp, abs(a - c) / max(1, abs(c)))
-                    fp, fq = mod.bt_step(p, q, l0, m, b)
-                    np_, nq = numeric(p, q, l0, m, branch=b)
-                    ref = [float(v) for v in lp + lq]
-                    for a, c, r in zip(list(fp) + list(fq), list(np_) + list(nq), ref):
-                        worst_num = max(worst_num, abs(a - c) / (EPS * max(1.0, abs(r))))
-            ok = worst_mp <= MP_TOL and worst_num <= STEP_VS_NUMERIC_ULPS
-            detail = (f"mpmath (50 digits) vs literal_step (70 digits): max rel. diff {mp.nstr(worst_mp, 3)}; "
-                      + f"float64 emitted vs symbt.numeric.bt_step: max diff {worst_num:.1f} eps*max(1,|x|) "
-                        f"(tolerance {STEP_VS_NUMERIC_ULPS}: two independent float64 routes, each within a few eps*S)")
-            return Outcome("verified" if ok else "failed", "numeric: emitted step vs literal and numeric routes",
-                           residual=float(worst_mp), detail=detail)
+@claim("codegen.orbit", equation="toda{N}.bt_orbit", source_equation="imptransf", scene="codegen", sizes=TARGETS,
+       where="symbt/generated/toda{N}.py: bt_orbit",
+       statement="the emitted float64 bt_orbit (centre of mass carried separately) is as accurate as "
+                 "symbt.numeric.bt_orbit against a 50-digit orbit (300 steps; N={N})")
+def orbit(N: int) -> Outcome:
+    from ..codegen import verify
+    from ..numeric import bt_orbit
 
-        @claim(f"codegen.files.n{N}", equation="provenance", scene="codegen", N=N,
-               where=f"symbt/generated/toda{N}.py header",
-               statement="the generated module is present, not edited by hand and not stale "
-                         f"(provenance hashes match the derivation sources) (N={N})")
-        def files_check(N=N):
-            from .. import codegen
+    p, q, l0, m = verify.map_states(N)[0]
+    with mp.workdps(verify.MP_DPS):   # reference: the independent mpmath route of symbt.numeric
+        RP, RQ = bt_orbit([mp.mpf(v) for v in p], [mp.mpf(v) for v in q], mp.mpf(l0), mp.mpf(m), ORBIT_STEPS)
+    ref = np.array([[float(v) for v in a + b] for a, b in zip(RP, RQ)])
 
-            problems = [msg for msg in codegen.check() if f"toda{N}.py" in msg or "__init__.py" in msg]
-            if problems:
-                return failed("provenance hashes", detail="; ".join(problems))
-            return Outcome("verified", "provenance hashes",
-                           detail=f"derivation-sha256 {codegen.derivation_hash()[:16]}... and content hash match")
+    def err(P, Q):
+        scale = np.linalg.norm(np.concatenate([ref[:, :N], ref[:, N:] - ref[:, N:].mean(axis=1, keepdims=True)],
+                                              axis=1), axis=1)
+        return float(np.max(np.linalg.norm(np.concatenate([P, Q], axis=1) - ref, axis=1) / scale))
 
-    _make(_N)
+    e_gen = err(*_module(N).bt_orbit(p, q, l0, m, ORBIT_STEPS))
+    e_num = err(*bt_orbit(p, q, l0, m, ORBIT_STEPS))
+    ok = e_gen <= 2 * e_num + 1e-14
+    return Outcome("verified" if ok else "failed", "numeric: float64 orbit vs 50 digits", residual=e_gen,
+                   detail=f"max over {ORBIT_STEPS} steps of ||x - x_ref|| / ||(p_ref, q_ref - mean q_ref)||: emitted "
+                          f"{e_gen:.2e}, symbt.numeric.bt_orbit {e_num:.2e} (tolerance: 2x numeric + 1e-14)")
+
+
+@claim("codegen.files", equation="toda{N}.provenance", source_equation="provenance", scene="codegen", sizes=TARGETS,
+       where="symbt/generated/toda{N}.py header",
+       statement="the generated module is present, not edited by hand and not stale (provenance hashes match "
+                 "the derivation sources) (N={N})")
+def files(N: int) -> Outcome:
+    problems = check(ns=(N,))
+    if problems:
+        return failed("provenance hashes", detail="; ".join(problems))
+    return Outcome("verified", "provenance hashes",
+                   detail=f"derivation-sha256 {derivation_hash()[:16]}... and content hash match")

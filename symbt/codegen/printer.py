@@ -11,6 +11,17 @@ unprintable -- or a floating-point -- literal into the generated files.
 * ``mpmath``: every non-integer constant is an exact ratio evaluated at call
   time, ``_Q(p, q) = mpmath.mpf(p)/q``, at the caller's precision; integers
   are Python ints (exact).
+* ``ops``: flavour-neutral Python for the transfer-matrix kernels: functions are
+  looked up on the arithmetic namespace ``_X`` (numpy or mpmath); only integers
+  and dyadic ratios (``1/2``: exact as a float, and exact times an mpf) are allowed.
+* ``c``: C99 with ``<math.h>``; constants are double literals (``2.0``,
+  ``(1.0/3.0)``), powers are products (``pow`` never appears), ``sign`` is the
+  emitted ``sgn()``, ``Piecewise`` a conditional expression.
+
+>>> import sympy as sp
+>>> x, y = sp.symbols("x y")
+>>> ExprPrinter("c", {x: "x", y: "y"}).text(sp.sqrt(x**2 + 1)/y**3 + sp.Rational(1, 3))
+'(1.0/3.0) + sqrt(x*x + 1.0)/(y*y*y)'
 """
 from __future__ import annotations
 
@@ -24,6 +35,10 @@ _FUNCS = {
               sp.sign: "np.sign", sp.Abs: "np.abs", "sqrt": "np.sqrt"},
     "mpmath": {sp.exp: "mpmath.exp", sp.log: "mpmath.log", log1p: "mpmath.log1p", sp.acosh: "mpmath.acosh",
                sp.sign: "mpmath.sign", sp.Abs: "abs", "sqrt": "mpmath.sqrt"},
+    "ops": {sp.exp: "_X.exp", sp.log: "_X.log", log1p: "_X.log1p", sp.acosh: "_X.acosh",
+            sp.sign: "_X.sign", sp.Abs: "abs", "sqrt": "_X.sqrt"},
+    "c": {sp.exp: "exp", sp.log: "log", log1p: "log1p", sp.acosh: "acosh",
+          sp.sign: "sgn", sp.Abs: "fabs", "sqrt": "sqrt"},
 }
 _REL = {sp.GreaterThan: ">=", sp.StrictGreaterThan: ">", sp.LessThan: "<=", sp.StrictLessThan: "<"}
 
@@ -48,9 +63,16 @@ class ExprPrinter:
                 raise ValueError(f"unbound symbol {e}") from None
         if e.is_Integer:
             v = int(e)
-            return (str(v), _ATOM) if v >= 0 else (f"({v})", _ATOM)
+            txt = f"{v}.0" if self.flavour == "c" else str(v)
+            return (txt, _ATOM) if v >= 0 else (f"({txt})", _ATOM)
         if e.is_Rational:
             if self.flavour == "numpy":
+                return f"({e.p}/{e.q})", _ATOM
+            if self.flavour == "c":
+                return f"({e.p}.0/{e.q}.0)", _ATOM
+            if self.flavour == "ops":   # only dyadic ratios: exact as a float, and exact times an mpf
+                if e.q & (e.q - 1):
+                    raise ValueError(f"non-dyadic constant {e} in a transfer-matrix kernel")
                 return f"({e.p}/{e.q})", _ATOM
             return f"_Q({e.p}, {e.q})", _ATOM
         if e.is_Number or e.is_NumberSymbol:
@@ -100,13 +122,13 @@ class ExprPrinter:
         for f in sp.Mul.make_args(e):
             if f.is_Pow and f.exp.is_Rational and f.exp.is_negative:
                 den.append(sp.Pow(f.base, -f.exp))
-            elif f.is_Rational and not f.is_Integer and self.flavour == "numpy":
+            elif f.is_Rational and not f.is_Integer and self.flavour in ("numpy", "c", "ops"):
                 if f.p != 1:
                     num.append(sp.Integer(f.p))
                 den.append(sp.Integer(f.q))
             else:
                 num.append(f)
-        ns = "*".join(self._wrap(f, _MUL) for f in num) if num else "1"
+        ns = "*".join(self._wrap(f, _MUL) for f in num) if num else ("1.0" if self.flavour == "c" else "1")
         if not den:
             return ns, _MUL
         if len(den) == 1:
@@ -122,9 +144,16 @@ class ExprPrinter:
         if not x.is_Rational:
             raise ValueError(f"non-rational exponent in {e}")
         if x.is_negative:
-            return f"1/{self._wrap(sp.Pow(b, -x), _MUL)}", _MUL
+            one = "1.0" if self.flavour == "c" else "1"
+            return f"{one}/{self._wrap(sp.Pow(b, -x), _MUL)}", _MUL
         if x == sp.Rational(1, 2):
             return f"{self.funcs['sqrt']}({self.text(b)})", _ATOM
+        if self.flavour == "c":
+            base = self._wrap(b, _MUL) if x.is_Integer else f"sqrt({self.text(b)})"
+            n = int(x) if x.is_Integer else x.p
+            if x.is_Integer or x.q == 2:
+                return "*".join([base] * n), _MUL
+            raise ValueError(f"exponent {x} not supported")
         if x.is_Integer:
             return f"{self._wrap(b, _POW)}**{int(x)}", _POW
         if x.q == 2:
@@ -139,6 +168,8 @@ class ExprPrinter:
         for val, cnd in reversed(pairs):
             if self.flavour == "numpy":
                 out = f"np.where({self.text(cnd)}, {self.text(val)}, {out})"
+            elif self.flavour == "c":
+                out = f"(({self.text(cnd)}) ? {self.text(val)} : {out})"
             else:
                 out = f"({self.text(val)} if {self.text(cnd)} else {out})"
         return out

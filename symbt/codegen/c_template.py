@@ -1,0 +1,330 @@
+"""C99 templates of ``toda{N}.h`` and of the transfer-matrix form of ``toda{N}.c``.
+
+Markers: ``@@N@@`` (the size), ``@@name@@`` / ``@@name[i]@@`` (a kernel of
+:mod:`symbt.codegen.kernels`, or item ``i`` of a tuple kernel, printed in C) and
+``@@name{A:M1[0],D:M1[3]}@@`` (the same with symbols bound to other C expressions);
+``@@coef:name[i]@@`` is the coefficient-wise form of an update kernel on polynomials in
+lambda (see :mod:`symbt.codegen.emit_c`).  Only ``<math.h>`` is used.
+
+>>> "int toda@@N@@_bt_step(" in HEADER
+True
+"""
+from __future__ import annotations
+
+__all__ = ["HEADER", "COMMON", "LOOP"]
+
+HEADER = '''/* C99 code for the N=@@N@@ periodic Toda lattice, emitted by symbt codegen (@@FORM@@ form).
+ *
+ * Conventions: {p_i, q_j} = delta_ij, xdot = {H, x}; L = l_N ... l_1, tr L = sum_k H_k lambda^k,
+ * H_N = 1; lambda_1 = lam0 + mu, lambda_2 = lam0 - mu; branch b = +1 or -1 means
+ * gamma_i = b sqrt(tr L(lambda_i)^2 - 4) (positive root).  Arrays have length @@N@@ (p, q, c, outputs).
+ * No dependency beyond libm.  Outputs are written only when the return value is SYMBT_TODA_OK.
+ *
+ * Return values:
+ *   SYMBT_TODA_OK                      0  success
+ *   SYMBT_TODA_NO_REAL_MAP_TRACE       1  |tr L(lambda_i)| <= 2: a spectral parameter in a band
+ *   SYMBT_TODA_NO_REAL_MAP_POSITIVITY  2  some Etilde_j = E_j - x_j <= 0 (lambda_1, lambda_2 in
+ *                                         different spectral gaps): no real map
+ *   SYMBT_TODA_RANGE                   3  a value leaves the float64 range (overflow, |q_{j+1} - q_j| > 700,
+ *                                         or a degenerate eigenvector)
+ *   SYMBT_TODA_INVALID_INPUT           4  NULL pointer, non-finite input, or branch not +1/-1
+ */
+#ifndef SYMBT_TODA@@N@@_H
+#define SYMBT_TODA@@N@@_H
+
+#ifndef SYMBT_TODA_STATUS_CODES
+#define SYMBT_TODA_STATUS_CODES
+#define SYMBT_TODA_OK 0
+#define SYMBT_TODA_NO_REAL_MAP_TRACE 1
+#define SYMBT_TODA_NO_REAL_MAP_POSITIVITY 2
+#define SYMBT_TODA_RANGE 3
+#define SYMBT_TODA_INVALID_INPUT 4
+#endif
+
+#define TODA@@N@@_N @@N@@
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* One Backlund step (p, q) -> (pt, qt) (paper eqs. D, xy, lam0mu, xyqqt, imptransf). */
+int toda@@N@@_bt_step(const double *p, const double *q, double lam0, double mu, int branch,
+                      double *pt, double *qt);
+
+/* H[k] = H_k, k = 0 .. N-1: the coefficients of tr L(lambda) (eq. tra). */
+int toda@@N@@_invariants(const double *p, const double *q, double *H);
+
+/* tr L(lam) (eq. tra). */
+int toda@@N@@_spectral_trace(double lam, const double *p, const double *q, double *tr);
+
+/* Vector field of sum_k c_k H_k (eq. eqdisc): qdot = dG/dp, pdot = -dG/dq. */
+int toda@@N@@_flow_field(const double *c, const double *p, const double *q, double *qdot, double *pdot);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
+'''
+
+COMMON = '''#include <math.h>
+#include "toda@@N@@.h"
+
+#define NS @@N@@
+
+static int toda@@N@@_finite(const double *x, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(x[i]))
+            return 0;
+    return 1;
+}
+'''
+
+LOOP = '''
+/* ---- transfer-matrix form: loops over the sites; every formula is a kernel derived in symbt.codegen.kernels ---- */
+
+/* r_j = E_{j+1}/E_j = exp(q_{j+1} - q_j) (cyclic); 0 if a difference is beyond the float64 range */
+static int toda@@N@@_ratios(const double *q, double *rv)
+{
+    for (int j = 0; j < NS; j++) {
+        const double dq = q[(j + 1) % NS] - q[j];
+        if (!(fabs(dq) <= 700.0))
+            return 0;
+        rv[j] = exp(dq);
+    }
+    return 1;
+}
+
+/* M = m_N ... m_1, m_j = [[a_j, -1], [r_j, 0]] (kernels site, update) */
+static void toda@@N@@_monodromy(const double *av, const double *rv, double *M)
+{
+    double A, B, C, D;
+    {
+        const double a = av[0], r = rv[0];
+        A = @@site[0]@@;
+        B = @@site[1]@@;
+        C = @@site[2]@@;
+        D = @@site[3]@@;
+    }
+    for (int j = 1; j < NS; j++) {
+        const double a = av[j], r = rv[j];
+        const double nA = @@update[0]@@, nB = @@update[1]@@, nC = @@update[2]@@, nD = @@update[3]@@;
+        A = nA;
+        B = nB;
+        C = nC;
+        D = nD;
+    }
+    M[0] = A;
+    M[1] = B;
+    M[2] = C;
+    M[3] = D;
+}
+
+/* scaled slopes of the eigenvector (1, -u) with eigenvalue (t - s g)/2: root without cancellation
+   (kernels root_k, root_c), transport in the contracting direction (forward iff s t < 0) */
+static void toda@@N@@_slopes(const double *av, const double *rv, const double *M, double t, double s, double *us)
+{
+    const double A = M[0], B = M[1], C = M[2], D = M[3];
+    const double g = sqrt(@@disc@@);
+    const double sd = (A - D >= 0.0) ? 1.0 : -1.0;
+    us[0] = (sd * s > 0.0) ? @@root_k@@ : @@root_c@@;
+    if (s * t < 0.0) {
+        for (int j = 0; j < NS - 1; j++) {
+            const double a = av[j], r = rv[j], u = us[j];
+            us[j + 1] = @@forward@@;
+        }
+    } else {
+        double un = us[0];
+        for (int j = NS - 1; j > 0; j--) {
+            const double a = av[j], r = rv[j];
+            un = @@backward@@;
+            us[j] = un;
+        }
+    }
+}
+
+int toda@@N@@_bt_step(const double *p, const double *q, double lam0, double mu, int branch,
+                      double *pt, double *qt)
+{
+    double rv[NS], a1[NS], a2[NS], M1[4], M2[4], u[NS], w[NS], pn[NS], qn[NS];
+    if (!p || !q || !pt || !qt || (branch != 1 && branch != -1))
+        return SYMBT_TODA_INVALID_INPUT;
+    if (!toda@@N@@_finite(p, NS) || !toda@@N@@_finite(q, NS) || !isfinite(lam0) || !isfinite(mu))
+        return SYMBT_TODA_INVALID_INPUT;
+    if (!toda@@N@@_ratios(q, rv) || !isfinite(lam0 + mu) || !isfinite(lam0 - mu))
+        return SYMBT_TODA_RANGE;
+    for (int j = 0; j < NS; j++) {
+        a1[j] = lam0 + mu + p[j];
+        a2[j] = lam0 - mu + p[j];
+    }
+    toda@@N@@_monodromy(a1, rv, M1);
+    toda@@N@@_monodromy(a2, rv, M2);
+    const double t1 = @@trace{A:M1[0],D:M1[3]}@@, t2 = @@trace{A:M2[0],D:M2[3]}@@;
+    if (!(isfinite(t1) && isfinite(t2)))
+        return SYMBT_TODA_RANGE;
+    if (!(@@disc{t:t1}@@ > 0.0) || !(@@disc{t:t2}@@ > 0.0))
+        return SYMBT_TODA_NO_REAL_MAP_TRACE;
+    toda@@N@@_slopes(a1, rv, M1, t1, (double)branch, u);
+    toda@@N@@_slopes(a2, rv, M2, t2, -(double)branch, w);
+    for (int j = 0; j < NS; j++) {
+        const int k = (j + 1) % NS;
+        const double uj = u[j], dj = w[j] - u[j], un1 = u[k], dn1 = w[k] - u[k];
+        if (!(@@positivity@@ > 0.0))
+            return isfinite(dj) ? SYMBT_TODA_NO_REAL_MAP_POSITIVITY : SYMBT_TODA_RANGE;
+        pn[j] = p[j] + @@eta_diff@@;
+        qn[j] = q[j] + @@dq@@;
+    }
+    if (!toda@@N@@_finite(pn, NS) || !toda@@N@@_finite(qn, NS))
+        return SYMBT_TODA_RANGE;
+    for (int j = 0; j < NS; j++) {
+        pt[j] = pn[j];
+        qt[j] = qn[j];
+    }
+    return SYMBT_TODA_OK;
+}
+
+int toda@@N@@_spectral_trace(double lam, const double *p, const double *q, double *tr)
+{
+    double rv[NS], av[NS], M[4];
+    if (!p || !q || !tr || !toda@@N@@_finite(p, NS) || !toda@@N@@_finite(q, NS) || !isfinite(lam))
+        return SYMBT_TODA_INVALID_INPUT;
+    if (!toda@@N@@_ratios(q, rv))
+        return SYMBT_TODA_RANGE;
+    for (int j = 0; j < NS; j++)
+        av[j] = lam + p[j];
+    toda@@N@@_monodromy(av, rv, M);
+    const double t = @@trace{A:M[0],D:M[3]}@@;
+    if (!isfinite(t))
+        return SYMBT_TODA_RANGE;
+    *tr = t;
+    return SYMBT_TODA_OK;
+}
+
+/* Polynomials in lambda: coefficient k of X at X[k + 1], X[0] = 0 (so X[k] is coefficient k - 1). */
+#define NP (NS + 2)
+
+/* M <- m_j M (kernel update, coefficient-wise with a = lambda + p_j) */
+static void toda@@N@@_poly_left(double pj, double r, double *A, double *B, double *C, double *D)
+{
+    double nA[NP], nB[NP], nC[NP], nD[NP];
+    nA[0] = nB[0] = nC[0] = nD[0] = 0.0;
+    for (int k = 0; k <= NS; k++) {
+        nA[k + 1] = @@coef:update[0]@@;
+        nB[k + 1] = @@coef:update[1]@@;
+        nC[k + 1] = @@coef:update[2]@@;
+        nD[k + 1] = @@coef:update[3]@@;
+    }
+    for (int k = 0; k < NP; k++) {
+        A[k] = nA[k];
+        B[k] = nB[k];
+        C[k] = nC[k];
+        D[k] = nD[k];
+    }
+}
+
+/* M <- M m_j (kernel update_right, coefficient-wise with a = lambda + p_j) */
+static void toda@@N@@_poly_right(double pj, double r, double *A, double *B, double *C, double *D)
+{
+    double nA[NP], nB[NP], nC[NP], nD[NP];
+    nA[0] = nB[0] = nC[0] = nD[0] = 0.0;
+    for (int k = 0; k <= NS; k++) {
+        nA[k + 1] = @@coef:update_right[0]@@;
+        nB[k + 1] = @@coef:update_right[1]@@;
+        nC[k + 1] = @@coef:update_right[2]@@;
+        nD[k + 1] = @@coef:update_right[3]@@;
+    }
+    for (int k = 0; k < NP; k++) {
+        A[k] = nA[k];
+        B[k] = nB[k];
+        C[k] = nC[k];
+        D[k] = nD[k];
+    }
+}
+
+static void toda@@N@@_identity(double *A, double *B, double *C, double *D)
+{
+    for (int k = 0; k < NP; k++)
+        A[k] = B[k] = C[k] = D[k] = 0.0;
+    A[1] = D[1] = 1.0;
+}
+
+int toda@@N@@_invariants(const double *p, const double *q, double *H)
+{
+    double rv[NS], A[NP], B[NP], C[NP], D[NP], out[NS];
+    if (!p || !q || !H || !toda@@N@@_finite(p, NS) || !toda@@N@@_finite(q, NS))
+        return SYMBT_TODA_INVALID_INPUT;
+    if (!toda@@N@@_ratios(q, rv))
+        return SYMBT_TODA_RANGE;
+    toda@@N@@_identity(A, B, C, D);
+    for (int j = 0; j < NS; j++)
+        toda@@N@@_poly_left(p[j], rv[j], A, B, C, D);
+    for (int k = 0; k < NS; k++)
+        out[k] = @@trace{A:A[k + 1],D:D[k + 1]}@@;
+    if (!toda@@N@@_finite(out, NS))
+        return SYMBT_TODA_RANGE;
+    for (int k = 0; k < NS; k++)
+        H[k] = out[k];
+    return SYMBT_TODA_OK;
+}
+
+/* sum_k c_k [lambda^k] (X(lambda) Y(lambda)) */
+static double toda@@N@@_cdot(const double *c, const double *X, const double *Y)
+{
+    double s = 0.0;
+    for (int i = 0; i < NS; i++)
+        for (int l = 0; i + l < NS; l++)
+            s += c[i + l] * X[i + 1] * Y[l + 1];
+    return s;
+}
+
+int toda@@N@@_flow_field(const double *c, const double *p, const double *q, double *qdot, double *pdot)
+{
+    /* prefix P_j = m_{j-1} ... m_1 and suffix S_j = m_N ... m_{j+1}; d tr/dx_j = tr(dm_j/dx_j P_j S_j)
+       (kernels dtr_dp, dtr_dr), contracted with c; d/dq_j by the chain rule (kernel dtr_dq) */
+    static const int e00 = 0, e01 = 1, e10 = 2, e11 = 3;
+    double rv[NS], pre[NS][4][NP], suf[NS][4][NP], A[NP], B[NP], C[NP], D[NP], cdp[NS], cdr[NS], qo[NS], po[NS];
+    if (!c || !p || !q || !qdot || !pdot)
+        return SYMBT_TODA_INVALID_INPUT;
+    if (!toda@@N@@_finite(c, NS) || !toda@@N@@_finite(p, NS) || !toda@@N@@_finite(q, NS))
+        return SYMBT_TODA_INVALID_INPUT;
+    if (!toda@@N@@_ratios(q, rv))
+        return SYMBT_TODA_RANGE;
+    toda@@N@@_identity(A, B, C, D);
+    for (int j = 0; j < NS; j++) {
+        for (int k = 0; k < NP; k++) {
+            pre[j][e00][k] = A[k];
+            pre[j][e01][k] = B[k];
+            pre[j][e10][k] = C[k];
+            pre[j][e11][k] = D[k];
+        }
+        toda@@N@@_poly_left(p[j], rv[j], A, B, C, D);
+    }
+    toda@@N@@_identity(A, B, C, D);
+    for (int j = NS - 1; j >= 0; j--) {
+        for (int k = 0; k < NP; k++) {
+            suf[j][e00][k] = A[k];
+            suf[j][e01][k] = B[k];
+            suf[j][e10][k] = C[k];
+            suf[j][e11][k] = D[k];
+        }
+        toda@@N@@_poly_right(p[j], rv[j], A, B, C, D);
+    }
+    for (int j = 0; j < NS; j++) {
+        cdp[j] = @@cdot:dtr_dp@@;
+        cdr[j] = @@cdot:dtr_dr@@;
+    }
+    for (int j = 0; j < NS; j++) {
+        const double r_prev = rv[(j + NS - 1) % NS], dr_prev = cdr[(j + NS - 1) % NS], r = rv[j], dr = cdr[j];
+        qo[j] = cdp[j];
+        po[j] = -(@@dtr_dq@@);
+    }
+    if (!toda@@N@@_finite(qo, NS) || !toda@@N@@_finite(po, NS))
+        return SYMBT_TODA_RANGE;
+    for (int j = 0; j < NS; j++) {
+        qdot[j] = qo[j];
+        pdot[j] = po[j];
+    }
+    return SYMBT_TODA_OK;
+}
+'''

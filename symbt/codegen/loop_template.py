@@ -1,0 +1,375 @@
+"""Source template of the transfer-matrix (O(N)) form of the emitted Python modules.
+
+The control flow (loops over the sites, the choice of root and transport direction,
+the guards) is written here once; every formula inside is a kernel derived in
+:mod:`symbt.codegen.kernels` and printed in place of a ``@@name@@`` marker by
+:mod:`symbt.codegen.emit_loop`.  The core functions take an arithmetic namespace
+``_X`` (``_NP``: float64 numpy batch arrays, both sides of a selection evaluated;
+``_MP``: mpmath scalars, lazy selection, guards raise at once) and are shared by
+the numpy and mpmath flavours; ``_ArrayPoly`` (numpy) and ``_ListPoly`` (mpmath) carry the
+polynomials in lambda for the invariants and the fields.
+
+>>> "@@update@@" in CORE
+True
+"""
+from __future__ import annotations
+
+__all__ = ["CORE"]
+
+CORE = '''
+
+class _NumpyOps:
+    """float64 arithmetic on batch arrays; guards are collected and checked by the caller."""
+
+    exp = staticmethod(np.exp)
+    log1p = staticmethod(np.log1p)
+    sqrt = staticmethod(np.sqrt)
+    acosh = staticmethod(np.arccosh)
+    sign = staticmethod(np.sign)
+    one, zero = 1.0, 0.0
+
+    @staticmethod
+    def ratio(dq):
+        # exp(dq) under/overflows for |dq| > ~700: not representable (NaN -> NumericRangeError / mask)
+        return np.where(np.abs(dq) <= 700.0, np.exp(np.clip(dq, -700.0, 700.0)), np.nan)
+
+    @staticmethod
+    def sgn(x):
+        return np.where(x >= 0, 1.0, -1.0)
+
+    @staticmethod
+    def select(cond, f, g):
+        cond = np.asarray(cond)
+        if cond.all():
+            return f()
+        if not cond.any():
+            return g()
+        return np.where(cond, f(), g())
+
+    @staticmethod
+    def every(c):
+        return bool(np.all(c))
+
+    @staticmethod
+    def none(c):
+        return not bool(np.any(c))
+
+    @staticmethod
+    def merge(c, xs, ys):
+        return [np.where(c, x, y) for x, y in zip(xs, ys)]
+
+    @staticmethod
+    def guard(guards, condition, label, value):
+        guards.append((condition, label, value))
+
+
+class _MpOps:
+    """mpmath arithmetic on one state at the current precision; a failed guard raises at once."""
+
+    exp = staticmethod(mpmath.exp)
+    log1p = staticmethod(mpmath.log1p)
+    sqrt = staticmethod(mpmath.sqrt)
+    acosh = staticmethod(mpmath.acosh)
+    sign = staticmethod(mpmath.sign)
+    one, zero = 1, 0
+    ratio = staticmethod(mpmath.exp)
+
+    @staticmethod
+    def sgn(x):
+        return 1 if x >= 0 else -1
+
+    @staticmethod
+    def select(cond, f, g):
+        return f() if cond else g()
+
+    @staticmethod
+    def every(c):
+        return bool(c)
+
+    @staticmethod
+    def none(c):
+        return not c
+
+    @staticmethod
+    def merge(c, xs, ys):
+        return xs if c else ys
+
+    @staticmethod
+    def guard(guards, condition, label, value):
+        _mp_guard(condition, label, value)
+
+
+_NP, _MP = _NumpyOps(), _MpOps()
+
+
+class _ListPoly:
+    """Polynomial in lambda as a list of mpf coefficients (index = power); +, -, * only."""
+
+    __slots__ = ("c",)
+
+    def __init__(self, c):
+        self.c = list(c)
+
+    def coeff(self, k):
+        return self.c[k] if k < len(self.c) else 0
+
+    def __add__(self, o):
+        if not isinstance(o, _ListPoly):
+            o = _ListPoly([o])
+        n = max(len(self.c), len(o.c))
+        return _ListPoly([self.coeff(k) + o.coeff(k) for k in range(n)])
+
+    __radd__ = __add__
+
+    def __neg__(self):
+        return _ListPoly([-x for x in self.c])
+
+    def __sub__(self, o):
+        return self + (-o)
+
+    def __rsub__(self, o):
+        return (-self) + o
+
+    def __mul__(self, o):
+        if not isinstance(o, _ListPoly):
+            return _ListPoly([x * o for x in self.c])
+        out = [0] * (len(self.c) + len(o.c) - 1)
+        for i, x in enumerate(self.c):
+            for k, y in enumerate(o.c):
+                out[i + k] = out[i + k] + x * y
+        return _ListPoly(out)
+
+    __rmul__ = __mul__
+
+
+class _ArrayPoly:
+    """Polynomial in lambda over a float64 batch: array of shape (degree + 1,) + batch."""
+
+    __slots__ = ("c",)
+
+    def __init__(self, c):
+        self.c = c
+
+    @staticmethod
+    def of(coeffs):
+        return _ArrayPoly(np.array(np.broadcast_arrays(*[np.asarray(x, dtype=np.float64) for x in coeffs])))
+
+    def coeff(self, k):
+        return self.c[k] if k < len(self.c) else 0.0
+
+    def __add__(self, o):
+        if not isinstance(o, _ArrayPoly):
+            o = _ArrayPoly.of([o])
+        a, b = (self.c, o.c) if len(self.c) >= len(o.c) else (o.c, self.c)
+        out = a + np.zeros(b.shape[1:])
+        out[:len(b)] += b
+        return _ArrayPoly(out)
+
+    __radd__ = __add__
+
+    def __neg__(self):
+        return _ArrayPoly(-self.c)
+
+    def __sub__(self, o):
+        return self + (-o)
+
+    def __rsub__(self, o):
+        return (-self) + o
+
+    def __mul__(self, o):
+        if not isinstance(o, _ArrayPoly):
+            return _ArrayPoly(self.c * o)
+        a, b = (self.c, o.c) if len(self.c) <= len(o.c) else (o.c, self.c)
+        out = np.zeros((len(a) + len(b) - 1,) + np.broadcast_shapes(a.shape[1:], b.shape[1:]))
+        for i in range(len(a)):
+            out[i:i + len(b)] += a[i] * b
+        return _ArrayPoly(out)
+
+    __rmul__ = __mul__
+
+
+_NumpyOps.poly = staticmethod(_ArrayPoly.of)
+_MpOps.poly = _ListPoly
+
+
+def _cols(a):
+    """Per-site columns of a batch + (N,) array."""
+    return [a[..., j] for j in range(N)]
+
+
+def _ratios(_X, Q):
+    """r_j = E_{j+1}/E_j = exp(q_{j+1} - q_j) (cyclic): the only way q enters the scaled transfer matrices."""
+    return [_X.ratio(Q[(j + 1) % N] - Q[j]) for j in range(N)]
+
+
+def _monodromy(av, R):
+    """M = m_N ... m_1 with m_j = [[a_j, -1], [r_j, 0]] (kernels 'site', 'update')."""
+    a, r = av[0], R[0]
+    A, B, C, D = @@site@@
+    for a, r in zip(av[1:], R[1:]):
+        A, B, C, D = @@update@@
+    return A, B, C, D
+
+
+def _forward(av, R, u1):
+    """Slopes at sites 2 to N by the Moebius action of m_j (kernel 'forward')."""
+    us = [u1]
+    for j in range(N - 1):
+        a, r, u = av[j], R[j], us[j]
+        us.append(@@forward@@)
+    return us
+
+
+def _backward(av, R, u1):
+    """Slopes at sites N down to 2 by the inverse action, from u_{N+1} = u_1 (kernel 'backward')."""
+    us = [u1] + [None] * (N - 1)
+    un = u1
+    for j in range(N - 1, 0, -1):
+        a, r = av[j], R[j]
+        un = us[j] = @@backward@@
+    return us
+
+
+def _slopes(_X, av, R, mono, t, s):
+    """Scaled slopes u_j = E_j * (slope at site j) of the eigenvector (1, -u) of M with eigenvalue
+    (t - s g)/2, g = sqrt(t^2 - 4): root without cancellation at site 1 (kernels 'root_k', 'root_c'),
+    then transport in the contracting direction (forward iff |(t - s g)/2| >= 1 iff s t < 0)."""
+    A, B, C, D = mono
+    g = _X.sqrt(@@disc@@)
+    sd = _X.sgn(A - D)
+    u1 = _X.select(sd * s > 0, lambda: @@root_k@@, lambda: @@root_c@@)
+    fwd = s * t < 0
+    if _X.every(fwd):
+        return _forward(av, R, u1)
+    if _X.none(fwd):
+        return _backward(av, R, u1)
+    return _X.merge(fwd, _forward(av, R, u1), _backward(av, R, u1))
+
+
+def _traces(_X, P, R, lam0, mu, guards):
+    """Monodromies and traces at lambda_1 = lambda_0 + mu, lambda_2 = lambda_0 - mu, with their guards."""
+    a1 = [lam0 + mu + p for p in P]
+    a2 = [lam0 - mu + p for p in P]
+    M1, M2 = _monodromy(a1, R), _monodromy(a2, R)
+    A, B, C, D = M1
+    t1 = @@trace@@
+    A, B, C, D = M2
+    t2 = @@trace@@
+    t = t1
+    _X.guard(guards, "trace", "lam1 = lam0 + mu", @@disc@@)
+    t = t2
+    _X.guard(guards, "trace", "lam2 = lam0 - mu", @@disc@@)
+    return a1, a2, M1, M2, t1, t2
+
+
+def _step_slopes(_X, P, Q, lam0, mu, b, guards):
+    R = _ratios(_X, Q)
+    a1, a2, M1, M2, t1, t2 = _traces(_X, P, R, lam0, mu, guards)
+    u = _slopes(_X, a1, R, M1, t1, b)           # y: eigenvalue (t1 - b g1)/2 at lambda_1
+    w = _slopes(_X, a2, R, M2, t2, -b)          # z: eigenvalue (t2 + b g2)/2 at lambda_2
+    return u, w, [w[j] - u[j] for j in range(N)]
+
+
+def _step(_X, P, Q, lam0, mu, b, guards):
+    """One step (kernels 'positivity', 'eta_diff', 'dq'): q~ = q + log1p(-2 mu/d), p~ = p + eta_j - eta_{j+1}."""
+    u, w, dd = _step_slopes(_X, P, Q, lam0, mu, b, guards)
+    Pn, Qn = [], []
+    for j in range(N):
+        uj, dj, un1, dn1 = u[j], dd[j], u[(j + 1) % N], dd[(j + 1) % N]
+        _X.guard(guards, "positivity", f"Etilde_{j + 1}", @@positivity@@)
+        Pn.append(P[j] + @@eta_diff@@)
+        Qn.append(Q[j] + @@dq@@)
+    return Pn, Qn
+
+
+def _dapp(_X, P, Q, lam0, mu, b, guards):
+    u, w, dd = _step_slopes(_X, P, Q, lam0, mu, b, guards)
+    q, uj, dj = Q[0], u[0], dd[0]
+    return @@dapp_x@@, @@dapp_y@@
+
+
+def _phi_tr(_X, tr1, tr2, branch, guards):
+    t = tr1
+    _X.guard(guards, "trace", "tr1", @@disc@@)
+    t = tr2
+    _X.guard(guards, "trace", "tr2", @@disc@@)
+    return @@phi@@
+
+
+def _phi(_X, P, Q, lam0, mu, branch, guards):
+    R = _ratios(_X, Q)
+    tr1, tr2 = _traces(_X, P, R, lam0, mu, guards)[4:]
+    return @@phi@@
+
+
+def _trace_derivatives(av, R, one, zero):
+    """d tr/dp_j and d tr/dq_j for every j from the prefix products P_j = m_{j-1} ... m_1 and the
+    suffix products S_j = m_N ... m_{j+1} (kernels 'update', 'update_right', 'dtr_dp', 'dtr_dr',
+    'dtr_dq'); numbers or polynomial entries alike."""
+    pre, suf = [None] * N, [None] * N
+    A, B, C, D = one, zero, zero, one
+    for j in range(N):
+        pre[j] = (A, B, C, D)
+        a, r = av[j], R[j]
+        A, B, C, D = @@update@@
+    A, B, C, D = one, zero, zero, one
+    for j in range(N - 1, -1, -1):
+        suf[j] = (A, B, C, D)
+        a, r = av[j], R[j]
+        A, B, C, D = @@update_right@@
+    dp, drs = [], []
+    for j in range(N):
+        P00, P01, P10, P11 = pre[j]
+        S00, S01, S10, S11 = suf[j]
+        dp.append(@@dtr_dp@@)
+        drs.append(@@dtr_dr@@)
+    dq = []
+    for j in range(N):
+        r_prev, dr_prev, r, dr = R[j - 1], drs[j - 1], R[j], drs[j]
+        dq.append(@@dtr_dq@@)
+    return dp, dq
+
+
+def _phi_grad(_X, P, Q, lam0, mu, branch, guards):
+    R = _ratios(_X, Q)
+    a1, a2, M1, M2, tr1, tr2 = _traces(_X, P, R, lam0, mu, guards)
+    dp1, dq1 = _trace_derivatives(a1, R, _X.one, _X.zero)
+    dp2, dq2 = _trace_derivatives(a2, R, _X.one, _X.zero)
+    gp, gq = [], []
+    for x1, x2 in zip(dp1, dp2):
+        gp.append(@@grad@@)
+    for x1, x2 in zip(dq1, dq2):
+        gq.append(@@grad@@)
+    return gp, gq
+
+
+def _poly_sites(_X, P):
+    """a_j = lambda + p_j as polynomials."""
+    return [_X.poly([p, _X.one]) for p in P]
+
+
+def _fields(_X, P, Q):
+    """Coefficient polynomials of d tr/dp_j, d tr/dq_j: [lambda^k] = dH_k/dp_j, dH_k/dq_j."""
+    R = _ratios(_X, Q)
+    return _trace_derivatives(_poly_sites(_X, P), R, _X.poly([_X.one]), _X.poly([_X.zero]))
+
+
+def _invariants(_X, P, Q):
+    R = _ratios(_X, Q)
+    A, B, C, D = _monodromy(_poly_sites(_X, P), R)
+    tr = @@trace@@
+    return [tr.coeff(k) for k in range(N)]
+
+
+def _spectral_trace(_X, lam, P, Q):
+    R = _ratios(_X, Q)
+    A, B, C, D = _monodromy([lam + p for p in P], R)
+    return @@trace@@
+
+
+def _ck_integrand(_X, lam, P, Q, guards):
+    t = _spectral_trace(_X, lam, P, Q)
+    _X.guard(guards, "trace", "lam", @@disc@@)
+    w = @@inv_sqrt_disc@@
+    return [lam ** k * w for k in range(N)]
+'''
