@@ -176,3 +176,22 @@ def test_no_numba_environment_falls_back_cleanly():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
                          env={**__import__("os").environ, "SYMBT_NO_NUMBA": "1"})
     assert out.stdout.split() == ["False", "False", "True"], out.stdout
+
+
+@pytest.mark.parametrize("backend", ["auto", "python"])
+def test_kernel_leaves_when_tr_squared_overflows(backend):
+    """|tr L| ~ 1e154: (tr - 2)(tr + 2) overflows, so the kernel must hand over to the rescaling general path
+    (found by the fuzz suite: the kernel returned p~ = 2e-230 instead of 9.9e75)."""
+    import mpmath as mp
+
+    from symbt.reference.literal import reference_step
+
+    p, q, l0, m = [0.0, 0.0], [0.0, -352.0], 1.0911609275242446e+77, 5.455804637621223e+76
+    with mp.workdps(60):
+        rp, rq = reference_step([mp.mpf(v) for v in p], [mp.mpf(v) for v in q], mp.mpf(l0), mp.mpf(m), branch=-1)
+    ref = np.array([float(v) for v in rp + rq])
+    P, Q = bt_orbit(np.array(p), np.array(q), l0, m, 1, branch=-1, backend=backend)
+    got = np.r_[P[1], Q[1]]
+    assert np.allclose(got, ref, rtol=1e-12, atol=0)
+    PB, QB = bt_orbit(np.tile(p, (3, 1)), np.tile(q, (3, 1)), l0, m, 1, branch=-1)   # the block kernel too
+    assert np.allclose(np.c_[PB[1], QB[1]], ref, rtol=1e-12, atol=0)

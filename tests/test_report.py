@@ -100,7 +100,7 @@ def test_short_report_one_line_per_scene_and_per_non_verified_claim():
     assert failed and "residual inf" in failed[0] and "[sampled]" in failed[0]
     assert any("counterexample: x = 1.5" in ln for ln in lines)
     erratum = next(ln for ln in lines if ln.startswith("erratum"))
-    assert "[sampled]" in erratum and "printed fails in 3 of 8 cells" in erratum     # evidence and scope
+    assert "[sampled]" in erratum and "printed holds in 0 of 1 cells" in erratum     # evidence and cell summary
     assert next(ln for ln in lines if ln.startswith("skipped")).endswith("optional dependency missing: flint")
     assert lines[-2] == "5 claims: 2 verified, 1 erratum, 1 failed, 1 skipped -- FAILED"
     assert lines[-1].startswith("wall time 1.50s (0 of 5 from the cache")

@@ -177,6 +177,8 @@ class Claim:
             except Exception as exc:  # a crash is a failure, reported with its cause
                 out = failed("exception", detail=f"{type(exc).__name__}: {exc}\n{traceback.format_exc(limit=4)}")
         out.seconds = round(time.perf_counter() - t0, 4)
+        if out.n_scope is None and self.N is not None and out.status != "skipped":
+            out.n_scope = [self.N]   # a claim about one lattice size covers that size (unless it says more)
         return out
 
 

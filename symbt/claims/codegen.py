@@ -48,7 +48,7 @@ def _compare(N, name) -> Outcome:
 
     r = verify.compare(_module(N), N, name)
     worst_m = r["worst_mp"]
-    return Outcome("verified" if r["ok"] else "failed", "numeric: emitted vs SymPy source",
+    return Outcome("verified" if r["ok"] else "failed", "numeric: emitted vs SymPy source", evidence="sampled",
                    residual=max(r["worst_f64"] * verify.EPS, float(worst_m)),
                    digits=float(-mp.log10(worst_m)) if worst_m > 0 else float(verify.REF_DPS),
                    detail=r["detail"], counterexample=r["bad"])
@@ -181,6 +181,7 @@ def step_literal(N: int) -> Outcome:
               f"float64 emitted vs symbt.numeric.bt_step: max diff {worst_num:.1f} eps*max(1,|x|) "
               f"(tolerance {STEP_VS_NUMERIC_ULPS}: two independent float64 routes, each within a few eps*S)")
     return Outcome("verified" if ok else "failed", "numeric: emitted step vs literal and numeric routes",
+                   evidence="sampled",
                    residual=float(worst_mp), detail=detail)
 
 
@@ -194,6 +195,7 @@ def step_accuracy(N: int) -> Outcome:
 
     err = verify.step_accuracy(_module(N), N)
     return Outcome("verified" if err <= STEP_NORMWISE_TOL else "failed", "numeric: float64 step vs 50 digits",
+                   evidence="sampled",
                    residual=err, detail=f"max normwise relative error {err:.2e} (tolerance {STEP_NORMWISE_TOL:g}) "
                                         f"over {len(verify.map_states(N))} states x 2 branches")
 
@@ -237,6 +239,6 @@ def orbit(N: int) -> Outcome:
 def files(N: int) -> Outcome:
     problems = check(ns=(N,))
     if problems:
-        return failed("provenance hashes", detail="; ".join(problems))
-    return Outcome("verified", "provenance hashes",
+        return Outcome("failed", "provenance hashes", evidence="proof", detail="; ".join(problems))
+    return Outcome("verified", "provenance hashes", evidence="proof",
                    detail=f"derivation-sha256 {derivation_hash()[:16]}... and content hash match")

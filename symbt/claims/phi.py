@@ -38,6 +38,10 @@ GAMMA1 = branch * sp.sqrt(tr1 ** 2 - 4)
 GAMMA2 = branch * sp.sqrt(tr2 ** 2 - 4)
 
 
+LOCAL = ("Holds for every N: a per-site identity of the local relation (eq. nlocal), and the composed map is "
+         "the product of the local factors around the ring.")
+
+
 def _site():
     x_j, x_n = E - Et, En - Etn
     w_n = x_n * (1 / Et - 1 / E)
@@ -58,12 +62,14 @@ def _parts_2122() -> Parts:
 def eq_2122(parts: Parts):
     x_j, _, p_pr, _ = _site()
     lhs = (p_pr + lam) * x_j
-    return judge(decide(lhs, parts.printed["rhs"]),
-                 printed="(p_j + lambda) x_j = e^{q_j}(lambda - l0 - eta_j) + e^{q~_j}(lambda - l0 + eta_{j+1})",
-                 corrected="(p_j + lambda) x_j = e^{q_j}(lambda - l0 - eta_j) - e^{q~_j}(lambda - l0 + eta_{j+1})",
-                 corrected_check=lambda: decide(lhs, parts.corrected["rhs"]),
-                 detail="p_j of eq. imptransf substituted; the printed sign of the e^{q~_j} term leaves "
-                        "-2 lambda e^{q~_j} + ... (not even the lambda-dependence matches)")
+    out = judge(decide(lhs, parts.printed["rhs"]),
+                printed="(p_j + lambda) x_j = e^{q_j}(lambda - l0 - eta_j) + e^{q~_j}(lambda - l0 + eta_{j+1})",
+                corrected="(p_j + lambda) x_j = e^{q_j}(lambda - l0 - eta_j) - e^{q~_j}(lambda - l0 + eta_{j+1})",
+                corrected_check=lambda: decide(lhs, parts.corrected["rhs"]),
+                detail="p_j of eq. imptransf substituted; the printed sign of the e^{q~_j} term leaves "
+                       "-2 lambda e^{q~_j} + ... (not even the lambda-dependence matches). " + LOCAL)
+    out.n_scope = "all"
+    return out
 
 
 # --------------------------------------------------------------------------- eq. rte
@@ -88,14 +94,16 @@ def rte(parts: Parts):
         rhs2 = nu["nu2"] * sp.Matrix([-x_n, mu + eta_n])
         return decide(sp.Matrix([lhs1, lhs2]), sp.Matrix([rhs1, rhs2]), relations=rel)
 
-    return judge(check(parts.printed),
-                 printed="nu^1_{j+1} = e^{q~_j}(mu + eta_{j+1})/x_{j+1}, nu^2_{j+1} = e^{q~_j}(eta_{j+1} - mu)/x_{j+1}",
-                 corrected="nu^1_{j+1} = -e^{q~_j}(mu + eta_{j+1})/x_{j+1}, nu^2_{j+1} = -e^{q~_j}(eta_{j+1} - mu)"
-                           "/x_{j+1} (both signs flip, so nu^1/nu^2 = (mu+eta)/(eta-mu) and eq. spec are unaffected)",
-                 corrected_check=lambda: check(parts.corrected),
-                 detail="the kernel vectors (x_j, mu-eta_j), (-x_j, mu+eta_j) are transported as printed; "
-                        "both components at l1 and l2, modulo eta_{j+1}^2 = mu^2 + w_{j+1} (either sign of eta); "
-                        "the sign slip follows from the one in eq. 2122")
+    out = judge(check(parts.printed),
+                printed="nu^1_{j+1} = e^{q~_j}(mu + eta_{j+1})/x_{j+1}, nu^2_{j+1} = e^{q~_j}(eta_{j+1} - mu)/x_{j+1}",
+                corrected="nu^1_{j+1} = -e^{q~_j}(mu + eta_{j+1})/x_{j+1}, nu^2_{j+1} = -e^{q~_j}(eta_{j+1} - mu)"
+                          "/x_{j+1} (both signs flip, so nu^1/nu^2 = (mu+eta)/(eta-mu) and eq. spec are unaffected)",
+                corrected_check=lambda: check(parts.corrected),
+                detail="the kernel vectors (x_j, mu-eta_j), (-x_j, mu+eta_j) are transported as printed; "
+                       "both components at l1 and l2, modulo eta_{j+1}^2 = mu^2 + w_{j+1} (either sign of eta); "
+                       "the sign slip follows from the one in eq. 2122. " + LOCAL)
+    out.n_scope = "all"
+    return out
 
 
 # --------------------------------------------------------------------------- sampled on the map

@@ -138,6 +138,8 @@ def _slopes1(p: F64, r: F64, lam: float, s: int, u: F64, code: int) -> int:
     disc = (t - 2.0) * (t + 2.0)
     if not disc > 0.0:
         return code
+    if not disc < 1e300:
+        return RANGE        # tr**2 overflows (|tr| > ~1e150): the general path rescales
     g = math.sqrt(disc)
     dl = A - D
     plus = dl >= 0.0

@@ -63,9 +63,9 @@ def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64,
         c_ = C[k]
         d_ = D[k]
         t = a_ + d_
-        inrange = (abs(a_) < 1e290 and abs(b_) < 1e290 and abs(c_) < 1e290 and abs(d_) < 1e290
-                   and (abs(a_) > 1e-290 or abs(b_) > 1e-290))
         disc = (t - 2.0) * (t + 2.0)
+        inrange = (abs(a_) < 1e290 and abs(b_) < 1e290 and abs(c_) < 1e290 and abs(d_) < 1e290
+                   and (abs(a_) > 1e-290 or abs(b_) > 1e-290) and disc < 1e300)   # tr**2 must not overflow
         bad = RANGE if not inrange else (code if not disc > 0.0 else OK)
         st = status[k]
         status[k] = st if st != OK else bad
