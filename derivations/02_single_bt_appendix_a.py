@@ -26,14 +26,19 @@ try:
     import symbt
 except ImportError:  # running from a checkout without installing
     sys.path.insert(0, str(Path(globals().get("__file__", "derivations/x")).resolve().parents[1]))
-    import symbt
 
 import sympy as sp
 
 from symbt.engine import Walkthrough
 from symbt.proof.identity import check_identity
-from symbt.symbolic.darboux import (composed_darboux, darboux_composition, lam1, lam2,
-                                    local_relation_residual, single_darboux, single_darboux_adjugate, zeta)
+from symbt.symbolic.darboux import (
+    composed_darboux,
+    darboux_composition,
+    local_relation_residual,
+    single_darboux,
+    single_darboux_adjugate,
+    zeta,
+)
 from symbt.symbolic.toda import lam
 
 wt = Walkthrough()            # loads every claim module

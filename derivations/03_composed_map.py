@@ -26,15 +26,14 @@ try:
     import symbt
 except ImportError:  # running from a checkout without installing
     sys.path.insert(0, str(Path(globals().get("__file__", "derivations/x")).resolve().parents[1]))
-    import symbt
 
 import mpmath as mp
 import sympy as sp
 
-from symbt.reference.samples import admissible_states
 from symbt.engine import Walkthrough
 from symbt.proof.identity import check_identity
 from symbt.reference.literal import lax_matrix, literal_step
+from symbt.reference.samples import admissible_states
 from symbt.symbolic.darboux import composed_darboux, lam1, lam2
 from symbt.symbolic.toda import lam
 

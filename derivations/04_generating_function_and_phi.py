@@ -26,16 +26,15 @@ try:
     import symbt
 except ImportError:  # running from a checkout without installing
     sys.path.insert(0, str(Path(globals().get("__file__", "derivations/x")).resolve().parents[1]))
-    import symbt
 
 import mpmath as mp
 import sympy as sp
 
 from symbt.claims.composed_map import eta_from_states
-from symbt.reference.samples import paper_state
 from symbt.engine import Walkthrough
 from symbt.proof.identity import check_identity
 from symbt.reference.literal import literal_step
+from symbt.reference.samples import paper_state
 from symbt.symbolic.darboux import composed_darboux, lam0, local_relation_residual, mu
 from symbt.symbolic.generating import generating_function
 from symbt.symbolic.toda import lam, local_lax

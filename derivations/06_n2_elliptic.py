@@ -26,7 +26,6 @@ try:
     import symbt
 except ImportError:  # running from a checkout without installing
     sys.path.insert(0, str(Path(globals().get("__file__", "derivations/x")).resolve().parents[1]))
-    import symbt
 
 import mpmath as mp
 import sympy as sp

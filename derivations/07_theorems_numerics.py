@@ -25,13 +25,12 @@ try:
     import symbt
 except ImportError:  # running from a checkout without installing
     sys.path.insert(0, str(Path(globals().get("__file__", "derivations/x")).resolve().parents[1]))
-    import symbt
 
 import mpmath as mp
 
-from symbt.reference.samples import paper_state
 from symbt.engine import Walkthrough
 from symbt.reference.literal import spectral_trace_mp
+from symbt.reference.samples import paper_state
 
 wt = Walkthrough()            # loads every claim module
 show, display = wt.show, wt.display

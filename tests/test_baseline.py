@@ -35,8 +35,8 @@ BAND_CHANGES = {
     "linearcomb.n3": _FLOW + "; the c_k come from the statement's parts by Gauss-Legendre in float64",
     "inverse.n2": "the targets are inverted by a float64 Newton on the forward map given as the claim's parts",
     "inverse.n3": "the targets are inverted by a float64 Newton on the forward map given as the claim's parts",
-    "inverse.attainable.n3": "the residual is now that of Lagrange's identity c0 c2 - c1^2 = (1/2) int int w w (x-y)^2, "
-                             "not the margin of an attained target",
+    "inverse.attainable.n3": ("the residual is now that of Lagrange's identity "
+                              "c0 c2 - c1^2 = (1/2) int int w w (x-y)^2, not the margin of an attained target"),
     "th1th2.actions": "20 cells x 16 states: the per-state data are computed once at 30 digits (tolerance 1e-20)",
 }
 

@@ -93,7 +93,7 @@ def judge_cells(table: CellTable, *, method: str, printed: str, corrected: str |
     cells = table.cells()
     n = sum(c["n"] for c in cells)
     pv = Verdict.sampled(rp, tol=table.tol, method=method, counterexample=where_p, dps=dps, cells=cells)
-    base = dict(printed=printed, scope=table.scope(), cells=cells, evidence="sampled",
+    base: dict[str, Any] = dict(printed=printed, scope=table.scope(), cells=cells, evidence="sampled",
                 detail=(detail + f" [{n} samples in {len(cells)} cells]").strip())
     if table.printed_holds_everywhere():
         return Outcome("verified", method, residual=pv.residual, digits=pv.digits, **base)

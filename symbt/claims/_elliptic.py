@@ -228,7 +228,9 @@ def _principal_F(e: Any) -> Any:
 def mp_fn(args: list, expr: Any):
     """``expr`` (SymPy, or a nested list) as an mpmath function of ``args`` (principal branches; A = Abel image)."""
     plain, e = _plain(args, expr)
-    rec = (lambda x: [rec(y) for y in x] if isinstance(x, list) else _principal_F(x))  # noqa: E731
+    def rec(x: Any) -> Any:
+        return [rec(y) for y in x] if isinstance(x, list) else _principal_F(x)
+
     return sp.lambdify(plain, rec(e), [MP_NAMESPACE, "mpmath"])
 
 

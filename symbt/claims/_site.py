@@ -64,7 +64,7 @@ def same_equation(a: Any, b: Any, unknowns: tuple = ()) -> Verdict:
     free = r.is_number if not unknowns else not (r.free_symbols & set(unknowns))
     if free and r != 0 and not r.has(sp.zoo, sp.nan, sp.oo):
         what = "a nonzero constant" if not unknowns else "nonzero and free of " + ", ".join(map(str, unknowns))
-        return Verdict.proved(f"exact: cancel(a/b) = {sp.sstr(r)}, {what}")
+        return Verdict.from_proof(f"exact: cancel(a/b) = {sp.sstr(r)}, {what}")
     return Verdict(False, "proof", "exact: cancel(a/b) is not an admissible factor", residual=1.0, definite=True,
                    counterexample={"ratio": sp.sstr(r)[:200]})
 

@@ -122,8 +122,9 @@ def _signature(s) -> dict:
     real_g = all(isinstance(g, mp.mpf) for g in gam)
     real_p = all(finite(mp.im(v)) < TOL for v in im.pt)
     signs = tuple(int(mp.sign(mp.re(e))) if finite(mp.im(e)) < TOL else 0 for e in im.Et)
-    du = E.abel(*E.spectral_point(st.lam0 + st.mu, st.I1, st.I2, s.b)[:2], st.m) - \
-        E.abel(*E.spectral_point(st.lam0 - st.mu, st.I1, st.I2, s.b)[:2], st.m)
+    sp_plus = E.spectral_point(st.lam0 + st.mu, st.I1, st.I2, s.b)
+    sp_minus = E.spectral_point(st.lam0 - st.mu, st.I1, st.I2, s.b)
+    du = E.abel(sp_plus[0], sp_plus[1], st.m) - E.abel(sp_minus[0], sp_minus[1], st.m)
     im_mod = abs(mp.im(du) - 2 * Kp * mp.nint(mp.im(du) / (2 * Kp)))
     return {"real_gamma": real_g, "real_p": real_p, "E_signs": signs, "E_product": signs[0] * signs[1],
             "P_beyond_1": bool(real_p and abs(mp.re(im.Pt)) > 1), "shift_real": bool(im_mod < TOL),

@@ -9,6 +9,8 @@ asserts the same and cannot be refuted by any computation.
 """
 from __future__ import annotations
 
+from typing import Any
+
 import mpmath as mp
 
 from ..paper import CAPTIONS, EXAMPLE
@@ -61,7 +63,7 @@ def _check(label: str, parts: Parts) -> Outcome:
              "asserts |printed - c_k| <= 10^-d/2"
     worst, lines, wrong = _compare(parts.printed, dec)
     printed = "; ".join(f"{n}: (c_0, c_1, c_2) = {v}" for n, v in parts.printed.items())
-    base = dict(residual=worst, printed=printed, evidence="sampled", n_scope=[3])
+    base: dict[str, Any] = dict(residual=worst, printed=printed, evidence="sampled", n_scope=[3])
     index = " Index check: c_1/c_0 and c_2/c_1 are about lam0 = 10, so the printed c_k multiply H_k = [lam^k] tr L" \
             " (eq. eqdisc's lam^k), branch gamma = +sqrt (all negative)."
     if not wrong:

@@ -29,7 +29,7 @@ import numpy as np
 
 from ..codegen import TARGETS, check, derivation_hash
 from ..reference.literal import literal_step
-from .base import Outcome, claim, failed, scene
+from .base import Outcome, claim, scene
 
 scene("codegen", "emitted numeric code (symbt codegen): generated numpy/mpmath modules vs their SymPy "
                  "sources, the literal map, the 50-digit step and symbt.numeric (N=2,3)")

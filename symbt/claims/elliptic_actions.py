@@ -173,7 +173,7 @@ def _bracket_residual(d: dict, ctx: dict):
     base = [d["I1"], d["I2"], d["theta1"], ctx["P"].subs(I2, d["I2"]), ctx["C"].subs(I2, d["I2"])]
     grads = _grads(base)
     G = mp_fn([Ps, Cs, I2], [sp.diff(d["theta2"], Ps), sp.diff(d["theta2"], Cs)])
-    GI = []
+    GI: list = []
     Pf, Cf, mp_I2 = mp_fn(PQ, base[3]), mp_fn(PQ, base[4]), mp_fn(PQ, d["I2"])
 
     def residual(*x):

@@ -70,6 +70,8 @@ def _round_trips(N: int, parts: Parts, count: int) -> tuple[CellTable, int, list
                 r = max(abs(l0_ - s["l0"]) / max(1.0, abs(s["l0"])), abs(m_ - m_exp) / max(1.0, abs(m_exp)))
                 if claimed == "reproduce":
                     got = moments(s["H"], l0_, m_, idx)
+                    if got is None:
+                        raise ArithmeticError("the solution left the domain of the moments")
                     if r > TOL_INV:
                         other_roots.append(fmt_state(s["state"], s["b"], indices=str(idx), lam0_found=l0_, m_found=m_))
                     r = max(abs(g - t[k]) / abs(t[k]) for g, k in zip(got, idx))
@@ -159,9 +161,11 @@ def inverse_attainable(N: int, parts: Parts, deep: bool = False) -> Outcome:
         p, q, l0, m = paper_state("5")
     H = hamiltonians_float(p, q)
     c = moments(H, float(l0), float(m), range(3))
+    assert c is not None                 # the paper's example lies in the domain of the moments
     target = [c[0], c[1] * parts.context["off_surface"], c[2]]
     l0_, m_, _ = solve_signed(H, target, mode="lstsq", indices=(0, 1, 2))
     achieved = moments(H, l0_, m_, range(3))
+    assert achieved is not None
     miss = max(abs(a - t) / abs(t) for a, t in zip(achieved, target))
     out = judge_cells(table, method="numeric: float64 Gauss-Legendre (moments and the double integral of "
                                     "Lagrange's identity); Gauss-Newton for the off-surface target",

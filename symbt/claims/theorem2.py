@@ -329,7 +329,7 @@ def _hdis_residual(side: dict, s: dict, real: bool = False) -> float:
     if real:
         h_side = _lamb((tr, lam, branch), side["integrand"])
         H = gl_integral(lambda x: h_side(_tr(s, x), x, s["b"]), lo, up)
-        r = max(r, float(abs(np.imag(H)) / max(1.0, abs(H))))
+        r = max(r, float(abs(np.imag(H))) / max(1.0, float(abs(H))))
     if N == 2:
         (p1, p2), (q1, q2) = s["p"], s["q"]
         i1, i2 = (p1 + p2) / 2, 2 * np.cosh(q1 - q2) + ((p1 - p2) / 2) ** 2

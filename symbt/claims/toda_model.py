@@ -228,7 +228,7 @@ def _parts_n3_tra() -> Parts:
                  corrected=dict(_n3_hamiltonians(False), power=3 - k))
 
 
-def _is_coefficient(m, hs: dict) -> object:
+def _is_coefficient(m, hs: dict) -> Verdict:
     """Each H_kk equals the coefficient of lambda^power(kk) in tr L (the first failure, else the last)."""
     out = None
     for kk in (1, 2, 3):
@@ -239,6 +239,7 @@ def _is_coefficient(m, hs: dict) -> object:
         out = decide(m.to_E(hs[f"H{kk}"]), m.hamiltonians[int(e)])
         if not out.holds:
             return out
+    assert out is not None
     return out
 
 

@@ -19,6 +19,8 @@ Examples
 
 from __future__ import annotations
 
+from typing import Any
+
 import mpmath
 import numpy as np
 
@@ -31,7 +33,7 @@ from .step import eigen_slopes
 __all__ = ["phi"]
 
 
-def phi(p, q, lam0, mu, *, branch=1):
+def phi(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1) -> Any:
     """The real Φ of the map (see module docstring); O(N) per state.
 
     Only the trace condition ``|tr L(lam_i)| > 2`` is checked (Φ is a spectral

@@ -78,14 +78,14 @@ def decide(lhs, rhs=0, *, relations: Mapping[sp.Symbol, sp.Expr] | None = None,
         parts = [decide(a, b, relations=relations, digits=digits, points=points, seed=seed,
                         exact=exact, fixed=fixed) for a, b in zip(lm, rm)]
         if not parts:
-            return Verdict.proved("exact: empty matrices")
+            return Verdict.from_proof("exact: empty matrices")
         bad = [d for d in parts if not d.holds]
         if bad:
             return max(bad, key=lambda d: d.residual or 0.0)
         res = max((d.residual or 0.0) for d in parts)
         all_exact = all(d.exact for d in parts)
         if all_exact:
-            return Verdict.proved(parts[0].method)
+            return Verdict.from_proof(parts[0].method)
         numeric = [d for d in parts if not d.exact]
         return Verdict(True, "sampled", numeric[0].method, residual=res,
                        digits=min((d.digits if d.digits is not None else digits) for d in numeric),
@@ -98,7 +98,7 @@ def decide(lhs, rhs=0, *, relations: Mapping[sp.Symbol, sp.Expr] | None = None,
     if exact:
         zero, method_exact, definite = exact_zero(diff, relations)
         if zero:
-            return Verdict.proved(method_exact)
+            return Verdict.from_proof(method_exact)
         definite = definite and not fixed
     ok, res, dig, point, pts = screen(lhs, rhs, relations, digits, points, seed, fixed)
     nmethod = f"numeric: mpmath {digits} digits at {len(pts)} random points"

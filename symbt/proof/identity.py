@@ -202,7 +202,7 @@ def apply_assumptions(assumptions: Mapping[Any, Mapping[str, bool]] | None, *exp
         repl[old] = new
         if lookup.get(name) is not None and lookup[name] != old:
             repl[lookup[name]] = new
-    out = []
+    out: list = []
     for e in exprs:
         if e is None:
             out.append(e)

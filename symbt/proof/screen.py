@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import random
-from functools import lru_cache
+from functools import cache
 
 import mpmath
 import sympy as sp
@@ -79,7 +79,7 @@ def _finite(v) -> bool:
 MAX_RELATION_DEGREE = 4
 
 
-@lru_cache(maxsize=None)
+@cache
 def _generic_roots(degree: int) -> tuple[tuple, list]:
     a = sp.symbols(f"_c0:{degree + 1}")
     x = sp.Dummy("x")

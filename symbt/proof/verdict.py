@@ -25,7 +25,7 @@ reporters only read.
 >>> v = Verdict.sampled(1e-55, tol=1e-40, method="numeric: 60 digits at 8 states")
 >>> v.holds, v.evidence, v.verdict, round(v.digits)
 (True, 'sampled', 'verified', 55)
->>> Verdict.proved("exact: together/cancel").verdict
+>>> Verdict.from_proof("exact: together/cancel").verdict
 'proved'
 """
 from __future__ import annotations
@@ -87,7 +87,7 @@ class Verdict:
 
     # -- constructors ---------------------------------------------------------
     @classmethod
-    def proved(cls, method: str, *, note: str = "") -> Verdict:
+    def from_proof(cls, method: str, *, note: str = "") -> Verdict:
         """An exact proof (residual 0)."""
         return cls(True, "proof", method, residual=0.0, note=note)
 

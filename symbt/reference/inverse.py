@@ -127,7 +127,7 @@ def solve_parameters(p, q, c_target, *, mode="exact", indices=None, guess=None, 
                          "of 1/sqrt(tr^2-4) > 0)")
     l0g, mg = guess
     sol = None
-    for attempt in range(16):  # shrink mu until [lam0 - mu, lam0 + mu] avoids |tr| <= 2, then Newton
+    for _attempt in range(16):  # shrink mu until [lam0 - mu, lam0 + mu] avoids |tr| <= 2, then Newton
         if F((l0g, mg)) is not None:
             sol = (_gauss_newton if mode == "lstsq" else _newton)(F, J, (l0g, mg), tol)
             if sol is not None:

@@ -37,7 +37,7 @@ def _real_map(p, q, lam0, mu, branch):
 def admissible_states(N: int, trace_sign: int, count: int, seed: int = 0):
     """``count`` tuples ``(p, q, lam0, mu)`` (lists of mpf) with sign(tr L(lambda_i)) = ``trace_sign``."""
     rng = random.Random(1000 * N + 10 * seed + (trace_sign > 0))
-    out = []
+    out: list = []
     tries = 0
     with mp.workdps(max(mp.mp.dps, 30)):
         while len(out) < count:
