@@ -3,7 +3,8 @@
 BT (float64): the documented call :func:`symbt.numeric.bt_orbit` (numpy); the fused kernel
 :func:`symbt.numeric.fast.fast_orbit` (numba if installed, plain Python otherwise -- both timed
 when numba is present; a kernel run that falls back to ``bt_orbit`` is labelled so); the emitted
-closed-form step ``symbt.generated.toda{N}.bt_step`` iterated (N = 2, 3).
+closed-form step ``symbt.generated.toda{N}.bt_step`` iterated, and the emitted orbit helper
+``toda{N}.bt_orbit`` (centre of mass carried) (N = 2, 3).
 ODE (need scipy): ``solve_ivp`` DOP853 (and RK45, LSODA where the case asks), ``rtol = atol``;
 3-stage Gauss--Legendre (order 6).  Vector field: the emitted ``toda{N}.flow_field`` with the
 30-digit ``c_k`` (N = 2, 3: exact polynomials, the cheapest call) or
@@ -101,6 +102,11 @@ def run_bt(case: Case, rows: np.ndarray, every: int, record: Callable[..., None]
     ok = np.all(np.isfinite(P)) and np.all(np.isfinite(Q))
     record("BT generated toda%d.bt_step" % case.N, "bt", P if ok else None, Q, t, reps, nfev=case.n,
            msg="non-finite")
+    if hasattr(gen, "bt_orbit"):
+        # the emitted orbit helper carries the centre of mass like symbt.numeric.bt_orbit
+        (P, Q), t, reps = timed(lambda: gen.bt_orbit(p0, q0, case.lam0, case.mu, case.n, case.branch),
+                                lambda: gen.bt_orbit(p0, q0, case.lam0, case.mu, warm_n, case.branch), quick)
+        record("BT generated toda%d.bt_orbit" % case.N, "bt", P[rows], Q[rows], t, reps, nfev=case.n)
 
 
 def run_ode(case: Case, f: Callable, t_eval: np.ndarray, every: int, record: Callable[..., None],

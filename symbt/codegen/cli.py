@@ -6,7 +6,8 @@
                   [--project DIR | --installed] [-q]
 
 * the source tree: the checkout found from the working directory (or ``--project DIR``);
-  the package Python imported only with ``--installed``.  When the checkout is not the
+  the package Python imported with ``--installed``, or when ``--out DIR`` is given outside
+  any checkout (code for a project of your own).  When the checkout is not the
   imported package, the command re-runs itself with the checkout on ``PYTHONPATH`` so that
   its own derivation sources are used (see :mod:`symbt.codegen.project`);
 * ``--n``: lattice sizes (default 2 3); ``--target c`` writes ``toda{N}.c``/``.h`` (needs
@@ -88,7 +89,10 @@ def main(argv: list[str] | None = None) -> int:
         return _fail("--target c needs --out DIR")
     out = Path(args.out).resolve() if args.out is not None else None
     imported = imported_package()
-    if args.installed:
+    # emitting into a directory of your own (--out) outside any checkout uses the installed derivations;
+    # writing or checking the package's own symbt/generated needs a checkout (or --installed)
+    outside = args.project is None and out is not None and find_project() is None
+    if args.installed or outside:
         pkg = imported
     else:
         if args.project is not None:
@@ -108,7 +112,7 @@ def main(argv: list[str] | None = None) -> int:
                 return _fail(f"the checkout {root} is not importable (Python imports symbt from {imported})")
             return run_in_checkout(root, _delegate_argv(argv, out))
     out_dir = out if out is not None else pkg / "generated"
-    where = f"{out_dir}" + ("" if args.installed else f" (checkout {pkg.parent})")
+    where = f"{out_dir}" + ("" if (args.installed or outside) else f" (checkout {pkg.parent})")
     try:
         if args.check:
             problems = check(out_dir, args.n, args.target)

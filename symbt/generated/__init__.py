@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 04a9215fb66b8cf70c3e54bf8bd14681b1ca51851e8d623146690e29652b05ba
-# symbt-codegen-content-sha256: cb92f965ecd9ea182a738598bafa2e4470aec05660b43d28029dc04e5fed22b5
+# symbt-codegen-derivation-sha256: 1c382db464641228c2f6746892de00ea30fd8088f8d29dc8b0b628a395785ac8
+# symbt-codegen-content-sha256: 3abe30747790c59a72401153ba4afd6a4070ea27b07d6facca830b34ff7224d8
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 04a9215fb66b8cf70c3e54bf8bd14681b1ca51851e8d623146690e29652b05ba
-# symbt-codegen-content-sha256: 42a6877f5b43bb64a1f75d23d38db8377c6525439efac13a8489e7c3b3be3108
+# symbt-codegen-derivation-sha256: 1c382db464641228c2f6746892de00ea30fd8088f8d29dc8b0b628a395785ac8
+# symbt-codegen-content-sha256: e7c76d518d9f4bc545390c291a1d7c0998b073ac7377729670c180d150a34b87
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 04a9215fb66b8cf70c3e54bf8bd14681b1ca51851e8d623146690e29652b05ba
-# symbt-codegen-content-sha256: 002d29f625baf7cb8be61ffe39fa3b842a1ae2b3ad5fb30069aae292ba8a7689
+# symbt-codegen-derivation-sha256: 1c382db464641228c2f6746892de00ea30fd8088f8d29dc8b0b628a395785ac8
+# symbt-codegen-content-sha256: 40443d183abf421312eb3fee9502c144e06a9cec932c9a81317c2ec579541f22
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
