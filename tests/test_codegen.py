@@ -289,3 +289,23 @@ def test_checkout_hand_edit_and_stale_derivation_are_caught(checkout):
     assert {p.name: p.read_bytes() for p in GEN.glob("*.py")} == before
     r = _run(["--check", "--n", "2"], cwd=checkout)
     assert r.returncode == 0, r.stderr
+
+
+def test_out_dir_outside_any_checkout_uses_the_installed_derivations(tmp_path):
+    """Code for a project of your own: `--out DIR` outside a checkout emits from the imported package; writing
+    the package's own symbt/generated there is refused (exit 2, one line)."""
+    import os
+    import subprocess
+    import sys
+
+    root = Path(__file__).resolve().parents[1]
+    env = dict(os.environ, PYTHONPATH=str(root))
+    run = lambda *a: subprocess.run([sys.executable, "-m", "symbt", "codegen", *a], cwd=tmp_path, env=env,
+                                    capture_output=True, text=True, timeout=300)
+    ok = run("--n", "2", "--out", "gen", "-q")
+    assert ok.returncode == 0, ok.stderr
+    assert (tmp_path / "gen" / "toda2.py").is_file()
+    assert run("--check", "--n", "2", "--out", "gen").returncode == 0
+    refused = run("--check")
+    assert refused.returncode == 2 and len(refused.stderr.strip().splitlines()) == 1
+    assert "no symbt checkout" in refused.stderr
