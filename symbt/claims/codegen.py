@@ -29,7 +29,7 @@ import numpy as np
 
 from ..codegen import TARGETS, check, derivation_hash
 from ..reference.literal import literal_step
-from .base import Outcome, claim, scene
+from .base import Outcome, Parts, claim, scene
 
 scene("codegen", "emitted numeric code (symbt codegen): generated numpy/mpmath modules vs their SymPy "
                  "sources, the literal map, the 50-digit step and symbt.numeric (N=2,3)")
@@ -39,14 +39,42 @@ STEP_NORMWISE_TOL = 1e-12
 ORBIT_STEPS = 300
 
 
-def _module(N):
-    return importlib.import_module(f"symbt.generated.toda{N}")
+def _scaled(x, s):
+    """``x`` (an array, an mpmath number, or nested tuples/lists of them) times ``s``."""
+    if isinstance(x, (tuple, list)):
+        return type(x)(_scaled(v, s) for v in x)
+    if isinstance(x, (int, float, np.ndarray, np.generic)):
+        return x * s
+    return x * mp.mpf(s)
 
 
-def _compare(N, name) -> Outcome:
+class _Scaled:
+    """The emitted module with every output multiplied by ``scale`` (the statement part "scale")."""
+
+    def __init__(self, mod, scale):
+        self._mod, self._scale = mod, scale
+
+    def __getattr__(self, name):
+        f = getattr(self._mod, name)
+        return (lambda *a, **k: _scaled(f(*a, **k), self._scale)) if callable(f) else f
+
+
+def _module(N, parts: Parts | None = None):
+    """The emitted module ``toda{N}``; the claims read it through their statement part ``scale``
+    ("emitted output x scale = source", scale = 1 as emitted), which ``symbt mutate`` perturbs."""
+    mod = importlib.import_module(f"symbt.generated.toda{N}")
+    scale = 1.0 if parts is None else parts.printed["scale"]
+    return mod if scale == 1.0 else _Scaled(mod, scale)
+
+
+def _parts(N: int | None = None) -> Parts:
+    return Parts(printed={"scale": 1.0})
+
+
+def _compare(N, name, parts: Parts | None = None) -> Outcome:
     from ..codegen import verify
 
-    r = verify.compare(_module(N), N, name)
+    r = verify.compare(_module(N, parts), N, name)
     worst_m = r["worst_mp"]
     return Outcome("verified" if r["ok"] else "failed", "numeric: emitted vs SymPy source", evidence="sampled",
                    residual=max(r["worst_f64"] * verify.EPS, float(worst_m)),
@@ -62,42 +90,45 @@ def _also(out: Outcome, ok: bool, text: str) -> Outcome:
 
 
 @claim("codegen.invariants", equation="toda{N}.invariants", source_equation="tra", scene="codegen", sizes=TARGETS,
+       parts=_parts,
        where="symbt/generated/toda{N}.py: invariants, invariants_mp",
        statement="emitted invariants (numpy float64 and mpmath) = its SymPy source: H_0..H_{N-1}, the "
                  "coefficients of tr L(lambda) (N={N})")
-def invariants(N: int) -> Outcome:
-    return _compare(N, "invariants")
+def invariants(N: int, parts: Parts) -> Outcome:
+    return _compare(N, "invariants", parts)
 
 
 @claim("codegen.trace", equation="toda{N}.spectral_trace", source_equation="tra", scene="codegen", sizes=TARGETS,
+       parts=_parts,
        where="symbt/generated/toda{N}.py: spectral_trace, spectral_trace_mp",
        statement="emitted spectral_trace (numpy float64 and mpmath) = its SymPy source: tr L(lambda) (N={N})")
-def spectral_trace(N: int) -> Outcome:
-    return _compare(N, "spectral_trace")
+def spectral_trace(N: int, parts: Parts) -> Outcome:
+    return _compare(N, "spectral_trace", parts)
 
 
 @claim("codegen.fields", equation="toda{N}.hamiltonian_fields", source_equation="tra", scene="codegen",
-       sizes=TARGETS, where="symbt/generated/toda{N}.py: hamiltonian_fields, hamiltonian_fields_mp",
+       sizes=TARGETS, parts=_parts, where="symbt/generated/toda{N}.py: hamiltonian_fields, hamiltonian_fields_mp",
        statement="emitted hamiltonian_fields (numpy float64 and mpmath) = its SymPy source: the Hamiltonian "
                  "vector fields of H_0..H_{N-1} (N={N})")
-def hamiltonian_fields(N: int) -> Outcome:
-    return _compare(N, "hamiltonian_fields")
+def hamiltonian_fields(N: int, parts: Parts) -> Outcome:
+    return _compare(N, "hamiltonian_fields", parts)
 
 
 @claim("codegen.flow", equation="toda{N}.flow_field", source_equation="eqdisc", scene="codegen", sizes=TARGETS,
+       parts=_parts,
        where="symbt/generated/toda{N}.py: flow_field, flow_field_mp",
        statement="emitted flow_field (numpy float64 and mpmath) = its SymPy source: the vector field of "
                  "sum_k c_k H_k (N={N})")
-def flow_field(N: int) -> Outcome:
-    return _compare(N, "flow_field")
+def flow_field(N: int, parts: Parts) -> Outcome:
+    return _compare(N, "flow_field", parts)
 
 
-@claim("codegen.phi_tr", equation="todaN.phi_tr", source_equation="newkmu", scene="codegen",
+@claim("codegen.phi_tr", equation="todaN.phi_tr", source_equation="newkmu", scene="codegen", parts=_parts,
        where="symbt/generated/toda{2,3}.py: phi_tr, phi_tr_mp",
        statement="emitted phi_tr (numpy float64 and mpmath) = its SymPy source: real Phi = -b(sgn(tr1) "
                  "arccosh(|tr1|/2) + sgn(tr2) arccosh(|tr2|/2)) (the same in every toda{N}: checked in each)")
-def phi_tr() -> Outcome:
-    outs = [_compare(N, "phi_tr") for N in TARGETS]
+def phi_tr(parts: Parts) -> Outcome:
+    outs = [_compare(N, "phi_tr", parts) for N in TARGETS]
     worst = max(outs, key=lambda o: o.residual or 0.0)
     worst.detail = f"toda{TARGETS}: " + worst.detail
     if any(o.status != "verified" for o in outs):
@@ -106,61 +137,65 @@ def phi_tr() -> Outcome:
 
 
 @claim("codegen.phi", equation="toda{N}.phi", source_equation="newkmu", scene="codegen", sizes=TARGETS,
+       parts=_parts,
        where="symbt/generated/toda{N}.py: phi, phi_mp",
        statement="emitted phi (numpy float64 and mpmath) = its SymPy source: real Phi(p, q, lambda0, mu, b) (N={N})")
-def phi(N: int) -> Outcome:
-    return _compare(N, "phi")
+def phi(N: int, parts: Parts) -> Outcome:
+    return _compare(N, "phi", parts)
 
 
 @claim("codegen.phi_grad", equation="toda{N}.phi_grad", source_equation="newkmu", scene="codegen", sizes=TARGETS,
+       parts=_parts,
        where="symbt/generated/toda{N}.py: phi_grad, phi_grad_mp",
        statement="emitted phi_grad (numpy float64 and mpmath) = its SymPy source, and = the numerical "
                  "derivative (mp.diff, 50 digits) of the emitted Phi (N={N})")
-def phi_grad(N: int) -> Outcome:
+def phi_grad(N: int, parts: Parts) -> Outcome:
     from ..codegen import verify
 
-    out = _compare(N, "phi_grad")
-    r = verify.phi_grad_vs_fd(_module(N), N)
+    out = _compare(N, "phi_grad", parts)
+    r = verify.phi_grad_vs_fd(_module(N, parts), N)
     return _also(out, r <= mp.mpf(10) ** -40, f"vs mp.diff of the emitted Phi: {mp.nstr(r, 3)} (tolerance 1e-40)")
 
 
 @claim("codegen.integrand", equation="toda{N}.ck_integrand", source_equation="eqdisc", scene="codegen",
-       sizes=TARGETS, where="symbt/generated/toda{N}.py: ck_integrand, ck_integrand_mp",
+       sizes=TARGETS, parts=_parts, where="symbt/generated/toda{N}.py: ck_integrand, ck_integrand_mp",
        statement="emitted ck_integrand (numpy float64 and mpmath) = its SymPy source: the c_k integrand "
                  "lambda^k / sqrt(tr L(lambda)^2 - 4) (N={N})")
-def ck_integrand(N: int) -> Outcome:
-    return _compare(N, "ck_integrand")
+def ck_integrand(N: int, parts: Parts) -> Outcome:
+    return _compare(N, "ck_integrand", parts)
 
 
 @claim("codegen.xy", equation="toda{N}.dapp_xy", source_equation="xy", scene="codegen", sizes=TARGETS,
+       parts=_parts,
        where="symbt/generated/toda{N}.py: dapp_xy, dapp_xy_mp",
        statement="emitted dapp_xy (numpy float64 and mpmath) = its SymPy source, Dapp's x and y, and = eq. xy "
                  "as printed (literal_step, 70 digits), both branches (N={N})")
-def dapp_xy(N: int) -> Outcome:
+def dapp_xy(N: int, parts: Parts) -> Outcome:
     from ..codegen import verify
 
-    out = _compare(N, "dapp_xy")
-    r = verify.xy_vs_printed(_module(N), N)
+    out = _compare(N, "dapp_xy", parts)
+    r = verify.xy_vs_printed(_module(N, parts), N)
     return _also(out, r <= verify.MP_TOL, f"= eq. xy as printed (literal_step, 70 digits): {mp.nstr(r, 3)}")
 
 
 @claim("codegen.step", equation="toda{N}.bt_step", source_equation="imptransf", scene="codegen", sizes=TARGETS,
+       parts=_parts,
        where="symbt/generated/toda{N}.py: bt_step, bt_step_mp",
        statement="emitted bt_step (numpy float64 and mpmath) = its SymPy source: one BT step (p, q) -> (p~, q~) "
                  "(N={N})")
-def bt_step(N: int) -> Outcome:
-    return _compare(N, "bt_step")
+def bt_step(N: int, parts: Parts) -> Outcome:
+    return _compare(N, "bt_step", parts)
 
 
 @claim("codegen.step_literal", equation="toda{N}.bt_step", source_equation="imptransf", scene="codegen",
-       sizes=TARGETS, where="symbt/generated/toda{N}.py: bt_step, bt_step_mp",
+       sizes=TARGETS, parts=_parts, where="symbt/generated/toda{N}.py: bt_step, bt_step_mp",
        statement="the emitted step equals the paper's route (symbt.reference.literal.literal_step, 70 digits) "
                  "and symbt.numeric.bt_step (float64), both branches (N={N})")
-def step_literal(N: int) -> Outcome:
+def step_literal(N: int, parts: Parts) -> Outcome:
     from ..codegen import verify
     from ..numeric import bt_step as numeric
 
-    mod = _module(N)
+    mod = _module(N, parts)
     worst_mp, worst_num = mp.mpf(0), 0.0
     for p, q, l0, m in verify.map_states(N):
         for b in (1, -1):
@@ -186,14 +221,14 @@ def step_literal(N: int) -> Outcome:
 
 
 @claim("codegen.step_accuracy", equation="toda{N}.bt_step", source_equation="imptransf", scene="codegen",
-       sizes=TARGETS, where="symbt/generated/toda{N}.py: bt_step",
+       sizes=TARGETS, parts=_parts, where="symbt/generated/toda{N}.py: bt_step",
        statement="the emitted float64 bt_step is within 1e-12 normwise (||x - x_ref|| / ||x_ref||, x = (p~, q~)) "
                  "of the 50-digit step symbt.reference.literal.reference_step on admissible states, both "
                  "branches (N={N})")
-def step_accuracy(N: int) -> Outcome:
+def step_accuracy(N: int, parts: Parts) -> Outcome:
     from ..codegen import verify
 
-    err = verify.step_accuracy(_module(N), N)
+    err = verify.step_accuracy(_module(N, parts), N)
     return Outcome("verified" if err <= STEP_NORMWISE_TOL else "failed", "numeric: float64 step vs 50 digits",
                    evidence="sampled",
                    residual=err, detail=f"max normwise relative error {err:.2e} (tolerance {STEP_NORMWISE_TOL:g}) "
@@ -201,10 +236,11 @@ def step_accuracy(N: int) -> Outcome:
 
 
 @claim("codegen.orbit", equation="toda{N}.bt_orbit", source_equation="imptransf", scene="codegen", sizes=TARGETS,
+       parts=_parts,
        where="symbt/generated/toda{N}.py: bt_orbit",
        statement="the emitted float64 bt_orbit (centre of mass carried separately) is as accurate as "
                  "symbt.numeric.bt_orbit against a 50-digit orbit (300 steps; N={N})")
-def orbit(N: int) -> Outcome:
+def orbit(N: int, parts: Parts) -> Outcome:
     from ..codegen import verify
     from ..numeric import bt_orbit
 
@@ -220,7 +256,7 @@ def orbit(N: int) -> Outcome:
         def err(P, Q, ref=ref, scale=scale):
             return float(np.max(np.linalg.norm(np.concatenate([P, Q], axis=1) - ref, axis=1) / scale))
 
-        e_gen.append(err(*_module(N).bt_orbit(p, q, l0, m, ORBIT_STEPS)))
+        e_gen.append(err(*_module(N, parts).bt_orbit(p, q, l0, m, ORBIT_STEPS)))
         e_num.append(err(*bt_orbit(p, q, l0, m, ORBIT_STEPS)))
     rms_gen, rms_num = (float(np.sqrt(np.mean(np.square(e)))) for e in (e_gen, e_num))
     ok = rms_gen <= 2 * rms_num + 1e-14
@@ -232,12 +268,25 @@ def orbit(N: int) -> Outcome:
                           f"states {max(e_gen):.2e} and {max(e_num):.2e})")
 
 
+def _files_parts(N: int) -> Parts:
+    return Parts(printed={"derivation": derivation_hash()})
+
+
 @claim("codegen.files", equation="toda{N}.provenance", source_equation="provenance", scene="codegen", sizes=TARGETS,
+       parts=_files_parts,
        where="symbt/generated/toda{N}.py header",
        statement="the generated module is present, not edited by hand and not stale (provenance hashes match "
                  "the derivation sources) (N={N})")
-def files(N: int) -> Outcome:
+def files(N: int, parts: Parts) -> Outcome:
+    from ..codegen import DEFAULT_OUT, read_header
+
     problems = check(ns=(N,))
+    for name in (f"toda{N}.py", "__init__.py"):
+        path = DEFAULT_OUT / name
+        recorded = read_header(path.read_text(encoding="utf-8")).get("derivation-sha256") if path.is_file() else None
+        if recorded != parts.printed["derivation"]:
+            problems.append(f"{path}: records derivation {str(recorded)[:12]}..., the statement names "
+                            f"{parts.printed['derivation'][:12]}...")
     if problems:
         return Outcome("failed", "provenance hashes", evidence="proof", detail="; ".join(problems))
     return Outcome("verified", "provenance hashes", evidence="proof",

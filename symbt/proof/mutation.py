@@ -213,7 +213,8 @@ def _parent_is_pow_exp(expr: sp.Basic, path: tuple[int, ...]) -> bool:
 
 
 def mutate_value(value: Any) -> list[Mutant]:
-    """Mutants of a plain value: a branch sign is negated, a number negated and perturbed."""
+    """Mutants of a plain value: a branch sign is negated, a number negated and perturbed, a recorded
+    string (e.g. a hash) changed in its last character."""
     if isinstance(value, bool):
         return [Mutant("convention", f"negate {value}", not value)]
     if isinstance(value, int) and value in (1, -1):
@@ -221,6 +222,9 @@ def mutate_value(value: Any) -> list[Mutant]:
     if isinstance(value, (int, float)) or type(value).__name__ in ("mpf", "Float"):
         return [Mutant("flip_sign", f"negate {value}", -value),
                 Mutant("perturb", f"perturb {value} by a relative 1e-6", value * (1 + 1e-6))]
+    if isinstance(value, str) and value:
+        last = "0" if value[-1] != "0" else "1"
+        return [Mutant("change_const", f"change the last character of {value[:12]}... to {last}", value[:-1] + last)]
     if isinstance(value, tuple):
         out = []
         for i, v in enumerate(value):
