@@ -209,7 +209,6 @@ def lin_bts(parts: Parts, deep: bool = False):
                              "(theta2)_n = (theta2)_0 + n (A(l0+mu) - A(l0-mu))/sqrt(I2+2) modulo its periods "
                              "(citn.theta2): sn(u_0 + n du) = P_n",
                    detail=f"n = 1..{N_ITERATES} on every sample ({rechecked} whose corrected residual exceeded "
-                          f"{TOL:g} at {DPS} digits re-evaluated at {DPS + 30}); the printed theta2 = F(P,k)/sqrt(I2+2) "
-                          "is bounded "
-                          "by K/sqrt(I2+2) on real orbits and cannot grow linearly: it must be the global angle, "
-                          "taken modulo its period")
+                          f"{TOL:g} at {DPS} digits re-evaluated at {DPS + 30}); the printed "
+                          "theta2 = F(P,k)/sqrt(I2+2) is bounded by K/sqrt(I2+2) on real orbits and cannot grow "
+                          "linearly: it must be the global angle, taken modulo its period")
