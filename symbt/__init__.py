@@ -5,7 +5,8 @@ below it (``tests/test_architecture.py`` walks every import, function-level
 ones included, and fails on an upward import or a cycle):
 
 ====  =========================================  =============================================
- 0    :mod:`symbt.paper`, :mod:`symbt._files`    the paper's numbers; the one atomic writer
+ 0    :mod:`symbt.paper`, :mod:`symbt._files`    the paper's numbers; the one atomic writer;
+      :mod:`symbt._lazy`                         lazy public names
  1    :mod:`symbt.symbolic`                      SymPy model of the lattice, Darboux matrices, F
  2    :mod:`symbt.proof`                         one Verdict type; exact and sampled deciders
  3    :mod:`symbt.numeric`                       sympy-free runtime: step, orbits, Phi, c_k
@@ -27,14 +28,13 @@ ones included, and fails on an upward import or a cycle):
 """
 from __future__ import annotations
 
-import importlib
-from typing import Any
+from ._lazy import lazy_attributes
 
 __version__ = "0.1.0"
 
 #: the layers, lowest first (see the module docstring); names are relative to ``symbt``
 LAYERS: tuple[tuple[str, ...], ...] = (
-    ("paper", "_files"),
+    ("paper", "_files", "_lazy"),
     ("symbolic",),
     ("proof",),
     ("numeric",),
@@ -47,19 +47,9 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("testing", "pytest_plugin", "cli", "__main__"),
 )
 
-_LAZY = {
-    "verify": ("symbt.engine", "verify"),
-    "check_identity": ("symbt.proof", "check_identity"),
-    "IdentityResult": ("symbt.proof", "IdentityResult"),
-    "Verdict": ("symbt.proof", "Verdict"),
-    "decide": ("symbt.proof", "decide"),
-}
+_LAZY = {"verify": ".engine", "check_identity": ".proof", "IdentityResult": ".proof", "Verdict": ".proof",
+         "decide": ".proof"}
 
 __all__ = ["__version__", "LAYERS", *_LAZY]
 
-
-def __getattr__(name: str) -> Any:
-    if name in _LAZY:
-        mod, attr = _LAZY[name]
-        return getattr(importlib.import_module(mod), attr)
-    raise AttributeError(f"module 'symbt' has no attribute {name!r}")
+__getattr__, __dir__ = lazy_attributes(__name__, _LAZY, __all__)

@@ -47,3 +47,27 @@ def atomic_write(path: str | os.PathLike[str], data: str | bytes, *, mkdir: bool
             os.unlink(tmp)
         raise
     return target
+
+
+def output_problem(path: str | os.PathLike[str]) -> str | None:
+    """Why a report cannot be written to ``path`` (None if it can; ``"-"`` is stdout).
+
+    Checked before any work starts.  A missing parent directory may be created, one level deep.
+
+    >>> output_problem("-") is None, output_problem("/")
+    (True, '/: is a directory')
+    """
+    if str(path) == "-":
+        return None
+    p = Path(path)
+    if p.is_dir():
+        return f"{path}: is a directory"
+    parent = p.parent
+    if parent.exists():
+        if not parent.is_dir():
+            return f"{path}: {parent} is not a directory"
+        if not os.access(parent, os.W_OK):
+            return f"{path}: directory {parent} is not writable"
+    elif not parent.parent.is_dir():
+        return f"{path}: directory {parent.parent} does not exist"
+    return None

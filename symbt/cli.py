@@ -61,20 +61,12 @@ def _extra_for(exc: ImportError) -> str | None:
 # --------------------------------------------------------------------------- verify
 
 def _check_output(flag: str, path: str) -> None:
-    """Fail before any work if a report cannot be written (the parent may be created, one level)."""
-    if path == "-":
-        return
-    p = Path(path)
-    if p.is_dir():
-        raise UsageError(f"symbt verify: {flag} {path}: is a directory")
-    parent = p.parent
-    if parent.exists():
-        if not parent.is_dir():
-            raise UsageError(f"symbt verify: {flag} {path}: {parent} is not a directory")
-        if not os.access(parent, os.W_OK):
-            raise UsageError(f"symbt verify: {flag} {path}: directory {parent} is not writable")
-    elif not parent.parent.is_dir():
-        raise UsageError(f"symbt verify: {flag} {path}: directory {parent.parent} does not exist")
+    """Fail before any work if a report cannot be written."""
+    from ._files import output_problem
+
+    problem = output_problem(path)
+    if problem:
+        raise UsageError(f"symbt verify: {flag} {problem}")
 
 
 def _write_output(flag: str, path: str, text: str) -> None:

@@ -65,18 +65,13 @@ class ClaimFailed(Exception):
 
 
 def _failure_message(claim: Any, out: Any) -> str:
-    from symbt.report.text import point_text, residual_text
+    from symbt.report.text import field_lines, residual_text
 
     lines = [f"claim {claim.id} (eq. {claim.equation}) failed: {claim.statement}",
              f"  residual:  {residual_text(out)}",
              f"  method:    {out.method}",
              f"  evidence:  {out.evidence or '-'}"]
-    if out.counterexample:
-        lines.append(f"  counterexample: {point_text(out.counterexample, limit=20)}")
-    if out.printed:
-        lines.append(f"  printed:   {out.printed}")
-    if out.corrected:
-        lines.append(f"  corrected: {out.corrected}")
+    lines += field_lines(out, "  ", limit=20)
     if out.detail:
         lines.append("  detail:\n    " + "\n    ".join(out.detail.strip().splitlines()))
     return "\n".join(lines)

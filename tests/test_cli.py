@@ -73,6 +73,8 @@ def test_version_is_single_sourced(capsys):
     (["verify", "-j", "-3"], "positive integer"),
     (["verify", "-j", "two"], "positive integer"),
     (["verify", "--json", "/no/such/dir/x.json"], "does not exist"),
+    (["coverage", "--json", "/no/such/dir/x.json"], "does not exist"),
+    (["mutate", "--scene", "tn2", "--json", "/no/such/dir/x.json"], "does not exist"),
     (["verify", "--json", "-", "--junit", "-"], "only one report"),
     (["no-such-command"], "invalid choice"),
     ([], "required"),
@@ -85,6 +87,13 @@ def test_usage_errors_are_one_line_with_exit_2(capsys, argv, words):
 def test_report_path_that_is_a_directory(capsys, tmp_path):
     err = _one_line_error(capsys, ["verify", "--scene", "tn2", "--junit", str(tmp_path)])
     assert "is a directory" in err
+
+
+@pytest.mark.parametrize("command", ["coverage", "mutate"])
+def test_other_commands_refuse_a_directory_before_any_work(capsys, tmp_path, command):
+    err = _one_line_error(capsys, [command, "--scene", "tn2", "--json", str(tmp_path)] if command == "mutate"
+                          else [command, "--json", str(tmp_path)])
+    assert err.startswith(f"symbt {command}: --json") and "is a directory" in err
 
 
 def test_unknown_scene(capsys, loaded):

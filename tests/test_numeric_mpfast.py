@@ -8,7 +8,8 @@ import mpmath
 import numpy as np
 import pytest
 
-from symbt.numeric import InvalidInputError, MissingDependencyError, NoRealMapError, bt_orbit, bt_step, mpfast
+from symbt.numeric import InvalidInputError, MissingDependencyError, NoRealMapError, bt_orbit, bt_step
+from symbt.numeric import errors as numeric_errors
 from symbt.numeric.testing import random_gap_case
 from symbt.reference.literal import reference_step
 
@@ -102,7 +103,7 @@ def test_backend_selection_and_missing_flint(monkeypatch):
             bt_step(p, q, 10, 5, backend="numba")
         with pytest.raises(InvalidInputError):
             bt_orbit(p, q, 10, 5, 2, backend="cuda")
-        monkeypatch.setattr(mpfast, "_flint", [False])
+        monkeypatch.setitem(numeric_errors._IMPORTABLE, "flint", False)
         with pytest.raises(MissingDependencyError, match="python-flint"):
             bt_step(p, q, 10, 5, backend="flint")
         # auto falls back to mpmath silently

@@ -1,7 +1,10 @@
 """Wall-clock timing and the machine description recorded with every run.
 
 :func:`timed`: one untimed warm-up call, then the median of repeats (5 below 0.2 s, 3 below
-1 s, else 1; ``quick``: 3 below 0.2 s, else 1).  :func:`best_time`: best of ``repeats`` batches of
+1 s, else 1; ``quick``: 3 below 0.2 s, else 1).  A call shorter than 20 ms is timed in batches of
+calls at least 20 ms long (per-call time = batch time / calls), so that timer resolution, the
+garbage collector and scheduler noise do not dominate millisecond timings; every contender goes
+through the same rule.  :func:`best_time`: best of ``repeats`` batches of
 calls, each batch at least ``min_time / repeats`` long (throughput).
 
 >>> res, secs, reps = timed(lambda: sum(range(1000)))
@@ -19,6 +22,8 @@ from typing import Any
 
 __all__ = ["timed", "best_time", "machine_info"]
 
+_BATCH_S = 0.02          # shortest timed batch (s)
+
 
 def timed(fn: Callable[[], Any], warm: Callable[[], Any] | None = None, quick: bool = False
           ) -> tuple[Any, float, int]:
@@ -26,14 +31,17 @@ def timed(fn: Callable[[], Any], warm: Callable[[], Any] | None = None, quick: b
     (warm or fn)()
     t0 = time.perf_counter()
     res = fn()
-    times = [time.perf_counter() - t0]
-    reps = 1 if times[0] >= 1.0 else (3 if times[0] >= 0.2 else 5)
+    first = time.perf_counter() - t0
+    batch = 1 if first >= _BATCH_S else max(1, int(_BATCH_S / max(first, 1e-7)) + 1)
+    reps = 1 if first >= 1.0 else (3 if first >= 0.2 else 5)
     if quick:
-        reps = 1 if times[0] >= 0.2 else 3
-    for _ in range(reps - 1):
+        reps = 1 if first >= 0.2 else 3
+    times = [first] if batch == 1 else []
+    while len(times) < reps:
         t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
+        for _ in range(batch):
+            fn()
+        times.append((time.perf_counter() - t0) / batch)
     return res, statistics.median(times), len(times)
 
 

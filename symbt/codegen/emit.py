@@ -15,7 +15,7 @@ from .derive import specs
 from .emit_loop import loop_module_body
 from .forms import FORMS, form_of
 from .printer import cse_block
-from .pymodule import function_doc, module_head, package_init_body, signature
+from .pymodule import function_doc, module_head, numpy_prologue, package_init_body, signature
 from .runtime import ORBIT
 
 __all__ = ["module_body", "package_init_body", "form_of"]
@@ -35,21 +35,7 @@ def _names(spec):
 
 
 def _function_numpy(spec, N):
-    lines = [f"def {spec.name}({signature(spec, 'numpy')}):", function_doc(spec, N, "numpy", "closed")]
-    if spec.guards:
-        lines.append("    errors = _mode(errors)")
-    batch = []
-    for a in spec.args:
-        if a.kind == "state":
-            lines.append(f"    {a.name} = _state({a.name}, {N}, {a.name!r})")
-            batch.append(f"{a.name}.shape[:-1]")
-        elif a.kind == "branch":
-            lines.append(f"    {a.name} = _branch({a.name})")
-            batch.append(f"{a.name}.shape")
-        else:
-            lines.append(f"    {a.name} = _scalar({a.name}, {a.name!r})")
-            batch.append(f"{a.name}.shape")
-    lines.append(f"    _batch = _batch_of([{', '.join(batch)}])")
+    lines = numpy_prologue(spec, N, "closed")
     for a in spec.args:
         if a.kind == "state":
             for i, s in enumerate(a.symbols):

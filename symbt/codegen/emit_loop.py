@@ -17,7 +17,7 @@ from .derive import FUNCTIONS, interface
 from .kernels import kernels
 from .loop_template import CORE
 from .printer import ExprPrinter
-from .pymodule import function_doc, module_head, signature
+from .pymodule import function_doc, module_head, numpy_prologue, signature
 from .runtime import ORBIT
 
 __all__ = ["loop_module_body", "printed_kernels"]
@@ -83,22 +83,7 @@ def _core():
 
 
 def _numpy_wrapper(spec, N):
-    lines = [f"def {spec.name}({signature(spec, 'numpy')}):",
-             function_doc(spec, N, "numpy", "transfer-matrix")]
-    if spec.guards:
-        lines.append("    errors = _mode(errors)")
-    batch = []
-    for a in spec.args:
-        if a.kind == "state":
-            lines.append(f"    {a.name} = _state({a.name}, N, {a.name!r})")
-            batch.append(f"{a.name}.shape[:-1]")
-        elif a.kind == "branch":
-            lines.append(f"    {a.name} = _branch({a.name})")
-            batch.append(f"{a.name}.shape")
-        else:
-            lines.append(f"    {a.name} = _scalar({a.name}, {a.name!r})")
-            batch.append(f"{a.name}.shape")
-    lines.append(f"    _batch = _batch_of([{', '.join(batch)}])")
+    lines = numpy_prologue(spec, N, "transfer-matrix", "N")
     lines.append("    _g = []")
     call, items = _NUMPY_CALL[spec.name]
     lines.append("    with np.errstate(all=\"ignore\"):")

@@ -17,6 +17,31 @@ def signature(spec, flavour):
     return sig + (', errors="raise"' if spec.guards and flavour == "numpy" else "")
 
 
+def numpy_prologue(spec, N, form, n_text=None):
+    """Header, docstring and argument validation of an emitted numpy function, up to ``_batch``.
+
+    ``n_text`` is the source text of the state length checked by ``_state`` (default ``str(N)``;
+    ``"N"`` in the transfer-matrix module, where N is a module constant).  Both forms share it.
+    """
+    n_size = str(N) if n_text is None else n_text
+    lines = [f"def {spec.name}({signature(spec, 'numpy')}):", function_doc(spec, N, "numpy", form)]
+    if spec.guards:
+        lines.append("    errors = _mode(errors)")
+    batch = []
+    for a in spec.args:
+        if a.kind == "state":
+            lines.append(f"    {a.name} = _state({a.name}, {n_size}, {a.name!r})")
+            batch.append(f"{a.name}.shape[:-1]")
+        elif a.kind == "branch":
+            lines.append(f"    {a.name} = _branch({a.name})")
+            batch.append(f"{a.name}.shape")
+        else:
+            lines.append(f"    {a.name} = _scalar({a.name}, {a.name!r})")
+            batch.append(f"{a.name}.shape")
+    lines.append(f"    _batch = _batch_of([{', '.join(batch)}])")
+    return lines
+
+
 def function_doc(spec, N, flavour, form):
     args = "\n".join(f"        {a.name}: {a.doc}" for a in spec.args)
     if flavour == "numpy":

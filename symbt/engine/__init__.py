@@ -19,9 +19,10 @@
 """
 from __future__ import annotations
 
-import importlib
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from .._lazy import lazy_attributes
 
 if TYPE_CHECKING:
     from ..claims.base import ClaimResult
@@ -39,14 +40,7 @@ _LAZY = {
 __all__ = ["verify", "select", "choose", "default_scenes", *_LAZY]
 
 
-def __getattr__(name: str) -> Any:
-    if name in _LAZY:
-        return getattr(importlib.import_module(_LAZY[name], __name__), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted(__all__)
+__getattr__, __dir__ = lazy_attributes(__name__, _LAZY, __all__)
 
 
 def verify(scenes: Sequence[str] | None = None, *, deep: bool = False, use_cache: bool = True,

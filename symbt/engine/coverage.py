@@ -28,15 +28,15 @@ disagree; 2 on bad arguments or an unreadable paper.
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import re
 import sys
 from pathlib import Path
 from typing import Any
 
-from .._files import atomic_write
+from .._files import output_problem
 from ..paper import DISPLAYS, LABELS, Label
+from ..report.json import emit_document
 
 __all__ = ["coverage_map", "coverage_of", "scan_labels", "compare", "find_paper", "unlabelled_claims", "main"]
 
@@ -236,6 +236,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--no-cache", action="store_true", help="do not read claim statuses from the cache")
     ap.add_argument("-q", "--quiet", action="store_true")
     args = ap.parse_args(argv)
+    problem = args.json and output_problem(args.json)
+    if problem:
+        print(f"symbt coverage: --json {problem}", file=sys.stderr)
+        return 2
     paper = find_paper(args.paper)
     diff: dict[str, list[str]] | None = None
     if paper is not None:
@@ -249,17 +253,10 @@ def main(argv: list[str] | None = None) -> int:
     uncovered = [k for k, e in cmap.items() if not e]
     report = {"coverage": cmap, "unlabelled": unlabelled, "uncovered": uncovered,
               "paper": None if paper is None else {"path": str(paper), **(diff or {})}}
-    if args.json == "-":
-        print(json.dumps(report, indent=1))
-    else:
-        if not args.quiet:
-            print(_format(cmap, unlabelled))
-        if args.json:
-            try:
-                atomic_write(args.json, json.dumps(report, indent=1) + "\n")
-            except OSError as exc:
-                print(f"symbt coverage: cannot write {args.json}: {exc.strerror or exc}", file=sys.stderr)
-                return 2
+    status = emit_document(report, args.json, command="symbt coverage",
+                           text=None if args.quiet else _format(cmap, unlabelled))
+    if status:
+        return status
     bad = bool(uncovered)
     if paper is None:
         print("symbt coverage: paper not found (--paper PATH); the label list was not compared", file=sys.stderr)

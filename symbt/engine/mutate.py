@@ -21,7 +21,6 @@ subset; the full run is recorded in BENCHMARKS.md).
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import sys
 import time
@@ -29,9 +28,10 @@ from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
-from .._files import atomic_write
+from .._files import output_problem
 from ..claims import REGISTRY, load_all
 from ..claims.base import Claim
+from ..report.json import emit_document
 from .select import select
 
 __all__ = ["ClaimMutations", "mutate_claim", "run", "main"]
@@ -178,6 +178,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--json", metavar="FILE", help="write the records and the summary as JSON ('-': stdout)")
     ap.add_argument("-q", "--quiet", action="store_true")
     args = ap.parse_args(argv)
+    problem = args.json and output_problem(args.json)
+    if problem:
+        print(f"symbt mutate: --json {problem}", file=sys.stderr)
+        return 2
     if args.jobs < 1 or (args.limit is not None and args.limit < 1):
         print("symbt mutate: -j and --limit must be positive", file=sys.stderr)
         return 2
@@ -195,15 +199,7 @@ def main(argv: list[str] | None = None) -> int:
     records = run(claims, limit=args.limit, seed=args.seed, jobs=args.jobs, progress=progress)
     report = {"claims": records, "summary": summary(records), "seconds": round(time.perf_counter() - t0, 1),
               "limit": args.limit, "seed": args.seed}
-    if args.json == "-":
-        print(json.dumps(report, indent=1))
-    else:
-        if not args.quiet:
-            print(format_text(records))
-        if args.json:
-            try:
-                atomic_write(args.json, json.dumps(report, indent=1) + "\n")
-            except OSError as exc:
-                print(f"symbt mutate: cannot write {args.json}: {exc.strerror or exc}", file=sys.stderr)
-                return 2
+    status = emit_document(report, args.json, command="symbt mutate", text=None if args.quiet else format_text(records))
+    if status:
+        return status
     return 0

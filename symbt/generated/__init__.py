@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 1c382db464641228c2f6746892de00ea30fd8088f8d29dc8b0b628a395785ac8
-# symbt-codegen-content-sha256: 3abe30747790c59a72401153ba4afd6a4070ea27b07d6facca830b34ff7224d8
+# symbt-codegen-derivation-sha256: 386e905e5a7182c1ca0c99327dd403c7a970e5b77465f5a3138a12f48356fa34
+# symbt-codegen-content-sha256: 6b8229751d5e2d42ca6a2672ff5386541c089fc656dea4d9a0240b5f0361b91d
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

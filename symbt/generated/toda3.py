@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 1c382db464641228c2f6746892de00ea30fd8088f8d29dc8b0b628a395785ac8
-# symbt-codegen-content-sha256: 40443d183abf421312eb3fee9502c144e06a9cec932c9a81317c2ec579541f22
+# symbt-codegen-derivation-sha256: 386e905e5a7182c1ca0c99327dd403c7a970e5b77465f5a3138a12f48356fa34
+# symbt-codegen-content-sha256: e57c030f2550b8756c23b22041957f52252b6bbf5749a7c568b9060bafa17982
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

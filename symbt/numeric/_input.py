@@ -74,20 +74,25 @@ def _to_mp(ctx: Context, seq: Any, name: str) -> list[Any]:
     for v in seq:
         if isinstance(v, (list, tuple, np.ndarray)):
             raise InvalidInputError("%s: mpmath inputs must be a single state (flat sequence)" % name)
-        try:
-            w = mpmath.iv.mpf(v) if ctx is IV else mpmath.mpmathify(v)
-        except (TypeError, ValueError) as exc:
-            raise InvalidInputError("%s: cannot convert %r" % (name, v)) from exc
-        if ctx is IV:
-            ok = mpmath.isfinite(w.a) and mpmath.isfinite(w.b)
-        else:
-            ok = mpmath.isfinite(w)
-            if isinstance(w, mpmath.mpc):
-                raise InvalidInputError("%s: complex input is not supported" % name)
-        if not ok:
-            raise InvalidInputError("%s contains a non-finite value" % name)
-        out.append(w)
+        out.append(_mp_value(ctx, v, name, "%s: complex input is not supported", "%s contains a non-finite value"))
     return out
+
+
+def _mp_value(ctx: Context, v: Any, name: str, complex_msg: str, finite_msg: str) -> Any:
+    """``v`` as an mpf (or an interval in the IV context); complex or non-finite values refused."""
+    try:
+        w = mpmath.iv.mpf(v) if ctx is IV else mpmath.mpmathify(v)
+    except (TypeError, ValueError) as exc:
+        raise InvalidInputError("%s: cannot convert %r" % (name, v)) from exc
+    if ctx is IV:
+        ok = mpmath.isfinite(w.a) and mpmath.isfinite(w.b)
+    else:
+        if isinstance(w, mpmath.mpc):
+            raise InvalidInputError(complex_msg % name)
+        ok = mpmath.isfinite(w)
+    if not ok:
+        raise InvalidInputError(finite_msg % name)
+    return w
 
 
 def as_state_pair(p: Any, q: Any, *extra: Any) -> tuple[Context, list[Any], list[Any], tuple[int, ...]]:
@@ -171,13 +176,7 @@ def prepare_scalar(ctx: Context, x: Any, shape: tuple[int, ...], name: str) -> A
     if ctx is not FLOAT:
         if isinstance(x, (list, tuple, np.ndarray)):
             raise InvalidInputError("%s must be a scalar for mpmath inputs" % name)
-        try:
-            v = mpmath.iv.mpf(x) if ctx is IV else mpmath.mpmathify(x)
-        except (TypeError, ValueError) as exc:
-            raise InvalidInputError("%s: cannot convert %r" % (name, x)) from exc
-        if ctx is not IV and (isinstance(v, mpmath.mpc) or not mpmath.isfinite(v)):
-            raise InvalidInputError("%s must be a finite real number" % name)
-        return v
+        return _mp_value(ctx, x, name, "%s must be a finite real number", "%s must be a finite real number")
     if type(x) in _REAL_SCALARS:          # fast path: plain real scalars
         v = float(x)
         if not math.isfinite(v):

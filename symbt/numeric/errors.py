@@ -27,6 +27,8 @@ code keeps working, but callers can tell *why* a step was refused:
 
 from __future__ import annotations
 
+import importlib
+import importlib.util
 from collections.abc import Iterable
 
 __all__ = ["InvalidInputError", "NoRealMapError", "NumericRangeError", "QuadratureError",
@@ -85,3 +87,26 @@ class MissingDependencyError(ImportError):
     >>> issubclass(MissingDependencyError, ImportError)
     True
     """
+
+
+_IMPORTABLE: dict[str, bool] = {}
+
+
+def importable(module: str) -> bool:
+    """True if the optional dependency ``module`` is installed and imports (tried once, then cached).
+
+    A broken installation counts as missing, so that a feature falls back or says which extra to
+    install instead of failing deep inside a computation.
+
+    >>> importable("math"), importable("no_such_module_symbt")
+    (True, False)
+    """
+    if module not in _IMPORTABLE:
+        ok = importlib.util.find_spec(module) is not None
+        if ok:
+            try:
+                importlib.import_module(module)
+            except Exception:  # pragma: no cover - broken installation
+                ok = False
+        _IMPORTABLE[module] = ok
+    return _IMPORTABLE[module]

@@ -23,7 +23,7 @@ import types
 from collections.abc import Callable
 from typing import Any
 
-from .errors import MissingDependencyError
+from .errors import MissingDependencyError, importable
 
 __all__ = ["numba_available", "kernel", "BACKENDS"]
 
@@ -31,26 +31,15 @@ BACKENDS = ("auto", "numba", "python")
 
 _compiled: dict[str, Callable[..., Any]] = {}
 _LOCK: dict[str, Any] = {}
-_available: list[bool] = []
 
 
 def numba_available() -> bool:
-    """True if numba can be imported and ``SYMBT_NO_NUMBA`` is not set (both read once, on first call).
+    """True if numba imports (tried once) and ``SYMBT_NO_NUMBA`` is not set.
 
     >>> isinstance(numba_available(), bool)
     True
     """
-    if not _available:
-        import importlib.util
-
-        ok = os.environ.get("SYMBT_NO_NUMBA", "") in ("", "0") and importlib.util.find_spec("numba") is not None
-        if ok:
-            try:
-                import numba  # noqa: F401
-            except Exception:  # pragma: no cover - broken installation
-                ok = False
-        _available.append(ok)
-    return _available[0]
+    return os.environ.get("SYMBT_NO_NUMBA", "") in ("", "0") and importable("numba")
 
 
 def _njit(fn: Callable[..., Any], **opts: Any) -> Callable[..., Any]:

@@ -37,7 +37,7 @@ from typing import Any
 import mpmath
 
 from ._input import IV, as_state_pair, prepare_spectral_pair, to_output
-from .errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError
+from .errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError, importable
 from .kernels import stored_steps
 from .step import _mp_step, step_core
 
@@ -46,7 +46,6 @@ __all__ = ["flint_available", "mp_backend", "mp_orbit", "arb_step", "MP_BACKENDS
 #: accepted ``backend`` values for mpmath input
 MP_BACKENDS = ("auto", "flint", "mpmath")
 GUARD_BITS = 40
-_flint: list[bool] = []
 
 
 def flint_available() -> bool:
@@ -55,17 +54,7 @@ def flint_available() -> bool:
     >>> isinstance(flint_available(), bool)
     True
     """
-    if not _flint:
-        import importlib.util
-
-        ok = importlib.util.find_spec("flint") is not None
-        if ok:
-            try:
-                import flint  # noqa: F401
-            except Exception:  # pragma: no cover - broken installation
-                ok = False
-        _flint.append(ok)
-    return _flint[0]
+    return importable("flint")
 
 
 def _mpf(x: Any, _fme: Any = mpmath.libmp.from_man_exp, _make: Any = mpmath.mp.make_mpf) -> Any:

@@ -12,8 +12,7 @@ import SymPy.
 """
 from __future__ import annotations
 
-import importlib
-from typing import Any
+from .._lazy import lazy_attributes
 
 _LAZY = {
     "Verdict": ".verdict", "EVIDENCE": ".verdict",
@@ -25,11 +24,4 @@ _LAZY = {
 __all__ = ["Verdict", "EVIDENCE", "decide", "reduce_modulo", "check_identity", "IdentityResult", "Worst"]
 
 
-def __getattr__(name: str) -> Any:
-    if name in _LAZY:
-        return getattr(importlib.import_module(_LAZY[name], __name__), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted(__all__)
+__getattr__, __dir__ = lazy_attributes(__name__, _LAZY, __all__)

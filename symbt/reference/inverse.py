@@ -15,6 +15,23 @@ from .trace import hamiltonians, trace_gap
 __all__ = ["solve_parameters"]
 
 
+def _norm(r):
+    return mp.sqrt(mp.fsum(v ** 2 for v in r))
+
+
+def _line_search(F, x, dx, accept):
+    """``(x + lam dx, lam)`` for the first ``lam = 1, 1/2, ...`` where F is defined and
+    ``accept(F(x + lam dx), lam)`` holds; None below ``lam = 2**-30``."""
+    lam = mp.mpf(1)
+    while lam > mp.mpf(2) ** -30:
+        xn = [a + lam * d for a, d in zip(x, dx)]
+        rn = F(xn)
+        if rn is not None and accept(rn, lam):
+            return xn, lam
+        lam /= 2
+    return None
+
+
 def _newton(F, J, x0, tol, maxit=40):
     x = [mp.mpmathify(v) for v in x0]
     for it in range(maxit):
@@ -36,18 +53,12 @@ def _newton(F, J, x0, tol, maxit=40):
             dx = mp.lu_solve(Jm, -mp.matrix(r)) if Jm.rows == Jm.cols else mp.qr_solve(Jm, -mp.matrix(r))[0]
         except ZeroDivisionError:
             return None
-        # damping: halve until the interval stays admissible and the residual decreases
-        lam = mp.mpf(1)
-        r0 = mp.sqrt(mp.fsum(v ** 2 for v in r))
-        while lam > mp.mpf(2) ** -30:
-            xn = [a + lam * d for a, d in zip(x, dx)]
-            rn = F(xn)
-            if rn is not None and mp.sqrt(mp.fsum(v ** 2 for v in rn)) < r0 * (1 - lam / 4) + tol:
-                x = xn
-                break
-            lam /= 2
-        else:
+        # damping: the residual norm must decrease (Armijo-like) where F is defined
+        r0 = _norm(r)
+        step = _line_search(F, x, dx, lambda rn, lam: _norm(rn) < r0 * (1 - lam / 4) + tol)
+        if step is None:
             return None
+        x = step[0]
     r = F(x)
     return (x, maxit) if r is not None and max(abs(v) for v in r) < tol else None
 
@@ -152,17 +163,11 @@ def _gauss_newton(F, J, x0, tol, maxit=80):
             return None
         Jm = mp.matrix(J(x))
         dx = mp.qr_solve(Jm, -mp.matrix(r))[0]
-        lam = mp.mpf(1)
-        r0 = mp.fsum(v ** 2 for v in r)
-        while lam > mp.mpf(2) ** -30:
-            xn = [a + lam * d for a, d in zip(x, dx)]
-            rn = F(xn)
-            if rn is not None and mp.fsum(v ** 2 for v in rn) <= r0:
-                x = xn
-                break
-            lam /= 2
-        else:
+        r0 = _norm(r)
+        step = _line_search(F, x, dx, lambda rn, lam: _norm(rn) <= r0)
+        if step is None:
             return x, it
+        x, lam = step
         if max(abs(d) for d in dx) * lam < tol:
             return x, it
     return x, maxit

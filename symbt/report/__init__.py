@@ -6,13 +6,12 @@ tolerate missing values; every file is written with the one atomic writer
 """
 from __future__ import annotations
 
-import importlib
-from typing import Any
+from .._lazy import lazy_attributes
 
 _LAZY = {
     "summary": ".text", "summary_lines": ".text", "format_short": ".text", "format_table": ".text",
     "residual_text": ".text", "short_method": ".text", "evidence_text": ".text", "result_text": ".text",
-    "to_json": ".json", "write_json": ".json", "schema": ".json", "SCHEMA_VERSION": ".json",
+    "to_json": ".json", "write_json": ".json", "emit_document": ".json", "schema": ".json", "SCHEMA_VERSION": ".json",
     "write_junit": ".junit", "junit_xml": ".junit", "xml_safe": ".junit",
     "format_markdown": ".markdown",
     "result_html": ".html", "result_latex": ".html", "scene_html": ".html",
@@ -22,11 +21,4 @@ _LAZY = {
 __all__ = list(_LAZY)
 
 
-def __getattr__(name: str) -> Any:
-    if name in _LAZY:
-        return getattr(importlib.import_module(_LAZY[name], __name__), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    return sorted(__all__)
+__getattr__, __dir__ = lazy_attributes(__name__, _LAZY, __all__)

@@ -18,7 +18,7 @@ from typing import Any
 
 from ..proof.verdict import LATEX_COLOURS as _LATEX_COLOURS
 from ..proof.verdict import STATUS_COLOURS, latex_text
-from .text import point_text, residual_text, short_method, summary
+from .text import outcome_fields, point_text, residual_text, short_method, summary
 
 __all__ = ["result_html", "result_latex", "scene_html", "latex_text", "STATUS_COLOURS"]
 
@@ -38,18 +38,16 @@ def _residual(out) -> str:
         return "-" if out.residual is None else f"{out.residual:.3g}"
 
 
+_FIELD_HTML = {"corrected": "<b>{}</b>", "counterexample": "<code>{}</code>"}
+
+
 def _rows(result) -> list[tuple[str, str]]:
     """(label, already-escaped HTML) rows describing one result."""
     c, o = result.claim, result.outcome
     rows = [("statement", _e(c.statement))]
     if c.where:
         rows.append(("where", _e(c.where)))
-    if o.printed:
-        rows.append(("printed", _e(o.printed)))
-    if o.corrected:
-        rows.append(("corrected", f"<b>{_e(o.corrected)}</b>"))
-    if o.counterexample:
-        rows.append(("counterexample", f"<code>{_e(point_text(o.counterexample))}</code>"))
+    rows += [(name, _FIELD_HTML.get(name, "{}").format(_e(value))) for name, value in outcome_fields(o, limit=12)]
     rows.append(("method", _e(o.method)))
     res = _residual(o)
     if o.digits is not None and o.status != "verified":
@@ -86,12 +84,7 @@ def result_latex(result) -> str:
     lines = [rf"\textbf{{{t(c.id)}}}\ \text{{(eq. {t(c.equation)})}}:\ "
              rf"{{\color{{{colour}}}\textbf{{{t(o.status)}}}}}",
              rf"\text{{{t(c.statement)}}}"]
-    if o.printed:
-        lines.append(rf"\text{{printed: {t(o.printed)}}}")
-    if o.corrected:
-        lines.append(rf"\text{{corrected: {t(o.corrected)}}}")
-    if o.counterexample:
-        lines.append(rf"\text{{counterexample: {t(point_text(o.counterexample, limit=6))}}}")
+    lines += [rf"\text{{{name}: {t(value)}}}" for name, value in outcome_fields(o, limit=6)]
     lines.append(rf"\text{{method: {t(o.method)}; residual {t(_residual(o))}}}")
     return r"$\begin{array}{l}" + r"\\ ".join(lines) + r"\end{array}$"
 

@@ -72,3 +72,26 @@ def dumps(results, *, coverage: dict | None = None) -> str:
 
 def write_json(results, path, *, coverage: dict | None = None) -> None:
     atomic_write(path, dumps(results, coverage=coverage))
+
+
+def emit_document(doc: dict, path: str | None, *, command: str, text: str | None = None) -> int:
+    """Deliver a command's JSON document; the exit status (0, or 2 when ``path`` cannot be written).
+
+    ``path == "-"``: the document goes to stdout instead of ``text``; otherwise ``text`` (unless
+    ``None``) is printed and the document, if ``path`` is given, written atomically.
+    """
+    body = json.dumps(doc, indent=1) + "\n"
+    if path == "-":
+        print(body, end="")
+        return 0
+    if text is not None:
+        print(text)
+    if path:
+        try:
+            atomic_write(path, body)
+        except OSError as exc:
+            import sys
+
+            print(f"{command}: cannot write {path}: {exc.strerror or exc}", file=sys.stderr)
+            return 2
+    return 0

@@ -9,12 +9,11 @@ carriage return; lone surrogates; U+FFFE, U+FFFF) is written as ``\\xNN`` /
 """
 from __future__ import annotations
 
-import json
 import re
 import xml.etree.ElementTree as ET
 
 from .._files import atomic_write
-from .text import evidence_text, residual_text, summary
+from .text import evidence_text, outcome_fields, residual_text, summary
 
 __all__ = ["write_junit", "junit_xml", "xml_safe"]
 
@@ -43,14 +42,7 @@ def junit_xml(results, *, suite: str = "symbt.verify") -> str:
                            time=f"{o.seconds or 0:.3f}")
         info = [f"equation: {r.claim.equation}", f"status: {o.status}", f"evidence: {evidence_text(o)}",
                 f"method: {o.method}", f"residual: {residual_text(o)}"]
-        if o.printed:
-            info.append(f"printed: {o.printed}")
-        if o.corrected:
-            info.append(f"corrected: {o.corrected}")
-        if o.scope:
-            info.append(f"scope: {o.scope}")
-        if o.counterexample:
-            info.append(f"counterexample: {json.dumps(o.counterexample, default=str)}")
+        info += [f"{name}: {value}" for name, value in outcome_fields(o, limit=50)]
         if o.status == "failed":
             f = ET.SubElement(tc, "failure", message=xml_safe(f"{r.claim.id} (eq. {r.claim.equation}) failed"))
             f.text = xml_safe("\n".join(info + [o.detail or ""]))

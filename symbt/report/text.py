@@ -76,6 +76,25 @@ def point_text(point, limit: int = 12) -> str:
     return txt + (", ..." if len(items) > limit else "")
 
 
+def outcome_fields(o, *, limit: int = 8) -> list[tuple[str, str]]:
+    """The labelled fields every reporter shows for an outcome, in one order (those present):
+    ``printed``, ``corrected``, ``scope``, ``counterexample`` (as :func:`point_text`).
+
+    >>> from symbt.claims.base import Outcome
+    >>> outcome_fields(Outcome("erratum", "m", printed="P = 1", corrected="P = -1", counterexample={"x": 2}))
+    [('printed', 'P = 1'), ('corrected', 'P = -1'), ('counterexample', 'x = 2')]
+    """
+    fields = [(name, getattr(o, name)) for name in ("printed", "corrected", "scope") if getattr(o, name)]
+    if o.counterexample:
+        fields.append(("counterexample", point_text(o.counterexample, limit=limit)))
+    return fields
+
+
+def field_lines(o, indent: str, *, limit: int = 8) -> list[str]:
+    """:func:`outcome_fields` as aligned ``label: value`` lines."""
+    return [f"{indent}{name + ':':<10} {value}" for name, value in outcome_fields(o, limit=limit)]
+
+
 def _first_line(text: str | None, limit: int = 200) -> str:
     lines = (text or "").strip().splitlines()
     return lines[0][:limit] if lines else ""
@@ -180,15 +199,9 @@ def format_table(results, *, wall: float | None = None) -> str:
         if o.status == "skipped":
             lines.append(f"  reason: {_first_line(o.detail, 300) or 'no reason given'}")
             continue
-        if o.printed:
-            lines.append(f"  printed:   {o.printed}")
-        if o.corrected:
-            lines.append(f"  corrected: {o.corrected}")
-        if o.scope:
-            lines.append(f"  scope:     {o.scope}")
-        if o.counterexample:
-            res = f"  (residual {o.residual:.3g})" if isinstance(o.residual, (int, float)) else ""
-            lines.append(f"  counterexample: {point_text(o.counterexample, limit=8)}{res}")
+        lines += field_lines(o, "  ")
+        if o.counterexample and isinstance(o.residual, (int, float)):
+            lines[-1] += f"  (residual {o.residual:.3g})"
         if o.detail:
             lines.append("  " + _first_line(o.detail, 300))
     lines.append("")
@@ -201,14 +214,7 @@ def result_text(result) -> str:
     c, o = result.claim, result.outcome
     lines = [f"[{o.status}] {c.id} (eq. {c.equation}): {c.statement}",
              f"    method: {o.method}; residual {residual_text(o)}; evidence {evidence_text(o)}"]
-    if o.printed:
-        lines.append(f"    printed:   {o.printed}")
-    if o.corrected:
-        lines.append(f"    corrected: {o.corrected}")
-    if o.scope:
-        lines.append(f"    scope:     {o.scope}")
-    if o.counterexample:
-        lines.append(f"    counterexample: {point_text(o.counterexample, limit=8)}")
+    lines += field_lines(o, "    ")
     if o.status in ("failed", "skipped") and o.detail:
         lines.append(f"    {'detail' if o.status == 'failed' else 'reason'}: {_first_line(o.detail, 300)}")
     return "\n".join(lines)
