@@ -101,3 +101,28 @@ def test_heyoka_transfer_field_and_real_precision():
     r = high_precision(hy, ["-20", "10", "1"], ["1", "0", "0.9"], "10", "5", 1, 30, 1.0, ref30, quick=True)
     assert r["err"] < 1e-29 and r["prec_bits"] >= 100
     assert np.isfinite(r["time_s"])
+
+
+def test_short_calls_are_timed_in_batches_long_ones_singly():
+    import time
+
+    from symbt.benchmarks.timing import timed
+
+    calls = []
+
+    def fast():
+        calls.append(1)
+        return 7
+
+    res, secs, reps = timed(fast)
+    # warm-up + first call + 5 batches, each batch at least 20 ms of calls
+    assert res == 7 and reps == 5 and len(calls) > 2 + 5 * 10 and secs < 1e-3
+
+    calls.clear()
+
+    def slow():
+        calls.append(1)
+        time.sleep(0.03)
+
+    _, secs, reps = timed(slow)
+    assert reps == 5 and len(calls) == 1 + 5 and secs >= 0.03
