@@ -15,7 +15,7 @@ from .derive import specs
 from .emit_loop import loop_module_body
 from .forms import FORMS, form_of
 from .printer import cse_block
-from .pymodule import function_doc, module_head, numpy_prologue, package_init_body, signature
+from .pymodule import function_doc, module_head, numpy_epilogue, numpy_prologue, package_init_body, signature
 from .runtime import ORBIT
 
 __all__ = ["module_body", "package_init_body", "form_of"]
@@ -52,13 +52,8 @@ def _function_numpy(spec, N):
         k += len(o.exprs)
         lines.append(f"        {o.name} = _pack([{', '.join(items)}], _batch, {o.shape!r})")
         res.append(o.name)
-    if spec.guards:
-        gl = ", ".join(f"({g.condition!r}, {g.label!r}, {t})" for g, t in zip(spec.guards, guards))
-        lines.append(f"        _bad = _guard(errors, _batch, [{gl}])")
-        lines.append(f"    {', '.join(res)}, = _finish(errors, _bad, _batch, [{', '.join(res)}])")
-    else:
-        lines.append(f"    {', '.join(res)}, = _finish('raise', None, _batch, [{', '.join(res)}])")
-    lines.append(f"    return {', '.join(res)}")
+    gl = ", ".join(f"({g.condition!r}, {g.label!r}, {t})" for g, t in zip(spec.guards, guards))
+    lines += numpy_epilogue(spec, res, f"[{gl}]")
     return "\n".join(lines)
 
 

@@ -17,7 +17,7 @@ from .derive import FUNCTIONS, interface
 from .kernels import kernels
 from .loop_template import CORE
 from .printer import ExprPrinter
-from .pymodule import function_doc, module_head, numpy_prologue, signature
+from .pymodule import function_doc, module_head, numpy_epilogue, numpy_prologue, signature
 from .runtime import ORBIT
 
 __all__ = ["loop_module_body", "printed_kernels"]
@@ -91,12 +91,7 @@ def _numpy_wrapper(spec, N):
     res = [o.name for o in spec.outputs]
     for o in spec.outputs:
         lines.append(f"        {o.name} = _pack({items[o.name]}, _batch, {o.shape!r})")
-    if spec.guards:
-        lines.append("        _bad = _guard(errors, _batch, _g)")
-        lines.append(f"    {', '.join(res)}, = _finish(errors, _bad, _batch, [{', '.join(res)}])")
-    else:
-        lines.append(f"    {', '.join(res)}, = _finish('raise', None, _batch, [{', '.join(res)}])")
-    lines.append(f"    return {', '.join(res)}")
+    lines += numpy_epilogue(spec, res, "_g")
     return "\n".join(lines)
 
 

@@ -42,6 +42,16 @@ def numpy_prologue(spec, N, form, n_text=None):
     return lines
 
 
+def numpy_epilogue(spec, res, guard_list):
+    """Closing lines of an emitted numpy function, shared by both forms: the guard check
+    (``guard_list``: source text of the guards' list), ``_finish`` and the return."""
+    names = ", ".join(res)
+    if not spec.guards:
+        return [f"    {names}, = _finish('raise', None, _batch, [{names}])", f"    return {names}"]
+    return [f"        _bad = _guard(errors, _batch, {guard_list})",
+            f"    {names}, = _finish(errors, _bad, _batch, [{names}])", f"    return {names}"]
+
+
 def function_doc(spec, N, flavour, form):
     args = "\n".join(f"        {a.name}: {a.doc}" for a in spec.args)
     if flavour == "numpy":

@@ -34,9 +34,8 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from .._files import output_problem
 from ..paper import DISPLAYS, LABELS, Label
-from ..report.json import emit_document
+from ..report.json import emit_document, output_refused
 
 __all__ = ["coverage_map", "coverage_of", "scan_labels", "compare", "find_paper", "unlabelled_claims", "main"]
 
@@ -236,9 +235,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--no-cache", action="store_true", help="do not read claim statuses from the cache")
     ap.add_argument("-q", "--quiet", action="store_true")
     args = ap.parse_args(argv)
-    problem = args.json and output_problem(args.json)
-    if problem:
-        print(f"symbt coverage: --json {problem}", file=sys.stderr)
+    if output_refused(args.json, "symbt coverage"):
         return 2
     paper = find_paper(args.paper)
     diff: dict[str, list[str]] | None = None

@@ -28,10 +28,9 @@ from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
-from .._files import output_problem
 from ..claims import REGISTRY, load_all
 from ..claims.base import Claim
-from ..report.json import emit_document
+from ..report.json import emit_document, output_refused
 from .select import select
 
 __all__ = ["ClaimMutations", "mutate_claim", "run", "main"]
@@ -178,9 +177,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--json", metavar="FILE", help="write the records and the summary as JSON ('-': stdout)")
     ap.add_argument("-q", "--quiet", action="store_true")
     args = ap.parse_args(argv)
-    problem = args.json and output_problem(args.json)
-    if problem:
-        print(f"symbt mutate: --json {problem}", file=sys.stderr)
+    if output_refused(args.json, "symbt mutate"):
         return 2
     if args.jobs < 1 or (args.limit is not None and args.limit < 1):
         print("symbt mutate: -j and --limit must be positive", file=sys.stderr)

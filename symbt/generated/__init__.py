@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 386e905e5a7182c1ca0c99327dd403c7a970e5b77465f5a3138a12f48356fa34
-# symbt-codegen-content-sha256: 6b8229751d5e2d42ca6a2672ff5386541c089fc656dea4d9a0240b5f0361b91d
+# symbt-codegen-derivation-sha256: 2c7fd350fa4e606dffee6900375234ac45723b6afd18bd9aa50a0df31ff2e34b
+# symbt-codegen-content-sha256: a0782f58134c9be648b9ac554e5cffb65172b5f4111e0f2ae1df9542437d030f
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

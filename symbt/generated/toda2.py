@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 386e905e5a7182c1ca0c99327dd403c7a970e5b77465f5a3138a12f48356fa34
-# symbt-codegen-content-sha256: 7fc2f8876917f0ec40dbc897ebb3034ea130fb8295f624563863da8e918ec51f
+# symbt-codegen-derivation-sha256: 2c7fd350fa4e606dffee6900375234ac45723b6afd18bd9aa50a0df31ff2e34b
+# symbt-codegen-content-sha256: bf99de40abef044c3ff55b6316d8645bd5f3fa3002cb5074c5af71f6b191c17f
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

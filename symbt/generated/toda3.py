@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 386e905e5a7182c1ca0c99327dd403c7a970e5b77465f5a3138a12f48356fa34
-# symbt-codegen-content-sha256: e57c030f2550b8756c23b22041957f52252b6bbf5749a7c568b9060bafa17982
+# symbt-codegen-derivation-sha256: 2c7fd350fa4e606dffee6900375234ac45723b6afd18bd9aa50a0df31ff2e34b
+# symbt-codegen-content-sha256: 031dbef45b76572475daf587012319062cc9cddfe8475a69fdc0aa057856ac4a
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

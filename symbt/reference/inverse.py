@@ -32,13 +32,19 @@ def _line_search(F, x, dx, accept):
     return None
 
 
+def _linearise(F, J, x):
+    """``(F(x), J(x))``, or None where F is not defined."""
+    r = F(x)
+    return None if r is None else (r, mp.matrix(J(x)))
+
+
 def _newton(F, J, x0, tol, maxit=40):
     x = [mp.mpmathify(v) for v in x0]
     for it in range(maxit):
-        r = F(x)
-        if r is None:
+        lin = _linearise(F, J, x)
+        if lin is None:
             return None
-        Jm = mp.matrix(J(x))
+        r, Jm = lin
         if max(abs(v) for v in r) < tol:  # converged: one more (quadratically convergent) step, then stop
             try:
                 dx = mp.lu_solve(Jm, -mp.matrix(r))
@@ -158,10 +164,10 @@ def solve_parameters(p, q, c_target, *, mode="exact", indices=None, guess=None, 
 def _gauss_newton(F, J, x0, tol, maxit=80):
     x = [mp.mpmathify(v) for v in x0]
     for it in range(maxit):
-        r = F(x)
-        if r is None:
+        lin = _linearise(F, J, x)
+        if lin is None:
             return None
-        Jm = mp.matrix(J(x))
+        r, Jm = lin
         dx = mp.qr_solve(Jm, -mp.matrix(r))[0]
         r0 = _norm(r)
         step = _line_search(F, x, dx, lambda rn, lam: _norm(rn) <= r0)

@@ -31,7 +31,7 @@ from pathlib import Path
 from typing import Any
 
 from .. import __version__
-from .._files import atomic_write
+from .._files import atomic_write, output_problem
 from .text import summary
 
 __all__ = ["SCHEMA_VERSION", "SCHEMA_PATH", "schema", "to_json", "dumps", "write_json"]
@@ -72,6 +72,19 @@ def dumps(results, *, coverage: dict | None = None) -> str:
 
 def write_json(results, path, *, coverage: dict | None = None) -> None:
     atomic_write(path, dumps(results, coverage=coverage))
+
+
+def output_refused(path: str | None, command: str, flag: str = "--json") -> bool:
+    """True (after a one-line message on stderr) if a report cannot be written to ``path``.
+
+    Called before any work, so that a bad path costs nothing.
+    """
+    problem = path and output_problem(path)
+    if problem:
+        import sys
+
+        print(f"{command}: {flag} {problem}", file=sys.stderr)
+    return bool(problem)
 
 
 def emit_document(doc: dict, path: str | None, *, command: str, text: str | None = None) -> int:
