@@ -41,11 +41,29 @@ __all__ = ["lax_matrix", "literal_step", "spectral_trace_mp", "phi_from_traces",
 
 
 def lax_matrix(lam, p, q):
-    """:math:`L(\\lambda) = l_N \\cdots l_1` as an mpmath matrix (eq. ``eq:lax``)."""
-    M = mp.eye(2)
+    """:math:`L(\\lambda) = l_N \\cdots l_1` as an mpmath matrix (eq. ``eq:lax``).
+
+    The product is written out entry by entry with the operations ``mp.matrix`` multiplication
+    performs (``fdot`` of a row and a column, one rounding per entry; a product with the zero entry
+    of ``l_j`` is exact), so the result is bit-identical to ``l_N * ... * l_1 * eye(2)`` in
+    mpmath matrices at a fraction of the cost -- this routine is the inner loop of the reference
+    map that most sampled claims evaluate thousands of times.
+
+    >>> import mpmath as mp
+    >>> with mp.workdps(30):
+    ...     M = lax_matrix(mp.mpf(2), [mp.mpf(1), mp.mpf(-1)], [mp.mpf(0), mp.mpf("0.5")])
+    ...     old = mp.eye(2)
+    ...     for pj, qj in zip([1, -1], [0, mp.mpf("0.5")]):
+    ...         old = mp.matrix([[2 + mp.mpf(pj), -mp.exp(qj)], [mp.exp(-qj), 0]]) * old
+    >>> M == old
+    True
+    """
+    fdot = mp.fdot
+    a, b, c, d = mp.mpf(1), mp.mpf(0), mp.mpf(0), mp.mpf(1)
     for pj, qj in zip(p, q):
-        M = mp.matrix([[lam + pj, -mp.exp(qj)], [mp.exp(-qj), 0]]) * M
-    return M
+        s, e, ei = lam + pj, -mp.exp(qj), mp.exp(-qj)
+        a, b, c, d = fdot(((s, a), (e, c))), fdot(((s, b), (e, d))), fdot(((ei, a),)), fdot(((ei, b),))
+    return mp.matrix([[a, b], [c, d]])
 
 
 def spectral_trace_mp(lam, p, q):
