@@ -32,7 +32,7 @@ import importlib.util
 from collections.abc import Iterable
 
 __all__ = ["InvalidInputError", "NoRealMapError", "NumericRangeError", "QuadratureError",
-           "MissingDependencyError"]
+           "MissingDependencyError", "importable"]
 
 
 class InvalidInputError(ValueError):

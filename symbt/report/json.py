@@ -34,7 +34,8 @@ from .. import __version__
 from .._files import atomic_write, output_problem
 from .text import summary
 
-__all__ = ["SCHEMA_VERSION", "SCHEMA_PATH", "schema", "to_json", "dumps", "write_json"]
+__all__ = ["SCHEMA_VERSION", "SCHEMA_PATH", "schema", "to_json", "dumps", "write_json", "output_refused",
+           "emit_document"]
 
 SCHEMA_VERSION = "1.1"
 SCHEMA_PATH = Path(__file__).with_name("verify.schema.json")
