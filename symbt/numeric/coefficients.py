@@ -48,6 +48,7 @@ from typing import Any
 import mpmath
 import numpy as np
 
+from ._input import MP, _to_mp
 from .errors import InvalidInputError, NoRealMapError, NumericRangeError, QuadratureError
 from .step import bt_step
 
@@ -74,23 +75,6 @@ def _branch(branch: Any) -> int:
     if isinstance(branch, bool) or not isinstance(branch, numbers.Integral) or branch not in (1, -1):
         raise InvalidInputError("branch must be +1 or -1, got %r" % (branch,))
     return int(branch)
-
-
-def _mp_seq(x: Any, name: str) -> list:
-    if isinstance(x, np.ndarray):
-        x = x.tolist()
-    if not isinstance(x, (list, tuple)):
-        raise InvalidInputError("%s must be a flat sequence" % name)
-    out = []
-    for v in x:
-        try:
-            w = mpmath.mpmathify(v)
-        except (TypeError, ValueError) as exc:
-            raise InvalidInputError("%s: cannot convert %r" % (name, v)) from exc
-        if isinstance(w, mpmath.mpc) or not mpmath.isfinite(w):
-            raise InvalidInputError("%s must be finite and real" % name)
-        out.append(w)
-    return out
 
 
 def _float_state(p: Any, q: Any) -> tuple[np.ndarray, np.ndarray]:
@@ -386,10 +370,10 @@ def flow_coefficients(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, ks
     """
     branch = _branch(branch)
     if _is_mp(p, q, lam0, mu):
-        Pm, Qm = _mp_seq(p, "p"), _mp_seq(q, "q")
+        Pm, Qm = _to_mp(MP, p, "p"), _to_mp(MP, q, "q")
         if len(Pm) != len(Qm) or len(Pm) < 2:
             raise InvalidInputError("p and q must have the same length N >= 2")
-        l0m, mum = _mp_seq([lam0, mu], "lam0, mu")
+        l0m, mum = _to_mp(MP, [lam0, mu], "lam0, mu")
         kl = _selection(ks, len(Pm))
         if mum == 0:
             return [mpmath.mpf(0)] * len(kl)
