@@ -1,13 +1,48 @@
 """The exact layer: a difference reduced to zero as a rational function (see :mod:`symbt.proof`)."""
 from __future__ import annotations
 
+import os
 from collections.abc import Mapping
+from functools import cache
 
 import sympy as sp
 
 from ..symbolic.rewriting import rationalize_exponentials
 
-__all__ = ["reduce_modulo", "exact_zero", "is_rational_in_symbols"]
+__all__ = ["reduce_modulo", "exact_zero", "is_rational_in_symbols", "exact_route", "ROUTES"]
+
+#: ``route`` values of :func:`exact_zero`
+ROUTES = ("auto", "flint", "sympy")
+
+
+def exact_route(route: str = "auto") -> str:
+    """The exact route used: ``"flint"`` (python-flint's ``fmpq_mpoly``, :mod:`.flint_exact`) when
+    python-flint imports, else ``"sympy"`` (``together``/``cancel``/``rem``).  ``auto`` reads the
+    environment variable ``SYMBT_EXACT`` (``flint`` or ``sympy``) first.
+
+    >>> exact_route("sympy")
+    'sympy'
+    """
+    if route == "auto":
+        route = os.environ.get("SYMBT_EXACT", "") or "auto"
+    if route not in ROUTES:
+        raise ValueError(f"exact route must be one of {ROUTES}, got {route!r}")
+    if route != "sympy":
+        if _flint_imports():
+            return "flint"
+        if route == "flint":
+            raise ImportError("the flint exact route needs python-flint: pip install 'symbt[certified]'")
+    return "sympy"
+
+
+@cache
+def _flint_imports() -> bool:
+    try:
+        import flint  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
 
 
 def is_rational_in_symbols(expr) -> bool:
@@ -43,7 +78,14 @@ def reduce_modulo(numerator, relations: Mapping[sp.Symbol, sp.Expr]):
     return out
 
 
-def exact_zero(diff, relations) -> tuple[bool | None, str, bool]:
+def _is_zero_polynomial(num) -> bool:
+    """``num == 0`` as a polynomial.  Not ``num == 0`` on the tree: SymPy 1.14's ``cancel`` can return an
+    unevaluated sum such as ``-1/4 + 1/4`` (``tests/test_proof_flint.py``)."""
+    gens = sorted(num.free_symbols, key=sp.default_sort_key) or [sp.Dummy("t")]
+    return bool(sp.Poly(num, *gens).is_zero)
+
+
+def exact_zero(diff, relations, route: str = "auto") -> tuple[bool | None, str, bool]:
     """Try to decide ``diff == 0`` exactly.
 
     Returns ``(zero, method, definite)``: ``zero`` is None when the exact layer
@@ -51,20 +93,30 @@ def exact_zero(diff, relations) -> tuple[bool | None, str, bool]:
     when a nonzero result is a proof of falsity (a nonzero rational function
     without relations: it cannot vanish identically -- the ``exp(s_i)`` are
     algebraically independent over the rational functions of the ``s_i``).
+    ``route`` (see :func:`exact_route`): both routes compute the same normal
+    form, FLINT's about 50 times faster on the claims' differences.
     """
     rat, mapping = rationalize_exponentials(diff)
     if not is_rational_in_symbols(rat):
         return None, "", False
-    num, _den = sp.fraction(sp.cancel(sp.together(rat)))
-    if relations:
-        num = reduce_modulo(num, relations)
-        num = sp.cancel(num)
+    zero = None
+    if exact_route(route) == "flint":
+        from .flint_exact import rational_zero
+
+        zero = rational_zero(rat, relations)
     parts = []
     if mapping:
         parts.append("exp->monomials (" + ", ".join(f"{v}=e^{k}" for k, v in mapping.items()) + ")")
-    parts.append("together/cancel")
+    if zero is None:
+        num, _den = sp.fraction(sp.cancel(sp.together(rat)))
+        if relations:
+            num = reduce_modulo(num, relations)
+            num = sp.cancel(num)
+        zero = _is_zero_polynomial(num)
+        parts.append("together/cancel")
+    else:
+        parts.append("one fraction in FLINT fmpq_mpoly")
     if relations:
         parts.append("remainder mod " + ", ".join(f"{s}: {sp.sstr(r)}=0" for s, r in relations.items()))
     method = "exact: " + "; ".join(parts)
-    zero = bool(num == 0)
     return zero, method, (not zero and not relations)
