@@ -60,7 +60,7 @@ class _Converter:
         gens = self.ctx.gens()
         self.var = {s: g for s, g in zip(symbols, gens)}
         self.index = {s: k for k, s in enumerate(symbols)}
-        self.i = gens[-1] if has_i else None
+        self.i: Any = gens[-1] if has_i else None
         self.one = self.ctx.from_dict({(0,) * len(names): 1})
         self.memo: dict[Any, tuple[Any, Any]] = {}
 
