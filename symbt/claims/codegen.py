@@ -209,7 +209,8 @@ def step_literal(N: int, parts: Parts) -> Outcome:
                 for a, c in zip(ep + eq, lp + lq):
                     worst_mp = max(worst_mp, abs(a - c) / max(1, abs(c)))
             fp, fq = mod.bt_step(p, q, l0, m, b)
-            np_, nq = numeric(p, q, l0, m, branch=b)
+            # the plain-Python kernel: bit-identical to numba's (tests/test_numeric_fast.py), no numba load
+            np_, nq = numeric(p, q, l0, m, branch=b, backend="python")
             ref = [float(v) for v in lp + lq]
             for a, c, r in zip(list(fp) + list(fq), list(np_) + list(nq), ref):
                 worst_num = max(worst_num, abs(a - c) / (verify.EPS * max(1.0, abs(r))))
@@ -259,7 +260,7 @@ def orbit(N: int, parts: Parts) -> Outcome:
             return float(np.max(np.linalg.norm(np.concatenate([P, Q], axis=1) - ref, axis=1) / scale))
 
         e_gen.append(err(*_module(N, parts).bt_orbit(p, q, l0, m, ORBIT_STEPS)))
-        e_num.append(err(*bt_orbit(p, q, l0, m, ORBIT_STEPS)))
+        e_num.append(err(*bt_orbit(p, q, l0, m, ORBIT_STEPS, backend="python")))   # = numba's, bit for bit
     rms_gen, rms_num = (float(np.sqrt(np.mean(np.square(e)))) for e in (e_gen, e_num))
     ok = rms_gen <= 2 * rms_num + 1e-14
     return Outcome("verified" if ok else "failed", "numeric: float64 orbits vs 50 digits", residual=rms_gen,

@@ -35,6 +35,7 @@ Example
 from __future__ import annotations
 
 import mpmath as mp
+from mpmath import libmp as _libmp
 
 __all__ = ["lax_matrix", "literal_step", "spectral_trace_mp", "phi_from_traces", "reference_step",
            "literal_trace"]
@@ -58,12 +59,33 @@ def lax_matrix(lam, p, q):
     >>> M == old
     True
     """
-    fdot = mp.fdot
-    a, b, c, d = mp.mpf(1), mp.mpf(0), mp.mpf(0), mp.mpf(1)
-    for pj, qj in zip(p, q):
-        s, e, ei = lam + pj, -mp.exp(qj), mp.exp(-qj)
-        a, b, c, d = fdot(((s, a), (e, c))), fdot(((s, b), (e, d))), fdot(((ei, a),)), fdot(((ei, b),))
+    ex = [(mp.exp(qj), mp.exp(-qj)) for qj in q]
+    a, b, c, d = _lax_entries(lam, p, ex)
     return mp.matrix([[a, b], [c, d]])
+
+
+def _lax_entries(lam, p, ex):
+    """The entries ``(a, b, c, d)`` of :func:`lax_matrix` from ``ex[j] = (exp(q_j), exp(-q_j))``.
+
+    On real mpf the dot products are done as ``mp.fdot`` does them (exact products, one rounded
+    sum: ``mpf_sum`` of ``mpf_mul``), without its per-call type dispatch; anything else goes through
+    ``mp.fdot`` itself.  Bit-identical either way (``tests/test_reference.py``).
+    """
+    fdot, mpf = mp.fdot, mp.mpf
+    a, b, c, d = mpf(1), mpf(0), mpf(0), mpf(1)
+    prec, rnd = mp.mp._prec_rounding
+    make, mul, fsum = mp.mp.make_mpf, _libmp.mpf_mul, _libmp.mpf_sum
+    for pj, (ej, eij) in zip(p, ex):
+        s, e, ei = lam + pj, -ej, eij
+        if type(s) is mpf and type(e) is mpf and type(ei) is mpf and type(a) is mpf and type(b) is mpf \
+                and type(c) is mpf and type(d) is mpf:
+            S, X, I = s._mpf_, e._mpf_, ei._mpf_
+            A, B, C, D = a._mpf_, b._mpf_, c._mpf_, d._mpf_
+            a, b = make(fsum([mul(S, A), mul(X, C)], prec, rnd)), make(fsum([mul(S, B), mul(X, D)], prec, rnd))
+            c, d = make(fsum([mul(I, A)], prec, rnd)), make(fsum([mul(I, B)], prec, rnd))
+        else:
+            a, b, c, d = fdot(((s, a), (e, c))), fdot(((s, b), (e, d))), fdot(((ei, a),)), fdot(((ei, b),))
+    return a, b, c, d
 
 
 def spectral_trace_mp(lam, p, q):
@@ -86,16 +108,17 @@ def literal_step(p, q, lam0, mu, branch: int = 1, *, gamma_signs=None):
     N = len(p)
     s1, s2 = gamma_signs if gamma_signs is not None else (branch, branch)
     l1, l2 = lam0 + mu, lam0 - mu
-    L1, L2 = lax_matrix(l1, p, q), lax_matrix(l2, p, q)
-    A1, B1, D1 = L1[0, 0], L1[0, 1], L1[1, 1]
-    A2, B2, D2 = L2[0, 0], L2[0, 1], L2[1, 1]
+    # exp(+-q_j) once for both matrices and for E_j: the values lax_matrix and the list below would compute
+    ex = [(mp.exp(v), mp.exp(-v)) for v in q]
+    A1, B1, _, D1 = _lax_entries(l1, p, ex)
+    A2, B2, _, D2 = _lax_entries(l2, p, ex)
     tr1, tr2 = A1 + D1, A2 + D2
     g1 = s1 * mp.sqrt(tr1 ** 2 - 4)
     g2 = s2 * mp.sqrt(tr2 ** 2 - 4)
     # eq. xy
     y = (A1 - D1 + g1) / (2 * B1)
     x = 2 * B1 * B2 * (l2 - l1) / (B2 * (A1 - D1 + g1) - B1 * (A2 - D2 - g2))
-    E = [mp.exp(v) for v in q]
+    E = [e for e, _ in ex]
     ys, zs = [y], [y + 2 * mu / x]
     for j in range(N - 1):
         ys.append(-1 / (E[j] * (l1 + p[j] + E[j] * ys[-1])))
