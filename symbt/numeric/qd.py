@@ -14,14 +14,19 @@ first time, then loaded from numba's cache) and converts:
   summed exactly as one Python integer, rounded by ``mpmath.libmp.from_man_exp``.
 
 Precision rule (:func:`qd_fits`): the orbit is used when
-``mp.prec + QD_GUARD + 2 * n.bit_length() <= QD_BITS``, the same orbit guard
-growth as the Arb path (its error grows like ``n**2`` ulps); ``QD_GUARD`` is
-measured (``tests/test_numeric_qd.py``, and the table in :func:`qd_fits`): the
-quad-double orbit of the paper's example (and random states, ``N = 2, 3, 5``,
-both branches) stays within that many bits of ``2**-209`` of a 120-digit
-reference for ``n <= 1000``, so the rounded result is as accurate as the Arb
-path's at the same ``mp.prec``.  At ``mp.dps = 50`` (``169`` bits) it covers
-``n < 2**?`` steps.
+``mp.prec + QD_GUARD + 2 * n.bit_length() <= QD_BITS`` (``QD_GUARD = 16``),
+the orbit guard growing like the Arb path's (error ``~ n**2`` ulps).
+Measured (120-digit reference; paper example and random gap states,
+``N = 2, 3, 5``, both branches): the unrounded quad-double orbit is within
+``2**-216 .. 2**-220`` (relative to the largest state component) after one
+step, ``2**-213`` after 10, ``2**-205`` after 100, ``2**-203.4`` after 1000 and
+``2**-200.8`` after 10**4 steps, i.e. below ``2**(-209 - 8 + 2 n.bit_length())``
+everywhere.  At the rule's boundary the quad-double error is therefore at most
+``2**-24`` ulps of ``mp.prec``: the rounded result equals the Arb path's (in all
+the cases above bit for bit), with 24 bits to spare for an ill-conditioned map
+(near a band edge, condition ``4e7``, 10 steps: ``2**-179``, still ``2**-10``
+ulps at 50 digits).  At ``mp.dps = 50`` (169 bits) the rule admits
+``n <= 4095`` steps; one step up to ``mp.prec = 191`` (57 digits).
 
 Numba missing, or ``SYMBT_NO_NUMBA=1``: :func:`qd_available` is False, and
 :mod:`symbt.numeric.mpfast` does not choose this backend.
@@ -61,7 +66,7 @@ __all__ = ["qd_available", "qd_fits", "qd_need", "qd_orbit_mp", "qd_kernel", "to
 
 QD_BITS = 209
 #: guard bits of the quad-double orbit beyond the caller's precision (plus ``2 * n.bit_length()``)
-QD_GUARD = 24
+QD_GUARD = 16
 _MAX_EXP = 600                           # |x| inside 2**+-600 (low components stay normal doubles)
 
 _compiled: dict[str, Callable[..., Any]] = {}
@@ -136,9 +141,9 @@ def _named(fn: Callable[..., Any], name: str, **overrides: Any) -> Callable[...,
     return out
 
 
-def _decompose(x: F64, man: Any, sh: Any, ex: Any) -> None:
-    """Row ``i`` of ``x`` (``(k, 4)`` doubles) -> integer mantissas ``man[i]`` (``|.| < 2**53``), shifts ``sh[i]``
-    and exponent ``ex[i]`` with ``sum x[i] = ((((m0 << s1) + m1) << s2) + m2 << s3) + m3) * 2**ex[i]``
+def _decompose(x: F64, out: Any) -> None:
+    """Row ``i`` of ``x`` (``(k, 4)`` doubles) -> ``out[i] = (m0, m1, m2, m3, s1, s2, s3, e)``: integer mantissas
+    (``|m| < 2**53``), shifts and exponent with ``sum x[i] = ((((m0 << s1) + m1) << s2) + m2 << s3) + m3) 2**e``
     (components sorted by exponent, zeros dropped)."""
     k = x.shape[0]
     for i in range(k):
@@ -160,15 +165,15 @@ def _decompose(x: F64, man: Any, sh: Any, ex: Any) -> None:
                 es[pos] = e
                 cnt += 1
         for c in range(4):
-            man[i, c] = ms[c]
+            out[i, c] = ms[c]
         last = es[0]
         for c in range(1, 4):
             if c < cnt:
-                sh[i, c - 1] = es[c - 1] - es[c]
+                out[i, 3 + c] = es[c - 1] - es[c]
                 last = es[c]
             else:
-                sh[i, c - 1] = 0
-        ex[i] = last
+                out[i, 3 + c] = 0
+        out[i, 7] = last
 
 
 def _compile() -> None:
@@ -213,37 +218,37 @@ def qd_kernel(name: str = "qd_orbit") -> Callable[..., Any]:
     return _compiled[name]
 
 
-def _chunks(x: Any) -> tuple[float, float, float, float] | None:
-    """An mpf as four non-overlapping doubles summing to it exactly, or ``None`` if it does not fit."""
-    sign, man, exp, bc = x._mpf_
-    if not man:
-        return (0.0, 0.0, 0.0, 0.0) if not exp else None        # exp != 0: inf or nan
-    if bc > 212 or not -_MAX_EXP <= exp + bc <= _MAX_EXP:
-        return None
-    out = [0.0, 0.0, 0.0, 0.0]
-    k = 0
-    while man:
-        s = bc - 53 if bc > 53 else 0
-        hi = man >> s
-        out[k] = math.ldexp(int(hi), exp + s)
-        man -= hi << s
-        bc = man.bit_length()
-        k += 1
-    if sign:
-        return -out[0], -out[1], -out[2], -out[3]
-    return out[0], out[1], out[2], out[3]
+_M53 = (1 << 53) - 1
+_LIMB_SHIFT = np.array([159, 106, 53, 0])
 
 
 def to_qd(values: Sequence[Any]) -> F64 | None:
-    """mpf values -> ``(k, 4)`` array of exact chunks (not yet renormalised), or ``None`` if one does not fit.
+    """mpf values -> ``(k, 4)`` array of exact, non-overlapping chunks (the mantissa's 53-bit limbs, highest
+    first; renormalised by the kernel), or ``None`` if one does not fit (more than 212 bits, exponent
+    beyond ``2**+-600``, inf/nan).
 
     >>> to_qd([mpmath.mpf(3)]).tolist()
-    [[3.0, 0.0, 0.0, 0.0]]
+    [[0.0, 0.0, 0.0, 3.0]]
     """
-    rows = [_chunks(v) for v in values]
-    if any(r is None for r in rows):
-        return None
-    return np.array(rows, dtype=np.float64).reshape(len(rows), 4)
+    limbs, exps, signs = [], [], []
+    for v in values:
+        sign, man, exp, bc = v._mpf_
+        if not man:
+            if exp:                                       # inf or nan
+                return None
+            limbs.append((0, 0, 0, 0))
+            exps.append(0)
+            signs.append(1.0)
+            continue
+        if bc > 212 or not -_MAX_EXP <= exp + bc <= _MAX_EXP:
+            return None
+        m = int(man)
+        limbs.append((m >> 159, (m >> 106) & _M53, (m >> 53) & _M53, m & _M53))
+        exps.append(exp)
+        signs.append(-1.0 if sign else 1.0)
+    out = np.ldexp(np.array(limbs, dtype=np.float64).reshape(-1, 4),
+                   np.array(exps, dtype=np.int64)[:, None] + _LIMB_SHIFT)
+    return out * np.array(signs)[:, None]
 
 
 def from_qd(x: F64, prec: int) -> list[Any]:
@@ -253,12 +258,11 @@ def from_qd(x: F64, prec: int) -> list[Any]:
     True
     """
     flat = np.ascontiguousarray(x, dtype=np.float64).reshape(-1, 4)
-    k = flat.shape[0]
-    man, sh, ex = np.empty((k, 4), np.int64), np.empty((k, 3), np.int64), np.empty(k, np.int64)
-    qd_kernel("decompose")(flat, man, sh, ex)
+    ints = np.empty((flat.shape[0], 8), np.int64)
+    qd_kernel("decompose")(flat, ints)
     fme, new, cls = mpmath.libmp.from_man_exp, object.__new__, mpmath.mp.mpf
     out = []
-    for (m0, m1, m2, m3), (s1, s2, s3), e in zip(man.tolist(), sh.tolist(), ex.tolist()):
+    for m0, m1, m2, m3, s1, s2, s3, e in ints.tolist():
         v = new(cls)
         v._mpf_ = fme((((((m0 << s1) + m1) << s2) + m2) << s3) + m3, e, prec, "n")
         out.append(v)

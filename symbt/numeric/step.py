@@ -343,7 +343,7 @@ def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_comple
         values where needed).
     backend : ``"auto"`` (default: the fastest available), or force one:
         float64 ``"numba"``/``"python"`` (fused kernel, one state only) or
-        ``"numpy"``; mpmath ``"qd"`` (quad-double, numba; ``mp.prec <= 177``),
+        ``"numpy"``; mpmath ``"qd"`` (quad-double, numba; ``mp.prec <= 191``),
         ``"flint"`` (Arb, python-flint) or ``"mpmath"``.
 
     Returns
