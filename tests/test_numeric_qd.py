@@ -232,3 +232,22 @@ def test_no_numba_switch(monkeypatch):
     with mpmath.workdps(50), pytest.raises(MissingDependencyError):
         p, q = mp_state(P0, Q0)
         bt_orbit(p, q, 10, 5, 2, backend="qd")
+
+
+@pytest.mark.parametrize("branch", [1, -1])
+def test_unrounded_error_is_below_the_model_behind_the_rule(branch):
+    """The premise of qd_fits: the unrounded qd orbit stays below 2**(-209 - 8 + 2 n.bit_length()) of the
+    state's size (measured down to 2**-213 at n = 10; the model allows 2**-209)."""
+    n = 100
+    with mpmath.workdps(50):
+        p, q = mp_state(P0, Q0)
+        x = to_qd(p + q + [mpmath.mpf(10), mpmath.mpf(5)])
+    outP, outQ = np.empty((n + 1, 3, 4)), np.empty((n + 1, 3, 4))
+    assert qd_kernel()(x[:3], x[3:6], x[6:], branch, n, 1, outP, outQ) == (0, n)
+    RP, RQ = ref_orbit(p, q, 10, 5, n, branch)
+    for i in (1, 10, 100):
+        with mpmath.workprec(400):
+            raw = from_qd(np.concatenate([outP[i], outQ[i]]), 400)
+            ref = RP[i] + RQ[i]
+            err = max(abs(a - b) for a, b in zip(raw, ref)) / max(abs(v) for v in ref)
+            assert 0 < err <= mpmath.mpf(2) ** (-217 + 2 * i.bit_length()), (i, float(mpmath.log(err, 2)))

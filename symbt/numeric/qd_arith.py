@@ -383,8 +383,22 @@ def exp_parts(a: tuple[float, float, float, float]) -> tuple[int, int, tuple[flo
     b = sub(a, mul_d(LN2, float(m)))
     j = math.floor(b[0] * _TAB + 0.5)
     r = add_d(b, -j / _TAB)
-    h = _qrow(COEF, _TAYLOR - 1)
-    for k in range(_TAYLOR - 2, 0, -1):
+    # Horner from the inside; h_k (~ 1/(k+1)!) enters s with weight r**k <= 2**-9k, so it needs relative
+    # precision 2**(9k - 212) (k+1)!: doubles for k >= 14, double-doubles for k >= 10, quad-doubles below
+    r0, r1 = r[0], r[1]
+    hd = float(COEF[_TAYLOR - 1, 0])
+    for k in range(_TAYLOR - 2, 13, -1):
+        hd = hd * r0 + float(COEF[k, 0])
+    hh, hl = hd, 0.0
+    for k in range(13, 9, -1):                           # double-double: (hh, hl) (r0 + r1) + c_k
+        p, e = two_prod(hh, r0)
+        e += hh * r1 + hl * r0
+        p, e = quick_two_sum(p, e)
+        s1, s2 = two_sum(p, float(COEF[k, 0]))
+        s2 += e + float(COEF[k, 1])
+        hh, hl = quick_two_sum(s1, s2)
+    h = (hh, hl, 0.0, 0.0)
+    for k in range(9, 0, -1):
         h = add(mul(h, r), _qrow(COEF, k))
     h = add_d(mul(h, r), 1.0)
     return int(m), int(j) + _TAB_HALF, mul(h, r)
