@@ -17,6 +17,7 @@ _IMPORTS = {"symbt/numeric/arb.py": "flint"}
 _NEEDS = {
     "symbt.numeric.certified": "flint",
     "symbt.numeric.mpfast.arb_step": "flint",
+    "symbt.numeric.qd": "numba",
     "symbt.numeric.dask_orbit": "dask",
 }
 

@@ -1,8 +1,16 @@
-r"""High precision, fast: mpmath in, mpmath out, python-flint's Arb inside.
+r"""High precision, fast: mpmath in, mpmath out, quad-doubles (numba) or python-flint's Arb inside.
 
 For mpmath input :func:`~symbt.numeric.bt_step` and :func:`~symbt.numeric.bt_orbit`
-pick the fastest backend present:
+pick the fastest backend present (``"auto"``: ``"qd"`` if numba is there and the
+precision fits, else ``"flint"`` if python-flint is there, else ``"mpmath"``):
 
+* ``"qd"`` (numba installed, ``mp.prec`` small enough for the number of steps:
+  :func:`~symbt.numeric.qd.qd_fits`): the same step in compiled quad-double
+  arithmetic (:mod:`symbt.numeric.qd`, 209 bits), all ``n`` steps in one
+  compiled call; real states only (``allow_complex`` continues on the Arb or
+  mpmath path where the real map does not exist); inputs or states outside the
+  double exponent range go to the next backend under ``"auto"``
+  (:class:`NumericRangeError` for an explicit ``"qd"``).
 * ``"flint"`` (python-flint installed): :func:`~symbt.numeric.step.step_core`
   on Arb balls (:data:`~symbt.numeric.arb.ARB_MID`, decisions on midpoints)
   at ``mp.prec + guard`` bits, the state kept in Arb between the steps of an
@@ -41,10 +49,10 @@ from .errors import InvalidInputError, MissingDependencyError, NoRealMapError, N
 from .kernels import stored_steps
 from .step import _mp_step, step_core
 
-__all__ = ["flint_available", "mp_backend", "mp_orbit", "arb_step", "MP_BACKENDS", "GUARD_BITS"]
+__all__ = ["flint_available", "mp_backend", "mp_orbit", "arb_step", "pick_mp_backend", "MP_BACKENDS", "GUARD_BITS"]
 
 #: accepted ``backend`` values for mpmath input
-MP_BACKENDS = ("auto", "flint", "mpmath")
+MP_BACKENDS = ("auto", "flint", "qd", "mpmath")
 GUARD_BITS = 40
 
 
@@ -194,21 +202,80 @@ def _flint_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
     return [_to_mp(x) for x in Pn], [_to_mp(x) for x in Qn]
 
 
-def mp_backend(backend: str = "auto") -> Callable[..., tuple[list[Any], list[Any]]] | None:
-    """The fast mpmath step for ``backend`` (``None``: use the plain mpmath path).
+def pick_mp_backend(backend: str, n: int = 1) -> str:
+    """The backend ``"qd"``, ``"flint"`` or ``"mpmath"`` that runs ``n`` steps at the current ``mp.prec``.
 
-    >>> mp_backend("mpmath") is None
+    ``"auto"``: ``"qd"`` if numba is present and :func:`~symbt.numeric.qd.qd_fits`, else ``"flint"``
+    if python-flint is present, else ``"mpmath"``.  An explicit backend that is missing raises
+    :class:`MissingDependencyError`; ``"qd"`` at a precision it cannot carry raises
+    :class:`InvalidInputError`.
+
+    >>> pick_mp_backend("mpmath")
+    'mpmath'
+    >>> with mpmath.workdps(200):
+    ...     pick_mp_backend("auto", 10) in ("flint", "mpmath")
     True
     """
     if backend not in MP_BACKENDS:
         raise InvalidInputError("backend for mpmath input must be one of %s, got %r" % (MP_BACKENDS, backend))
     if backend == "mpmath":
-        return None
+        return backend
+    from .qd import qd_available, qd_fits, qd_need
+
+    if backend == "qd":
+        if not qd_available():
+            raise MissingDependencyError("the qd backend needs numba: pip install 'symbt[fast]' "
+                                         "(or unset SYMBT_NO_NUMBA)")
+        if not qd_fits(mpmath.mp.prec, n):
+            raise InvalidInputError("the qd backend carries 209 bits; mp.prec = %d with %d steps needs %d: "
+                                    "use backend='flint' (or 'auto')" % (mpmath.mp.prec, n, qd_need(mpmath.mp.prec, n)))
+        return backend
+    if backend == "auto" and qd_available() and qd_fits(mpmath.mp.prec, n):
+        return "qd"
     if not flint_available():
         if backend == "flint":
             raise MissingDependencyError("the flint backend needs python-flint: pip install 'symbt[certified]'")
-        return None
-    return _flint_step
+        return "mpmath"
+    return "flint"
+
+
+def _qd_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int, allow_complex: bool,
+             explicit: bool = False) -> tuple[list[Any], list[Any]]:
+    """One quad-double step; where the real map does not exist and ``allow_complex``, or (not ``explicit``)
+    outside the quad-double range, the Arb (or mpmath) step."""
+    from .qd import qd_orbit_mp
+
+    try:
+        Pn, Qn = qd_orbit_mp(P, Q, lam0, mu, 1, branch=branch, every=1)
+        return Pn[-1], Qn[-1]
+    except NoRealMapError:
+        if not allow_complex:
+            raise
+    except NumericRangeError:
+        if explicit:
+            raise
+    if flint_available():
+        return _flint_step(P, Q, lam0, mu, branch, allow_complex)
+    from ._input import MP
+
+    return _mp_step(MP, P, Q, lam0, mu, branch, allow_complex)
+
+
+def _qd_step_explicit(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
+                      allow_complex: bool) -> tuple[list[Any], list[Any]]:
+    return _qd_step(P, Q, lam0, mu, branch, allow_complex, explicit=True)
+
+
+def mp_backend(backend: str = "auto") -> Callable[..., tuple[list[Any], list[Any]]] | None:
+    """The fast mpmath step for ``backend`` at the current precision (``None``: use the plain mpmath path).
+
+    >>> mp_backend("mpmath") is None
+    True
+    """
+    name = pick_mp_backend(backend, 1)
+    if name == "qd":
+        return _qd_step_explicit if backend == "qd" else _qd_step
+    return _flint_step if name == "flint" else None
 
 
 def mp_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, every: int = 1,
@@ -226,10 +293,19 @@ def mp_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, eve
     lam0, mu = prepare_spectral_pair(ctx, lam0, mu, ())
     keep = set(stored_steps(n, every))
     outP, outQ = [to_output(ctx, P, ())], [to_output(ctx, Q, ())]
-    fast = None if ctx is IV else mp_backend(backend)
+    name = "mpmath" if ctx is IV else pick_mp_backend(backend, n)
     if mu == 0 or n == 0:
         return outP * len(keep), outQ * len(keep)
-    if fast is None:
+    if name == "qd":
+        from .qd import qd_orbit_mp
+
+        try:
+            return qd_orbit_mp(P, Q, lam0, mu, n, branch=branch, every=every)
+        except NumericRangeError:
+            if backend == "qd":
+                raise
+            name = "flint" if flint_available() else "mpmath"
+    if name == "mpmath":
         pc, qc = P, Q
         for i in range(1, n + 1):
             pc, qc = _mp_step(ctx, pc, qc, lam0, mu, branch, False)

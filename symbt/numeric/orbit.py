@@ -80,8 +80,9 @@ def bt_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, eve
         ...`` steps and always the last one (``every=n``: initial and final).
     branch : +1 or -1 (inverse map).
     backend : ``"auto"`` (fastest available) or float64 ``"numba"``,
-        ``"python"``, ``"numpy"`` (general path only); mpmath ``"flint"`` or
-        ``"mpmath"``.
+        ``"python"``, ``"numpy"`` (general path only); mpmath ``"qd"``
+        (quad-double, numba, if ``mp.prec`` fits: :func:`symbt.numeric.qd.qd_fits`),
+        ``"flint"`` or ``"mpmath"``.
     certified, tol : see :func:`symbt.numeric.certified.certified_orbit`;
         returns ``(P, Q, P_rad, Q_rad)``.
 
@@ -113,7 +114,7 @@ def bt_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, eve
         raise InvalidInputError("tol is only used with certified=True")
     ctx = pick_context(p, q, lam0, mu)
     if ctx is FLOAT:
-        if backend in ("flint", "mpmath"):
+        if backend in ("flint", "qd", "mpmath"):
             raise InvalidInputError("backend %r needs mpmath inputs" % backend)
         return float_orbit(p, q, lam0, mu, n, branch=branch, every=every, backend=backend)
     from .mpfast import mp_orbit

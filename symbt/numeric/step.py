@@ -103,7 +103,7 @@ __all__ = ["bt_step", "step_core", "eigen_slopes", "SlopeData", "STEP_BACKENDS"]
 
 _GUARD_DIGITS = 12
 #: accepted values of ``backend`` (float64: auto/numba/python/numpy; mpmath: auto/flint/mpmath)
-STEP_BACKENDS = ("auto", "numba", "python", "numpy", "flint", "mpmath")
+STEP_BACKENDS = ("auto", "numba", "python", "numpy", "flint", "qd", "mpmath")
 
 
 class SlopeData:
@@ -343,7 +343,8 @@ def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_comple
         values where needed).
     backend : ``"auto"`` (default: the fastest available), or force one:
         float64 ``"numba"``/``"python"`` (fused kernel, one state only) or
-        ``"numpy"``; mpmath ``"flint"`` (Arb, python-flint) or ``"mpmath"``.
+        ``"numpy"``; mpmath ``"qd"`` (quad-double, numba; ``mp.prec <= 191``),
+        ``"flint"`` (Arb, python-flint) or ``"mpmath"``.
 
     Returns
     -------
@@ -370,7 +371,7 @@ def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_comple
         raise InvalidInputError("backend must be one of %s, got %r" % (STEP_BACKENDS, backend))
     ctx = pick_context(p, q, lam0, mu)
     if ctx is FLOAT:
-        if backend in ("flint", "mpmath"):
+        if backend in ("flint", "qd", "mpmath"):
             raise InvalidInputError("backend %r needs mpmath inputs" % backend)
         pa, qa, shape = validate_float_pair(p, q)
         lam0, mu = prepare_spectral_pair(ctx, lam0, mu, shape)

@@ -7,7 +7,8 @@ Measures, in one process (ratios are what survives a noisy machine):
 2. ensemble throughput (``N = 3``, ``M = 10**4``, ``every = n``): the numba
    block kernel on all cores and the vectorised numpy path, in
    system-steps per second;
-3. 10 steps at 50 and 100 digits: the plain mpmath path vs the Arb fast path,
+3. 10 steps at 50 and 100 digits: the plain mpmath path vs the Arb fast path
+   and (numba installed, the precision fits: 50 digits) the quad-double path,
    and (heyoka installed) heyoka.real integrating the flow the map interpolates
    (``sum_k c_k H_k`` for time 10) at the same precision, tolerance ``10**-dps``;
 4. certified orbits: radius growth at a fixed precision and the precision /
@@ -95,9 +96,10 @@ def ensemble_throughput(M: int = 10_000, n: int = 200, repeat: int = 3) -> dict[
 
 
 def mp_speed(dps: int, n: int = 10, repeat: int = 10) -> dict[str, float]:
-    """Seconds for ``n`` steps of the paper's example at ``dps`` digits: mpmath vs the Arb fast path."""
+    """Seconds for ``n`` steps of the paper's example at ``dps`` digits: mpmath, the Arb path, quad-double."""
     from . import bt_orbit
     from .mpfast import flint_available
+    from .qd import qd_available, qd_fits
 
     out = {}
     with mpmath.workdps(dps):
@@ -108,13 +110,16 @@ def mp_speed(dps: int, n: int = 10, repeat: int = 10) -> dict[str, float]:
             bt_orbit(p, q, 10, 5, 1)
             out["flint"] = best_of(lambda: bt_orbit(p, q, 10, 5, n, backend="flint"), repeat)
             out["speedup"] = out["mpmath"] / out["flint"]
+        if qd_available() and qd_fits(mpmath.mp.prec, n):
+            bt_orbit(p, q, 10, 5, 1, backend="qd")
+            out["qd"] = best_of(lambda: bt_orbit(p, q, 10, 5, n, backend="qd"), repeat)
     return out
 
 
 def heyoka_flow(dps: int, n: int = 10) -> dict[str, float]:
     """heyoka.real for the flow of ``sum_k c_k H_k`` over time ``n`` (= ``n`` steps of the map).
 
-    Returns ``{"seconds": propagation time, "compile": ..., "error": max |heyoka - Arb orbit|}``;
+    Returns ``{"seconds": propagation time, "compile": ..., "error": max |heyoka - bt_orbit| (default backend)}``;
     empty without heyoka.  ``c_k = -int lam^k / sqrt(tr^2 - 4)`` by ``mpmath.quad``.
     """
     try:
@@ -209,10 +214,14 @@ def main(argv: list[str] | None = None) -> None:
         h = heyoka_flow(dps)
         m2 = mp_speed(dps)                 # again, right after heyoka (the machine's load drifts)
         arb_ms = min(m.get("flint", float("nan")), m2.get("flint", float("nan"))) * 1e3
-        print("3. %d digits, 10 steps: mpmath %.2f ms, Arb %.3f ms (x%.1f)%s"
+        qd_ms = min(m.get("qd", float("nan")), m2.get("qd", float("nan"))) * 1e3
+        print("3. %d digits, 10 steps: mpmath %.2f ms, Arb %.3f ms (x%.1f)%s%s"
               % (dps, m["mpmath"] * 1e3, arb_ms, m["mpmath"] * 1e3 / arb_ms,
-                 "; heyoka.real %.1f ms (x%.0f slower than Arb), error vs Arb %.1e"
-                 % (h["seconds"] * 1e3, h["seconds"] * 1e3 / arb_ms, h["error"]) if h else ""))
+                 ", quad-double %.3f ms (x%.1f vs Arb)" % (qd_ms, arb_ms / qd_ms) if "qd" in m else "",
+                 "; heyoka.real %.1f ms (x%.0f slower than Arb%s), error vs bt_orbit %.1e"
+                 % (h["seconds"] * 1e3, h["seconds"] * 1e3 / arb_ms,
+                    ", x%.0f than quad-double" % (h["seconds"] * 1e3 / qd_ms) if "qd" in m else "", h["error"])
+                 if h else ""))
     print("4. certified radius growth at 400 bits:", ", ".join("n=%d %.1e" % sr for sr in certified_growth()))
     for n, tol, dps in ((100, 1e-30, 50),) + (() if args.quick else ((3500, 1e-15, 30),)):
         t, r, prec = certified_time(n, tol, dps)
