@@ -206,12 +206,14 @@ def test_typed_errors():
             bt_orbit(p, q, 10, 5, 2, backend="qd")
 
 
-def test_auto_chooses_qd_when_the_precision_fits(monkeypatch):
+def test_auto_chooses_qd_when_ready_and_the_precision_fits(monkeypatch, tmp_path):
+    from symbt.numeric import qd as qd_mod
     from symbt.numeric.mpfast import pick_mp_backend
 
+    qd_mod.warm()
     with mpmath.workdps(50):
         assert qd_fits(mpmath.mp.prec, 10) and qd_need(mpmath.mp.prec, 10) <= QD_BITS
-        assert pick_mp_backend("auto", 10) == "qd"
+        assert qd_mod.qd_ready() and pick_mp_backend("auto", 10) == "qd"
         p, q = mp_state(P0, Q0)
         assert bt_orbit(p, q, 10, 5, 10) == bt_orbit(p, q, 10, 5, 10, backend="qd")
         # out of range for qd: auto falls back to Arb
@@ -251,3 +253,29 @@ def test_unrounded_error_is_below_the_model_behind_the_rule(branch):
             ref = RP[i] + RQ[i]
             err = max(abs(a - b) for a, b in zip(raw, ref)) / max(abs(v) for v in ref)
             assert 0 < err <= mpmath.mpf(2) ** (-217 + 2 * i.bit_length()), (i, float(mpmath.log(err, 2)))
+
+
+def test_auto_never_compiles(tmp_path):
+    """Without a current ready-marker (a fresh install, or edited sources) auto takes Arb: the ~30 s first
+    compile is never imposed.  With the marker of the current sources it takes qd (fresh processes)."""
+    import subprocess
+    import sys
+    import textwrap
+
+    def fresh(marker):
+        code = textwrap.dedent(f"""
+            import pathlib, mpmath
+            from symbt.numeric import qd
+            from symbt.numeric.mpfast import pick_mp_backend
+            qd._marker_dirs = lambda: [pathlib.Path({str(tmp_path)!r})]
+            if {marker!r} is not None:
+                (qd._marker_dirs()[0] / qd._MARKER).write_text({marker!r} or qd._digest())
+            with mpmath.workdps(50):
+                print(pick_mp_backend("auto", 10), qd.qd_ready(), bool(qd._compiled))
+        """)
+        return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                              check=True).stdout.split()
+
+    assert fresh(None) == ["flint", "False", "False"]                 # no marker, nothing compiled
+    assert fresh("0" * 64) == ["flint", "False", "False"]             # the marker of other sources
+    assert fresh("") == ["qd", "True", "False"]                       # current marker: qd, compiled on use

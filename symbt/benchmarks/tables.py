@@ -46,7 +46,8 @@ def summary_rows(results: dict) -> list[dict]:
         if row and "time_s" in row.get("heyoka", {}):
             h = row["heyoka"]
             rows.append({"what": "%s digits, %d steps (paper N=3 mu=5)" % (d, results["precision"]["steps"]),
-                         "symbt": "bt_orbit (mpmath): %s" % _fmt(row["bt"]["time_s"], row["bt"]["err"]),
+                         "symbt": "bt_orbit on mpf (%s): %s" % (row["bt"].get("backend", "auto"),
+                                                                 _fmt(row["bt"]["time_s"], row["bt"]["err"])),
                          "heyoka": "heyoka.real %d bits, tol 1e-%s: %s; JIT %.2g s" % (
                              h["prec_bits"], d, _fmt(h["time_s"], h["err"]), h["jit_s"]),
                          "ratio": h["ratio"]})

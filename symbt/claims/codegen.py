@@ -246,12 +246,17 @@ def step_accuracy(N: int, parts: Parts) -> Outcome:
 def orbit(N: int, parts: Parts) -> Outcome:
     from ..codegen import verify
     from ..numeric import bt_orbit
+    from ..numeric.mpfast import flint_available
 
+    # the 50-digit reference on Arb midpoints (or plain mpmath): not the quad-double path, which would
+    # load numba (and, before its first compile, take ~30 s)
+    ref_backend = "flint" if flint_available() else "mpmath"
     # one orbit's round-off is a random walk: compare the RMS over several states, not one sample
     e_gen, e_num = [], []
     for p, q, l0, m in verify.map_states(N, per_sign=2):
         with mp.workdps(verify.MP_DPS):   # reference: the independent mpmath route of symbt.numeric
-            RP, RQ = bt_orbit([mp.mpf(v) for v in p], [mp.mpf(v) for v in q], mp.mpf(l0), mp.mpf(m), ORBIT_STEPS)
+            RP, RQ = bt_orbit([mp.mpf(v) for v in p], [mp.mpf(v) for v in q], mp.mpf(l0), mp.mpf(m), ORBIT_STEPS,
+                              backend=ref_backend)
         ref = np.array([[float(v) for v in a + b] for a, b in zip(RP, RQ)])
         scale = np.linalg.norm(np.concatenate([ref[:, :N], ref[:, N:] - ref[:, N:].mean(axis=1, keepdims=True)],
                                               axis=1), axis=1)

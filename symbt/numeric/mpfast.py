@@ -205,7 +205,9 @@ def _flint_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
 def pick_mp_backend(backend: str, n: int = 1) -> str:
     """The backend ``"qd"``, ``"flint"`` or ``"mpmath"`` that runs ``n`` steps at the current ``mp.prec``.
 
-    ``"auto"``: ``"qd"`` if numba is present and :func:`~symbt.numeric.qd.qd_fits`, else ``"flint"``
+    ``"auto"``: ``"qd"`` if numba is present, :func:`~symbt.numeric.qd.qd_fits` and the compiled
+    orbit is ready (:func:`~symbt.numeric.qd.qd_ready`: compiled once, e.g. by
+    ``python -m symbt.numeric.qd``), else ``"flint"``
     if python-flint is present, else ``"mpmath"``.  An explicit backend that is missing raises
     :class:`MissingDependencyError`; ``"qd"`` at a precision it cannot carry raises
     :class:`InvalidInputError`.
@@ -220,7 +222,7 @@ def pick_mp_backend(backend: str, n: int = 1) -> str:
         raise InvalidInputError("backend for mpmath input must be one of %s, got %r" % (MP_BACKENDS, backend))
     if backend == "mpmath":
         return backend
-    from .qd import qd_available, qd_fits, qd_need
+    from .qd import qd_available, qd_fits, qd_need, qd_ready
 
     if backend == "qd":
         if not qd_available():
@@ -230,7 +232,7 @@ def pick_mp_backend(backend: str, n: int = 1) -> str:
             raise InvalidInputError("the qd backend carries 209 bits; mp.prec = %d with %d steps needs %d: "
                                     "use backend='flint' (or 'auto')" % (mpmath.mp.prec, n, qd_need(mpmath.mp.prec, n)))
         return backend
-    if backend == "auto" and qd_available() and qd_fits(mpmath.mp.prec, n):
+    if backend == "auto" and qd_fits(mpmath.mp.prec, n) and qd_ready() and qd_available():
         return "qd"
     if not flint_available():
         if backend == "flint":

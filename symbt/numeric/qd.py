@@ -45,9 +45,13 @@ True False
 
 from __future__ import annotations
 
+import hashlib
 import math
+import os
 import threading
 from collections.abc import Callable, Sequence
+from functools import cache
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import mpmath
@@ -62,7 +66,8 @@ if TYPE_CHECKING:
 
     F64 = npt.NDArray[np.float64]
 
-__all__ = ["qd_available", "qd_fits", "qd_need", "qd_orbit_mp", "qd_kernel", "to_qd", "from_qd", "QD_GUARD", "QD_BITS"]
+__all__ = ["qd_available", "qd_ready", "warm", "qd_fits", "qd_need", "qd_orbit_mp", "qd_kernel", "to_qd", "from_qd",
+           "QD_GUARD", "QD_BITS"]
 
 QD_BITS = 209
 #: guard bits of the quad-double orbit beyond the caller's precision (plus ``2 * n.bit_length()``)
@@ -87,6 +92,94 @@ def qd_available() -> bool:
     True
     """
     return numba_available()
+
+
+_MARKER = "symbt-qd-ready"
+
+
+def _marker_dirs() -> list[Path]:
+    """Where the ready-marker may live: numba's cache locations for this package (``NUMBA_CACHE_DIR``,
+    the ``__pycache__`` next to the sources), then a per-user directory."""
+    dirs = [Path(os.environ["NUMBA_CACHE_DIR"])] if os.environ.get("NUMBA_CACHE_DIR") else []
+    return dirs + [Path(__file__).parent / "__pycache__", Path.home() / ".cache" / "symbt"]
+
+
+@cache
+def _digest() -> str:
+    """The quad-double sources' hash (and numba's version): a marker of other sources is stale."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    h = hashlib.sha256()
+    for name in ("qd.py", "qd_arith.py", "qd_step.py"):
+        h.update((Path(__file__).parent / name).read_bytes())
+    try:
+        h.update(version("numba").encode())
+    except PackageNotFoundError:  # pragma: no cover
+        pass
+    return h.hexdigest()
+
+
+def qd_ready() -> bool:
+    """True if the compiled orbit is loaded in this process, or numba's disk cache holds it for the
+    current sources (a marker written after the first successful compile, see :func:`warm`).
+
+    ``backend="auto"`` takes the quad-double path only when it is ready: the first compile takes
+    about 30 s (once per installation; loading it later about 1 s), which ``auto`` never imposes.
+
+    >>> isinstance(qd_ready(), bool)
+    True
+    """
+    if getattr(_compiled.get("qd_orbit"), "signatures", None):
+        return True
+    want = _digest()
+    for d in _marker_dirs():
+        try:
+            if (d / _MARKER).read_text(encoding="utf-8").strip() == want:
+                return True
+        except OSError:
+            continue
+    return False
+
+
+def _mark_ready() -> None:
+    for d in _marker_dirs():
+        try:
+            d.mkdir(parents=True, exist_ok=True)
+            tmp = d / (_MARKER + ".%d.tmp" % os.getpid())
+            tmp.write_text(_digest() + "\n", encoding="utf-8")
+            os.replace(tmp, d / _MARKER)
+            return
+        except OSError:
+            continue
+
+
+def _drop_stale_cache() -> None:
+    """numba checks only the calling file's time stamp: after an edit of ``qd_arith.py`` it would load
+    a kernel compiled from the old arithmetic.  Without a current marker, drop the cached quad-double
+    kernels next to the sources so that they are compiled from the current ones."""
+    if qd_ready():
+        return
+    cache_dir = Path(__file__).parent / "__pycache__"
+    for f in list(cache_dir.glob("qd*.nbi")) + list(cache_dir.glob("qd*.nbc")):
+        try:
+            f.unlink()
+        except OSError:
+            pass
+
+
+def warm() -> float:
+    """Compile (or load) the quad-double orbit now; returns the seconds it took.
+
+    Run once after installing (``python -m symbt.numeric.qd``; about 30 s, then cached on disk):
+    from then on ``backend="auto"`` uses it for mpmath input whenever the precision fits.
+    """
+    import time
+
+    t = time.perf_counter()
+    with mpmath.workdps(50):
+        qd_orbit_mp([mpmath.mpf(-20), mpmath.mpf(10), mpmath.mpf(1)], [mpmath.mpf(1), mpmath.mpf(0),
+                    mpmath.mpf("0.9")], mpmath.mpf(10), mpmath.mpf(5), 2)
+    return time.perf_counter() - t
 
 
 def qd_need(prec: int, n: int) -> int:
@@ -214,6 +307,7 @@ def qd_kernel(name: str = "qd_orbit") -> Callable[..., Any]:
     if not _compiled:
         with _LOCK:
             if not _compiled:
+                _drop_stale_cache()
                 _compile()
     return _compiled[name]
 
@@ -288,7 +382,10 @@ def qd_orbit_mp(P: Sequence[Any], Q: Sequence[Any], lam0: Any, mu: Any, n: int, 
         raise NumericRangeError("an input does not fit a quad-double (exponent beyond 2**+-%d)" % _MAX_EXP)
     rows = orbit_rows(n, every)
     outP, outQ = np.empty((rows, N, 4)), np.empty((rows, N, 4))
+    fresh = not qd_ready()
     st, i = qd_kernel()(x[:N], x[N:2 * N], x[2 * N:], branch, n, every, outP, outQ)
+    if fresh:
+        _mark_ready()                    # compiled (and cached by numba) from the current sources
     if st == 1 or st == 2:
         raise NoRealMapError("no real Bäcklund map: |tr L(%s)| <= 2, the spectral parameter lies in a band"
                              % ("lam1 = lam0 + mu" if st == 1 else "lam2 = lam0 - mu"), condition="trace")
@@ -305,3 +402,9 @@ def qd_orbit_mp(P: Sequence[Any], Q: Sequence[Any], lam0: Any, mu: Any, n: int, 
         out[0].append(vals[base:base + N])
         out[1].append(vals[base + N:base + 2 * N])
     return out
+
+
+if __name__ == "__main__":  # pragma: no cover - ``python -m symbt.numeric.qd``
+    if not qd_available():
+        raise SystemExit("the quad-double backend needs numba: pip install 'symbt[fast]'")
+    print("quad-double orbit compiled/loaded in %.1f s; backend='auto' now uses it for mpmath input" % warm())
