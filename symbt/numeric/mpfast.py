@@ -1,8 +1,9 @@
 r"""High precision, fast: mpmath in, mpmath out, quad-doubles (numba) or python-flint's Arb inside.
 
 For mpmath input :func:`~symbt.numeric.bt_step` and :func:`~symbt.numeric.bt_orbit`
-pick the fastest backend present (``"auto"``: ``"qd"`` if numba is there and the
-precision fits, else ``"flint"`` if python-flint is there, else ``"mpmath"``):
+pick the fastest backend present (``"auto"``: ``"qd"`` if numba is there, the
+precision fits and the quad-double orbit is compiled -- :func:`~symbt.numeric.qd.qd_ready`,
+``python -m symbt.numeric.qd`` -- else ``"flint"`` if python-flint is there, else ``"mpmath"``):
 
 * ``"qd"`` (numba installed, ``mp.prec`` small enough for the number of steps:
   :func:`~symbt.numeric.qd.qd_fits`): the same step in compiled quad-double
