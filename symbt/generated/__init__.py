@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2c7fd350fa4e606dffee6900375234ac45723b6afd18bd9aa50a0df31ff2e34b
-# symbt-codegen-content-sha256: a0782f58134c9be648b9ac554e5cffb65172b5f4111e0f2ae1df9542437d030f
+# symbt-codegen-derivation-sha256: 7b282b2856d6b33afd7ce546a77a9fb881475ff6dca83fd2618e9e1b07fb2ed6
+# symbt-codegen-content-sha256: 0c32a3c757d6a82c0679002cb87124cd6aa139c2dd600d09348b8f4e0e39b00a
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

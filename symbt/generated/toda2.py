@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2c7fd350fa4e606dffee6900375234ac45723b6afd18bd9aa50a0df31ff2e34b
-# symbt-codegen-content-sha256: bf99de40abef044c3ff55b6316d8645bd5f3fa3002cb5074c5af71f6b191c17f
+# symbt-codegen-derivation-sha256: 7b282b2856d6b33afd7ce546a77a9fb881475ff6dca83fd2618e9e1b07fb2ed6
+# symbt-codegen-content-sha256: dab8cdeb79d847139f76663c984cf3b2157b2c82bb8792e22a1ec3784852e7b1
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

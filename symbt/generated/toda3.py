@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2c7fd350fa4e606dffee6900375234ac45723b6afd18bd9aa50a0df31ff2e34b
-# symbt-codegen-content-sha256: 031dbef45b76572475daf587012319062cc9cddfe8475a69fdc0aa057856ac4a
+# symbt-codegen-derivation-sha256: 7b282b2856d6b33afd7ce546a77a9fb881475ff6dca83fd2618e9e1b07fb2ed6
+# symbt-codegen-content-sha256: 8644db7e56e39981fe0a493905619e709f543f6cbef22238f8aa8fec659f1c69
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

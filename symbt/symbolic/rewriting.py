@@ -35,7 +35,7 @@ def rationalize_exponentials(expr, exp_symbols: Mapping[sp.Symbol, sp.Symbol] | 
 
     >>> q1, q2 = sp.symbols("q1 q2", real=True)
     >>> e, m = rationalize_exponentials(2 * sp.cosh(q1 - q2))
-    >>> sp.simplify(e - (m[q1] / m[q2] + m[q2] / m[q1]))
+    >>> sp.cancel(e - (m[q1] / m[q2] + m[q2] / m[q1]))
     0
     """
     exp_symbols = dict(exp_symbols or {})
