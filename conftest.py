@@ -18,6 +18,7 @@ _NEEDS = {
     "symbt.numeric.certified": "flint",
     "symbt.numeric.mpfast.arb_step": "flint",
     "symbt.numeric.qd": "numba",
+    "symbt.proof.flint_exact": "flint",
     "symbt.numeric.dask_orbit": "dask",
 }
 

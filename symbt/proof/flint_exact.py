@@ -22,8 +22,8 @@ with FLINT's multivariate polynomials over :math:`\mathbb Q`:
 Both routes are exact; ``tests/test_proof_flint.py`` checks that they return
 the same verdict on identities, non-identities and every claim's differences.
 :func:`rational_zero` returns ``None`` where this route does not apply (a
-power of zero with a
-negative exponent, a node that is not rational); the caller then uses SymPy.
+power of zero with a negative exponent, a node that is not rational); the
+caller then uses SymPy.
 
 Example
 -------
