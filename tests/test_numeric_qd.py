@@ -206,7 +206,7 @@ def test_typed_errors():
             bt_orbit(p, q, 10, 5, 2, backend="qd")
 
 
-def test_auto_chooses_qd_when_ready_and_the_precision_fits(monkeypatch, tmp_path):
+def test_auto_chooses_qd_when_ready_and_the_precision_fits(monkeypatch):
     from symbt.numeric import qd as qd_mod
     from symbt.numeric.mpfast import pick_mp_backend
 

@@ -102,7 +102,7 @@ if TYPE_CHECKING:
 __all__ = ["bt_step", "step_core", "eigen_slopes", "SlopeData", "STEP_BACKENDS"]
 
 _GUARD_DIGITS = 12
-#: accepted values of ``backend`` (float64: auto/numba/python/numpy; mpmath: auto/flint/mpmath)
+#: accepted values of ``backend`` (float64: auto/numba/python/numpy; mpmath: auto/qd/flint/mpmath)
 STEP_BACKENDS = ("auto", "numba", "python", "numpy", "flint", "qd", "mpmath")
 
 

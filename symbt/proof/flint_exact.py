@@ -128,8 +128,9 @@ def _reduce(num: Any, rel: Any, v: int, gen: Any) -> Any:
         else:
             tail[exps] = c
     L, minus_tail = ctx.from_dict(lead), -ctx.from_dict(tail)
-    if L.is_constant():
-        minus_tail, L = minus_tail / L, ctx.from_dict({})
+    monic = L.is_constant()                        # monic up to a rational factor: divide it out
+    if monic:
+        minus_tail = minus_tail / L
     parts: dict[int, dict[tuple[int, ...], Any]] = {}
     for exps, a in zip(num.monoms(), num.coeffs()):
         parts.setdefault(exps[v], {})[exps[:v] + (0,) + exps[v + 1:]] = a
@@ -143,7 +144,7 @@ def _reduce(num: Any, rel: Any, v: int, gen: Any) -> Any:
                     hi[exps[:v] + (exps[v] - d,) + exps[v + 1:]] = a
                 else:
                     lo[exps] = a
-            if L.is_zero():                        # monic up to a rational factor
+            if monic:
                 acc = ctx.from_dict(lo) + ctx.from_dict(hi) * minus_tail
             else:
                 acc = ctx.from_dict(lo) * L + ctx.from_dict(hi) * minus_tail
