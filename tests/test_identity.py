@@ -186,3 +186,14 @@ def test_seed_makes_it_reproducible():
     lhs, rhs = sp.asinh(x_real), sp.log(x_real + sp.sqrt(x_real ** 2 + 1))
     assert check_identity(lhs, rhs, seed=3).points == check_identity(lhs, rhs, seed=3).points
     assert check_identity(lhs, rhs, seed=3).points != check_identity(lhs, rhs, seed=4).points
+
+
+@pytest.mark.parametrize("degree", [1, 2, 3, 4])
+def test_generic_roots_are_the_closed_forms_sympy_solve_gives(degree):
+    # the screen samples relations through these roots; they must be sympy.solve's, in its order
+    from symbt.proof.screen import _generic_roots
+
+    a, roots = _generic_roots(degree)
+    x = sp.Dummy("x")
+    expected = sp.solve(sum(a[i] * x ** (degree - i) for i in range(degree + 1)), x)
+    assert [sp.srepr(r) for r in roots] == [sp.srepr(r) for r in expected]

@@ -125,12 +125,11 @@ def darboux_numeric(D: Callable[..., Any], lv: Any, l0: Any, mu: Any, x: Any, y:
 
 
 def lambdified(args: Iterable[Any], expr: Any) -> Callable[..., Any]:
-    """``sympy.lambdify`` to mpmath with plain argument names (symbols like ``lambda`` break the printer)."""
-    import sympy as sp
+    """``sympy.lambdify`` to mpmath with plain argument names (symbols like ``lambda`` break the printer),
+    memoised (:func:`symbt.proof.lambdify.plain_lambdify`)."""
+    from ..proof.lambdify import plain_lambdify
 
-    args = list(args)
-    plain = [sp.Symbol(f"_a{i}") for i in range(len(args))]
-    return sp.lambdify(plain, sp.sympify(expr).xreplace(dict(zip(args, plain))), "mpmath")
+    return plain_lambdify(args, expr, "mpmath")
 
 
 def literal_image(state: tuple, branch: int) -> tuple[list, list, dict]:

@@ -39,6 +39,7 @@ import numpy as np
 import sympy as sp
 
 from ..proof.cells import CellTable, cell_text
+from ..proof.lambdify import plain_lambdify
 from ..reference import elliptic as E
 from ._common import judge_cells
 from .base import Outcome, scene
@@ -231,7 +232,7 @@ def mp_fn(args: list, expr: Any):
     def rec(x: Any) -> Any:
         return [rec(y) for y in x] if isinstance(x, list) else _principal_F(x)
 
-    return sp.lambdify(plain, rec(e), [MP_NAMESPACE, "mpmath"])
+    return plain_lambdify(plain, rec(e), [MP_NAMESPACE, "mpmath"])
 
 
 def _cplx(x: Any) -> np.ndarray:
@@ -247,7 +248,7 @@ NP_NAMESPACE = {"sqrt": lambda x: np.sqrt(_cplx(x)), "acosh": lambda x: np.arcco
 
 def np_fn(args: list, expr: Any):
     """``expr`` as a vectorised numpy function with mpmath's principal branches on real input."""
-    return sp.lambdify(*_plain(args, expr), [NP_NAMESPACE, "numpy"])
+    return plain_lambdify(*_plain(args, expr), [NP_NAMESPACE, "numpy"])
 
 
 _XG, _WG = np.polynomial.legendre.leggauss(96)

@@ -27,6 +27,7 @@ import sympy as sp
 
 from ..proof import decide
 from ..symbolic.darboux import composed_darboux, lam1, lam2, single_darboux, single_darboux_adjugate, zeta
+from ..symbolic.linear import solve_linear
 from ..symbolic.toda import lam
 from ._site import GENERIC_2X2, for_all_n, same_equation
 from .base import Outcome, Parts, claim, from_decision, scene
@@ -76,7 +77,7 @@ def v1(parts: Parts):
     L = sp.Matrix([[A, B], [C, D]])
     Om = parts.context["kernel"]
     eig = decide(sp.Matrix([P["eig1"], P["eig2"]]), L * Om - v * Om)
-    vsol = sp.solve(P["eig1"], v)
+    vsol = solve_linear(P["eig1"], v)
     if not eig.holds or len(vsol) != 1:
         return for_all_n(from_decision(eig, detail="the printed equations are not L(zeta) Omega = v Omega")
                          if not eig.holds else Outcome("failed", "exact: solve", evidence="proof",
@@ -123,7 +124,7 @@ def v11(parts: Parts):
     Lt = sp.Matrix([[At, Bt], [Ct, Dt]])
     Om = parts.context["kernel"]
     eig = decide(sp.Matrix([P["eig1"], P["eig2"]]), Lt * Om - w * Om)
-    wsol = sp.solve(P["eig2"], w)
+    wsol = solve_linear(P["eig2"], w)
     if not eig.holds or len(wsol) != 1:
         return for_all_n(from_decision(eig, detail="the printed equations are not L~(zeta) Omega^ = w Omega^")
                          if not eig.holds else Outcome("failed", "exact: solve", evidence="proof",

@@ -33,6 +33,7 @@ import sympy as sp
 from ..proof import Verdict, decide
 from ..symbolic.darboux import composed_darboux, lam0, lam1, lam2, local_relation_residual, mu
 from ..symbolic.generating import generating_function
+from ..symbolic.linear import solve_linear
 from ..symbolic.toda import lam
 from ._site import PER_SITE, for_all_n, same_equation, to_E
 from .base import Outcome, Parts, claim, from_decision, scene
@@ -105,7 +106,7 @@ def xyqqt(parts: Parts):
     R = _site_residual()
     c01 = sp.Poly(R[0, 1], lam).coeff_monomial(lam)
     c10 = sp.Poly(R[1, 0], lam).coeff_monomial(lam)
-    xsol = sp.solve(c01, xj)
+    xsol = solve_linear(c01, xj)
     if len(xsol) != 1:
         return for_all_n(Outcome("failed", "exact: solve", evidence="proof", detail=f"x_j: {xsol}"), PER_SITE)
     # eta^2 = mu^2 + w at site j+1: x_{j+1} is the printed x shifted, y_{j+1} a root of the printed y-equation

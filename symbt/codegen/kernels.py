@@ -40,6 +40,7 @@ from typing import Any
 import sympy as sp
 from sympy.codegen.cfunctions import log1p
 
+from ..symbolic.linear import solve_linear
 from ..symbolic.toda import local_lax
 from .derive import branch, disc, phi_of, tr1, tr2
 
@@ -114,7 +115,7 @@ def kernels() -> dict:
     w = m_ar * sp.Matrix([1, -u])
     fwd = -w[1] / w[0]
     out["forward"] = fwd
-    sol = sp.solve(sp.Eq(un, fwd), u)
+    sol = solve_linear(sp.Eq(un, fwd), u)
     if len(sol) != 1:
         raise AssertionError("transport is not invertible")
     out["backward"] = sp.expand(sol[0])

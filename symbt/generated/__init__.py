@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 7b282b2856d6b33afd7ce546a77a9fb881475ff6dca83fd2618e9e1b07fb2ed6
-# symbt-codegen-content-sha256: 0c32a3c757d6a82c0679002cb87124cd6aa139c2dd600d09348b8f4e0e39b00a
+# symbt-codegen-derivation-sha256: dd0b2b609bd60c1527aa71d55f53ac883b00d0db30cb2d1906e383676f3ed42f
+# symbt-codegen-content-sha256: cbbf45c8d41851ef13e9a403e6a6ec84a7dbb2b055d7150d3cd566ddebc5510a
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

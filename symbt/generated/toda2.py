@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 7b282b2856d6b33afd7ce546a77a9fb881475ff6dca83fd2618e9e1b07fb2ed6
-# symbt-codegen-content-sha256: dab8cdeb79d847139f76663c984cf3b2157b2c82bb8792e22a1ec3784852e7b1
+# symbt-codegen-derivation-sha256: dd0b2b609bd60c1527aa71d55f53ac883b00d0db30cb2d1906e383676f3ed42f
+# symbt-codegen-content-sha256: a57f3abda7c93bfb8c53decca2bfb3fee669db18a1fda25b71bc07b2041637dd
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -7,6 +7,8 @@ from functools import cache
 import mpmath
 import sympy as sp
 
+from .lambdify import plain_lambdify
+
 __all__ = ["screen", "sample_symbol"]
 
 
@@ -60,9 +62,8 @@ def _fmt(v) -> str:
 
 
 def _lambdify(args, expr):
-    """mpmath lambdify with plain argument names (symbols such as ``lambda`` break the printer)."""
-    plain = [sp.Symbol(f"_a{i}") for i in range(len(args))]
-    return sp.lambdify(plain, sp.sympify(expr).xreplace(dict(zip(args, plain))), "mpmath")
+    """mpmath lambdify with plain argument names (symbols such as ``lambda`` break the printer), memoised."""
+    return plain_lambdify(args, expr, "mpmath")
 
 
 _POLE_ERRORS = (ZeroDivisionError, ValueError, OverflowError, ArithmeticError)
@@ -81,9 +82,18 @@ MAX_RELATION_DEGREE = 4
 
 @cache
 def _generic_roots(degree: int) -> tuple[tuple, list]:
+    """The roots of ``c0 x^d + c1 x^(d-1) + ... + cd`` in closed form, as ``sympy.solve`` writes them (tested).
+
+    The quadratic is written out and the rest come from ``sympy.roots`` (Cardano, Ferrari):
+    ``sympy.solve`` would reach the same expressions through ``simplify``, which costs a
+    tenth of a second and imports ``sympy.physics`` in every process that runs the screen.
+    """
     a = sp.symbols(f"_c0:{degree + 1}")
+    if degree == 2:
+        disc = sp.sqrt(a[1] ** 2 - 4 * a[0] * a[2])
+        return a, [(-a[1] - disc) / (2 * a[0]), (-a[1] + disc) / (2 * a[0])]
     x = sp.Dummy("x")
-    return a, list(sp.solve(sum(a[i] * x ** (degree - i) for i in range(degree + 1)), x))
+    return a, sp.roots(sp.Poly(sum(a[i] * x ** (degree - i) for i in range(degree + 1)), x), multiple=True)
 
 
 def _roots(rel, s) -> list:

@@ -105,8 +105,17 @@ def literal_step(p, q, lam0, mu, branch: int = 1, *, gamma_signs=None):
     p = [mp.mpmathify(v) for v in p]
     q = [mp.mpmathify(v) for v in q]
     lam0, mu = mp.mpmathify(lam0), mp.mpmathify(mu)
-    N = len(p)
     s1, s2 = gamma_signs if gamma_signs is not None else (branch, branch)
+    if s1 in (1, -1) and s2 in (1, -1) and all(type(v) is mp.mpf for v in (*p, *q, lam0, mu)):
+        try:
+            return _literal_step_real(p, q, lam0, mu, s1, s2)
+        except _libmp.ComplexResult:  # a square root or logarithm of a negative number: the complex route below
+            pass
+    return _literal_step_generic(p, q, lam0, mu, s1, s2)
+
+
+def _literal_step_generic(p, q, lam0, mu, s1, s2):
+    N = len(p)
     l1, l2 = lam0 + mu, lam0 - mu
     # exp(+-q_j) once for both matrices and for E_j: the values lax_matrix and the list below would compute
     ex = [(mp.exp(v), mp.exp(-v)) for v in q]
@@ -131,6 +140,67 @@ def literal_step(p, q, lam0, mu, branch: int = 1, *, gamma_signs=None):
     info = dict(x=xs, y=ys, z=zs, eta=eta, tr1=tr1, tr2=tr2, gamma1=g1, gamma2=g2,
                 E=E, E_new=Et, x_formula=x)
     return pt, qt, info
+
+
+def _literal_step_real(p, q, lam0, mu, s1, s2):
+    """:func:`_literal_step_generic` on real mpf, written on mpmath's ``libmp`` tuples.
+
+    Every line performs the operation the mpf operators perform (the same ``libmp`` function, in
+    the same order, at the context's precision and rounding), so the result is bit-identical; only the
+    per-operation type dispatch and object creation are gone (tested in ``tests/test_reference_literal.py``).
+    A square root or logarithm of a negative number raises ``ComplexResult`` and the caller takes
+    the generic (complex) route.
+    """
+    L = _libmp
+    prec, rnd = mp.mp._prec_rounding
+    add, sub, mul, div, neg = L.mpf_add, L.mpf_sub, L.mpf_mul, L.mpf_div, L.mpf_neg
+    fsum, exp, log, sqrt = L.mpf_sum, L.mpf_exp, L.mpf_log, L.mpf_sqrt
+    four = L.from_int(4)
+    N = len(p)
+    P, Q, l0, m = [v._mpf_ for v in p], [v._mpf_ for v in q], lam0._mpf_, mu._mpf_
+    l1, l2 = add(l0, m, prec, rnd), sub(l0, m, prec, rnd)
+    ex = [(exp(v, prec, rnd), exp(neg(v, prec, rnd), prec, rnd)) for v in Q]
+
+    def lax(lam):  # _lax_entries on tuples
+        a, b, c, d = L.fone, L.fzero, L.fzero, L.fone
+        for pj, (ej, eij) in zip(P, ex):
+            s, e = add(lam, pj, prec, rnd), neg(ej, prec, rnd)
+            # a one-term fsum is the correctly rounded product: mpf_mul at prec gives the same bits
+            a, b, c, d = (fsum([mul(s, a), mul(e, c)], prec, rnd), fsum([mul(s, b), mul(e, d)], prec, rnd),
+                          mul(eij, a, prec, rnd), mul(eij, b, prec, rnd))
+        return a, b, d
+
+    A1, B1, D1 = lax(l1)
+    A2, B2, D2 = lax(l2)
+    tr1, tr2 = add(A1, D1, prec, rnd), add(A2, D2, prec, rnd)
+    g1 = sqrt(sub(L.mpf_pow_int(tr1, 2, prec, rnd), four, prec, rnd), prec, rnd)
+    g2 = sqrt(sub(L.mpf_pow_int(tr2, 2, prec, rnd), four, prec, rnd), prec, rnd)
+    g1, g2 = (g1 if s1 == 1 else neg(g1, prec, rnd)), (g2 if s2 == 1 else neg(g2, prec, rnd))
+    n1 = add(sub(A1, D1, prec, rnd), g1, prec, rnd)
+    y = div(n1, L.mpf_mul_int(B1, 2, prec, rnd), prec, rnd)
+    num = mul(mul(L.mpf_mul_int(B1, 2, prec, rnd), B2, prec, rnd), sub(l2, l1, prec, rnd), prec, rnd)
+    den = sub(mul(B2, n1, prec, rnd), mul(B1, sub(sub(A2, D2, prec, rnd), g2, prec, rnd), prec, rnd), prec, rnd)
+    x = div(num, den, prec, rnd)
+    E = [e for e, _ in ex]
+    m2 = L.mpf_mul_int(m, 2, prec, rnd)
+    ys, zs = [y], [add(y, div(m2, x, prec, rnd), prec, rnd)]
+    for j in range(N - 1):
+        for lam, seq in ((l1, ys), (l2, zs)):
+            inner = add(add(lam, P[j], prec, rnd), mul(E[j], seq[-1], prec, rnd), prec, rnd)
+            seq.append(L.mpf_rdiv_int(-1, mul(E[j], inner, prec, rnd), prec, rnd))
+    xs = [div(m2, sub(z, yy, prec, rnd), prec, rnd) for yy, z in zip(ys, zs)]
+    Et = [sub(e, xx, prec, rnd) for e, xx in zip(E, xs)]
+    qt = [log(e, prec, rnd) for e in Et]
+    eta = [add(mul(xx, yy, prec, rnd), m, prec, rnd) for xx, yy in zip(xs, ys)]
+    pt = [sub(add(P[j], eta[j], prec, rnd), eta[(j + 1) % N], prec, rnd) for j in range(N)]
+    mk = mp.mp.make_mpf
+
+    def mks(vs):
+        return [mk(v) for v in vs]
+
+    info = dict(x=mks(xs), y=mks(ys), z=mks(zs), eta=mks(eta), tr1=mk(tr1), tr2=mk(tr2), gamma1=mk(g1),
+                gamma2=mk(g2), E=mks(E), E_new=mks(Et), x_formula=mk(x))
+    return mks(pt), mks(qt), info
 
 
 def phi_from_traces(tr1, tr2, branch):
