@@ -56,7 +56,7 @@ def test_quick_small_case_end_to_end(tmp_path):
     res = json.loads((tmp_path / "bench.json").read_text())
     assert res["quick"] and res["cases"][0]["case"] == "n2-inner-gap"
     runs = {(r["method"], r["param"]): r for r in res["cases"][0]["runs"]}
-    assert runs[("BT bt_orbit (numpy)", None)]["final_err"] < 1e-11       # the BT against its 50-digit self
+    assert runs[("BT bt_orbit (auto)", None)]["final_err"] < 1e-11       # the BT against its 50-digit self
     dop = [r for (m, _), r in runs.items() if m == "scipy DOP853"]
     assert len(dop) == 3
     # DOP853 integrates the flow whose time-1 map is the BT: its error shrinks with the tolerance

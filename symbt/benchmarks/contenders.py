@@ -1,6 +1,7 @@
 """The contenders of one case: float64 BT orbits and ODE integrators of the flow of ``sum c_k H_k``.
 
-BT (float64): the documented call :func:`symbt.numeric.bt_orbit` (numpy); the fused kernel
+BT (float64): the documented call :func:`symbt.numeric.bt_orbit` (its own backend choice: the fused
+kernel for one state); the fused kernel
 :func:`symbt.numeric.fast.fast_orbit` (numba if installed, plain Python otherwise -- both timed
 when numba is present; a kernel run that falls back to ``bt_orbit`` is labelled so); the emitted
 closed-form step ``symbt.generated.toda{N}.bt_step`` iterated, and the emitted orbit helper
@@ -70,7 +71,7 @@ def run_bt(case: Case, rows: np.ndarray, every: int, record: Callable[..., None]
     warm_n = max(1, case.n // 20)
     (P, Q), t, reps = timed(lambda: bt_orbit(p0, q0, case.lam0, case.mu, case.n, branch=case.branch),
                             lambda: bt_orbit(p0, q0, case.lam0, case.mu, warm_n, branch=case.branch), quick)
-    record("BT bt_orbit (numpy)", "bt", P[rows], Q[rows], t, reps, nfev=case.n)
+    record("BT bt_orbit (auto)", "bt", P[rows], Q[rows], t, reps, nfev=case.n)
     for be in (["numba", "python"] if HAVE_NUMBA else ["python"]):
         t0 = time.perf_counter()
         fast_orbit(p0, q0, case.lam0, case.mu, 1, branch=case.branch, backend=be)

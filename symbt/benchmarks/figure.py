@@ -8,7 +8,7 @@ __all__ = ["plot_work_precision"]
 _LINES = {"scipy DOP853": ("o-", "C0"), "scipy RK45": ("s-", "C1"), "scipy LSODA": ("^-", "C2"),
           "Gauss-Legendre s=3 (order 6)": ("d-", "C3"), "heyoka taylor_adaptive (float64)": ("h-", "C4")}
 _POINTS = {"BT fast_orbit (numba)": ("*", "k", 14), "BT fast_orbit (python)": ("P", "k", 9),
-           "BT bt_orbit (numpy)": ("X", "0.4", 9)}
+           "BT bt_orbit (auto)": ("X", "0.4", 9)}
 
 
 def plot_work_precision(results: dict, path: str) -> None:

@@ -107,7 +107,7 @@ def headline(out: dict) -> dict:
     bts = {r["method"]: r for r in runs if r["kind"] == "bt"}
     kernel = next((r for m, r in bts.items() if m.startswith("BT fast_orbit (numba)")), None) or \
         next((r for m, r in bts.items() if m.startswith("BT fast_orbit")), None)
-    lib = bts.get("BT bt_orbit (numpy)")
+    lib = bts.get("BT bt_orbit (auto)")
     others = [r for r in runs if r["kind"] != "bt"]
     hys = [r for r in runs if r["kind"] == "heyoka"]
     res: dict = {}

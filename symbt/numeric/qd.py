@@ -124,7 +124,7 @@ def qd_ready() -> bool:
     current sources (a marker written after the first successful compile, see :func:`warm`).
 
     ``backend="auto"`` takes the quad-double path only when it is ready: the first compile takes
-    about 30 s (once per installation; loading it later about 1 s), which ``auto`` never imposes.
+    15-30 s (once per installation; loading it later under 1 s), which ``auto`` never imposes.
 
     >>> isinstance(qd_ready(), bool)
     True
@@ -170,7 +170,7 @@ def _drop_stale_cache() -> None:
 def warm() -> float:
     """Compile (or load) the quad-double orbit now; returns the seconds it took.
 
-    Run once after installing (``python -m symbt.numeric.qd``; about 30 s, then cached on disk):
+    Run once after installing (``python -m symbt.numeric.qd``; 15-30 s, then cached on disk):
     from then on ``backend="auto"`` uses it for mpmath input whenever the precision fits.
     """
     import time
