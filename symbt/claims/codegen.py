@@ -249,7 +249,7 @@ def orbit(N: int, parts: Parts) -> Outcome:
     from ..numeric.mpfast import flint_available
 
     # the 50-digit reference on Arb midpoints (or plain mpmath): not the quad-double path, which would
-    # load numba (and, before its first compile, take ~30 s)
+    # load numba (and, before its first compile, take 15-30 s)
     ref_backend = "flint" if flint_available() else "mpmath"
     # one orbit's round-off is a random walk: compare the RMS over several states, not one sample
     e_gen, e_num = [], []
