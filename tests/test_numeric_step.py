@@ -70,20 +70,43 @@ def test_random_inner_gaps_batched(N, branch):
 
 
 def test_batch_shape_and_consistency():
+    from symbt.numeric.jit import numba_available
+
     rng = np.random.default_rng(7)
     p = P0 + 0.01 * rng.normal(size=(4, 5, 3))
     q = Q0 + 0.01 * rng.normal(size=(4, 5, 3))
     pt, qt = bt_step(p, q, 10.0, 5.0)
     assert pt.shape == (4, 5, 3)
-    # a batch goes through the vectorised numpy route, one state through the fused kernel
-    # (symbt.numeric.kernels): same formulas; q~ = q + increment may round differently by an ulp of max(|q|, |q~|)
+    # with numba a batch runs the compiled block kernel: each state's step is the single-state fused kernel's,
+    # bit for bit.  Without numba a batch takes the vectorised numpy route (same formulas; q~ = q + increment may
+    # round differently by an ulp of max(|q|, |q~|)).  The numpy route agrees with both to that ulp.
     for i, j in ((2, 3), (0, 0), (3, 4)):
         p1, q1 = bt_step(p[i, j], q[i, j], 10.0, 5.0)
-        np.testing.assert_array_equal(pt[i, j], p1)
-        np.testing.assert_allclose(qt[i, j], q1, rtol=0, atol=np.spacing(max(np.abs(q[i, j]).max(), np.abs(q1).max())))
         p2, q2 = bt_step(p[i, j], q[i, j], 10.0, 5.0, backend="numpy")
-        np.testing.assert_array_equal(pt[i, j], p2)
-        np.testing.assert_array_equal(qt[i, j], q2)
+        ulp_p = np.spacing(max(np.abs(p[i, j]).max(), np.abs(p1).max()))
+        ulp_q = np.spacing(max(np.abs(q[i, j]).max(), np.abs(q1).max()))
+        if numba_available():
+            np.testing.assert_array_equal(pt[i, j], p1)
+            np.testing.assert_array_equal(qt[i, j], q1)
+        else:
+            np.testing.assert_array_equal(pt[i, j], p2)
+            np.testing.assert_array_equal(qt[i, j], q2)
+        np.testing.assert_allclose(p1, p2, rtol=0, atol=ulp_p)
+        np.testing.assert_allclose(q1, q2, rtol=0, atol=ulp_q)
+
+
+def test_batch_errors_name_every_failing_state_on_both_routes():
+    # the block kernel (numba) and the numpy route raise the same typed error with the same `where`
+    from symbt.numeric import NoRealMapError
+
+    p = np.tile(P0, (6, 1))
+    q = np.tile(Q0, (6, 1))
+    p[[1, 4]] = [0.0, 0.0, 0.0]     # a state whose spectral points lie in a band: |tr L| <= 2
+    q[[1, 4]] = [0.0, 0.0, 0.0]
+    for backend in ("auto", "numpy"):
+        with pytest.raises(NoRealMapError) as e:
+            bt_step(p, q, 0.5, 0.2, backend=backend)
+        assert tuple(e.value.where) == ((1,), (4,)), (backend, e.value.where)
 
 
 @pytest.mark.parametrize("logmu", list(range(-14, 1)))

@@ -54,8 +54,10 @@ passes through infinity and the read-out takes its limit (``xr_j = 2 mu / d_j = 
 on the float64, mpmath and Arb paths alike.
 
 Backends.  One float64 state goes through the fused kernel
-(:mod:`symbt.numeric.kernels`; numba if installed), batches through the
-vectorised numpy code below, mpmath numbers through python-flint's Arb at
+(:mod:`symbt.numeric.kernels`; numba if installed), a batch through the
+compiled block kernel of :mod:`symbt.numeric.ensemble` (numba; each state's
+step bit-identical to its single-state step) or, without numba or with
+``allow_complex``, the vectorised numpy code below; mpmath numbers through python-flint's Arb at
 the caller's precision plus guard bits when python-flint is installed
 (:mod:`symbt.numeric.mpfast`), else through mpmath.  Whatever the kernel does
 not handle (no real map, renormalisation, non-finite intermediates) is
@@ -342,9 +344,10 @@ def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_comple
         :class:`NoRealMapError` (float path: complex128 arrays; mpmath: mpc
         values where needed).
     backend : ``"auto"`` (default: the fastest available), or force one:
-        float64 ``"numba"``/``"python"`` (fused kernel, one state only) or
-        ``"numpy"``; mpmath ``"qd"`` (quad-double, numba; ``mp.prec <= 191``),
-        ``"flint"`` (Arb, python-flint) or ``"mpmath"``.
+        float64 ``"numba"`` (fused kernel; for a batch the block kernel),
+        ``"python"`` (fused kernel in plain Python, one state; a batch takes
+        the numpy route) or ``"numpy"``; mpmath ``"qd"`` (quad-double, numba;
+        ``mp.prec <= 191``), ``"flint"`` (Arb, python-flint) or ``"mpmath"``.
 
     Returns
     -------
@@ -374,6 +377,7 @@ def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_comple
         if backend in ("flint", "qd", "mpmath"):
             raise InvalidInputError("backend %r needs mpmath inputs" % backend)
         pa, qa, shape = validate_float_pair(p, q)
+        lam0_in, mu_in = lam0, mu
         lam0, mu = prepare_spectral_pair(ctx, lam0, mu, shape)
         N = pa.shape[-1]
         if np.ndim(mu) == 0 and mu == 0:
@@ -384,6 +388,16 @@ def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_comple
             out = kernel_step(pa[0], qa[0], float(lam0), float(mu), branch, backend)
             if out is not None:
                 return out
+        if shape != () and not allow_complex and backend in ("auto", "numba"):
+            from .jit import numba_available
+
+            if numba_available():
+                # a batch: one step of the compiled block kernel (parallel over states), with the general
+                # path for the states it hands back and bt_orbit's typed errors (`where`: every failing state)
+                from .ensemble import float_orbit
+
+                orbit_p, orbit_q = float_orbit(p, q, lam0_in, mu_in, 1, branch=branch, backend="numba")
+                return orbit_p[1], orbit_q[1]
         outp, outq = _float_step(pa, qa, lam0, mu, branch, allow_complex, shape)
         return outp.reshape(shape + (N,)), outq.reshape(shape + (N,))
     if backend in ("numba", "python", "numpy"):
