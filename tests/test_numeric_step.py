@@ -248,3 +248,28 @@ def test_interval_context_encloses():
     for a, b in zip(pt + qt, ref_p + ref_q):
         assert a.a <= b <= a.b
         assert a.delta < 1e-9
+
+
+def test_batch_route_where_the_monodromy_leaves_the_float64_range():
+    # N = 256 at lam0 = 3N + 20: |tr L| ~ 788^256, far past the kernels' range; the batch takes the numpy route
+    # at once, and a forced "numba" (the kernel gives every state back to the general path) agrees with it
+    from symbt.numeric.jit import numba_available
+    from symbt.numeric.step import _monodromy_may_overflow
+
+    rng = np.random.default_rng(1)
+    for N, lam0, overflow in ((256, 3.0 * 256 + 20, True), (64, 3.0 * 64 + 20, False), (3, 10.0, False)):
+        p = rng.normal(size=(8, N))
+        q = 0.5 * rng.normal(size=(8, N))
+        assert _monodromy_may_overflow(p, lam0, 2.0) is overflow, N
+        pt, qt = bt_step(p, q, lam0, 2.0)
+        pn, qn = bt_step(p, q, lam0, 2.0, backend="numpy")
+        if overflow or not numba_available():
+            np.testing.assert_array_equal(pt, pn)
+            np.testing.assert_array_equal(qt, qn)
+        else:
+            np.testing.assert_allclose(pt, pn, rtol=0, atol=8 * np.spacing(np.abs(p).max() + 1))
+            np.testing.assert_allclose(qt, qn, rtol=0, atol=8 * np.spacing(np.abs(q).max() + 1))
+        if numba_available():
+            pf, qf = bt_step(p, q, lam0, 2.0, backend="numba")
+            np.testing.assert_allclose(pf, pn, rtol=0, atol=8 * np.spacing(np.abs(p).max() + 1))
+            np.testing.assert_allclose(qf, qn, rtol=0, atol=8 * np.spacing(np.abs(q).max() + 1))

@@ -291,6 +291,20 @@ def _float_block(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_comple
     return outp, outq
 
 
+# log(1e150): past |tr L| ~ 1e150 the fused kernels hand a state to the general path (tr**2 would overflow)
+_KERNEL_LOG_RANGE = 345.0
+
+
+def _monodromy_may_overflow(pa: F64, lam0: Any, mu: Any) -> bool:
+    """True where the block kernel would give the states back: for ``|lam_i|`` large against ``p`` and the
+    ``e^{q_{j+1} - q_j}``, ``log |tr L(lam_i)| ~ N log |lam_i|``; past ``log(1e150)`` by a margin of 10 the
+    kernel's attempt is wasted (a batch at N = 256, lam0 = 788) and the numpy route is taken at once.  A
+    wrong guess costs only speed: a state the kernel gives back is recomputed by the general path anyway.
+    """
+    lam_max = float(np.max(np.abs(lam0)) + np.max(np.abs(mu)))
+    return bool(lam_max > 1.0 and pa.shape[-1] * np.log(lam_max) > _KERNEL_LOG_RANGE + 10.0)
+
+
 def _float_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_complex: bool,
                 shape: tuple[int, ...]) -> tuple[npt.NDArray[Any], npt.NDArray[Any]]:
     B, N = pa.shape
@@ -391,7 +405,7 @@ def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_comple
         if shape != () and not allow_complex and backend in ("auto", "numba"):
             from .jit import numba_available
 
-            if numba_available():
+            if numba_available() and (backend == "numba" or not _monodromy_may_overflow(pa, lam0, mu)):
                 # a batch: one step of the compiled block kernel (parallel over states), with the general
                 # path for the states it hands back and bt_orbit's typed errors (`where`: every failing state)
                 from .ensemble import float_orbit
