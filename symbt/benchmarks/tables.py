@@ -155,11 +155,20 @@ def format_tables(results: dict) -> str:
         lines.append("")
     thr = results.get("throughput")
     if thr:
-        lines += ["## Throughput of the batched float64 step", "", "| batch (N=3) | s per call | system-steps/s |",
-                  "|---|---|---|"]
-        lines += ["| %d | %.3e | %.3e |" % (r["batch"], r["time_s"], r["steps_per_s"]) for r in thr["batch"]]
-        lines += ["", "| N (batch 256) | system-steps/s | ns per site-step |", "|---|---|---|"]
-        lines += ["| %d | %.3e | %.1f |" % (r["N"], r["steps_per_s"], r["ns_per_site_step"]) for r in thr["vsN"]]
+        def numpy_cols(r: dict, key: str, own: str, fmt: str) -> str:   # runs recorded before the column existed
+            return (fmt + " | %.2f") % (r[key], r[key] / r[own]) if key in r else "- | -"
+
+        lines += ["## Throughput of the batched float64 step", "",
+                  "| batch (N=3) | s per call | system-steps/s | numpy route [s per call] | numpy / default |",
+                  "|---|---|---|---|---|"]
+        lines += ["| %d | %.3e | %.3e | %s |" % (r["batch"], r["time_s"], r["steps_per_s"],
+                                                 numpy_cols(r, "numpy_time_s", "time_s", "%.3e"))
+                  for r in thr["batch"]]
+        lines += ["", "| N (batch 256) | system-steps/s | ns per site-step | numpy route [ns per site-step] | "
+                  "numpy / default |", "|---|---|---|---|---|"]
+        lines += ["| %d | %.3e | %.1f | %s |" % (r["N"], r["steps_per_s"], r["ns_per_site_step"],
+                                                numpy_cols(r, "numpy_ns_per_site_step", "ns_per_site_step", "%.1f"))
+                  for r in thr["vsN"]]
         if "slope_time_vs_N" in thr:
             lines.append("\nlog-log slope of time per system-step vs N (N >= 128): %.3f" % thr["slope_time_vs_N"])
         lines.append("")

@@ -2,7 +2,9 @@
 
 N = 3 (the paper's example + 1e-2 noise, lam0 = 10, mu = 5) at batch sizes 1 .. 1e6, and the
 cost per system-step versus N (batch 256, ``lam0 = 3N + 20``, ``mu = 2``) up to N = 1e4, with the
-log-log slope of the time per system-step over N >= 128 (1 = linear).
+log-log slope of the time per system-step over N >= 128 (1 = linear).  Each row times the default
+route (the compiled block kernel with numba) and, side by side, the numpy route (``backend="numpy"``):
+large batches are memory-bound, so only the ratio within a row carries from one run to the next.
 """
 from __future__ import annotations
 
@@ -29,8 +31,9 @@ def run_throughput(quick: bool = False, log: Callable[[str], None] = print) -> d
         p = P0 + 1e-2 * rng.normal(size=(B, 3))
         q = Q0 + 1e-2 * rng.normal(size=(B, 3))
         t = best_time(lambda: bt_step(p, q, 10.0, 5.0), mt)
-        out["batch"].append({"batch": B, "time_s": t, "steps_per_s": B / t})
-        log("    batch %8d: %.3e s/call, %.3e system-steps/s" % (B, t, B / t))
+        tn = best_time(lambda: bt_step(p, q, 10.0, 5.0, backend="numpy"), mt)
+        out["batch"].append({"batch": B, "time_s": t, "steps_per_s": B / t, "numpy_time_s": tn})
+        log("    batch %8d: %.3e s/call, %.3e system-steps/s (numpy route %.3e s/call)" % (B, t, B / t, tn))
     Ns = [2, 3, 8, 32, 128, 1024] if quick else [2, 3, 8, 16, 64, 256, 1024, 4096, 10000]
     B = 256
     rng = np.random.default_rng(1)
@@ -40,8 +43,11 @@ def run_throughput(quick: bool = False, log: Callable[[str], None] = print) -> d
         q = 0.5 * rng.normal(size=(B, N))
         lam0 = 3.0 * N + 20.0
         t = best_time(lambda: bt_step(p, q, lam0, 2.0), mt)
-        out["vsN"].append({"N": N, "batch": B, "steps_per_s": B / t, "ns_per_site_step": 1e9 * t / (B * N)})
-        log("    N %6d batch %7d: %.3e system-steps/s, %.2f ns per site-step" % (N, B, B / t, 1e9 * t / (B * N)))
+        tn = best_time(lambda: bt_step(p, q, lam0, 2.0, backend="numpy"), mt)
+        out["vsN"].append({"N": N, "batch": B, "steps_per_s": B / t, "ns_per_site_step": 1e9 * t / (B * N),
+                           "numpy_ns_per_site_step": 1e9 * tn / (B * N)})
+        log("    N %6d batch %7d: %.3e system-steps/s, %.2f ns per site-step (numpy route %.2f)"
+            % (N, B, B / t, 1e9 * t / (B * N), 1e9 * tn / (B * N)))
     big = [r for r in out["vsN"] if r["N"] >= 128]
     if len(big) >= 2:
         x = np.log([r["N"] for r in big])
