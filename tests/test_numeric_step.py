@@ -273,3 +273,23 @@ def test_batch_route_where_the_monodromy_leaves_the_float64_range():
             pf, qf = bt_step(p, q, lam0, 2.0, backend="numba")
             np.testing.assert_allclose(pf, pn, rtol=0, atol=8 * np.spacing(np.abs(p).max() + 1))
             np.testing.assert_allclose(qf, qn, rtol=0, atol=8 * np.spacing(np.abs(q).max() + 1))
+
+
+def test_which_batches_go_to_the_block_kernel():
+    from symbt.numeric.step import _block_kernel_pays
+
+    z = np.zeros
+    assert _block_kernel_pays(z((1, 3)), 10.0, 5.0) and _block_kernel_pays(z((4095, 3)), 10.0, 5.0)
+    assert not _block_kernel_pays(z((4096, 3)), 10.0, 5.0)          # N = 3: numpy's vectorised step wins
+    assert _block_kernel_pays(z((100_000, 8)), 10.0, 5.0)            # from N = 8 the kernel wins at any size
+    assert not _block_kernel_pays(z((16, 256)), 788.0, 2.0)          # past the kernels' float64 range
+
+
+def test_large_batch_at_small_n_equals_the_numpy_route():
+    rng = np.random.default_rng(3)
+    p = P0 + 0.01 * rng.normal(size=(5000, 3))
+    q = Q0 + 0.01 * rng.normal(size=(5000, 3))
+    pt, qt = bt_step(p, q, 10.0, 5.0)
+    pn, qn = bt_step(p, q, 10.0, 5.0, backend="numpy")
+    np.testing.assert_array_equal(pt, pn)
+    np.testing.assert_array_equal(qt, qn)

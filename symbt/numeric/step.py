@@ -56,8 +56,9 @@ on the float64, mpmath and Arb paths alike.
 Backends.  One float64 state goes through the fused kernel
 (:mod:`symbt.numeric.kernels`; numba if installed), a batch through the
 compiled block kernel of :mod:`symbt.numeric.ensemble` (numba; each state's
-step bit-identical to its single-state step) or, without numba or with
-``allow_complex``, the vectorised numpy code below; mpmath numbers through python-flint's Arb at
+step bit-identical to its single-state step) where that is faster (fewer than
+4096 states, or N >= 8), else -- and without numba or with ``allow_complex`` --
+the vectorised numpy code below (equal to an ulp); mpmath numbers through python-flint's Arb at
 the caller's precision plus guard bits when python-flint is installed
 (:mod:`symbt.numeric.mpfast`), else through mpmath.  Whatever the kernel does
 not handle (no real map, renormalisation, non-finite intermediates) is
@@ -305,6 +306,25 @@ def _monodromy_may_overflow(pa: F64, lam0: Any, mu: Any) -> bool:
     return bool(lam_max > 1.0 and pa.shape[-1] * np.log(lam_max) > _KERNEL_LOG_RANGE + 10.0)
 
 
+# measured (BENCHMARKS.md, throughput): one step of the block kernel beats the numpy route 2-5x on batches
+# below a few thousand states and at every batch size from N = 8 on; at N = 3 numpy's vectorised step wins
+# from ~5000 states (0.7-0.8x)
+_BLOCK_KERNEL_MAX_STATES_SMALL_N = 4096
+_BLOCK_KERNEL_MIN_N = 8
+
+
+def _block_kernel_pays(pa: F64, lam0: Any, mu: Any) -> bool:
+    """Whether ``backend="auto"`` sends a float64 batch ``pa`` (shape ``(M, N)``) to the compiled block kernel.
+
+    >>> import numpy as np
+    >>> [_block_kernel_pays(np.zeros((M, N)), 10.0, 1.0) for M, N in ((100, 3), (10_000, 3), (10_000, 16))]
+    [True, False, True]
+    """
+    M, N = pa.shape
+    small = M < _BLOCK_KERNEL_MAX_STATES_SMALL_N or N >= _BLOCK_KERNEL_MIN_N
+    return small and not _monodromy_may_overflow(pa, lam0, mu)
+
+
 def _float_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_complex: bool,
                 shape: tuple[int, ...]) -> tuple[npt.NDArray[Any], npt.NDArray[Any]]:
     B, N = pa.shape
@@ -405,7 +425,7 @@ def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_comple
         if shape != () and not allow_complex and backend in ("auto", "numba"):
             from .jit import numba_available
 
-            if numba_available() and (backend == "numba" or not _monodromy_may_overflow(pa, lam0, mu)):
+            if numba_available() and (backend == "numba" or _block_kernel_pays(pa, lam0, mu)):
                 # a batch: one step of the compiled block kernel (parallel over states), with the general
                 # path for the states it hands back and bt_orbit's typed errors (`where`: every failing state)
                 from .ensemble import float_orbit
