@@ -30,6 +30,7 @@ True
 from __future__ import annotations
 
 import random
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cache
 from typing import Any
@@ -210,15 +211,9 @@ Fp = sp.Function("Fp")  # elliptic_f(asin(z), m) is evaluated by _F_principal
 MP_NAMESPACE = {"Fp": _F_principal, "A": _abel}
 
 
-def _plain(args: list, expr: Any) -> tuple[list, Any]:
-    """Plain argument names (symbols like ``lambda`` break the printer); ``expr`` may be a (nested) list."""
-    plain = [sp.Symbol(f"_a{i}") for i in range(len(args))]
-    sub = dict(zip(args, plain))
-
-    def rec(e: Any) -> Any:
-        return [rec(x) for x in e] if isinstance(e, (list, tuple)) else sp.sympify(e).xreplace(sub)
-
-    return plain, rec(expr)
+def _nested(f: Callable[[Any], Any], e: Any) -> Any:
+    """``f`` applied to every SymPy leaf of ``e`` (a nested list or tuple, returned as lists)."""
+    return [_nested(f, x) for x in e] if isinstance(e, (list, tuple)) else f(sp.sympify(e))
 
 
 def _principal_F(e: Any) -> Any:
@@ -228,11 +223,7 @@ def _principal_F(e: Any) -> Any:
 
 def mp_fn(args: list, expr: Any):
     """``expr`` (SymPy, or a nested list) as an mpmath function of ``args`` (principal branches; A = Abel image)."""
-    plain, e = _plain(args, expr)
-    def rec(x: Any) -> Any:
-        return [rec(y) for y in x] if isinstance(x, list) else _principal_F(x)
-
-    return plain_lambdify(plain, rec(e), [MP_NAMESPACE, "mpmath"])
+    return plain_lambdify(args, _nested(_principal_F, expr), [MP_NAMESPACE, "mpmath"])
 
 
 def _cplx(x: Any) -> np.ndarray:
@@ -248,7 +239,7 @@ NP_NAMESPACE = {"sqrt": lambda x: np.sqrt(_cplx(x)), "acosh": lambda x: np.arcco
 
 def np_fn(args: list, expr: Any):
     """``expr`` as a vectorised numpy function with mpmath's principal branches on real input."""
-    return plain_lambdify(*_plain(args, expr), [NP_NAMESPACE, "numpy"])
+    return plain_lambdify(args, _nested(lambda x: x, expr), [NP_NAMESPACE, "numpy"])
 
 
 _XG, _WG = np.polynomial.legendre.leggauss(96)

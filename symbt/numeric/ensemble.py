@@ -247,6 +247,13 @@ def float_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, 
         raise InvalidInputError("backend must be one of %s, got %r" % (ORBIT_BACKENDS, backend))
     pa, qa, shape = validate_float_pair(p, q)
     lam0, mu = prepare_spectral_pair(FLOAT, lam0, mu, shape)
+    return validated_float_orbit(pa, qa, shape, lam0, mu, n, branch, every, backend)
+
+
+def validated_float_orbit(pa: F64, qa: F64, shape: tuple[int, ...], lam0: Any, mu: Any, n: int, branch: int,
+                          every: int, backend: str) -> tuple[F64, F64]:
+    """:func:`float_orbit` on inputs already checked (``validate_float_pair``, ``prepare_spectral_pair``):
+    ``pa, qa`` of shape ``(M, N)``, ``shape`` the batch shape; for callers that validated them already."""
     M, N = pa.shape
     rows = orbit_rows(n, every)
     if shape == () and backend != "numpy":

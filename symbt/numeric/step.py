@@ -58,7 +58,8 @@ Backends.  One float64 state goes through the fused kernel
 compiled block kernel of :mod:`symbt.numeric.ensemble` (numba; each state's
 step bit-identical to its single-state step) where that is faster (fewer than
 4096 states, or N >= 8), else -- and without numba or with ``allow_complex`` --
-the vectorised numpy code below (equal to an ulp); mpmath numbers through python-flint's Arb at
+the vectorised numpy code below (equal to an ulp); mpmath numbers through
+python-flint's Arb at
 the caller's precision plus guard bits when python-flint is installed
 (:mod:`symbt.numeric.mpfast`), else through mpmath.  Whatever the kernel does
 not handle (no real map, renormalisation, non-finite intermediates) is
@@ -411,7 +412,6 @@ def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_comple
         if backend in ("flint", "qd", "mpmath"):
             raise InvalidInputError("backend %r needs mpmath inputs" % backend)
         pa, qa, shape = validate_float_pair(p, q)
-        lam0_in, mu_in = lam0, mu
         lam0, mu = prepare_spectral_pair(ctx, lam0, mu, shape)
         N = pa.shape[-1]
         if np.ndim(mu) == 0 and mu == 0:
@@ -428,9 +428,9 @@ def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_comple
             if numba_available() and (backend == "numba" or _block_kernel_pays(pa, lam0, mu)):
                 # a batch: one step of the compiled block kernel (parallel over states), with the general
                 # path for the states it hands back and bt_orbit's typed errors (`where`: every failing state)
-                from .ensemble import float_orbit
+                from .ensemble import validated_float_orbit
 
-                orbit_p, orbit_q = float_orbit(p, q, lam0_in, mu_in, 1, branch=branch, backend="numba")
+                orbit_p, orbit_q = validated_float_orbit(pa, qa, shape, lam0, mu, 1, branch, 1, "numba")
                 return orbit_p[1], orbit_q[1]
         outp, outq = _float_step(pa, qa, lam0, mu, branch, allow_complex, shape)
         return outp.reshape(shape + (N,)), outq.reshape(shape + (N,))

@@ -61,11 +61,6 @@ def _fmt(v) -> str:
     return mpmath.nstr(v, 20)
 
 
-def _lambdify(args, expr):
-    """mpmath lambdify with plain argument names (symbols such as ``lambda`` break the printer), memoised."""
-    return plain_lambdify(args, expr, "mpmath")
-
-
 _POLE_ERRORS = (ZeroDivisionError, ValueError, OverflowError, ArithmeticError)
 
 
@@ -152,10 +147,10 @@ def screen(lhs, rhs, relations, digits, points, seed, fixed):
     constrained = [s for s, _ in order]
     rel_solvers = []
     for k, (_s, roots) in enumerate(order):
-        rel_solvers.append([_lambdify(base + constrained[:k], r) for r in roots])
+        rel_solvers.append([plain_lambdify(base + constrained[:k], r) for r in roots])
     args = base + constrained
-    f_l = _lambdify(args, lhs)
-    f_r = _lambdify(args, rhs)
+    f_l = plain_lambdify(args, lhs)
+    f_r = plain_lambdify(args, rhs)
     worst = (mpmath.mpf(-1), None)
     pts = []
     tol = mpmath.mpf(10) ** (-(digits - 8))
