@@ -47,8 +47,12 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("testing", "pytest_plugin", "cli", "__main__"),
 )
 
+#: the public API for writing and running claims of any paper (see ``docs/your-paper.md``)
 _LAZY = {"verify": ".engine", "check_identity": ".proof", "IdentityResult": ".proof", "Verdict": ".proof",
-         "decide": ".proof"}
+         "decide": ".proof",
+         "claim": ".claims.base", "scene": ".claims.base", "Parts": ".claims.base", "Outcome": ".claims.base",
+         "judge": ".claims.base", "from_decision": ".claims.base", "failed": ".claims.base",
+         "skipped": ".claims.base", "CellTable": ".proof.cells"}
 
 __all__ = ["__version__", "LAYERS", *_LAZY]
 

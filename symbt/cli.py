@@ -24,6 +24,7 @@ import time
 from pathlib import Path
 
 from . import __version__
+from .engine.project import ConfigError
 
 __all__ = ["main", "build_parser", "UsageError", "EXTRAS"]
 
@@ -117,13 +118,16 @@ def _cmd_verify(args) -> int:
         raise ModuleNotFoundError("No module named 'distributed'", name="distributed")
     jobs = args.jobs if args.jobs is not None else min(2, os.cpu_count() or 1)
     t0 = time.perf_counter()
-    results = None if args.no_cache else cached_results(args.scene or None, deep=args.deep)
+    project = _project(args)
+    labels = args.label or ()
+    results = None if args.no_cache else cached_results(args.scene or None, deep=args.deep, project=project,
+                                                        labels=labels)
     if results is None:
         from . import engine
         from .report.progress import Progress
 
         try:
-            claims = engine.select(args.scene or None, include_deep=args.deep)
+            claims = engine.select(args.scene or None, include_deep=args.deep, project=project, labels=labels)
         except KeyError as exc:
             raise UsageError(f"symbt verify: {exc.args[0]}") from None
         bar = Progress(len(claims), enabled=not args.quiet)
@@ -150,17 +154,25 @@ def _cmd_verify(args) -> int:
     return code
 
 
+def _project(args):
+    """The project of a front end: ``--claims`` and ``[tool.symbt]`` (see :mod:`symbt.engine.project`)."""
+    from .engine.project import discover
+
+    return discover(claims=args.claims or ())
+
+
 def _cmd_scenes(args) -> int:
     from .engine.warm import scene_listing
 
-    claims, scenes = scene_listing()
+    claims, scenes = scene_listing(_project(args))
     for name, meta in scenes.items():
         flag = " [deep]" if meta.get("deep") else ""
         print(f"{name}{flag}: {meta.get('description', '')}")
         for c in claims:
             if c.scene == name:
                 print(f"    {c.id:34s} eq. {c.equation}" + (" [deep]" if c.deep else ""))
-    print("pseudo-scenes: n2, n3, n4 (claims by lattice size); any claim id selects itself")
+    print("pseudo-scenes: nK (claims by lattice size K); any claim id selects itself; --label LABEL "
+          "selects a paper label's claims")
     return EXIT_OK
 
 
@@ -197,6 +209,12 @@ def _silence_stdout() -> None:
         pass
 
 
+def _claims_argument(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--claims", action="append", metavar="MODULE_OR_PATH",
+                   help="your claims: a module name or a .py file / package path (repeatable; default: "
+                        "[tool.symbt] claims of pyproject.toml, else Zullo's paper)")
+
+
 def build_parser() -> argparse.ArgumentParser:
     ap = _Parser(prog="symbt", description="Checked, executable mathematics for "
                  "Zullo, 'Bäcklund transformations and Hamiltonian flows'.",
@@ -207,6 +225,9 @@ def build_parser() -> argparse.ArgumentParser:
     v = sub.add_parser("verify", help="check the paper's claims and report")
     v.add_argument("--scene", action="append", metavar="NAME",
                    help="run only this scene / claim id / nK (repeatable)")
+    v.add_argument("--label", action="append", metavar="LABEL",
+                   help="run every claim of this paper label (repeatable)")
+    _claims_argument(v)
     v.add_argument("--deep", action="store_true", help="include deep (minutes-long) claims")
     v.add_argument("--json", metavar="FILE", help="write the JSON report ('-': stdout)")
     v.add_argument("--junit", metavar="FILE", help="write JUnit XML ('-': stdout)")
@@ -220,6 +241,7 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("-v", "--verbose", action="store_true", help="the full table of claims")
     v.set_defaults(func=_cmd_verify)
     s = sub.add_parser("scenes", help="list scenes and their claims")
+    _claims_argument(s)
     s.set_defaults(func=_cmd_scenes)
     for name in _DELEGATED:
         p = sub.add_parser(name, help=_DELEGATED_HELP.get(name, ""), add_help=False)
@@ -254,6 +276,8 @@ def main(argv=None) -> int:
         return EXIT_OK
     except UsageError as exc:
         return fail(str(exc), EXIT_USAGE)
+    except ConfigError as exc:
+        return fail(f"{prog}: {exc}", EXIT_USAGE)
     except KeyboardInterrupt as exc:
         finished, total = getattr(exc, "finished", None), getattr(exc, "total", None)
         done = f" ({finished} of {total} claims finished; their outcomes are cached)" if total is not None else ""

@@ -11,9 +11,13 @@ tests), with the claim cache of ``symbt verify``:
 * ``failed`` -> fails, with the statement, counterexample and residual;
 * ``skipped`` -> skipped with its reason (e.g. an optional extra is missing).
 
-Options: ``--symbt-scene NAME`` (repeatable; a scene, claim id or ``nK``),
-``--symbt-deep`` (add the minutes-long claims), ``--symbt-no-cache``; each of them
-implies ``--symbt``.  Items are named ``symbt/<scene>::<claim id>`` and match
+Which claims: ``--symbt-claims MODULE_OR_PATH`` (repeatable; your claims module, a
+``.py`` file or a package), else the ``claims`` of ``[tool.symbt]`` in the ``pyproject.toml``
+found from the working directory, else Zullo's paper -- the same rule as ``symbt verify``
+(:mod:`symbt.engine.project`).  Options: ``--symbt-scene NAME`` (repeatable; a scene, claim
+id or ``nK``), ``--symbt-label LABEL`` (repeatable; a paper label's claims), ``--symbt-deep``
+(add the minutes-long claims), ``--symbt-no-cache``; each of them implies ``--symbt``.
+Items are named ``symbt/<scene>::<claim id>`` and match
 ``-k`` on the claim id, the scene and the equation label, and ``-m symbt``; ``-x``,
 ``--junitxml`` and pytest-xdist's ``-n`` work as for any test.
 
@@ -33,8 +37,13 @@ __all__ = ["symbt_identity"]
 def pytest_addoption(parser: pytest.Parser) -> None:
     g = parser.getgroup("symbt", "symbt: the paper's claims as test items")
     g.addoption("--symbt", action="store_true", default=False, help="collect symbt's claims as test items")
+    g.addoption("--symbt-claims", action="append", default=None, metavar="MODULE_OR_PATH",
+                help="your claims module or path (repeatable; default: [tool.symbt] claims, else Zullo's paper; "
+                     "implies --symbt)")
     g.addoption("--symbt-scene", action="append", default=None, metavar="NAME",
                 help="only this scene / claim id / nK (repeatable; implies --symbt)")
+    g.addoption("--symbt-label", action="append", default=None, metavar="LABEL",
+                help="only the claims of this paper label (repeatable; implies --symbt)")
     g.addoption("--symbt-deep", action="store_true", default=False,
                 help="include the minutes-long deep claims (implies --symbt)")
     g.addoption("--symbt-no-cache", action="store_true", default=False,
@@ -43,7 +52,7 @@ def pytest_addoption(parser: pytest.Parser) -> None:
 
 def pytest_configure(config: pytest.Config) -> None:
     opt = config.getoption
-    if opt("symbt") or opt("symbt_scene") or opt("symbt_deep") or opt("symbt_no_cache"):
+    if any(opt(o) for o in ("symbt", "symbt_claims", "symbt_scene", "symbt_label", "symbt_deep", "symbt_no_cache")):
         config.addinivalue_line("markers", "symbt: a claim of symbt (added by pytest --symbt)")
         config.pluginmanager.register(_SymbtSession(config), "symbt-session")
 
@@ -92,10 +101,9 @@ class ClaimItem(pytest.Item):
     def runtest(self) -> None:
         out = self._outcome
         if out is None:
-            from symbt.claims import REGISTRY, load_all
+            from symbt.claims import REGISTRY
             from symbt.engine.runner import run
 
-            load_all()
             out = run([REGISTRY[self.claim.id]], use_cache=self._use_cache, manifest=False,
                       deep=self._deep)[0].outcome
         props = [("symbt_status", out.status), ("symbt_evidence", out.evidence or "-"),
@@ -129,22 +137,26 @@ class _SymbtSession:
     @pytest.hookimpl(tryfirst=True)  # before -k / -m deselect
     def pytest_collection_modifyitems(self, session: pytest.Session, config: pytest.Config,
                                       items: list[pytest.Item]) -> None:
+        from symbt.engine.project import ConfigError, discover
+        from symbt.engine.select import select
         from symbt.engine.warm import cached_results
 
         names = config.getoption("symbt_scene")
+        labels = config.getoption("symbt_label") or ()
         deep = config.getoption("symbt_deep")
         use_cache = not config.getoption("symbt_no_cache")
-        warm = cached_results(names, deep=deep) if use_cache else None
-        pairs: list[tuple[Any, Any]]
-        if warm is not None:
-            pairs = [(r.claim, r.outcome) for r in warm]
-        else:
-            from symbt.engine.select import select
-
-            try:
-                pairs = [(c, None) for c in select(names, include_deep=deep)]
-            except KeyError as exc:
-                raise pytest.UsageError(f"--symbt-scene: {exc.args[0]}") from None
+        try:
+            project = discover(claims=config.getoption("symbt_claims") or ())
+            warm = cached_results(names, deep=deep, project=project, labels=labels) if use_cache else None
+            pairs: list[tuple[Any, Any]]
+            if warm is not None:
+                pairs = [(r.claim, r.outcome) for r in warm]
+            else:
+                pairs = [(c, None) for c in select(names, include_deep=deep, project=project, labels=labels)]
+        except ConfigError as exc:
+            raise pytest.UsageError(f"symbt: {exc}") from None
+        except KeyError as exc:
+            raise pytest.UsageError(f"--symbt-scene/--symbt-label: {exc.args[0]}") from None
         new: list[pytest.Item | pytest.Collector] = [
             ClaimItem.from_parent(session, name=claim.id, nodeid=f"symbt/{claim.scene}::{claim.id}", claim=claim,
                                   outcome=outcome, use_cache=use_cache, deep=deep)

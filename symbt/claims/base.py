@@ -218,8 +218,13 @@ SCENES: dict[str, dict[str, Any]] = {}
 
 
 def scene(name: str, description: str, *, deep: bool = False) -> None:
-    """Declare a scene (a named target: a group of claims)."""
-    SCENES.setdefault(name, {"description": description, "deep": deep})
+    """Declare a scene (a named target: a group of claims) with its description.
+
+    Optional: ``@claim(..., scene=NAME)`` creates an undeclared scene with no description.
+    """
+    current = SCENES.get(name)
+    if current is None or not current.get("description"):
+        SCENES[name] = {"description": description, "deep": deep}
 
 
 def _with_parts(run_parts: Callable[..., Outcome], builder: Callable[[], Parts], **kw: Any) -> Outcome:
@@ -272,6 +277,7 @@ def claim(id: str, *, equation: str, statement: str, scene: str, N: int | None =
             if cid in REGISTRY:
                 raise ValueError(f"duplicate claim id {cid}")
             REGISTRY[cid] = c
+            SCENES.setdefault(scene, {"description": "", "deep": False})  # a scene needs no declaration
         return c
 
     def wrap(fn: Callable[..., Outcome]):

@@ -34,6 +34,7 @@ from .select import choose, default_scenes, select  # cheap (claim metadata only
 _LAZY = {
     "run": ".runner", "Interrupted": ".runner", "refresh_manifest": ".runner",
     "cache_dir": ".cache", "cache_file": ".cache", "claim_key": ".cache",
+    "Project": ".project", "ConfigError": ".project", "discover": ".project", "load": ".project",
     "cached_results": ".warm", "Walkthrough": ".walkthrough", "ClaimResult": "..claims.base",
 }
 
@@ -44,29 +45,35 @@ __getattr__, __dir__ = lazy_attributes(__name__, _LAZY, __all__)
 
 
 def verify(scenes: Sequence[str] | None = None, *, deep: bool = False, use_cache: bool = True,
-           jobs: int = 1, progress: Progress | None = None, dask: str | bool | None = None) -> list[ClaimResult]:
+           jobs: int = 1, progress: Progress | None = None, dask: str | bool | None = None,
+           claims: Sequence[str] = (), labels: Sequence[str] = ()) -> list[ClaimResult]:
     """Select and run claims; the Python entry point behind ``symbt verify``.
 
     ``scenes`` are scene names, lattice sizes (``"n2"``) or claim ids (``None``:
     every default scene); ``deep`` adds the minutes-long claims and runs every
     claim's deep variant (64 instead of 16 samples per domain cell); ``jobs``
     worker processes; ``dask`` runs uncached claims on a Dask cluster (``True``:
-    a local one, or a scheduler address).  Returns one :class:`ClaimResult` per
-    claim, in the paper's order.  Unknown names raise ``KeyError``; ``jobs``
-    below 1 raises ``ValueError``.
+    a local one, or a scheduler address).  ``claims`` are claims sources (module names
+    or paths, as ``--claims``; default: ``[tool.symbt]`` of the working directory, else
+    Zullo's paper) and ``labels`` keeps the claims of those paper labels.  Returns one
+    :class:`ClaimResult` per claim, in the paper's order.  Unknown names raise
+    ``KeyError``; ``jobs`` below 1 raises ``ValueError``; a claims source that does not
+    import, :class:`~symbt.engine.project.ConfigError`.
 
     >>> import symbt
     >>> [r.status for r in symbt.verify(["tn2"], use_cache=False)]
     ['verified']
     """
+    from .project import discover
     from .runner import run
     from .warm import cached_results
 
     if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
         raise ValueError(f"jobs must be a positive integer, not {jobs!r}")
+    project = discover(claims=claims)
     if use_cache and dask is None and progress is None:
-        warm = cached_results(scenes, deep=deep)
+        warm = cached_results(scenes, deep=deep, project=project, labels=labels)
         if warm is not None:
             return warm
-    return run(select(scenes, include_deep=deep), use_cache=use_cache, jobs=jobs, progress=progress, dask=dask,
-               deep=deep)
+    return run(select(scenes, include_deep=deep, project=project, labels=labels), use_cache=use_cache, jobs=jobs,
+               progress=progress, dask=dask, deep=deep)

@@ -40,7 +40,7 @@ _PKG = Path(__file__).resolve().parent.parent
 _LAYERS = ("paper.py", "_files.py", "symbolic", "proof", "numeric", "reference", "codegen", "generated",
            "claims/base.py")
 #: distributions whose version can change a claim's outcome (absent ones count as "-")
-_LIBRARIES = ("sympy", "mpmath", "numpy", "scipy", "python-flint", "gmpy2")
+_LIBRARIES = ("sympy", "mpmath", "numpy", "scipy", "python-flint", "gmpy2", "heyoka", "numba")
 
 
 def cache_dir() -> Path:
@@ -53,9 +53,9 @@ def cache_dir() -> Path:
 
 
 @cache
-def _layer_digest() -> str:
+def _layer_digest(layers: tuple[str, ...] = _LAYERS) -> str:
     h = hashlib.sha256()
-    for name in _LAYERS:
+    for name in layers:
         path = _PKG / name
         files = sorted(path.rglob("*.py")) if path.is_dir() else [path]
         for f in files:
@@ -128,22 +128,39 @@ def _claim_modules_used(mod) -> list:
 
 
 def claim_key(c: Claim, deep: bool = False) -> str:
-    """Hash of what determines the claim's outcome (its deep variant has its own key)."""
+    """Hash of what determines the claim's outcome (its deep variant has its own key).
+
+    For the package's own claims: the claim's module and the sibling claim modules it uses,
+    and the layers below the claims.  For any other claim (a user's): every Python file of the
+    user's project the claim may depend on (:func:`~symbt.engine.project.project_digest`: the
+    project root's files when the claim's module lies under it) and every source of symbt's
+    layers up to the claims.  Both: Python and library versions.
+    """
     import inspect
+
+    from .project import active, claim_module, project_digest
 
     h = hashlib.sha256()
     h.update(c.id.encode())
     if deep and c.deep_check is not None:
         h.update(b"\0deep")
-    mod = inspect.getmodule(c.func or c.check)
-    for m in _claim_modules_used(mod) if mod is not None else []:
-        try:
-            h.update(inspect.getsource(m).encode())
-        except (OSError, TypeError):
+    module = claim_module(c)
+    if module.startswith("symbt.claims."):
+        mod = inspect.getmodule(c.func or c.check)
+        for m in _claim_modules_used(mod) if mod is not None else []:
+            try:
+                h.update(inspect.getsource(m).encode())
+            except (OSError, TypeError):
+                h.update(repr(c).encode())
+        if mod is None:
             h.update(repr(c).encode())
-    if mod is None:
-        h.update(repr(c).encode())
-    h.update(_layer_digest().encode())
+        h.update(_layer_digest().encode())
+    else:
+        project = active()
+        root = project.root if project is not None else Path.cwd()
+        h.update(b"\0user\0" + module.encode())
+        h.update(project_digest([module], root).encode())
+        h.update(_layer_digest(_LAYERS + ("claims", "engine/project.py")).encode())
     h.update(library_versions().encode())
     return h.hexdigest()
 

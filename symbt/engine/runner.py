@@ -66,15 +66,12 @@ def _run_pool(todo: Sequence[Claim], jobs: int, done: Progress, deep: bool = Fal
 
 
 def refresh_manifest() -> None:
-    """Refresh the warm path's manifest once every claim module is loaded (a full registry)."""
-    import importlib.util
-
-    from ..claims import CLAIM_MODULES
+    """Refresh the warm path's manifest of the project whose claims were loaded (if any)."""
+    from .project import active
     from .warm import write_manifest
 
-    names = [f"symbt.claims.{m}" for m in CLAIM_MODULES]
-    if all(n in sys.modules or importlib.util.find_spec(n) is None for n in names):
-        write_manifest()
+    if active() is not None:
+        write_manifest(active())
 
 
 def run(claims: Sequence[Claim], *, use_cache: bool = True, jobs: int = 1, progress: Progress | None = None,

@@ -5,36 +5,48 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 from ..claims.base import Claim
+from .project import Project, load
 
 __all__ = ["select", "choose", "default_scenes"]
 
 
-def default_scenes() -> list[str]:
-    """The scenes ``symbt verify`` runs without ``--scene`` (every scene not marked deep)."""
-    from ..claims import SCENES, load_all
+def default_scenes(project: Project | None = None) -> list[str]:
+    """The scenes ``symbt verify`` runs without ``--scene`` (every scene of the project not marked deep)."""
+    from ..claims import SCENES
 
-    load_all()
-    return [s for s, meta in SCENES.items() if not meta.get("deep")]
+    scenes = {c.scene for c in load(project)}
+    return [s for s, meta in SCENES.items() if s in scenes and not meta.get("deep")]
 
 
 def choose(claims: Sequence[Claim], scenes_meta: Mapping[str, Mapping[str, Any]],
-           names: Sequence[str] | None = None, *, include_deep: bool = False) -> list[Claim]:
+           names: Sequence[str] | None = None, *, include_deep: bool = False,
+           labels: Sequence[str] = ()) -> list[Claim]:
     """The claims named by ``names`` among ``claims`` (in their order), given the scenes' metadata.
 
-    Works on claim metadata only, so the warm path (:mod:`.warm`) and :func:`select`
-    share it.  Unknown names raise ``KeyError``.
+    ``labels`` keeps only the claims of those paper labels (``equation`` or ``source_equation``),
+    deep ones included.  Works on claim metadata only, so the warm path (:mod:`.warm`) and
+    :func:`select` share it.  Unknown names and labels raise ``KeyError``.
 
     >>> a = Claim("a.n2", "eq", "s", check=None, scene="x", N=2)
     >>> b = Claim("b", "eq", "s", check=None, scene="y", deep=True)
     >>> [c.id for c in choose([a, b], {"x": {}, "y": {}})], [c.id for c in choose([a, b], {}, ["b"])]
     (['a.n2'], ['b'])
     """
+    if labels:
+        wanted = set(labels)
+        unknown = wanted - {c.equation for c in claims} - {c.source_equation for c in claims}
+        if unknown:
+            raise KeyError(f"no claim has the label(s) {', '.join(sorted(unknown))}; try 'symbt coverage'")
+        claims = [c for c in claims if c.equation in wanted or c.source_equation in wanted]
+        if not names:
+            return list(claims)
     by_id = {c.id: c for c in claims}
     if not names:
         return [c for c in claims if include_deep or not (c.deep or scenes_meta.get(c.scene, {}).get("deep"))]
     chosen: dict[str, Claim] = {}
+    scenes_here = {c.scene for c in claims}
     for name in names:
-        if name in scenes_meta:
+        if name in scenes_meta and name in scenes_here:
             hit = [c for c in claims if c.scene == name]
         elif len(name) > 1 and name[0] == "n" and name[1:].isdigit():
             hit = [c for c in claims if c.N == int(name[1:])]
@@ -49,13 +61,16 @@ def choose(claims: Sequence[Claim], scenes_meta: Mapping[str, Mapping[str, Any]]
     return [c for c in claims if c.id in chosen]
 
 
-def select(scenes: Sequence[str] | None = None, *, include_deep: bool = False) -> list[Claim]:
-    """Claims named by ``scenes`` (scene names, ``nK`` sizes or claim ids), in registry order.
+def select(scenes: Sequence[str] | None = None, *, include_deep: bool = False, project: Project | None = None,
+           labels: Sequence[str] = ()) -> list[Claim]:
+    """The project's claims named by ``scenes`` (scene names, ``nK`` sizes or claim ids), in registry order.
 
-    ``None`` means every non-deep scene (and non-deep claim); ``include_deep``
-    adds deep claims.  Unknown names raise ``KeyError``.
+    ``None`` means every non-deep scene (and non-deep claim); ``include_deep`` adds deep
+    claims; ``labels`` keeps the claims of those paper labels.  ``project`` (default:
+    :func:`~symbt.engine.project.discover` from the working directory) says which claims
+    there are.  Unknown names raise ``KeyError``; a claims source that does not import,
+    :class:`~symbt.engine.project.ConfigError`.
     """
-    from ..claims import REGISTRY, SCENES, load_all
+    from ..claims import SCENES
 
-    load_all()
-    return choose(list(REGISTRY.values()), SCENES, scenes, include_deep=include_deep)
+    return choose(load(project), SCENES, scenes, include_deep=include_deep, labels=labels)

@@ -11,5 +11,6 @@ def run_claim(claim_id: str, deep: bool = False) -> dict:
     """
     from ..claims import REGISTRY, load_all
 
-    load_all()
+    if claim_id not in REGISTRY:  # a forked worker has the parent's registry already
+        load_all()
     return REGISTRY[claim_id].run(deep=deep).to_dict()

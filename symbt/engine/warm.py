@@ -21,6 +21,7 @@ from __future__ import annotations
 import hashlib
 import importlib.util
 import json
+import sys
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -28,6 +29,7 @@ from typing import Any
 from .._files import atomic_write
 from ..claims.base import Claim, ClaimResult, skipped
 from .cache import cache_dir, cache_file, library_versions, read_entry
+from .project import Project, discover
 from .select import choose
 
 __all__ = ["source_digest", "manifest_path", "write_manifest", "read_manifest", "cached_results",
@@ -49,33 +51,39 @@ def source_digest() -> str:
     return h.hexdigest()
 
 
-def manifest_path() -> Path:
-    return cache_dir() / "manifest.json"
+def manifest_path(project: Project | None = None) -> Path:
+    """The manifest of ``project``'s claim set (Zullo's paper: ``manifest.json``)."""
+    label = project.label() if project is not None else ""
+    return cache_dir() / (f"manifest-{label}.json" if label else "manifest.json")
 
 
-def _packaged(c: Claim) -> bool:
-    """Only the package's own claims go into the manifest (not ones a test registered on the fly)."""
-    from ..claims import CLAIM_MODULES
+def _roots_digest(roots: list[str]) -> str:
+    from .project import _digest_of
 
-    fn = c.func or getattr(c.check, "func", c.check)
-    mod = getattr(fn, "__module__", None) or ""
-    return mod in {f"symbt.claims.{m}" for m in CLAIM_MODULES}
+    h = hashlib.sha256()
+    for r in roots:
+        h.update(r.encode() + b"\0" + _digest_of(Path(r)).encode())
+    return h.hexdigest()
 
 
-def write_manifest() -> None:
-    """Record every registered claim of the package with its key (after :func:`load_all`)."""
-    from ..claims import REGISTRY, SCENES, load_all
+def write_manifest(project: Project | None = None) -> None:
+    """Record every claim of ``project`` (default: the one loaded last) with its key."""
+    from ..claims import SCENES
     from .cache import claim_key
+    from .project import active, claim_module, load, source_root
 
-    load_all()
-    claims = [c for c in REGISTRY.values() if _packaged(c)]
-    data = {"format": FORMAT, "digest": source_digest(),
+    project = project or active() or discover()
+    claims = load(project)
+    roots = sorted({str(source_root(Path(f), project.root)) for c in claims
+                    if not claim_module(c).startswith("symbt.claims.")
+                    and (f := getattr(sys.modules.get(claim_module(c)), "__file__", None))})
+    data = {"format": FORMAT, "digest": source_digest(), "roots": roots, "roots_digest": _roots_digest(roots),
             "claims": [{**{k: (list(getattr(c, k)) if k == "requires" else getattr(c, k)) for k in _META},
                         "key": claim_key(c)} for c in claims],
             "scenes": {s: {"description": m.get("description", ""), "deep": bool(m.get("deep"))}
                        for s, m in SCENES.items() if any(c.scene == s for c in claims)}}
     text = json.dumps(data, indent=0, sort_keys=True)
-    path = manifest_path()
+    path = manifest_path(project)
     try:
         if path.is_file() and path.read_text(encoding="utf-8") == text:
             return
@@ -89,11 +97,17 @@ def _not_loaded() -> Any:  # pragma: no cover - a warm claim is never run
     raise RuntimeError("claim metadata from the manifest; load the claims to run it")
 
 
-def read_manifest() -> tuple[list[Claim], dict[str, dict], dict[str, str]] | None:
-    """``(claims, scenes, keys)`` from a manifest that matches the current sources, else ``None``."""
+def read_manifest(project: Project | None = None) -> tuple[list[Claim], dict[str, dict], dict[str, str]] | None:
+    """``(claims, scenes, keys)`` from ``project``'s manifest if it matches the current sources, else ``None``.
+
+    The current sources: symbt's, and every file under the roots the user's claims may depend on.
+    """
     try:
-        data = json.loads(manifest_path().read_bytes())
+        data = json.loads(manifest_path(project).read_bytes())
         if not isinstance(data, dict) or data.get("format") != FORMAT or data.get("digest") != source_digest():
+            return None
+        roots = data["roots"]
+        if not isinstance(roots, list) or data.get("roots_digest") != _roots_digest([str(r) for r in roots]):
             return None
         claims, keys = [], {}
         for d in data["claims"]:
@@ -107,7 +121,8 @@ def read_manifest() -> tuple[list[Claim], dict[str, dict], dict[str, str]] | Non
     return claims, scenes, keys
 
 
-def cached_results(names: Sequence[str] | None = None, *, deep: bool = False) -> list[ClaimResult] | None:
+def cached_results(names: Sequence[str] | None = None, *, deep: bool = False, project: Project | None = None,
+                   labels: Sequence[str] = ()) -> list[ClaimResult] | None:
     """Every selected claim's result from the cache, or ``None`` if any is missing or stale.
 
     ``None`` also for a name the manifest does not know (the caller's normal path
@@ -115,12 +130,12 @@ def cached_results(names: Sequence[str] | None = None, *, deep: bool = False) ->
     """
     if deep:
         return None  # the manifest records the default outcomes' keys; deep runs take the normal path
-    m = read_manifest()
+    m = read_manifest(project or discover())
     if m is None:
         return None
     claims, scenes, keys = m
     try:
-        chosen = choose(claims, scenes, names, include_deep=deep)
+        chosen = choose(claims, scenes, names, include_deep=deep, labels=labels)
     except KeyError:
         return None
     if not chosen:
@@ -138,12 +153,14 @@ def cached_results(names: Sequence[str] | None = None, *, deep: bool = False) ->
     return out
 
 
-def scene_listing() -> tuple[list[Claim], dict[str, dict]]:
-    """Claims and scenes from the manifest if current, else by loading the claim modules."""
-    m = read_manifest()
+def scene_listing(project: Project | None = None) -> tuple[list[Claim], dict[str, dict]]:
+    """The project's claims and scenes from the manifest if current, else by loading the claims."""
+    project = project or discover()
+    m = read_manifest(project)
     if m is not None:
         return m[0], m[1]
-    from ..claims import REGISTRY, SCENES, load_all
+    from ..claims import SCENES
+    from .project import load
 
-    load_all()
-    return list(REGISTRY.values()), dict(SCENES)
+    claims = load(project)
+    return claims, {s: meta for s, meta in SCENES.items() if any(c.scene == s for c in claims)}
