@@ -112,7 +112,7 @@ def test_manifest_holds_only_the_package_claims_and_is_stamped(tn2):
 def test_a_missing_optional_module_is_reported_skipped_by_the_warm_path(tn2, monkeypatch):
     engine.run([tn2])
     claims, scenes, keys = warm.read_manifest()
-    monkeypatch.setattr(warm, "read_manifest", lambda: (
+    monkeypatch.setattr(warm, "read_manifest", lambda project=None: (
         [c if c.id != "tn2" else type(c)(**{**{f: getattr(c, f) for f in c.__dataclass_fields__},
                                             "requires": ("no_such_module_zz",)}) for c in claims], scenes, keys))
     got = warm.cached_results(["tn2"])

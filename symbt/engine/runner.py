@@ -9,6 +9,7 @@ from __future__ import annotations
 import signal
 import sys
 from collections.abc import Callable, Sequence
+from pathlib import Path
 
 from ..claims.base import Claim, ClaimResult, Outcome, failed
 from .cache import load_cached, store
@@ -66,12 +67,21 @@ def _run_pool(todo: Sequence[Claim], jobs: int, done: Progress, deep: bool = Fal
 
 
 def refresh_manifest() -> None:
-    """Refresh the warm path's manifest of the project whose claims were loaded (if any)."""
-    from .project import active
+    """Refresh the warm path's manifest of the project whose claims were loaded (or of the package's
+    claims, when every claim module of the package is loaded)."""
+    import importlib.util
+
+    from ..claims import CLAIM_MODULES
+    from .project import PACKAGE_CLAIMS, Project, active
     from .warm import write_manifest
 
-    if active() is not None:
-        write_manifest(active())
+    project = active()
+    if project is None:
+        names = [f"{PACKAGE_CLAIMS}.{m}" for m in CLAIM_MODULES]
+        if all(n in sys.modules or importlib.util.find_spec(n) is None for n in names):
+            project = Project(root=Path.cwd())
+    if project is not None:
+        write_manifest(project)
 
 
 def run(claims: Sequence[Claim], *, use_cache: bool = True, jobs: int = 1, progress: Progress | None = None,

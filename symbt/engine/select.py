@@ -68,9 +68,16 @@ def select(scenes: Sequence[str] | None = None, *, include_deep: bool = False, p
     ``None`` means every non-deep scene (and non-deep claim); ``include_deep`` adds deep
     claims; ``labels`` keeps the claims of those paper labels.  ``project`` (default:
     :func:`~symbt.engine.project.discover` from the working directory) says which claims
-    there are.  Unknown names raise ``KeyError``; a claims source that does not import,
+    there are; a name it lacks is looked up among every claim registered in this process
+    (one a notebook or a test declared).  Unknown names raise ``KeyError``; a claims source that does not import,
     :class:`~symbt.engine.project.ConfigError`.
     """
-    from ..claims import SCENES
+    from ..claims import REGISTRY, SCENES
 
-    return choose(load(project), SCENES, scenes, include_deep=include_deep, labels=labels)
+    try:
+        return choose(load(project), SCENES, scenes, include_deep=include_deep, labels=labels)
+    except KeyError:
+        if not scenes:
+            raise
+        # a name the project lacks may be a claim registered in this process by other means (a test, a notebook)
+        return choose(list(REGISTRY.values()), SCENES, scenes, include_deep=include_deep, labels=labels)
