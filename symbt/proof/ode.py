@@ -34,7 +34,7 @@ the derivatives of the closed form taken exactly (SymPy), and:
 """
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Iterable, Mapping
 from typing import Any
 
 import mpmath as mp
@@ -47,7 +47,7 @@ from .exact import exact_zero
 from .lambdify import plain_lambdify
 from .verdict import Verdict
 
-__all__ = ["solves_ode", "ode_residual", "DEFAULT_RANGE"]
+__all__ = ["solves_ode", "ode_residual", "OdeResidual", "DEFAULT_RANGE"]
 
 #: the range of every variable when ``solves_ode`` is given no domain (positive: logs and roots stay real)
 DEFAULT_RANGE = (0.25, 2.0)
@@ -133,10 +133,31 @@ def _residual_terms(ode: Any, solution: Any) -> tuple[sp.Symbol, list[list[Any]]
     return t, terms
 
 
-def ode_residual(ode: Any, solution: Any) -> Callable[..., Any]:
+class OdeResidual:
+    """The residual of a closed form in an ODE at one point (made by :func:`ode_residual`): called with the
+    point's values by name; ``variables`` are the names it needs."""
+
+    takes_point = True      # Domain.evaluate passes the whole point
+
+    def __init__(self, symbols: list[sp.Symbol], terms: list[list[Any]]) -> None:
+        self.variables = tuple(s.name for s in symbols)
+        self._f = plain_lambdify(symbols, terms, "mpmath")
+
+    def __call__(self, **point: Any) -> Any:
+        missing = [n for n in self.variables if n not in point]
+        if missing:
+            raise ValueError(f"the ODE residual needs {', '.join(missing)}; the point has {', '.join(point)}")
+        worst = mp.mpf(0)
+        for values in self._f(*(point[n] for n in self.variables)):
+            scale = max([mp.mpf(1), *(abs(v) for v in values)])
+            worst = max(worst, abs(mp.fsum(values)) / scale)
+        return worst
+
+
+def ode_residual(ode: Any, solution: Any) -> OdeResidual:
     r"""The closed form's residual as a function of the points of a :class:`~symbt.proof.domain.Domain`
     (for ``Domain.evaluate(..., printed=ode_residual(...), corrected=...)``); its ``variables``
-    are the names it needs.
+    are the names it needs.  Arguments as in :func:`solves_ode`.
 
     >>> t, k = sp.symbols("t k"); x = sp.Function("x")
     >>> r = ode_residual(sp.Eq(x(t).diff(t, 2), -k**2 * x(t)), sp.sin(k * t))
@@ -145,22 +166,7 @@ def ode_residual(ode: Any, solution: Any) -> Callable[..., Any]:
     """
     t, terms = _residual_terms(ode, solution)
     syms = sorted(set().union({t}, *(p.free_symbols for eq in terms for p in eq)), key=lambda s: s.name)
-    names = tuple(s.name for s in syms)
-    f = plain_lambdify(syms, terms, "mpmath")
-
-    def residual(**point: Any) -> Any:
-        missing = [n for n in names if n not in point]
-        if missing:
-            raise ValueError(f"the ODE residual needs {', '.join(missing)}; the point has {', '.join(point)}")
-        worst = mp.mpf(0)
-        for values in f(*(point[n] for n in names)):
-            scale = max([mp.mpf(1), *(abs(v) for v in values)])
-            worst = max(worst, abs(mp.fsum(values)) / scale)
-        return worst
-
-    residual.variables = names          # type: ignore[attr-defined]
-    residual.takes_point = True         # type: ignore[attr-defined]
-    return residual
+    return OdeResidual(syms, terms)
 
 
 def solves_ode(ode: Any, solution: Any, *, domain: Domain | None = None, splits: Iterable[Split] = (),
@@ -193,11 +199,17 @@ def solves_ode(ode: Any, solution: Any, *, domain: Domain | None = None, splits:
         definite = any(zero is False and sure for zero, _, sure in results)
         method_exact = next((m for zero, m, _ in results if zero is False), "")
     residual = ode_residual(ode, solution)
+    splits = list(splits)
+    chosen = {s.name for s in splits if s.kind == "choice"}     # a choice's value is a parameter too
+    needed = [n for n in residual.variables if n not in chosen]
     if domain is None:
-        domain = Domain({name: DEFAULT_RANGE for name in residual.variables})   # type: ignore[attr-defined]
-    lacking = [n for n in residual.variables if n not in domain.variables]   # type: ignore[attr-defined]
+        domain = Domain({name: DEFAULT_RANGE for name in needed})
+    lacking = [n for n in needed if n not in domain.variables]
     if lacking:
         raise ValueError(f"solves_ode: the domain lacks {', '.join(lacking)} (it has {', '.join(domain.variables)})")
+    # a nonzero rational function vanishes on no open set, but may at the values of a choice or an integer
+    discrete = chosen | {n for n, r in domain.variables.items() if r.kind == "integers"}
+    definite = definite and not discrete & set(residual.variables)
     table: CellTable = domain.evaluate(*splits, printed=residual, dps=dps, tol=tol, per_cell=per_cell, deep=deep)
     sampled = table.verdict(method="ODE residual by " + table.method)
     if definite:
