@@ -111,11 +111,9 @@ class _Walk:
 
 def _exponent(e: sp.Expr) -> sp.Expr | None:
     """``u`` if the node ``e`` is ``exp(u)`` exactly, in any spelling; None if it is not an exponential."""
-    if isinstance(e, sp.exp):
-        return e.args[0]
     if e is sp.E:
         return sp.S.One
-    if isinstance(e, sp.Pow):
+    if isinstance(e, sp.Pow):                      # first: isinstance(E**u, sp.exp) is True in SymPy
         if e.base is sp.E:
             return e.exp
         r = e.exp
@@ -125,6 +123,8 @@ def _exponent(e: sp.Expr) -> sp.Expr | None:
             if v is not None and (r.is_Integer or v.is_extended_real):
                 return r * v
         return None
+    if isinstance(e, sp.exp):
+        return e.args[0]
     if isinstance(e, sp.Mul):
         parts = []
         for a in e.args:
