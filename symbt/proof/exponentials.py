@@ -73,11 +73,13 @@ def rational_linear_form(u: sp.Expr) -> dict[sp.Expr, sp.Rational] | None:
 
 
 class _Walk:
-    """Pass 1: every exponential node becomes a placeholder for its exponent's linear form (memoised)."""
+    """The walk over the tree, twice: pass 1 (``variables`` None) only reads the exponents' linear
+    forms, pass 2 rebuilds the tree with every exponential as its monomial.  Memoised per node."""
 
     def __init__(self) -> None:
-        self.forms: dict[sp.Dummy, dict[sp.Expr, sp.Rational]] = {}
-        self.placeholder: dict[tuple, sp.Dummy] = {}
+        self.forms: dict[sp.Expr, dict[sp.Expr, sp.Rational] | None] = {}     # exponent -> its form
+        self.variables: dict[sp.Expr, tuple[sp.Dummy, int]] | None = None
+        self.monomials: dict[tuple, sp.Expr] = {}
         self.memo: dict[sp.Expr, sp.Expr] = {}
 
     def __call__(self, e: sp.Expr) -> sp.Expr:
@@ -86,27 +88,36 @@ class _Walk:
             got = self.memo[e] = self._walk(e)
         return got
 
+    def second_pass(self, variables: dict[sp.Expr, tuple[sp.Dummy, int]]) -> None:
+        self.variables, self.memo = variables, {}
+
     def _walk(self, e: sp.Expr) -> sp.Expr:
         if isinstance(e, _HYPERBOLIC):
-            return self(e.rewrite(sp.exp))
+            rewritten = self(e.rewrite(sp.exp))
+            return e if self.variables is None else rewritten
         u = _exponent(e)
         if u is not None:
-            form = rational_linear_form(u)
+            if u not in self.forms:
+                self.forms[u] = rational_linear_form(u)
+            form = self.forms[u]
             # not rational-linear: left as it is (not rational, the caller's screen decides)
-            return e if form is None else self._placeholder(form)
+            return e if form is None or self.variables is None else self._monomial(form)
         if isinstance(e, (sp.Add, sp.Mul)) or (isinstance(e, sp.Pow) and e.exp.is_Integer):
-            return e.func(*[self(a) for a in e.args])
+            args = [self(a) for a in e.args]
+            # rebuild only what changed: re-evaluating a large sum that holds no exponential is costly
+            return e if all(a is b for a, b in zip(args, e.args)) else e.func(*args)
         # any other node is left whole: inside sqrt(exp(2*x)) with a complex x, the positive monomial
         # exp_x**2 would let SymPy "simplify" sqrt(exp_x**2) to exp_x -- false for x = i*pi
         return e
 
-    def _placeholder(self, form: dict[sp.Expr, sp.Rational]) -> sp.Dummy:
+    def _monomial(self, form: dict[sp.Expr, sp.Rational]) -> sp.Expr:
+        assert self.variables is not None
         key = tuple(form.items())
-        p = self.placeholder.get(key)
-        if p is None:
-            p = self.placeholder[key] = sp.Dummy("exp_form")
-            self.forms[p] = form
-        return p
+        got = self.monomials.get(key)
+        if got is None:
+            got = self.monomials[key] = sp.Mul(*[self.variables[s][0] ** int(c * self.variables[s][1])
+                                                 for s, c in form.items()])
+        return got
 
 
 def _exponent(e: sp.Expr) -> sp.Expr | None:
@@ -149,18 +160,21 @@ def exponentials_as_monomials(*exprs) -> tuple[tuple[sp.Expr, ...], dict[sp.Expr
     (True, 2, 2)
     """
     walk = _Walk()
-    walked = [walk(sp.sympify(e)) for e in exprs]
+    exprs = tuple(sp.sympify(e) for e in exprs)
+    for e in exprs:
+        walk(e)
     denominators: dict[sp.Expr, int] = {}
     for form in walk.forms.values():
-        for s, c in form.items():
+        for s, c in (form or {}).items():
             denominators[s] = lcm(denominators.get(s, 1), int(c.q))
+    if not denominators:
+        return exprs, {}
     directions = sorted(denominators, key=sp.default_sort_key)
     # Dummies: a user symbol that happens to be called ``exp_q`` must not collide
     variables = {s: (sp.Dummy(f"exp_{s.name if s.is_Symbol else s}", positive=True), denominators[s])
                  for s in directions}
-    monomials = {p: sp.Mul(*[variables[s][0] ** int(c * variables[s][1]) for s, c in form.items()])
-                 for p, form in walk.forms.items()}
-    return tuple(w.xreplace(monomials) for w in walked), variables
+    walk.second_pass(variables)
+    return tuple(walk(e) for e in exprs), variables
 
 
 def describe_variables(variables: dict[sp.Expr, tuple[sp.Dummy, int]]) -> str:
