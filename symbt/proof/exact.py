@@ -91,8 +91,10 @@ def exact_zero(diff, relations, route: str = "auto") -> tuple[bool | None, str, 
     Returns ``(zero, method, definite)``: ``zero`` is None when the exact layer
     does not apply, True when the difference reduces to 0; ``definite`` is True
     when a nonzero result is a proof of falsity (a nonzero rational function
-    without relations: it cannot vanish identically -- the ``exp(s_i)`` are
+    without relations: it cannot vanish identically -- the ``exp(s_i/d_i)`` are
     algebraically independent over the rational functions of the ``s_i``).
+    Exponentials become monomials first (:func:`~.exponentials.exponentials_as_monomials`,
+    rational exponents included), in ``diff`` and in the relations alike.
     ``route`` (see :func:`exact_route`): both routes compute the same normal
     form, FLINT's about 50 times faster on the claims' differences.
     """
