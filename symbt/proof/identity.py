@@ -441,8 +441,8 @@ def convention_hint(lhs, rhs, *, relations=None, digits: int = 50, points: int =
 
     >>> k = sp.Symbol("k", positive=True)
     >>> wrong = sp.pi / 2 * sp.hyper([sp.S.Half, sp.S.Half], [1], k**2)   # K of modulus k
-    >>> convention_hint(wrong, sp.elliptic_k(k), digits=20, points=3)[:59]
-    'hint: the sides agree if the modulus k is read as the paramet'
+    >>> convention_hint(wrong, sp.elliptic_k(k), digits=20, points=3).split(":")[1]
+    ' the sides agree if the modulus k is read as the parameter m = k**2'
     >>> convention_hint(sp.elliptic_k(k), sp.elliptic_k(k) + 1, digits=20, points=3)
     ''
     """
