@@ -54,7 +54,7 @@ import sympy as sp
 
 from .exact import exact_zero
 from .screen import screen
-from .verdict import Verdict
+from .verdict import SAFETY, Verdict
 
 __all__ = ["decide"]
 
@@ -127,13 +127,24 @@ def decide(lhs, rhs=0, *, relations: Mapping[sp.Symbol, sp.Expr] | None = None,
                        note=note, definite=True)
     method = nmethod if not method_exact else method_exact + "; counterexample by " + nmethod
     if sr.status == "inconclusive":
-        note = (f"cannot tell at {digits} digits: at {_point_brief(point)} the relative residual {res:.1e} "
-                f"cannot be told apart from the evaluation's own error {sr.error:.1e} "
-                f"(tolerance {10.0 ** (-(digits - 8)):.0e}); raise digits")
         return Verdict(False, "sampled", method.replace("; counterexample by ", "; "), residual=res, digits=dig,
-                       points=pts, note=note, inconclusive=True, error=sr.error)
+                       points=pts, note=_cannot_tell(sr, digits), inconclusive=True, error=sr.error)
     return Verdict(False, "sampled", method, residual=res, digits=dig, counterexample=point, points=pts,
                    error=sr.error)
+
+
+def _cannot_tell(sr, digits: int) -> str:
+    """Why the screen could not decide, in words."""
+    tol = 10.0 ** (-(digits - 8))
+    where = f"at {_point_brief(sr.point)}"
+    if sr.residual > tol:
+        why = (f"the relative residual {sr.residual:.1e} is within {SAFETY:g}x the evaluation's own error "
+               f"{sr.error:.1e}: no counterexample, and no agreement to the tolerance {tol:.0e} either")
+    else:
+        why = (f"the sides agree to {sr.residual:.1e}, but the evaluation is only trustworthy to {sr.error:.1e} "
+               f"(the {digits}- and {sr.high_digits}-digit evaluations differ, or a quadrature has not "
+               f"converged), above the tolerance {tol:.0e}")
+    return f"cannot tell at {digits} digits: {where} {why}; raise digits"
 
 
 def _point_brief(point, limit: int = 4) -> str:

@@ -272,8 +272,9 @@ def screen(lhs, rhs, relations, digits, points, seed, fixed, *, recheck: bool = 
     counterexample are re-checked worst first, and the first confirmed one is
     the counterexample (one extra evaluation for a clearly false identity).
 
-    ``recheck=False`` keeps the first evaluation only (the residual of a statement
-    already known to be false, reported for information).
+    ``recheck=False`` keeps the first evaluation only (its error is then what the
+    quadratures report): for the residual of a statement already known to be
+    false, reported for information.
     """
     syms = set(lhs.free_symbols) | set(rhs.free_symbols)
     for r in relations.values():
@@ -329,7 +330,7 @@ def screen(lhs, rhs, relations, digits, points, seed, fixed, *, recheck: bool = 
     # counterexamples first: the worst candidate that survives its re-check decides
     for pc in sorted((c for c in checks if c.residual > tol), key=lambda c: c.residual, reverse=True):
         redo(pc)
-        if counterexample(pc) or not recheck:
+        if counterexample(pc):
             return _result("false", pc, pts, checks, digits)
     undecided = []
     for pc in checks:
