@@ -11,8 +11,7 @@ import pytest
 
 from symbt import cli
 from symbt.claims import base
-from symbt.claims.base import (NOT_OK, STATUSES, Claim, ClaimResult, Outcome, from_decision, inconclusive, judge,
-                               todo)
+from symbt.claims.base import NOT_OK, STATUSES, Claim, ClaimResult, Outcome, from_decision, inconclusive, judge, todo
 from symbt.engine import cache
 from symbt.proof import Verdict
 from symbt.proof.verdict import LATEX_COLOURS, STATUS_COLOURS
