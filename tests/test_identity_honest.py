@@ -154,3 +154,11 @@ def test_no_hint_for_an_unrelated_mistake_or_without_elliptic_functions():
     assert r.status == "false" and "hint" not in r.note
     r = check_identity(sp.sin(x) ** 2, sp.cos(x) ** 2)
     assert r.status == "false" and r.note == ""
+
+
+def test_assert_identity_says_it_cannot_decide():
+    from symbt.testing import IdentityAssertionError, assert_identity
+
+    with pytest.raises(IdentityAssertionError, match=r"cannot be decided \(inconclusive\)") as exc:
+        assert_identity(K_ALG, sp.elliptic_k(M), digits=30, points=2, fixed=NEAR_ONE)
+    assert "raise digits" in str(exc.value) and exc.value.result.status == "inconclusive"
