@@ -207,7 +207,11 @@ class ScreenResult:
     relative residual (at the counterexample when false); ``error`` the estimated
     evaluation error there; ``digits`` the digits that agree *and* are trustworthy;
     ``point`` the counterexample (false) or the point that could not be decided
-    (inconclusive); ``rechecked`` how many points were re-evaluated at the higher precision.
+    (inconclusive); ``rechecked`` how many points were re-evaluated at the higher precision
+    (``high_digits``).  ``ok`` is true only when verified.
+
+    >>> ScreenResult("inconclusive", 1e-23, 1e-21, 21.0, {"m": "0.99"}, [{"m": "0.99"}]).ok
+    False
     """
 
     status: str
@@ -225,7 +229,11 @@ class ScreenResult:
 
 
 def high_precision(digits: int) -> int:
-    """The second working precision of the screen: twice the digits asked for, plus guard digits."""
+    """The second working precision of the screen: twice the digits asked for, plus guard digits.
+
+    >>> high_precision(30)
+    70
+    """
     return 2 * digits + 10
 
 
@@ -275,6 +283,14 @@ def screen(lhs, rhs, relations, digits, points, seed, fixed, *, recheck: bool = 
     ``recheck=False`` keeps the first evaluation only (its error is then what the
     quadratures report): for the residual of a statement already known to be
     false, reported for information.
+
+    >>> x = sp.Symbol("x", real=True)
+    >>> r = screen(sp.sin(2 * x), 2 * sp.sin(x) * sp.cos(x), {}, 30, 4, 1, {})
+    >>> r.status, r.digits, r.rechecked
+    ('verified', 30.0, 0)
+    >>> r = screen(sp.sin(x), sp.sin(x) * (1 + sp.Rational(1, 10**15)), {}, 30, 4, 1, {})
+    >>> r.status, r.residual > 1e-16, r.rechecked       # one re-check confirms the counterexample
+    ('false', True, 1)
     """
     syms = set(lhs.free_symbols) | set(rhs.free_symbols)
     for r in relations.values():
