@@ -162,3 +162,13 @@ def test_assert_identity_says_it_cannot_decide():
     with pytest.raises(IdentityAssertionError, match=r"cannot be decided \(inconclusive\)") as exc:
         assert_identity(K_ALG, sp.elliptic_k(M), digits=30, points=2, fixed=NEAR_ONE)
     assert "raise digits" in str(exc.value) and exc.value.result.status == "inconclusive"
+
+
+def test_an_infinite_integration_limit_is_not_an_undefined_side():
+    a = sp.Symbol("a", positive=True)
+    gauss = sp.Integral(sp.exp(-a * t ** 2), (t, -sp.oo, sp.oo))
+    r = check_identity(gauss, sp.sqrt(sp.pi / a), digits=30, points=3)
+    assert r.status == "verified" and r.digits == 30          # was "false: a side contains oo"
+    r = check_identity(gauss, sp.sqrt(sp.pi / a) * (1 + sp.Rational(1, 10 ** 15)), digits=30, points=3)
+    assert r.status == "false" and r.residual == pytest.approx(1e-15, rel=1e-6)
+    assert check_identity(t + sp.oo, t).status == "false"

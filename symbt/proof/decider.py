@@ -60,7 +60,20 @@ __all__ = ["decide"]
 
 
 def _undefined(expr) -> bool:
-    return bool(expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo))
+    """A side that is ``nan``/``zoo`` somewhere, or infinite outside the limits of an integral.
+
+    (An infinite limit of an ``Integral`` is a value mpmath's quadrature takes; a ``Sum`` to
+    infinity is not something the screen can evaluate, and stays undefined.)
+
+    >>> t = sp.Symbol("t")
+    >>> _undefined(sp.Integral(sp.exp(-t**2), (t, -sp.oo, sp.oo))), _undefined(t + sp.oo)
+    (False, True)
+    """
+    if expr.has(sp.nan, sp.zoo):
+        return True
+    if expr.has(sp.Integral):   # an infinite limit is not an infinite value
+        expr = expr.replace(lambda e: isinstance(e, sp.Integral), lambda e: sp.Dummy())
+    return bool(expr.has(sp.oo, -sp.oo))
 
 
 def decide(lhs, rhs=0, *, relations: Mapping[sp.Symbol, sp.Expr] | None = None,

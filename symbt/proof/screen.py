@@ -147,12 +147,16 @@ def tracked_quad(f, *intervals, **kw):
     >>> round(float(tracked_quad(lambda t: t**2, (0, 1))), 12)
     0.333333333333
     """
-    if kw.get("error"):
-        return mpmath.quad(f, *intervals, **kw)
-    value, err = mpmath.quad(f, *intervals, error=True, **kw)
     log = getattr(_QUAD_LOG, "errors", None)
-    if log is not None:
-        log.append((abs(value), abs(err)))
+    if kw.get("error") or log is None or getattr(_QUAD_LOG, "depth", 0):
+        # an inner quadrature of a nested integral: the outer one's estimate covers it
+        return mpmath.quad(f, *intervals, **kw)
+    _QUAD_LOG.depth = 1
+    try:
+        value, err = mpmath.quad(f, *intervals, error=True, **kw)
+    finally:
+        _QUAD_LOG.depth = 0
+    log.append((abs(value), abs(err)))
     return value
 
 
@@ -162,11 +166,12 @@ _MODULES = [_NAMESPACE, "mpmath"]
 
 
 def _quad_error(value, errors) -> Any:
-    """The error a side inherits from its quadratures: absolute, or relative times the value."""
+    """The error a side inherits from its quadratures: the larger of their absolute errors summed
+    (a sum of integrals) and their relative errors summed times the side (a product or quotient)."""
     if not errors:
         return mpmath.mpf(0)
     absolute = mpmath.fsum(e for _, e in errors)
-    relative = mpmath.fsum(e / v for v, e in errors if v) if all(v for v, _ in errors) else mpmath.inf
+    relative = mpmath.fsum(e / v for v, e in errors if v)   # an integral that is 0 counts by its absolute error
     return max(absolute, abs(value) * relative)
 
 
