@@ -9,11 +9,14 @@ tests), with the claim cache of ``symbt verify``:
   user properties (``--junitxml`` writes them as ``<property>``) and listed in a
   "symbt errata" section of the terminal summary;
 * ``failed`` -> fails, with the statement, counterexample and residual;
-* ``skipped`` -> skipped with its reason (e.g. an optional extra is missing).
+* ``skipped`` -> skipped with its reason (e.g. an optional extra is missing);
+* ``inconclusive`` (e.g. the check timed out) -> fails, saying so.
 
 Options: ``--symbt-scene NAME`` (repeatable; a scene, claim id or ``nK``),
-``--symbt-deep`` (add the minutes-long claims), ``--symbt-no-cache``; each of them
-implies ``--symbt``.  Items are named ``symbt/<scene>::<claim id>`` and match
+``--symbt-deep`` (add the minutes-long claims), ``--symbt-no-cache``,
+``--symbt-budget SECONDS`` (each check's time limit, default 300: past it the item
+fails as ``inconclusive (timed out ...)``); each of them implies ``--symbt``.
+Claims run in worker processes kept for the session.  Items are named ``symbt/<scene>::<claim id>`` and match
 ``-k`` on the claim id, the scene and the equation label, and ``-m symbt``; ``-x``,
 ``--junitxml`` and pytest-xdist's ``-n`` work as for any test.
 
@@ -39,11 +42,16 @@ def pytest_addoption(parser: pytest.Parser) -> None:
                 help="include the minutes-long deep claims (implies --symbt)")
     g.addoption("--symbt-no-cache", action="store_true", default=False,
                 help="recompute every claim (implies --symbt)")
+    g.addoption("--symbt-budget", type=float, default=None, metavar="SECONDS",
+                help="time limit of each claim's check (default 300; implies --symbt)")
 
 
 def pytest_configure(config: pytest.Config) -> None:
     opt = config.getoption
-    if opt("symbt") or opt("symbt_scene") or opt("symbt_deep") or opt("symbt_no_cache"):
+    budget = opt("symbt_budget")
+    if budget is not None and not 0 < budget < float("inf"):
+        raise pytest.UsageError(f"--symbt-budget: expected a positive number of seconds, got {budget}")
+    if opt("symbt") or opt("symbt_scene") or opt("symbt_deep") or opt("symbt_no_cache") or budget is not None:
         config.addinivalue_line("markers", "symbt: a claim of symbt (added by pytest --symbt)")
         config.pluginmanager.register(_SymbtSession(config), "symbt-session")
 
@@ -67,7 +75,7 @@ class ClaimFailed(Exception):
 def _failure_message(claim: Any, out: Any) -> str:
     from symbt.report.text import field_lines, residual_text
 
-    lines = [f"claim {claim.id} (eq. {claim.equation}) failed: {claim.statement}",
+    lines = [f"claim {claim.id} (eq. {claim.equation}) {out.status}: {claim.statement}",
              f"  residual:  {residual_text(out)}",
              f"  method:    {out.method}",
              f"  evidence:  {out.evidence or '-'}"]
@@ -96,8 +104,10 @@ class ClaimItem(pytest.Item):
             from symbt.engine.runner import run
 
             load_all()
+            budget = self.config.getoption("symbt_budget")
+            self.config.pluginmanager.get_plugin("symbt-session").keep_workers()
             out = run([REGISTRY[self.claim.id]], use_cache=self._use_cache, manifest=False,
-                      deep=self._deep)[0].outcome
+                      deep=self._deep, **({} if budget is None else {"budget": budget}))[0].outcome
         props = [("symbt_status", out.status), ("symbt_evidence", out.evidence or "-"),
                  ("symbt_method", out.method), ("symbt_residual", repr(out.residual)),
                  ("symbt_cached", str(bool(out.cached)).lower())]
@@ -107,7 +117,7 @@ class ClaimItem(pytest.Item):
         self.user_properties.extend(props)
         if out.status == "skipped":
             pytest.skip(f"{self.claim.id}: {(out.detail or 'skipped').strip()}")
-        if out.status == "failed":
+        if out.status in ("failed", "inconclusive"):   # inconclusive: e.g. timed out, nothing was decided
             raise ClaimFailed(_failure_message(self.claim, out))
 
     def repr_failure(self, excinfo, style=None):
@@ -125,6 +135,14 @@ class _SymbtSession:
     def __init__(self, config: pytest.Config):
         self.config = config
         self.errata: list[dict[str, str]] = []
+        self._workers: Any = None   # the claims' worker processes, kept from item to item (and their memos)
+
+    def keep_workers(self) -> None:
+        if self._workers is None:
+            from symbt.engine.runner import keep_workers
+
+            self._workers = keep_workers()
+            self._workers.__enter__()
 
     @pytest.hookimpl(tryfirst=True)  # before -k / -m deselect
     def pytest_collection_modifyitems(self, session: pytest.Session, config: pytest.Config,
@@ -159,6 +177,9 @@ class _SymbtSession:
             self.errata.append({"nodeid": report.nodeid, **{k: str(v) for k, v in props.items()}})
 
     def pytest_sessionfinish(self, session: pytest.Session) -> None:
+        if self._workers is not None:
+            self._workers.__exit__(None, None, None)
+            self._workers = None
         try:
             from symbt.engine.runner import refresh_manifest
 

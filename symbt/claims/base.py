@@ -43,7 +43,7 @@ __all__ = [
     "from_decision", "judge", "skipped", "failed",
 ]
 
-STATUSES = ("verified", "erratum", "failed", "skipped")
+STATUSES = ("verified", "erratum", "failed", "skipped", "inconclusive")
 
 
 @dataclass
