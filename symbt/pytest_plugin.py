@@ -16,9 +16,10 @@ Options: ``--symbt-scene NAME`` (repeatable; a scene, claim id or ``nK``),
 ``--symbt-deep`` (add the minutes-long claims), ``--symbt-no-cache``,
 ``--symbt-budget SECONDS`` (each check's time limit, default 300: past it the item
 fails as ``inconclusive (timed out ...)``); each of them implies ``--symbt``.
-Claims run in worker processes kept for the session.  Items are named ``symbt/<scene>::<claim id>`` and match
-``-k`` on the claim id, the scene and the equation label, and ``-m symbt``; ``-x``,
-``--junitxml`` and pytest-xdist's ``-n`` work as for any test.
+Claims run in worker processes kept for the session.  Items are named
+``symbt/<scene>::<claim id>`` and match ``-k`` on the claim id, the scene and the
+equation label, and ``-m symbt``; ``-x``, ``--junitxml`` and pytest-xdist's ``-n``
+work as for any test.
 
 Without these options the plugin does nothing but offer the ``symbt_identity``
 fixture (:func:`symbt.testing.assert_identity`, imported on first use): this
@@ -105,7 +106,9 @@ class ClaimItem(pytest.Item):
 
             load_all()
             budget = self.config.getoption("symbt_budget")
-            self.config.pluginmanager.get_plugin("symbt-session").keep_workers()
+            session = self.config.pluginmanager.get_plugin("symbt-session")
+            if session is not None:
+                session.keep_workers()
             out = run([REGISTRY[self.claim.id]], use_cache=self._use_cache, manifest=False,
                       deep=self._deep, **({} if budget is None else {"budget": budget}))[0].outcome
         props = [("symbt_status", out.status), ("symbt_evidence", out.evidence or "-"),
