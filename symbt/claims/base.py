@@ -40,10 +40,10 @@ from ..proof.verdict import EVIDENCE, Verdict
 
 __all__ = [
     "Claim", "ClaimResult", "Outcome", "Parts", "claim", "REGISTRY", "SCENES", "scene",
-    "from_decision", "judge", "skipped", "failed",
+    "from_decision", "judge", "skipped", "failed", "todo",
 ]
 
-STATUSES = ("verified", "erratum", "failed", "skipped")
+STATUSES = ("verified", "erratum", "failed", "skipped", "todo")
 
 
 @dataclass
@@ -293,6 +293,11 @@ def claim(id: str, *, equation: str, statement: str, scene: str, N: int | None =
 
 def skipped(reason: str) -> Outcome:
     return Outcome("skipped", "none", detail=reason)
+
+
+def todo(reason: str = "no check written yet") -> Outcome:
+    """A claim stub: no check written yet (reported ``todo``, never verified)."""
+    return Outcome("todo", "none", detail=reason)
 
 
 def failed(method: str, *, residual=None, detail: str = "", counterexample=None) -> Outcome:

@@ -242,6 +242,8 @@ def store(c: Claim, out: Outcome, deep: bool = False) -> None:
     """Cache ``out`` at once (atomically); skipped outcomes are not cached, a read-only cache is no error."""
     if out.status == "skipped":
         return  # a skipped claim may run once its extra is installed
+    if out.status == "todo":
+        return  # a stub: its check is about to be written
     try:
         cache_dir().mkdir(parents=True, exist_ok=True)
         d = out.to_dict()
