@@ -55,10 +55,10 @@ __all__ = ["claim_ids", "stubs", "claims_module", "config_lines", "main"]
 _ID_CHARS = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789.-_:")
 
 
-def _unique(name: str, taken: set[str]) -> str:
+def _unique(name: str, taken: set[str], sep: str = "-") -> str:
     out, k = name, 2
     while out in taken:
-        out, k = f"{name}-{k}", k + 1
+        out, k = f"{name}{sep}{k}", k + 1
     taken.add(out)
     return out
 
@@ -75,7 +75,7 @@ def claim_ids(labels: Sequence[str]) -> list[str]:
 
 def _function_names(ids: Sequence[str]) -> list[str]:
     taken: set[str] = set()
-    return [_unique("check_" + "".join(ch if ch.isalnum() or ch == "_" else "_" for ch in cid), taken)
+    return [_unique("check_" + "".join(ch if ch.isalnum() or ch == "_" else "_" for ch in cid), taken, "_")
             for cid in ids]
 
 
