@@ -48,11 +48,19 @@ from ..report.json import emit_document, output_refused
 from .labels import LatexError, scan, scan_file
 from .project import ConfigError, Project, active, discover, load
 
-__all__ = ["coverage_map", "coverage_of", "paper_labels", "reasons_of", "scan_labels", "compare", "find_paper",
-           "unlabelled_claims", "unknown_labels", "main"]
+__all__ = ["OneLineParser", "coverage_map", "coverage_of", "paper_labels", "reasons_of", "scan_labels", "compare",
+           "find_paper", "unlabelled_claims", "unknown_labels", "main"]
 
 PAPER_RELATIVE = Path("shared") / "paper" / "backlund-toda.tex"
 NO_PAPER = "no paper: give --paper PATH, or paper = \"my.tex\" in [tool.symbt] of pyproject.toml"
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """An argument parser whose usage errors are one line on stderr (exit 2), as every symbt command's."""
+
+    def error(self, message: str):
+        print(f"{self.prog}: {message} (see '{self.prog} --help')", file=sys.stderr)
+        raise SystemExit(2)
 
 
 def scan_labels(tex: str) -> list[Label]:
@@ -272,7 +280,7 @@ def _compare_with_source(paper: Path, explicit: bool) -> dict[str, list[str]] | 
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="symbt coverage",
+    ap = OneLineParser(prog="symbt coverage",
                                  description="the paper's labelled displays: claims, reasons, gaps")
     ap.add_argument("--claims", action="append", metavar="MODULE_OR_PATH",
                     help="your claims: a module name or a .py file / package path (repeatable; default: "

@@ -39,7 +39,6 @@ def check_eq_H():
 """
 from __future__ import annotations
 
-import argparse
 import json
 import os
 import sys
@@ -47,6 +46,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from .._files import atomic_write
+from .coverage import OneLineParser
 from .labels import LatexError, TexLabel, scan_file
 from .project import ConfigError, _toml, read_config
 
@@ -149,7 +149,7 @@ def _toml_parses(text: str) -> bool:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="symbt init",
+    ap = OneLineParser(prog="symbt init",
                                  description="scaffold a claims module with one todo stub per labelled display "
                                              "of your paper, and a [tool.symbt] table in pyproject.toml")
     ap.add_argument("--paper", metavar="PATH", required=True, help="your paper's LaTeX source")
