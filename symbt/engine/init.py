@@ -52,6 +52,9 @@ from .project import ConfigError, _toml, read_config
 
 __all__ = ["claim_ids", "stubs", "claims_module", "config_lines", "main"]
 
+# written below the table: where the reasons for displays without a claim go
+_REASONS_HINT = ("\n# [tool.symbt.reasons]            # displays that are no checkable statement, and why\n"
+                 "# eq-energy = \"a definition\"\n")
 _ID_CHARS = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789.-_:")
 
 
@@ -187,7 +190,7 @@ def main(argv: list[str] | None = None) -> int:
             return 2
     new_pyproject = None
     if not has_table:
-        candidate = (existing.rstrip("\n") + "\n\n" if existing.strip() else "") + table + "\n"
+        candidate = (existing.rstrip("\n") + "\n\n" if existing.strip() else "") + table + "\n" + _REASONS_HINT
         if _toml_parses(candidate):
             new_pyproject = candidate
     try:
