@@ -110,9 +110,9 @@ def claims_module(labels: Sequence[TexLabel], *, paper: Path, scene: str) -> str
     """The text of a claims module for ``labels`` of ``paper``: a docstring, the public import, the stubs."""
     n = sum(lab.is_display for lab in labels)
     head = (f'"""Claims of {paper.name}: one stub per labelled display ({n}), written by `symbt init`.\n\n'
-            "Replace each `return todo()` by a check that could fail, e.g. with `judge(decide(lhs, rhs),\n"
-            "printed=...)` (see docs/your-paper.md); `symbt verify` runs them, `symbt coverage` lists what is\n"
-            'still a stub.\n"""\n'
+            "Replace each `return todo()` by a check that could fail, e.g. with\n"
+            "`from_decision(decide(lhs, rhs))` (see symbt's docs/coverage.md); `symbt verify` runs them,\n"
+            '`symbt coverage` lists what is still a stub.\n"""\n'
             "from symbt import claim, todo\n\n\n")
     return head + stubs(labels, scene=scene) + "\n"
 
