@@ -39,7 +39,7 @@ REFERENCE_MACROS = frozenset({"ref", "eqref", "pageref", "autoref", "cref", "Cre
 # abbreviations understood without a definition in the file (often defined in a style file; see :mod:`.labels`)
 _DEFAULT_MACROS = {"be": ("open", "equation"), "ee": ("close", "equation"),
                    "bea": ("open", "eqnarray"), "eea": ("close", "eqnarray")}
-#: macros that define macros (the first four with TeX's ``\\def`` syntax)
+#: macros that define macros (the first four with TeX's ``\def`` syntax)
 DEFINERS = ("def", "gdef", "edef", "xdef", "newcommand", "renewcommand", "providecommand", "DeclareRobustCommand")
 #: macros that define environments
 ENV_DEFINERS = ("newenvironment", "renewenvironment", "provideenvironment")
