@@ -31,7 +31,8 @@ __all__ = ["main", "build_parser", "UsageError", "EXTRAS"]
 #: top-level module -> the extra that installs it (``pip install "symbt[EXTRA]"``)
 EXTRAS = {"scipy": "scipy", "matplotlib": "plot", "flint": "certified", "numba": "fast", "gmpy2": "gmpy2",
           "heyoka": "peers", "dask": "dask", "distributed": "dask", "jupytext": "notebooks",
-          "nbclient": "notebooks", "ipykernel": "notebooks", "rich": "rich"}
+          "nbclient": "notebooks", "ipykernel": "notebooks", "rich": "rich",
+          "pylatexenc": "latex"}
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 
 
@@ -99,12 +100,12 @@ def _write_output(flag: str, path: str, text: str) -> None:
         raise UsageError(f"symbt verify: cannot write {flag} {path}: {exc.strerror or exc}") from exc
 
 
-def _render(flag: str, results) -> str:
+def _render(flag: str, results, project=None) -> str:
     if flag == "--json":
         from .engine.coverage import coverage_of
         from .report.json import dumps
 
-        return dumps(results, coverage=coverage_of(results))
+        return dumps(results, coverage=coverage_of(results, project))
     if flag == "--junit":
         from .report.junit import junit_xml
 
@@ -156,7 +157,7 @@ def _cmd_verify(args) -> int:
 
     code = EXIT_OK if summary(results)["ok"] else EXIT_FAILED
     for flag, path in reports.items():
-        _write_output(flag, path, _render(flag, results))
+        _write_output(flag, path, _render(flag, results, project))
     if not args.quiet:
         text = (format_table if args.verbose else format_short)(results, wall=wall)
         try:
@@ -192,7 +193,8 @@ def _cmd_scenes(args) -> int:
 
 _DELEGATED_HELP = {"codegen": "emit/check generated numeric modules", "bench": "work-precision benchmarks",
                    "figures": "regenerate the paper's figures", "mutate": "mutation testing of the claims' checks",
-                   "coverage": "the paper's labelled displays: claims or reasons"}
+                   "coverage": "the paper's labelled displays: claims or reasons",
+                   "init": "scaffold a claims module from your paper's labels"}
 
 
 def _pop_debug(argv: list[str]) -> bool:
@@ -264,7 +266,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 _DELEGATED = {"codegen": "codegen", "bench": "benchmarks", "figures": "report.figures", "mutate": "engine.mutate",
-              "coverage": "engine.coverage"}
+              "coverage": "engine.coverage", "init": "engine.init"}
 
 
 def main(argv=None) -> int:
