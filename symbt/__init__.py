@@ -22,6 +22,25 @@ ones included, and fails on an upward import or a cycle):
 :mod:`symbt.numeric` and :mod:`symbt.reference` never import SymPy.  Importing
 ``symbt`` is cheap: the public names below load their layer on first use.
 
+The public API for claims of *any* paper lives here, one import surface (the package's own
+claims of Zullo's paper use the same objects): :func:`claim` and :func:`scene` declare,
+:class:`Parts` holds what a claim checks (for ``symbt mutate``), :func:`decide` and
+:func:`check_identity` decide identities (exact reduction first, a screen that knows its own
+error), :class:`Domain` with the splits :func:`sign`, :func:`choice`, :func:`regime` samples every
+cell of a domain into a :class:`CellTable`, :func:`solves_ode` checks a closed form against an
+ODE, and :func:`judge` turns a verdict or a cell table into an :class:`Outcome` (``verified``,
+``erratum`` with the generated scope, ``failed``, ``inconclusive``; :func:`todo` for a stub).
+:func:`verify` runs claims (``claims=`` sources, as ``--claims``).
+
+>>> import sympy as sp
+>>> from symbt import claim, decide, judge
+>>> x = sp.Symbol("x", positive=True)
+>>> @claim("demo.log", equation="demo-log", scene="demo", statement="log(x^2) = 2 log x", register=False)
+... def demo_log():
+...     return judge(decide(sp.log(x**2), 2*sp.log(x), exact=False), printed="log(x^2) = 2 log x")
+>>> demo_log.run().status
+'verified'
+
 >>> import symbt
 >>> symbt.verify                                  # doctest: +ELLIPSIS
 <function verify at ...>

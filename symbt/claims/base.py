@@ -22,8 +22,7 @@ fails the item.
 
 Writing a claim
 ---------------
->>> from symbt.claims.base import claim, from_decision
->>> from symbt.proof import decide
+>>> from symbt import claim, decide, from_decision
 >>> import sympy as sp
 >>> @claim("demo.square", equation="demo", scene="demo",
 ...        statement="(a+b)^2 = a^2 + 2ab + b^2", register=False)
