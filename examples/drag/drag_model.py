@@ -1,0 +1,48 @@
+r"""The model of ``note.tex``: a body falling with quadratic air drag, :math:`v' = g - k v^2` (eq. ``model``).
+
+``g`` (gravity) and ``k`` (drag per unit mass) are positive; ``v`` is the downward velocity and ``t``
+the time.  The claims module (``drag_claims.py``) imports everything it checks against from here, so
+changing the model changes the verdicts -- and symbt's cache knows it (its key covers every Python
+file of the project).
+
+>>> drag_rhs(V_T)
+0
+>>> dimensionless(RATE * t)
+s
+"""
+from __future__ import annotations
+
+import sympy as sp
+
+g, k = sp.symbols("g k", positive=True)
+t = sp.Symbol("t", real=True)
+v0 = sp.Symbol("v0", real=True)
+
+#: terminal velocity: the equilibrium of the model
+V_T = sp.sqrt(g / k)
+#: the model's rate: 1/RATE is its time scale
+RATE = sp.sqrt(g * k)
+
+# Dimensionless variables for exact proofs: with g = k w^2 (w stands for v_T) and t = s/(k w) every
+# exponential of the solutions is exp(integer * s) and no square root of a symbol is left, so an
+# identity between them is a polynomial identity in e^s -- which symbt.decide proves.
+w = sp.Symbol("w", positive=True)
+s = sp.Symbol("s", real=True)
+
+
+def drag_rhs(v):
+    """The right-hand side f(v) of the model v' = f(v) = g - k v^2.
+
+    >>> drag_rhs(sp.Symbol("v"))
+    g - k*v**2
+    """
+    return g - k * v**2
+
+
+def dimensionless(expr):
+    """``expr`` in the dimensionless time ``s = sqrt(g k) t`` with ``g = k w^2`` (``w = v_T``).
+
+    >>> dimensionless(V_T * sp.tanh(RATE * t))
+    w*tanh(s)
+    """
+    return sp.sympify(expr).subs(g, k * w**2).subs(t, s / (k * w))
