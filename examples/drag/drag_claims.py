@@ -19,9 +19,9 @@ import random
 
 import mpmath as mp
 import sympy as sp
+from symbt import CellTable, Outcome, Parts, claim, decide, from_decision, judge, scene
 
 from drag_model import RATE, V_T, dimensionless, drag_rhs, g, k, t, v0
-from symbt import CellTable, Outcome, Parts, claim, decide, from_decision, judge, scene
 
 scene("rest", "dropped from rest: v(t), x(t), v(x), the time to 99 % of v_T")
 scene("thrown", "thrown with an initial velocity v0: where the printed solution holds")
