@@ -24,10 +24,10 @@ from typing import Any
 import mpmath as mp
 
 from ..proof.cells import DEEP_PER_CELL, DEFAULT_PER_CELL, CellTable
-from ..proof.verdict import Verdict
 from ..reference.literal import literal_step
 from ..reference.samples import admissible_states, paper_state
 from .base import Outcome
+from .base import judge_cells as base_judge_cells
 
 __all__ = ["DPS", "TOL", "fmt_state", "rel", "map_cells", "per_cell", "judge_cells", "eta_from_states",
            "darboux_numeric", "lambdified", "cross"]
@@ -86,24 +86,8 @@ def map_cells(N: int, count: int, *, seed: int = 0, paper: bool = True) -> list[
 
 def judge_cells(table: CellTable, *, method: str, printed: str, corrected: str | None = None,
                 dps: int = DPS, detail: str = "") -> Outcome:
-    """``verified`` if the printed statement holds at every sample, ``erratum`` if it fails
-    somewhere and the corrected statement holds everywhere, else ``failed``; with the cell
-    table and the generated scope."""
-    rp, where_p = table.worst("printed")
-    cells = table.cells()
-    n = sum(c["n"] for c in cells)
-    pv = Verdict.sampled(rp, tol=table.tol, method=method, counterexample=where_p, dps=dps, cells=cells)
-    base: dict[str, Any] = dict(printed=printed, scope=table.scope(), cells=cells, evidence="sampled",
-                detail=(detail + f" [{n} samples in {len(cells)} cells]").strip())
-    if table.printed_holds_everywhere():
-        return Outcome("verified", method, residual=pv.residual, digits=pv.digits, **base)
-    if corrected is None:
-        return Outcome("failed", method, residual=pv.residual, digits=pv.digits, counterexample=where_p, **base)
-    rc, _ = table.worst("corrected")
-    cv = Verdict.sampled(rc, tol=table.tol, method=method, dps=dps)
-    status = "erratum" if table.corrected_holds_everywhere() else "failed"
-    return Outcome(status, f"printed: {method} | corrected: {method}", residual=pv.residual, digits=cv.digits,
-                   corrected=corrected, counterexample=where_p, **base)
+    """:func:`symbt.claims.base.judge_cells` with the claim modules' working precision (digits capped at ``DPS``)."""
+    return base_judge_cells(table, printed=printed, corrected=corrected, method=method, dps=dps, detail=detail)
 
 
 def eta_from_states(p: list, q: list, pt: list, qt: list, lam0: Any) -> list:

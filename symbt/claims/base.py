@@ -36,11 +36,12 @@ from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
+from ..proof.cells import CellTable
 from ..proof.verdict import EVIDENCE, Verdict
 
 __all__ = [
     "Claim", "ClaimResult", "Outcome", "Parts", "claim", "REGISTRY", "SCENES", "scene",
-    "from_decision", "judge", "skipped", "failed",
+    "from_decision", "judge", "judge_cells", "skipped", "failed",
 ]
 
 STATUSES = ("verified", "erratum", "failed", "skipped")
@@ -299,6 +300,42 @@ def failed(method: str, *, residual=None, detail: str = "", counterexample=None)
     return Outcome("failed", method, residual=residual, detail=detail, counterexample=counterexample)
 
 
+def judge_cells(table: CellTable, *, printed: str, corrected: str | None = None, method: str | None = None,
+                dps: int | None = None, detail: str = "") -> Outcome:
+    """A sampled claim's outcome from its :class:`~symbt.proof.cells.CellTable` (what ``judge(table, ...)`` does).
+
+    ``verified`` if the printed statement held at every sample, ``erratum`` if it failed somewhere and
+    the corrected statement held everywhere, else ``failed``; ``evidence="sampled"``, the table's
+    ``cells``, the worst printed sample as counterexample, and the ``scope`` sentence generated from
+    the table.  ``method`` and ``dps`` default to the table's own (set by ``Domain.evaluate``).
+
+    >>> t = CellTable(tol=1e-20, method="numeric: demo", dps=30)
+    >>> t.add({"b": 1}, printed=0.0, corrected=0.0); t.add({"b": -1}, printed=2.0, corrected=0.0)
+    >>> o = judge_cells(t, printed="x = b y", corrected="x = y")
+    >>> o.status, o.evidence, o.counterexample
+    ('erratum', 'sampled', {'cell': '{b=-1}'})
+    >>> print(o.scope.replace("; ", ";\\n"))
+    printed statement holds exactly in cells {b=+1} and fails in {b=-1};
+    corrected statement holds in all 2 cells
+    """
+    method = method or table.method or "numeric: sampled cells"
+    dps = table.dps if dps is None else dps
+    pv = table.verdict(method=method, dps=dps)
+    cells, (_, where_p) = pv.cells, table.worst("printed")
+    n = sum(c["n"] for c in cells)
+    base: dict[str, Any] = dict(printed=printed, scope=pv.note, cells=cells, evidence="sampled",
+                                detail=(detail + f" [{n} samples in {len(cells)} cells]").strip())
+    if table.printed_holds_everywhere():
+        return Outcome("verified", method, residual=pv.residual, digits=pv.digits, **base)
+    if corrected is None:
+        return Outcome("failed", method, residual=pv.residual, digits=pv.digits, counterexample=where_p, **base)
+    rc, _ = table.worst("corrected")
+    cv = Verdict.sampled(rc, tol=table.tol, method=method, dps=dps)
+    status = "erratum" if table.corrected_holds_everywhere() else "failed"
+    return Outcome(status, f"printed: {method} | corrected: {method}", residual=pv.residual, digits=cv.digits,
+                   corrected=corrected, counterexample=where_p, **base)
+
+
 def from_decision(d: Verdict, *, detail: str = "") -> Outcome:
     """``verified`` if the :class:`~symbt.proof.Verdict` holds, else ``failed`` with its counterexample."""
     if d.holds:
@@ -308,15 +345,22 @@ def from_decision(d: Verdict, *, detail: str = "") -> Outcome:
                    cells=list(d.cells), counterexample=d.counterexample, detail=detail)
 
 
-def judge(printed_decision: Verdict, *, printed: str, corrected: str | None = None,
+def judge(printed_decision: Verdict | CellTable, *, printed: str, corrected: str | None = None,
           corrected_check: Callable[[], Verdict] | None = None, detail: str = "") -> Outcome:
     """Check a statement *as printed*; if it fails, check the correction.
 
     ``printed_decision`` and the result of ``corrected_check`` are
     :class:`~symbt.proof.Verdict` objects.  Returns ``verified`` when
     the printed statement holds, ``erratum`` when it fails and the correction
-    holds, ``failed`` otherwise.
+    holds, ``failed`` otherwise.  A sampled claim passes its
+    :class:`~symbt.proof.cells.CellTable` instead (the corrected residuals are in
+    the table): see :func:`judge_cells`.
     """
+    if isinstance(printed_decision, CellTable):
+        if corrected_check is not None:
+            raise TypeError("judge(CellTable, ...): the corrected statement's residuals belong in the table "
+                            "(Domain.evaluate(..., corrected=...)), not in corrected_check")
+        return judge_cells(printed_decision, printed=printed, corrected=corrected, detail=detail)
     if printed_decision.holds:
         return Outcome("verified", printed_decision.method, residual=printed_decision.residual,
                        digits=printed_decision.digits, printed=printed, detail=detail,

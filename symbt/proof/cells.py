@@ -23,8 +23,11 @@ corrected statement holds in all 4 cells
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 from typing import Any
+
+from .verdict import Verdict
 
 __all__ = ["CellTable", "CellStats", "cell_text", "DEFAULT_PER_CELL", "DEEP_PER_CELL"]
 
@@ -41,9 +44,15 @@ def _fmt_value(v: Any) -> str:
     return str(v)
 
 
-def cell_text(cell: dict[str, Any]) -> str:
-    """``{branch=+1, sign_tr=-1}``."""
-    return "{" + ", ".join(f"{k}={_fmt_value(v)}" for k, v in cell.items()) + "}"
+def cell_text(cell: dict[str, Any], label_only: tuple[str, ...] = ()) -> str:
+    """``{branch=+1, sign_tr=-1}``; a coordinate named in ``label_only`` shows its value alone (the value
+    of a sign split, ``t<t0``, already names the coordinate).
+
+    >>> cell_text({"sign(t - t0)": "t<t0", "branch": -1}, label_only=("sign(t - t0)",))
+    '{t<t0, branch=-1}'
+    """
+    return "{" + ", ".join(_fmt_value(v) if k in label_only else f"{k}={_fmt_value(v)}"
+                           for k, v in cell.items()) + "}"
 
 
 @dataclass
@@ -70,10 +79,18 @@ class CellStats:
 
 @dataclass
 class CellTable:
-    """Per-cell tallies of a sampled check (see the module docstring)."""
+    """Per-cell tallies of a sampled check (see the module docstring).
+
+    ``method`` and ``dps`` say how the residuals were computed (a table filled by
+    :meth:`symbt.proof.domain.Domain.evaluate` sets them; ``judge`` reads them);
+    ``label_only`` names the coordinates shown by their value alone (see :func:`cell_text`).
+    """
 
     tol: float
     rows: dict[tuple[tuple[str, Any], ...], CellStats] = field(default_factory=dict)
+    method: str = ""
+    dps: int | None = None
+    label_only: tuple[str, ...] = ()
 
     def add(self, cell: dict[str, Any], *, printed: Any, corrected: Any = None,
             point: dict[str, Any] | None = None) -> None:
@@ -112,17 +129,36 @@ class CellTable:
         if not rows:
             return 0.0, None
         row = max(rows, key=lambda r: getattr(r, attr))
-        return getattr(row, attr), (dict(row.worst_point or {}, cell=cell_text(row.cell)) if which == "printed"
-                                    else {"cell": cell_text(row.cell)})
+        text = cell_text(row.cell, self.label_only)
+        return getattr(row, attr), (dict(row.worst_point or {}, cell=text) if which == "printed"
+                                    else {"cell": text})
+
+    def verdict(self, *, method: str | None = None, dps: int | None = None) -> Verdict:
+        """The printed statement's sampled :class:`~symbt.proof.Verdict`: holds iff it held at every
+        sample; the worst residual and where it occurred, the cells, and the scope sentence as ``note``.
+
+        >>> t = CellTable(tol=1e-20, method="numeric: demo", dps=30)
+        >>> t.add({"side": "x<0"}, printed=0.5, point={"x": "-1"}); t.add({"side": "x>0"}, printed=0.0)
+        >>> v = t.verdict()
+        >>> v.holds, v.counterexample
+        (False, {'x': '-1', 'cell': '{side=x<0}'})
+        >>> v.note
+        'printed statement holds exactly in cells {side=x>0} and fails in {side=x<0}'
+        """
+        rp, where = self.worst("printed")
+        return Verdict.sampled(rp, tol=self.tol, method=method or self.method or "numeric: sampled cells",
+                               counterexample=where, dps=self.dps if dps is None else dps, cells=self.cells(),
+                               note=self.scope())
 
     def scope(self) -> str:
         """Where the printed (and corrected) statement holds, generated from the table."""
         rows = list(self.rows.values())
         if not rows:
             return "no samples"
-        full = [cell_text(r.cell) for r in rows if r.printed_holds == r.n]
-        none = [cell_text(r.cell) for r in rows if r.printed_holds == 0]
-        part = [f"{cell_text(r.cell)} ({r.printed_holds}/{r.n})" for r in rows if 0 < r.printed_holds < r.n]
+        text = functools.partial(cell_text, label_only=self.label_only)
+        full = [text(r.cell) for r in rows if r.printed_holds == r.n]
+        none = [text(r.cell) for r in rows if r.printed_holds == 0]
+        part = [f"{text(r.cell)} ({r.printed_holds}/{r.n})" for r in rows if 0 < r.printed_holds < r.n]
         if len(full) == len(rows):
             txt = f"printed statement holds in all {len(rows)} cells"
         elif not full and not part:
@@ -137,7 +173,7 @@ class CellTable:
                 bits.append("fails in " + ", ".join(none))
             txt = "printed statement " + " and ".join(bits)
         if any(r.has_corrected for r in rows):
-            bad = [cell_text(r.cell) for r in rows if r.corrected_holds < r.n]
+            bad = [text(r.cell) for r in rows if r.corrected_holds < r.n]
             txt += ("; corrected statement holds in all %d cells" % len(rows) if not bad
                     else "; corrected statement FAILS in " + ", ".join(bad))
         return txt
