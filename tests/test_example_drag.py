@@ -49,9 +49,8 @@ def test_verify_from_the_project_directory(project: Path, tmp_path: Path):
     t99, v0 = claims["drag.t99"], claims["drag.v0"]
     assert t99["evidence"] == "proof" and "2 sqrt(g k)" in t99["corrected"]
     assert v0["evidence"] == "sampled"
-    assert v0["scope"] == ("printed statement holds exactly in cells {regime=|v0|<v_T, sign_v0=+1}, "
-                           "{regime=|v0|<v_T, sign_v0=-1} and fails in {regime=|v0|>v_T, sign_v0=+1}, "
-                           "{regime=|v0|>v_T, sign_v0=-1}; corrected statement holds in all 4 cells")
+    assert v0["scope"] == ("printed statement holds exactly in cells {|v0|<v_T, v0<0}, {|v0|<v_T, v0>0} and fails "
+                           "in {|v0|>v_T, v0<0}, {|v0|>v_T, v0>0}; corrected statement holds in all 4 cells")
 
 
 def test_editing_the_model_module_changes_the_cached_verdict(project: Path, tmp_path: Path):

@@ -15,13 +15,11 @@ velocities: it is sampled in every domain cell (``|v0| < v_T`` or ``> v_T``, tim
 """
 from __future__ import annotations
 
-import random
-
 import mpmath as mp
 import sympy as sp
-from symbt import CellTable, Outcome, Parts, claim, decide, from_decision, judge, scene
+from symbt import Domain, Parts, claim, decide, from_decision, judge, ode_residual, scene, sign, solves_ode
 
-from drag_model import RATE, V_T, dimensionless, drag_rhs, g, k, t, v0
+from drag_model import RATE, V_T, dimensionless, drag_rhs, g, k, model_ode, t, v0
 
 scene("rest", "dropped from rest: v(t), x(t), v(x), the time to 99 % of v_T")
 scene("thrown", "thrown with an initial velocity v0: where the printed solution holds")
@@ -37,11 +35,6 @@ T99_CORRECTED = sp.log(199) / (2 * RATE)
 V_THROWN_PRINTED = V_T * sp.tanh(RATE * t + sp.log(sp.Abs((V_T + v0) / (V_T - v0))) / 2)   # eq. v0
 V_THROWN_CORRECTED = sp.Piecewise((V_T * sp.tanh(RATE * t + sp.atanh(v0 / V_T)), sp.Abs(v0) < V_T),
                                   (V_T * sp.coth(RATE * t + sp.acoth(v0 / V_T)), True))
-
-
-def solves(v):
-    """The model's residuals of a velocity ``v(t)``, as a column: ``v' - f(v)`` and ``v(0)``."""
-    return sp.Matrix([sp.diff(v, t) - drag_rhs(v), v.subs(t, 0)])
 
 
 # --------------------------------------------------------------------------- eq. vT
@@ -65,8 +58,12 @@ def parts_v() -> Parts:
 @claim("drag.v", equation="v", scene="rest", parts=parts_v,
        statement="v(t) = sqrt(g/k) tanh(sqrt(g k) t) solves v' = g - k v^2 with v(0) = 0")
 def drag_v(parts: Parts):
-    return from_decision(decide(dimensionless(solves(parts.printed["v"])), sp.zeros(2, 1)),
-                         detail="v' - f(v) and v(0) in s = sqrt(g k) t")
+    v = parts.printed["v"]
+    start = decide(v.subs(t, 0), 0)
+    if not start.holds:
+        return from_decision(start, detail="v(0) = 0")
+    return from_decision(solves_ode(model_ode(in_s=True), dimensionless(v)),
+                         detail="the model in s = sqrt(g k) t; v(0) = 0 proved too")
 
 
 # --------------------------------------------------------------------------- eq. x
@@ -121,39 +118,31 @@ def drag_t99(parts: Parts):
 # --------------------------------------------------------------------------- eq. v0 (holds in some cells)
 
 DPS = 50
-TOL = mp.mpf(10) ** -30
-PER_CELL = 16
-CELLS = [{"regime": regime, "sign_v0": sign} for regime in ("|v0|<v_T", "|v0|>v_T") for sign in (1, -1)]
 
 
-def sample_cell(cell: dict, count: int, seed: int = 0) -> list[dict]:
-    """``count`` seeded points ``{g, k, v0, t}`` of a cell, inside the domain of the statement.
-
-    The domain is where the solution exists: for ``v0 < -v_T`` it blows up to ``-inf`` at
-    ``sqrt(g k) t = arcoth(|v0|/v_T)``, and points at or after that time are rejected.
-    """
-    rng = random.Random(f"{seed}/{cell['regime']}/{cell['sign_v0']}")
-    out: list[dict] = []
-    while len(out) < count:
-        gv, kv = mp.mpf(rng.uniform(1, 20)), mp.mpf(rng.uniform(0.05, 2))
-        vT, rate = mp.sqrt(gv / kv), mp.sqrt(gv * kv)
-        ratio = rng.uniform(0.02, 0.98) if cell["regime"] == "|v0|<v_T" else rng.uniform(1.02, 5)
-        tv = mp.mpf(rng.uniform(0, 4)) / rate
-        if cell["sign_v0"] < 0 and ratio > 1 and rate * tv >= 0.99 * mp.acoth(ratio):
-            continue  # past the blow-up: outside the domain
-        out.append({"g": gv, "k": kv, "v0": cell["sign_v0"] * mp.mpf(ratio) * vT, "t": tv})
-    return out
+def solution_exists(g, k, v0, t):
+    """The domain of eq. v0: the solution exists on [0, t].  For v0 < -v_T it blows up to -infinity at
+    sqrt(g k) t = arcoth(|v0|/v_T); points from just before that time on are left out."""
+    vT = mp.sqrt(g / k)
+    return v0 >= -vT or mp.sqrt(g * k) * t < 0.99 * mp.acoth(-v0 / vT)
 
 
-def ode_residual(v) -> callable:
-    """A function of a point ``{g, k, v0, t}``: the relative residual of ``v`` as a solution of the
-    model with ``v(0) = v0`` (the larger of the ODE's and the initial condition's)."""
-    args = (g, k, v0, t)
-    f = sp.lambdify(args, [v, sp.diff(v, t) - drag_rhs(v), v.subs(t, 0) - v0], "mpmath")
+#: where eq. v0 is sampled: g, k, v0 and t, cut into cells by |v0| against v_T and the sign of v0
+DOMAIN = Domain({"g": (5, 15), "k": (0.2, 2), "v0": (-25, 25), "t": (0, 1)}, where=solution_exists, seed=0)
+SPLITS = (sign(k * v0**2 - g, name="regime", labels=("|v0|<v_T", "|v0|>v_T")),
+          sign(v0, name="sign(v0)", labels=("v0<0", "v0>0")))
 
-    def residual(p: dict):
-        val, ode, ini = f(*(p[str(a)] for a in args))
-        return max(abs(ode) / max(1, abs(val), abs(p["g"])), abs(ini) / max(1, abs(p["v0"])))
+
+def solution_residual(v):
+    """The residual of a closed form ``v(t)`` as the solution of the model with v(0) = v0, at a point of
+    :data:`DOMAIN`: the larger of the ODE's residual (:func:`symbt.ode_residual`) and the initial
+    condition's relative residual."""
+    ode = ode_residual(model_ode(), v)
+    start = sp.lambdify((g, k, v0), v.subs(t, 0), "mpmath")
+
+    def residual(g, k, v0, t):
+        v_start = start(g, k, v0)
+        return max(ode(g=g, k=k, v0=v0, t=t), abs(v_start - v0) / max(1, abs(v_start), abs(v0)))
 
     return residual
 
@@ -165,28 +154,9 @@ def parts_v0() -> Parts:
 @claim("drag.v0", equation="v0", scene="thrown", parts=parts_v0,
        statement="v(t) = v_T tanh(sqrt(g k) t + (1/2) ln|(v_T + v0)/(v_T - v0)|) solves the model with v(0) = v0")
 def drag_v0(parts: Parts, deep: bool = False):
-    per_cell = 4 * PER_CELL if deep else PER_CELL
-    table = CellTable(tol=TOL)
-    with mp.workdps(DPS):
-        printed, corrected = ode_residual(parts.printed["v"]), ode_residual(parts.corrected["v"])
-        for cell in CELLS:
-            for p in sample_cell(cell, per_cell):
-                table.add(cell, printed=printed(p), corrected=corrected(p),
-                          point={name: mp.nstr(val, 15) for name, val in p.items()})
-    return cell_outcome(table, method=f"numeric: mpmath {DPS} digits, v' - f(v) and v(0) - v0 at seeded points",
-                        printed="v = v_T tanh(sqrt(g k) t + (1/2) ln|(v_T + v0)/(v_T - v0)|)",
-                        corrected="v = v_T tanh(sqrt(g k) t + artanh(v0/v_T)) for |v0| < v_T, "
-                                  "v_T coth(sqrt(g k) t + arcoth(v0/v_T)) for |v0| > v_T")
-
-
-def cell_outcome(table: CellTable, *, method: str, printed: str, corrected: str) -> Outcome:
-    """``verified`` if the printed statement holds at every sample, ``erratum`` if it fails somewhere and
-    the corrected one holds everywhere, else ``failed``; with the cell table and its scope sentence."""
-    residual, where = table.worst("printed")
-    status = ("verified" if table.printed_holds_everywhere()
-              else "erratum" if table.corrected_holds_everywhere() else "failed")
-    return Outcome(status, method, residual=residual, evidence="sampled", printed=printed,
-                   corrected=None if status == "verified" else corrected,
-                   counterexample=None if status == "verified" else where,
-                   cells=table.cells(), scope=table.scope(),
-                   detail=f"[{sum(c['n'] for c in table.cells())} samples in {len(table.cells())} cells]")
+    table = DOMAIN.evaluate(*SPLITS, printed=solution_residual(parts.printed["v"]),
+                            corrected=solution_residual(parts.corrected["v"]), dps=DPS, deep=deep)
+    return judge(table, printed="v = v_T tanh(sqrt(g k) t + (1/2) ln|(v_T + v0)/(v_T - v0)|)",
+                 corrected="v = v_T tanh(sqrt(g k) t + artanh(v0/v_T)) for |v0| < v_T, "
+                           "v_T coth(sqrt(g k) t + arcoth(v0/v_T)) for |v0| > v_T",
+                 detail="v' - f(v) and v(0) - v0")

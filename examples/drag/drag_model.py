@@ -9,6 +9,8 @@ file of the project).
 0
 >>> dimensionless(RATE * t)
 s
+>>> model_ode()
+Eq(Derivative(v(t), t), g - k*v(t)**2)
 """
 from __future__ import annotations
 
@@ -17,6 +19,8 @@ import sympy as sp
 g, k = sp.symbols("g k", positive=True)
 t = sp.Symbol("t", real=True)
 v0 = sp.Symbol("v0", real=True)
+#: the unknown of the model, v(t)
+velocity = sp.Function("v")
 
 #: terminal velocity: the equilibrium of the model
 V_T = sp.sqrt(g / k)
@@ -46,3 +50,15 @@ def dimensionless(expr):
     w*tanh(s)
     """
     return sp.sympify(expr).subs(g, k * w**2).subs(t, s / (k * w))
+
+
+def model_ode(*, in_s: bool = False) -> sp.Eq:
+    """The model as an ODE in the unknown ``v(t)``; ``in_s``: in the dimensionless time ``s`` (with
+    ``g = k w^2``, ``t = s/(k w)``, so ``d/dt = k w d/ds``), the form whose residuals are proved exactly.
+
+    >>> model_ode(in_s=True)
+    Eq(k*w*Derivative(v(s), s), k*w**2 - k*v(s)**2)
+    """
+    if not in_s:
+        return sp.Eq(velocity(t).diff(t), drag_rhs(velocity(t)))
+    return sp.Eq(k * w * velocity(s).diff(s), dimensionless(drag_rhs(velocity(s))))

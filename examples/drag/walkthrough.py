@@ -23,7 +23,7 @@
 import symbt
 import sympy as sp
 
-from drag_model import RATE, V_T, dimensionless, drag_rhs, t, v0, w
+from drag_model import RATE, V_T, dimensionless, drag_rhs, model_ode, t, v0, w
 
 try:
     from IPython.display import display
@@ -56,15 +56,17 @@ for r in results.values():
 # %% [markdown]
 # ## Eq. `v`: exact, in the dimensionless time
 #
-# $v = \sqrt{g/k}\tanh(\sqrt{gk}\,t)$ solves the model.  In $s = \sqrt{gk}\,t$ (with
-# $g = k w^2$, $w = v_T$) the residual is a rational function of $e^{s}$, so
-# `symbt.check_identity` *proves* it rather than sampling it:
+# $v = \sqrt{g/k}\tanh(\sqrt{gk}\,t)$ solves the model.  `symbt.solves_ode` takes the ODE and the
+# closed form; in $s = \sqrt{gk}\,t$ (with $g = k w^2$, $w = v_T$) the residual is a rational
+# function of $e^{s}$, so it is *proved* rather than sampled.  In the original variables the square
+# roots of $g$ and $k$ stop the exact layer, and the same check is sampled -- and says so:
 
 # %%
 v = V_T * sp.tanh(RATE * t)
-proof = symbt.check_identity(dimensionless(sp.diff(v, t) - drag_rhs(v)), 0)
-show(proof)
-assert proof.status == "proved"
+proof = symbt.solves_ode(model_ode(in_s=True), dimensionless(v))
+sampled = symbt.solves_ode(model_ode(), v)
+show(model_ode(), proof.verdict + " by " + proof.method, sampled.verdict + " by " + sampled.method)
+assert proof.verdict == "proved" and sampled.evidence == "sampled"
 
 # %% [markdown]
 # ## Eq. `t99`: a dropped factor 1/2
@@ -82,8 +84,9 @@ show(results["drag.t99"])
 #
 # With an initial velocity $v_0$ the note prints
 # $v = v_T\tanh\bigl(\sqrt{gk}\,t + \tfrac12\ln\lvert (v_T+v_0)/(v_T-v_0)\rvert\bigr)$.  The claim
-# samples four cells -- $\lvert v_0\rvert$ below or above $v_T$, times the sign of $v_0$ -- at
-# seeded points; the scope sentence below is generated from that table, not written by hand:
+# samples four cells of a `symbt.Domain` -- $\lvert v_0\rvert$ below or above $v_T$, times the
+# sign of $v_0$ -- at seeded points; the scope sentence below is generated from that table, not
+# written by hand:
 
 # %%
 out = results["drag.v0"].outcome

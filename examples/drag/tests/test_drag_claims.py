@@ -21,10 +21,10 @@ def test_statuses_and_evidence():
 
 def test_scope_of_the_thrown_solution_is_generated_from_its_cells():
     out = results()["drag.v0"]
-    table = {(c["cell"]["regime"], c["cell"]["sign_v0"]): (c["n"], c["printed_holds"], c["corrected_holds"])
+    table = {(c["cell"]["regime"], c["cell"]["sign(v0)"]): (c["n"], c["printed_holds"], c["corrected_holds"])
              for c in out.cells}
-    assert table == {("|v0|<v_T", 1): (16, 16, 16), ("|v0|<v_T", -1): (16, 16, 16),
-                     ("|v0|>v_T", 1): (16, 0, 16), ("|v0|>v_T", -1): (16, 0, 16)}
-    assert out.scope.startswith("printed statement holds exactly in cells {regime=|v0|<v_T, sign_v0=+1}")
+    assert table == {("|v0|<v_T", "v0>0"): (16, 16, 16), ("|v0|<v_T", "v0<0"): (16, 16, 16),
+                     ("|v0|>v_T", "v0>0"): (16, 0, 16), ("|v0|>v_T", "v0<0"): (16, 0, 16)}
+    assert out.scope.startswith("printed statement holds exactly in cells {|v0|<v_T, v0<0}, {|v0|<v_T, v0>0} ")
     assert out.scope.endswith("corrected statement holds in all 4 cells")
     assert "|v0|>v_T" in out.counterexample["cell"]
