@@ -9,6 +9,8 @@ tests), with the claim cache of ``symbt verify``:
   user properties (``--junitxml`` writes them as ``<property>``) and listed in a
   "symbt errata" section of the terminal summary;
 * ``failed`` -> fails, with the statement, counterexample and residual;
+* ``inconclusive`` (cannot tell at the precision or budget given) and ``todo`` (no
+  check written yet) -> fail too, with a message naming the status and why;
 * ``skipped`` -> skipped with its reason (e.g. an optional extra is missing).
 
 Which claims: ``--symbt-claims MODULE_OR_PATH`` (repeatable; your claims module, a
@@ -76,7 +78,9 @@ class ClaimFailed(Exception):
 def _failure_message(claim: Any, out: Any) -> str:
     from symbt.report.text import field_lines, residual_text
 
-    lines = [f"claim {claim.id} (eq. {claim.equation}) failed: {claim.statement}",
+    verb = {"inconclusive": "is inconclusive (cannot tell)", "todo": "is a todo stub (no check written yet)"}
+    lines = [f"claim {claim.id} (eq. {claim.equation}) {verb.get(out.status, 'failed')}: {claim.statement}",
+             f"  status:    {out.status}",
              f"  residual:  {residual_text(out)}",
              f"  method:    {out.method}",
              f"  evidence:  {out.evidence or '-'}"]
@@ -115,7 +119,7 @@ class ClaimItem(pytest.Item):
         self.user_properties.extend(props)
         if out.status == "skipped":
             pytest.skip(f"{self.claim.id}: {(out.detail or 'skipped').strip()}")
-        if out.status == "failed":
+        if out.status in ("failed", "inconclusive", "todo"):  # not ok: symbt.claims.base.NOT_OK
             raise ClaimFailed(_failure_message(self.claim, out))
 
     def repr_failure(self, excinfo, style=None):

@@ -27,7 +27,8 @@ class IdentityAssertionError(AssertionError):
 
 
 def _message(r: IdentityResult, msg: str | None) -> str:
-    lines = [f"identity does not hold: {r.statement}"]
+    what = "cannot be decided (inconclusive)" if r.status == "inconclusive" else "does not hold"
+    lines = [f"identity {what}: {r.statement}"]
     if msg:
         lines.insert(0, msg)
     res = "undefined" if r.residual is None else f"{r.residual:.6g}"

@@ -44,14 +44,14 @@ def _validate(doc):
 
 def test_json_report_validates_against_the_shipped_schema():
     doc = json.loads(dumps(_results()))        # through text: what a consumer reads
-    assert doc["schema_version"] == "1.1" and doc["generator"].startswith("symbt ")
+    assert doc["schema_version"] == "1.2" and doc["generator"].startswith("symbt ")
     _validate(doc)
     f = next(c for c in doc["claims"] if c["id"] == "f")
     assert f["residual"] == "inf" and f["evidence"] == "sampled"         # non-finite numbers as strings
     e = next(c for c in doc["claims"] if c["id"] == "e")
     assert e["scope"].startswith("printed fails") and e["n_scope"] == [2, 3] and e["where"] == "Section 4"
-    assert doc["summary"] == {"total": 5, "verified": 2, "erratum": 1, "failed": 1, "skipped": 1,
-                              "seconds": 0.1, "ok": False}
+    assert doc["summary"] == {"total": 5, "verified": 2, "erratum": 1, "failed": 1, "inconclusive": 0, "todo": 0,
+                              "skipped": 1, "seconds": 0.1, "ok": False}
 
 
 def test_schema_rejects_what_it_should():

@@ -11,7 +11,14 @@ Statuses
               corrected statement, as close to the paper as the truth allows, holds;
 ``failed``    something that should hold does not (a bug here or in the paper
               with no verified correction);
-``skipped``   the check could not run (e.g. an optional extra is missing).
+``skipped``   the check could not run (e.g. an optional extra is missing);
+``inconclusive``  the check cannot decide at the precision or budget given
+              ("cannot tell": a residual within the evaluation's own error);
+``todo``      a claim stub with no check written yet.
+
+``verified``, ``erratum`` and ``skipped`` are ok; ``failed``, ``inconclusive`` and
+``todo`` are not (:data:`NOT_OK`): ``symbt verify`` exits 1 and the pytest plugin
+fails the item.
 
 Writing a claim
 ---------------
@@ -41,10 +48,12 @@ from ..proof.verdict import EVIDENCE, Verdict
 
 __all__ = [
     "Claim", "ClaimResult", "Outcome", "Parts", "claim", "REGISTRY", "SCENES", "scene",
-    "from_decision", "judge", "judge_cells", "skipped", "failed",
+    "from_decision", "judge", "judge_cells", "skipped", "failed", "inconclusive", "todo", "STATUSES", "NOT_OK",
 ]
 
-STATUSES = ("verified", "erratum", "failed", "skipped")
+STATUSES = ("verified", "erratum", "failed", "skipped", "inconclusive", "todo")
+#: statuses that make a run fail (exit 1, a failed pytest item, a JUnit <failure>)
+NOT_OK = ("failed", "inconclusive", "todo")
 
 
 @dataclass
@@ -178,7 +187,7 @@ class Claim:
             except Exception as exc:  # a crash is a failure, reported with its cause
                 out = failed("exception", detail=f"{type(exc).__name__}: {exc}\n{traceback.format_exc(limit=4)}")
         out.seconds = round(time.perf_counter() - t0, 4)
-        if out.n_scope is None and self.N is not None and out.status != "skipped":
+        if out.n_scope is None and self.N is not None and out.status not in ("skipped", "todo"):
             out.n_scope = [self.N]   # a claim about one lattice size covers that size (unless it says more)
         return out
 
@@ -293,10 +302,12 @@ def claim(id: str, *, equation: str, statement: str, scene: str, N: int | None =
 # --------------------------------------------------------------------------- outcome helpers
 
 def skipped(reason: str) -> Outcome:
+    """The check could not run (e.g. ``"optional dependency missing: flint"``)."""
     return Outcome("skipped", "none", detail=reason)
 
 
 def failed(method: str, *, residual=None, detail: str = "", counterexample=None) -> Outcome:
+    """Something that should hold does not (with the residual and counterexample when known)."""
     return Outcome("failed", method, residual=residual, detail=detail, counterexample=counterexample)
 
 
@@ -336,10 +347,35 @@ def judge_cells(table: CellTable, *, printed: str, corrected: str | None = None,
                    corrected=corrected, counterexample=where_p, **base)
 
 
+def inconclusive(method: str, *, detail: str = "", residual=None, digits=None, evidence: str | None = None,
+                 printed: str | None = None, cells: list[dict[str, Any]] | None = None) -> Outcome:
+    """The check cannot decide at the precision or budget given ("cannot tell"); not ok.
+
+    >>> o = inconclusive("numeric: 30 digits", detail="residual within the evaluation error", residual=1e-22)
+    >>> o.status, o.residual
+    ('inconclusive', 1e-22)
+    """
+    return Outcome("inconclusive", method, residual=residual, digits=digits, detail=detail, evidence=evidence,
+                   printed=printed, cells=list(cells or []))
+
+
+def todo(reason: str = "no check written yet") -> Outcome:
+    """A claim stub without a check (e.g. scaffolded from a paper's labels); never verified, not ok.
+
+    >>> todo().status, todo().detail
+    ('todo', 'no check written yet')
+    """
+    return Outcome("todo", "none", detail=reason)
+
+
 def from_decision(d: Verdict, *, detail: str = "") -> Outcome:
-    """``verified`` if the :class:`~symbt.proof.Verdict` holds, else ``failed`` with its counterexample."""
+    """``verified`` if the :class:`~symbt.proof.Verdict` holds, ``inconclusive`` if it cannot tell,
+    else ``failed`` with its counterexample."""
     if d.holds:
         return Outcome("verified", d.method, residual=d.residual, digits=d.digits, evidence=d.evidence,
+                       cells=list(d.cells), detail=(detail + (" " + d.note if d.note else "")).strip())
+    if d.inconclusive:
+        return Outcome("inconclusive", d.method, residual=d.residual, digits=d.digits, evidence=d.evidence,
                        cells=list(d.cells), detail=(detail + (" " + d.note if d.note else "")).strip())
     return Outcome("failed", d.method, residual=d.residual, digits=d.digits, evidence=d.evidence,
                    cells=list(d.cells), counterexample=d.counterexample, detail=detail)
@@ -352,9 +388,11 @@ def judge(printed_decision: Verdict | CellTable, *, printed: str, corrected: str
     ``printed_decision`` and the result of ``corrected_check`` are
     :class:`~symbt.proof.Verdict` objects.  Returns ``verified`` when
     the printed statement holds, ``erratum`` when it fails and the correction
-    holds, ``failed`` otherwise.  A sampled claim passes its
-    :class:`~symbt.proof.cells.CellTable` instead (the corrected residuals are in
-    the table): see :func:`judge_cells`.
+    holds, ``inconclusive`` when the printed statement (or, once it fails, the
+    correction) cannot be decided at the precision given, ``failed`` otherwise.
+    An inconclusive verdict is never reported as failed or verified.  A sampled
+    claim passes its :class:`~symbt.proof.cells.CellTable` instead (the corrected
+    residuals are in the table): see :func:`judge_cells`.
     """
     if isinstance(printed_decision, CellTable):
         if corrected_check is not None:
@@ -365,16 +403,27 @@ def judge(printed_decision: Verdict | CellTable, *, printed: str, corrected: str
         return Outcome("verified", printed_decision.method, residual=printed_decision.residual,
                        digits=printed_decision.digits, printed=printed, detail=detail,
                        evidence=printed_decision.evidence, cells=list(printed_decision.cells))
+    if printed_decision.inconclusive:
+        return inconclusive(printed_decision.method, residual=printed_decision.residual,
+                            digits=printed_decision.digits, evidence=printed_decision.evidence, printed=printed,
+                            cells=list(printed_decision.cells),
+                            detail=(detail + " printed statement: " + (printed_decision.note or "cannot tell")).strip())
     if corrected_check is None:
         return Outcome("failed", printed_decision.method, residual=printed_decision.residual,
                        printed=printed, counterexample=printed_decision.counterexample,
                        evidence=printed_decision.evidence, cells=list(printed_decision.cells),
                        detail=detail or "printed statement fails and no correction is known")
     cd = corrected_check()
-    status = "erratum" if cd.holds else "failed"
+    status = "erratum" if cd.holds else ("inconclusive" if cd.inconclusive else "failed")
     method = f"printed: {printed_decision.method} | corrected: {cd.method}"
+    if cd.holds:
+        extra = ""
+    elif cd.inconclusive:
+        extra = f" printed statement fails; the correction cannot be decided: {cd.note or 'cannot tell'}"
+    else:
+        extra = f" correction also fails (residual {cd.residual})"
     return Outcome(status, method, residual=printed_decision.residual,
                    digits=cd.digits, printed=printed, corrected=corrected,
                    counterexample=printed_decision.counterexample, evidence=cd.evidence,
                    cells=list(cd.cells) or list(printed_decision.cells),
-                   detail=(detail + ("" if cd.holds else f" correction also fails (residual {cd.residual})")).strip())
+                   detail=(detail + extra).strip())

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import os
 import sys
 from functools import cache
@@ -227,8 +228,10 @@ def read_entry(path: Path, key: str) -> Outcome | None:
     if not isinstance(data, dict) or data.get("key") != key:
         return None
     out = outcome_from_json(data.get("outcome"))
-    if out is None or out.status == "skipped":
+    if out is None or out.status in ("skipped", "todo"):
         return None
+    if out.status == "verified" and isinstance(out.residual, float) and math.isnan(out.residual):
+        return None  # a verification with a NaN residual is no verification: recompute
     out.cached = True
     return out
 
@@ -239,9 +242,9 @@ def load_cached(c: Claim, deep: bool = False) -> Outcome | None:
 
 
 def store(c: Claim, out: Outcome, deep: bool = False) -> None:
-    """Cache ``out`` at once (atomically); skipped outcomes are not cached, a read-only cache is no error."""
-    if out.status == "skipped":
-        return  # a skipped claim may run once its extra is installed
+    """Cache ``out`` at once (atomically); skipped and todo outcomes are not cached, a read-only cache is no error."""
+    if out.status in ("skipped", "todo"):
+        return  # a skipped claim may run once its extra is installed; a todo stub once its check is written
     try:
         cache_dir().mkdir(parents=True, exist_ok=True)
         d = out.to_dict()

@@ -23,7 +23,13 @@ here instead, in this order:
    is not finite (poles, ``nan``, evaluation errors) are resampled.  If every
    relative residual is below ``10**-(digits-8)`` the identity is *verified
    numerically*; otherwise it is *false* and the worst point is returned as a
-   counterexample with its residual.
+   counterexample with its residual.  The screen knows its own error: a point
+   that is not clearly decided at once is evaluated again at about twice the
+   precision, and quadratures (a SymPy ``Integral``) report their error
+   estimates; a residual within the evaluation's error is never a
+   counterexample -- the verdict is then *inconclusive* ("cannot tell at this
+   precision") -- and the digits reported are those that agree *and* can be
+   trusted (see :func:`symbt.proof.screen.screen`).
 
 The result says which of the two decided.  A difference that is a nonzero
 rational function (no relations, no ``fixed`` values) is *false* even when it
@@ -48,7 +54,7 @@ import sympy as sp
 
 from .exact import exact_zero
 from .screen import screen
-from .verdict import Verdict
+from .verdict import SAFETY, Verdict
 
 __all__ = ["decide"]
 
@@ -79,17 +85,21 @@ def decide(lhs, rhs=0, *, relations: Mapping[sp.Symbol, sp.Expr] | None = None,
                         exact=exact, fixed=fixed) for a, b in zip(lm, rm)]
         if not parts:
             return Verdict.from_proof("exact: empty matrices")
-        bad = [d for d in parts if not d.holds]
+        bad = [d for d in parts if not d.holds and not d.inconclusive]
         if bad:
             return max(bad, key=lambda d: d.residual or 0.0)
+        undecided = [d for d in parts if d.inconclusive]
+        if undecided:  # no entry is false, some cannot be told apart from noise
+            return max(undecided, key=lambda d: d.residual or 0.0)
         res = max((d.residual or 0.0) for d in parts)
         all_exact = all(d.exact for d in parts)
         if all_exact:
             return Verdict.from_proof(parts[0].method)
         numeric = [d for d in parts if not d.exact]
+        errors = [d.error for d in numeric if d.error is not None]
         return Verdict(True, "sampled", numeric[0].method, residual=res,
                        digits=min((d.digits if d.digits is not None else digits) for d in numeric),
-                       points=numeric[0].points, note=numeric[0].note)
+                       points=numeric[0].points, note=numeric[0].note, error=max(errors) if errors else None)
     if _undefined(lhs) or _undefined(rhs):
         return Verdict(False, "proof", "undefined: a side contains nan, zoo or oo", definite=True,
                        note="a statement with an undefined side cannot hold")
@@ -100,17 +110,44 @@ def decide(lhs, rhs=0, *, relations: Mapping[sp.Symbol, sp.Expr] | None = None,
         if zero:
             return Verdict.from_proof(method_exact)
         definite = definite and not fixed
-    ok, res, dig, point, pts = screen(lhs, rhs, relations, digits, points, seed, fixed)
+    sr = screen(lhs, rhs, relations, digits, points, seed, fixed, recheck=not definite)
+    res, dig, point, pts = sr.residual, sr.digits, sr.point, sr.points
     nmethod = f"numeric: mpmath {digits} digits at {len(pts)} random points"
-    if ok and not definite:
+    if sr.rechecked:
+        nmethod += f" ({sr.rechecked} re-evaluated at {sr.high_digits} digits)"
+    if sr.ok and not definite:
         note = "" if not method_exact else "exact reduction left a nonzero remainder; numeric screen agrees with zero"
-        return Verdict(True, "sampled", nmethod, residual=res, digits=dig, points=pts, note=note)
+        return Verdict(True, "sampled", nmethod, residual=res, digits=dig, points=pts, note=note, error=sr.error)
     if definite:
         method = method_exact + " left a nonzero rational function; worst point by " + nmethod
         note = "exactly false: the difference is a nonzero rational function"
-        if ok:
+        if sr.residual <= 10.0 ** (-(digits - 8)):
             note += f" (numerically tiny at the sample points: residual {res:.3g})"
         return Verdict(False, "proof", method, residual=res, digits=dig, counterexample=point, points=pts,
                        note=note, definite=True)
     method = nmethod if not method_exact else method_exact + "; counterexample by " + nmethod
-    return Verdict(False, "sampled", method, residual=res, digits=dig, counterexample=point, points=pts)
+    if sr.status == "inconclusive":
+        return Verdict(False, "sampled", method.replace("; counterexample by ", "; "), residual=res, digits=dig,
+                       points=pts, note=_cannot_tell(sr, digits), inconclusive=True, error=sr.error)
+    return Verdict(False, "sampled", method, residual=res, digits=dig, counterexample=point, points=pts,
+                   error=sr.error)
+
+
+def _cannot_tell(sr, digits: int) -> str:
+    """Why the screen could not decide, in words."""
+    tol = 10.0 ** (-(digits - 8))
+    where = f"at {_point_brief(sr.point)}"
+    if sr.residual > tol:
+        why = (f"the relative residual {sr.residual:.1e} is within {SAFETY:g}x the evaluation's own error "
+               f"{sr.error:.1e}: no counterexample, and no agreement to the tolerance {tol:.0e} either")
+    else:
+        why = (f"the sides agree to {sr.residual:.1e}, but the evaluation is only trustworthy to {sr.error:.1e} "
+               f"(the {digits}- and {sr.high_digits}-digit evaluations differ, or a quadrature has not "
+               f"converged), above the tolerance {tol:.0e}")
+    return f"cannot tell at {digits} digits: {where} {why}; raise digits"
+
+
+def _point_brief(point, limit: int = 4) -> str:
+    items = list((point or {}).items())
+    txt = ", ".join(f"{k}={v}" for k, v in items[:limit])
+    return (txt + (", ..." if len(items) > limit else "")) or "a sample point"

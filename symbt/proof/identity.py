@@ -1,8 +1,8 @@
 r"""Checking your own identities: ``check_identity(lhs, rhs)``.
 
 A thin, user-facing layer over :func:`symbt.proof.decide` (the engine that
-decides the paper's claims).  The answer is always one of three, never a
-silent "don't know":
+decides the paper's claims).  The answer is always one of four, and "cannot
+tell" is said out loud:
 
 ``proved``
     the difference reduces to zero by exact rational arithmetic (after
@@ -13,10 +13,22 @@ silent "don't know":
     no exact reduction applied (logarithms, radicals, special functions, or a
     nonzero remainder modulo relations), but the two sides agree to ``digits``
     significant digits at ``points`` random points, drawn according to the
-    SymPy assumptions of each symbol; the points are listed.
+    SymPy assumptions of each symbol; the points are listed.  ``digits`` counts
+    only digits that agree *and* that the evaluation can be trusted to (it may
+    be fewer than asked for, e.g. when a quadrature limits the accuracy).
+``inconclusive``
+    the numeric screen cannot tell at this precision: the residual is within
+    the evaluation's own error (estimated from a second evaluation at about
+    twice the precision and from the quadratures' error estimates), so it is
+    no counterexample, and the sides cannot be shown to agree to the
+    tolerance either.  ``error`` is that estimate; raising ``digits`` may decide.
 ``false``
     a counterexample: the worst point and the relative residual there (or a
-    nonzero rational function, which is false even if numerically tiny).
+    nonzero rational function, which is false even if numerically tiny).  A
+    residual is a counterexample only if it is well above the evaluation's error.
+    When the sides contain SymPy elliptic functions and would agree with their
+    parameter ``m`` read as a modulus ``k`` (``m = k**2``) or the other way round,
+    ``note`` says so: SymPy's ``elliptic_k/e/f/pi`` and mpmath take the parameter ``m``.
 
 Assumptions are respected: a ``real`` symbol may be negative, so
 ``sqrt(x**2) == x`` is *false* for real ``x`` and *proved* for positive ``x``;
@@ -64,9 +76,13 @@ import sympy as sp
 from .decider import decide
 from .verdict import STATUS_COLOURS, Verdict, latex_text
 
-__all__ = ["IdentityResult", "check_identity", "normalize_relations", "apply_assumptions"]
+__all__ = ["IdentityResult", "check_identity", "normalize_relations", "apply_assumptions", "convention_hint",
+           "STATUSES"]
 
-STATUSES = ("proved", "verified", "false")
+STATUSES = ("proved", "verified", "inconclusive", "false")
+
+#: the elliptic functions whose last argument is the parameter m = k**2 (not the modulus k)
+ELLIPTIC = (sp.elliptic_k, sp.elliptic_e, sp.elliptic_f, sp.elliptic_pi)
 
 
 def _short(expr, limit: int = 80) -> str:
@@ -86,14 +102,15 @@ def _point_text(point: Mapping[str, Any] | None, limit: int = 6) -> str:
 class IdentityResult(Verdict):
     """Outcome of :func:`check_identity`: a :class:`~symbt.proof.Verdict` with its statement.
 
-    ``status`` is ``"proved"``, ``"verified"`` or ``"false"`` (the verdict);
-    ``evidence`` says how it was reached (``"proof"`` or ``"sampled"``);
+    ``status`` is ``"proved"``, ``"verified"``, ``"inconclusive"`` or ``"false"``
+    (the verdict); ``evidence`` says how it was reached (``"proof"`` or ``"sampled"``);
     ``method`` names the steps; ``residual`` is the worst relative residual of
     the numeric screen (0 when proved); ``digits`` the number of significant
-    digits to which the sides agree (``None`` when proved);
-    ``requested_digits`` the working precision asked for; ``points`` the sample
-    points (symbol name -> value as a string); ``counterexample`` the worst
-    point when false.  ``bool(result)`` is true unless the identity is false.
+    digits to which the sides agree and the evaluation is trustworthy (``None``
+    when proved); ``error`` the estimated error of the evaluation at the decisive
+    point; ``requested_digits`` the working precision asked for; ``points`` the
+    sample points (symbol name -> value as a string); ``counterexample`` the worst
+    point when false.  ``bool(result)`` is true only for ``proved`` and ``verified``.
     """
 
     requested_digits: int = 50
@@ -119,11 +136,22 @@ class IdentityResult(Verdict):
         if self.status == "proved":
             return f"proved by {self.method}"
         if self.status == "verified":
-            return (f"verified numerically to {self.requested_digits} digits at {len(self.points)} random "
+            return (f"verified numerically to {self._digits_text()} at {len(self.points)} random "
                     f"points (worst relative residual {self.residual:.1e}; {self.method})")
         res = "undefined" if self.residual is None else f"{self.residual:.3g}"
+        if self.status == "inconclusive":
+            err = "unknown" if self.error is None else f"{self.error:.1e}"
+            return (f"inconclusive: cannot tell at {self.requested_digits} digits (relative residual {res}, "
+                    f"evaluation error {err}; {self.method})")
+        hint = f"; {self.note}" if self.note.startswith("hint:") else ""
         return (f"false: counterexample {_point_text(self.counterexample)} "
-                f"(relative residual {res}; {self.method})")
+                f"(relative residual {res}; {self.method}){hint}")
+
+    def _digits_text(self) -> str:
+        got = int(self.digits) if self.digits is not None else self.requested_digits
+        if got >= self.requested_digits:
+            return f"{self.requested_digits} digits"
+        return f"{got} of the {self.requested_digits} digits asked for"
 
     def __str__(self) -> str:
         return f"{self.statement}: {self.summary()}"
@@ -138,6 +166,10 @@ class IdentityResult(Verdict):
                                      f"{self.requested_digits} requested)"))
             pts = "<br>".join(e(_point_text(p)) for p in self.points)
             rows.append(("points", pts))
+        elif self.status == "inconclusive":
+            err = "unknown" if self.error is None else f"{self.error:.1e}"
+            rows.append(("residual", f"{self.residual:.2e} (evaluation error {err}: cannot tell at "
+                                     f"{self.requested_digits} digits)"))
         elif self.status == "false":
             rows.append(("residual", "undefined" if self.residual is None else f"{self.residual:.3g}"))
             rows.append(("counterexample", e(_point_text(self.counterexample, limit=20))))
@@ -152,7 +184,7 @@ class IdentityResult(Verdict):
                 f"{e(self.status)}</span><table>{body}</table></div>")
 
     def _repr_latex_(self) -> str:
-        rel = r"\neq" if self.status == "false" else "="
+        rel = {"false": r"\neq", "inconclusive": r"\overset{?}{=}"}.get(self.status, "=")
         try:
             stmt = f"{sp.latex(self.lhs)} {rel} {sp.latex(self.rhs)}"
         except Exception:  # pragma: no cover - exotic objects
@@ -162,7 +194,7 @@ class IdentityResult(Verdict):
     def to_dict(self) -> dict[str, Any]:
         return {"statement": self.statement, "status": self.status, "evidence": self.evidence,
                 "method": self.method,
-                "residual": self.residual, "digits": self.digits, "points": self.points,
+                "residual": self.residual, "digits": self.digits, "error": self.error, "points": self.points,
                 "counterexample": self.counterexample, "note": self.note}
 
 
@@ -369,6 +401,63 @@ def check_identity(lhs, rhs=0, *, relations=None, assumptions=None, digits: int 
         rel = rel_raw
     d = decide(lhs, rhs, relations=rel, digits=digits, points=points, seed=seed, exact=exact,
                fixed=fixed)
+    note = d.note
+    if d.verdict == "false" and not d.definite:
+        hint = convention_hint(lhs, rhs, relations=rel, digits=digits, points=points, seed=seed, fixed=fixed)
+        note = (hint + (" " + note if note else "")) if hint else note
     return IdentityResult(d.holds, d.evidence, d.method, residual=d.residual, digits=d.digits,
                           points=list(d.points) if not d.exact else [], counterexample=d.counterexample,
-                          note=d.note, definite=d.definite, requested_digits=digits, lhs=lhs, rhs=rhs)
+                          note=note, definite=d.definite, inconclusive=d.inconclusive, error=d.error,
+                          requested_digits=digits, lhs=lhs, rhs=rhs)
+
+
+# --------------------------------------------------------------------------- convention hints
+
+def _reparametrised(expr, to):
+    """``expr`` with the parameter (last argument) of every SymPy elliptic function replaced by ``to(m)``."""
+    if isinstance(expr, sp.MatrixBase):
+        return expr.applyfunc(lambda e: _reparametrised(e, to))
+    reps = {f: f.func(*f.args[:-1], to(f.args[-1])) for f in sp.sympify(expr).atoms(*ELLIPTIC)}
+    return expr.xreplace(reps) if reps else None
+
+
+_SWAPS = (
+    (lambda m: m ** 2, "hint: the sides agree if the modulus k is read as the parameter m = k**2: "
+                       "SymPy/mpmath elliptic functions take m"),
+    (sp.sqrt, "hint: the sides agree if the parameter m is read as the modulus k = sqrt(m): "
+              "SymPy/mpmath elliptic functions take m = k**2"),
+)
+
+
+def convention_hint(lhs, rhs, *, relations=None, digits: int = 50, points: int = 8, seed: int = 1729,
+                    fixed: Mapping[Any, Any] | None = None) -> str:
+    """A hint when ``lhs == rhs`` is false but holds after a modulus/parameter swap of elliptic functions.
+
+    SymPy's ``elliptic_k``, ``elliptic_e``, ``elliptic_f`` and ``elliptic_pi`` (and mpmath's
+    ``ellipk`` ...) take the *parameter* ``m = k**2``; formulas in the literature often use the
+    *modulus* ``k``.  If replacing the last argument ``a`` of every elliptic function of one side
+    by ``a**2`` (or ``sqrt(a)``) makes the identity hold at the screen's precision, the hint says
+    so; otherwise it is ``""``.  Only the numeric screen is run (same digits, points and seed).
+
+    >>> k = sp.Symbol("k", positive=True)
+    >>> wrong = sp.pi / 2 * sp.hyper([sp.S.Half, sp.S.Half], [1], k**2)   # K of modulus k
+    >>> convention_hint(wrong, sp.elliptic_k(k), digits=20, points=3).split(":")[1]
+    ' the sides agree if the modulus k is read as the parameter m = k**2'
+    >>> convention_hint(sp.elliptic_k(k), sp.elliptic_k(k) + 1, digits=20, points=3)
+    ''
+    """
+    for side in ("lhs", "rhs"):
+        expr = lhs if side == "lhs" else rhs
+        for to, text in _SWAPS:
+            swapped = _reparametrised(expr, to)
+            if swapped is None:
+                continue
+            new_l, new_r = (swapped, rhs) if side == "lhs" else (lhs, swapped)
+            try:
+                d = decide(new_l, new_r, relations=relations, digits=digits, points=points, seed=seed,
+                           exact=False, fixed=fixed)
+            except (ValueError, TypeError, ZeroDivisionError):
+                continue
+            if d.holds:
+                return text
+    return ""

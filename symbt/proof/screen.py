@@ -2,14 +2,18 @@
 from __future__ import annotations
 
 import random
+import threading
+from dataclasses import dataclass, field
 from functools import cache
+from typing import Any
 
 import mpmath
 import sympy as sp
 
 from .lambdify import plain_lambdify
+from .verdict import SAFETY
 
-__all__ = ["screen", "sample_symbol"]
+__all__ = ["screen", "sample_symbol", "ScreenResult", "PointCheck", "tracked_quad", "high_precision"]
 
 
 def sample_symbol(sym: sp.Symbol, rng: random.Random):
@@ -128,13 +132,149 @@ def _solve_order(relations, known):
     return order
 
 
-def screen(lhs, rhs, relations, digits, points, seed, fixed):
-    """Evaluate ``lhs - rhs`` at ``points`` admissible random points.
+#: the quadrature errors of the evaluation under way (``None`` when nobody is listening)
+_QUAD_LOG = threading.local()
+
+
+def tracked_quad(f, *intervals, **kw):
+    """``mpmath.quad`` that also records its own error estimate for the screen.
+
+    ``sympy.lambdify`` prints an unevaluated ``Integral`` as ``quad(lambda t: ..., (a, b))``;
+    the screen's functions call this instead, so a quadrature that has not converged
+    at the working precision (its estimate says so) is counted in the evaluation's error.
+
+    >>> import mpmath
+    >>> round(float(tracked_quad(lambda t: t**2, (0, 1))), 12)
+    0.333333333333
+    """
+    if kw.get("error"):
+        return mpmath.quad(f, *intervals, **kw)
+    value, err = mpmath.quad(f, *intervals, error=True, **kw)
+    log = getattr(_QUAD_LOG, "errors", None)
+    if log is not None:
+        log.append((abs(value), abs(err)))
+    return value
+
+
+#: the lambdify namespace of the screen: mpmath, with the quadrature that reports its error
+_NAMESPACE = {"quad": tracked_quad}
+_MODULES = [_NAMESPACE, "mpmath"]
+
+
+def _quad_error(value, errors) -> Any:
+    """The error a side inherits from its quadratures: absolute, or relative times the value."""
+    if not errors:
+        return mpmath.mpf(0)
+    absolute = mpmath.fsum(e for _, e in errors)
+    relative = mpmath.fsum(e / v for v, e in errors if v) if all(v for v, _ in errors) else mpmath.inf
+    return max(absolute, abs(value) * relative)
+
+
+def _evaluate(f, allv) -> tuple[Any, Any]:
+    """``f(*allv)`` and the error of the quadratures it ran."""
+    _QUAD_LOG.errors = []
+    try:
+        v = f(*allv)
+        return v, _quad_error(v, _QUAD_LOG.errors)
+    finally:
+        _QUAD_LOG.errors = None
+
+
+@dataclass
+class PointCheck:
+    """The difference of the sides at one point, and how far the evaluation can be trusted.
+
+    ``residual`` is ``|lhs - rhs| / max(|lhs|, |rhs|, 1)`` (from the higher precision
+    when there is one), ``error`` the estimated error of that residual (quadrature
+    error estimates, plus -- once the point is re-evaluated -- how much the two
+    working precisions differ and the rounding level).
+    """
+
+    residual: Any
+    error: Any
+    point: dict[str, str]
+    values: list = field(repr=False, default_factory=list)
+    roots: list[int] = field(repr=False, default_factory=list)
+    diff: Any = field(repr=False, default=0)
+    rechecked: bool = False
+
+
+@dataclass
+class ScreenResult:
+    """What the screen found (see :func:`screen`).
+
+    ``status`` is ``"verified"``, ``"false"`` or ``"inconclusive"``; ``residual`` the worst
+    relative residual (at the counterexample when false); ``error`` the estimated
+    evaluation error there; ``digits`` the digits that agree *and* are trustworthy;
+    ``point`` the counterexample (false) or the point that could not be decided
+    (inconclusive); ``rechecked`` how many points were re-evaluated at the higher precision.
+    """
+
+    status: str
+    residual: float
+    error: float
+    digits: float
+    point: dict[str, str] | None
+    points: list[dict[str, str]]
+    rechecked: int = 0
+    high_digits: int = 0
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "verified"
+
+
+def high_precision(digits: int) -> int:
+    """The second working precision of the screen: twice the digits asked for, plus guard digits."""
+    return 2 * digits + 10
+
+
+def _recheck(pc: PointCheck, f_l, f_r, rel_solvers, fixed, n_free: int, digits: int) -> None:
+    """Evaluate the point again at :func:`high_precision`; the two evaluations' difference
+    (plus the quadratures' own estimates and the rounding level) is the error of the first."""
+    hi = high_precision(digits)
+    pc.rechecked = True
+    with mpmath.workdps(hi + 10):
+        allv = list(pc.values[:n_free]) + [_as_mp(v) for v in fixed.values()]
+        try:
+            for sols, k in zip(rel_solvers, pc.roots):
+                allv.append(sols[k](*allv))
+            (lv, el), (rv, er) = _evaluate(f_l, allv), _evaluate(f_r, allv)
+        except _POLE_ERRORS:
+            pc.error = mpmath.inf
+            return
+        if not (_finite(lv) and _finite(rv)):
+            pc.error = mpmath.inf
+            return
+        scale = max(abs(lv), abs(rv), mpmath.mpf(1))
+        diff = (lv - rv) / scale
+        drift = abs(diff - pc.diff)
+        pc.residual = abs(diff)
+        pc.error = drift + (el + er) / scale + mpmath.mpf(10) ** (-(digits + 2))
+
+
+def screen(lhs, rhs, relations, digits, points, seed, fixed, *, recheck: bool = True) -> ScreenResult:
+    """Evaluate ``lhs - rhs`` at ``points`` admissible random points, knowing the evaluation's error.
 
     A point is admissible when both sides evaluate to finite numbers (poles,
     ``nan`` and evaluation errors such as a gamma-function pole are resampled,
-    up to ``6*points + 10`` draws in all).  Returns ``(ok, worst_residual,
-    digits_agreeing, worst_point, points)``.
+    up to ``6*points + 10`` draws in all).  Each point is evaluated at ``digits + 10``
+    working digits; quadratures (a SymPy ``Integral``) report their own error estimate.
+
+    The tolerance is ``10**-(digits - 8)``.  A point is decided at once when the
+    first evaluation is clear: the sides agree to all ``digits`` with trustworthy
+    quadratures.  Otherwise (``recheck``) the point is evaluated again at
+    :func:`high_precision`, and the difference of the two evaluations estimates
+    the first one's error.  Then a point *holds* when its residual and its error
+    are both below the tolerance; it is a *counterexample* when its residual is
+    above the tolerance and above ``SAFETY`` times its error; anything else
+    cannot be told apart from noise (``inconclusive``).  Candidates for a
+    counterexample are re-checked worst first, and the first confirmed one is
+    the counterexample (one extra evaluation for a clearly false identity).
+
+    ``recheck=False`` keeps the first evaluation only (its error is then what the
+    quadratures report): for the residual of a statement already known to be
+    false, reported for information.
     """
     syms = set(lhs.free_symbols) | set(rhs.free_symbols)
     for r in relations.values():
@@ -147,36 +287,84 @@ def screen(lhs, rhs, relations, digits, points, seed, fixed):
     constrained = [s for s, _ in order]
     rel_solvers = []
     for k, (_s, roots) in enumerate(order):
-        rel_solvers.append([plain_lambdify(base + constrained[:k], r) for r in roots])
+        rel_solvers.append([plain_lambdify(base + constrained[:k], r, _MODULES) for r in roots])
     args = base + constrained
-    f_l = plain_lambdify(args, lhs)
-    f_r = plain_lambdify(args, rhs)
-    worst = (mpmath.mpf(-1), None)
-    pts = []
+    f_l = plain_lambdify(args, lhs, _MODULES)
+    f_r = plain_lambdify(args, rhs, _MODULES)
+    checks: list[PointCheck] = []
     tol = mpmath.mpf(10) ** (-(digits - 8))
+    clear = mpmath.mpf(10) ** (-digits)
     attempts = 0
     with mpmath.workdps(digits + 10):
-        while len(pts) < points and attempts < 6 * points + 10:
+        while len(checks) < points and attempts < 6 * points + 10:
             attempts += 1
             allv = [sample_symbol(s, rng) for s in free] + [_as_mp(v) for v in fixed.values()]
+            picks = []
             try:
                 for sols in rel_solvers:
-                    allv.append(sols[rng.randrange(len(sols))](*allv))
-                lv, rv = f_l(*allv), f_r(*allv)
+                    k = rng.randrange(len(sols))
+                    picks.append(k)
+                    allv.append(sols[k](*allv))
+                (lv, el), (rv, er) = _evaluate(f_l, allv), _evaluate(f_r, allv)
             except _POLE_ERRORS:
                 continue
             if not (_finite(lv) and _finite(rv)):
                 continue  # a pole or an undefined value: not a test of the identity
             scale = max(abs(lv), abs(rv), mpmath.mpf(1))
-            res = abs(lv - rv) / scale
+            diff = (lv - rv) / scale
             point = {str(s): _fmt(v) for s, v in zip(args, allv)}
-            pts.append(point)
-            if res > worst[0]:
-                worst = (res, point)
-    if not pts:
+            checks.append(PointCheck(abs(diff), (el + er) / scale, point, allv, picks, diff))
+    if not checks:
         raise ValueError(f"no admissible sample point in {attempts} draws "
                          "(every point hit a pole or an undefined value)")
-    res, point = worst
-    ok = res <= tol
-    digits_agree = float(-mpmath.log10(res)) if res > 0 else float(digits)
-    return bool(ok), float(res), min(digits_agree, float(digits)), point, pts
+    pts = [c.point for c in checks]
+    n_free = len(free)
+
+    def redo(pc: PointCheck) -> None:
+        if recheck and not pc.rechecked:
+            _recheck(pc, f_l, f_r, rel_solvers, fixed, n_free, digits)
+
+    def counterexample(pc: PointCheck) -> bool:
+        return bool(pc.residual > tol and pc.residual > SAFETY * pc.error)
+
+    # counterexamples first: the worst candidate that survives its re-check decides
+    for pc in sorted((c for c in checks if c.residual > tol), key=lambda c: c.residual, reverse=True):
+        redo(pc)
+        if counterexample(pc):
+            return _result("false", pc, pts, checks, digits)
+    undecided = []
+    for pc in checks:
+        if pc.residual <= clear and pc.error <= clear:
+            continue  # agrees to every digit asked for, with trustworthy quadratures
+        redo(pc)
+        if counterexample(pc):
+            return _result("false", pc, pts, checks, digits)
+        if not (pc.residual <= tol and pc.error <= tol):
+            undecided.append(pc)
+    if undecided:
+        worst = max(undecided, key=lambda c: max(c.residual, c.error))
+        return _result("inconclusive", worst, pts, checks, digits)
+    worst = max(checks, key=lambda c: c.residual)
+    return _result("verified", worst, pts, checks, digits)
+
+
+def _trusted_digits(pc: PointCheck, digits: int) -> float:
+    worst = max(pc.residual, pc.error)
+    if not worst:
+        return float(digits)
+    if not mpmath.isfinite(worst):
+        return 0.0
+    return max(0.0, min(float(-mpmath.log10(worst)), float(digits)))
+
+
+def _result(status: str, pc: PointCheck, pts, checks, digits: int) -> ScreenResult:
+    if status == "verified":
+        dig = min(_trusted_digits(c, digits) for c in checks)
+    elif status == "false":
+        # as before: the digits to which the sides agree at the counterexample
+        dig = min(float(-mpmath.log10(pc.residual)), float(digits))
+    else:
+        dig = _trusted_digits(pc, digits)
+    return ScreenResult(status, float(pc.residual), float(pc.error), dig,
+                        None if status == "verified" else pc.point, pts,
+                        rechecked=sum(1 for c in checks if c.rechecked), high_digits=high_precision(digits))

@@ -18,6 +18,11 @@ A false verdict carries the worst ``counterexample`` and its relative
 ``residual``.  ``definite`` marks a falsity that is itself proved (a nonzero
 rational function, a ball excluding 0), not just observed at a sample.
 
+A numeric check that *cannot tell* -- the residual is within the evaluation's
+own estimated ``error``, or the evaluation is not trustworthy to the tolerance --
+is ``inconclusive``: it neither holds nor is a counterexample (``holds`` is
+False, ``verdict`` is ``"inconclusive"``, ``counterexample`` is None).
+
 Like pytest's ``CallInfo``, the record is plain data: deciders build it, the
 claim layer turns verdicts into an :class:`~symbt.claims.Outcome`, and
 reporters only read.
@@ -27,6 +32,9 @@ reporters only read.
 (True, 'sampled', 'verified', 55)
 >>> Verdict.from_proof("exact: together/cancel").verdict
 'proved'
+>>> v = Verdict.sampled(3e-23, tol=1e-22, error=2e-20, method="numeric: 30 digits")
+>>> v.verdict, v.holds
+('inconclusive', False)
 """
 from __future__ import annotations
 
@@ -34,7 +42,7 @@ import math
 from dataclasses import asdict, dataclass, field
 from typing import Any, Literal
 
-__all__ = ["Verdict", "Evidence", "EVIDENCE", "STATUS_COLOURS", "LATEX_COLOURS", "latex_text"]
+__all__ = ["Verdict", "Evidence", "EVIDENCE", "STATUS_COLOURS", "LATEX_COLOURS", "latex_text", "SAFETY"]
 
 Evidence = Literal["proof", "certified", "sampled"]
 EVIDENCE: tuple[str, ...] = ("proof", "certified", "sampled")
@@ -47,9 +55,14 @@ STATUS_COLOURS = {
     "failed": "#c62828",     # red
     "false": "#c62828",
     "skipped": "#757575",    # grey
+    "inconclusive": "#6a1b9a",  # purple: cannot tell at this precision or budget
+    "todo": "#1565c0",       # blue: no check written yet
 }
 LATEX_COLOURS = {"verified": "green", "proved": "green", "erratum": "orange",
-                 "failed": "red", "false": "red", "skipped": "gray"}
+                 "failed": "red", "false": "red", "skipped": "gray",
+                 "inconclusive": "violet", "todo": "blue"}
+#: a residual within this factor of the evaluation's own error estimate cannot be told apart from noise
+SAFETY = 10.0
 _LATEX_ESC = {
     "\\": r"\textbackslash{}", "{": r"\{", "}": r"\}", "#": r"\#", "$": r"\$", "%": r"\%",
     "&": r"\&", "_": r"\_", "^": r"\textasciicircum{}", "~": r"\textasciitilde{}",
@@ -79,10 +92,15 @@ class Verdict:
     note: str = ""
     definite: bool = False
     cells: list[dict[str, Any]] = field(default_factory=list)
+    inconclusive: bool = False
+    error: float | None = None
 
     def __post_init__(self) -> None:
         if self.evidence not in EVIDENCE:
             raise ValueError(f"unknown evidence {self.evidence!r}; expected one of {EVIDENCE}")
+        self.inconclusive = bool(self.inconclusive)
+        if self.inconclusive and (self.holds or self.definite):
+            raise ValueError("an inconclusive verdict neither holds nor is definitely false")
         self.holds = bool(self.holds)
 
     # -- constructors ---------------------------------------------------------
@@ -94,27 +112,45 @@ class Verdict:
     @classmethod
     def sampled(cls, residual: Any, *, tol: Any, method: str = "", counterexample: dict[str, Any] | None = None,
                 dps: float | None = None, points: list[dict[str, str]] | None = None,
-                note: str = "", cells: list[dict[str, Any]] | None = None) -> Verdict:
+                note: str = "", cells: list[dict[str, Any]] | None = None, error: Any = None) -> Verdict:
         """A verdict from the worst relative ``residual`` over finitely many samples.
 
-        Holds iff ``residual <= tol``; ``digits`` is ``-log10(residual)`` (capped at
-        ``dps`` when given); the counterexample is kept only when it fails.
+        Without ``error``: holds iff ``residual <= tol``; ``digits`` is ``-log10(residual)``
+        (capped at ``dps`` when given); the counterexample is kept only when it fails.
+
+        ``error`` is the estimated error of the evaluation (relative, like the residual).
+        Then the statement holds iff ``residual <= tol`` *and* ``error <= tol`` (the
+        evaluation is trustworthy at the tolerance), and ``digits`` counts only the digits
+        that agree and are trustworthy, ``-log10(max(residual, error))``; a residual above
+        ``tol`` is a counterexample only if it exceeds ``SAFETY * error``; anything else is
+        ``inconclusive``.
         """
         r = _as_float(residual)
-        holds = r <= _as_float(tol)
+        err = None if error is None else _as_float(error)
+        t = _as_float(tol)
+        holds = r <= t and (err is None or err <= t)
+        inconclusive = not holds and err is not None and not (r > t and r > SAFETY * err)
+        worst = r if err is None else max(r, err)
         digits: float | None
-        if r > 0:
-            digits = -math.log10(r) if dps is None else min(-math.log10(r), float(dps))
+        if worst > 0 and math.isfinite(worst):
+            digits = -math.log10(worst) if dps is None else min(-math.log10(worst), float(dps))
+        elif worst > 0:
+            digits = 0.0
         else:
             digits = None if dps is None else float(dps)
+        if inconclusive and not note:
+            note = (f"inconclusive: the residual {r:.1e} cannot be told apart from the evaluation's own "
+                    f"error {err:.1e} at tolerance {t:.1e}")
         return cls(holds, "sampled", method, residual=r, digits=None if digits is None else round(digits, 1),
-                   counterexample=None if holds else counterexample, points=list(points or []), note=note,
-                   cells=list(cells or []))
+                   counterexample=None if (holds or inconclusive) else counterexample, points=list(points or []),
+                   note=note, cells=list(cells or []), inconclusive=inconclusive, error=err)
 
     # -- views ----------------------------------------------------------------
     @property
     def verdict(self) -> str:
-        """``"proved"`` (exact proof), ``"verified"`` (holds otherwise) or ``"false"``."""
+        """``"proved"`` (exact proof), ``"verified"`` (holds otherwise), ``"inconclusive"`` or ``"false"``."""
+        if self.inconclusive:
+            return "inconclusive"
         if not self.holds:
             return "false"
         return "proved" if self.evidence == "proof" else "verified"

@@ -55,7 +55,7 @@ def _rows(result) -> list[tuple[str, str]]:
     rows.append(("residual", _e(res)))
     if o.detail:
         detail = o.detail.strip()
-        if o.status == "failed" and "\n" in detail:
+        if o.status in ("failed", "inconclusive") and "\n" in detail:
             rows.append(("detail", f"<pre style='white-space:pre-wrap;margin:0'>{_e(detail)}</pre>"))
         else:
             rows.append(("detail", _e(detail)))
@@ -98,7 +98,7 @@ def scene_html(results: Iterable[Any], *, title: str | None = None) -> str:
     for r in results:
         c, o = r.claim, r.outcome
         stmt = _e(c.statement)
-        if o.status in ("erratum", "failed"):
+        if o.status in ("erratum", "failed", "inconclusive"):
             if o.printed:
                 stmt += f"<br><i>printed:</i> {_e(o.printed)}"
             if o.corrected:
@@ -110,8 +110,9 @@ def scene_html(results: Iterable[Any], *, title: str | None = None) -> str:
                     f"<td>{_e(short_method(o.method))}</td><td>{_e(_residual(o))}</td>"
                     f"<td style='text-align:left'>{stmt}</td></tr>")
     s = summary(results)
+    extra = "".join(f"{s[k]} {k}, " for k in ("inconclusive", "todo") if s[k])
     foot = (f"<p>{s['total']} claims: {s['verified']} verified, {s['erratum']} erratum, "
-            f"{s['failed']} failed, {s['skipped']} skipped</p>")
+            f"{s['failed']} failed, {extra}{s['skipped']} skipped</p>")
     cap = f"<caption>{_e(title)}</caption>" if title else ""
     return (f"<div class='symbt-scene'><table>{cap}<thead>{head}</thead><tbody>{''.join(rows)}"
             f"</tbody></table>{foot}</div>")

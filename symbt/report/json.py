@@ -5,13 +5,18 @@ The document validates against the JSON Schema shipped with the package,
 changes its major number when a field is removed or changes meaning, its minor
 number when a field is added::
 
-    {"schema_version": "1.1", "generator": "symbt 0.1.0",
+    {"schema_version": "1.2", "generator": "symbt 0.1.0",
      "claims": [{"id", "equation", "scene", "N", "statement", "where",
                  "status", "evidence", "method", "seconds", "residual", "digits",
                  "printed", "corrected", "counterexample", "scope", "n_scope", "cells",
                  "detail", "cached"}, ...],
-     "summary": {"total", "verified", "erratum", "failed", "skipped", "seconds", "ok"},
+     "summary": {"total", "verified", "erratum", "failed", "inconclusive", "todo", "skipped",
+                 "seconds", "ok"},
      "coverage": {label: {"claims": [{"id", "status"}, ...]} | {"reason", "see"}}}   # 1.1, optional
+
+Schema 1.2 added the statuses ``inconclusive`` (a check that cannot decide at the
+precision or budget given) and ``todo`` (a claim stub without a check), and their
+counts in ``summary``; ``ok`` is false when any claim is failed, inconclusive or todo.
 
 Non-finite numbers (a residual of ``inf``) are written as the strings ``"inf"``,
 ``"-inf"``, ``"nan"`` (JSON has no such numbers); anything else that is not
@@ -21,7 +26,7 @@ JSON (e.g. a SymPy number in a counterexample) as its ``str``.
 >>> r = ClaimResult(Claim("t", "eq", "s", check=None), Outcome("failed", "numeric", residual=float("inf")))
 >>> doc = to_json([r])
 >>> doc["schema_version"], doc["claims"][0]["residual"], doc["summary"]["ok"]
-('1.1', 'inf', False)
+('1.2', 'inf', False)
 """
 from __future__ import annotations
 
@@ -37,7 +42,7 @@ from .text import summary
 __all__ = ["SCHEMA_VERSION", "SCHEMA_PATH", "schema", "to_json", "dumps", "write_json", "output_refused",
            "emit_document"]
 
-SCHEMA_VERSION = "1.1"
+SCHEMA_VERSION = "1.2"
 SCHEMA_PATH = Path(__file__).with_name("verify.schema.json")
 
 

@@ -13,7 +13,7 @@ import re
 import xml.etree.ElementTree as ET
 
 from .._files import atomic_write
-from .text import evidence_text, outcome_fields, residual_text, summary
+from .text import NOT_OK, evidence_text, outcome_fields, residual_text, summary
 
 __all__ = ["write_junit", "junit_xml", "xml_safe"]
 
@@ -28,13 +28,20 @@ def xml_safe(text) -> str:
 
 
 def junit_xml(results, *, suite: str = "symbt.verify") -> str:
-    """JUnit XML text: one testcase per claim; ``failed`` -> <failure>, ``skipped`` -> <skipped>.
+    """JUnit XML text: one testcase per claim; ``failed``, ``inconclusive`` and ``todo`` ->
+    ``<failure type="failed|inconclusive|todo">``, ``skipped`` -> ``<skipped>``.
 
     Errata are passing test cases (the paper is wrong, the package is right);
     their printed/corrected statements and scope go to ``system-out``.
+
+    >>> from symbt.claims.base import Claim, ClaimResult, Outcome
+    >>> r = ClaimResult(Claim("t", "eq", "s", check=None), Outcome("inconclusive", "numeric", detail="cannot tell"))
+    >>> '<failure message="t (eq. eq) is inconclusive" type="inconclusive">' in junit_xml([r])
+    True
     """
     s = summary(results)
-    ts = ET.Element("testsuite", name=xml_safe(suite), tests=str(s["total"]), failures=str(s["failed"]),
+    failures = sum(s[k] for k in NOT_OK)
+    ts = ET.Element("testsuite", name=xml_safe(suite), tests=str(s["total"]), failures=str(failures),
                     errors="0", skipped=str(s["skipped"]), time=f"{s['seconds']:.3f}")
     for r in results:
         o = r.outcome
@@ -43,8 +50,10 @@ def junit_xml(results, *, suite: str = "symbt.verify") -> str:
         info = [f"equation: {r.claim.equation}", f"status: {o.status}", f"evidence: {evidence_text(o)}",
                 f"method: {o.method}", f"residual: {residual_text(o)}"]
         info += [f"{name}: {value}" for name, value in outcome_fields(o, limit=50)]
-        if o.status == "failed":
-            f = ET.SubElement(tc, "failure", message=xml_safe(f"{r.claim.id} (eq. {r.claim.equation}) failed"))
+        if o.status in NOT_OK:
+            verb = "failed" if o.status == "failed" else f"is {o.status}"
+            f = ET.SubElement(tc, "failure", message=xml_safe(f"{r.claim.id} (eq. {r.claim.equation}) {verb}"),
+                              type=o.status)
             f.text = xml_safe("\n".join(info + [o.detail or ""]))
         elif o.status == "skipped":
             ET.SubElement(tc, "skipped", message=xml_safe(o.detail or "skipped"))

@@ -12,18 +12,33 @@ demo    1 claim: 1 verified
 """
 from __future__ import annotations
 
-__all__ = ["summary", "summary_lines", "format_short", "format_table", "residual_text", "short_method",
-           "result_text", "point_text", "evidence_text"]
+__all__ = ["ORDER", "NOT_OK", "summary", "summary_lines", "format_short", "format_table", "residual_text",
+           "short_method", "result_text", "point_text", "evidence_text"]
+
+
+#: every status, in the order the reports list them
+ORDER = ("verified", "erratum", "failed", "inconclusive", "todo", "skipped")
+#: statuses that make a run fail (as :data:`symbt.claims.base.NOT_OK`; kept here so that
+#: reading a report never imports the claim layer)
+NOT_OK = ("failed", "inconclusive", "todo")
 
 
 def summary(results) -> dict:
-    """Counts by status, ``total``, ``seconds`` (sum of the checks' times) and ``ok`` (no claim failed)."""
-    s: dict = {k: 0 for k in ("verified", "erratum", "failed", "skipped")}
+    """Counts by status, ``total``, ``seconds`` (sum of the checks' times) and ``ok``
+    (no claim failed, is inconclusive or is a todo stub).
+
+    >>> from symbt.claims.base import Claim, ClaimResult, Outcome
+    >>> c = Claim("t", "eq", "s", check=None)
+    >>> s = summary([ClaimResult(c, Outcome("verified", "m")), ClaimResult(c, Outcome("inconclusive", "m"))])
+    >>> s["verified"], s["inconclusive"], s["todo"], s["ok"]
+    (1, 1, 0, False)
+    """
+    s: dict = {k: 0 for k in ORDER}
     for r in results:
         s[r.outcome.status] += 1
     s["total"] = len(results)
     s["seconds"] = round(sum(r.outcome.seconds or 0.0 for r in results), 3)
-    s["ok"] = s["failed"] == 0
+    s["ok"] = all(s[k] == 0 for k in NOT_OK)
     return s
 
 
@@ -36,7 +51,7 @@ def _errata(n: int) -> str:
 
 
 def residual_text(out) -> str:
-    if out.status == "skipped":
+    if out.status in ("skipped", "todo"):
         return "-"
     if (out.method or "").startswith("exact") and not out.residual:
         return "0 (exact)"
@@ -104,8 +119,10 @@ def summary_lines(results, *, wall: float | None = None) -> list[str]:
     """The last lines of every terminal report: the counts, then time and cache use."""
     s = summary(results)
     verdict = "ok" if s["ok"] else "FAILED"
+    # inconclusive and todo are named only when there are some (the common line stays short)
+    extra = "".join(f"{s[k]} {k}, " for k in ("inconclusive", "todo") if s[k])
     lines = [f"{_plural(s['total'], 'claim')}: {s['verified']} verified, {_errata(s['erratum'])}, "
-             f"{s['failed']} failed, {s['skipped']} skipped -- {verdict}"]
+             f"{s['failed']} failed, {extra}{s['skipped']} skipped -- {verdict}"]
     if wall is not None:
         cached = sum(1 for r in results if r.outcome.cached)
         lines.append(f"wall time {wall:.2f}s ({cached} of {s['total']} from the cache; "
@@ -138,8 +155,13 @@ def _claim_line(r, width: int = 0) -> list[str]:
     """One line for a claim that is not plainly verified (failed ones get their evidence below it)."""
     c, o = r.claim, r.outcome
     head = f"{o.status:8s} {c.id.ljust(width)}  eq. {c.equation}"
-    if o.status == "skipped":
+    if o.status in ("skipped", "todo"):
         return [f"{head}: {_first_line(o.detail) or 'no reason given'}"]
+    if o.status == "inconclusive":
+        lines = [f"{head}: INCONCLUSIVE (cannot tell), residual {residual_text(o)} [{evidence_text(o)}]"]
+        if o.detail:
+            lines.append(f"    {_first_line(o.detail, 300)}")
+        return lines
     if o.status == "erratum":
         scope = cell_summary(o) or (o.scope or "").strip()
         what = f"printed fails (residual {residual_text(o)}), corrected holds [{evidence_text(o)}]"
@@ -163,13 +185,14 @@ def format_short(results, *, wall: float | None = None) -> str:
     for name, counts in scenes.items():
         total = sum(counts.values())
         parts = [(_errata(counts[k]) if k == "erratum" else f"{counts[k]} {k}")
-                 for k in ("verified", "erratum", "failed", "skipped") if counts.get(k)]
+                 for k in ORDER if counts.get(k)]
         lines.append(f"{name.ljust(width)}  {_plural(total, 'claim').rjust(9)}: {', '.join(parts)}")
     odd = [r for r in results if r.outcome.status != "verified"]
     if odd:
         lines.append("")
     width = max((len(r.claim.id) for r in odd), default=0)
-    for r in sorted(odd, key=lambda r: ("failed", "erratum", "skipped").index(r.outcome.status)):
+    urgent = ("failed", "inconclusive", "todo", "erratum", "skipped")
+    for r in sorted(odd, key=lambda r: urgent.index(r.outcome.status)):
         lines.extend(_claim_line(r, width))
     lines.append("")
     lines.extend(summary_lines(results, wall=wall))
@@ -196,7 +219,7 @@ def format_table(results, *, wall: float | None = None) -> str:
             continue
         lines.append("")
         lines.append(f"[{o.status}] {r.claim.id} (eq. {r.claim.equation})")
-        if o.status == "skipped":
+        if o.status in ("skipped", "todo"):
             lines.append(f"  reason: {_first_line(o.detail, 300) or 'no reason given'}")
             continue
         lines += field_lines(o, "  ")
@@ -215,6 +238,7 @@ def result_text(result) -> str:
     lines = [f"[{o.status}] {c.id} (eq. {c.equation}): {c.statement}",
              f"    method: {o.method}; residual {residual_text(o)}; evidence {evidence_text(o)}"]
     lines += field_lines(o, "    ")
-    if o.status in ("failed", "skipped") and o.detail:
-        lines.append(f"    {'detail' if o.status == 'failed' else 'reason'}: {_first_line(o.detail, 300)}")
+    if o.status in ("failed", "inconclusive", "skipped", "todo") and o.detail:
+        label = "reason" if o.status in ("skipped", "todo") else "detail"
+        lines.append(f"    {label}: {_first_line(o.detail, 300)}")
     return "\n".join(lines)
