@@ -31,7 +31,8 @@ __all__ = ["main", "build_parser", "UsageError", "EXTRAS"]
 #: top-level module -> the extra that installs it (``pip install "symbt[EXTRA]"``)
 EXTRAS = {"scipy": "scipy", "matplotlib": "plot", "flint": "certified", "numba": "fast", "gmpy2": "gmpy2",
           "heyoka": "peers", "dask": "dask", "distributed": "dask", "jupytext": "notebooks",
-          "nbclient": "notebooks", "ipykernel": "notebooks", "rich": "rich"}
+          "nbclient": "notebooks", "ipykernel": "notebooks", "rich": "rich",
+          "pylatexenc": "latex"}
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 
 
@@ -180,7 +181,8 @@ def _cmd_scenes(args) -> int:
 
 _DELEGATED_HELP = {"codegen": "emit/check generated numeric modules", "bench": "work-precision benchmarks",
                    "figures": "regenerate the paper's figures", "mutate": "mutation testing of the claims' checks",
-                   "coverage": "the paper's labelled displays: claims or reasons"}
+                   "coverage": "the paper's labelled displays: claims or reasons",
+                   "init": "scaffold a claims module from your paper's labels"}
 
 
 def _pop_debug(argv: list[str]) -> bool:
@@ -250,7 +252,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 _DELEGATED = {"codegen": "codegen", "bench": "benchmarks", "figures": "report.figures", "mutate": "engine.mutate",
-              "coverage": "engine.coverage"}
+              "coverage": "engine.coverage", "init": "engine.init"}
 
 
 def main(argv=None) -> int:

@@ -1,104 +1,68 @@
-r"""``symbt coverage``: every labelled display of the paper with its claims, or the reason it has none.
+r"""``symbt coverage``: every labelled display of the project's paper with its claims, or the reason it has none.
 
-The paper's labels are data (:data:`symbt.paper.LABELS`: label, section as printed, kind); the
-reasons for displays without a claim are data too (:data:`symbt.claims.coverage.REASONS`).
-:func:`coverage_map` joins them with the registry: a display is covered by every registered claim
-whose ``equation`` or ``source_equation`` is its label.  What counts as a display: the labels of
-``equation``-like environments and of figures; section labels and theorem environments are
-listed in :data:`~symbt.paper.LABELS` but are not displays (a theorem is stated by its displays).
+The displays are the paper's, the claims and reasons the project's (:mod:`.project`):
 
-With the LaTeX source at hand, :func:`scan_labels` reads every ``\label{}`` with its section and
-kind, and :func:`compare` reports labels the list lacks, labels the paper lacks, and labels whose
-section or kind differ.
+* **your paper** (a ``[tool.symbt]`` table or ``--claims``): the labels are read from the ``.tex``
+  of ``--paper`` or ``[tool.symbt] paper`` with a LaTeX parser (:mod:`.labels`, the ``latex``
+  extra), the reasons are ``[tool.symbt.reasons]`` (label = "why it carries no claim");
+* **Zullo's paper** (no configuration): the labels are data (:data:`symbt.paper.LABELS`: label,
+  section as printed, kind), the reasons too (:data:`symbt.claims.coverage.REASONS`); with the
+  LaTeX source at hand (``--paper``, ``$SYMBT_PAPER`` or ``../shared/paper/backlund-toda.tex``)
+  the list is compared with it: labels the list lacks, labels the paper lacks, labels whose
+  section or kind differ.
+
+A display is covered by every claim of the project whose ``equation`` or ``source_equation`` is
+its label (:func:`coverage_map`).  What counts as a display: a labelled equation (each labelled
+row of an ``align``/``eqnarray``) or figure; section and theorem labels are listed but are not
+displays (a theorem is stated by its displays).
+
+Statuses come from the claim cache.  In your project a claim without a cached outcome is run
+(a ``todo`` stub is never cached, so this is how stubs are recognised; after ``symbt verify``
+only stubs and skipped claims run); ``--no-cache`` neither reads nor runs anything.
 
 Usage::
 
-    symbt coverage [--json FILE|-] [--paper PATH]
+    symbt coverage [--claims MODULE_OR_PATH ...] [--paper PATH] [--json FILE|-] [--no-cache] [-q]
 
-The paper defaults to ``$SYMBT_PAPER``, else ``shared/paper/backlund-toda.tex`` in the parent or
-grandparent of the project root or of the working directory (i.e. ``../shared/paper/...``), when
-it exists.  Exit status 1 if a display has neither claims nor a reason, or the paper and the list
-disagree; 2 on bad arguments or an unreadable paper.
+Exit status 1 on a gap: a display with neither claims nor a reason, a display whose claims are
+all ``todo`` stubs, and in your project a claim or reason whose label the paper lacks ("unknown
+label"; Zullo's claims on unlabelled statements are listed, not gaps) or, for Zullo's, the paper
+and the list disagreeing.  Exit 2 (one line on stderr) on bad arguments, a paper that is not
+configured, cannot be read or does not parse, and a missing ``latex`` extra.
 
->>> from symbt.paper import Label
->>> tex = r"\begin{document}\section{A}\label{s}\begin{equation}\label{e}x\end{equation}\end{document}"
->>> scan_labels(tex)
-[Label(label='s', section='1', kind='section'), Label(label='e', section='1', kind='equation')]
+>>> cmap = coverage_map({"speccurve": "verified"}, use_cache=False)
+>>> cmap["speccurve"], cmap["rec"]["see"][:2]
+({'claims': [{'id': 'speccurve', 'status': 'verified'}]}, ['Hdiscr.n2', 'Hdiscr.n3'])
 """
 from __future__ import annotations
 
 import argparse
 import os
-import re
 import sys
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from ..paper import DISPLAYS, LABELS, Label
+from ..paper import LABELS, SECTIONS, Label
 from ..report.json import emit_document, output_refused
+from .labels import LatexError, scan, scan_file
+from .project import ConfigError, Project, active, discover, load
 
-__all__ = ["coverage_map", "coverage_of", "scan_labels", "compare", "find_paper", "unlabelled_claims", "main"]
+__all__ = ["coverage_map", "coverage_of", "paper_labels", "reasons_of", "scan_labels", "compare", "find_paper",
+           "unlabelled_claims", "unknown_labels", "main"]
 
 PAPER_RELATIVE = Path("shared") / "paper" / "backlund-toda.tex"
-_EQUATION_ENVS = {"equation", "equation*", "eqnarray", "eqnarray*", "align", "align*", "gather", "gather*",
-                  "multline", "multline*", "displaymath"}
-_FIGURE_ENVS = {"figure", "figure*", "table", "table*"}
-_TOKEN = re.compile(
-    r"\\(?:(?P<sec>section|subsection)\*?\s*\{"
-    r"|(?P<app>appendix)(?![A-Za-z])"
-    r"|begin\{(?P<begin>[A-Za-z0-9*]+)\}"
-    r"|end\{(?P<end>[A-Za-z0-9*]+)\}"
-    r"|(?P<be>bea|be)(?![A-Za-z])"
-    r"|(?P<ee>eea|ee)(?![A-Za-z])"
-    r"|label\{(?P<label>[^}]*)\})")
-
-
-def _strip_comments(tex: str) -> str:
-    return re.sub(r"(?<!\\)%[^\n]*", "", tex)
+NO_PAPER = "no paper: give --paper PATH, or paper = \"my.tex\" in [tool.symbt] of pyproject.toml"
 
 
 def scan_labels(tex: str) -> list[Label]:
-    r"""Every ``\label{}`` after ``\begin{document}``: its section as printed (1, 2, 3.1, A, ...) and kind.
+    r"""Every ``\label{}`` of ``tex`` (after ``\begin{document}``) as ``(label, section, kind)``; see :mod:`.labels`.
 
-    Kinds: ``equation`` (inside an equation-like environment, also via ``\be``/``\bea``),
-    ``figure``, ``theorem`` (an environment declared by ``\newtheorem``), else ``section``.
+    >>> tex = r"\begin{document}\section{A}\label{s}\begin{equation}\label{e}x\end{equation}\end{document}"
+    >>> scan_labels(tex)
+    [Label(label='s', section='1', kind='section'), Label(label='e', section='1', kind='equation')]
     """
-    tex = _strip_comments(tex)
-    theorems = set(re.findall(r"\\newtheorem\{([A-Za-z0-9*]+)\}", tex))
-    start = tex.find(r"\begin{document}")
-    body = tex[start + len(r"\begin{document}"):] if start >= 0 else tex
-    sec, sub, appendix = 0, 0, False
-    stack: list[str] = []
-    out: list[Label] = []
-    for m in _TOKEN.finditer(body):
-        if m.group("sec") == "section":
-            sec, sub = sec + 1, 0
-        elif m.group("sec") == "subsection":
-            sub += 1
-        elif m.group("app"):
-            appendix, sec, sub = True, 0, 0
-        elif m.group("begin"):
-            stack.append(m.group("begin"))
-        elif m.group("be"):
-            stack.append("equation" if m.group("be") == "be" else "eqnarray")
-        elif (m.group("end") or m.group("ee")) and stack:
-            stack.pop()
-        elif m.group("label") is not None:
-            number = chr(ord("A") + sec - 1) if appendix else str(sec)
-            section = f"{number}.{sub}" if sub else number
-            kind = "section"
-            for env in reversed(stack):
-                if env in _EQUATION_ENVS:
-                    kind = "equation"
-                elif env in _FIGURE_ENVS:
-                    kind = "figure"
-                elif env in theorems:
-                    kind = "theorem"
-                else:
-                    continue
-                break
-            out.append(Label(m.group("label"), section, kind))
-    return out
+    return [lab.as_label() for lab in scan(tex)]
 
 
 def compare(scanned: list[Label], listed: tuple[Label, ...] = LABELS) -> dict[str, list[str]]:
@@ -112,7 +76,7 @@ def compare(scanned: list[Label], listed: tuple[Label, ...] = LABELS) -> dict[st
 
 
 def find_paper(explicit: str | None = None) -> Path | None:
-    """The paper's LaTeX source: ``explicit``, ``$SYMBT_PAPER``, else ``shared/paper/backlund-toda.tex``
+    """Zullo's LaTeX source: ``explicit``, ``$SYMBT_PAPER``, else ``shared/paper/backlund-toda.tex``
     next to the parent or grandparent of the project root or of the working directory (if it exists)."""
     if explicit:
         return Path(explicit)
@@ -128,6 +92,34 @@ def find_paper(explicit: str | None = None) -> Path | None:
     return None
 
 
+# --------------------------------------------------------------------------- the paper and the reasons of a project
+
+def paper_labels(project: Project) -> list[Label]:
+    """Every label of the project's paper, in its order: Zullo's list, or the labels scanned from your ``.tex``.
+
+    Raises :class:`~.project.ConfigError` when your project configures no paper,
+    :class:`~.labels.LatexError` when it cannot be read or does not parse.
+    """
+    if project.is_package:
+        return list(LABELS)
+    if project.paper is None:
+        raise ConfigError(NO_PAPER)
+    return [lab.as_label() for lab in scan_file(project.paper)]
+
+
+def reasons_of(project: Project) -> dict[str, dict[str, Any]]:
+    """label -> ``{"reason": text, "see": [claim ids]}``: Zullo's ``REASONS``, else ``[tool.symbt.reasons]``."""
+    if project.is_package:
+        from ..claims.coverage import REASONS
+
+        return {k: {"reason": r.text, "see": list(r.see)} for k, r in REASONS.items()}
+    return {k: {"reason": text, "see": []} for k, text in project.reasons.items()}
+
+
+def _covers(c: Any, label: str) -> bool:
+    return label in (c.equation, c.source_equation)
+
+
 def _statuses_from_cache(claims: list) -> dict[str, str]:
     from .cache import load_cached
 
@@ -139,130 +131,210 @@ def _statuses_from_cache(claims: list) -> dict[str, str]:
     return out
 
 
-def coverage_map(statuses: dict[str, str] | None = None, *, use_cache: bool = True) -> dict[str, dict[str, Any]]:
-    """``{label: {"claims": [{"id", "status"}...]} | {"reason": text, "see": [claim ids]}}`` for every display.
+def _statuses_by_running(claims: list, known: dict[str, str]) -> dict[str, str]:
+    """Run the claims without a known status (stubs are never cached); deep claims stay unknown."""
+    from .runner import run
 
-    ``statuses`` (claim id -> status, e.g. from a verify run) fills the statuses; otherwise they
-    are read from the cache (``use_cache``); a claim without a known status has ``status: None``.
-    """
-    from ..claims import REGISTRY, load_all
-    from ..claims.coverage import REASONS
+    todo = [c for c in claims if c.id not in known and not c.deep]
+    return {r.claim.id: r.outcome.status for r in run(todo, use_cache=False, manifest=False)} if todo else {}
 
-    load_all()
-    claims = list(REGISTRY.values())
-    known = dict(statuses) if statuses is not None else (_statuses_from_cache(claims) if use_cache else {})
+
+def _join(displays: Sequence[Label], claims: Sequence[Any], statuses: dict[str, str | None],
+          reasons: dict[str, dict[str, Any]], *, empty_if_unclaimed: bool) -> dict[str, dict[str, Any]]:
     out: dict[str, dict[str, Any]] = {}
-    for lab in DISPLAYS:
-        hits = [{"id": c.id, "status": known.get(c.id)} for c in claims
-                if lab.label in (c.equation, c.source_equation)]
+    for lab in displays:
+        hits = [{"id": c.id, "status": statuses.get(c.id)} for c in claims if _covers(c, lab.label)]
         if hits:
             out[lab.label] = {"claims": hits}
-        elif lab.label in REASONS:
-            r = REASONS[lab.label]
-            out[lab.label] = {"reason": r.text, "see": list(r.see)}
+        elif lab.label in reasons:
+            out[lab.label] = dict(reasons[lab.label])
         else:
-            out[lab.label] = {}
+            out[lab.label] = {"claims": []} if empty_if_unclaimed else {}
     return out
 
 
-def coverage_of(results: list) -> dict[str, dict[str, Any]]:
+def coverage_map(statuses: dict[str, str] | None = None, *, use_cache: bool = True,
+                 project: Project | None = None, run: bool = False) -> dict[str, dict[str, Any]]:
+    """``{label: {"claims": [{"id", "status"}...]} | {"reason": text, "see": [claim ids]} | {}}`` for every display.
+
+    ``project`` defaults to the one found from the working directory.  ``statuses`` (claim id ->
+    status, e.g. from a verify run) fills the statuses; otherwise they are read from the cache
+    (``use_cache``), and with ``run`` the claims the cache lacks are run; a claim without a known
+    status has ``status: None``.  ``{}``: neither claims nor a reason.
+    """
+    project = project or discover()
+    displays = [lab for lab in paper_labels(project) if lab.is_display]
+    claims = load(project)
+    known: dict[str, Any] = dict(statuses) if statuses is not None else (
+        _statuses_from_cache(claims) if use_cache else {})
+    if run and statuses is None and use_cache:
+        known.update(_statuses_by_running(claims, known))
+    return _join(displays, claims, known, reasons_of(project), empty_if_unclaimed=False)
+
+
+def coverage_of(results: list, project: Project | None = None) -> dict[str, dict[str, Any]]:
     """The coverage of a verify run: every display with the claims *of this run* that check it, or its reason.
 
     Reads only the results' claim metadata (no claim module is imported), so it also serves
     the warm path.  A display whose claims were not selected, and that has no reason, maps
-    to ``{"claims": []}``.
+    to ``{"claims": []}``.  ``project`` defaults to the project whose claims were loaded last,
+    else the one found from the working directory; when its paper is not configured, cannot be
+    read or parsed (or the ``latex`` extra is missing) the coverage is empty (``symbt coverage``
+    says why).
     """
-    from ..claims.coverage import REASONS
-
-    out: dict[str, dict[str, Any]] = {}
-    for lab in DISPLAYS:
-        hits = [{"id": r.claim.id, "status": r.outcome.status} for r in results
-                if lab.label in (r.claim.equation, r.claim.source_equation)]
-        if hits or lab.label not in REASONS:
-            out[lab.label] = {"claims": hits}
-        else:
-            out[lab.label] = {"reason": REASONS[lab.label].text, "see": list(REASONS[lab.label].see)}
-    return out
+    project = project or active() or discover()
+    try:
+        displays = [lab for lab in paper_labels(project) if lab.is_display]
+    except (ConfigError, LatexError, ImportError):
+        return {}
+    statuses = {r.claim.id: r.outcome.status for r in results}
+    claims = [r.claim for r in results]
+    return _join(displays, claims, statuses, reasons_of(project), empty_if_unclaimed=True)
 
 
-def unlabelled_claims() -> dict[str, list[str]]:
-    """Claims on statements the paper does not label (``equation`` not among :data:`~symbt.paper.LABELS`)."""
-    from ..claims import REGISTRY, load_all
+def unlabelled_claims(project: Project | None = None) -> dict[str, list[str]]:
+    """The project's claims on labels its paper lacks: ``{label: [claim ids]}``.
 
-    load_all()
-    names = {lab.label for lab in LABELS}
+    For Zullo's paper these are claims on statements the paper prints without a label (the
+    N = 3 Hamiltonians, the toy example); for yours, see :func:`unknown_labels`.
+    """
+    project = project or discover()
+    names = {lab.label for lab in paper_labels(project)}
     out: dict[str, list[str]] = {}
-    for c in REGISTRY.values():
+    for c in load(project):
         if c.equation not in names and (c.source_equation or "") not in names:
             out.setdefault(c.equation, []).append(c.id)
     return out
 
 
-def _format(cmap: dict[str, dict[str, Any]], unlabelled: dict[str, list[str]]) -> str:
+def unknown_labels(project: Project, labels: Sequence[Label]) -> dict[str, Any]:
+    """``{"claims": {label: [claim ids]}, "reasons": [labels]}``: what names a label the paper lacks."""
+    names = {lab.label for lab in labels}
+    claims: dict[str, list[str]] = {}
+    for c in load(project):
+        if c.equation not in names and (c.source_equation or "") not in names:
+            claims.setdefault(c.equation, []).append(c.id)
+    reasons = [k for k in project.reasons if k not in names] if not project.is_package else []
+    return {"claims": claims, "reasons": reasons}
+
+
+# --------------------------------------------------------------------------- the command
+
+def _is_todo(entry: dict[str, Any]) -> bool:
+    return bool(entry.get("claims")) and all(c["status"] == "todo" for c in entry["claims"])
+
+
+def _format(labels: Sequence[Label], cmap: dict[str, dict[str, Any]], *, package: bool,
+            unlabelled: dict[str, list[str]]) -> str:
     lines = []
     section = None
-    for lab in DISPLAYS:
+    for lab in labels:
+        if not lab.is_display:
+            continue
         if lab.section != section:
             section = lab.section
-            from ..paper import SECTIONS
-
-            lines.append(f"Section {section}: {SECTIONS[section][1]}")
+            name = SECTIONS[section][1] if package and section in SECTIONS else ""
+            lines.append(f"Section {section}" + (f": {name}" if name else ""))
         entry = cmap[lab.label]
-        if "claims" in entry:
+        if _is_todo(entry):
+            what = "TODO (stubs only): " + ", ".join(c["id"] for c in entry["claims"])
+        elif entry.get("claims"):
             what = ", ".join(f"{c['id']} ({c['status'] or 'not run'})" for c in entry["claims"])
         elif "reason" in entry:
             what = "no claim: " + entry["reason"]
         else:
             what = "UNCOVERED: neither a claim nor a reason"
         lines.append(f"  {lab.label:16s} {lab.kind:8s} {what}")
-    others = [lab for lab in LABELS if not lab.is_display]
-    lines.append("not displays: " + ", ".join(f"{lab.label} ({lab.kind} {lab.section})" for lab in others))
-    if unlabelled:
+    others = [lab for lab in labels if not lab.is_display]
+    if others:
+        lines.append("not displays: " + ", ".join(f"{lab.label} ({lab.kind} {lab.section})" for lab in others))
+    if unlabelled and package:
         lines.append("claims on unlabelled statements: "
                      + "; ".join(f"{eq}: {', '.join(ids)}" for eq, ids in unlabelled.items()))
-    n_claims = sum(1 for e in cmap.values() if "claims" in e)
+    n_todo = sum(1 for e in cmap.values() if _is_todo(e))
+    n_claims = sum(1 for e in cmap.values() if e.get("claims")) - n_todo
     n_reason = sum(1 for e in cmap.values() if "reason" in e)
-    lines.append(f"{len(cmap)} displays: {n_claims} with claims, {n_reason} with a reason, "
-                 f"{len(cmap) - n_claims - n_reason} uncovered")
+    lines.append(f"{len(cmap)} displays: {n_claims} with claims, {n_reason} with a reason, {n_todo} todo, "
+                 f"{len(cmap) - n_claims - n_reason - n_todo} uncovered")
     return "\n".join(lines)
 
 
+def _compare_with_source(paper: Path, explicit: bool) -> dict[str, list[str]] | None:
+    """Zullo's list against the LaTeX source; ``None`` when pylatexenc is missing and the source was not asked for."""
+    try:
+        return compare([lab.as_label() for lab in scan_file(paper)])
+    except ImportError:
+        if explicit:
+            raise
+        print("symbt coverage: the label list was not compared with the paper "
+              "(needs the optional extra 'latex': pip install 'symbt[latex]')", file=sys.stderr)
+        return None
+
+
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="symbt coverage", description="the paper's labelled displays: claims or reasons")
+    ap = argparse.ArgumentParser(prog="symbt coverage",
+                                 description="the paper's labelled displays: claims, reasons, gaps")
+    ap.add_argument("--claims", action="append", metavar="MODULE_OR_PATH",
+                    help="your claims: a module name or a .py file / package path (repeatable; default: "
+                         "[tool.symbt] claims of pyproject.toml, else Zullo's paper)")
+    ap.add_argument("--paper", metavar="PATH", help="the paper's LaTeX source (default: [tool.symbt] paper; for "
+                                                    "Zullo's: $SYMBT_PAPER or ../shared/paper/backlund-toda.tex)")
     ap.add_argument("--json", metavar="FILE", help="write the coverage as JSON ('-': stdout)")
-    ap.add_argument("--paper", metavar="PATH", help="the paper's LaTeX source (default: $SYMBT_PAPER or "
-                                                    "../shared/paper/backlund-toda.tex if it exists)")
-    ap.add_argument("--no-cache", action="store_true", help="do not read claim statuses from the cache")
+    ap.add_argument("--no-cache", action="store_true", help="neither read claim statuses from the cache nor run "
+                                                            "claims")
     ap.add_argument("-q", "--quiet", action="store_true")
     args = ap.parse_args(argv)
     if output_refused(args.json, "symbt coverage"):
         return 2
-    paper = find_paper(args.paper)
-    diff: dict[str, list[str]] | None = None
-    if paper is not None:
-        try:
-            diff = compare(scan_labels(paper.read_text(encoding="utf-8")))
-        except OSError as exc:
-            print(f"symbt coverage: cannot read {paper}: {exc.strerror or exc}", file=sys.stderr)
-            return 2
-    cmap = coverage_map(use_cache=not args.no_cache)
-    unlabelled = unlabelled_claims()
+    try:
+        project = discover(claims=args.claims or (), paper=args.paper)
+        package = project.is_package
+        labels = paper_labels(project)
+        diff: dict[str, list[str]] | None = None
+        paper = (project.paper or find_paper()) if package else project.paper
+        if package and paper is not None:
+            diff = _compare_with_source(paper, explicit=project.paper is not None)
+        cmap = coverage_map(use_cache=not args.no_cache, project=project, run=not package)
+        unknown = unknown_labels(project, labels)
+    except (ConfigError, LatexError) as exc:
+        print(f"symbt coverage: {exc}", file=sys.stderr)
+        return 2
     uncovered = [k for k, e in cmap.items() if not e]
-    report = {"coverage": cmap, "unlabelled": unlabelled, "uncovered": uncovered,
-              "paper": None if paper is None else {"path": str(paper), **(diff or {})}}
+    todo = [k for k, e in cmap.items() if _is_todo(e)]
+    report: dict[str, Any] = {"coverage": cmap, "uncovered": uncovered, "todo": todo,
+                              "paper": None if paper is None else {"path": str(paper), **(diff or {})}}
+    if package:
+        report["unlabelled"] = unknown["claims"]
+    else:
+        report["unknown"] = unknown
     status = emit_document(report, args.json, command="symbt coverage",
-                           text=None if args.quiet else _format(cmap, unlabelled))
+                           text=None if args.quiet else _format(labels, cmap, package=package,
+                                                                unlabelled=unknown["claims"]))
     if status:
         return status
-    bad = bool(uncovered)
-    if paper is None:
+    bad = bool(uncovered or todo)
+    if package and paper is None:
         print("symbt coverage: paper not found (--paper PATH); the label list was not compared", file=sys.stderr)
     elif diff and any(diff.values()):
         bad = True
+        if len(diff["missing"]) and len(diff["stale"]) == len(LABELS):
+            print("symbt coverage: this .tex shares no label with Zullo's paper; for your own paper give your "
+                  "claims (--claims, or claims = [...] in [tool.symbt])", file=sys.stderr)
         for key, text in (("missing", "labels in the paper the list lacks"), ("stale", "labels the paper lacks"),
                           ("differ", "labels whose section/kind differ")):
             if diff[key]:
                 print(f"symbt coverage: {text}: {', '.join(diff[key])}", file=sys.stderr)
+    if not package:
+        for label, ids in unknown["claims"].items():
+            bad = True
+            print(f"symbt coverage: unknown label {label!r}: claims {', '.join(ids)} (the paper has no such label)",
+                  file=sys.stderr)
+        for label in unknown["reasons"]:
+            bad = True
+            print(f"symbt coverage: unknown label {label!r}: a reason in [tool.symbt] reasons (the paper has no "
+                  "such label)", file=sys.stderr)
+    if todo:
+        print(f"symbt coverage: displays whose claims are all todo stubs: {', '.join(todo)}", file=sys.stderr)
     if uncovered:
         print(f"symbt coverage: displays with neither claims nor a reason: {', '.join(uncovered)}", file=sys.stderr)
     return 1 if bad else 0
