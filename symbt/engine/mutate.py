@@ -54,9 +54,10 @@ P``: the score is below P %); ``2`` usage error (unknown scene or label, a claim
 that does not exist or does not import, a bad option; one line on stderr); ``130``
 interrupted.
 
-Speed: a worker process loads only the project's claims (not Zullo's paper as well), the
-check's own exact proof of a surviving mutant is not re-decided, and claims are dealt to
-the workers as they free up; see BENCHMARKS.md for timings.
+Speed: only the project's claims run (a user's claims used to be reachable only by importing
+them into a run of Zullo's 136 claims as well), a worker process imports only the project's
+claims, a mutant the check itself proved is not decided a second time, and claims are dealt
+to the workers as they free up.
 
 >>> import sympy as sp
 >>> from symbt.claims.base import Parts, claim, from_decision
@@ -615,7 +616,10 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     """``symbt mutate``; returns the exit status (see the module docstring)."""
-    args = build_parser().parse_args(argv)
+    try:
+        args = build_parser().parse_args(argv)
+    except SystemExit as exc:  # --help, or a usage error already said in one line
+        return exc.code if isinstance(exc.code, int) else EXIT_USAGE
     if output_refused(args.json, "symbt mutate"):
         return EXIT_USAGE
     if args.jobs < 1 or (args.limit is not None and args.limit < 1):
