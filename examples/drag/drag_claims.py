@@ -19,7 +19,7 @@ import mpmath as mp
 import sympy as sp
 from symbt import Domain, Parts, claim, decide, from_decision, judge, ode_residual, scene, sign, solves_ode
 
-from drag_model import RATE, V_T, dimensionless, drag_rhs, g, k, model_ode, t, v0
+from drag_model import RATE, V_T, dimensionless, drag_rhs, g, k, model_ode, t, v0, w
 
 scene("rest", "dropped from rest: v(t), x(t), v(x), the time to 99 % of v_T")
 scene("thrown", "thrown with an initial velocity v0: where the printed solution holds")
@@ -44,9 +44,13 @@ def parts_vT() -> Parts:
 
 
 @claim("drag.vT", equation="vT", scene="rest", parts=parts_vT,
-       statement="v_T = sqrt(g/k) is an equilibrium of v' = g - k v^2")
+       statement="v_T = sqrt(g/k) is the stable equilibrium of v' = g - k v^2: f(v_T) = 0, f'(v_T) = -2 sqrt(g k) < 0")
 def drag_vT(parts: Parts):
-    return from_decision(decide(drag_rhs(parts.printed["vT"]), 0), detail="f(v_T) = 0")
+    vT, v = parts.printed["vT"], sp.Symbol("v")
+    slope = sp.diff(drag_rhs(v), v).subs(v, vT)
+    # in g = k w^2 the slope is -2 k w, negative since k, w > 0; -v_T would be an equilibrium too, but unstable
+    return from_decision(decide(dimensionless(sp.Matrix([drag_rhs(vT), slope])), sp.Matrix([0, -2 * k * w])),
+                         detail="f(v_T) = 0 and f'(v_T) = -2 k w (g = k w^2), negative: solutions approach v_T")
 
 
 # --------------------------------------------------------------------------- eq. v
