@@ -52,7 +52,8 @@ _LAZY = {"verify": ".engine", "check_identity": ".proof", "IdentityResult": ".pr
          "decide": ".proof",
          "claim": ".claims.base", "scene": ".claims.base", "Parts": ".claims.base", "Outcome": ".claims.base",
          "judge": ".claims.base", "from_decision": ".claims.base", "failed": ".claims.base",
-         "skipped": ".claims.base", "todo": ".claims.base", "CellTable": ".proof.cells",
+         "skipped": ".claims.base", "inconclusive": ".claims.base", "todo": ".claims.base",
+         "judge_cells": ".claims.base", "CellTable": ".proof.cells",
          "Domain": ".proof", "sign": ".proof", "choice": ".proof", "regime": ".proof", "uniform": ".proof",
          "log_uniform": ".proof", "integers": ".proof", "complex_box": ".proof", "UnfilledCellError": ".proof",
          "solves_ode": ".proof", "ode_residual": ".proof"}

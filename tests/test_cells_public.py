@@ -185,6 +185,7 @@ def test_the_working_precision_is_the_stated_one():
     (lambda: XY.sample(choice("x", (1,))), ValueError),           # a choice shadowing a variable
     (lambda: XY.sample(sign("z")), ValueError),                   # not a variable
     (lambda: XY.sample(per_cell=0), ValueError),
+    (lambda: XY.sample("x"), TypeError),                          # a split is sign/choice/regime, not a name
     (lambda: XY.evaluate(printed=lambda x, w: 0), ValueError),    # asks for a variable the points lack
     (lambda: XY.evaluate(printed=lambda x: (1, 2, 3), per_cell=1), TypeError),
     (lambda: XY.evaluate(printed=lambda x: "zero", per_cell=1), TypeError),

@@ -5,15 +5,21 @@ unsimplified expression that is in fact zero.  The claims of symbt are decided
 here instead, in this order:
 
 1. **Exact reduction.**  Hyperbolic functions are rewritten as exponentials,
-   and every ``exp(a_1 s_1 + ... + a_k s_k)`` with integer ``a_i`` becomes the
-   monomial ``S_1**a_1 ... S_k**a_k`` in fresh *positive* symbols
-   ``S_i = exp(s_i)`` (for the Toda lattice these are ``E_j = e^{q_j}``).  The
+   and every ``exp(a_1 s_1 + ... + a_k s_k)`` with *rational* ``a_i`` -- in any
+   spelling: ``E**u``, ``sqrt(exp(u))`` and ``exp(u)**r`` for real ``u``,
+   products of exponentials -- becomes the monomial
+   ``S_1**(a_1 d_1) ... S_k**(a_k d_k)`` in fresh *positive* symbols
+   ``S_i = exp(s_i/d_i)``, ``d_i`` the common denominator of the coefficients of
+   ``s_i`` (for the Toda lattice ``E_j = e^{q_j}``, or ``e^{q_j/2}`` with
+   half-exponents; :mod:`.exponentials`).  The tree is read node by node, so
+   the result does not depend on how SymPy auto-combined the exponentials.  The
    difference ``lhs - rhs`` is then a rational function; it is brought to one
    fraction with ``together``/``cancel`` and its numerator is reduced modulo the
    user's algebraic relations (e.g. ``eta**2 = mu**2 + w``) by polynomial
    remainder in the constrained symbol.  A zero remainder *proves* the
    identity.  This step is skipped when the difference is not rational after
-   the rewriting (logarithms, ``acosh``, radicals of non-symbols).
+   the rewriting (logarithms, ``acosh``, radicals of non-symbols, exponents
+   that are not rational-linear such as ``exp(q1*q2)`` or ``exp(sqrt(2)*q)``).
 2. **Numeric screen.**  The difference is evaluated with mpmath at ``digits``
    significant digits at ``points`` random points drawn according to the SymPy
    assumptions of each symbol (a ``real`` symbol may be negative, a symbol
@@ -60,7 +66,20 @@ __all__ = ["decide"]
 
 
 def _undefined(expr) -> bool:
-    return bool(expr.has(sp.nan, sp.zoo, sp.oo, -sp.oo))
+    """A side that is ``nan``/``zoo`` somewhere, or infinite outside the limits of an integral.
+
+    (An infinite limit of an ``Integral`` is a value mpmath's quadrature takes; a ``Sum`` to
+    infinity is not something the screen can evaluate, and stays undefined.)
+
+    >>> t = sp.Symbol("t")
+    >>> _undefined(sp.Integral(sp.exp(-t**2), (t, -sp.oo, sp.oo))), _undefined(t + sp.oo)
+    (False, True)
+    """
+    if expr.has(sp.nan, sp.zoo):
+        return True
+    if expr.has(sp.Integral):   # an infinite limit is not an infinite value
+        expr = expr.replace(lambda e: isinstance(e, sp.Integral), lambda e: sp.Dummy())
+    return bool(expr.has(sp.oo, -sp.oo))
 
 
 def decide(lhs, rhs=0, *, relations: Mapping[sp.Symbol, sp.Expr] | None = None,

@@ -325,13 +325,13 @@ class Domain:
         [{'sign(t - 1/2)': 't<1/2', 'b': 1}, {'sign(t - 1/2)': 't<1/2', 'b': -1},
          {'sign(t - 1/2)': 't>1/2', 'b': 1}, {'sign(t - 1/2)': 't>1/2', 'b': -1}]
         """
+        for s in splits:
+            if not isinstance(s, Split):
+                raise TypeError(f"a split is made by sign(...), choice(...) or regime(...), got {s!r}")
         names = [s.name for s in splits]
         clash = sorted({n for n in names if names.count(n) > 1} | (set(names) & set(self.variables)))
         if clash:
             raise ValueError(f"split names must differ from each other and from the variables: {', '.join(clash)}")
-        for s in splits:
-            if not isinstance(s, Split):
-                raise TypeError(f"a split is made by sign(...), choice(...) or regime(...), got {s!r}")
         return [dict(zip(names, values)) for values in itertools.product(*(s.values for s in splits))]
 
     def sample(self, *splits: Split, per_cell: int | None = None, deep: bool = False,

@@ -147,12 +147,16 @@ def tracked_quad(f, *intervals, **kw):
     >>> round(float(tracked_quad(lambda t: t**2, (0, 1))), 12)
     0.333333333333
     """
-    if kw.get("error"):
-        return mpmath.quad(f, *intervals, **kw)
-    value, err = mpmath.quad(f, *intervals, error=True, **kw)
     log = getattr(_QUAD_LOG, "errors", None)
-    if log is not None:
-        log.append((abs(value), abs(err)))
+    if kw.get("error") or log is None or getattr(_QUAD_LOG, "depth", 0):
+        # an inner quadrature of a nested integral: the outer one's estimate covers it
+        return mpmath.quad(f, *intervals, **kw)
+    _QUAD_LOG.depth = 1
+    try:
+        value, err = mpmath.quad(f, *intervals, error=True, **kw)
+    finally:
+        _QUAD_LOG.depth = 0
+    log.append((abs(value), abs(err)))
     return value
 
 
@@ -162,11 +166,12 @@ _MODULES = [_NAMESPACE, "mpmath"]
 
 
 def _quad_error(value, errors) -> Any:
-    """The error a side inherits from its quadratures: absolute, or relative times the value."""
+    """The error a side inherits from its quadratures: the larger of their absolute errors summed
+    (a sum of integrals) and their relative errors summed times the side (a product or quotient)."""
     if not errors:
         return mpmath.mpf(0)
     absolute = mpmath.fsum(e for _, e in errors)
-    relative = mpmath.fsum(e / v for v, e in errors if v) if all(v for v, _ in errors) else mpmath.inf
+    relative = mpmath.fsum(e / v for v, e in errors if v)   # an integral that is 0 counts by its absolute error
     return max(absolute, abs(value) * relative)
 
 
@@ -207,7 +212,11 @@ class ScreenResult:
     relative residual (at the counterexample when false); ``error`` the estimated
     evaluation error there; ``digits`` the digits that agree *and* are trustworthy;
     ``point`` the counterexample (false) or the point that could not be decided
-    (inconclusive); ``rechecked`` how many points were re-evaluated at the higher precision.
+    (inconclusive); ``rechecked`` how many points were re-evaluated at the higher precision
+    (``high_digits``).  ``ok`` is true only when verified.
+
+    >>> ScreenResult("inconclusive", 1e-23, 1e-21, 21.0, {"m": "0.99"}, [{"m": "0.99"}]).ok
+    False
     """
 
     status: str
@@ -225,7 +234,11 @@ class ScreenResult:
 
 
 def high_precision(digits: int) -> int:
-    """The second working precision of the screen: twice the digits asked for, plus guard digits."""
+    """The second working precision of the screen: twice the digits asked for, plus guard digits.
+
+    >>> high_precision(30)
+    70
+    """
     return 2 * digits + 10
 
 
@@ -275,6 +288,14 @@ def screen(lhs, rhs, relations, digits, points, seed, fixed, *, recheck: bool = 
     ``recheck=False`` keeps the first evaluation only (its error is then what the
     quadratures report): for the residual of a statement already known to be
     false, reported for information.
+
+    >>> x = sp.Symbol("x", real=True)
+    >>> r = screen(sp.sin(2 * x), 2 * sp.sin(x) * sp.cos(x), {}, 30, 4, 1, {})
+    >>> r.status, r.digits, r.rechecked
+    ('verified', 30.0, 0)
+    >>> r = screen(sp.sin(x), sp.sin(x) * (1 + sp.Rational(1, 10**15)), {}, 30, 4, 1, {})
+    >>> r.status, r.residual > 1e-16, r.rechecked       # one re-check confirms the counterexample
+    ('false', True, 1)
     """
     syms = set(lhs.free_symbols) | set(rhs.free_symbols)
     for r in relations.values():
