@@ -111,7 +111,8 @@ def drag_t99(parts: Parts):
     v = parts.context["v"]
 
     def reaches(t99):  # v(t_99) = 0.99 v_T, both sides divided by v_T
-        return decide(dimensionless(v.subs(t, t99) / V_T), sp.Rational(99, 100))
+        # tanh of a number (log(199)/2) written with exponentials: exact arithmetic in sqrt(199)
+        return decide(dimensionless(v.subs(t, t99) / V_T).rewrite(sp.exp), sp.Rational(99, 100))
 
     return judge(reaches(parts.printed["t99"]), printed="t_99 = ln(199)/sqrt(g k)",
                  corrected="t_99 = ln(199)/(2 sqrt(g k)), i.e. artanh(0.99)/sqrt(g k)",
