@@ -289,3 +289,12 @@ def test_claims_option_and_verify_json_coverage(tmp_path, monkeypatch, capsys, f
     assert list(cov) == ["eq-energy", "eq-qdot", "eq-newton", "eq-square", "fig-phase"]
     assert cov["eq-square"] == {"claims": [{"id": "square", "status": "verified"}]}
     assert cov["eq-newton"] == {"claims": []} and cov["eq-energy"] == {"reason": "a definition", "see": []}
+
+
+def test_a_users_tex_without_a_project_says_how_to_give_the_claims(tmp_path, monkeypatch, capsys):
+    """No [tool.symbt]: the claims are Zullo's; a .tex of another paper is flagged, with what to do."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "note.tex").write_text(NOTE)
+    assert coverage.main(["--paper", "note.tex", "--no-cache", "-q"]) == 1
+    err = capsys.readouterr().err
+    assert "shares no label with Zullo's paper" in err and "--claims" in err

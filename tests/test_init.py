@@ -142,3 +142,14 @@ def test_round_trip(tmp_path, monkeypatch, capsys, fresh):  # noqa: F811
     data = json.loads(capsys.readouterr().out)
     assert data["coverage"]["eq-square"] == {"claims": [{"id": "eq-square", "status": "verified"}]}
     assert data["todo"] == [label for label in DISPLAYS if label != "eq-square"]
+
+
+@pytest.mark.parametrize("argv", [["init"], ["init", "--paper"], ["coverage", "--bogus"]])
+def test_usage_errors_are_one_line(argv, capsys):
+    from symbt.cli import main
+
+    with pytest.raises(SystemExit) as exc:
+        main(argv)
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"symbt {argv[0]}: ")

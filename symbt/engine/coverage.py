@@ -48,11 +48,19 @@ from ..report.json import emit_document, output_refused
 from .labels import LatexError, scan, scan_file
 from .project import ConfigError, Project, active, discover, load
 
-__all__ = ["coverage_map", "coverage_of", "paper_labels", "reasons_of", "scan_labels", "compare", "find_paper",
-           "unlabelled_claims", "unknown_labels", "main"]
+__all__ = ["OneLineParser", "coverage_map", "coverage_of", "paper_labels", "reasons_of", "scan_labels", "compare",
+           "find_paper", "unlabelled_claims", "unknown_labels", "main"]
 
 PAPER_RELATIVE = Path("shared") / "paper" / "backlund-toda.tex"
 NO_PAPER = "no paper: give --paper PATH, or paper = \"my.tex\" in [tool.symbt] of pyproject.toml"
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """An argument parser whose usage errors are one line on stderr (exit 2), as every symbt command's."""
+
+    def error(self, message: str):
+        print(f"{self.prog}: {message} (see '{self.prog} --help')", file=sys.stderr)
+        raise SystemExit(2)
 
 
 def scan_labels(tex: str) -> list[Label]:
@@ -272,7 +280,7 @@ def _compare_with_source(paper: Path, explicit: bool) -> dict[str, list[str]] | 
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="symbt coverage",
+    ap = OneLineParser(prog="symbt coverage",
                                  description="the paper's labelled displays: claims, reasons, gaps")
     ap.add_argument("--claims", action="append", metavar="MODULE_OR_PATH",
                     help="your claims: a module name or a .py file / package path (repeatable; default: "
@@ -294,7 +302,16 @@ def main(argv: list[str] | None = None) -> int:
         paper = (project.paper or find_paper()) if package else project.paper
         if package and paper is not None:
             diff = _compare_with_source(paper, explicit=project.paper is not None)
-        cmap = coverage_map(use_cache=not args.no_cache, project=project, run=not package)
+        statuses = None
+        if not package and not args.no_cache:  # stubs are never cached: run what the cache lacks
+            claims = load(project)
+            statuses = _statuses_from_cache(claims)
+            missing = [c for c in claims if c.id not in statuses and not c.deep]
+            if missing and not args.quiet:
+                print(f"symbt coverage: running {len(missing)} claim(s) without a cached outcome "
+                      "(todo stubs are never cached)", file=sys.stderr)
+            statuses.update(_statuses_by_running(claims, statuses))
+        cmap = coverage_map(statuses, use_cache=not args.no_cache, project=project)
         unknown = unknown_labels(project, labels)
     except (ConfigError, LatexError) as exc:
         print(f"symbt coverage: {exc}", file=sys.stderr)

@@ -39,7 +39,6 @@ def check_eq_H():
 """
 from __future__ import annotations
 
-import argparse
 import json
 import os
 import sys
@@ -47,11 +46,15 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from .._files import atomic_write
+from .coverage import OneLineParser
 from .labels import LatexError, TexLabel, scan_file
 from .project import ConfigError, _toml, read_config
 
 __all__ = ["claim_ids", "stubs", "claims_module", "config_lines", "main"]
 
+# written below the table: where the reasons for displays without a claim go
+_REASONS_HINT = ("\n# [tool.symbt.reasons]            # displays that are no checkable statement, and why\n"
+                 "# eq-energy = \"a definition\"\n")
 _ID_CHARS = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789.-_:")
 
 
@@ -107,9 +110,9 @@ def claims_module(labels: Sequence[TexLabel], *, paper: Path, scene: str) -> str
     """The text of a claims module for ``labels`` of ``paper``: a docstring, the public import, the stubs."""
     n = sum(lab.is_display for lab in labels)
     head = (f'"""Claims of {paper.name}: one stub per labelled display ({n}), written by `symbt init`.\n\n'
-            "Replace each `return todo()` by a check that could fail, e.g. with `judge(decide(lhs, rhs),\n"
-            "printed=...)` (see docs/your-paper.md); `symbt verify` runs them, `symbt coverage` lists what is\n"
-            'still a stub.\n"""\n'
+            "Replace each `return todo()` by a check that could fail, e.g. with\n"
+            "`from_decision(decide(lhs, rhs))` (see symbt's docs/coverage.md); `symbt verify` runs them,\n"
+            '`symbt coverage` lists what is still a stub.\n"""\n'
             "from symbt import claim, todo\n\n\n")
     return head + stubs(labels, scene=scene) + "\n"
 
@@ -149,7 +152,7 @@ def _toml_parses(text: str) -> bool:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="symbt init",
+    ap = OneLineParser(prog="symbt init",
                                  description="scaffold a claims module with one todo stub per labelled display "
                                              "of your paper, and a [tool.symbt] table in pyproject.toml")
     ap.add_argument("--paper", metavar="PATH", required=True, help="your paper's LaTeX source")
@@ -187,7 +190,7 @@ def main(argv: list[str] | None = None) -> int:
             return 2
     new_pyproject = None
     if not has_table:
-        candidate = (existing.rstrip("\n") + "\n\n" if existing.strip() else "") + table + "\n"
+        candidate = (existing.rstrip("\n") + "\n\n" if existing.strip() else "") + table + "\n" + _REASONS_HINT
         if _toml_parses(candidate):
             new_pyproject = candidate
     try:

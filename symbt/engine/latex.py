@@ -36,16 +36,17 @@ FIGURE_ENVIRONMENTS = frozenset({"figure", "figure*", "table", "table*", "wrapfi
 #: macros that reference labels (their argument may list several, comma-separated)
 REFERENCE_MACROS = frozenset({"ref", "eqref", "pageref", "autoref", "cref", "Cref", "vref", "nameref"})
 
-# abbreviations understood without a definition in the file (see the module docstring)
+# abbreviations understood without a definition in the file (often defined in a style file; see :mod:`.labels`)
 _DEFAULT_MACROS = {"be": ("open", "equation"), "ee": ("close", "equation"),
                    "bea": ("open", "eqnarray"), "eea": ("close", "eqnarray")}
+#: macros that define macros (the first four with TeX's ``\def`` syntax)
 DEFINERS = ("def", "gdef", "edef", "xdef", "newcommand", "renewcommand", "providecommand", "DeclareRobustCommand")
+#: macros that define environments
 ENV_DEFINERS = ("newenvironment", "renewenvironment", "provideenvironment")
 
 
 class LatexError(ValueError):
     """A LaTeX source that cannot be read or does not parse (the message is one line, with the position)."""
-
 
 
 # --------------------------------------------------------------------------- pylatexenc context
