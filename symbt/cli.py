@@ -55,6 +55,16 @@ def _positive_int(text: str) -> int:
     return n
 
 
+def _positive_seconds(text: str) -> float:
+    try:
+        t = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a positive number of seconds, got {text!r}") from None
+    if not 0 < t < float("inf"):
+        raise argparse.ArgumentTypeError(f"expected a positive number of seconds, got {text}")
+    return t
+
+
 def _extra_for(exc: ImportError) -> str | None:
     name = (getattr(exc, "name", None) or "").split(".")[0]
     return EXTRAS.get(name)
@@ -133,8 +143,10 @@ def _cmd_verify(args) -> int:
             raise UsageError(f"symbt verify: {exc.args[0]}") from None
         bar = Progress(len(claims), enabled=not args.quiet)
         try:
+            seconds = args.budget if args.budget is not None else project.budget
+            budget = {} if seconds is None else {"budget": seconds}
             results = engine.run(claims, use_cache=not args.no_cache, jobs=jobs, progress=bar, dask=args.dask,
-                                 deep=args.deep)
+                                 deep=args.deep, **budget)
         finally:
             bar.close()
     if not results:
@@ -237,6 +249,8 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--no-cache", action="store_true", help="recompute every claim")
     v.add_argument("-j", "--jobs", type=_positive_int, default=None, metavar="N",
                    help="worker processes (default: min(2, cores)); with --dask: local workers")
+    v.add_argument("--budget", type=_positive_seconds, default=None, metavar="SECONDS",
+                   help="time limit of each check (default 300); past it: inconclusive (timed out)")
     v.add_argument("--dask", nargs="?", const="", default=None, metavar="ADDRESS",
                    help="run uncached claims on a Dask cluster (a local one without ADDRESS); needs symbt[dask]")
     v.add_argument("-q", "--quiet", action="store_true", help="no report on the terminal, no progress")

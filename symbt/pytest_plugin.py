@@ -18,10 +18,12 @@ Which claims: ``--symbt-claims MODULE_OR_PATH`` (repeatable; your claims module,
 found from the working directory, else Zullo's paper -- the same rule as ``symbt verify``
 (:mod:`symbt.engine.project`).  Options: ``--symbt-scene NAME`` (repeatable; a scene, claim
 id or ``nK``), ``--symbt-label LABEL`` (repeatable; a paper label's claims), ``--symbt-deep``
-(add the minutes-long claims), ``--symbt-no-cache``; each of them implies ``--symbt``.
-Items are named ``symbt/<scene>::<claim id>`` and match
-``-k`` on the claim id, the scene and the equation label, and ``-m symbt``; ``-x``,
-``--junitxml`` and pytest-xdist's ``-n`` work as for any test.
+(add the minutes-long claims), ``--symbt-no-cache``, ``--symbt-budget SECONDS`` (each
+check's time limit, default ``[tool.symbt] budget`` or 300: past it the item fails as
+``inconclusive (timed out ...)``); each of them implies ``--symbt``.  Claims run in
+worker processes kept for the session.  Items are named ``symbt/<scene>::<claim id>``
+and match ``-k`` on the claim id, the scene and the equation label, and ``-m symbt``;
+``-x``, ``--junitxml`` and pytest-xdist's ``-n`` work as for any test.
 
 Without these options the plugin does nothing but offer the ``symbt_identity``
 fixture (:func:`symbt.testing.assert_identity`, imported on first use): this
@@ -50,11 +52,17 @@ def pytest_addoption(parser: pytest.Parser) -> None:
                 help="include the minutes-long deep claims (implies --symbt)")
     g.addoption("--symbt-no-cache", action="store_true", default=False,
                 help="recompute every claim (implies --symbt)")
+    g.addoption("--symbt-budget", type=float, default=None, metavar="SECONDS",
+                help="time limit of each claim's check (default 300; implies --symbt)")
 
 
 def pytest_configure(config: pytest.Config) -> None:
     opt = config.getoption
-    if any(opt(o) for o in ("symbt", "symbt_claims", "symbt_scene", "symbt_label", "symbt_deep", "symbt_no_cache")):
+    budget = opt("symbt_budget")
+    if budget is not None and not 0 < budget < float("inf"):
+        raise pytest.UsageError(f"--symbt-budget: expected a positive number of seconds, got {budget}")
+    if any(opt(o) for o in ("symbt", "symbt_claims", "symbt_scene", "symbt_label", "symbt_deep",
+                            "symbt_no_cache")) or budget is not None:
         config.addinivalue_line("markers", "symbt: a claim of symbt (added by pytest --symbt)")
         config.pluginmanager.register(_SymbtSession(config), "symbt-session")
 
@@ -108,8 +116,14 @@ class ClaimItem(pytest.Item):
             from symbt.claims import REGISTRY
             from symbt.engine.runner import run
 
+            budget = self.config.getoption("symbt_budget")
+            session = self.config.pluginmanager.get_plugin("symbt-session")
+            if session is not None:
+                session.keep_workers()
+                if budget is None and session.project is not None:
+                    budget = session.project.budget  # [tool.symbt] budget
             out = run([REGISTRY[self.claim.id]], use_cache=self._use_cache, manifest=False,
-                      deep=self._deep)[0].outcome
+                      deep=self._deep, **({} if budget is None else {"budget": budget}))[0].outcome
         props = [("symbt_status", out.status), ("symbt_evidence", out.evidence or "-"),
                  ("symbt_method", out.method), ("symbt_residual", repr(out.residual)),
                  ("symbt_cached", str(bool(out.cached)).lower())]
@@ -137,6 +151,15 @@ class _SymbtSession:
     def __init__(self, config: pytest.Config):
         self.config = config
         self.errata: list[dict[str, str]] = []
+        self.project: Any = None    # the project whose claims were collected (symbt.engine.project)
+        self._workers: Any = None   # the claims' worker processes, kept from item to item (and their memos)
+
+    def keep_workers(self) -> None:
+        if self._workers is None:
+            from symbt.engine.runner import keep_workers
+
+            self._workers = keep_workers()
+            self._workers.__enter__()
 
     @pytest.hookimpl(tryfirst=True)  # before -k / -m deselect
     def pytest_collection_modifyitems(self, session: pytest.Session, config: pytest.Config,
@@ -150,7 +173,7 @@ class _SymbtSession:
         deep = config.getoption("symbt_deep")
         use_cache = not config.getoption("symbt_no_cache")
         try:
-            project = discover(claims=config.getoption("symbt_claims") or ())
+            project = self.project = discover(claims=config.getoption("symbt_claims") or ())
             warm = cached_results(names, deep=deep, project=project, labels=labels) if use_cache else None
             pairs: list[tuple[Any, Any]]
             if warm is not None:
@@ -175,6 +198,9 @@ class _SymbtSession:
             self.errata.append({"nodeid": report.nodeid, **{k: str(v) for k, v in props.items()}})
 
     def pytest_sessionfinish(self, session: pytest.Session) -> None:
+        if self._workers is not None:
+            self._workers.__exit__(None, None, None)
+            self._workers = None
         try:
             from symbt.engine.runner import refresh_manifest
 

@@ -97,8 +97,9 @@ def test_scene_selection_and_pseudo_scenes():
 
 
 def test_n2_scene_builds_no_n3_model():
+    # budget=None runs the claims in this process (not in a worker), where the memo can be read
     code = ("import sys; from symbt import engine; import symbt.symbolic.toda as t;"
-            "engine.run(engine.select(['tn2', 'th1th2.trace', 'lax.n2']), jobs=1, use_cache=False);"
+            "engine.run(engine.select(['tn2', 'th1th2.trace', 'lax.n2']), jobs=1, use_cache=False, budget=None);"
             "print(t.toda_model.cache_info().currsize);"
             "print('scipy' in sys.modules, 'matplotlib' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split("\n")

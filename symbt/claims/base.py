@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import functools
 import inspect
+import sys
 import time
 import traceback
 from collections.abc import Callable
@@ -154,6 +155,8 @@ class Claim:
     parts: Callable[[], Parts] | None = field(default=None, compare=False, repr=False)
     run_parts: Callable[[Parts], Outcome] | None = field(default=None, compare=False, repr=False)
     deep_check: Callable[[], Outcome] | None = field(default=None, compare=False, repr=False)
+    #: the module that declared the claim (its claims source owns it; see :mod:`symbt.engine.project`)
+    module: str = field(default="", compare=False, repr=False)
 
     def result(self) -> ClaimResult:
         """Run and wrap with the claim (renders richly in Jupyter, see :mod:`symbt.report.html`)."""
@@ -266,6 +269,7 @@ def claim(id: str, *, equation: str, statement: str, scene: str, N: int | None =
     """
     if sizes is not None and N is not None:
         raise ValueError("give either N (one claim) or sizes (one claim per size)")
+    declared_in = sys._getframe(1).f_globals.get("__name__", "")  # the claims module, whatever the check's origin
 
     def make(cid: str, n: int | None, fn: Callable[..., Outcome]) -> Claim:
         sub = (lambda t: _for_size(t, n)) if (sizes is not None and n is not None) else (lambda t: t)
@@ -282,7 +286,7 @@ def claim(id: str, *, equation: str, statement: str, scene: str, N: int | None =
         c = Claim(id=cid, equation=sub(equation), statement=sub(statement), check=check, scene=scene, N=n,
                   where=sub(where), deep=deep, requires=tuple(requires),
                   source_equation=None if source_equation is None else sub(source_equation), func=fn,
-                  parts=builder, run_parts=run_parts, deep_check=deep_check)
+                  parts=builder, run_parts=run_parts, deep_check=deep_check, module=declared_in)
         if register:
             if cid in REGISTRY:
                 raise ValueError(f"duplicate claim id {cid}")

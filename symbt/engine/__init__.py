@@ -11,9 +11,14 @@
   id, the source of its module and of the layers below it, and the versions of
   Python and the libraries (:mod:`.cache`).  A corrupt, stale or wrongly shaped
   entry is recomputed; ``use_cache=False`` forces recomputation.
-* Independent claims run in a process pool (``jobs`` workers) or on a Dask
-  cluster (:mod:`.distributed`); every outcome is cached as it arrives, so an
-  interrupted run keeps what finished (:mod:`.runner`).
+* Independent claims run in worker processes (``jobs`` of them, one for
+  ``jobs=1``; :mod:`.workers`) or on a Dask cluster (:mod:`.distributed`); every
+  outcome is cached as it arrives, so an interrupted run keeps what finished
+  (:mod:`.runner`).  Each check has a time *budget* (``DEFAULT_BUDGET`` = 300 s,
+  deep variants too): past it the check is stopped and reported ``inconclusive
+  (timed out after 300 s)``, uncached, and the run goes on; a worker that dies
+  under a check gives a ``failed`` outcome naming the cause.  Workers die with
+  the process that started them, even when it is killed with SIGKILL.
 * When every selected claim is cached and no source file changed, the results
   are read without importing the claim modules, SymPy, NumPy or mpmath (:mod:`.warm`).
 """
@@ -32,7 +37,8 @@ from .select import choose, default_scenes, select  # cheap (claim metadata only
 
 # the rest loads on first use: the warm path (symbt verify with everything cached) imports only .warm
 _LAZY = {
-    "run": ".runner", "Interrupted": ".runner", "refresh_manifest": ".runner",
+    "run": ".runner", "Interrupted": ".runner", "refresh_manifest": ".runner", "keep_workers": ".runner",
+    "DEFAULT_BUDGET": ".task",
     "cache_dir": ".cache", "cache_file": ".cache", "claim_key": ".cache",
     "Project": ".project", "ConfigError": ".project", "discover": ".project", "load": ".project",
     "cached_results": ".warm", "Walkthrough": ".walkthrough", "ClaimResult": "..claims.base",
@@ -44,9 +50,10 @@ __all__ = ["verify", "select", "choose", "default_scenes", *_LAZY]
 __getattr__, __dir__ = lazy_attributes(__name__, _LAZY, __all__)
 
 
+# budget's default is task.DEFAULT_BUDGET, written out: importing .task here would load the claims' base early
 def verify(scenes: Sequence[str] | None = None, *, deep: bool = False, use_cache: bool = True,
            jobs: int = 1, progress: Progress | None = None, dask: str | bool | None = None,
-           claims: Sequence[str] = (), labels: Sequence[str] = ()) -> list[ClaimResult]:
+           claims: Sequence[str] = (), labels: Sequence[str] = (), budget: float | None = 300.0) -> list[ClaimResult]:
     """Select and run claims; the Python entry point behind ``symbt verify``.
 
     ``scenes`` are scene names, lattice sizes (``"n2"``) or claim ids (``None``:
@@ -58,7 +65,9 @@ def verify(scenes: Sequence[str] | None = None, *, deep: bool = False, use_cache
     Zullo's paper) and ``labels`` keeps the claims of those paper labels.  Returns one
     :class:`ClaimResult` per claim, in the paper's order.  Unknown names raise
     ``KeyError``; ``jobs`` below 1 raises ``ValueError``; a claims source that does not
-    import, :class:`~symbt.engine.project.ConfigError`.
+    import, :class:`~symbt.engine.project.ConfigError`.  ``budget`` is the seconds each check may
+    take (``None``: no limit), past which it is ``inconclusive (timed out)``; a budget
+    that is not a positive number raises ``ValueError``.
 
     >>> import symbt
     >>> [r.status for r in symbt.verify(["tn2"], use_cache=False)]
@@ -66,8 +75,10 @@ def verify(scenes: Sequence[str] | None = None, *, deep: bool = False, use_cache
     """
     from .project import discover
     from .runner import run
+    from .task import check_budget
     from .warm import cached_results
 
+    check_budget(budget)
     if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
         raise ValueError(f"jobs must be a positive integer, not {jobs!r}")
     project = discover(claims=claims)
@@ -76,4 +87,4 @@ def verify(scenes: Sequence[str] | None = None, *, deep: bool = False, use_cache
         if warm is not None:
             return warm
     return run(select(scenes, include_deep=deep, project=project, labels=labels), use_cache=use_cache, jobs=jobs,
-               progress=progress, dask=dask, deep=deep)
+               progress=progress, dask=dask, deep=deep, budget=budget)

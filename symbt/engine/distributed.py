@@ -8,6 +8,12 @@ a :class:`distributed.LocalCluster` of ``workers`` single-threaded processes is
 started (and stopped afterwards); with one, the scheduler at that address is used
 -- its workers need the same version of symbt installed.
 
+The time budget is best-effort here: symbt does not own a remote cluster's
+processes, so a check past its budget is reported ``inconclusive (timed out)``
+at once, but it goes on running in a thread of its Dask worker until it ends
+(or the worker is restarted).  A local cluster is closed after the run, which
+ends such checks.
+
 Worth it for the minutes-long ``--deep`` claims, exact claims at N = 5 and more,
 and parameter sweeps: anything whose tasks take seconds, so that the cluster's
 start-up (about a second) and per-task overhead (milliseconds) do not matter.
@@ -24,9 +30,10 @@ __all__ = ["run_on_dask"]
 
 
 def run_on_dask(todo: Sequence[Claim], done: Callable[[Claim, Outcome], None], *, address: str | None = None,
-                workers: int = 2, deep: bool = False) -> None:
+                workers: int = 2, deep: bool = False, budget: float | None = None) -> None:
     """Run ``todo`` on Dask and call ``done(claim, outcome)`` as each finishes.
 
+    ``budget`` bounds each check's seconds (best-effort, see above).
     Raises ``ModuleNotFoundError`` (name ``distributed``) when Dask is not installed.
     """
     from distributed import Client, LocalCluster, as_completed
@@ -39,7 +46,7 @@ def run_on_dask(todo: Sequence[Claim], done: Callable[[Claim, Outcome], None], *
     try:
         tag = uuid.uuid4().hex[:8]
         ordered = sorted(todo, key=lambda c: -(c.N or 0))
-        futs = {client.submit(run_claim, c.id, deep, key=f"symbt-{c.id}-{tag}", pure=False): c for c in ordered}
+        futs = {client.submit(run_claim, c.id, deep, budget, key=f"symbt-{c.id}-{tag}", pure=False): c for c in ordered}
         for f in as_completed(list(futs)):
             c = futs[f]
             try:

@@ -263,7 +263,9 @@ def _import(spec: str) -> str:
 
 
 def claim_module(c: Any) -> str:
-    """The module a claim's check is defined in."""
+    """The module that declared a claim (else the module its check is defined in)."""
+    if getattr(c, "module", ""):
+        return str(c.module)
     fn = c.func or getattr(c.check, "func", c.check)
     return getattr(fn, "__module__", None) or ""
 

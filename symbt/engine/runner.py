@@ -1,21 +1,30 @@
-"""Running claims: cached outcomes are reused, the rest run serially, in a process pool or on Dask.
+"""Running claims: cached outcomes are reused, the rest run in worker processes (or on Dask), each within a budget.
+
+Uncached claims run in :class:`~.workers.Workers`, persistent processes forked
+from the caller (one for ``jobs=1``), longest first.  A check past its *budget*
+(:data:`DEFAULT_BUDGET` seconds per claim, the same for deep variants) is
+stopped and reported ``inconclusive`` with method ``"timed out"``; a check whose
+worker dies is ``failed`` with method ``"worker died"``; neither is cached, and
+the run goes on.  Workers die with the process that started them.
+``budget=None`` sets no limit (``jobs=1`` then runs in this process).
 
 Every outcome is cached the moment it arrives, so an interrupted run (Ctrl-C)
-keeps what finished: the pool's pending work is cancelled, its workers are
-terminated, and :class:`Interrupted` (a ``KeyboardInterrupt``) says how far it got.
+keeps what finished: the workers are killed and :class:`Interrupted` (a
+``KeyboardInterrupt``) says how far it got.
 """
 from __future__ import annotations
 
-import signal
+import contextlib
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 
-from ..claims.base import Claim, ClaimResult, Outcome, failed
+from ..claims.base import Claim, ClaimResult, Outcome
 from .cache import load_cached, store
-from .task import run_claim
+from .task import DEFAULT_BUDGET, check_budget, lasting
+from .workers import Workers
 
-__all__ = ["run", "Interrupted", "refresh_manifest"]
+__all__ = ["run", "Interrupted", "refresh_manifest", "keep_workers", "DEFAULT_BUDGET"]
 
 Progress = Callable[[Claim, Outcome], None]
 
@@ -28,42 +37,54 @@ class Interrupted(KeyboardInterrupt):
         self.finished, self.total = finished, total
 
 
-def _ignore_sigint() -> None:
-    """Pool workers leave Ctrl-C to the parent, which cancels and terminates them."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
+#: workers kept from one run to the next inside :func:`keep_workers` (``None`` outside it)
+_kept: list[Workers] | None = None
 
 
-def _stop(pool) -> None:
-    procs = list((getattr(pool, "_processes", None) or {}).values())
-    pool.shutdown(wait=False, cancel_futures=True)
-    for p in procs:
-        if p.is_alive():
-            p.terminate()
-    for p in procs:
-        p.join(timeout=1.0)
+@contextlib.contextmanager
+def keep_workers() -> Iterator[None]:
+    """Within the block, successive :func:`run` calls reuse their worker processes (and their memoised derivations).
 
+    For callers that run claims one at a time (the pytest plugin: one call per
+    test item).  Workers are forked anew when a call brings claims they were not
+    forked with, or another ``jobs``; they are killed when the block ends.
+    Outside the block every run forks its own workers, so a run sees the
+    caller's state as it is when the run starts.
 
-def _run_pool(todo: Sequence[Claim], jobs: int, done: Progress, deep: bool = False) -> None:
-    import multiprocessing as mp_
-    from concurrent.futures import ProcessPoolExecutor, as_completed
-
-    ctx = mp_.get_context("fork") if sys.platform != "win32" else None
-    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=ctx, initializer=_ignore_sigint)
+    >>> from symbt.claims import REGISTRY, load_all
+    >>> _ = load_all()
+    >>> with keep_workers():
+    ...     [run([REGISTRY[i]], use_cache=False)[0].status for i in ("tn2", "tra.n2")]
+    ['verified', 'verified']
+    """
+    global _kept
+    outer, _kept = _kept, []
     try:
-        # longest-first keeps every worker busy; N=3 derivations dominate
-        ordered = sorted(todo, key=lambda c: -(c.N or 0))
-        futs = {pool.submit(run_claim, c.id, deep): c for c in ordered}
-        for f in as_completed(futs):
-            c = futs[f]
-            try:
-                out = Outcome.from_dict(f.result())
-            except Exception as exc:  # the worker died (BrokenProcessPool) or the outcome did not pickle
-                out = failed("exception", detail=f"worker: {type(exc).__name__}: {exc}")
-            done(c, out)
-    except BaseException:
-        _stop(pool)
-        raise
-    pool.shutdown(wait=True)
+        yield
+    finally:
+        for w in _kept:
+            w.close()
+        _kept = outer
+
+
+def _workers_for(todo: Sequence[Claim], jobs: int) -> tuple[Workers, bool]:
+    """Workers for ``todo`` and whether the caller owns them (closes them after the run)."""
+    from ..claims import REGISTRY
+
+    size = max(1, min(jobs, len(todo)))
+    if _kept is not None:
+        for w in _kept:
+            if w.size == size and w.serves(todo):
+                return w, False
+        for w in _kept:
+            w.close()
+        _kept.clear()
+    known = {**REGISTRY, **{c.id: c for c in todo}}
+    w = Workers(known, size=size)
+    if _kept is not None:
+        _kept.append(w)
+        return w, False
+    return w, True
 
 
 def refresh_manifest() -> None:
@@ -85,10 +106,11 @@ def refresh_manifest() -> None:
 
 
 def run(claims: Sequence[Claim], *, use_cache: bool = True, jobs: int = 1, progress: Progress | None = None,
-        dask: str | bool | None = None, manifest: bool = True, deep: bool = False) -> list[ClaimResult]:
+        dask: str | bool | None = None, manifest: bool = True, deep: bool = False,
+        budget: float | None = DEFAULT_BUDGET) -> list[ClaimResult]:
     """Run ``claims`` (cached results reused unless ``use_cache=False``); results in the given order.
 
-    ``jobs > 1`` runs the uncached claims in that many worker processes;
+    The uncached claims run in ``jobs`` worker processes (one for ``jobs=1``);
     ``dask`` runs them on a Dask cluster instead (``True`` or ``""``: a local
     cluster of ``jobs`` worker processes; a string: a scheduler address), see
     :mod:`.distributed`.  ``progress(claim, outcome)`` is called as each outcome
@@ -97,8 +119,11 @@ def run(claims: Sequence[Claim], *, use_cache: bool = True, jobs: int = 1, progr
     ``manifest=False`` leaves the warm path's manifest alone (callers running
     claims one by one refresh it once, with :func:`refresh_manifest`).  ``deep``
     runs each claim's deep variant (more samples per domain cell) where it has
-    one; its outcomes are cached apart from the default ones.
+    one; its outcomes are cached apart from the default ones.  ``budget`` is the
+    time limit of each check in seconds (``None``: none); on Dask it is
+    best-effort (:mod:`.distributed`).  A bad ``budget`` raises ``ValueError``.
     """
+    check_budget(budget)
     results: dict[str, Outcome] = {}
     todo = []
     for c in claims:
@@ -112,7 +137,8 @@ def run(claims: Sequence[Claim], *, use_cache: bool = True, jobs: int = 1, progr
 
     def done(c: Claim, out: Outcome) -> None:
         results[c.id] = out
-        store(c, out, deep)
+        if lasting(out):   # a timeout or a dead worker says something about this run only
+            store(c, out, deep)
         if progress:
             progress(c, out)
 
@@ -121,9 +147,16 @@ def run(claims: Sequence[Claim], *, use_cache: bool = True, jobs: int = 1, progr
             from .distributed import run_on_dask
 
             run_on_dask(todo, done, address=dask if isinstance(dask, str) and dask else None, workers=jobs,
-                        deep=deep)
-        elif jobs > 1 and len(todo) > 1:
-            _run_pool(todo, jobs, done, deep)
+                        deep=deep, budget=budget)
+        elif todo and (budget is not None or (jobs > 1 and len(todo) > 1)):
+            workers, owned = _workers_for(todo, jobs)
+            # longest first keeps every worker busy; N=3 derivations dominate
+            ordered = sorted(todo, key=lambda c: -(c.N or 0))
+            try:
+                workers.run(ordered, done=done, deep=deep, budget=budget)
+            finally:
+                if owned:
+                    workers.close()
         else:
             for c in todo:
                 done(c, c.run(deep=deep))
