@@ -100,7 +100,7 @@ __all__ = ["ClaimMutations", "MutantTimeout", "mutate_claim", "planned_mutants",
 #: a mutant's check may run this many times as long as the claim's own check ...
 TIMEOUT_FACTOR = 20.0
 #: ... and at least this many seconds, before it is stopped and counted killed by timeout
-TIMEOUT_FLOOR = 5.0
+TIMEOUT_FLOOR = 10.0
 
 EXIT_USAGE = 2
 
