@@ -209,9 +209,12 @@ def _candidates(c: Claim, parts: Any, side: str, limit: int | None, seed: int,
 
     cands: Candidates = []
     for name, value in sorted(getattr(parts, side).items()):
-        ms = mutants(value)
+        try:
+            ms, why = mutants(value), ""
+        except Exception as exc:  # an object the operators cannot rebuild: say so, go on with the others
+            ms, why = [], f"mutating it raised {type(exc).__name__}: {exc}"
         if not ms and rec is not None:
-            rec.no_mutant_parts.append({"part": f"{side}.{name}", "why": why_no_mutants(value)})
+            rec.no_mutant_parts.append({"part": f"{side}.{name}", "why": why or why_no_mutants(value)})
         cands += [(name, m) for m in ms]
     if limit is not None and len(cands) > limit:
         import random
@@ -226,7 +229,10 @@ def planned_mutants(c: Claim, *, limit: int | None = None) -> int:
     the corrected parts when it declares any, else the printed ones)."""
     if c.parts is None or c.run_parts is None:
         return 0
-    parts = c.parts()
+    try:
+        parts = c.parts()
+    except Exception:  # reported when the claim runs; nothing to count here
+        return 0
     side = "corrected" if parts.corrected else "printed"
     return len(_candidates(c, parts, side, limit, 0))
 
@@ -263,7 +269,12 @@ def mutate_claim(c: Claim, *, limit: int | None = None, seed: int = 0, deadline:
     else:
         side = "printed" if base.status == "verified" else "corrected"
         rec.side = side
-        parts = c.parts()
+        try:
+            parts = c.parts()
+        except Exception as exc:  # the user's parts builder is broken: this claim cannot be mutated
+            rec.note = f"not mutated: building its parts raised {type(exc).__name__}: {exc}"
+            rec.seconds = round(time.perf_counter() - t0, 3)
+            return rec
         cands = _candidates(c, parts, side, limit, seed, rec)
         rec.planned = len(cands)
         if not cands:
