@@ -429,8 +429,9 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--scene", action="append", metavar="NAME", help="scene / claim id / nK (repeatable)")
     ap.add_argument("--label", action="append", metavar="LABEL", help="every claim of this label (repeatable)")
     ap.add_argument("--limit", type=int, default=None, metavar="K", help="at most K mutants per claim (seeded)")
-    ap.add_argument("--seed", type=int, default=0)
-    ap.add_argument("-j", "--jobs", type=int, default=min(2, os.cpu_count() or 1))
+    ap.add_argument("--seed", type=int, default=0, help="seed of the --limit subset (default: 0)")
+    ap.add_argument("-j", "--jobs", type=int, default=min(2, os.cpu_count() or 1), metavar="N",
+                    help="worker processes (default: min(2, cores))")
     ap.add_argument("--budget", type=_seconds, default=None, metavar="SECONDS",
                     help="wall-clock budget of the whole run: no mutant starts after it; the report says what did "
                          "not run")
