@@ -84,23 +84,25 @@ from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from contextlib import contextmanager
 from dataclasses import asdict, dataclass, field
-from typing import Any, TextIO
+from typing import Any
 
 from ..claims import REGISTRY
 from ..claims.base import Claim
 from ..report.json import emit_document, output_refused
+from ..report.mutation import EXIT_OK, EXIT_SURVIVORS, MutateProgress, exit_status, format_text, summary
 from .project import ConfigError, Project, discover, load
 from .select import select
 
-__all__ = ["ClaimMutations", "MutantTimeout", "mutate_claim", "run", "summary", "format_text", "main",
-           "TIMEOUT_FACTOR", "TIMEOUT_FLOOR", "EXIT_OK", "EXIT_SURVIVORS", "EXIT_USAGE"]
+__all__ = ["ClaimMutations", "MutantTimeout", "mutate_claim", "planned_mutants", "run", "summary", "format_text",
+           "exit_status", "MutateProgress", "main", "TIMEOUT_FACTOR", "TIMEOUT_FLOOR", "EXIT_OK", "EXIT_SURVIVORS",
+           "EXIT_USAGE"]
 
 #: a mutant's check may run this many times as long as the claim's own check ...
 TIMEOUT_FACTOR = 20.0
 #: ... and at least this many seconds, before it is stopped and counted killed by timeout
-TIMEOUT_FLOOR = 5.0
+TIMEOUT_FLOOR = 10.0
 
-EXIT_OK, EXIT_SURVIVORS, EXIT_USAGE = 0, 1, 2
+EXIT_USAGE = 2
 
 NO_PARTS = ("declares no statement parts: give @claim a parts= function returning Parts(printed={...}) "
             "and let the check read them (its last argument)")
@@ -207,9 +209,12 @@ def _candidates(c: Claim, parts: Any, side: str, limit: int | None, seed: int,
 
     cands: Candidates = []
     for name, value in sorted(getattr(parts, side).items()):
-        ms = mutants(value)
+        try:
+            ms, why = mutants(value), ""
+        except Exception as exc:  # an object the operators cannot rebuild: say so, go on with the others
+            ms, why = [], f"mutating it raised {type(exc).__name__}: {exc}"
         if not ms and rec is not None:
-            rec.no_mutant_parts.append({"part": f"{side}.{name}", "why": why_no_mutants(value)})
+            rec.no_mutant_parts.append({"part": f"{side}.{name}", "why": why or why_no_mutants(value)})
         cands += [(name, m) for m in ms]
     if limit is not None and len(cands) > limit:
         import random
@@ -224,7 +229,10 @@ def planned_mutants(c: Claim, *, limit: int | None = None) -> int:
     the corrected parts when it declares any, else the printed ones)."""
     if c.parts is None or c.run_parts is None:
         return 0
-    parts = c.parts()
+    try:
+        parts = c.parts()
+    except Exception:  # reported when the claim runs; nothing to count here
+        return 0
     side = "corrected" if parts.corrected else "printed"
     return len(_candidates(c, parts, side, limit, 0))
 
@@ -261,7 +269,12 @@ def mutate_claim(c: Claim, *, limit: int | None = None, seed: int = 0, deadline:
     else:
         side = "printed" if base.status == "verified" else "corrected"
         rec.side = side
-        parts = c.parts()
+        try:
+            parts = c.parts()
+        except Exception as exc:  # the user's parts builder is broken: this claim cannot be mutated
+            rec.note = f"not mutated: building its parts raised {type(exc).__name__}: {exc}"
+            rec.seconds = round(time.perf_counter() - t0, 3)
+            return rec
         cands = _candidates(c, parts, side, limit, seed, rec)
         rec.planned = len(cands)
         if not cands:
@@ -388,189 +401,6 @@ def run(claims: list[Claim], *, limit: int | None = None, seed: int = 0, jobs: i
     return [r for r in records if r is not None]
 
 
-# --------------------------------------------------------------------------- summary and report
-
-def summary(records: list[dict[str, Any]]) -> dict[str, Any]:
-    """Totals over the records: the score is killed / non-equivalent mutants that ran.
-
-    Claims without mutants (``no_mutants``) are counted apart, not in the score;
-    ``not_run`` counts the mutants the budget left out (of ``planned``).
-    """
-    m = sum(r["mutants"] for r in records)
-    k = sum(r["killed"] for r in records)
-    e = sum(r["equivalent_count"] for r in records)
-    s = sum(len(r["survivors"]) for r in records)
-    zero = [r["id"] for r in records if r["killed"] == 0 and r["mutants"] > 0]
-    not_run = sum(r.get("not_run", 0) for r in records)
-    return {"claims": len(records), "mutants": m, "killed": k, "equivalent": e, "survivors": s,
-            "score": (k / (m - e)) if m > e else None, "claims_killing_none": zero,
-            "timeouts": sum(len(r.get("timeouts", ())) for r in records),
-            "no_mutants": [r["id"] for r in records if r.get("no_mutants")],
-            "planned": sum(r.get("planned", 0) for r in records), "not_run": not_run,
-            "budget_reached": not_run > 0 or any(not r.get("started", True) for r in records),
-            "not_started": [r["id"] for r in records if not r.get("started", True)],
-            "cut_short": [r["id"] for r in records if r.get("started", True) and r.get("not_run", 0)]}
-
-
-def format_text(records: list[dict[str, Any]]) -> str:
-    """The report: a line per claim (survivors, timeouts and parts without mutants below it), then totals."""
-    lines = []
-    for r in records:
-        if not r.get("started", True) or r["status"] == "not run":
-            lines.append(f"  {r['id']:32s} not run   {r['note']} ({r.get('planned', 0)} mutants)")
-            continue
-        if r["mutants"] == 0:
-            flag = "NO MUTANTS: " if r.get("no_mutants") else "no mutants ("
-            lines.append(f"  {r['id']:32s} {r['status']:9s} {flag}{r['note']}{'' if r.get('no_mutants') else ')'}")
-        else:
-            extra = f", {len(r['timeouts'])} by timeout" if r.get("timeouts") else ""
-            cut = f"; {r['note']}" if r.get("not_run") else ""
-            lines.append(f"  {r['id']:32s} {r['status']:9s} {r['mutants']:3d} mutants: {r['killed']:3d} killed{extra}, "
-                         f"{r['equivalent_count']:2d} equivalent, {len(r['survivors']):2d} survivors "
-                         f"({r['seconds']:.1f}s{cut})")
-        for s in r["survivors"]:
-            lines.append(f"      survivor: {s['part']}: {s['mutation']}")
-        for t in r.get("timeouts", ()):
-            lines.append(f"      killed by timeout (> {t['limit']:g}s): {t['part']}: {t['mutation']}")
-        for p in r.get("no_mutant_parts", ()):
-            lines.append(f"      part '{p['part']}' gives no mutants: {p['why']}")
-    s = summary(records)
-    score = "-" if s["score"] is None else f"{100 * s['score']:.1f}%"
-    killed = f"{s['killed']} killed" + (f" ({s['timeouts']} by timeout)" if s["timeouts"] else "")
-    line = (f"{s['claims']} claims, {s['mutants']} mutants: {killed}, {s['equivalent']} equivalent, "
-            f"{s['survivors']} survivors; mutation score {score} (killed / non-equivalent)")
-    if s["no_mutants"]:
-        line += f"; {len(s['no_mutants'])} claims gave no mutants, not in the score"
-    lines += ["", line]
-    if s["no_mutants"]:
-        lines.append("claims without mutants (see above what to declare): " + ", ".join(s["no_mutants"]))
-    if s["claims_killing_none"]:
-        lines.append("claims that kill no mutant: " + ", ".join(s["claims_killing_none"]))
-    if s["budget_reached"]:
-        bits = [f"budget reached after {s['mutants']} of {s['planned']} mutants"]
-        if s["cut_short"]:
-            bits.append("cut short: " + ", ".join(s["cut_short"]))
-        if s["not_started"]:
-            bits.append(f"not started ({len(s['not_started'])}): " + ", ".join(s["not_started"]))
-        lines.append("; ".join(bits))
-    return "\n".join(lines)
-
-
-def exit_status(s: dict[str, Any], fail_under: float | None = None) -> int:
-    """``0`` unless a mutant that ran survived (or, with ``fail_under``, the score in % is below it).
-
-    >>> exit_status({"survivors": 0, "score": 1.0}), exit_status({"survivors": 1, "score": 0.99})
-    (0, 1)
-    >>> exit_status({"survivors": 1, "score": 0.99}, fail_under=95)
-    0
-    """
-    if fail_under is not None:
-        return EXIT_SURVIVORS if s["score"] is not None and 100 * s["score"] < fail_under else EXIT_OK
-    return EXIT_SURVIVORS if s["survivors"] else EXIT_OK
-
-
-# --------------------------------------------------------------------------- progress
-
-def _duration(seconds: float) -> str:
-    if seconds < 60:
-        return f"{seconds:.1f}s"
-    return f"{int(seconds // 60)}m{int(seconds % 60):02d}s"
-
-
-class MutateProgress:
-    """Progress of a mutation run on ``stream`` (stderr): see the module docstring.
-
-    >>> import io
-    >>> buf = io.StringIO()
-    >>> p = MutateProgress(["a", "b"], stream=buf, clock=iter([0.0, 2.0, 2.0, 4.0]).__next__)
-    >>> p.event("start", "a", 4)
-    >>> for i in (1, 2, 3, 4): p.event("mutant", "a", i)
-    >>> p.claim_done({"id": "a", "mutants": 4, "killed": 4, "planned": 4, "seconds": 2.0})
-    >>> print(buf.getvalue().strip())
-    [1/2] a: 4/4 mutants, 4 killed (2.0s) | 4/~8 mutants, 2.0s elapsed, ~2.0s left
-    """
-
-    def __init__(self, ids: Sequence[str], *, stream: TextIO | None = None, enabled: bool = True,
-                 budget: float | None = None, clock: Callable[[], float] = time.perf_counter):
-        self.stream = stream if stream is not None else sys.stderr
-        self.enabled = enabled
-        self.tty = enabled and bool(getattr(self.stream, "isatty", lambda: False)())
-        self.clock = clock
-        self.t0 = clock()
-        self.n_claims, self.finished = len(ids), 0
-        self.planned: dict[str, int] = {}
-        self.done: dict[str, int] = {}
-        self.budget = budget
-        self._drawn = 0.0
-        self._width = 0
-
-    def _estimate(self) -> tuple[int, bool]:
-        """Mutants in all: the planned ones of started claims plus their mean per claim for the others."""
-        known = sum(self.planned.values())
-        rest = self.n_claims - len(self.planned)
-        if rest <= 0 or not self.planned:
-            return known, rest > 0
-        return known + round(rest * known / len(self.planned)), True
-
-    def status(self) -> str:
-        elapsed = self.clock() - self.t0
-        done = sum(self.done.values())
-        total, approx = self._estimate()
-        text = f"{done}/{'~' if approx else ''}{total} mutants, {_duration(elapsed)} elapsed"
-        if done and elapsed > 0 and total > done:
-            left = (total - done) * elapsed / done
-            if self.budget is not None:
-                left = min(left, max(self.budget - elapsed, 0.0))
-            text += f", ~{_duration(left)} left"
-        elif total <= done and self.finished < self.n_claims:
-            text += ", estimating"
-        return text
-
-    def event(self, kind: str, cid: str, n: int) -> None:
-        if kind == "start":
-            self.planned[cid] = n
-        elif kind == "mutant":
-            self.done[cid] = max(n, self.done.get(cid, 0))
-        if self.tty and self.enabled and self.clock() - self._drawn > 0.1:
-            self._draw(f"mutate [{self.finished}/{self.n_claims} claims] {self.status()}  {cid}")
-
-    def _draw(self, line: str) -> None:
-        line = line[:118]
-        self.stream.write("\r" + line.ljust(self._width))
-        self.stream.flush()
-        self._width = len(line)
-        self._drawn = self.clock()
-
-    def _clear(self) -> None:
-        if self._width:
-            self.stream.write("\r" + " " * self._width + "\r")
-            self._width = 0
-
-    def claim_done(self, rec: dict[str, Any]) -> None:
-        self.finished += 1
-        self.planned[rec["id"]] = rec.get("planned", rec["mutants"])
-        self.done[rec["id"]] = rec["mutants"]
-        if not self.enabled:
-            return
-        w = len(str(self.n_claims))
-        if not rec.get("started", True):
-            what = f"not started: the budget was reached ({rec.get('planned', 0)} mutants)"
-        elif rec.get("no_mutants") or (rec["mutants"] == 0 and rec.get("note")):
-            what = f"no mutants: {rec.get('note', '')}"
-        else:
-            what = (f"{rec['mutants']}/{rec.get('planned', rec['mutants'])} mutants, {rec['killed']} killed "
-                    f"({rec.get('seconds', 0.0):.1f}s)")
-        if self.tty:
-            self._clear()
-        self.stream.write(f"[{self.finished:>{w}}/{self.n_claims}] {rec['id']}: {what} | {self.status()}\n")
-        self.stream.flush()
-
-    def close(self) -> None:
-        if self.tty:
-            self._clear()
-            self.stream.flush()
-
-
 # --------------------------------------------------------------------------- command line
 
 class _Parser(argparse.ArgumentParser):
@@ -599,8 +429,9 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--scene", action="append", metavar="NAME", help="scene / claim id / nK (repeatable)")
     ap.add_argument("--label", action="append", metavar="LABEL", help="every claim of this label (repeatable)")
     ap.add_argument("--limit", type=int, default=None, metavar="K", help="at most K mutants per claim (seeded)")
-    ap.add_argument("--seed", type=int, default=0)
-    ap.add_argument("-j", "--jobs", type=int, default=min(2, os.cpu_count() or 1))
+    ap.add_argument("--seed", type=int, default=0, help="seed of the --limit subset (default: 0)")
+    ap.add_argument("-j", "--jobs", type=int, default=min(2, os.cpu_count() or 1), metavar="N",
+                    help="worker processes (default: min(2, cores))")
     ap.add_argument("--budget", type=_seconds, default=None, metavar="SECONDS",
                     help="wall-clock budget of the whole run: no mutant starts after it; the report says what did "
                          "not run")
