@@ -100,12 +100,12 @@ def _write_output(flag: str, path: str, text: str) -> None:
         raise UsageError(f"symbt verify: cannot write {flag} {path}: {exc.strerror or exc}") from exc
 
 
-def _render(flag: str, results) -> str:
+def _render(flag: str, results, project=None) -> str:
     if flag == "--json":
         from .engine.coverage import coverage_of
         from .report.json import dumps
 
-        return dumps(results, coverage=coverage_of(results))
+        return dumps(results, coverage=coverage_of(results, project))
     if flag == "--junit":
         from .report.junit import junit_xml
 
@@ -157,7 +157,7 @@ def _cmd_verify(args) -> int:
 
     code = EXIT_OK if summary(results)["ok"] else EXIT_FAILED
     for flag, path in reports.items():
-        _write_output(flag, path, _render(flag, results))
+        _write_output(flag, path, _render(flag, results, project))
     if not args.quiet:
         text = (format_table if args.verbose else format_short)(results, wall=wall)
         try:
