@@ -27,6 +27,12 @@ Operators:
 ['flip_sign', 'flip_sign', 'drop_term', 'drop_term', 'change_const', 'perturb']
 >>> mutants(x + 2*y)[0].expr
 -x + 2*y
+
+A part no operator applies to gives no mutant, so the check is not tested through it;
+:func:`why_no_mutants` says why and what to declare instead:
+
+>>> why_no_mutants(sp.S(0))
+'it is 0: declare both sides of the statement as parts (e.g. lhs and rhs) and let the check compare them'
 """
 from __future__ import annotations
 
@@ -38,7 +44,7 @@ from typing import Any, NamedTuple
 
 import sympy as sp
 
-__all__ = ["Mutation", "Mutant", "OPERATORS", "mutants", "mutate_value", "index_parts"]
+__all__ = ["Mutation", "Mutant", "OPERATORS", "mutants", "mutate_value", "index_parts", "why_no_mutants"]
 
 PERTURBATION = sp.Rational(1, 10**6)
 
@@ -213,13 +219,19 @@ def _parent_is_pow_exp(expr: sp.Basic, path: tuple[int, ...]) -> bool:
 
 
 def mutate_value(value: Any) -> list[Mutant]:
-    """Mutants of a plain value: a branch sign is negated, a number negated and perturbed, a recorded
-    string (e.g. a hash) changed in its last character."""
+    """Mutants of a plain value: a branch sign is negated, a nonzero number negated and perturbed, a
+    recorded string (e.g. a hash) changed in its last character.
+
+    >>> [m.expr for m in mutate_value(2.0)], mutate_value(0)
+    ([-2.0, 2.000002], [])
+    """
     if isinstance(value, bool):
         return [Mutant("convention", f"negate {value}", not value)]
     if isinstance(value, int) and value in (1, -1):
         return [Mutant("convention", f"swap the branch {value:+d} -> {-value:+d}", -value)]
     if isinstance(value, (int, float)) or type(value).__name__ in ("mpf", "Float"):
+        if value == 0:  # -0 and 0 * (1 + 1e-6) are 0 again: no mutant (see why_no_mutants)
+            return []
         return [Mutant("flip_sign", f"negate {value}", -value),
                 Mutant("perturb", f"perturb {value} by a relative 1e-6", value * (1 + 1e-6))]
     if isinstance(value, str) and value:
@@ -255,3 +267,49 @@ def mutants(value: Any, operators: Operators = OPERATORS, *, limit: int | None =
         rng = random.Random(seed)
         out = sorted(rng.sample(out, limit), key=out.index)
     return out
+
+
+_SIDES = "declare both sides of the statement as parts (e.g. lhs and rhs) and let the check compare them"
+
+
+def why_no_mutants(value: Any) -> str:
+    """Why ``value`` (a statement part) gives no mutant, and what to declare instead.
+
+    A part no operator applies to leaves the check untested: a zero right-hand side, a bare
+    symbol, a matrix of bare symbols, a product of functions with no sum or numeric constant
+    in it, or a value of a type the operators do not know.
+
+    >>> import sympy as sp
+    >>> a, b = sp.symbols("a11 a12")
+    >>> why_no_mutants(sp.Matrix([[a, b]]))
+    "a matrix of bare symbols and zeros: declare the entries' expressions (the matrix the statement is about)"
+    >>> why_no_mutants(a)
+    'it is the bare symbol a11: declare the expression it stands for'
+    """
+    if isinstance(value, sp.MatrixBase):
+        entries = [sp.sympify(e) for e in value]
+        if all(e == 0 for e in entries):
+            return "it is a zero matrix: " + _SIDES
+        if all(isinstance(e, sp.Symbol) or e.is_number for e in entries):
+            return ("a matrix of bare symbols and zeros: declare the entries' expressions "
+                    "(the matrix the statement is about)")
+        return ("no operator applies to any entry (no sum, no numeric constant, no sign, Abs or sqrt): "
+                "declare the entries' expressions with their terms, or " + _SIDES)
+    if isinstance(value, sp.Basic):
+        if value == 0:
+            return "it is 0: " + _SIDES
+        if isinstance(value, sp.Symbol):
+            return f"it is the bare symbol {value}: declare the expression it stands for"
+        return (f"no operator applies to {_short(value)} (no sum, no numeric constant other than 0, no sign, "
+                "Abs or sqrt): declare the expression with its terms, or " + _SIDES)
+    if isinstance(value, (bool, int, float, str, tuple)) or type(value).__name__ in ("mpf", "Float"):
+        if value == 0 or value in ("", ()):
+            return f"it is {value!r}: " + _SIDES
+        return f"no operator applies to {value!r}: " + _SIDES
+    return (f"a {type(value).__name__} is not mutated: parts must be SymPy expressions or matrices, numbers, "
+            "strings or tuples of them")
+
+
+def _short(expr: Any, limit: int = 60) -> str:
+    text = sp.sstr(expr)
+    return text if len(text) <= limit else text[:limit - 3] + "..."
