@@ -187,3 +187,11 @@ def test_random_laurent_products_equal_their_expansion_on_both_routes(ts1, ts2, 
         assert exact_zero(lhs - rhs, {}, route)[0] is True, (lhs, rhs, route)
         zero, _m, definite = exact_zero(lhs - perturbed, {}, route)
         assert zero is False and definite, (lhs, perturbed, route)
+
+
+def test_hyperbolic_functions_of_constants_are_still_rewritten():
+    """With no rational-linear exponent at all, tanh/cosh of a constant still become exponentials (a proof)."""
+    assert decide(sp.tanh(sp.log(199) / 2), sp.Rational(99, 100)).exact
+    assert decide(sp.cosh(sp.log(3)), sp.Rational(5, 3)).exact
+    wrong = decide(sp.tanh(sp.log(199) / 2), sp.Rational(98, 100))
+    assert not wrong.holds and wrong.evidence == "proof"

@@ -168,7 +168,8 @@ def exponentials_as_monomials(*exprs) -> tuple[tuple[sp.Expr, ...], dict[sp.Expr
         for s, c in (form or {}).items():
             denominators[s] = lcm(denominators.get(s, 1), int(c.q))
     if not denominators:
-        return exprs, {}
+        walk.second_pass({})   # still rewrite hyperbolic functions (of constants, say) as exponentials
+        return tuple(walk(e) for e in exprs), {}
     directions = sorted(denominators, key=sp.default_sort_key)
     # Dummies: a user symbol that happens to be called ``exp_q`` must not collide
     variables = {s: (sp.Dummy(f"exp_{s.name if s.is_Symbol else s}", positive=True), denominators[s])
