@@ -10,7 +10,7 @@ import importlib
 
 from .base import REGISTRY, SCENES, Claim, Outcome, claim, scene
 
-__all__ = ["REGISTRY", "SCENES", "Claim", "Outcome", "claim", "scene", "load_all", "CLAIM_MODULES"]
+__all__ = ["REGISTRY", "SCENES", "Claim", "Outcome", "claim", "scene", "load_all", "import_listed", "CLAIM_MODULES"]
 
 # order = order of the report (follows the paper)
 CLAIM_MODULES = (
@@ -36,12 +36,17 @@ CLAIM_MODULES = (
 )
 
 
+def import_listed(package: str, names: tuple[str, ...]) -> None:
+    """Import ``package.name`` for every name (a claims package's ``CLAIM_MODULES``); a missing one is skipped."""
+    for name in names:
+        try:
+            importlib.import_module(f"{package}.{name}")
+        except ModuleNotFoundError as exc:
+            if exc.name != f"{package}.{name}":
+                raise
+
+
 def load_all() -> dict[str, Claim]:
     """Import every claim module (missing optional modules are ignored)."""
-    for name in CLAIM_MODULES:
-        try:
-            importlib.import_module(f"{__name__}.{name}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"{__name__}.{name}":
-                raise
+    import_listed(__name__, CLAIM_MODULES)
     return REGISTRY

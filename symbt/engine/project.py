@@ -253,12 +253,9 @@ def _import(spec: str) -> str:
         raise ConfigError(f"claims module {spec!r} does not import: {type(exc).__name__}: {exc}") from None
     except Exception as exc:  # the user's module raised: say so in one line
         raise ConfigError(f"claims module {spec!r} does not import: {type(exc).__name__}: {exc}") from None
-    for sub in getattr(mod, "CLAIM_MODULES", ()):
-        try:
-            importlib.import_module(f"{name}.{sub}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"{name}.{sub}":
-                raise
+    from ..claims import import_listed
+
+    import_listed(name, tuple(getattr(mod, "CLAIM_MODULES", ())))
     return name
 
 
