@@ -10,7 +10,7 @@ started (and stopped afterwards); with one, the scheduler at that address is use
 
 The time budget is best-effort here: symbt does not own a remote cluster's
 processes, so a check past its budget is reported ``inconclusive (timed out)``
-after its budget, but it goes on running in a thread of its Dask worker until it
+then, but it goes on running in a thread of its Dask worker until it
 ends or the worker is restarted (the processes of a local cluster end when the
 cluster is closed after the run).
 
