@@ -17,11 +17,14 @@ from __future__ import annotations
 import contextlib
 import sys
 from collections.abc import Callable, Iterator, Sequence
+from typing import TYPE_CHECKING
 
 from ..claims.base import Claim, ClaimResult, Outcome
 from .cache import load_cached, store
 from .task import DEFAULT_BUDGET, check_budget, lasting
-from .workers import Workers
+
+if TYPE_CHECKING:
+    from .workers import Workers
 
 __all__ = ["run", "Interrupted", "refresh_manifest", "keep_workers", "DEFAULT_BUDGET"]
 
@@ -69,6 +72,7 @@ def keep_workers() -> Iterator[None]:
 def _workers_for(todo: Sequence[Claim], jobs: int) -> tuple[Workers, bool]:
     """Workers for ``todo`` and whether the caller owns them (closes them after the run)."""
     from ..claims import REGISTRY
+    from .workers import Workers  # multiprocessing: only when something runs (not on the warm path)
 
     size = max(1, min(jobs, len(todo)))
     if _kept is not None:
