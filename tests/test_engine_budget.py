@@ -3,6 +3,7 @@ a worker that dies fails only its claim, no worker outlives the run, and the pyt
 from __future__ import annotations
 
 import inspect
+import multiprocessing
 import os
 import signal
 import subprocess
@@ -76,6 +77,7 @@ def test_check_past_its_budget_is_inconclusive_and_the_run_goes_on(claims, jobs)
     assert 1.0 <= slow.seconds < 10
     for name in ("square", "square2"):
         assert got[f"zz.budget.{name}"].status == "verified" and got[f"zz.budget.{name}"].evidence == "proof"
+    assert not [p for p in multiprocessing.active_children() if p.name == "symbt-worker"]   # none left running
 
 
 @pytest.mark.parametrize("jobs", [1, 2])
