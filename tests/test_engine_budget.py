@@ -112,6 +112,20 @@ def test_workers_are_kept_only_inside_keep_workers(claims):
     assert run([a], use_cache=False, budget=None)[0].outcome.detail == str(os.getpid())   # no budget: in-process
 
 
+def test_kept_workers_recover_from_a_timeout_and_from_a_death_between_runs(claims):
+    a, b = claims["pid"], claims["pid2"]
+    with keep_workers():
+        first = int(run([a], use_cache=False)[0].outcome.detail)
+        assert run([claims["sleeps"]], use_cache=False, budget=1.0)[0].outcome.method == "timed out"
+        assert not _alive(first)                          # the timed-out worker was killed ...
+        second = int(run([b], use_cache=False)[0].outcome.detail)
+        assert second != first and _alive(second)         # ... and a fresh one serves the next run
+        os.kill(second, signal.SIGKILL)                   # a worker that dies while idle
+        assert _gone_within([second], 5)
+        third = run([a], use_cache=False)[0].outcome
+        assert third.status == "verified" and int(third.detail) not in (first, second)
+
+
 def test_bad_budgets_are_rejected(claims, monkeypatch, capsys):
     for bad in (0, -1.0, float("inf"), float("nan"), True, "10"):
         with pytest.raises(ValueError, match="budget"):
