@@ -19,7 +19,7 @@ import sympy as sp
 from symbt import cli, engine
 from symbt.claims.base import REGISTRY, Outcome, claim, from_decision
 from symbt.engine.cache import cache_file
-from symbt.engine.runner import keep_workers, run
+from symbt.engine.runner import KeptWorkers, keep_workers, run
 from symbt.proof import decide
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -110,6 +110,14 @@ def test_workers_are_kept_only_inside_keep_workers(claims):
     apart = {run([c], use_cache=False)[0].outcome.detail for c in (a, b)}
     assert len(apart) == 2 and first not in apart         # outside the block: a fresh worker per run
     assert run([a], use_cache=False, budget=None)[0].outcome.detail == str(os.getpid())   # no budget: in-process
+    kept = KeptWorkers()                                  # kept across blocks (a walkthrough's shows)
+    with keep_workers(kept):
+        one = run([a], use_cache=False)[0].outcome.detail
+    with keep_workers(kept):
+        two = run([b], use_cache=False)[0].outcome.detail
+    assert one == two and _alive(int(one))
+    kept.close()
+    assert not _alive(int(one))
 
 
 def test_kept_workers_recover_from_a_timeout_and_from_a_death_between_runs(claims):
