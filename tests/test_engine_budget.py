@@ -3,6 +3,7 @@ a worker that dies fails only its claim, no worker outlives the run, and the pyt
 from __future__ import annotations
 
 import inspect
+import multiprocessing
 import os
 import signal
 import subprocess
@@ -18,7 +19,7 @@ import sympy as sp
 from symbt import cli, engine
 from symbt.claims.base import REGISTRY, Outcome, claim, from_decision
 from symbt.engine.cache import cache_file
-from symbt.engine.runner import keep_workers, run
+from symbt.engine.runner import KeptWorkers, keep_workers, run
 from symbt.proof import decide
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -76,6 +77,7 @@ def test_check_past_its_budget_is_inconclusive_and_the_run_goes_on(claims, jobs)
     assert 1.0 <= slow.seconds < 10
     for name in ("square", "square2"):
         assert got[f"zz.budget.{name}"].status == "verified" and got[f"zz.budget.{name}"].evidence == "proof"
+    assert not [p for p in multiprocessing.active_children() if p.name == "symbt-worker"]   # none left running
 
 
 @pytest.mark.parametrize("jobs", [1, 2])
@@ -108,6 +110,28 @@ def test_workers_are_kept_only_inside_keep_workers(claims):
     apart = {run([c], use_cache=False)[0].outcome.detail for c in (a, b)}
     assert len(apart) == 2 and first not in apart         # outside the block: a fresh worker per run
     assert run([a], use_cache=False, budget=None)[0].outcome.detail == str(os.getpid())   # no budget: in-process
+    kept = KeptWorkers()                                  # kept across blocks (a walkthrough's shows)
+    with keep_workers(kept):
+        one = run([a], use_cache=False)[0].outcome.detail
+    with keep_workers(kept):
+        two = run([b], use_cache=False)[0].outcome.detail
+    assert one == two and _alive(int(one))
+    kept.close()
+    assert not _alive(int(one))
+
+
+def test_kept_workers_recover_from_a_timeout_and_from_a_death_between_runs(claims):
+    a, b = claims["pid"], claims["pid2"]
+    with keep_workers():
+        first = int(run([a], use_cache=False)[0].outcome.detail)
+        assert run([claims["sleeps"]], use_cache=False, budget=1.0)[0].outcome.method == "timed out"
+        assert not _alive(first)                          # the timed-out worker was killed ...
+        second = int(run([b], use_cache=False)[0].outcome.detail)
+        assert second != first and _alive(second)         # ... and a fresh one serves the next run
+        os.kill(second, signal.SIGKILL)                   # a worker that dies while idle
+        assert _gone_within([second], 5)
+        third = run([a], use_cache=False)[0].outcome
+        assert third.status == "verified" and int(third.detail) not in (first, second)
 
 
 def test_bad_budgets_are_rejected(claims, monkeypatch, capsys):
@@ -162,41 +186,75 @@ for i in (1, 2):
 '''
 
 
-@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
-def test_workers_die_when_verify_is_killed(tmp_path):
-    """SIGKILL to ``symbt verify -j 2``: its workers, busy with sleeping checks, are gone within seconds."""
+def _start_sleepers(tmp_path: Path, jobs: int, n: int) -> tuple[subprocess.Popen, list[int]]:
+    """``symbt verify -j JOBS`` on ``n`` sleeping claims of a module of their own, once ``jobs`` of them run:
+    the process and its workers' pids (the claims write them)."""
     (tmp_path / "zz_sleepers.py").write_text(SLEEPERS)
     marks = tmp_path / "marks"
     marks.mkdir()
+    scenes = [a for i in range(1, n + 1) for a in ("--scene", f"zz.sigkill.{i}")]
     code = (f"import sys; sys.path.insert(0, {str(tmp_path)!r}); import zz_sleepers; from symbt.cli import main; "
-            "sys.exit(main(['verify', '-j', '2', '--no-cache', '-q', '--scene', 'zz.sigkill.1', "
-            "'--scene', 'zz.sigkill.2']))")
+            f"sys.exit(main(['verify', '-j', '{jobs}', '--no-cache', '-q', *{scenes!r}]))")
     env = {**os.environ, "ZZ_MARKS": str(marks), "SYMBT_CACHE_DIR": str(tmp_path / "cache"),
            "PYTHONPATH": os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH", "")) if p)}
     p = subprocess.Popen([sys.executable, "-c", code], env=env, cwd=tmp_path, stderr=subprocess.PIPE)
     workers: list[int] = []
+    deadline = time.monotonic() + 120
+    while len(workers) < jobs and time.monotonic() < deadline and p.poll() is None:
+        time.sleep(0.05)
+        workers = [int(m.name.split(".")[1]) for m in marks.iterdir()]
+    if len(workers) < jobs:
+        p.kill()
+        raise AssertionError(f"the checks never started: {p.communicate()[1].decode()}")
+    assert all(_alive(w) for w in workers) and os.getpid() not in workers and p.pid not in workers
+    return p, workers
+
+
+def _gone_within(workers: list[int], seconds: float) -> bool:
+    t0 = time.monotonic()
+    while any(_alive(w) for w in workers) and time.monotonic() - t0 < seconds:
+        time.sleep(0.05)
+    return not any(_alive(w) for w in workers)
+
+
+def _clean_up(p: subprocess.Popen, workers: list[int]) -> None:
+    """Whatever the test started and is still there (only if it failed)."""
+    if p.poll() is None:
+        p.kill()
+    for w in workers:
+        if _alive(w):
+            os.kill(w, signal.SIGKILL)
+    p.wait()
+    if p.stderr:
+        p.stderr.close()
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_workers_die_when_verify_is_killed(tmp_path):
+    """SIGKILL to ``symbt verify -j 2``: its workers, busy with sleeping checks, are gone within seconds."""
+    p, workers = _start_sleepers(tmp_path, jobs=2, n=2)
     try:
-        deadline = time.monotonic() + 120
-        while len(workers) < 2 and time.monotonic() < deadline and p.poll() is None:
-            time.sleep(0.05)
-            workers = [int(m.name.split(".")[1]) for m in marks.iterdir()]
-        assert len(workers) == 2, f"the checks never started: {p.stderr.read().decode() if p.poll() else ''}"
-        assert all(_alive(w) for w in workers) and os.getpid() not in workers and p.pid not in workers
+        assert len(workers) == 2
         p.kill()
         p.wait(timeout=10)
-        t0 = time.monotonic()
-        while any(_alive(w) for w in workers) and time.monotonic() - t0 < 10:
-            time.sleep(0.05)
-        gone_after = time.monotonic() - t0
-        assert not any(_alive(w) for w in workers), "a worker outlived the killed run"
-        assert gone_after < 3
+        assert _gone_within(workers, 3), "a worker outlived the killed run"
     finally:
-        if p.poll() is None:
-            p.kill()
-        for w in workers:   # whatever this test started and is still there (only if it failed)
-            if _alive(w):
-                os.kill(w, signal.SIGKILL)
-        p.stderr.close()
+        _clean_up(p, workers)
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_ctrl_c_stops_a_sleeping_check_under_one_job(tmp_path):
+    """SIGINT to ``symbt verify -j 1`` (to the process only, as ``kill -INT``): exit 130 at once, no worker left."""
+    p, workers = _start_sleepers(tmp_path, jobs=1, n=2)
+    try:
+        t0 = time.monotonic()
+        os.kill(p.pid, signal.SIGINT)
+        err = p.communicate(timeout=30)[1].decode()
+        assert p.returncode == 130 and time.monotonic() - t0 < 5, err
+        assert err.strip().splitlines()[-1].startswith("symbt verify: interrupted (0 of 2 claims finished")
+        assert _gone_within(workers, 1)
+    finally:
+        _clean_up(p, workers)
 
 
 PLUGIN_CONFTEST = '''

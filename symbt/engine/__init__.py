@@ -38,7 +38,7 @@ from .select import choose, default_scenes, select  # cheap (claim metadata only
 # the rest loads on first use: the warm path (symbt verify with everything cached) imports only .warm
 _LAZY = {
     "run": ".runner", "Interrupted": ".runner", "refresh_manifest": ".runner", "keep_workers": ".runner",
-    "DEFAULT_BUDGET": ".task",
+    "KeptWorkers": ".runner", "DEFAULT_BUDGET": ".task",
     "cache_dir": ".cache", "cache_file": ".cache", "claim_key": ".cache",
     "Project": ".project", "ConfigError": ".project", "discover": ".project", "load": ".project",
     "cached_results": ".warm", "Walkthrough": ".walkthrough", "ClaimResult": "..claims.base",

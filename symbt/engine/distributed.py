@@ -10,9 +10,9 @@ started (and stopped afterwards); with one, the scheduler at that address is use
 
 The time budget is best-effort here: symbt does not own a remote cluster's
 processes, so a check past its budget is reported ``inconclusive (timed out)``
-at once, but it goes on running in a thread of its Dask worker until it ends
-(or the worker is restarted).  A local cluster is closed after the run, which
-ends such checks.
+then, but it goes on running in a thread of its Dask worker until it
+ends or the worker is restarted (the processes of a local cluster end when the
+cluster is closed after the run).
 
 Worth it for the minutes-long ``--deep`` claims, exact claims at N = 5 and more,
 and parameter sweeps: anything whose tasks take seconds, so that the cluster's

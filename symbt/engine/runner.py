@@ -18,13 +18,16 @@ import contextlib
 import sys
 from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..claims.base import Claim, ClaimResult, Outcome
 from .cache import load_cached, store
 from .task import DEFAULT_BUDGET, check_budget, lasting
-from .workers import Workers
 
-__all__ = ["run", "Interrupted", "refresh_manifest", "keep_workers", "DEFAULT_BUDGET"]
+if TYPE_CHECKING:
+    from .workers import Workers
+
+__all__ = ["run", "Interrupted", "refresh_manifest", "keep_workers", "KeptWorkers", "DEFAULT_BUDGET"]
 
 Progress = Callable[[Claim, Outcome], None]
 
@@ -37,19 +40,34 @@ class Interrupted(KeyboardInterrupt):
         self.finished, self.total = finished, total
 
 
-#: workers kept from one run to the next inside :func:`keep_workers` (``None`` outside it)
-_kept: list[Workers] | None = None
+class KeptWorkers:
+    """Worker processes kept from one :func:`run` to the next (see :func:`keep_workers`); :meth:`close` kills them."""
+
+    def __init__(self) -> None:
+        self.pools: list[Workers] = []
+
+    def close(self) -> None:
+        for w in self.pools:
+            w.close()
+        self.pools.clear()
+
+
+#: the workers kept inside :func:`keep_workers` (``None`` outside it)
+_kept: KeptWorkers | None = None
 
 
 @contextlib.contextmanager
-def keep_workers() -> Iterator[None]:
+def keep_workers(kept: KeptWorkers | None = None) -> Iterator[KeptWorkers]:
     """Within the block, successive :func:`run` calls reuse their worker processes (and their memoised derivations).
 
     For callers that run claims one at a time (the pytest plugin: one call per
-    test item).  Workers are forked anew when a call brings claims they were not
-    forked with, or another ``jobs``; they are killed when the block ends.
-    Outside the block every run forks its own workers, so a run sees the
-    caller's state as it is when the run starts.
+    test item; a walkthrough: one per claim shown).  Workers are forked anew
+    when a call brings claims they were not forked with, or another ``jobs``.
+    They are killed when the block ends -- unless ``kept`` (from an earlier
+    block) is given: then they stay for the next block with the same ``kept``,
+    until ``kept.close()`` or the end of the process.  Outside such blocks
+    every run forks its own workers, so a run sees the caller's state as it is
+    when the run starts.
 
     >>> from symbt.claims import REGISTRY, load_all
     >>> _ = load_all()
@@ -58,31 +76,30 @@ def keep_workers() -> Iterator[None]:
     ['verified', 'verified']
     """
     global _kept
-    outer, _kept = _kept, []
+    outer, _kept = _kept, (KeptWorkers() if kept is None else kept)
     try:
-        yield
+        yield _kept
     finally:
-        for w in _kept:
-            w.close()
+        if kept is None:
+            _kept.close()
         _kept = outer
 
 
 def _workers_for(todo: Sequence[Claim], jobs: int) -> tuple[Workers, bool]:
     """Workers for ``todo`` and whether the caller owns them (closes them after the run)."""
     from ..claims import REGISTRY
+    from .workers import Workers  # multiprocessing: only when something runs (not on the warm path)
 
     size = max(1, min(jobs, len(todo)))
     if _kept is not None:
-        for w in _kept:
+        for w in _kept.pools:
             if w.size == size and w.serves(todo):
                 return w, False
-        for w in _kept:
-            w.close()
-        _kept.clear()
+        _kept.close()
     known = {**REGISTRY, **{c.id: c for c in todo}}
     w = Workers(known, size=size)
     if _kept is not None:
-        _kept.append(w)
+        _kept.pools.append(w)
         return w, False
     return w, True
 

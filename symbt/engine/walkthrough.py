@@ -25,9 +25,12 @@ class Walkthrough:
     """
 
     def __init__(self):
+        from .runner import KeptWorkers
+
         load_all()
         self.shown: dict[str, str] = {}
         self.rich = _in_ipython()
+        self.workers = KeptWorkers()   # one worker for every claim shown: it keeps the derivations it built
 
     def display(self, *objs) -> None:
         for obj in objs:
@@ -50,10 +53,11 @@ class Walkthrough:
 
     def show(self, *claim_ids: str) -> None:
         """Run the claims (registry ids; cached outcomes are reused) and display their results."""
-        from .runner import run
+        from .runner import keep_workers, run
 
         for cid in claim_ids:
-            r = run([REGISTRY[cid]], manifest=False)[0]
+            with keep_workers(self.workers):
+                r = run([REGISTRY[cid]], manifest=False)[0]
             self.shown[cid] = r.status
             self.display(r)
 
