@@ -172,3 +172,18 @@ def test_an_infinite_integration_limit_is_not_an_undefined_side():
     r = check_identity(gauss, sp.sqrt(sp.pi / a) * (1 + sp.Rational(1, 10 ** 15)), digits=30, points=3)
     assert r.status == "false" and r.residual == pytest.approx(1e-15, rel=1e-6)
     assert check_identity(t + sp.oo, t).status == "false"
+
+
+def test_the_convention_hint_leaves_matrices_without_elliptic_functions_alone():
+    """A false matrix identity with no elliptic function in it gets no hint (and no crash)."""
+    import sympy as sp
+
+    from symbt.proof.identity import check_identity, convention_hint
+
+    x = sp.Symbol("x", real=True)
+    assert convention_hint(sp.Matrix([x, 1]), sp.Matrix([x, 2]), digits=20, points=3) == ""
+    k = sp.Symbol("k", positive=True)
+    wrong = sp.pi / 2 * sp.hyper([sp.S.Half, sp.S.Half], [1], k**2)
+    assert "modulus" in convention_hint(sp.Matrix([wrong, x]), sp.Matrix([sp.elliptic_k(k), x]), digits=20,
+                                        points=3)
+    assert check_identity(sp.Matrix([x, 1]), sp.Matrix([x, 2])).status == "false"

@@ -416,7 +416,10 @@ def check_identity(lhs, rhs=0, *, relations=None, assumptions=None, digits: int 
 def _reparametrised(expr, to):
     """``expr`` with the parameter (last argument) of every SymPy elliptic function replaced by ``to(m)``."""
     if isinstance(expr, sp.MatrixBase):
-        return expr.applyfunc(lambda e: _reparametrised(e, to))
+        entries = [_reparametrised(e, to) for e in expr]
+        if all(e is None for e in entries):
+            return None
+        return sp.Matrix(expr.rows, expr.cols, [o if e is None else e for o, e in zip(expr, entries)])
     reps = {f: f.func(*f.args[:-1], to(f.args[-1])) for f in sp.sympify(expr).atoms(*ELLIPTIC)}
     return expr.xreplace(reps) if reps else None
 
