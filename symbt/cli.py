@@ -21,7 +21,6 @@ import importlib.util
 import os
 import sys
 import time
-from pathlib import Path
 
 from . import __version__
 from .engine.project import ConfigError
@@ -82,20 +81,15 @@ def _check_output(flag: str, path: str) -> None:
 
 
 def _write_output(flag: str, path: str, text: str) -> None:
-    from ._files import atomic_write
+    """Write one report: ``-`` to stdout, a file atomically, a device, pipe or symlink through."""
+    from ._files import write_report
 
-    if path == "-":
-        try:
-            sys.stdout.write(text)
-            sys.stdout.flush()
-        except BrokenPipeError:
-            _silence_stdout()
-        return
     try:
-        parent = Path(path).parent
-        if not parent.exists():
-            parent.mkdir()
-        atomic_write(path, text, mkdir=False)
+        write_report(path, text)
+    except BrokenPipeError:
+        if path != "-":
+            raise UsageError(f"symbt verify: cannot write {flag} {path}: broken pipe") from None
+        _silence_stdout()
     except OSError as exc:
         raise UsageError(f"symbt verify: cannot write {flag} {path}: {exc.strerror or exc}") from exc
 
