@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: dd0b2b609bd60c1527aa71d55f53ac883b00d0db30cb2d1906e383676f3ed42f
-# symbt-codegen-content-sha256: cbbf45c8d41851ef13e9a403e6a6ec84a7dbb2b055d7150d3cd566ddebc5510a
+# symbt-codegen-derivation-sha256: e6253b349e14949feb60bb3ba6d556f9b71fcea76adf18f4f243ae5001e104d0
+# symbt-codegen-content-sha256: 5fa773ac08998cee91acf36afc7b32fb19f336ead0bfbebc96c532064374ba63
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from
