@@ -242,7 +242,8 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--markdown", metavar="FILE", help="write a Markdown table ('-': stdout)")
     v.add_argument("--no-cache", action="store_true", help="recompute every claim")
     v.add_argument("-j", "--jobs", type=_positive_int, default=None, metavar="N",
-                   help="worker processes (default: min(2, cores)); with --dask: local workers")
+                   help="worker processes (default: min(2, cores); at most the number of cores); "
+                        "with --dask: local workers")
     v.add_argument("--budget", type=_positive_seconds, default=None, metavar="SECONDS",
                    help="time limit of each check (default 300); past it: inconclusive (timed out)")
     v.add_argument("--dask", nargs="?", const="", default=None, metavar="ADDRESS",
