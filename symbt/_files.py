@@ -24,7 +24,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-__all__ = ["atomic_write", "write_report", "output_problem"]
+__all__ = ["atomic_write", "write_report", "output_problem", "directory_problem"]
 
 
 def atomic_write(path: str | os.PathLike[str], data: str | bytes, *, mkdir: bool = True) -> Path:
@@ -109,6 +109,25 @@ def _probe_directory(directory: Path) -> str | None:
         return f"directory {directory} is not writable ({exc.strerror or exc})"
     os.close(fd)
     os.unlink(tmp)
+    return None
+
+
+def directory_problem(directory: str | os.PathLike[str]) -> str | None:
+    """Why files cannot be created in ``directory`` (None if they can; missing levels may be created).
+
+    The nearest existing ancestor must be a directory in which a file can really be
+    created (tried: root ignores permission bits, a read-only mount or ``/proc`` does not).
+
+    >>> directory_problem("/proc/symbt-out")
+    '/proc is not writable'
+    """
+    d = Path(os.path.abspath(directory))
+    while not d.exists() and d != d.parent:
+        d = d.parent
+    if not d.is_dir():
+        return f"{d} is not a directory"
+    if not os.access(d, os.W_OK) or _probe_directory(d):
+        return f"{d} is not writable"
     return None
 
 

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: e6253b349e14949feb60bb3ba6d556f9b71fcea76adf18f4f243ae5001e104d0
-# symbt-codegen-content-sha256: 5fa773ac08998cee91acf36afc7b32fb19f336ead0bfbebc96c532064374ba63
+# symbt-codegen-derivation-sha256: 191a5e58d476c8f8ff7ebc9cc5cfe8b2a0c7e113d32382aae80479636b853782
+# symbt-codegen-content-sha256: 64052b0af114826ef13dbb4b7c219eb4c827b4effe7aa8d0811b3ff851e96922
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: e6253b349e14949feb60bb3ba6d556f9b71fcea76adf18f4f243ae5001e104d0
-# symbt-codegen-content-sha256: 8ffb0a352ecac646ca6e19b7129ebfab103278f034774d0395ed5adee3dada5b
+# symbt-codegen-derivation-sha256: 191a5e58d476c8f8ff7ebc9cc5cfe8b2a0c7e113d32382aae80479636b853782
+# symbt-codegen-content-sha256: 80416eb325a40ccbb1c2cc2e9db6e3a1dbd63b8a53cd4f69965d8988394c31cf
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

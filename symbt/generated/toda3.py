@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: e6253b349e14949feb60bb3ba6d556f9b71fcea76adf18f4f243ae5001e104d0
-# symbt-codegen-content-sha256: daa5eee35f5f2281e3ff52f48b3f35ee7aa2b72df2ef06c36bf2515fd4f58ae0
+# symbt-codegen-derivation-sha256: 191a5e58d476c8f8ff7ebc9cc5cfe8b2a0c7e113d32382aae80479636b853782
+# symbt-codegen-content-sha256: d697fcc939c4318a2e60a6e6181b2260a037de7697e4ee54fb84823eaf69355d
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
