@@ -9,8 +9,16 @@ import pytest
 
 import symbt.generated.toda2 as toda2
 import symbt.generated.toda3 as toda3
-from symbt.numeric import (FlowField, InvalidInputError, bt_orbit, bt_step, flow_coefficients, invariants, phi,
-                           spectral_trace)
+from symbt.numeric import (
+    FlowField,
+    InvalidInputError,
+    bt_orbit,
+    bt_step,
+    flow_coefficients,
+    invariants,
+    phi,
+    spectral_trace,
+)
 
 P3, Q3 = [-20.0, 10.0, 1.0], [1.0, 0.0, 0.9]     # the paper's example: the real map exists at (10, 5)
 HUGE = 10 ** 400                                   # a Python int no float64 holds
