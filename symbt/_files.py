@@ -24,7 +24,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-__all__ = ["atomic_write", "write_report", "output_problem", "directory_problem"]
+__all__ = ["atomic_write", "write_report", "output_problem", "directory_problem", "is_stdout"]
 
 
 def atomic_write(path: str | os.PathLike[str], data: str | bytes, *, mkdir: bool = True) -> Path:
@@ -69,7 +69,8 @@ def _written_through(path: str | os.PathLike[str]) -> bool:
 
 
 def write_report(path: str | os.PathLike[str], text: str) -> None:
-    """Deliver a report to what the user named: ``-`` is stdout, anything else a path.
+    """Deliver a report to what the user named: ``-`` (or a path that is stdout, :func:`is_stdout`)
+    is stdout, anything else a path.
 
     A regular file (or a new path; one missing parent directory is created) is
     written atomically (:func:`atomic_write`).  A symlink, a character device
@@ -86,7 +87,8 @@ def write_report(path: str | os.PathLike[str], text: str) -> None:
     >>> (d / "link.json").is_symlink(), (d / "target.json").read_text()
     (True, 'new')
     """
-    if str(path) == "-":
+    if is_stdout(path):
+        # through our own stdout, not a second open of /proc/self/fd/1 (that would truncate a redirected file)
         sys.stdout.write(text)
         sys.stdout.flush()
         return
@@ -99,6 +101,25 @@ def write_report(path: str | os.PathLike[str], text: str) -> None:
     if not parent.exists():
         parent.mkdir()
     atomic_write(path, text, mkdir=False)
+
+
+def is_stdout(path: str | os.PathLike[str]) -> bool:
+    """True for ``-`` and for a path that is this process's stdout when that is a pipe or a file.
+
+    ``--json /dev/stdout > out.json`` then behaves like ``--json -``: the report alone on stdout,
+    the text report moved to stderr.  A terminal or ``/dev/null`` (character devices) is not
+    counted: nothing parses them.
+
+    >>> is_stdout("-"), is_stdout("/")
+    (True, False)
+    """
+    if str(path) == "-":
+        return True
+    try:
+        st, out = os.stat(path), os.fstat(sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):       # no such path, or a replaced sys.stdout
+        return False
+    return (st.st_dev, st.st_ino) == (out.st_dev, out.st_ino) and not stat.S_ISCHR(out.st_mode)
 
 
 def _probe_directory(directory: Path) -> str | None:

@@ -114,7 +114,9 @@ def _cmd_verify(args) -> int:
 
     reports = {flag: path for flag, path in (("--json", args.json), ("--junit", args.junit),
                                              ("--markdown", args.markdown)) if path}
-    to_stdout = [f for f, p in reports.items() if p == "-"]
+    from ._files import is_stdout
+
+    to_stdout = [f for f, p in reports.items() if is_stdout(p)]   # '-', or /dev/stdout into a pipe or file
     if len(to_stdout) > 1:
         raise UsageError(f"symbt verify: only one report can go to stdout ('-'), not {' and '.join(to_stdout)}")
     for flag, path in reports.items():

@@ -20,7 +20,8 @@ ROOT = Path(__file__).resolve().parents[1]
 def _run(argv, cache: Path, **kw) -> subprocess.CompletedProcess:
     env = dict(os.environ, SYMBT_CACHE_DIR=str(cache))
     env["PYTHONPATH"] = os.pathsep.join([str(ROOT), env.get("PYTHONPATH", "")]).rstrip(os.pathsep)
-    return subprocess.run([sys.executable, "-m", "symbt", *argv], capture_output=True, text=True, env=env,
+    kw.setdefault("stdout", subprocess.PIPE)
+    return subprocess.run([sys.executable, "-m", "symbt", *argv], stderr=subprocess.PIPE, text=True, env=env,
                           cwd=ROOT, timeout=300, **kw)
 
 
@@ -35,9 +36,10 @@ def _read_fifo(path: Path, sink: list) -> threading.Thread:
 
 def test_json_to_dev_stdout_reaches_stdout_and_keeps_the_link(tmp_path):
     before = os.lstat("/dev/stdout")
-    r = _run(["verify", "--scene", "toy", "-q", "--json", "/dev/stdout"], tmp_path / "cache")
+    r = _run(["verify", "--scene", "toy", "--json", "/dev/stdout"], tmp_path / "cache")
     assert r.returncode == 0, r.stderr
-    doc = json.loads(r.stdout)                       # the report arrived on stdout (a pipe here)
+    doc = json.loads(r.stdout)                       # the report alone on stdout (a pipe here), as with '-'
+    assert "toy" in r.stderr                         # the text report moved to stderr
     assert {c["id"] for c in doc["claims"]} and doc["summary"]["ok"] is True
     after = os.lstat("/dev/stdout")
     assert stat.S_ISLNK(after.st_mode) == stat.S_ISLNK(before.st_mode)
@@ -74,6 +76,20 @@ def test_symlinked_report_keeps_the_link_and_writes_the_target(tmp_path):
     assert link.is_symlink() and os.readlink(link) == str(target)
     assert json.loads(target.read_text())["summary"]["ok"] is True
     assert [p.name for p in target.parent.iterdir()] == ["report.json"]     # no temporary file left beside it
+
+
+def test_json_to_dev_stdout_redirected_to_a_file(tmp_path):
+    out = tmp_path / "out.json"
+    with open(out, "w") as fh:
+        r = _run(["verify", "--scene", "toy", "--json", "/dev/stdout"], tmp_path / "cache", stdout=fh)
+    assert r.returncode == 0, r.stderr
+    assert json.loads(out.read_text())["summary"]["ok"] is True
+
+
+def test_coverage_json_to_dev_stdout_is_the_document_alone(capfd):
+    # capfd: fd 1 is a temporary file here, so /dev/stdout is that file
+    assert cli.main(["coverage", "--json", "/dev/stdout"]) in (0, 1)
+    assert "coverage" in json.loads(capfd.readouterr().out)
 
 
 def test_dangling_symlink_creates_its_target(tmp_path):

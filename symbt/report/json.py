@@ -37,7 +37,7 @@ from pathlib import Path
 from typing import Any
 
 from .. import __version__
-from .._files import output_problem, write_report
+from .._files import is_stdout, output_problem, write_report
 from .text import summary
 
 __all__ = ["SCHEMA_VERSION", "SCHEMA_PATH", "schema", "to_json", "dumps", "write_json", "output_refused",
@@ -96,12 +96,13 @@ def output_refused(path: str | None, command: str, flag: str = "--json") -> bool
 def emit_document(doc: dict, path: str | None, *, command: str, text: str | None = None) -> int:
     """Deliver a command's JSON document; the exit status (0, or 2 when ``path`` cannot be written).
 
-    ``path == "-"``: the document goes to stdout instead of ``text``; otherwise ``text`` (unless
+    ``path == "-"`` (or a path that is stdout, see :func:`symbt._files.is_stdout`): the document
+    goes to stdout instead of ``text``; otherwise ``text`` (unless
     ``None``) is printed and the document, if ``path`` is given, written with
     :func:`symbt._files.write_report` (a file atomically; a device, pipe or symlink through).
     """
     body = json.dumps(doc, indent=1) + "\n"
-    if path == "-":
+    if path and is_stdout(path):      # '-', or /dev/stdout into a pipe or a file: the document alone
         print(body, end="")
         return 0
     if text is not None:
