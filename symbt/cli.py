@@ -21,7 +21,6 @@ import importlib.util
 import os
 import sys
 import time
-from pathlib import Path
 
 from . import __version__
 from .engine.project import ConfigError
@@ -82,20 +81,15 @@ def _check_output(flag: str, path: str) -> None:
 
 
 def _write_output(flag: str, path: str, text: str) -> None:
-    from ._files import atomic_write
+    """Write one report: ``-`` to stdout, a file atomically, a device, pipe or symlink through."""
+    from ._files import write_report
 
-    if path == "-":
-        try:
-            sys.stdout.write(text)
-            sys.stdout.flush()
-        except BrokenPipeError:
-            _silence_stdout()
-        return
     try:
-        parent = Path(path).parent
-        if not parent.exists():
-            parent.mkdir()
-        atomic_write(path, text, mkdir=False)
+        write_report(path, text)
+    except BrokenPipeError:
+        if path != "-":
+            raise UsageError(f"symbt verify: cannot write {flag} {path}: broken pipe") from None
+        _silence_stdout()
     except OSError as exc:
         raise UsageError(f"symbt verify: cannot write {flag} {path}: {exc.strerror or exc}") from exc
 
@@ -120,7 +114,9 @@ def _cmd_verify(args) -> int:
 
     reports = {flag: path for flag, path in (("--json", args.json), ("--junit", args.junit),
                                              ("--markdown", args.markdown)) if path}
-    to_stdout = [f for f, p in reports.items() if p == "-"]
+    from ._files import is_stdout
+
+    to_stdout = [f for f, p in reports.items() if is_stdout(p)]   # '-', or /dev/stdout into a pipe or file
     if len(to_stdout) > 1:
         raise UsageError(f"symbt verify: only one report can go to stdout ('-'), not {' and '.join(to_stdout)}")
     for flag, path in reports.items():
@@ -248,7 +244,8 @@ def build_parser() -> argparse.ArgumentParser:
     v.add_argument("--markdown", metavar="FILE", help="write a Markdown table ('-': stdout)")
     v.add_argument("--no-cache", action="store_true", help="recompute every claim")
     v.add_argument("-j", "--jobs", type=_positive_int, default=None, metavar="N",
-                   help="worker processes (default: min(2, cores)); with --dask: local workers")
+                   help="worker processes (default: min(2, cores); at most the number of cores); "
+                        "with --dask: local workers")
     v.add_argument("--budget", type=_positive_seconds, default=None, metavar="SECONDS",
                    help="time limit of each check (default 300); past it: inconclusive (timed out)")
     v.add_argument("--dask", nargs="?", const="", default=None, metavar="ADDRESS",

@@ -130,4 +130,7 @@ def main(argv: list[str] | None = None) -> int:
     if not args.quiet:
         for p in paths:
             print(f"wrote {p}")
+        unchanged = len(file_names(args.n, args.target)) - len(paths)
+        if unchanged:
+            print(f"{unchanged} file(s) already up to date in {where}; not rewritten")
     return 0

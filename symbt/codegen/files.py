@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .._files import atomic_write
+from .._files import atomic_write, directory_problem
 from .forms import LOOP_FROM, form_of
 from .provenance import PACKAGE, derivation_hash, file_problem, with_header
 
@@ -73,18 +73,24 @@ def render(ns=TARGETS, target: str = "python") -> dict[str, str]:
 
 
 def generate(out: str | Path | None = None, ns=TARGETS, target: str = "python") -> list[Path]:
-    """Render and write the files into ``out`` (default ``symbt/generated``; required for C)."""
+    """Render the files and write those that differ into ``out`` (default ``symbt/generated``; required for C).
+
+    Returns the paths actually written (files whose bytes are already right are left alone and
+    not listed).  If anything must be written and ``out`` cannot take it, ``PermissionError``
+    is raised before any file is touched.
+    """
     if out is None and target == "c":
         raise ValueError("the C target needs an output directory (--out DIR)")
     out = Path(out) if out is not None else DEFAULT_OUT
     texts = render(ns, target)
-    written = []
-    for name, text in texts.items():
-        path = out / name
-        if not (path.is_file() and path.read_bytes() == text.encode("utf-8")):
-            atomic_write(path, text)
-        written.append(path)
-    return written
+    todo = {out / name: text for name, text in texts.items()
+            if not ((out / name).is_file() and (out / name).read_bytes() == text.encode("utf-8"))}
+    problem = directory_problem(out) if todo else None
+    if problem:
+        raise PermissionError(problem)      # all or nothing: no half-regenerated package
+    for path, text in todo.items():
+        atomic_write(path, text)
+    return list(todo)
 
 
 def check(out: str | Path | None = None, ns=TARGETS, target: str = "python", dhash: str | None = None) -> list[str]:

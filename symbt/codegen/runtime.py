@@ -59,11 +59,17 @@ def _Q(p, q):
 
 def _array(x, name):
     try:
-        a = np.asarray(x, dtype=np.float64)
+        raw = np.asarray(x)
     except (TypeError, ValueError) as exc:
         raise InvalidInputError(f"{name} must be a real numeric array") from exc
-    if np.iscomplexobj(np.asarray(x)):
-        raise InvalidInputError(f"{name} must be real")
+    if np.iscomplexobj(raw) or raw.dtype.kind in "US":      # never cast complex or parse text
+        raise InvalidInputError(f"{name} must be real numbers")
+    try:
+        a = np.asarray(x, dtype=np.float64)
+    except OverflowError as exc:                                # e.g. 10**400
+        raise InvalidInputError(f"{name}: an integer beyond the float64 range; use the mpmath flavour") from exc
+    except (TypeError, ValueError) as exc:
+        raise InvalidInputError(f"{name} must be a real numeric array") from exc
     if not np.all(np.isfinite(a)):
         raise InvalidInputError(f"{name} must be finite (found NaN or inf)")
     return a
@@ -132,7 +138,9 @@ def _finish(errors, bad, batch, outs):
     fin = np.ones(batch, dtype=bool) if bad is None else ~bad
     for o in outs:
         f = np.isfinite(o)
-        fin = fin & (f.reshape(batch + (-1,)).all(axis=-1) if o.ndim > len(batch) else f)
+        # the trailing size spelled out: -1 cannot be inferred for an empty batch
+        fin = fin & (f.reshape(batch + (int(np.prod(o.shape[len(batch):])),)).all(axis=-1)
+                     if o.ndim > len(batch) else f)
     if errors == "raise":
         if not fin.all():
             where, txt = _where(~fin, batch)
@@ -177,7 +185,8 @@ def _mp_state(x, n, name):
 
 
 def _mp_branch(b):
-    if isinstance(b, bool) or b not in (1, -1):
+    # 1+0j == 1 in Python: refuse complex (and bool) by type before comparing
+    if isinstance(b, (bool, complex, np.complexfloating, mpmath.mpc)) or b not in (1, -1):
         raise InvalidInputError("branch must be +1 or -1")
     return int(b)
 

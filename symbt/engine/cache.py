@@ -242,14 +242,35 @@ def load_cached(c: Claim, deep: bool = False) -> Outcome | None:
 
 
 def store(c: Claim, out: Outcome, deep: bool = False) -> None:
-    """Cache ``out`` at once (atomically); skipped and todo outcomes are not cached, a read-only cache is no error."""
+    """Cache ``out`` at once (atomically); skipped and todo outcomes are not cached.
+
+    A read-only cache is no error: the run goes on and says so once on stderr
+    (``symbt: cache directory X is not writable; results are not cached``).
+    """
     if out.status in ("skipped", "todo"):
         return  # a skipped claim may run once its extra is installed; a todo stub once its check is written
     try:
         cache_dir().mkdir(parents=True, exist_ok=True)
         d = out.to_dict()
         d["cached"] = False
-        atomic_write(cache_file(c, deep), json.dumps({"key": claim_key(c, deep), "id": c.id, "outcome": d}, indent=1,
-                                               default=str))
-    except (OSError, ValueError):
-        pass
+        text = json.dumps({"key": claim_key(c, deep), "id": c.id, "outcome": d}, indent=1, default=str)
+    except OSError:
+        _say_not_writable()
+        return
+    except ValueError:
+        return
+    try:
+        atomic_write(cache_file(c, deep), text)
+    except OSError:
+        _say_not_writable()
+
+
+_told: set[str] = set()
+
+
+def _say_not_writable() -> None:
+    """Say once per process and directory that outcomes are not cached: the run goes on, only slower next time."""
+    where = str(cache_dir())
+    if where not in _told:
+        _told.add(where)
+        print(f"symbt: cache directory {where} is not writable; results are not cached", file=sys.stderr, flush=True)

@@ -15,6 +15,7 @@ keeps what finished: the workers are killed and :class:`Interrupted` (a
 from __future__ import annotations
 
 import contextlib
+import os
 import sys
 from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
@@ -127,7 +128,8 @@ def run(claims: Sequence[Claim], *, use_cache: bool = True, jobs: int = 1, progr
         budget: float | None = DEFAULT_BUDGET) -> list[ClaimResult]:
     """Run ``claims`` (cached results reused unless ``use_cache=False``); results in the given order.
 
-    The uncached claims run in ``jobs`` worker processes (one for ``jobs=1``);
+    The uncached claims run in ``jobs`` worker processes (one for ``jobs=1``; at most
+    ``os.cpu_count()`` and at most one per claim, whatever ``jobs`` asks);
     ``dask`` runs them on a Dask cluster instead (``True`` or ``""``: a local
     cluster of ``jobs`` worker processes; a string: a scheduler address), see
     :mod:`.distributed`.  ``progress(claim, outcome)`` is called as each outcome
@@ -141,6 +143,7 @@ def run(claims: Sequence[Claim], *, use_cache: bool = True, jobs: int = 1, progr
     best-effort (:mod:`.distributed`).  A bad ``budget`` raises ``ValueError``.
     """
     check_budget(budget)
+    jobs = max(1, min(jobs, os.cpu_count() or 1))     # -j 1000 must not fork 1000 processes
     results: dict[str, Outcome] = {}
     todo = []
     for c in claims:

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: dd0b2b609bd60c1527aa71d55f53ac883b00d0db30cb2d1906e383676f3ed42f
-# symbt-codegen-content-sha256: cbbf45c8d41851ef13e9a403e6a6ec84a7dbb2b055d7150d3cd566ddebc5510a
+# symbt-codegen-derivation-sha256: 191a5e58d476c8f8ff7ebc9cc5cfe8b2a0c7e113d32382aae80479636b853782
+# symbt-codegen-content-sha256: 64052b0af114826ef13dbb4b7c219eb4c827b4effe7aa8d0811b3ff851e96922
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

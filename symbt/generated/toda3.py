@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: dd0b2b609bd60c1527aa71d55f53ac883b00d0db30cb2d1906e383676f3ed42f
-# symbt-codegen-content-sha256: 1b605dfe62960e05f7b8607df2ef23343083ed56f63c76040eaefa82aa63e3bc
+# symbt-codegen-derivation-sha256: 191a5e58d476c8f8ff7ebc9cc5cfe8b2a0c7e113d32382aae80479636b853782
+# symbt-codegen-content-sha256: d697fcc939c4318a2e60a6e6181b2260a037de7697e4ee54fb84823eaf69355d
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -13,7 +13,8 @@ tr L = sum_k H_k lambda^k (H_N = 1); branch b = +-1 means gamma_i = b sqrt(tr_i^
 (positive root) at lambda_1 = lambda_0 + mu, lambda_2 = lambda_0 - mu.
 Outside the real domain: NoRealMapError (or masked results with errors='mask');
 overflow: NumericRangeError; bad input: InvalidInputError (same names and meaning as
-symbt.numeric.errors; subclasses of ValueError / OverflowError).
+symbt.numeric.errors; subclasses of ValueError / OverflowError).  An empty batch
+(state arguments of shape (0, N)) gives empty results of the matching shape.
 
 Functions: invariants, spectral_trace, hamiltonian_fields, flow_field, phi_tr, phi, phi_grad, ck_integrand, dapp_xy, bt_step, bt_orbit (centre of mass carried separately).
 """
@@ -59,11 +60,17 @@ def _Q(p, q):
 
 def _array(x, name):
     try:
-        a = np.asarray(x, dtype=np.float64)
+        raw = np.asarray(x)
     except (TypeError, ValueError) as exc:
         raise InvalidInputError(f"{name} must be a real numeric array") from exc
-    if np.iscomplexobj(np.asarray(x)):
-        raise InvalidInputError(f"{name} must be real")
+    if np.iscomplexobj(raw) or raw.dtype.kind in "US":      # never cast complex or parse text
+        raise InvalidInputError(f"{name} must be real numbers")
+    try:
+        a = np.asarray(x, dtype=np.float64)
+    except OverflowError as exc:                                # e.g. 10**400
+        raise InvalidInputError(f"{name}: an integer beyond the float64 range; use the mpmath flavour") from exc
+    except (TypeError, ValueError) as exc:
+        raise InvalidInputError(f"{name} must be a real numeric array") from exc
     if not np.all(np.isfinite(a)):
         raise InvalidInputError(f"{name} must be finite (found NaN or inf)")
     return a
@@ -132,7 +139,9 @@ def _finish(errors, bad, batch, outs):
     fin = np.ones(batch, dtype=bool) if bad is None else ~bad
     for o in outs:
         f = np.isfinite(o)
-        fin = fin & (f.reshape(batch + (-1,)).all(axis=-1) if o.ndim > len(batch) else f)
+        # the trailing size spelled out: -1 cannot be inferred for an empty batch
+        fin = fin & (f.reshape(batch + (int(np.prod(o.shape[len(batch):])),)).all(axis=-1)
+                     if o.ndim > len(batch) else f)
     if errors == "raise":
         if not fin.all():
             where, txt = _where(~fin, batch)
@@ -177,7 +186,8 @@ def _mp_state(x, n, name):
 
 
 def _mp_branch(b):
-    if isinstance(b, bool) or b not in (1, -1):
+    # 1+0j == 1 in Python: refuse complex (and bool) by type before comparing
+    if isinstance(b, (bool, complex, np.complexfloating, mpmath.mpc)) or b not in (1, -1):
         raise InvalidInputError("branch must be +1 or -1")
     return int(b)
 

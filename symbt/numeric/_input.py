@@ -139,6 +139,49 @@ def _is_complex(x: Any) -> bool:
     return False
 
 
+def _has_text(x: Any) -> bool:
+    """True if ``x`` is, or contains, a string (numpy would parse ``"1.5"`` as a number)."""
+    if isinstance(x, (str, bytes)):
+        return True
+    if isinstance(x, np.ndarray):
+        if x.dtype.kind in "US":
+            return True
+        if x.dtype != object:
+            return False
+        x = x.ravel().tolist()
+    if isinstance(x, (list, tuple)):
+        return any(_has_text(v) for v in x)
+    return False
+
+
+def float_array(x: Any, name: str) -> npt.NDArray[np.float64]:
+    """``x`` as a float64 array, or :class:`InvalidInputError` -- the one conversion of real input.
+
+    Refused, never cast: complex values, strings, dicts and other non-numbers, ragged
+    nesting, and integers beyond the float64 range (``10**400``: use mpmath inputs).
+    Finiteness is left to the caller.
+
+    >>> float_array([1, 2], "p").tolist()
+    [1.0, 2.0]
+    >>> float_array([10**400, 0], "p")
+    Traceback (most recent call last):
+    ...
+    symbt.numeric.errors.InvalidInputError: p: an integer beyond the float64 range; use mpmath inputs
+    """
+    if isinstance(x, np.ndarray) and x.dtype.kind in "fiub":      # fast path: already numeric
+        return np.asarray(x, dtype=np.float64)
+    if _is_complex(x):
+        raise InvalidInputError("%s: complex input is not supported (the real map takes real states)" % name)
+    if _has_text(x) or isinstance(x, dict):
+        raise InvalidInputError("%s must be a real numeric array, not text or a mapping" % name)
+    try:
+        return np.asarray(x, dtype=np.float64)
+    except OverflowError as exc:
+        raise InvalidInputError("%s: an integer beyond the float64 range; use mpmath inputs" % name) from exc
+    except (TypeError, ValueError) as exc:
+        raise InvalidInputError("%s must be a real numeric array (same length in every row)" % name) from exc
+
+
 def validate_float_pair(p: Any, q: Any) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], tuple[int, ...]]:
     """Validated float64 ``(pa, qa, batch_shape)`` with ``pa``, ``qa`` of shape (B, N).
 
@@ -147,13 +190,8 @@ def validate_float_pair(p: Any, q: Any) -> tuple[npt.NDArray[np.float64], npt.ND
     >>> validate_float_pair([1.0, 2.0], [0.0, 0.0])[2]
     ()
     """
-    if _is_complex(p) or _is_complex(q):
-        raise InvalidInputError("complex p, q are not supported (the real map takes real states)")
-    try:
-        pa = np.asarray(p, dtype=np.float64)
-        qa = np.asarray(q, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError("p and q must be real numeric arrays") from exc
+    pa = float_array(p, "p")
+    qa = float_array(q, "q")
     if pa.shape != qa.shape:
         raise InvalidInputError("p and q shapes differ: %s vs %s" % (pa.shape, qa.shape))
     if pa.ndim == 0:
@@ -178,7 +216,10 @@ def prepare_scalar(ctx: Context, x: Any, shape: tuple[int, ...], name: str) -> A
             raise InvalidInputError("%s must be a scalar for mpmath inputs" % name)
         return _mp_value(ctx, x, name, "%s must be a finite real number", "%s must be a finite real number")
     if type(x) in _REAL_SCALARS:          # fast path: plain real scalars
-        v = float(x)
+        try:
+            v = float(x)
+        except OverflowError as exc:
+            raise InvalidInputError("%s: an integer beyond the float64 range; use mpmath inputs" % name) from exc
         if not math.isfinite(v):
             raise InvalidInputError("%s must be finite" % name)
         return v
@@ -186,10 +227,7 @@ def prepare_scalar(ctx: Context, x: Any, shape: tuple[int, ...], name: str) -> A
         raise InvalidInputError("%s must be real" % name)
     if isinstance(x, _MP_TYPES):
         x = float(x)
-    try:
-        a = np.asarray(x, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError("%s must be a real number or array" % name) from exc
+    a = float_array(x, name)
     if not np.all(np.isfinite(a)):
         raise InvalidInputError("%s must be finite" % name)
     if a.ndim == 0:

@@ -48,7 +48,8 @@ from typing import Any
 import mpmath
 import numpy as np
 
-from ._input import MP, _to_mp
+from ._input import MP, _to_mp, float_array, prepare_spectral_pair
+from .context import FLOAT
 from .errors import InvalidInputError, NoRealMapError, NumericRangeError, QuadratureError
 from .step import bt_step
 
@@ -78,11 +79,7 @@ def _branch(branch: Any) -> int:
 
 
 def _float_state(p: Any, q: Any) -> tuple[np.ndarray, np.ndarray]:
-    try:
-        pa = np.asarray(p, dtype=np.float64)
-        qa = np.asarray(q, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError("p and q must be real numeric arrays") from exc
+    pa, qa = float_array(p, "p"), float_array(q, "q")     # complex, text, 10**400: typed errors
     if pa.ndim != 1 or pa.shape != qa.shape:
         raise InvalidInputError("flow_coefficients takes a single state (p, q of shape (N,))")
     if not (np.all(np.isfinite(pa)) and np.all(np.isfinite(qa))):
@@ -300,12 +297,8 @@ def flow_quadrature(p: Any, q: Any, lam0: float, mu: float, *, branch: int = 1, 
     """
     branch = _branch(branch)
     P, Q = _float_state(p, q)
-    lam0, mu = float(lam0), float(mu)
-    if not (math.isfinite(lam0) and math.isfinite(mu)):
-        raise InvalidInputError("lam0 and mu must be finite")
+    lam0, mu = prepare_spectral_pair(FLOAT, lam0, mu, ())
     a, b = lam0 - mu, lam0 + mu
-    if not (math.isfinite(a) and math.isfinite(b)):
-        raise NumericRangeError("lam0 +- mu overflows float64")
     N = P.size
     r = neighbour_ratios_of(Q.tolist())
     Pl = P.tolist()
@@ -365,7 +358,9 @@ def flow_coefficients(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, ks
     a ``RuntimeWarning`` if its error estimate stays above ``10**(5 - dps)`` relative after a
     retry with 10 more digits).  ``check``: first require the real map to exist
     (:func:`~symbt.numeric.bt_step`; ``lam1``, ``lam2`` in one gap).  :class:`NoRealMapError`
-    when ``|tr| <= 2`` on the interval.  ``mu = 0`` gives zeros; ``mu < 0`` is the reversed
+    when ``|tr| <= 2`` on the interval.  ``mu = 0`` gives zeros, and so does an mpmath
+    integral that cancels to exactly 0 at the working precision (e.g. ``k = 1`` on an interval
+    symmetric about 0 where ``tr`` is nearly even); ``mu < 0`` is the reversed
     interval (``c(-mu, b) = c(mu, -b)``).
     """
     branch = _branch(branch)
@@ -383,14 +378,7 @@ def flow_coefficients(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, ks
     P, Q = _float_state(p, q)
     if P.size < 2:
         raise InvalidInputError("need N >= 2 sites, got N = %d" % P.size)
-    try:
-        lam0, mu = float(lam0), float(mu)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError("lam0 and mu must be real numbers") from exc
-    if not (math.isfinite(lam0) and math.isfinite(mu)):
-        raise InvalidInputError("lam0 and mu must be finite")
-    if not (math.isfinite(lam0 + mu) and math.isfinite(lam0 - mu)):
-        raise NumericRangeError("lam0 +- mu overflows float64")
+    lam0, mu = prepare_spectral_pair(FLOAT, lam0, mu, ())
     kl = _selection(ks, P.size)
     if mu == 0:
         return np.zeros(len(kl))
@@ -457,13 +445,15 @@ def _coefficients_mp(P: list, Q: list, lam0: Any, mu: Any, branch: int, ks: list
             return mpmath.ldexp(lam ** k * inv(lam), -E)
 
         val, err = mpmath.quad(f, [a, lam0, b], error=True)
-        if err > abs(val) * mpmath.mpf(10) ** (5 - dps):
+        # f is scaled to O(1) at the probes, so an integral that cancels to exactly 0 is judged
+        # against that scale (1), not against itself: the result is 0 to the quadrature's error
+        if err > (abs(val) or 1) * mpmath.mpf(10) ** (5 - dps):
             with mpmath.workdps(dps + 10):
                 memo.clear()
                 val, err = mpmath.quad(f, [a, lam0, b], error=True, maxdegree=10)
                 memo.clear()
-            if err > abs(val) * mpmath.mpf(10) ** (5 - dps):
+            if err > (abs(val) or 1) * mpmath.mpf(10) ** (5 - dps):
                 warnings.warn("flow_coefficients: mpmath.quad error estimate %s (relative)"
-                              % mpmath.nstr(err / abs(val), 3), RuntimeWarning, stacklevel=3)
+                              % mpmath.nstr(err / (abs(val) or 1), 3), RuntimeWarning, stacklevel=3)
         out.append(-branch * mpmath.ldexp(+val, E))
     return out

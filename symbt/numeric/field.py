@@ -40,6 +40,7 @@ from typing import Any
 
 import numpy as np
 
+from ._input import float_array
 from .coefficients import flow_quadrature, neighbour_ratios_of
 from .errors import InvalidInputError, NumericRangeError
 
@@ -141,6 +142,14 @@ def _node_gradient(lam: np.ndarray, log2_scale: np.ndarray, P: np.ndarray, R: np
     return da, dr
 
 
+def _finite_state(p: Any, q: Any) -> tuple[np.ndarray, np.ndarray]:
+    """float64 ``p, q`` through the package's one conversion (:func:`float_array`), NaN/inf refused."""
+    pa, qa = float_array(p, "p"), float_array(q, "q")
+    if not (np.all(np.isfinite(pa)) and np.all(np.isfinite(qa))):
+        raise InvalidInputError("p and q must be finite (found NaN or inf)")
+    return pa, qa
+
+
 class FlowField:
     r"""Vector field ``(qdot, pdot) = (dG/dp, -dG/dq)`` of ``G = sum_k c_k H_k`` (module docstring).
 
@@ -157,8 +166,7 @@ class FlowField:
 
     def __init__(self, p0: Any, q0: Any, lam0: float, mu: float, *, branch: int = 1, rtol: float = 1e-13,
                  max_intervals: int = 4000, compress: float | None = 2e-15) -> None:
-        P0 = np.asarray(p0, dtype=float)
-        Q0 = np.asarray(q0, dtype=float)
+        P0, Q0 = _finite_state(p0, q0)
         if P0.ndim != 1 or P0.shape != Q0.shape or P0.size < 2:
             raise InvalidInputError("FlowField takes one state p0, q0 of shape (N,), N >= 2")
         self.N = N = P0.size
@@ -186,8 +194,7 @@ class FlowField:
     def __call__(self, p: Any, q: Any) -> tuple[np.ndarray, np.ndarray]:
         """``(qdot, pdot)`` for states of shape ``batch + (N,)``."""
         self.nfev += 1
-        p = np.asarray(p, dtype=float)
-        q = np.asarray(q, dtype=float)
+        p, q = _finite_state(p, q)
         shape = p.shape
         if shape[-1:] != (self.N,) or q.shape != shape:
             raise InvalidInputError("p, q must have shape batch + (%d,)" % self.N)

@@ -42,18 +42,25 @@ from .errors import InvalidInputError
 
 __all__ = ["bt_orbit", "check_steps"]
 
+_MAX_STEPS = 2 ** 62        # the kernels count steps in int64; far beyond any run
+
 
 def check_steps(n: Any, every: Any) -> tuple[int, int]:
     """Validated ``(n, every)``: non-negative and positive integers.
 
-    >>> check_steps(10, 3)
-    (10, 3)
+    ``every > n`` stores the same rows as ``every = n`` (the initial and the final state) and
+    is returned as such, so that any Python integer works; ``n`` must fit an int64.
+
+    >>> check_steps(10, 3), check_steps(10, 10**20)
+    ((10, 3), (10, 10))
     """
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
         raise InvalidInputError("n must be a non-negative integer, got %r" % (n,))
+    if n > _MAX_STEPS:
+        raise InvalidInputError("n = %d steps is beyond the int64 range of the kernels" % n)
     if isinstance(every, bool) or not isinstance(every, (int, np.integer)) or every < 1:
         raise InvalidInputError("every must be a positive integer, got %r" % (every,))
-    return int(n), int(every)
+    return int(n), int(min(every, max(n, 1)))
 
 
 @overload

@@ -32,11 +32,12 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 from pathlib import Path
 from typing import Any
 
 from .. import __version__
-from .._files import atomic_write, output_problem
+from .._files import is_stdout, output_problem, write_report
 from .text import summary
 
 __all__ = ["SCHEMA_VERSION", "SCHEMA_PATH", "schema", "to_json", "dumps", "write_json", "output_refused",
@@ -77,7 +78,8 @@ def dumps(results, *, coverage: dict | None = None) -> str:
 
 
 def write_json(results, path, *, coverage: dict | None = None) -> None:
-    atomic_write(path, dumps(results, coverage=coverage))
+    """Write the report to ``path`` (see :func:`symbt._files.write_report`: ``-``, files, devices, links)."""
+    write_report(path, dumps(results, coverage=coverage))
 
 
 def output_refused(path: str | None, command: str, flag: str = "--json") -> bool:
@@ -87,8 +89,6 @@ def output_refused(path: str | None, command: str, flag: str = "--json") -> bool
     """
     problem = path and output_problem(path)
     if problem:
-        import sys
-
         print(f"{command}: {flag} {problem}", file=sys.stderr)
     return bool(problem)
 
@@ -96,21 +96,22 @@ def output_refused(path: str | None, command: str, flag: str = "--json") -> bool
 def emit_document(doc: dict, path: str | None, *, command: str, text: str | None = None) -> int:
     """Deliver a command's JSON document; the exit status (0, or 2 when ``path`` cannot be written).
 
-    ``path == "-"``: the document goes to stdout instead of ``text``; otherwise ``text`` (unless
-    ``None``) is printed and the document, if ``path`` is given, written atomically.
+    ``path == "-"`` (or a path that is stdout, see :func:`symbt._files.is_stdout`): the document
+    goes to stdout instead of ``text``; otherwise ``text`` (unless
+    ``None``) is printed and the document, if ``path`` is given, written with
+    :func:`symbt._files.write_report` (a file atomically; a device, pipe or symlink through).
     """
     body = json.dumps(doc, indent=1) + "\n"
-    if path == "-":
+    if path and is_stdout(path):      # '-', or /dev/stdout into a pipe or a file: the document alone
         print(body, end="")
         return 0
     if text is not None:
         print(text)
     if path:
         try:
-            atomic_write(path, body)
+            sys.stdout.flush()              # the text first when the document goes to /dev/stdout too
+            write_report(path, body)
         except OSError as exc:
-            import sys
-
             print(f"{command}: cannot write {path}: {exc.strerror or exc}", file=sys.stderr)
             return 2
     return 0

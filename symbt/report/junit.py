@@ -12,7 +12,7 @@ from __future__ import annotations
 import re
 import xml.etree.ElementTree as ET
 
-from .._files import atomic_write
+from .._files import write_report
 from .text import NOT_OK, evidence_text, outcome_fields, residual_text, summary
 
 __all__ = ["write_junit", "junit_xml", "xml_safe"]
@@ -65,4 +65,4 @@ def junit_xml(results, *, suite: str = "symbt.verify") -> str:
 
 
 def write_junit(results, path, *, suite: str = "symbt.verify") -> None:
-    atomic_write(path, junit_xml(results, suite=suite))
+    write_report(path, junit_xml(results, suite=suite))
