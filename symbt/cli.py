@@ -194,7 +194,8 @@ def _cmd_scenes(args) -> int:
 _DELEGATED_HELP = {"codegen": "emit/check generated numeric modules", "bench": "work-precision benchmarks",
                    "figures": "regenerate the paper's figures", "mutate": "mutation testing of the claims' checks",
                    "coverage": "the paper's labelled displays: claims or reasons",
-                   "init": "scaffold a claims module from your paper's labels"}
+                   "init": "scaffold a claims module from your paper's labels",
+                   "report": "the paper, annotated: a static HTML site from a verify run's JSON"}
 
 
 def _pop_debug(argv: list[str]) -> bool:
@@ -266,7 +267,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 _DELEGATED = {"codegen": "codegen", "bench": "benchmarks", "figures": "report.figures", "mutate": "engine.mutate",
-              "coverage": "engine.coverage", "init": "engine.init"}
+              "coverage": "engine.coverage", "init": "engine.init", "report": "engine.site"}
 
 
 def main(argv=None) -> int:
