@@ -137,7 +137,8 @@ class _Writer:
                   "<h2>The paper, annotated</h2>"]
         for d in s.displays:
             if d.kind == "section":
-                parts.append(f"<h3>{_e(d.section)} {_e(d.source)}</h3>")
+                title = d.source.replace("\\&", "&").replace("~", " ")   # the heading's TeX escapes
+                parts.append(f"<h3>{_e(d.section)} {_e(title)}</h3>")
             elif d.in_paper:
                 parts.append(self.display_block(d))
         extra = [d for d in s.displays if not d.in_paper]

@@ -44,7 +44,7 @@ def _graphviz(nodes: list[Node], edges: list[tuple[str, str]]) -> str | None:
     for i, (column, members) in enumerate(columns.items()):
         with g.subgraph(name=f"cluster_{i}") as sub:
             sub.attr(label=f"§ {column}" if column else "unlabelled", color="#cfd8dc", fontsize="11")
-            for key, text, status, href, _ in members:
+            for key, text, status, href, _col in members:
                 sub.node(ids[key], label=text, fillcolor=COLOURS.get(status, "#777"), URL=href, target="_top",
                          tooltip=f"{text}: {status}", fontcolor="black" if status in _DARK_TEXT else "white")
             for a, b in zip(members, members[1:]):   # keep a section's labels in reading order, top to bottom
@@ -71,7 +71,7 @@ def _fallback(nodes: list[Node], edges: list[tuple[str, str]]) -> str:
         x = 10 + i * (w + gap_x)
         parts.append(f'<text x="{x}" y="14" font-size="11" fill="#455a64">'
                      f'{html.escape("§ " + column if column else "unlabelled")}</text>')
-        for j, (key, text, status, href, _) in enumerate(members):
+        for j, (key, text, status, href, _col) in enumerate(members):
             y = 24 + j * (h + gap_y)
             pos[key] = (x, y)
             fg = "black" if status in _DARK_TEXT else "white"

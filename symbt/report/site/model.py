@@ -14,7 +14,8 @@ claim, or an uncovered display, is ``depends`` -- "verified, depends on ...", ne
 >>> doc = {"claims": [{"id": "a", "equation": "A", "status": "verified", "uses": []},
 ...                   {"id": "b", "equation": "B", "status": "erratum", "uses": []}]}
 >>> class L:  # a scanned label
-...     def __init__(self, label, refs=()): self.label, self.section, self.kind, self.refs = label, "1", "equation", refs
+...     def __init__(self, label, refs=()):
+...         self.label, self.section, self.kind, self.refs = label, "1", "equation", refs
 >>> site = Site.from_report(doc, [L("A", refs=("B",)), L("B")])
 >>> site.status("A"), site.problems("A"), site.status("B")
 ('depends', ['B'], 'erratum')

@@ -30,7 +30,8 @@ h1{font-size:1.5em}h2{font-size:1.2em;border-bottom:1px solid #cfd8dc;padding-bo
 .display{background:#fff;border:1px solid #e0e0e0;border-radius:6px;padding:.4em 1em;margin:.6em 0}
 .display header{display:flex;gap:.8em;align-items:baseline;flex-wrap:wrap}
 .display header a.label{font-weight:600;font-family:ui-monospace,monospace}
-.math{overflow-x:auto}.source{white-space:pre-wrap;font-family:ui-monospace,monospace;font-size:.85em;
+.math{overflow-x:auto;overflow-y:hidden;padding:.2em 0}
+.source{white-space:pre-wrap;font-family:ui-monospace,monospace;font-size:.85em;
  background:#f5f5f5;padding:.3em .5em;border-radius:4px}
 .muted{color:#607d8b;font-size:.9em}.card{background:#fff;border:1px solid #e0e0e0;border-left:6px solid #999;
  border-radius:6px;padding:.5em 1em;margin:1em 0}
