@@ -47,8 +47,8 @@ def _graphviz(nodes: list[Node], edges: list[tuple[str, str]]) -> str | None:
             for key, text, status, href, _col in members:
                 sub.node(ids[key], label=text, fillcolor=COLOURS.get(status, "#777"), URL=href, target="_top",
                          tooltip=f"{text}: {status}", fontcolor="black" if status in _DARK_TEXT else "white")
-            for a, b in zip(members, members[1:]):   # keep a section's labels in reading order, top to bottom
-                sub.edge(ids[a[0]], ids[b[0]], style="invis")
+            for above, below in zip(members, members[1:]):   # keep a section's labels in reading order, top to bottom
+                sub.edge(ids[above[0]], ids[below[0]], style="invis")
     for a, b in edges:
         if a in ids and b in ids:
             g.edge(ids[a], ids[b], constraint="false")
