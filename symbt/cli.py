@@ -32,7 +32,7 @@ __all__ = ["main", "build_parser", "UsageError", "EXTRAS"]
 EXTRAS = {"scipy": "scipy", "matplotlib": "plot", "flint": "certified", "numba": "fast", "gmpy2": "gmpy2",
           "heyoka": "peers", "dask": "dask", "distributed": "dask", "jupytext": "notebooks",
           "nbclient": "notebooks", "ipykernel": "notebooks", "rich": "rich",
-          "pylatexenc": "latex"}
+          "pylatexenc": "latex", "latex2mathml": "report", "selenium": "report", "graphviz": "report"}
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 
 

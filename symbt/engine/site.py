@@ -8,6 +8,7 @@ malformed JSON, a ``.tex`` that does not parse): one line on stderr, exit 2.
 """
 from __future__ import annotations
 
+import importlib.util
 import json
 import sys
 from pathlib import Path
@@ -74,6 +75,9 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     from ..report.site import build_site
 
+    if importlib.util.find_spec("latex2mathml") is None:
+        print("symbt report: displays are shown as LaTeX source (MathML needs the optional extra 'report': "
+              "pip install 'symbt[report]')", file=sys.stderr)
     try:
         out = build_site(doc, labels, args.html, tex=tex, mutate=mutate, paper=paper,
                          prefer_graphviz=not args.no_graphviz)
