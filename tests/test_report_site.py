@@ -163,6 +163,18 @@ def test_verify_json_records_uses_and_run(user_site):
     jsonschema.validate(doc, schema())
 
 
+def test_mutation_score_on_the_summary(user_site, tmp_path):
+    mutate = {"summary": {"mutants": 40, "killed": 37, "equivalent": 2, "survivors": 1, "score": 0.974}}
+    (tmp_path / "mutate.json").write_text(json.dumps(mutate))
+    out = tmp_path / "site"
+    assert main(["report", "--html", str(out), "--from", str(user_site / "verify.json"), "--paper",
+                 str(user_site / "note.tex"), "--mutate", str(tmp_path / "mutate.json"), "-q"]) == 0
+    index = (out / "index.html").read_text()
+    assert re.search(r'id="mutation">0.974 \(40 mutants, 37 killed, 2 equivalent, 1 survivors\)', index)
+    assert 'data-label="eq-H"' in index and "<mfrac>" in index
+    assert 'id="mutation"' not in (user_site / "site" / "index.html").read_text()
+
+
 @pytest.mark.parametrize("argv, message", [
     (["--html", "out", "--from", "missing.json"], "cannot read missing.json"),
     (["--html", "out", "--from", "bad.json"], "is not JSON"),

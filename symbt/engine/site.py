@@ -1,10 +1,21 @@
-"""``symbt report --html DIR --from verify.json``: the annotated paper as a static site (:mod:`symbt.report.site`).
+r"""``symbt report --html DIR --from verify.json``: the annotated paper as a static site (:mod:`symbt.report.site`).
 
 The claims are not re-run: the verdicts come from the JSON of a verify run; the labels and their
 LaTeX from the project's paper (``--paper``, ``[tool.symbt] paper``, or Zullo's ``.tex`` found by
 :func:`.coverage.find_paper`).  Without a readable paper the site still lists every label the
 report's coverage names, without their mathematics (a warning says so).  Bad input (a missing or
 malformed JSON, a ``.tex`` that does not parse): one line on stderr, exit 2.
+
+>>> import json, tempfile, os
+>>> d = tempfile.mkdtemp()
+>>> _ = open(os.path.join(d, "v.json"), "w").write(json.dumps({"claims": [
+...     {"id": "c", "equation": "E", "status": "verified", "statement": "1 + 1 = 2"}]}))
+>>> _ = open(os.path.join(d, "p.tex"), "w").write(r"\begin{equation}\label{E} 1+1=2 \end{equation}")
+>>> main(["--html", os.path.join(d, "site"), "--from", os.path.join(d, "v.json"), "--paper",
+...       os.path.join(d, "p.tex"), "-q"])
+0
+>>> main(["--html", os.path.join(d, "site"), "--from", os.path.join(d, "no.json")])  # one line on stderr
+2
 """
 from __future__ import annotations
 
