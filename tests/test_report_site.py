@@ -6,6 +6,7 @@ escaped source where it does not, statuses propagate along the \\eqref graph and
 """
 from __future__ import annotations
 
+import importlib.util
 import json
 import re
 from pathlib import Path
@@ -21,6 +22,7 @@ pytest.importorskip("pylatexenc")
 PAPER = r"""\documentclass{article}
 \newcommand{\half}{\frac{1}{2}}
 \def\tl{\tilde}
+\newtheorem{thm}{Theorem}
 \begin{document}
 \section{Model}
 \begin{equation}\label{eq-H} H = \half p^2 + \cosh(\tl{q}) \end{equation}
@@ -28,6 +30,7 @@ PAPER = r"""\documentclass{article}
 \begin{equation}\label{eq-D} \dot q = \frac{\partial H}{\partial p}, \quad \text{by } \eqref{eq-H} \end{equation}
 \begin{equation}\label{eq-X} \weirdmacro{q} = <b>\&</b> \end{equation}
 \begin{equation}\label{eq-R} \text{a definition} \end{equation}
+\begin{thm}\label{th-A} If $E < \tl{E}_0$ then \eqref{eq-D} holds.\end{thm}
 \end{document}
 """
 
@@ -104,6 +107,11 @@ def test_labels_badges_mathml_and_escaped_fallback(user_site):
     x = re.search(r'data-label="eq-X".*?</article>', index, re.S).group()
     assert "<math" not in x and "\\weirdmacro{q} = &lt;b&gt;" in x      # shown as escaped source, not dropped
     assert 'data-status="reason"' in re.search(r'data-label="eq-R".*?>', index).group()
+    d = re.search(r'data-label="eq-D".*?</article>', index, re.S).group()   # \eqref inside the math
+    assert "<math" in d and "(eq-H)" in d and "\\eqref" not in d
+    th = re.search(r'data-label="th-A".*?</article>', index, re.S).group()   # a theorem's prose
+    assert '<math xmlns="http://www.w3.org/1998/Math/MathML" display="inline">' in th and "\\tl" not in th
+    assert '<a href="label-eq-D.html">eq-D</a> holds.' in th
 
 
 def test_everything_from_claims_is_escaped(user_site):
@@ -116,7 +124,7 @@ def test_status_propagates_along_eqref_not_along_unrelated_uses(user_site):
     index = (user_site / "site" / "index.html").read_text()
     status = dict(re.findall(r'data-label="([^"]+)" data-status="([^"]+)"', index))
     assert status == {"eq-H": "erratum", "eq-E": "verified", "eq-D": "depends", "eq-X": "verified",
-                      "eq-R": "reason"}
+                      "eq-R": "reason", "th-A": "statement"}
     d = re.search(r'data-label="eq-D".*?</header>', index, re.S).group()
     assert "verified, depends on eq-H" in d
 
@@ -192,3 +200,31 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, monkeypatch, capsys, argv, m
     assert code == 2
     err = capsys.readouterr().err
     assert message in err and len(err.strip().splitlines()) == 1
+
+
+def _three_labels():
+    class Lab:
+        def __init__(self, label, refs=()):
+            self.label, self.section, self.kind, self.refs = label, "1", "equation", refs
+
+    doc = {"claims": [{"id": "a", "equation": "A", "status": "erratum"},
+                      {"id": "b", "equation": "B", "status": "verified"}]}
+    return doc, [Lab("A"), Lab("B", refs=("A",))]
+
+
+def test_graph_layout_by_graphviz_when_installed_else_the_fallback(tmp_path, monkeypatch):
+    import shutil
+
+    from symbt.report.site import build_site
+
+    doc, labels = _three_labels()
+    if shutil.which("dot") and importlib.util.find_spec("graphviz"):
+        out = build_site(doc, labels, tmp_path / "dot")
+        assert out["graph"] == "graphviz"
+        assert 'class="node"' in (tmp_path / "dot" / "graph.html").read_text()
+    monkeypatch.setenv("PATH", str(tmp_path))       # no dot on the PATH: the fallback draws the same nodes
+    out = build_site(doc, labels, tmp_path / "plain")
+    page = (tmp_path / "plain" / "graph.html").read_text()
+    assert out["graph"] == "fallback" and 'href="label-A.html"' in page and 'href="label-B.html"' in page
+    assert "#9e9d24" in page   # B is verified but uses the erratum A: the "depends" colour
+    _strict(page)

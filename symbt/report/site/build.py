@@ -2,13 +2,14 @@
 from __future__ import annotations
 
 import html
+import re
 from collections import Counter
 from pathlib import Path
 from typing import Any
 
 from ..._files import atomic_write
 from .graph import graph_svg
-from .mathml import macros_of, to_mathml
+from .mathml import inline_parts, macros_of, to_mathml
 from .model import Site, status_text
 from .pages import CSS, badge, claim_card, page, slug
 
@@ -44,9 +45,24 @@ class _Writer:
             if m is not None:
                 return f'<div class="math">{m}</div>'
             return f'<div class="source" title="not converted to MathML">{_e(d.source)}</div>'
+        if d.source and d.kind == "theorem":
+            return f'<div class="prose">{self.prose(d.source)}</div>'
         if d.source:
             return f'<div class="source">{_e(d.source)}</div>'
         return '<p class="muted">(no source: the paper\'s .tex was not given)</p>' if d.in_paper else ""
+
+    def prose(self, text: str) -> str:
+        """A theorem's text: inline math as MathML, references as links, the rest escaped."""
+        out = []
+        for kind, piece in inline_parts(text):
+            if kind == "math":
+                m = to_mathml(piece, self.macros, display="inline")
+                out.append(m if m is not None else f"<code>{_e(piece)}</code>")
+            elif kind == "ref":
+                out.append(self._link(piece))
+            else:
+                out.append(_e(re.sub(r"\s+", " ", piece)))
+        return "".join(out)
 
     def display_block(self, d, *, link: bool = True) -> str:
         s = self.site

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import re
 
-__all__ = ["macros_of", "expand", "to_mathml", "SUBSTITUTES"]
+__all__ = ["macros_of", "expand", "to_mathml", "inline_parts", "SUBSTITUTES"]
 
 #: macros whose TeX bodies are typesetting tricks with no MathML meaning -> what they denote
 SUBSTITUTES = {"dblone": r"\mathbb{1}", "id": r"\mathbb{1}", "R": r"\mathbb{R}", "C": r"\mathbb{C}"}
@@ -29,6 +29,7 @@ _NAME = re.compile(r"\\([A-Za-z]+)")
 _LEFT_OVER = re.compile(r">[^<]*\\[A-Za-z]+[^<]*<|<mi>&(?:amp;)?</mi>")
 # latex2mathml aligns the rows of split but prints the & of aligned/gathered as text
 _ALIGNED = re.compile(r"\\(begin|end)\{(?:aligned|gathered|alignedat)\}")
+_REF = re.compile(r"\\(eq)?c?ref\*?\{([^{}]*)\}")
 _DROP = re.compile(r"\\(?:label|nonumber|notag)\b(?:\{[^{}]*\})?|\\\\\s*$")
 # text-mode spacing and sizing commands latex2mathml does not know; they carry no mathematics
 _SPACING = re.compile(r"\\(?:displaystyle|textstyle|scriptstyle|small|normalsize|qquad|quad|hskip\s*-?[\d.]+\w*)\b")
@@ -121,13 +122,35 @@ def expand(source: str, macros: dict[str, tuple[int, str]], *, rounds: int = 8) 
     return source
 
 
-def to_mathml(source: str, macros: dict[str, tuple[int, str]] | None = None) -> str | None:
-    """``source`` as a block ``<math>`` element, or ``None`` when it does not convert cleanly."""
+def inline_parts(text: str) -> list[tuple[str, str]]:
+    r"""A theorem's or caption's text split into ``("text" | "math" | "ref", content)`` pieces.
+
+    >>> inline_parts(r"If $x>0$ then (\ref{a}) holds")
+    [('text', 'If '), ('math', 'x>0'), ('text', ' then ('), ('ref', 'a'), ('text', ') holds')]
+    """
+    out: list[tuple[str, str]] = []
+    for piece in re.split(r"(\$[^$]+\$|\\(?:eq)?c?ref\{[^{}]*\})", text):
+        if not piece:
+            continue
+        if piece.startswith("$"):
+            out.append(("math", piece[1:-1]))
+        elif piece.startswith("\\") and "ref{" in piece:
+            out.append(("ref", piece[piece.index("{") + 1:-1]))
+        else:
+            out.append(("text", piece))
+    return out
+
+
+def to_mathml(source: str, macros: dict[str, tuple[int, str]] | None = None, *,
+              display: str = "block") -> str | None:
+    """``source`` as a ``<math>`` element (``display`` block or inline), or ``None`` when it does not
+    convert cleanly."""
     try:
         from latex2mathml.converter import convert
     except ImportError:
         return None
-    text = _SPACING.sub(" ", _DROP.sub("", expand(source, macros or {}))).strip()
+    text = _REF.sub(lambda m: "\\text{" + ("(%s)" if m.group(1) else "%s") % m.group(2) + "}", source)
+    text = _SPACING.sub(" ", _DROP.sub("", expand(text, macros or {}))).strip()
     text = _ALIGNED.sub(lambda m: f"\\{m.group(1)}{{split}}", text)
     if not text.endswith("\\right."):
         text = text.rstrip(",.;").strip()   # the sentence's punctuation
@@ -136,7 +159,7 @@ def to_mathml(source: str, macros: dict[str, tuple[int, str]] | None = None) -> 
     if not text:
         return None
     try:
-        out = convert(text, display="block")
+        out = convert(text, display=display)
     except Exception:  # the converter's errors are many and untyped: any of them means "show the source"
         return None
     if _LEFT_OVER.search(out):

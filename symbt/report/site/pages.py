@@ -33,6 +33,7 @@ h1{font-size:1.5em}h2{font-size:1.2em;border-bottom:1px solid #cfd8dc;padding-bo
 .math{overflow-x:auto;overflow-y:hidden;padding:.2em 0}
 .source{white-space:pre-wrap;font-family:ui-monospace,monospace;font-size:.85em;
  background:#f5f5f5;padding:.3em .5em;border-radius:4px}
+.prose{padding:.2em 0;font-style:italic}
 .muted{color:#607d8b;font-size:.9em}.card{background:#fff;border:1px solid #e0e0e0;border-left:6px solid #999;
  border-radius:6px;padding:.5em 1em;margin:1em 0}
 .card dl{display:grid;grid-template-columns:9em 1fr;gap:.2em .8em;margin:.4em 0}.card dt{color:#546e7a}
