@@ -58,9 +58,14 @@ class _Writer:
             if kind == "math":
                 m = to_mathml(piece, self.macros, display="inline")
                 out.append(m if m is not None else f"<code>{_e(piece)}</code>")
+            elif kind == "display":
+                m = to_mathml(piece, self.macros)
+                out.append(f'<span class="math">{m}</span>' if m is not None else
+                           f'<span class="source">{_e(piece.strip())}</span>')
             elif kind == "ref":
                 out.append(self._link(piece))
             else:
+                piece = re.sub(r"\\(?:emph|textbf|textit|textrm|textsf)\{([^{}]*)\}", r"\1", piece)
                 out.append(_e(re.sub(r"\s+", " ", piece)))
         return "".join(out)
 

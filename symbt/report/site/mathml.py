@@ -30,6 +30,13 @@ _LEFT_OVER = re.compile(r">[^<]*\\[A-Za-z]+[^<]*<|<mi>&(?:amp;)?</mi>")
 # latex2mathml aligns the rows of split but prints the & of aligned/gathered as text
 _ALIGNED = re.compile(r"\\(begin|end)\{(?:aligned|gathered|alignedat)\}")
 _REF = re.compile(r"\\(eq)?c?ref\*?\{([^{}]*)\}")
+_PROSE = re.compile(
+    r"\\begin\{(?P<env>equation|align|gather|multline|eqnarray|displaymath)(?P<star>\*?)\}(?P<body>.*?)"
+    r"\\end\{(?P=env)(?P=star)\}"
+    r"|\\\[(?P<bracket>.*?)\\\]|\$\$(?P<dd>.*?)\$\$|\$(?P<inline>[^$]+)\$"
+    r"|\\(?:eq)?c?ref\{(?P<ref>[^{}]*)\}"
+    r"|(?P<text>(?:[^\\$]|\\(?!begin\{(?:equation|align|gather|multline|eqnarray|displaymath)|\[|(?:eq)?c?ref\{))+)",
+    re.S)
 _DROP = re.compile(r"\\(?:label|nonumber|notag)\b(?:\{[^{}]*\})?|\\\\\s*$")
 # text-mode spacing and sizing commands latex2mathml does not know; they carry no mathematics
 _SPACING = re.compile(r"\\(?:displaystyle|textstyle|scriptstyle|small|normalsize|qquad|quad|hskip\s*-?[\d.]+\w*)\b")
@@ -123,21 +130,25 @@ def expand(source: str, macros: dict[str, tuple[int, str]], *, rounds: int = 8) 
 
 
 def inline_parts(text: str) -> list[tuple[str, str]]:
-    r"""A theorem's or caption's text split into ``("text" | "math" | "ref", content)`` pieces.
+    r"""A theorem's or caption's text split into ``("text" | "math" | "display" | "ref", content)`` pieces.
 
     >>> inline_parts(r"If $x>0$ then (\ref{a}) holds")
     [('text', 'If '), ('math', 'x>0'), ('text', ' then ('), ('ref', 'a'), ('text', ') holds')]
+    >>> inline_parts(r"so \begin{equation*} y = 1 \end{equation*}.")
+    [('text', 'so '), ('display', ' y = 1 '), ('text', '.')]
     """
     out: list[tuple[str, str]] = []
-    for piece in re.split(r"(\$[^$]+\$|\\(?:eq)?c?ref\{[^{}]*\})", text):
-        if not piece:
-            continue
-        if piece.startswith("$"):
-            out.append(("math", piece[1:-1]))
-        elif piece.startswith("\\") and "ref{" in piece:
-            out.append(("ref", piece[piece.index("{") + 1:-1]))
-        else:
-            out.append(("text", piece))
+    for m in _PROSE.finditer(text):
+        if m.group("text"):
+            out.append(("text", m.group("text")))
+        elif m.group("env") is not None:
+            out.append(("display", m.group("body")))
+        elif m.group("bracket") is not None or m.group("dd") is not None:
+            out.append(("display", m.group("bracket") or m.group("dd") or ""))
+        elif m.group("inline") is not None:
+            out.append(("math", m.group("inline")))
+        elif m.group("ref") is not None:
+            out.append(("ref", m.group("ref")))
     return out
 
 
