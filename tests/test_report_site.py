@@ -183,6 +183,17 @@ def test_mutation_score_on_the_summary(user_site, tmp_path):
     assert 'id="mutation"' not in (user_site / "site" / "index.html").read_text()
 
 
+def test_uses_survive_the_warm_path(user_site, monkeypatch):
+    """A second verify reads every outcome from the cache and the claims from the manifest: uses stay."""
+    monkeypatch.chdir(user_site)
+    assert main(["verify", "--json", "cold.json", "-q"]) == 0        # this test's own cache: fill it
+    assert not any(c["cached"] for c in json.loads((user_site / "cold.json").read_text())["claims"])
+    assert main(["verify", "--json", "warm.json", "-q"]) == 0
+    warm = json.loads((user_site / "warm.json").read_text())
+    assert all(c["cached"] for c in warm["claims"])
+    assert {c["id"]: c["uses"] for c in warm["claims"]}["x.other"] == ["e.bound"]
+
+
 @pytest.mark.parametrize("argv, message", [
     (["--html", "out", "--from", "missing.json"], "cannot read missing.json"),
     (["--html", "out", "--from", "bad.json"], "is not JSON"),
