@@ -100,10 +100,13 @@ class _Writer:
             name = key[2:]
             if key.startswith("L:"):
                 d = s.by_label[name]
-                nodes.append((key, name, s.status(name), _href(name), d.section))
+                nodes.append((key, name, s.status(name), _href(name), f"§ {d.section}" if d.section else "unlabelled"))
             elif with_claims:
                 nodes.append((key, name, s.status(name), self.link_of(name) or "", "claims"))
         edges = [(a, b) for a in wanted for b in sorted(s.edges.get(a, ())) if b in wanted]
+        if with_claims:   # a label's status is its claims': draw what decides it
+            edges += [(k, "C:" + c) for k in wanted if k.startswith("L:") for c in s.by_label[k[2:]].claims
+                      if "C:" + c in wanted]
         svg, self.engine = graph_svg(nodes, sorted(edges), prefer_graphviz=self.prefer_graphviz)
         return f'<div class="graph">{svg}</div>'
 

@@ -6,7 +6,7 @@ the ``graphviz`` Python binding or Debian's ``graphviz`` (the ``dot`` program) t
 the same columns itself -- less tidy edges, same nodes, colours and links -- so a report never
 needs Graphviz to exist.
 
->>> svg, engine = graph_svg([("L:a", "a", "verified", "a.html", "1"), ("L:b", "b", "erratum", "b.html", "1")],
+>>> svg, engine = graph_svg([("L:a", "a", "verified", "a.html", "§ 1"), ("L:b", "b", "erratum", "b.html", "§ 1")],
 ...                         [("L:a", "L:b")], prefer_graphviz=False)
 >>> engine, svg.startswith("<svg") and 'href="a.html"' in svg
 ('fallback', True)
@@ -24,7 +24,7 @@ COLOURS = {"verified": "#2e7d32", "depends": "#9e9d24", "erratum": "#b26a00", "f
            "uncovered": "#212121", "statement": "#e0e0e0"}
 _DARK_TEXT = ("reason", "statement")
 
-Node = tuple[str, str, str, str, str]   # key, text, status, href, column (section)
+Node = tuple[str, str, str, str, str]   # key, text, status, href, column (its heading, e.g. "§ 2")
 
 
 def _graphviz(nodes: list[Node], edges: list[tuple[str, str]]) -> str | None:
@@ -43,7 +43,7 @@ def _graphviz(nodes: list[Node], edges: list[tuple[str, str]]) -> str | None:
     ids = {n[0]: f"n{i}" for i, n in enumerate(nodes)}
     for i, (column, members) in enumerate(columns.items()):
         with g.subgraph(name=f"cluster_{i}") as sub:
-            sub.attr(label=f"§ {column}" if column else "unlabelled", color="#cfd8dc", fontsize="11")
+            sub.attr(label=column, color="#cfd8dc", fontsize="11")
             for key, text, status, href, _col in members:
                 sub.node(ids[key], label=text, fillcolor=COLOURS.get(status, "#777"), URL=href, target="_top",
                          tooltip=f"{text}: {status}", fontcolor="black" if status in _DARK_TEXT else "white")
@@ -70,7 +70,7 @@ def _fallback(nodes: list[Node], edges: list[tuple[str, str]]) -> str:
     for i, (column, members) in enumerate(columns.items()):
         x = 10 + i * (w + gap_x)
         parts.append(f'<text x="{x}" y="14" font-size="11" fill="#455a64">'
-                     f'{html.escape("§ " + column if column else "unlabelled")}</text>')
+                     f'{html.escape(column)}</text>')
         for j, (key, text, status, href, _col) in enumerate(members):
             y = 24 + j * (h + gap_y)
             pos[key] = (x, y)

@@ -39,6 +39,7 @@ h1{font-size:1.5em}h2{font-size:1.2em;border-bottom:1px solid #cfd8dc;padding-bo
 .card dl{display:grid;grid-template-columns:9em 1fr;gap:.2em .8em;margin:.4em 0}.card dt{color:#546e7a}
 .card dd{margin:0;overflow-wrap:anywhere}
 table{border-collapse:collapse}td,th{padding:.15em .6em;border-bottom:1px solid #eceff1;text-align:left}
+table.cells th{white-space:nowrap}
 table.cells td.c{width:5.5em;text-align:center;color:#fff;font-size:.85em;border:2px solid #fff}
 .holds{background:#2e7d32}.fails{background:#c62828}.partly{background:#b26a00}.none{background:#bdbdbd}
 .counts{display:flex;gap:1.5em;flex-wrap:wrap}.counts div{background:#fff;border:1px solid #e0e0e0;
