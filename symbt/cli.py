@@ -31,7 +31,7 @@ __all__ = ["main", "build_parser", "UsageError", "EXTRAS"]
 EXTRAS = {"scipy": "scipy", "matplotlib": "plot", "flint": "certified", "numba": "fast", "gmpy2": "gmpy2",
           "heyoka": "peers", "dask": "dask", "distributed": "dask", "jupytext": "notebooks",
           "nbclient": "notebooks", "ipykernel": "notebooks", "rich": "rich",
-          "pylatexenc": "latex"}
+          "pylatexenc": "latex", "latex2mathml": "report", "selenium": "report", "graphviz": "report"}
 EXIT_OK, EXIT_FAILED, EXIT_USAGE, EXIT_INTERRUPTED = 0, 1, 2, 130
 
 
@@ -190,7 +190,8 @@ def _cmd_scenes(args) -> int:
 _DELEGATED_HELP = {"codegen": "emit/check generated numeric modules", "bench": "work-precision benchmarks",
                    "figures": "regenerate the paper's figures", "mutate": "mutation testing of the claims' checks",
                    "coverage": "the paper's labelled displays: claims or reasons",
-                   "init": "scaffold a claims module from your paper's labels"}
+                   "init": "scaffold a claims module from your paper's labels",
+                   "report": "the paper, annotated: a static HTML site from a verify run's JSON"}
 
 
 def _pop_debug(argv: list[str]) -> bool:
@@ -263,7 +264,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 _DELEGATED = {"codegen": "codegen", "bench": "benchmarks", "figures": "report.figures", "mutate": "engine.mutate",
-              "coverage": "engine.coverage", "init": "engine.init"}
+              "coverage": "engine.coverage", "init": "engine.init", "report": "engine.site"}
 
 
 def main(argv=None) -> int:

@@ -17,7 +17,8 @@ import pytest
 import symbt
 
 ROOT = Path(__file__).resolve().parents[1]
-EXTRAS = {"scipy", "plot", "certified", "fast", "gmpy2", "peers", "dask", "notebooks", "rich", "latex", "test", "all"}
+EXTRAS = {"scipy", "plot", "certified", "fast", "gmpy2", "peers", "dask", "notebooks", "rich", "latex", "report",
+          "test", "all"}
 
 
 @pytest.fixture(scope="module")
@@ -56,6 +57,7 @@ def test_extras_and_entry_points(pyproject):
     assert any(r.startswith("dask[") and "distributed" in r and "array" in r for r in extras["dask"])
     test_needs = {re.split(r"[<>=\[]", r)[0] for r in extras["test"]}
     assert {"pytest", "pytest-xdist", "jsonschema", "hypothesis"} <= test_needs
+    assert {re.split(r"[<>=\[]", r)[0] for r in extras["report"]} <= test_needs   # the report's tests run in CI
     assert project["scripts"] == {"symbt": "symbt.cli:main"}
     assert project["entry-points"]["pytest11"] == {"symbt": "symbt.pytest_plugin"}
 

@@ -44,7 +44,7 @@ def _validate(doc):
 
 def test_json_report_validates_against_the_shipped_schema():
     doc = json.loads(dumps(_results()))        # through text: what a consumer reads
-    assert doc["schema_version"] == "1.2" and doc["generator"].startswith("symbt ")
+    assert doc["schema_version"] == "1.3" and doc["generator"].startswith("symbt ")
     _validate(doc)
     f = next(c for c in doc["claims"] if c["id"] == "f")
     assert f["residual"] == "inf" and f["evidence"] == "sampled"         # non-finite numbers as strings

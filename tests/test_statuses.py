@@ -92,7 +92,7 @@ def test_junit_marks_them_failures_with_their_type():
 
 def test_json_schema_1_2_and_the_other_reporters():
     doc = json.loads(json.dumps(to_json(_results())))
-    assert doc["schema_version"] == "1.2"
+    assert doc["schema_version"] == "1.3"
     assert doc["summary"]["inconclusive"] == 1 and doc["summary"]["todo"] == 1 and doc["summary"]["ok"] is False
     jsonschema = pytest.importorskip("jsonschema")
     jsonschema.Draft202012Validator(schema()).validate(doc)

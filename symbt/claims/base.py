@@ -136,6 +136,8 @@ class Claim:
     are left out of the default run; ``requires`` lists optional modules;
     ``source_equation`` is the paper label a derived artefact (e.g. emitted
     code) comes from, when ``equation`` names the artefact itself.
+    ``uses`` names the claim ids or paper labels the statement relies on (the dependency
+    graph of ``symbt report --html``; a verified claim that uses an erratum is shown as such).
     ``func`` is the check as written (taking ``N`` for a family of sizes);
     ``check`` is the zero-argument callable that runs it.
     """
@@ -150,6 +152,7 @@ class Claim:
     deep: bool = False
     requires: tuple[str, ...] = ()
     source_equation: str | None = None
+    uses: tuple[str, ...] = ()
     func: Callable[..., Outcome] | None = field(default=None, compare=False, repr=False)
     parts: Callable[[], Parts] | None = field(default=None, compare=False, repr=False)
     run_parts: Callable[[Parts], Outcome] | None = field(default=None, compare=False, repr=False)
@@ -208,7 +211,7 @@ class ClaimResult:
     def to_dict(self) -> dict[str, Any]:
         c = self.claim
         d = {"id": c.id, "equation": c.equation, "scene": c.scene, "N": c.N,
-             "statement": c.statement, "where": c.where or None}
+             "statement": c.statement, "where": c.where or None, "uses": list(c.uses)}
         d.update(self.outcome.to_dict())
         return d
 
@@ -250,7 +253,7 @@ def _for_size(text: str, N: int) -> str:
 def claim(id: str, *, equation: str, statement: str, scene: str, N: int | None = None,  # noqa: A002
           sizes: tuple[int, ...] | None = None, where: str = "", deep: bool = False,
           requires: tuple[str, ...] = (), source_equation: str | None = None,
-          parts: Callable[..., Parts] | None = None, register: bool = True):
+          parts: Callable[..., Parts] | None = None, register: bool = True, uses: tuple[str, ...] = ()):
     """Decorator turning a check into registered :class:`Claim` s (claims as data).
 
     Without ``sizes`` the check takes no argument and one claim ``id`` is made
@@ -264,7 +267,8 @@ def claim(id: str, *, equation: str, statement: str, scene: str, N: int | None =
     ``parts`` (called with ``N`` for a family) builds the :class:`Parts` the check
     reads; the check then takes them as its last argument: ``check(N, parts)``
     (or ``check(parts)``).  A check may also take a keyword ``deep`` (more
-    samples per domain cell under ``symbt verify --deep``).
+    samples per domain cell under ``symbt verify --deep``).  ``uses`` lists the claim ids or
+    paper labels the statement relies on (``{N}`` is replaced as in ``statement``).
     """
     if sizes is not None and N is not None:
         raise ValueError("give either N (one claim) or sizes (one claim per size)")
@@ -284,7 +288,8 @@ def claim(id: str, *, equation: str, statement: str, scene: str, N: int | None =
         deep_check = functools.partial(check, deep=True) if takes_deep else None
         c = Claim(id=cid, equation=sub(equation), statement=sub(statement), check=check, scene=scene, N=n,
                   where=sub(where), deep=deep, requires=tuple(requires),
-                  source_equation=None if source_equation is None else sub(source_equation), func=fn,
+                  source_equation=None if source_equation is None else sub(source_equation),
+                  uses=tuple(sub(u) for u in uses), func=fn,
                   parts=builder, run_parts=run_parts, deep_check=deep_check, module=declared_in)
         if register:
             if cid in REGISTRY:

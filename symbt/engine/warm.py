@@ -37,7 +37,7 @@ __all__ = ["source_digest", "manifest_path", "write_manifest", "read_manifest", 
 
 FORMAT = 1
 _PKG = Path(__file__).resolve().parent.parent
-_META = ("id", "equation", "statement", "scene", "N", "where", "deep", "requires", "source_equation")
+_META = ("id", "equation", "statement", "scene", "N", "where", "deep", "requires", "source_equation", "uses")
 
 
 def source_digest() -> str:
@@ -78,7 +78,7 @@ def write_manifest(project: Project | None = None) -> None:
                     if not claim_module(c).startswith("symbt.claims.")
                     and (f := getattr(sys.modules.get(claim_module(c)), "__file__", None))})
     data = {"format": FORMAT, "digest": source_digest(), "roots": roots, "roots_digest": _roots_digest(roots),
-            "claims": [{**{k: (list(getattr(c, k)) if k == "requires" else getattr(c, k)) for k in _META},
+            "claims": [{**{k: (list(getattr(c, k)) if k in ("requires", "uses") else getattr(c, k)) for k in _META},
                         "key": claim_key(c)} for c in claims],
             "scenes": {s: {"description": m.get("description", ""), "deep": bool(m.get("deep"))}
                        for s, m in SCENES.items() if any(c.scene == s for c in claims)}}
@@ -112,7 +112,7 @@ def read_manifest(project: Project | None = None) -> tuple[list[Claim], dict[str
         claims, keys = [], {}
         for d in data["claims"]:
             meta = {k: d[k] for k in _META}
-            meta["requires"] = tuple(meta["requires"])
+            meta["requires"], meta["uses"] = tuple(meta["requires"]), tuple(meta["uses"])
             claims.append(Claim(check=_not_loaded, **meta))
             keys[d["id"]] = str(d["key"])
         scenes = {str(k): dict(v) for k, v in data["scenes"].items()}

@@ -5,8 +5,9 @@ The document validates against the JSON Schema shipped with the package,
 changes its major number when a field is removed or changes meaning, its minor
 number when a field is added::
 
-    {"schema_version": "1.2", "generator": "symbt 0.1.0",
-     "claims": [{"id", "equation", "scene", "N", "statement", "where",
+    {"schema_version": "1.3", "generator": "symbt 0.1.0",
+     "run": {"date", "python", "platform", "machine", "cpus", "libraries": {name: version}},  # 1.3
+     "claims": [{"id", "equation", "scene", "N", "statement", "where", "uses",
                  "status", "evidence", "method", "seconds", "residual", "digits",
                  "printed", "corrected", "counterexample", "scope", "n_scope", "cells",
                  "detail", "cached"}, ...],
@@ -17,6 +18,8 @@ number when a field is added::
 Schema 1.2 added the statuses ``inconclusive`` (a check that cannot decide at the
 precision or budget given) and ``todo`` (a claim stub without a check), and their
 counts in ``summary``; ``ok`` is false when any claim is failed, inconclusive or todo.
+Schema 1.3 added ``run`` (when and where the run happened: :func:`run_info`) and each claim's
+``uses`` (the claim ids or paper labels it relies on; ``symbt report --html`` draws them).
 
 Non-finite numbers (a residual of ``inf``) are written as the strings ``"inf"``,
 ``"-inf"``, ``"nan"`` (JSON has no such numbers); anything else that is not
@@ -26,7 +29,7 @@ JSON (e.g. a SymPy number in a counterexample) as its ``str``.
 >>> r = ClaimResult(Claim("t", "eq", "s", check=None), Outcome("failed", "numeric", residual=float("inf")))
 >>> doc = to_json([r])
 >>> doc["schema_version"], doc["claims"][0]["residual"], doc["summary"]["ok"]
-('1.2', 'inf', False)
+('1.3', 'inf', False)
 """
 from __future__ import annotations
 
@@ -40,10 +43,12 @@ from .. import __version__
 from .._files import is_stdout, output_problem, write_report
 from .text import summary
 
-__all__ = ["SCHEMA_VERSION", "SCHEMA_PATH", "schema", "to_json", "dumps", "write_json", "output_refused",
+__all__ = ["SCHEMA_VERSION", "SCHEMA_PATH", "schema", "to_json", "run_info", "dumps", "write_json", "output_refused",
            "emit_document"]
 
-SCHEMA_VERSION = "1.2"
+SCHEMA_VERSION = "1.3"
+#: the libraries whose versions a report records (those that can change a verdict or its speed)
+LIBRARIES = ("sympy", "mpmath", "numpy", "scipy", "python-flint", "gmpy2", "numba", "heyoka", "pylatexenc")
 SCHEMA_PATH = Path(__file__).with_name("verify.schema.json")
 
 
@@ -64,9 +69,35 @@ def _plain(x: Any) -> Any:
     return str(x)
 
 
+def run_info() -> dict[str, Any]:
+    """When and where a run happened: UTC date, Python, platform, machine, cores, library versions.
+
+    Library versions are read from the installed distributions' metadata (nothing is imported);
+    a library that is not installed is left out.
+
+    >>> info = run_info()
+    >>> sorted(info) == ["cpus", "date", "libraries", "machine", "platform", "python"]
+    True
+    """
+    import datetime
+    import os
+    import platform
+    from importlib import metadata
+
+    libraries = {}
+    for name in LIBRARIES:
+        try:
+            libraries[name] = metadata.version(name)
+        except metadata.PackageNotFoundError:
+            pass
+    return {"date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+            "python": platform.python_version(), "platform": platform.platform(),
+            "machine": platform.machine(), "cpus": os.cpu_count() or 1, "libraries": libraries}
+
+
 def to_json(results, *, coverage: dict | None = None) -> dict:
     """The report as a JSON-ready dict; ``coverage`` (label -> claims or reason) is added when given."""
-    doc = {"schema_version": SCHEMA_VERSION, "generator": f"symbt {__version__}",
+    doc = {"schema_version": SCHEMA_VERSION, "generator": f"symbt {__version__}", "run": run_info(),
            "claims": [r.to_dict() for r in results], "summary": summary(results)}
     if coverage is not None:
         doc["coverage"] = coverage
