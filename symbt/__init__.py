@@ -75,7 +75,7 @@ _LAZY = {"verify": ".engine", "check_identity": ".proof", "IdentityResult": ".pr
          "judge_cells": ".claims.base", "CellTable": ".proof.cells",
          "Domain": ".proof", "sign": ".proof", "choice": ".proof", "regime": ".proof", "uniform": ".proof",
          "log_uniform": ".proof", "integers": ".proof", "complex_box": ".proof", "UnfilledCellError": ".proof",
-         "solves_ode": ".proof", "ode_residual": ".proof"}
+         "solves_ode": ".proof", "ode_residual": ".proof", "emit": ".codegen.user"}
 
 __all__ = ["__version__", "LAYERS", *_LAZY]
 
