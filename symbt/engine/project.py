@@ -327,7 +327,7 @@ def load(project: Project | None = None) -> list:
                 raise ConfigError(f"claims source {spec!r} registers no claim (declare them with @symbt.claim)")
             names.append(name)
         if project.codegen:   # the claims of the emitted functions, owned by their declaring modules
-            from .emitted import register_emitted
+            from .emitting import register_emitted
 
             names += register_emitted(project)
         owners = _OWNERS[project.claims + project.codegen] = tuple(names)
