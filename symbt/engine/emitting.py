@@ -12,8 +12,8 @@ configuration file (the working directory without one).  ``--check`` writes noth
 with one line per missing, stale or hand-edited file; a bad declaration, a source that does not
 import, a malformed ``[tool.symbt]`` or an unwritable directory is one line on stderr, exit 2.
 
-:func:`register_emitted` (called by :func:`symbt.engine.project.load` for a project with
-``codegen`` sources) gives every declared function three claims in the scene ``codegen``,
+:func:`symbt.engine.emitted_claims.register_emitted` (called by :func:`symbt.engine.project.load`
+for a project with ``codegen`` sources) gives every declared function three claims in the scene ``codegen``,
 owned by the module that declared it: ``emit.<module>.<name>.numpy``, ``.mpmath`` and ``.c``
 (``skipped`` with the reason when the C file was not emitted or no compiler is present).  Each
 checks the file's provenance (missing, stale or hand-edited: ``failed``), then compares the
@@ -22,73 +22,14 @@ emitted function, imported from disk, with its SymPy source (:mod:`symbt.codegen
 from __future__ import annotations
 
 import argparse
-import functools
 import sys
 from pathlib import Path
 
-from ..claims.base import REGISTRY, SCENES, Claim, Outcome, failed, judge_cells, skipped, todo
-from ..codegen.provenance import file_problem
-from ..codegen.user.declare import EMISSIONS, Emission, emissions_of
-from ..codegen.user.files import by_module, check, generate, module_hash
-from .project import ConfigError, Project, _import, discover
+from ..codegen.user.declare import emissions_of
+from ..codegen.user.files import by_module, check, generate
+from .project import ConfigError, _import, discover
 
-__all__ = ["main", "register_emitted", "FLAVOURS", "SCENE"]
-
-FLAVOURS = ("numpy", "mpmath", "c")
-SCENE = "codegen"
-
-
-def _statement(e: Emission, flavour: str) -> str:
-    what = {"numpy": "numpy float64", "mpmath": "mpmath", "c": "C99"}[flavour]
-    return f"the emitted {e.module}.{e.name} ({what}) equals its SymPy source on the declared domain"
-
-
-def _check(key: tuple[str, str], flavour: str, root: Path, out: Path, *, deep: bool = False) -> Outcome:
-    from ..codegen.user.check import compare, compiler, method_text
-
-    e = EMISSIONS.get(key)
-    if e is None:
-        return failed("declaration", detail=f"{key[0]}.{key[1]} is no longer declared")
-    if e.domain is None:
-        return todo(f"emit({e.name!r}, ..., domain=symbt.Domain(...)) declares no domain to verify on")
-    names = [f"{e.module}.c", f"{e.module}.h"] if flavour == "c" else [f"{e.module}.py"]
-    if flavour == "c":
-        if not (out / names[0]).is_file():
-            return skipped(f"C target not emitted ({out / names[0]} missing; run `symbt codegen --target c`)")
-        if compiler() is None:
-            return skipped("no C compiler (cc, gcc or clang) on PATH")
-    ems = by_module(EMISSIONS.values())[e.module]
-    dh = module_hash(e.module, ems, root, out)
-    problems = [p for p in (file_problem(out / n, dh) for n in names) if p]
-    if problems:
-        return failed("provenance", detail="; ".join(problems))
-    table = compare(e, out / names[0], flavour, deep=deep)
-    return judge_cells(table, printed=_statement(e, flavour), method=method_text(flavour))
-
-
-def register_emitted(project: Project) -> list[str]:
-    """Import the project's ``codegen`` sources and register the claims of their declarations.
-
-    Returns the sources' module names (they own the claims).  :class:`ConfigError` for a source
-    that does not import (a bad declaration raises while it imports) or declares nothing.
-    """
-    names = []
-    out = project.codegen_out or project.root / "generated"
-    for spec in project.codegen:
-        name = _import(spec, "codegen")
-        ems = emissions_of([name])
-        if not ems:
-            raise ConfigError(f"codegen source {spec!r} declares nothing to emit (call symbt.emit)")
-        names.append(name)
-        for e in ems:
-            for fl in FLAVOURS:
-                cid = f"emit.{e.module}.{e.name}.{fl}"
-                check = functools.partial(_check, (e.module, e.name), fl, project.root, out)
-                REGISTRY[cid] = Claim(id=cid, equation=f"{e.module}.{e.name}", statement=_statement(e, fl),
-                                      check=check, scene=SCENE, func=_check,
-                                      deep_check=functools.partial(check, deep=True), module=e.declared_in)
-        SCENES.setdefault(SCENE, {"description": "emitted code vs its SymPy source", "deep": False})
-    return names
+__all__ = ["main"]
 
 
 # --------------------------------------------------------------------------- the command line

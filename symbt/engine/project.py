@@ -327,9 +327,16 @@ def load(project: Project | None = None) -> list:
                 raise ConfigError(f"claims source {spec!r} registers no claim (declare them with @symbt.claim)")
             names.append(name)
         if project.codegen:   # the claims of the emitted functions, owned by their declaring modules
-            from .emitting import register_emitted
+            from ..codegen.user.declare import emissions_of
+            from .emitted_claims import register_emitted
 
-            names += register_emitted(project)
+            for spec in project.codegen:
+                name = _import(spec, "codegen")
+                if not emissions_of([name]):
+                    raise ConfigError(f"codegen source {spec!r} declares nothing to emit (call symbt.emit)")
+                names.append(name)
+                register_emitted(emissions_of([name]), project.root,
+                                 project.codegen_out or project.root / DEFAULT_CODEGEN_OUT)
         owners = _OWNERS[project.claims + project.codegen] = tuple(names)
     if not _ACTIVE or _ACTIVE[-1] != project:
         _ACTIVE.append(project)

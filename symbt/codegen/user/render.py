@@ -137,7 +137,7 @@ def _names(e: Emission) -> dict:
 
 
 def _doc(e: Emission, flavour: str) -> str:
-    what = {(): "a scalar"}.get(e.shape, f"shape {e.shape}")
+    what = "a scalar" if e.shape == () else f"shape {e.shape}"
     head = e.doc.strip() or f"{e.name}({', '.join(e.arg_names)})"
     if flavour == "numpy":
         tail = (f"numpy float64; the arguments broadcast, the result is batch + {e.shape}; "
