@@ -114,6 +114,8 @@ def test_the_comparison_fails_on_a_wrong_or_inaccurate_file(project: Path) -> No
     ("emit('f', x + z, args=(x,), module='m')", "symbol z is not among args"),
     ("emit('f', x + sp.oo, args=(x,), module='m')", "non-finite constant"),
     ("emit('f', sp.besselj(0, x), args=(x,), module='m')", "not supported by the C target"),
+    ("emit('f', sp.Piecewise((x, x > 0)), args=(x,), module='m')", "default branch"),
+    ("emit('f', x, args=(x,), module='m', domain=3)", "domain must be a symbt.Domain"),
 ])
 def test_bad_declarations_exit_2_with_one_line(tmp_path: Path, body: str, words: str) -> None:
     (tmp_path / "pyproject.toml").write_text('[tool.symbt]\ncodegen = ["bad.py"]\n')
@@ -143,3 +145,32 @@ def test_c_target_compiled_and_verified(project: Path) -> None:
     res = verify(project)
     for n in ("softlog", "rotation", "ramp"):
         assert res[f"emit.mymodel.{n}.c"]["status"] == "verified", res[f"emit.mymodel.{n}.c"]
+
+
+def test_derivation_sources_are_the_declaring_modules_and_what_they_import(tmp_path: Path) -> None:
+    """A helper the declaring module imports makes the file stale; an unrelated file of the project does not."""
+    (tmp_path / "pyproject.toml").write_text('[tool.symbt]\ncodegen = ["model_emit.py"]\ncodegen-out = "out"\n')
+    (tmp_path / "helper.py").write_text("import sympy as sp\nK = sp.Rational(1, 2)\n")
+    (tmp_path / "notes.py").write_text("X = 1\n")
+    (tmp_path / "model_emit.py").write_text("import sympy as sp\nfrom symbt import emit\nfrom helper import K\n"
+                                            "x = sp.Symbol('x')\nemit('half', K * x, args=(x,), module='h')\n")
+    assert run(tmp_path, "codegen", "-q").returncode == 0 and (tmp_path / "out" / "h.py").is_file()
+    (tmp_path / "notes.py").write_text("X = 2\n")
+    assert run(tmp_path, "codegen", "--check").returncode == 0
+    (tmp_path / "helper.py").write_text("import sympy as sp\nK = sp.Rational(1, 3)\n")
+    r = run(tmp_path, "codegen", "--check")
+    assert r.returncode == 1 and "h.py: stale" in r.stderr, r.stderr
+    (tmp_path / "out" / "h.py").unlink()
+    r = run(tmp_path, "codegen", "--check")
+    assert r.returncode == 1 and "h.py: missing" in r.stderr, r.stderr
+
+
+def test_without_a_user_config_codegen_is_the_package_s(tmp_path: Path) -> None:
+    r = run(ROOT, "codegen", "--check")
+    assert r.returncode == 0 and "generated files up to date" in r.stdout, r.stderr
+
+
+def test_emit_is_public() -> None:
+    import symbt
+
+    assert "emit" in symbt.__all__ and symbt.emit.__module__ == "symbt.codegen.user.declare"

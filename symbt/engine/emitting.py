@@ -75,7 +75,7 @@ def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv[:1] == ["--"]:
         argv = argv[1:]
-    if not _user_project(argv) or any(a in ("-h", "--help") for a in argv) and "--codegen" not in argv:
+    if not _user_project(argv):
         from ..codegen.cli import main as package_main
 
         return package_main(argv)

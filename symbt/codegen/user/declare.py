@@ -128,6 +128,8 @@ def _check_expr(name: str, e: sp.Expr, args: tuple[sp.Symbol, ...]) -> None:
         if node.is_Function and not isinstance(node, SUPPORTED_FUNCTIONS):
             raise _fail(name, f"function {type(node).__name__} is not supported by the C target "
                         f"(supported: {', '.join(f.__name__ for f in SUPPORTED_FUNCTIONS)})")
+        if isinstance(node, sp.Piecewise) and node.args[-1][1] is not sp.true:
+            raise _fail(name, "a Piecewise needs a default branch (expr, True) as its last piece")
         if isinstance(node, (sp.Derivative, sp.Integral, sp.Sum, sp.Product)) or node is sp.I:
             raise _fail(name, f"{type(node).__name__} cannot be emitted (evaluate it first)")
 
