@@ -49,7 +49,11 @@ def _check(key: tuple[str, str], flavour: str, root: Path, out: Path, *, deep: b
     if problems:
         return failed("provenance", detail="; ".join(problems))
     table = compare(e, out / names[0], flavour, deep=deep)
-    return judge_cells(table, printed=_statement(e, flavour), method=method_text(flavour))
+    res = judge_cells(table, printed=_statement(e, flavour), method=method_text(flavour),
+                      detail="residual: the worst |emitted - reference| in units of the error bound "
+                             "(a point holds at <= 1)")
+    res.digits = None   # the residual is in units of the bound, not a relative error: no digits to count
+    return res
 
 
 def register_emitted(emissions: list[Emission], root: Path, out: Path) -> list[str]:
