@@ -30,7 +30,8 @@ error), :class:`Domain` with the splits :func:`sign`, :func:`choice`, :func:`reg
 cell of a domain into a :class:`CellTable`, :func:`solves_ode` checks a closed form against an
 ODE, and :func:`judge` turns a verdict or a cell table into an :class:`Outcome` (``verified``,
 ``erratum`` with the generated scope, ``failed``, ``inconclusive``; :func:`todo` for a stub).
-:func:`verify` runs claims (``claims=`` sources, as ``--claims``).
+:func:`verify` runs claims (``claims=`` sources, as ``--claims``).  :func:`emit` declares a function of your own
+derivation for ``symbt codegen`` to emit as verified numpy, mpmath and C code (``docs/codegen.md``).
 
 >>> import sympy as sp
 >>> from symbt import claim, decide, judge

@@ -145,6 +145,12 @@ def test_c_target_compiled_and_verified(project: Path) -> None:
     res = verify(project)
     for n in ("softlog", "rotation", "ramp"):
         assert res[f"emit.mymodel.{n}.c"]["status"] == "verified", res[f"emit.mymodel.{n}.c"]
+    # without a compiler the C claims are skipped, with the reason
+    env = dict(os.environ, PATH=str(project / "empty"), PYTHONPATH=str(ROOT))
+    r = subprocess.run([sys.executable, "-m", "symbt", "verify", "--no-cache", "-q", "--json", "-"], cwd=project,
+                       env=env, capture_output=True, text=True, timeout=600)
+    c = {x["id"]: x for x in json.loads(r.stdout)["claims"]}["emit.mymodel.ramp.c"]
+    assert c["status"] == "skipped" and "no C compiler" in c["detail"], c
 
 
 def test_derivation_sources_are_the_declaring_modules_and_what_they_import(tmp_path: Path) -> None:
