@@ -145,7 +145,19 @@ def test_c_target_compiled_and_verified(project: Path) -> None:
     res = verify(project)
     for n in ("softlog", "rotation", "ramp"):
         assert res[f"emit.mymodel.{n}.c"]["status"] == "verified", res[f"emit.mymodel.{n}.c"]
+    # with the cache on: a hand edit of the C file is never served a cached verdict
+    def cached_verify() -> dict[str, dict]:
+        r = run(project, "verify", "-q", "--json", "-")
+        return {x["id"]: x for x in json.loads(r.stdout)["claims"]}
+    first = cached_verify()
+    assert first["emit.mymodel.ramp.c"]["status"] == "verified"
+    assert cached_verify()["emit.mymodel.ramp.c"]["cached"]
+    c_file = project / "generated" / "mymodel.c"
+    c_file.write_text(c_file.read_text().replace("return 0;", "return 0; "))
+    again = cached_verify()["emit.mymodel.ramp.c"]
+    assert again["status"] == "failed" and "edited by hand" in again["detail"] and not again["cached"], again
     # without a compiler the C claims are skipped, with the reason
+
     env = dict(os.environ, PATH=str(project / "empty"), PYTHONPATH=str(ROOT))
     r = subprocess.run([sys.executable, "-m", "symbt", "verify", "--no-cache", "-q", "--json", "-"], cwd=project,
                        env=env, capture_output=True, text=True, timeout=600)

@@ -50,7 +50,7 @@ from pathlib import Path
 from typing import Any
 
 __all__ = ["Project", "ConfigError", "PACKAGE_CLAIMS", "discover", "find_config", "read_config", "load",
-           "owned", "claim_module", "project_digest", "active", "CONFIG_KEYS"]
+           "owned", "claim_module", "project_digest", "emitted_digest", "active", "CONFIG_KEYS", "DEFAULT_CODEGEN_OUT"]
 
 #: the package's own claims (Zullo's paper), a claims source like any other
 PACKAGE_CLAIMS = "symbt.claims"
@@ -419,7 +419,8 @@ def source_root(module_file: Path, project_root: Path) -> Path:
 
 
 def project_digest(modules: Sequence[str], project_root: Path) -> str:
-    """SHA-256 of every Python file the claims of ``modules`` may depend on (see :func:`source_root`).
+    """SHA-256 of every Python file the claims of ``modules`` may depend on (see :func:`source_root`),
+    and of the files in the active project's ``codegen_out`` (the emitted files its claims read).
 
     Bytes only -- nothing is imported -- and memoised per process.
     """
@@ -432,4 +433,17 @@ def project_digest(modules: Sequence[str], project_root: Path) -> str:
     h = hashlib.sha256()
     for r in sorted(roots):
         h.update(str(r).encode() + b"\0" + _digest_of(r).encode())
+    h.update(emitted_digest(active()).encode())
+    return h.hexdigest()
+
+
+def emitted_digest(project: Project | None) -> str:
+    """SHA-256 of the files in ``project``'s ``codegen_out`` (the emitted files the claims of its emitted
+    functions read: C sources too, and wherever the directory lies); ``""`` without one."""
+    out = None if project is None else project.codegen_out
+    if out is None or not out.is_dir():
+        return ""
+    h = hashlib.sha256()
+    for f in sorted(p for p in out.iterdir() if p.is_file()):
+        h.update(f.name.encode() + b"\0" + hashlib.sha256(f.read_bytes()).hexdigest().encode())
     return h.hexdigest()
