@@ -30,7 +30,8 @@ error), :class:`Domain` with the splits :func:`sign`, :func:`choice`, :func:`reg
 cell of a domain into a :class:`CellTable`, :func:`solves_ode` checks a closed form against an
 ODE, and :func:`judge` turns a verdict or a cell table into an :class:`Outcome` (``verified``,
 ``erratum`` with the generated scope, ``failed``, ``inconclusive``; :func:`todo` for a stub).
-:func:`verify` runs claims (``claims=`` sources, as ``--claims``).
+:func:`verify` runs claims (``claims=`` sources, as ``--claims``).  :func:`emit` declares a function of your own
+derivation for ``symbt codegen`` to emit as verified numpy, mpmath and C code (``docs/codegen.md``).
 
 >>> import sympy as sp
 >>> from symbt import claim, decide, judge
@@ -75,7 +76,7 @@ _LAZY = {"verify": ".engine", "check_identity": ".proof", "IdentityResult": ".pr
          "judge_cells": ".claims.base", "CellTable": ".proof.cells",
          "Domain": ".proof", "sign": ".proof", "choice": ".proof", "regime": ".proof", "uniform": ".proof",
          "log_uniform": ".proof", "integers": ".proof", "complex_box": ".proof", "UnfilledCellError": ".proof",
-         "solves_ode": ".proof", "ode_residual": ".proof"}
+         "solves_ode": ".proof", "ode_residual": ".proof", "emit": ".codegen.user"}
 
 __all__ = ["__version__", "LAYERS", *_LAZY]
 

@@ -263,8 +263,9 @@ def build_parser() -> argparse.ArgumentParser:
     return ap
 
 
-_DELEGATED = {"codegen": "codegen", "bench": "benchmarks", "figures": "report.figures", "mutate": "engine.mutate",
-              "coverage": "engine.coverage", "init": "engine.init", "report": "engine.site"}
+# codegen: a project's own `symbt.emit` declarations (engine.emitting), else symbt's own modules (symbt.codegen)
+_DELEGATED = {"codegen": "engine.emitting", "bench": "benchmarks", "figures": "report.figures",
+              "mutate": "engine.mutate", "coverage": "engine.coverage", "init": "engine.init", "report": "engine.site"}
 
 
 def main(argv=None) -> int:

@@ -161,7 +161,7 @@ def claim_key(c: Claim, deep: bool = False) -> str:
         root = project.root if project is not None else Path.cwd()
         h.update(b"\0user\0" + module.encode())
         h.update(project_digest([module], root).encode())
-        h.update(_layer_digest(_LAYERS + ("claims", "engine/project.py")).encode())
+        h.update(_layer_digest(_LAYERS + ("claims", "engine/project.py", "engine/emitted_claims.py")).encode())
     h.update(library_versions().encode())
     return h.hexdigest()
 

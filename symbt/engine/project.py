@@ -14,6 +14,8 @@ Where the settings come from, the first that applies:
        paper = "note.tex"                   # the paper's LaTeX source (symbt coverage)
        budget = 60                          # seconds per claim
        cache-dir = ".symbt-cache"           # else $SYMBT_CACHE_DIR or ~/.cache/symbt
+       codegen = ["model_emit.py"]          # modules or paths declaring `symbt.emit` functions
+       codegen-out = "generated"            # where `symbt codegen` writes them (the default)
        [tool.symbt.reasons]                 # labels that carry no claim, and why
        def-H = "a definition"
 
@@ -48,12 +50,14 @@ from pathlib import Path
 from typing import Any
 
 __all__ = ["Project", "ConfigError", "PACKAGE_CLAIMS", "discover", "find_config", "read_config", "load",
-           "owned", "claim_module", "project_digest", "active", "CONFIG_KEYS"]
+           "owned", "claim_module", "project_digest", "emitted_digest", "active", "CONFIG_KEYS", "DEFAULT_CODEGEN_OUT"]
 
 #: the package's own claims (Zullo's paper), a claims source like any other
 PACKAGE_CLAIMS = "symbt.claims"
 #: the keys of ``[tool.symbt]``
-CONFIG_KEYS = ("claims", "paper", "reasons", "budget", "cache-dir")
+CONFIG_KEYS = ("claims", "paper", "reasons", "budget", "cache-dir", "codegen", "codegen-out")
+#: where ``symbt codegen`` writes a user's emitted modules, relative to the configuration file
+DEFAULT_CODEGEN_OUT = "generated"
 
 
 class ConfigError(ValueError):
@@ -68,7 +72,9 @@ class Project:
     ``claims`` the claims sources (module names, or absolute paths); ``paper`` the LaTeX
     source (``None``: Zullo's paper as shipped, or none given); ``reasons`` label -> why it
     carries no claim; ``budget`` seconds per claim (``None``: the engine's default);
-    ``cache_dir`` the claim cache (``None``: ``$SYMBT_CACHE_DIR`` or ``~/.cache/symbt``).
+    ``cache_dir`` the claim cache (``None``: ``$SYMBT_CACHE_DIR`` or ``~/.cache/symbt``);
+    ``codegen`` the sources declaring ``symbt.emit`` functions (each gets claims comparing the
+    emitted file in ``codegen_out`` with its SymPy source).
     """
 
     root: Path
@@ -78,6 +84,8 @@ class Project:
     reasons: Mapping[str, str] = field(default_factory=dict)
     budget: float | None = None
     cache_dir: Path | None = None
+    codegen: tuple[str, ...] = ()
+    codegen_out: Path | None = None
 
     @property
     def is_package(self) -> bool:
@@ -92,7 +100,7 @@ class Project:
         """A stable name of the claim set (keys the warm path's manifest)."""
         if self.is_package:
             return ""
-        text = "\0".join((str(self.root), *self.claims))
+        text = "\0".join((str(self.root), *self.claims, *self.codegen))
         return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
@@ -162,6 +170,17 @@ def read_config(path: Path) -> dict[str, Any]:
         if not isinstance(table["cache-dir"], str) or not table["cache-dir"]:
             raise ConfigError(f"{where}: 'cache-dir' must be a path")
         out["cache_dir"] = (base / table["cache-dir"]).resolve()
+    if "codegen" in table:
+        cg = table["codegen"]
+        if isinstance(cg, str):
+            cg = [cg]
+        if not isinstance(cg, list) or not cg or not all(isinstance(c, str) and c for c in cg):
+            raise ConfigError(f"{where}: 'codegen' must be a non-empty list of module names or paths")
+        out["codegen"] = tuple(_source_spec(c, base) for c in cg)
+    if "codegen-out" in table:
+        if not isinstance(table["codegen-out"], str) or not table["codegen-out"]:
+            raise ConfigError(f"{where}: 'codegen-out' must be a path")
+        out["codegen_out"] = (base / table["codegen-out"]).resolve()
     return out
 
 
@@ -183,7 +202,8 @@ def _source_spec(spec: str, base: Path) -> str:
 
 
 def discover(*, claims: Sequence[str] = (), paper: str | os.PathLike[str] | None = None,
-             budget: float | None = None, start: Path | None = None, config: Path | None = None) -> Project:
+             budget: float | None = None, start: Path | None = None, config: Path | None = None,
+             codegen: Sequence[str] = ()) -> Project:
     """The project for the given options and the ``[tool.symbt]`` found from ``start`` (default: cwd).
 
     Options given here win over the configuration.  Raises :class:`ConfigError`.
@@ -192,8 +212,13 @@ def discover(*, claims: Sequence[str] = (), paper: str | os.PathLike[str] | None
     cfg_path = config if config is not None else find_config(cwd)
     cfg = read_config(cfg_path) if cfg_path is not None else {}
     root = cfg_path.parent.resolve() if cfg_path is not None else cwd
-    sources = tuple(_source_spec(c, cwd) for c in claims) or cfg.get("claims") or (PACKAGE_CLAIMS,)
+    emitters = tuple(_source_spec(c, cwd) for c in codegen) or cfg.get("codegen") or ()
+    # a project that only emits code has no claims of its own besides those of its emitted functions
+    sources = tuple(_source_spec(c, cwd) for c in claims) or cfg.get("claims") or \
+        (() if emitters else (PACKAGE_CLAIMS,))
     return Project(root=root, claims=tuple(dict.fromkeys(sources)), config=cfg_path,
+                   codegen=tuple(dict.fromkeys(emitters)),
+                   codegen_out=cfg.get("codegen_out") or (root / DEFAULT_CODEGEN_OUT if emitters else None),
                    paper=Path(paper).resolve() if paper else cfg.get("paper"),
                    reasons=cfg.get("reasons", {}),
                    budget=_budget(budget, "--budget") if budget is not None else cfg.get("budget"),
@@ -239,8 +264,8 @@ def _import_path(path: Path) -> str:
     return name
 
 
-def _import(spec: str) -> str:
-    """Import one claims source; the module name that owns its claims."""
+def _import(spec: str, what: str = "claims") -> str:
+    """Import one claims (or codegen) source; the module name that owns its claims."""
     name = _import_path(Path(spec)) if os.path.isabs(spec) or _looks_like_path(spec) else spec
     try:
         mod = importlib.import_module(name)
@@ -248,11 +273,11 @@ def _import(spec: str) -> str:
         raise
     except ModuleNotFoundError as exc:
         if exc.name and (name == exc.name or name.startswith(exc.name + ".")):
-            raise ConfigError(f"claims module {spec!r} not found (not importable from {Path.cwd()}; "
+            raise ConfigError(f"{what} module {spec!r} not found (not importable from {Path.cwd()}; "
                               "give a path, or install it)") from None
-        raise ConfigError(f"claims module {spec!r} does not import: {type(exc).__name__}: {exc}") from None
+        raise ConfigError(f"{what} module {spec!r} does not import: {type(exc).__name__}: {exc}") from None
     except Exception as exc:  # the user's module raised: say so in one line
-        raise ConfigError(f"claims module {spec!r} does not import: {type(exc).__name__}: {exc}") from None
+        raise ConfigError(f"{what} module {spec!r} does not import: {type(exc).__name__}: {exc}") from None
     from ..claims import import_listed
 
     import_listed(name, tuple(getattr(mod, "CLAIM_MODULES", ())))
@@ -290,7 +315,7 @@ def load(project: Project | None = None) -> list:
     project = project or discover()
     if project.cache_dir is not None and not os.environ.get("SYMBT_CACHE_DIR"):
         os.environ["SYMBT_CACHE_DIR"] = str(project.cache_dir)
-    owners = _OWNERS.get(project.claims)
+    owners = _OWNERS.get(project.claims + project.codegen)
     if owners is None:
         names = []
         for spec in project.claims:
@@ -298,7 +323,18 @@ def load(project: Project | None = None) -> list:
             if not any(owned(claim_module(c), [name]) for c in REGISTRY.values()):
                 raise ConfigError(f"claims source {spec!r} registers no claim (declare them with @symbt.claim)")
             names.append(name)
-        owners = _OWNERS[project.claims] = tuple(names)
+        if project.codegen:   # the claims of the emitted functions, owned by their declaring modules
+            from ..codegen.user.declare import emissions_of
+            from .emitted_claims import register_emitted
+
+            for spec in project.codegen:
+                name = _import(spec, "codegen")
+                if not emissions_of([name]):
+                    raise ConfigError(f"codegen source {spec!r} declares nothing to emit (call symbt.emit)")
+                names.append(name)
+                register_emitted(emissions_of([name]), project.root,
+                                 project.codegen_out or project.root / DEFAULT_CODEGEN_OUT)
+        owners = _OWNERS[project.claims + project.codegen] = tuple(names)
     if not _ACTIVE or _ACTIVE[-1] != project:
         _ACTIVE.append(project)
     return [c for c in REGISTRY.values() if owned(claim_module(c), owners)]
@@ -380,7 +416,8 @@ def source_root(module_file: Path, project_root: Path) -> Path:
 
 
 def project_digest(modules: Sequence[str], project_root: Path) -> str:
-    """SHA-256 of every Python file the claims of ``modules`` may depend on (see :func:`source_root`).
+    """SHA-256 of every Python file the claims of ``modules`` may depend on (see :func:`source_root`),
+    and of the files in the active project's ``codegen_out`` (the emitted files its claims read).
 
     Bytes only -- nothing is imported -- and memoised per process.
     """
@@ -393,4 +430,17 @@ def project_digest(modules: Sequence[str], project_root: Path) -> str:
     h = hashlib.sha256()
     for r in sorted(roots):
         h.update(str(r).encode() + b"\0" + _digest_of(r).encode())
+    h.update(emitted_digest(active()).encode())
+    return h.hexdigest()
+
+
+def emitted_digest(project: Project | None) -> str:
+    """SHA-256 of the files in ``project``'s ``codegen_out`` (the emitted files the claims of its emitted
+    functions read: C sources too, and wherever the directory lies); ``""`` without one."""
+    out = None if project is None else project.codegen_out
+    if out is None or not out.is_dir():
+        return ""
+    h = hashlib.sha256()
+    for f in sorted(p for p in out.iterdir() if p.is_file()):
+        h.update(f.name.encode() + b"\0" + hashlib.sha256(f.read_bytes()).hexdigest().encode())
     return h.hexdigest()

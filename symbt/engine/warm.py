@@ -29,7 +29,7 @@ from typing import Any
 from .._files import atomic_write
 from ..claims.base import Claim, ClaimResult, skipped
 from .cache import cache_dir, cache_file, library_versions, read_entry
-from .project import Project, discover
+from .project import Project, discover, emitted_digest
 from .select import choose
 
 __all__ = ["source_digest", "manifest_path", "write_manifest", "read_manifest", "cached_results",
@@ -78,6 +78,7 @@ def write_manifest(project: Project | None = None) -> None:
                     if not claim_module(c).startswith("symbt.claims.")
                     and (f := getattr(sys.modules.get(claim_module(c)), "__file__", None))})
     data = {"format": FORMAT, "digest": source_digest(), "roots": roots, "roots_digest": _roots_digest(roots),
+            "emitted": emitted_digest(project),
             "claims": [{**{k: (list(getattr(c, k)) if k in ("requires", "uses") else getattr(c, k)) for k in _META},
                         "key": claim_key(c)} for c in claims],
             "scenes": {s: {"description": m.get("description", ""), "deep": bool(m.get("deep"))}
@@ -108,6 +109,8 @@ def read_manifest(project: Project | None = None) -> tuple[list[Claim], dict[str
             return None
         roots = data["roots"]
         if not isinstance(roots, list) or data.get("roots_digest") != _roots_digest([str(r) for r in roots]):
+            return None
+        if data.get("emitted", "") != emitted_digest(project or discover()):   # an emitted file changed
             return None
         claims, keys = [], {}
         for d in data["claims"]:

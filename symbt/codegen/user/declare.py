@@ -1,0 +1,207 @@
+r"""``symbt.emit``: declare, next to a derivation, a function that ``symbt codegen`` writes.
+
+``emit(name, expr, args=(p, q), module="mymodel", doc=..., domain=...)`` declares a function
+``name`` of the emitted module ``module`` (the files ``<module>.py`` and, with ``--target c``,
+``<module>.c``/``<module>.h``):
+
+* ``expr``: a SymPy expression (a scalar), a list of them (a vector) or a ``Matrix``;
+  ``Piecewise`` and relations (conditionals) are allowed;
+* ``args``: the scalar symbols the function takes, in order; every free symbol of ``expr``
+  must be one of them;
+* ``domain``: a :class:`symbt.Domain` over the arguments (by name) where the emitted code is
+  verified against ``expr`` (a claim per flavour, see :mod:`symbt.codegen.user.check`); ``cells``:
+  splits of that domain (default: the sign of every ``Piecewise`` condition, so every branch is
+  sampled);
+* ``optimize``: apply SymPy's ``expm1``/``log1p`` rewriting (:mod:`sympy.codegen.rewriting`)
+  before common-subexpression elimination (the reference always uses ``expr`` as given).
+
+A bad declaration raises :class:`EmitError` at once (a symbol not in ``args``, a non-finite
+constant, a function the C target cannot print, a duplicate name).  Declarations are kept in
+:data:`EMISSIONS` (keyed by ``(module, name)``) with the module that declared them, like the
+claims registry; re-importing a declaring module replaces its declarations.
+
+>>> import sympy as sp
+>>> x = sp.Symbol("x")
+>>> e = emit("softplus_demo", sp.log(1 + sp.exp(x)), args=(x,), module="demo_emit", register=False)
+>>> e.shape, e.arg_names
+((), ('x',))
+>>> emit("bad_demo", x + sp.Symbol("y"), args=(x,), module="demo_emit", register=False)
+Traceback (most recent call last):
+...
+symbt.codegen.user.declare.EmitError: emit('bad_demo'): symbol y is not among args (x)
+"""
+from __future__ import annotations
+
+import keyword
+import re
+import sys
+from dataclasses import dataclass, field
+from typing import Any
+
+import sympy as sp
+from sympy.codegen.cfunctions import expm1, log1p
+
+__all__ = ["emit", "Emission", "EmitError", "EMISSIONS", "SUPPORTED_FUNCTIONS", "emissions_of"]
+
+#: functions every target prints (numpy, mpmath and C99 ``<math.h>``)
+SUPPORTED_FUNCTIONS: tuple[type, ...] = (
+    sp.exp, sp.log, log1p, expm1, sp.sin, sp.cos, sp.tan, sp.asin, sp.acos, sp.atan, sp.atan2,
+    sp.sinh, sp.cosh, sp.tanh, sp.asinh, sp.acosh, sp.atanh, sp.Abs, sp.sign, sp.Min, sp.Max, sp.Piecewise)
+
+_IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+
+
+class EmitError(ValueError):
+    """A declaration ``symbt codegen`` cannot emit (one line saying which and why)."""
+
+
+@dataclass(frozen=True)
+class Emission:
+    """One declared function: what to emit and where to verify it (see :func:`emit`)."""
+
+    name: str
+    module: str
+    args: tuple[sp.Symbol, ...]
+    exprs: tuple[sp.Expr, ...]              # the elements, row-major
+    shape: tuple[int, ...]                  # () scalar, (n,) vector, (r, c) matrix
+    doc: str = ""
+    domain: Any = None                      # a symbt.Domain, or None (then the claims are todo)
+    cells: tuple[Any, ...] = ()
+    optimize: bool = True
+    declared_in: str = field(default="", compare=False)
+
+    @property
+    def arg_names(self) -> tuple[str, ...]:
+        return tuple(s.name for s in self.args)
+
+    @property
+    def source(self) -> sp.Expr | sp.ImmutableMatrix:
+        """The declared expression (as a SymPy object of the declared shape)."""
+        if self.shape == ():
+            return self.exprs[0]
+        if len(self.shape) == 1:
+            return sp.ImmutableMatrix(list(self.exprs))
+        return sp.ImmutableMatrix(self.shape[0], self.shape[1], list(self.exprs))
+
+
+#: (module, name) -> Emission, in declaration order
+EMISSIONS: dict[tuple[str, str], Emission] = {}
+
+
+def _fail(name: str, msg: str) -> EmitError:
+    return EmitError(f"emit({name!r}): {msg}")
+
+
+def _elements(name: str, expr: Any) -> tuple[tuple[sp.Expr, ...], tuple[int, ...]]:
+    if isinstance(expr, sp.MatrixBase):
+        r, c = expr.shape
+        if r == 0 or c == 0:
+            raise _fail(name, "an empty matrix")
+        return tuple(sp.sympify(v) for v in expr), (r, c)
+    if isinstance(expr, (list, tuple)):
+        if not expr:
+            raise _fail(name, "an empty vector")
+        if any(isinstance(v, (list, tuple, sp.MatrixBase)) for v in expr):
+            raise _fail(name, "a nested list; give a Matrix for a matrix")
+        items = expr
+        shape: tuple[int, ...] = (len(expr),)
+    else:
+        items, shape = [expr], ()
+    try:
+        return tuple(sp.sympify(v, strict=True) for v in items), shape
+    except (sp.SympifyError, TypeError):
+        raise _fail(name, f"not a SymPy expression: {expr!r}") from None
+
+
+def _check_expr(name: str, e: sp.Expr, args: tuple[sp.Symbol, ...]) -> None:
+    if not isinstance(e, sp.Expr) or isinstance(e, sp.Tuple):
+        raise _fail(name, f"not a scalar expression: {e!r}")
+    extra = sorted(e.free_symbols - set(args), key=lambda s: s.name)
+    if extra:
+        listed = ", ".join(s.name for s in args) or "none"
+        raise _fail(name, f"symbol {', '.join(map(str, extra))} is not among args ({listed})")
+    for node in sp.preorder_traversal(e):
+        if node in (sp.nan, sp.oo, -sp.oo, sp.zoo) or (node.is_Float and not node.is_finite):
+            raise _fail(name, f"non-finite constant {node} in {e}")
+        if node.is_Number and not node.is_real:
+            raise _fail(name, f"complex constant {node} (real arithmetic only)")
+        if node.is_Function and not isinstance(node, SUPPORTED_FUNCTIONS):
+            raise _fail(name, f"function {type(node).__name__} is not supported by the C target "
+                        f"(supported: {', '.join(f.__name__ for f in SUPPORTED_FUNCTIONS)})")
+        if isinstance(node, sp.Piecewise) and node.args[-1][1] is not sp.true:
+            raise _fail(name, "a Piecewise needs a default branch (expr, True) as its last piece")
+        if isinstance(node, (sp.Derivative, sp.Integral, sp.Sum, sp.Product)) or node is sp.I:
+            raise _fail(name, f"{type(node).__name__} cannot be emitted (evaluate it first)")
+
+
+def emit(name: str, expr: Any, *, args: Any, module: str, doc: str = "", domain: Any = None,
+         cells: Any = (), optimize: bool = True, register: bool = True) -> Emission:
+    """Declare the function ``name`` of the emitted module ``module`` (see the module docstring).
+
+    Returns the :class:`Emission`; raises :class:`EmitError` for a declaration that cannot be
+    emitted.  ``register=False`` checks without recording it.
+
+    >>> import sympy as sp
+    >>> p, q = sp.symbols("p q", real=True)
+    >>> emit("flow_demo", sp.Matrix([[p, q], [-q, p]]), args=(p, q), module="demo_emit", register=False).shape
+    (2, 2)
+    """
+    if not isinstance(name, str) or not _IDENT.match(name) or keyword.iskeyword(name) or name.endswith("_mp"):
+        raise EmitError(f"emit({name!r}): the name must be a Python/C identifier not ending in _mp")
+    if not isinstance(module, str) or not _IDENT.match(module) or keyword.iskeyword(module):
+        raise _fail(name, f"module={module!r} must be an identifier (the file is <module>.py)")
+    if isinstance(args, sp.Symbol):
+        args = (args,)
+    try:
+        args = tuple(args)
+    except TypeError:
+        raise _fail(name, f"args={args!r} must be a tuple of SymPy symbols") from None
+    if not all(isinstance(a, sp.Symbol) for a in args):
+        raise _fail(name, f"args must be SymPy symbols, got {args!r}")
+    names = [a.name for a in args]
+    bad = [n for n in names if not _IDENT.match(n) or keyword.iskeyword(n) or n.startswith("_")]
+    if bad or len(set(names)) != len(names):
+        raise _fail(name, f"argument names must be distinct identifiers, got {', '.join(names)}")
+    exprs, shape = _elements(name, expr)
+    for e in exprs:
+        _check_expr(name, e, args)
+    if domain is not None:
+        from ...proof import Domain
+
+        if not isinstance(domain, Domain):
+            raise _fail(name, f"domain must be a symbt.Domain, got {type(domain).__name__}")
+        missing = [n for n in names if n not in domain.variables]
+        if missing:
+            raise _fail(name, f"the domain lacks the argument(s) {', '.join(missing)}")
+    cells = tuple(cells) if cells else _branch_splits(exprs)
+    declared_in = sys._getframe(1).f_globals.get("__name__", "")
+    em = Emission(name=name, module=module, args=args, exprs=exprs, shape=shape, doc=str(doc), domain=domain,
+                  cells=cells, optimize=bool(optimize), declared_in=declared_in)
+    if register:
+        old = EMISSIONS.get((module, name))
+        if old is not None and old.declared_in != declared_in:
+            raise _fail(name, f"{module}.{name} is already declared in {old.declared_in}")
+        EMISSIONS[(module, name)] = em
+    return em
+
+
+def _branch_splits(exprs: tuple[sp.Expr, ...]) -> tuple[Any, ...]:
+    """The sign of every relational condition of a ``Piecewise`` (``a < b`` -> ``sign(a - b)``)."""
+    from ...proof import sign
+
+    seen: dict[str, Any] = {}
+    for e in exprs:
+        for pw in e.atoms(sp.Piecewise):
+            for _, cond in pw.args:
+                for rel in (cond.atoms(sp.core.relational.Relational) if cond not in (sp.true, sp.false) else ()):
+                    d = rel.lhs - rel.rhs
+                    if d.free_symbols and str(d) not in seen:
+                        seen[str(d)] = sign(d)
+    return tuple(seen.values())
+
+
+def emissions_of(modules: Any) -> list[Emission]:
+    """The declarations made by the modules named in ``modules`` (or their submodules), in order."""
+    mods = tuple(modules)
+    return [e for e in EMISSIONS.values()
+            if any(e.declared_in == m or e.declared_in.startswith(m + ".") for m in mods)]
