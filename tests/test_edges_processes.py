@@ -26,14 +26,16 @@ def _run(argv, **env) -> subprocess.CompletedProcess:
 
 def test_jobs_are_bounded_by_the_machine(monkeypatch):
     sizes = []
-    real = runner.Workers
+    from symbt.engine import workers
+
+    real = workers.Workers
 
     class Recording(real):
         def __init__(self, claims, size=1):
             sizes.append(size)
             super().__init__(claims, size=size)
 
-    monkeypatch.setattr(runner, "Workers", Recording)
+    monkeypatch.setattr(workers, "Workers", Recording)   # the runner imports it when something runs
     monkeypatch.setattr(runner.os, "cpu_count", lambda: 2)
     claims = engine.select(["toy"])
     assert len(claims) > 2                       # more claims than cores: the cap, not the claim count, binds

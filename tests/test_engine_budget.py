@@ -131,7 +131,7 @@ def test_kept_workers_recover_from_a_timeout_and_from_a_death_between_runs(claim
         os.kill(second, signal.SIGKILL)                   # a worker that dies while idle
         assert _gone_within([second], 5)
         third = run([a], use_cache=False)[0].outcome
-        assert third.status == "verified" and int(third.detail) not in (first, second)
+        assert third.status == "verified" and int(third.detail) not in (first, second), (third.method, third.detail)
 
 
 def test_bad_budgets_are_rejected(claims, monkeypatch, capsys):
@@ -161,12 +161,22 @@ def test_bad_budgets_are_rejected(claims, monkeypatch, capsys):
 
 
 def _alive(pid: int) -> bool:
-    """Whether ``pid`` runs (a zombie, dead but not yet reaped by its new parent, counts as dead)."""
+    """Whether ``pid`` runs (a zombie, dead but not yet reaped by its new parent, counts as dead).
+
+    Every thread counts: a killed process's leader shows ``Z`` while its other threads (a worker's
+    watchdog) are still exiting, and only then are its pipes closed.
+    """
     try:
-        stat = Path(f"/proc/{pid}/stat").read_text()
+        threads = [t.name for t in Path(f"/proc/{pid}/task").iterdir()]
     except (FileNotFoundError, ProcessLookupError):
         return False
-    return stat.rpartition(")")[2].split()[0] != "Z"
+    for t in threads:
+        try:
+            if Path(f"/proc/{pid}/task/{t}/stat").read_text().rpartition(")")[2].split()[0] not in ("Z", "X"):
+                return True
+        except (FileNotFoundError, ProcessLookupError):  # that thread is gone
+            continue
+    return False
 
 
 SLEEPERS = '''

@@ -110,7 +110,9 @@ class _Slot:
         self.task: tuple[Claim, float] | None = None   # the claim it runs and when it started
 
     def alive(self) -> bool:
-        return self.proc is not None and self.proc.is_alive()
+        # the sentinel first: it is readable once the process has exited, whoever reaped it (is_alive()
+        # answers True when waitpid fails, e.g. for a child another handler already reaped)
+        return self.proc is not None and not wait([self.proc.sentinel], 0) and self.proc.is_alive()
 
     def kill(self) -> None:
         if self.proc is not None:
