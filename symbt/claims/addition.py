@@ -62,6 +62,7 @@ def _parts_addform() -> Parts:
 
 
 @claim("addform.n2", equation="addform", scene="elliptic", N=2, parts=_parts_addform,
+       uses=("th1th2",),
        statement="F(P~,k) = F(P,k) + F(lambda_-,k) - F(lambda_+,k), P = (p2-p1)/(2sqrt(I2-2)), "
                  "lambda_+- = (l0 +- mu + I1)/sqrt(I2-2), k^2 = (I2-2)/(I2+2)")
 def addform(parts: Parts, deep: bool = False):

@@ -80,7 +80,7 @@ def _parts_rte() -> Parts:
                  corrected={"nu1": -Et * (mu + eta_n) / x_n, "nu2": -Et * (eta_n - mu) / x_n})
 
 
-@claim("rte", equation="rte", scene="phi", parts=_parts_rte,
+@claim("rte", equation="rte", scene="phi", parts=_parts_rte, uses=("2122",),
        statement="l_j(l1) (x_j, mu - eta_j) = nu^1_{j+1} (x_{j+1}, mu - eta_{j+1}) with nu^1_{j+1} = e^{q~_j}(mu + "
                  "eta_{j+1})/x_{j+1}, and l_j(l2)(-x_j, mu + eta_j) = nu^2_{j+1}(-x_{j+1}, mu + eta_{j+1}) with "
                  "nu^2_{j+1} = e^{q~_j}(eta_{j+1} - mu)/x_{j+1} (local, all N)")
@@ -127,7 +127,7 @@ def _parts_spec(N: int) -> Parts:
                  corrected={"rhs": (tr1 - GAMMA1) / 2 * ((tr2 - GAMMA2) / 2)})
 
 
-@claim("spec", equation="spec", scene="phi", sizes=(2, 3), parts=_parts_spec,
+@claim("spec", equation="spec", scene="phi", sizes=(2, 3), parts=_parts_spec, uses=("rte",),
        statement="Phi = ln(prod nu^1 / prod nu^2) = ln v(l1) + ln v(l2) = ln((tr1 - gamma1)/2) + "
                  "ln((tr2 - gamma2)/2) on the map, gamma_i = b sqrt(tr_i^2 - 4) (N={N})")
 def spec(N: int, parts: Parts, deep: bool = False):

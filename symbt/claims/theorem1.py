@@ -100,7 +100,7 @@ def _parts_newkmu(N: int) -> Parts:
     return Parts(printed={"Phi": PHI_PRINTED}, corrected={"Phi": PHI_REAL})
 
 
-@claim("x.newkmu", equation="x", scene="theorem1", sizes=(2, 3), parts=_parts_newkmu,
+@claim("x.newkmu", equation="x", scene="theorem1", sizes=(2, 3), parts=_parts_newkmu, uses=("newkmu",),
        where="Sec. 3.2, sentence after eq. newkmu: 'According to Theorem 1, the BTs given by (D) are the "
              "integral curves of the Hamiltonian system given by (newkmu)'",
        statement="the BTs are the integral curves (in mu) of the Hamiltonian Phi of eq. newkmu, "
