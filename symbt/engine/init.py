@@ -54,7 +54,7 @@ __all__ = ["claim_ids", "stubs", "claims_module", "config_lines", "main"]
 
 # written below the table: where the reasons for displays without a claim go
 _REASONS_HINT = ("\n# [tool.symbt.reasons]            # displays that are no checkable statement, and why\n"
-                 "# eq-energy = \"a definition\"\n")
+                 "# \"eq:energy\" = \"a definition\"   # a label is a TOML key: quote it\n")
 _ID_CHARS = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789.-_:")
 
 
