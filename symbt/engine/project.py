@@ -148,17 +148,14 @@ def read_config(path: Path) -> dict[str, Any]:
         raise ConfigError(f"{where}: unknown key(s) {', '.join(unknown)}; known: {', '.join(CONFIG_KEYS)}")
     base = path.parent
     out: dict[str, Any] = {}
-    if "claims" in table:
-        claims = table["claims"]
-        if isinstance(claims, str):
-            claims = [claims]
-        if not isinstance(claims, list) or not claims or not all(isinstance(c, str) and c for c in claims):
-            raise ConfigError(f"{where}: 'claims' must be a non-empty list of module names or paths")
-        out["claims"] = tuple(_source_spec(c, base) for c in claims)
-    if "paper" in table:
-        if not isinstance(table["paper"], str) or not table["paper"]:
-            raise ConfigError(f"{where}: 'paper' must be a path")
-        out["paper"] = (base / table["paper"]).resolve()
+    for key, attr in (("claims", "claims"), ("codegen", "codegen")):
+        if key in table:
+            out[attr] = _sources(table[key], f"{where}: '{key}'", base)
+    for key, attr in (("paper", "paper"), ("cache-dir", "cache_dir"), ("codegen-out", "codegen_out")):
+        if key in table:
+            if not isinstance(table[key], str) or not table[key]:
+                raise ConfigError(f"{where}: '{key}' must be a path")
+            out[attr] = (base / table[key]).resolve()
     if "reasons" in table:
         r = table["reasons"]
         if not isinstance(r, dict) or not all(isinstance(k, str) and isinstance(v, str) and v for k, v in r.items()):
@@ -166,22 +163,16 @@ def read_config(path: Path) -> dict[str, Any]:
         out["reasons"] = dict(r)
     if "budget" in table:
         out["budget"] = _budget(table["budget"], f"{where}: 'budget'")
-    if "cache-dir" in table:
-        if not isinstance(table["cache-dir"], str) or not table["cache-dir"]:
-            raise ConfigError(f"{where}: 'cache-dir' must be a path")
-        out["cache_dir"] = (base / table["cache-dir"]).resolve()
-    if "codegen" in table:
-        cg = table["codegen"]
-        if isinstance(cg, str):
-            cg = [cg]
-        if not isinstance(cg, list) or not cg or not all(isinstance(c, str) and c for c in cg):
-            raise ConfigError(f"{where}: 'codegen' must be a non-empty list of module names or paths")
-        out["codegen"] = tuple(_source_spec(c, base) for c in cg)
-    if "codegen-out" in table:
-        if not isinstance(table["codegen-out"], str) or not table["codegen-out"]:
-            raise ConfigError(f"{where}: 'codegen-out' must be a path")
-        out["codegen_out"] = (base / table["codegen-out"]).resolve()
     return out
+
+
+def _sources(value: Any, what: str, base: Path) -> tuple[str, ...]:
+    """A list of module names or paths (a single string is a list of one); paths made absolute."""
+    if isinstance(value, str):
+        value = [value]
+    if not isinstance(value, list) or not value or not all(isinstance(c, str) and c for c in value):
+        raise ConfigError(f"{what} must be a non-empty list of module names or paths")
+    return tuple(_source_spec(c, base) for c in value)
 
 
 def _budget(value: Any, what: str) -> float:
