@@ -42,6 +42,7 @@ from .errors import InvalidInputError, NoRealMapError, NumericRangeError
 from .jit import kernel, numba_available
 from .kernels import ANCHOR, OK, POSITIVITY, RANGE, TRACE1, TRACE2, orbit_rows
 from .lax import MAX_DQ
+from .rows import float_rows_step
 from .step import BLOCK_ELEMENTS, step_core
 
 if TYPE_CHECKING:
@@ -50,7 +51,7 @@ if TYPE_CHECKING:
     F64 = npt.NDArray[np.float64]
     I64 = npt.NDArray[np.int64]
 
-__all__ = ["float_orbit", "kernel_step", "general_orbit", "raise_for_status", "ORBIT_BACKENDS"]
+__all__ = ["float_orbit", "kernel_step", "kernel_batch_step", "general_orbit", "raise_for_status", "ORBIT_BACKENDS"]
 
 #: accepted ``backend`` values for float64 orbits
 ORBIT_BACKENDS = ("auto", "numba", "python", "numpy")
@@ -90,6 +91,36 @@ def kernel_step(p: F64, q: F64, lam0: float, mu: float, branch: int,
     """
     P, Q, st = _single(p, q, lam0, mu, branch, 1, 1, "auto" if backend == "auto" else backend)
     return (P[1], Q[1]) if st == OK else None
+
+
+def kernel_batch_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_complex: bool,
+                      shape: tuple[int, ...]) -> tuple[npt.NDArray[Any], npt.NDArray[Any]]:
+    """One step of a validated batch ``pa, qa`` (M, N), each member by its single-state route.
+
+    The block kernel steps every member with ``mu != 0`` (each bit-identical to :func:`kernel_step`); the
+    members it hands back are recomputed by the numpy route (:func:`~symbt.numeric.rows.float_rows_step`),
+    as the single-state step does, which decides existence and raises the typed errors (``where``: every
+    failing member).
+
+    >>> import numpy as np
+    >>> pt, qt = kernel_batch_step(np.array([[-20.0, 10, 1]] * 2), np.array([[1.0, 0, 0.9]] * 2), 10.0,
+    ...                            np.array([5.0, 0.0]), 1, False, (2,))
+    >>> np.round(pt, 8).tolist()
+    [[-19.99656766, 9.78635495, 1.21021272], [-20.0, 10.0, 1.0]]
+    """
+
+    M, N = pa.shape
+    P = np.empty((2, M, N))
+    Q = np.empty((2, M, N))
+    P[1], Q[1] = pa, qa                      # mu == 0: the identity
+    status = np.zeros(M, np.int64)
+    act = np.flatnonzero(np.broadcast_to(mu, (M,)) != 0)
+    if act.size:
+        _ensemble(pa, qa, lam0, mu, branch, 1, 1, "numba", act, P, Q, status)
+    todo = act[status[act] != OK]
+    if todo.size == 0:
+        return P[1], Q[1]
+    return float_rows_step(pa, qa, lam0, mu, branch, allow_complex, shape, rows=todo, out=(P[1], Q[1]))
 
 
 def general_orbit(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, n: int, every: int,

@@ -94,7 +94,7 @@ from ._input import (
     to_output,
     validate_float_pair,
 )
-from .context import COMPLEX, FLOAT, Context
+from .context import FLOAT, Context
 from .errors import InvalidInputError, NoRealMapError, NumericRangeError
 from .lax import monodromy, neighbour_ratios
 
@@ -267,32 +267,6 @@ BLOCK_ELEMENTS = 1 << 17
 
 
 
-def _float_block(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_complex: bool,
-                 shape: tuple[int, ...], index: npt.NDArray[np.intp]) -> tuple[npt.NDArray[Any], npt.NDArray[Any]]:
-    """Step for one block of rows ``pa, qa`` (B, N); returns (B, N) arrays.
-
-    ``index`` holds the flat batch index of every row (for :class:`NoRealMapError`'s ``where``).
-    """
-    P, Q = list(pa.T.copy()), list(qa.T.copy())
-    with np.errstate(all="ignore"):
-        try:
-            Pn, Qn, _ = step_core(FLOAT, P, Q, lam0, mu, branch, shape=shape, index=index)
-        except NoRealMapError:
-            if not allow_complex:
-                raise
-            Pc = [x.astype(np.complex128) for x in P]
-            Qc = [x.astype(np.complex128) for x in Q]
-            Pn, Qn, _ = step_core(COMPLEX, Pc, Qc, lam0, mu, branch, check_real=False)
-        outp = np.stack(Pn, axis=-1)
-        outq = np.stack(Qn, axis=-1)
-        if not (np.isfinite(outp.sum()) and np.isfinite(outq.sum())):
-            if not (np.all(np.isfinite(outp)) and np.all(np.isfinite(outq))):
-                raise NumericRangeError(
-                    "non-finite intermediate in the float64 step (degenerate eigenvector "
-                    "or overflow); use mpmath inputs")
-    return outp, outq
-
-
 # log(1e150): past |tr L| ~ 1e150 the fused kernels hand a state to the general path (tr**2 would overflow)
 _KERNEL_LOG_RANGE = 345.0
 
@@ -324,34 +298,6 @@ def _block_kernel_pays(pa: F64, lam0: Any, mu: Any) -> bool:
     M, N = pa.shape
     small = M < _BLOCK_KERNEL_MAX_STATES_SMALL_N or N >= _BLOCK_KERNEL_MIN_N
     return small and not _monodromy_may_overflow(pa, lam0, mu)
-
-
-def _float_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_complex: bool,
-                shape: tuple[int, ...]) -> tuple[npt.NDArray[Any], npt.NDArray[Any]]:
-    B, N = pa.shape
-    block = max(256, BLOCK_ELEMENTS // N)
-    outp: npt.NDArray[Any] = pa.copy()
-    outq: npt.NDArray[Any] = qa.copy()
-    rows = np.arange(B)
-    for s0 in range(0, B, block):
-        sl = slice(s0, min(B, s0 + block))
-        m = mu[sl] if np.ndim(mu) else mu
-        l0 = lam0[sl] if np.ndim(lam0) else lam0
-        # rows with mu == 0 are the identity (copies, already in place)
-        nz = np.flatnonzero(m != 0) if np.ndim(m) else (np.arange(sl.stop - s0) if m != 0 else np.arange(0))
-        if nz.size == 0:
-            continue
-        full = nz.size == sl.stop - s0
-        sub = (lambda x: x[sl]) if full else (lambda x: x[sl][nz])
-        bp, bq = _float_block(sub(pa), sub(qa), sub(l0) if np.ndim(l0) else l0, sub(m) if np.ndim(m) else m,
-                              branch, allow_complex, shape, sub(rows))
-        if np.iscomplexobj(bp) and not np.iscomplexobj(outp):
-            outp, outq = outp.astype(complex), outq.astype(complex)
-        if full:
-            outp[sl], outq[sl] = bp, bq
-        else:
-            outp[s0 + nz], outq[s0 + nz] = bp, bq
-    return outp, outq
 
 
 def _mp_step(ctx: Context, P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
@@ -422,17 +368,19 @@ def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_comple
             out = kernel_step(pa[0], qa[0], float(lam0), float(mu), branch, backend)
             if out is not None:
                 return out
-        if shape != () and not allow_complex and backend in ("auto", "numba"):
+        if shape != () and backend in ("auto", "numba"):
             from .jit import numba_available
 
             if numba_available() and (backend == "numba" or _block_kernel_pays(pa, lam0, mu)):
-                # a batch: one step of the compiled block kernel (parallel over states), with the general
-                # path for the states it hands back and bt_orbit's typed errors (`where`: every failing state)
-                from .ensemble import validated_float_orbit
+                # each member by its single-state route: the block kernel (bit-identical to the single-state
+                # kernel), and the numpy route for exactly the members it hands back
+                from .ensemble import kernel_batch_step
 
-                orbit_p, orbit_q = validated_float_orbit(pa, qa, shape, lam0, mu, 1, branch, 1, "numba")
-                return orbit_p[1], orbit_q[1]
-        outp, outq = _float_step(pa, qa, lam0, mu, branch, allow_complex, shape)
+                outp, outq = kernel_batch_step(pa, qa, lam0, mu, branch, allow_complex, shape)
+                return outp.reshape(shape + (N,)), outq.reshape(shape + (N,))
+        from .rows import float_rows_step
+
+        outp, outq = float_rows_step(pa, qa, lam0, mu, branch, allow_complex, shape)
         return outp.reshape(shape + (N,)), outq.reshape(shape + (N,))
     if backend in ("numba", "python", "numpy"):
         raise InvalidInputError("backend %r needs float64 inputs" % backend)

@@ -1,0 +1,145 @@
+"""The numpy route of one float64 step for the rows of a batch, decided per row.
+
+:func:`float_rows_step` steps the rows of a batch (``(M, N)`` arrays) in blocks of
+``max(256, BLOCK_ELEMENTS // N)`` rows with :func:`~symbt.numeric.step.step_core`'s elementwise numpy
+operations: a row's result and its verdict (real map or not, finite or not) never depend on the other rows
+or on the block it falls in, so every member of a batch equals its own single-state step with
+``backend="numpy"`` bit for bit, and a failing batch names every failing member in
+:attr:`~symbt.numeric.errors.NoRealMapError.where`.
+
+Example
+-------
+>>> import numpy as np
+>>> pt, qt = float_rows_step(np.array([[-20.0, 10, 1]] * 3), np.array([[1.0, 0, 0.9]] * 3), 10.0,
+...                          np.array([5.0, 0.0, 5.0]), 1, False, (3,))
+>>> np.round(pt[:2], 8).tolist()
+[[-19.99656766, 9.78635495, 1.21021272], [-20.0, 10.0, 1.0]]
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .context import COMPLEX, FLOAT
+from .errors import NoRealMapError, NumericRangeError
+from .kernels import OK, POSITIVITY, RANGE, TRACE1, TRACE2
+from .step import BLOCK_ELEMENTS, step_core
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+
+    F64 = npt.NDArray[np.float64]
+    I64 = npt.NDArray[np.int64]
+
+__all__ = ["float_rows_step", "raise_for_rows"]
+
+
+def _float_block(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int) -> tuple[F64, F64, I64]:
+    """Real step for one block of rows ``pa, qa`` (B, N): ``(B, N)`` arrays and a status code per row.
+
+    The codes are those of :mod:`.kernels` (``OK``, ``TRACE1``, ``TRACE2``, ``POSITIVITY``, ``RANGE``), decided
+    per row in the order :func:`step_core` checks them for one state, so that a row's verdict does not depend
+    on the other rows of the batch.
+    """
+    P, Q = list(pa.T.copy()), list(qa.T.copy())
+    with np.errstate(all="ignore"):
+        Pn, Qn, aux = step_core(FLOAT, P, Q, lam0, mu, branch, check_real=False)
+        t1, t2 = aux["S1"].trace_ok > 0, aux["S2"].trace_ok > 0
+        pos = np.logical_and.reduce([x + 1 > 0 for x in aux["xr"]])
+        outp = np.stack(Pn, axis=-1)
+        outq = np.stack(Qn, axis=-1)
+        fin = np.isfinite(outp).all(axis=-1) & np.isfinite(outq).all(axis=-1)
+    status = np.select([~t1, ~t2, ~pos, ~fin], [TRACE1, TRACE2, POSITIVITY, RANGE], OK).astype(np.int64)
+    return outp, outq, status
+
+
+def _complex_rows(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int) -> tuple[npt.NDArray[Any], npt.NDArray[Any]]:
+    """The complex continuation for rows ``pa, qa`` (B, N) without a real map."""
+    Pc = [x.astype(np.complex128) for x in pa.T]
+    Qc = [x.astype(np.complex128) for x in qa.T]
+    with np.errstate(all="ignore"):
+        Pn, Qn, _ = step_core(COMPLEX, Pc, Qc, lam0, mu, branch, check_real=False)
+    return np.stack(Pn, axis=-1), np.stack(Qn, axis=-1)
+
+
+_NO_MAP = {
+    TRACE1: ("trace", "no real Bäcklund map: |tr L(lam1 = lam0 + mu)| <= 2, the spectral parameter lies in a band"),
+    TRACE2: ("trace", "no real Bäcklund map: |tr L(lam2 = lam0 - mu)| <= 2, the spectral parameter lies in a band"),
+    POSITIVITY: ("positivity", "no real Bäcklund map: some Etilde_j = E_j - x_j <= 0 (lam1 and lam2 lie in "
+                 "different spectral gaps)"),
+}
+
+
+def raise_for_rows(status: I64, shape: tuple[int, ...]) -> None:
+    """Raise the typed error of one step for the rows with ``status != OK``, if any.
+
+    :class:`NoRealMapError` if some row has no real map -- ``where`` names *every* such row of the batch
+    (batch indices), ``condition`` and message are those of the first -- else :class:`NumericRangeError`.
+
+    >>> import numpy as np
+    >>> from symbt.numeric.kernels import OK, POSITIVITY, TRACE2
+    >>> try:
+    ...     raise_for_rows(np.array([OK, TRACE2, OK, POSITIVITY]), (2, 2))
+    ... except NoRealMapError as e:
+    ...     print(e.condition, e.where)
+    trace ((0, 1), (1, 1))
+    """
+    bad = np.flatnonzero(status != OK)
+    if bad.size == 0:
+        return
+    nomap = bad[status[bad] != RANGE]
+    sel = nomap if nomap.size else bad
+    where = [tuple(int(i) for i in np.unravel_index(k, shape)) for k in sel] if shape else []
+    txt = ""
+    if shape:
+        txt = " (batch index %s%s; %d state(s) in all)" % (
+            ", ".join(map(str, where[:5])), ", ..." if len(where) > 5 else "", len(where))
+    if nomap.size:
+        condition, message = _NO_MAP[int(status[nomap[0]])]
+        raise NoRealMapError(message + txt, condition=condition, where=where)
+    raise NumericRangeError("non-finite intermediate in the float64 step (degenerate eigenvector or "
+                            "overflow); use mpmath inputs" + txt)
+
+
+def float_rows_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_complex: bool, shape: tuple[int, ...],
+                rows: npt.NDArray[np.intp] | None = None, out: tuple[F64, F64] | None = None,
+                ) -> tuple[npt.NDArray[Any], npt.NDArray[Any]]:
+    """The numpy route for the rows ``rows`` (flat indices; default all) of ``pa, qa`` (M, N).
+
+    Rows are cut into blocks of ``max(256, BLOCK_ELEMENTS // N)``; every row is computed by the same
+    elementwise operations whatever block it falls in, so each row equals its own single-state call with
+    ``backend="numpy"`` bit for bit.  Rows with ``mu == 0`` are copies.  The other rows of the result are
+    taken from ``out`` (default: copies of the input).  Existence is decided per row; a failing row raises
+    (:func:`raise_for_rows`, ``where`` naming every failing row) unless ``allow_complex``, where exactly the
+    rows without a real map are continued in complex arithmetic.
+    """
+    M, N = pa.shape
+    idx_all = np.arange(M) if rows is None else rows
+    if np.ndim(mu):
+        idx_all = idx_all[mu[idx_all] != 0]
+    elif mu == 0:
+        idx_all = idx_all[:0]
+    outp: npt.NDArray[Any] = pa.copy() if out is None else out[0]
+    outq: npt.NDArray[Any] = qa.copy() if out is None else out[1]
+    status = np.zeros(M, np.int64)
+    block = max(256, BLOCK_ELEMENTS // N)
+    for s0 in range(0, idx_all.size, block):
+        idx = idx_all[s0:s0 + block]
+        bp, bq, st = _float_block(pa[idx], qa[idx], _take(lam0, idx), _take(mu, idx), branch)
+        outp[idx], outq[idx] = bp, bq
+        status[idx] = st
+    nomap = np.flatnonzero((status != OK) & (status != RANGE))
+    if allow_complex and nomap.size:
+        cp, cq = _complex_rows(pa[nomap], qa[nomap], _take(lam0, nomap), _take(mu, nomap), branch)
+        outp, outq = outp.astype(np.complex128), outq.astype(np.complex128)
+        outp[nomap], outq[nomap] = cp, cq
+        fin = np.isfinite(cp).all(axis=-1) & np.isfinite(cq).all(axis=-1)
+        status[nomap] = np.where(fin, OK, RANGE)
+    raise_for_rows(status, shape)
+    return outp, outq
+
+
+def _take(x: Any, idx: npt.NDArray[np.intp]) -> Any:
+    return x[idx] if np.ndim(x) else x
