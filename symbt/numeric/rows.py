@@ -25,6 +25,7 @@ import numpy as np
 from .context import COMPLEX, FLOAT
 from .errors import NoRealMapError, NumericRangeError
 from .kernels import OK, POSITIVITY, RANGE, TRACE1, TRACE2
+from .lax import MAX_DQ
 from .step import BLOCK_ELEMENTS, step_core
 
 if TYPE_CHECKING:
@@ -125,6 +126,12 @@ def float_rows_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_com
     outq: npt.NDArray[Any] = qa.copy() if out is None else out[1]
     status = np.zeros(M, np.int64)
     block = max(256, BLOCK_ELEMENTS // N)
+    if idx_all.size:
+        # out of the scaled formulation's range (what neighbour_ratios refuses for a whole block): per row
+        dq = np.abs(np.roll(qa[idx_all], -1, axis=1) - qa[idx_all]).max(axis=1)
+        far = ~(dq <= MAX_DQ)
+        status[idx_all[far]] = RANGE
+        idx_all = idx_all[~far]
     for s0 in range(0, idx_all.size, block):
         idx = idx_all[s0:s0 + block]
         bp, bq, st = _float_block(pa[idx], qa[idx], _take(lam0, idx), _take(mu, idx), branch)
