@@ -74,7 +74,8 @@ def test_per_state_mu_with_zeros_over_several_blocks(backend):
 
 def random_batch(M: int, seed: int):
     """States near the paper's example, a spread of lam0 and mu (some 0): many with a real map, many without,
-    and a few out of the float64 range (|q_{j+1} - q_j| ~ 800)."""
+    a few out of the float64 range (|q_{j+1} - q_j| ~ 800), and a few with |lam| ~ 1e52, where the block
+    kernel gives the state back and the numpy route steps it."""
     rng = np.random.default_rng(seed)
     p = P0 + rng.normal(scale=3.0, size=(M, 3))
     q = Q0 + rng.normal(scale=1.0, size=(M, 3))
@@ -83,6 +84,9 @@ def random_batch(M: int, seed: int):
     mu[rng.random(M) < 0.1] = 0.0
     far = rng.random(M) < 0.003
     q[far, 1] += 800.0
+    huge = rng.random(M) < 0.02               # |tr L| past 1e150: the kernel hands these back
+    lam0[huge] *= 4e51
+    mu[huge] *= 1e50
     return p, q, lam0, mu
 
 

@@ -94,8 +94,11 @@ def kernel_step(p: F64, q: F64, lam0: float, mu: float, branch: int,
 
 
 def kernel_batch_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_complex: bool,
-                      shape: tuple[int, ...]) -> tuple[npt.NDArray[Any], npt.NDArray[Any]]:
+                      shape: tuple[int, ...], skip: npt.NDArray[np.bool_] | None = None,
+                      ) -> tuple[npt.NDArray[Any], npt.NDArray[Any]]:
     """One step of a validated batch ``pa, qa`` (M, N), each member by its single-state route.
+
+    ``skip`` (optional, shape (M,)): members sent to the numpy route without a kernel attempt.
 
     The block kernel steps every member with ``mu != 0`` (each bit-identical to :func:`kernel_step`); the
     members it hands back are recomputed by the numpy route (:func:`~symbt.numeric.rows.float_rows_step`),
@@ -114,10 +117,13 @@ def kernel_batch_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_c
     Q = np.empty((2, M, N))
     P[1], Q[1] = pa, qa                      # mu == 0: the identity
     status = np.zeros(M, np.int64)
-    act = np.flatnonzero(np.broadcast_to(mu, (M,)) != 0)
+    moving = np.broadcast_to(mu, (M,)) != 0
+    act = np.flatnonzero(moving if skip is None else moving & ~skip)
     if act.size:
         _ensemble(pa, qa, lam0, mu, branch, 1, 1, "numba", act, P, Q, status)
     todo = act[status[act] != OK]
+    if skip is not None:
+        todo = np.union1d(todo, np.flatnonzero(moving & skip))
     if todo.size == 0:
         return P[1], Q[1]
     return float_rows_step(pa, qa, lam0, mu, branch, allow_complex, shape, rows=todo, out=(P[1], Q[1]))

@@ -271,14 +271,24 @@ BLOCK_ELEMENTS = 1 << 17
 _KERNEL_LOG_RANGE = 345.0
 
 
-def _monodromy_may_overflow(pa: F64, lam0: Any, mu: Any) -> bool:
-    """True where the block kernel would give the states back: for ``|lam_i|`` large against ``p`` and the
-    ``e^{q_{j+1} - q_j}``, ``log |tr L(lam_i)| ~ N log |lam_i|``; past ``log(1e150)`` by a margin of 10 the
-    kernel's attempt is wasted (a batch at N = 256, lam0 = 788) and the numpy route is taken at once.  A
-    wrong guess costs only speed: a state the kernel gives back is recomputed by the general path anyway.
+def overflow_rows(N: int, lam0: Any, mu: Any, M: int) -> npt.NDArray[np.bool_]:
+    """Per state of a batch of ``M`` (``lam0, mu`` scalars or shape ``(M,)``): True where the fused kernels
+    would give the state back.  For ``|lam_i|`` large against ``p`` and the ``e^{q_{j+1} - q_j}``,
+    ``log |tr L(lam_i)| ~ N log |lam_i|``; past ``log(1e150)`` by a margin of 10 the kernel's attempt is
+    wasted (a batch at N = 256, lam0 = 788) and ``backend="auto"`` takes the numpy route at once -- for a
+    single state and for each member of a batch alike, so that a member's route is its own.  A wrong guess
+    costs only speed and ulps: both routes decide existence and the numpy route is the fallback anyway.
+
+    >>> overflow_rows(256, np.array([788.0, 10.0]), 2.0, 2).tolist()
+    [True, False]
     """
-    lam_max = float(np.max(np.abs(lam0)) + np.max(np.abs(mu)))
-    return bool(lam_max > 1.0 and pa.shape[-1] * np.log(lam_max) > _KERNEL_LOG_RANGE + 10.0)
+    lam = np.broadcast_to(np.abs(lam0) + np.abs(mu), (M,))
+    return (lam > 1.0) & (N * np.log(np.maximum(lam, 1.0)) > _KERNEL_LOG_RANGE + 10.0)
+
+
+def _monodromy_may_overflow(pa: F64, lam0: Any, mu: Any) -> bool:
+    """True if the block kernel would give some state of ``pa`` (M, N) back (see :func:`overflow_rows`)."""
+    return bool(overflow_rows(pa.shape[-1], lam0, mu, pa.shape[0]).any())
 
 
 # measured (BENCHMARKS.md, throughput): one step of the block kernel beats the numpy route 2-5x on batches
@@ -297,7 +307,7 @@ def _block_kernel_pays(pa: F64, lam0: Any, mu: Any) -> bool:
     """
     M, N = pa.shape
     small = M < _BLOCK_KERNEL_MAX_STATES_SMALL_N or N >= _BLOCK_KERNEL_MIN_N
-    return small and not _monodromy_may_overflow(pa, lam0, mu)
+    return small and not bool(overflow_rows(N, lam0, mu, M).all())
 
 
 def _mp_step(ctx: Context, P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
@@ -362,7 +372,7 @@ def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_comple
         N = pa.shape[-1]
         if np.ndim(mu) == 0 and mu == 0:
             return pa.reshape(shape + (N,)).copy(), qa.reshape(shape + (N,)).copy()
-        if shape == () and backend != "numpy":
+        if shape == () and backend != "numpy" and not (backend == "auto" and _monodromy_may_overflow(pa, lam0, mu)):
             from .ensemble import kernel_step
 
             out = kernel_step(pa[0], qa[0], float(lam0), float(mu), branch, backend)
@@ -376,7 +386,8 @@ def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_comple
                 # kernel), and the numpy route for exactly the members it hands back
                 from .ensemble import kernel_batch_step
 
-                outp, outq = kernel_batch_step(pa, qa, lam0, mu, branch, allow_complex, shape)
+                skip = overflow_rows(N, lam0, mu, pa.shape[0]) if backend == "auto" else None
+                outp, outq = kernel_batch_step(pa, qa, lam0, mu, branch, allow_complex, shape, skip)
                 return outp.reshape(shape + (N,)), outq.reshape(shape + (N,))
         from .rows import float_rows_step
 
