@@ -16,7 +16,7 @@ import pytest
 from symbt.numeric import NoRealMapError, NumericRangeError, bt_step
 from symbt.numeric.ensemble import _block_rows
 from symbt.numeric.jit import numba_available
-from symbt.numeric.step import BLOCK_ELEMENTS
+from symbt.numeric.step import BLOCK_ELEMENTS, _block_kernel_pays
 
 P0 = np.array([-20.0, 10.0, 1.0])
 Q0 = np.array([1.0, 0.0, 0.9])
@@ -180,3 +180,29 @@ def test_a_range_failure_does_not_hide_a_member_without_a_real_map():
     with pytest.raises(NoRealMapError) as info:
         bt_step(p, q, lam0, 1.0, backend="numpy")
     assert info.value.where == ((M - 1,),)
+
+
+@needs_numba
+def test_a_large_small_n_batch_on_the_numpy_route_is_within_the_bound_of_the_default_single_step():
+    # >= 4096 states at N = 3: backend="auto" takes the numpy route for the batch, the single state the kernel;
+    # documented (docs/numeric.md, "Batches"): within 8 ulps of max(|p|, |q|, 1), existence alike away from edges
+    M = 7000
+    p, q, lam0, mu = random_batch(M, seed=2630)
+    ok, singles = [], {}
+    for k in range(M):
+        pt, qt, err = single(p[k], q[k], lam0[k], mu[k], 1, "auto")
+        if err is None:
+            ok.append(k)
+            singles[k] = pt, qt
+            continue
+        with pytest.raises(type(err)):
+            bt_step(p[k], q[k], lam0[k], mu[k], backend="numpy")
+    sel = np.array(ok)
+    assert not _block_kernel_pays(p[sel], lam0[sel], mu[sel])        # the batch takes the numpy route
+    pb, qb = bt_step(p[sel], q[sel], lam0[sel], mu[sel])
+    worst = 0.0
+    for i, k in enumerate(ok):
+        p1, q1 = singles[k]
+        scale = max(np.abs(p[k]).max(), np.abs(q[k]).max(), 1.0)
+        worst = max(worst, max(np.abs(pb[i] - p1).max(), np.abs(qb[i] - q1).max()) / np.spacing(scale))
+    assert worst <= 8.0

@@ -52,8 +52,9 @@ class NoRealMapError(ValueError):
         ``"trace"`` (``|tr L(lam_i)| <= 2``) or ``"positivity"``
         (some ``Etilde_j <= 0``, i.e. ``lam1``, ``lam2`` in different gaps).
     where : tuple
-        Offending batch indices (empty for a single state): up to five for
-        :func:`~symbt.numeric.bt_step`, all of them for ensemble orbits.
+        Offending batch indices (empty for a single state): every member
+        without a real map, for :func:`~symbt.numeric.bt_step` and ensemble
+        orbits alike.
 
     >>> NoRealMapError("no map", condition="trace").where
     ()

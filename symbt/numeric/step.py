@@ -57,8 +57,10 @@ Backends.  One float64 state goes through the fused kernel
 (:mod:`symbt.numeric.kernels`; numba if installed), a batch through the
 compiled block kernel of :mod:`symbt.numeric.ensemble` (numba; each state's
 step bit-identical to its single-state step) where that is faster (fewer than
-4096 states, or N >= 8), else -- and without numba or with ``allow_complex`` --
-the vectorised numpy code below (equal to an ulp); mpmath numbers through
+4096 states, or N >= 8), else -- and without numba -- the vectorised numpy
+route of :mod:`symbt.numeric.rows` (each member bit-identical to its
+single-state step with ``backend="numpy"``; docs/numeric.md, "Batches");
+mpmath numbers through
 python-flint's Arb at
 the caller's precision plus guard bits when python-flint is installed
 (:mod:`symbt.numeric.mpfast`), else through mpmath.  Whatever the kernel does
