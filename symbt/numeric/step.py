@@ -281,7 +281,7 @@ def overflow_rows(N: int, lam0: Any, mu: Any, M: int) -> npt.NDArray[np.bool_]:
     single state and for each member of a batch alike, so that a member's route is its own.  A wrong guess
     costs only speed and ulps: both routes decide existence and the numpy route is the fallback anyway.
 
-    >>> overflow_rows(256, np.array([788.0, 10.0]), 2.0, 2).tolist()
+    >>> overflow_rows(256, np.array([788.0, 1.0]), 2.0, 2).tolist()
     [True, False]
     """
     lam = np.broadcast_to(np.abs(lam0) + np.abs(mu), (M,))
