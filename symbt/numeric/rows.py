@@ -133,7 +133,9 @@ def float_rows_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_com
         status[idx_all[far]] = RANGE
         idx_all = idx_all[~far]
     for s0 in range(0, idx_all.size, block):
-        idx = idx_all[s0:s0 + block]
+        idx: Any = idx_all[s0:s0 + block]
+        if idx[-1] - idx[0] + 1 == idx.size:          # contiguous rows (the usual case): views, not copies
+            idx = slice(int(idx[0]), int(idx[-1]) + 1)
         bp, bq, st = _float_block(pa[idx], qa[idx], _take(lam0, idx), _take(mu, idx), branch)
         outp[idx], outq[idx] = bp, bq
         status[idx] = st
@@ -148,5 +150,5 @@ def float_rows_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_com
     return outp, outq
 
 
-def _take(x: Any, idx: npt.NDArray[np.intp]) -> Any:
+def _take(x: Any, idx: Any) -> Any:
     return x[idx] if np.ndim(x) else x
