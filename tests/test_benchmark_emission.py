@@ -29,6 +29,11 @@ def test_rows_for_n_2_and_3_have_positive_numbers_and_agree():
     assert len(table) == 4 and table[0].count("|") == len(COLUMNS) + 1
 
 
+def test_without_the_rewriting_the_same_trace_is_emitted():
+    (row,) = run_emission([3], points=100, repeats=1, optimize=False)
+    assert row["optimize"] is False and row["emit_bytes"] > 0 and row["max_rel_diff"] < 1e-12
+
+
 def test_bad_size_is_a_value_error_and_exit_2(capsys: pytest.CaptureFixture[str]):
     with pytest.raises(ValueError, match="N >= 2"):
         emission_row(1)

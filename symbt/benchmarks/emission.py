@@ -6,7 +6,10 @@ geometrically with N).  For each N, one row:
 
 * **emit**: ``symbt.emit`` (the declaration and its checks) plus the renderer and the atomic write
   of ``<module>.py`` into a temporary directory (:func:`symbt.codegen.user.files.generate`:
-  rewriting, CSE, printing, provenance header) -- the wall time and the file's size in bytes;
+  rewriting, CSE, printing, provenance header) -- the wall time and the file's size in bytes.
+  ``optimize`` (``--no-optimize``) is the declaration's flag: SymPy's ``expm1`` rewriter
+  (:mod:`sympy.codegen.rewriting`) also tries ``expr.factor()`` of the whole expression, which is
+  most of the emission time of a large polynomial such as this one;
 * **lambdify**: ``sympy.lambdify(args, expr, "numpy", cse=True)`` -- its wall time and the size
   of the source it generated (``inspect.getsource``);
 * **evaluation** of the emitted numpy function (imported from the written file) and of the
@@ -54,7 +57,8 @@ def _points(model: Any, points: int, seed: int) -> list[np.ndarray]:
     return cols
 
 
-def emission_row(N: int, *, points: int = 10_000, repeats: int = 5, seed: int = 0) -> dict[str, Any]:
+def emission_row(N: int, *, points: int = 10_000, repeats: int = 5, seed: int = 0,
+                 optimize: bool = True) -> dict[str, Any]:
     """One row of the benchmark for the N-site trace (see the module docstring for its keys).
 
     >>> r = emission_row(2, points=20, repeats=1)
@@ -78,7 +82,8 @@ def emission_row(N: int, *, points: int = 10_000, repeats: int = 5, seed: int = 
     with tempfile.TemporaryDirectory(prefix="symbt-bench-emit-") as tmp:
         out = Path(tmp)
         t0 = time.perf_counter()
-        e = emit("trace", expr, args=args, module=module, doc=f"tr L(lambda), N = {N}", register=False)
+        e = emit("trace", expr, args=args, module=module, doc=f"tr L(lambda), N = {N}", optimize=optimize,
+                 register=False)
         (path,) = generate([e], out, out)
         emit_s = time.perf_counter() - t0
         emitted = load_python(path).trace
@@ -96,15 +101,16 @@ def emission_row(N: int, *, points: int = 10_000, repeats: int = 5, seed: int = 
         lambdify_eval = min(timeit.repeat(lambda: lambdified(*cols), number=1, repeat=repeats))
     return {"N": N, "terms": len(sp.Add.make_args(expr)), "emit_s": emit_s, "emit_bytes": emit_bytes,
             "lambdify_s": lambdify_s, "lambdify_bytes": lambdify_bytes, "emitted_eval_s": emitted_eval,
-            "lambdify_eval_s": lambdify_eval, "max_rel_diff": rel, "points": points, "repeats": repeats}
+            "lambdify_eval_s": lambdify_eval, "max_rel_diff": rel, "points": points, "repeats": repeats,
+            "optimize": optimize}
 
 
 def run_emission(ns: Iterable[int] = range(2, 13), *, points: int = 10_000, repeats: int = 5, seed: int = 0,
-                 log: Any = None) -> list[dict[str, Any]]:
+                 optimize: bool = True, log: Any = None) -> list[dict[str, Any]]:
     """The rows for every N of ``ns`` (``log(row)`` is called as each one finishes)."""
     rows = []
     for n in ns:
-        rows.append(emission_row(n, points=points, repeats=repeats, seed=seed))
+        rows.append(emission_row(n, points=points, repeats=repeats, seed=seed, optimize=optimize))
         if log is not None:
             log(rows[-1])
     return rows
@@ -141,6 +147,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--points", type=int, default=10_000, help="batch size of the evaluation (default 10000)")
     ap.add_argument("--repeats", type=int, default=5, help="timeit repeats, the best is kept (default 5)")
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--no-optimize", action="store_true",
+                    help="declare with optimize=False (no expm1/log1p rewriting: SymPy's rewriter factors the "
+                         "whole expression, most of the emission time of a large polynomial)")
     ap.add_argument("--json", metavar="FILE", help="also write the rows as JSON")
     a = ap.parse_args(argv)
     bad = [n for n in a.n if n < 2]
@@ -149,7 +158,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"python -m symbt.benchmarks.emission: {what}", file=sys.stderr)
         return 2
     print("\n".join(markdown([]).splitlines()[:2]), flush=True)
-    rows = run_emission(a.n, points=a.points, repeats=a.repeats, seed=a.seed,
+    rows = run_emission(a.n, points=a.points, repeats=a.repeats, seed=a.seed, optimize=not a.no_optimize,
                         log=lambda r: print(markdown([r]).splitlines()[-1], flush=True))
     if a.json:
         Path(a.json).write_text(json.dumps(rows, indent=1) + "\n")
