@@ -192,3 +192,30 @@ def test_emit_is_public() -> None:
     import symbt
 
     assert "emit" in symbt.__all__ and symbt.emit.__module__ == "symbt.codegen.user.declare"
+
+
+def test_equation_ties_the_emitted_claims_to_their_display(tmp_path: Path) -> None:
+    """``emit(..., equation=LABEL)``: the three claims carry it as ``source_equation`` (coverage joins them there)."""
+    import sympy as sp
+
+    from symbt import emit
+    from symbt.claims.base import REGISTRY, SCENES
+    from symbt.codegen.user.declare import EmitError
+    from symbt.engine.emitted_claims import register_emitted
+
+    x = sp.Symbol("x")
+    e = emit("tied", sp.exp(x) - 1, args=(x,), module="tiedmod", equation="eq1", register=False)
+    untied = emit("untied", sp.exp(x) - 1, args=(x,), module="tiedmod", register=False)
+    had_scene = "codegen" in SCENES
+    ids = register_emitted([e, untied], tmp_path, tmp_path / "out")
+    try:
+        assert {REGISTRY[i].source_equation for i in ids if ".tied." in i} == {"eq1"}
+        assert {REGISTRY[i].source_equation for i in ids if ".untied." in i} == {None}
+        assert {REGISTRY[i].equation for i in ids if ".tied." in i} == {"tiedmod.tied"}
+    finally:
+        for i in ids:
+            REGISTRY.pop(i, None)
+        if not had_scene:
+            SCENES.pop("codegen", None)
+    with pytest.raises(EmitError, match="equation"):
+        emit("bad_label", x, args=(x,), module="tiedmod", equation="  ", register=False)

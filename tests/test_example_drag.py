@@ -18,8 +18,12 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "drag"
 
+EMITTED = {"emit.drag_numeric.velocity.numpy": "verified", "emit.drag_numeric.velocity.mpmath": "verified",
+           # the C claim compiles the committed generated/drag_numeric.c; without a compiler it is skipped
+           "emit.drag_numeric.velocity.c": "verified" if shutil.which("cc") or shutil.which("gcc")
+           or shutil.which("clang") else "skipped"}
 EXPECTED = {"drag.vT": "verified", "drag.v": "verified", "drag.x": "verified", "drag.v2x": "verified",
-            "drag.t99": "erratum", "drag.v0": "erratum"}
+            "drag.t99": "erratum", "drag.v0": "erratum", **EMITTED}
 
 
 @pytest.fixture
@@ -68,6 +72,8 @@ def test_editing_the_model_module_changes_the_cached_verdict(project: Path, tmp_
     assert edited["drag.v"]["status"] == "failed" and not edited["drag.v"]["cached"]
     assert edited["drag.vT"]["status"] == "failed"
     assert edited["drag.t99"]["status"] == "erratum"              # does not use the right-hand side
+    # drag_emit imports drag_model: the emitted file is stale now, and its claims say so
+    assert edited["emit.drag_numeric.velocity.numpy"]["status"] == "failed"
 
     model.write_text(original)                                    # reverting restores the verdicts
     code, reverted = verify(project, cache)
@@ -82,3 +88,33 @@ def test_pytest_plugin_collects_the_claims_through_the_config(project: Path, tmp
     items = {line.split("::")[-1] for line in p.stdout.splitlines() if line.startswith("symbt/")}
     assert items == set(EXPECTED)
     assert "tests/test_drag_identities.py::" in p.stdout           # and the project's own tests
+
+
+def test_the_emitted_module_is_up_to_date_and_its_claims_tie_to_eq_v0(project: Path, tmp_path: Path):
+    cache = tmp_path / "cache"
+    for target in ("python", "c"):
+        p = run(project, "-m", "symbt", "codegen", "--check", "--target", target, cache=cache)
+        assert p.returncode == 0, p.stdout + p.stderr
+    p = run(project, "-m", "symbt", "coverage", "--json", "-", "-q", cache=cache)
+    assert p.returncode == 0, p.stdout + p.stderr
+    report = json.loads(p.stdout)
+    assert report["unknown"] == {"claims": {}, "reasons": []}    # no claim on a label the note lacks
+    assert {c["id"] for c in report["coverage"]["v0"]["claims"]} == {"drag.v0", *EMITTED}
+
+
+def test_codegen_check_fails_on_a_hand_edit_and_a_changed_derivation(project: Path, tmp_path: Path):
+    cache = tmp_path / "cache"
+    emitted = project / "generated" / "drag_numeric.py"
+    original = emitted.read_text()
+    emitted.write_text(original.replace("t3*np.tanh", "0.99*t3*np.tanh"))
+    p = run(project, "-m", "symbt", "codegen", "--check", cache=cache)
+    assert p.returncode == 1 and "drag_numeric.py" in p.stdout + p.stderr
+    emitted.write_text(original)
+
+    model = project / "drag_model.py"
+    model.write_text(model.read_text().replace("RATE = sp.sqrt(g * k)", "RATE = sp.sqrt(2 * g * k)"))
+    p = run(project, "-m", "symbt", "codegen", "--check", cache=cache)
+    assert p.returncode == 1 and "drag_numeric.py" in p.stdout + p.stderr
+    assert run(project, "-m", "symbt", "codegen", cache=cache).returncode == 0     # regenerated: checks again
+    assert run(project, "-m", "symbt", "codegen", "--check", cache=cache).returncode == 0
+    assert emitted.read_text() != original

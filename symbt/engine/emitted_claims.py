@@ -64,7 +64,7 @@ def register_emitted(emissions: list[Emission], root: Path, out: Path) -> list[s
             cid = f"emit.{e.module}.{e.name}.{fl}"
             check = functools.partial(_check, (e.module, e.name), fl, root, out)
             REGISTRY[cid] = Claim(id=cid, equation=f"{e.module}.{e.name}", statement=_statement(e, fl),
-                                  check=check, scene=SCENE, func=_check,
+                                  check=check, scene=SCENE, func=_check, source_equation=e.equation,
                                   deep_check=functools.partial(check, deep=True), module=e.declared_in)
             ids.append(cid)
     SCENES.setdefault(SCENE, {"description": "emitted code vs its SymPy source", "deep": False})

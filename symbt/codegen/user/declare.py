@@ -68,6 +68,7 @@ class Emission:
     domain: Any = None                      # a symbt.Domain, or None (then the claims are todo)
     cells: tuple[Any, ...] = ()
     optimize: bool = True
+    equation: str | None = None             # the paper label the expression comes from (coverage)
     declared_in: str = field(default="", compare=False)
 
     @property
@@ -135,8 +136,12 @@ def _check_expr(name: str, e: sp.Expr, args: tuple[sp.Symbol, ...]) -> None:
 
 
 def emit(name: str, expr: Any, *, args: Any, module: str, doc: str = "", domain: Any = None,
-         cells: Any = (), optimize: bool = True, register: bool = True) -> Emission:
+         cells: Any = (), optimize: bool = True, equation: str | None = None, register: bool = True) -> Emission:
     """Declare the function ``name`` of the emitted module ``module`` (see the module docstring).
+
+    ``equation``: the paper label (``\\label{}``) of the display the expression comes from; its
+    claims are then counted by ``symbt coverage`` as claims of that display (their
+    ``source_equation``) instead of as claims on an unknown label.
 
     Returns the :class:`Emission`; raises :class:`EmitError` for a declaration that cannot be
     emitted.  ``register=False`` checks without recording it.
@@ -173,10 +178,12 @@ def emit(name: str, expr: Any, *, args: Any, module: str, doc: str = "", domain:
         missing = [n for n in names if n not in domain.variables]
         if missing:
             raise _fail(name, f"the domain lacks the argument(s) {', '.join(missing)}")
+    if equation is not None and (not isinstance(equation, str) or not equation.strip()):
+        raise _fail(name, f"equation={equation!r} must be a paper label (a non-empty string)")
     cells = tuple(cells) if cells else _branch_splits(exprs)
     declared_in = sys._getframe(1).f_globals.get("__name__", "")
     em = Emission(name=name, module=module, args=args, exprs=exprs, shape=shape, doc=str(doc), domain=domain,
-                  cells=cells, optimize=bool(optimize), declared_in=declared_in)
+                  cells=cells, optimize=bool(optimize), equation=equation, declared_in=declared_in)
     if register:
         old = EMISSIONS.get((module, name))
         if old is not None and old.declared_in != declared_in:
