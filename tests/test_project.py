@@ -246,3 +246,16 @@ def test_pytest_plugin_collects_the_users_claims_from_the_config(note, tmp_path)
                         "-q", "-p", "no:cacheprovider", "--co"],
                        cwd=note, env=env, capture_output=True, text=True, timeout=300)
     assert "toy." in r.stdout and "note.b" not in r.stdout, r.stdout + r.stderr
+
+
+def test_a_table_without_claims_says_so(tmp_path):
+    """A [tool.symbt] table that names no claims does not silently run Zullo's paper."""
+    (tmp_path / "pyproject.toml").write_text('[tool.symbt]\npaper = "note.tex"\n')
+    with pytest.raises(proj.ConfigError, match="no 'claims'"):
+        proj.discover(start=tmp_path)
+    assert proj.discover(start=tmp_path, claims=["symbt.claims"]).is_package   # --claims is enough
+
+
+def test_the_words_tool_symbt_in_a_comment_are_no_table(tmp_path):
+    (tmp_path / "pyproject.toml").write_text('[project]\nname = "x"   # configured in [tool.symbt] one day\n')
+    assert proj.find_config(tmp_path) is None

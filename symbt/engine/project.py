@@ -116,9 +116,18 @@ def find_config(start: Path | None = None) -> Path | None:
                 text = f.read_text(encoding="utf-8")
             except OSError:
                 continue
-            if "[tool.symbt" in text:
+            if "[tool.symbt" in text and _has_table(text):
                 return f
     return None
+
+
+def _has_table(text: str) -> bool:
+    """Whether the TOML ``text`` has a ``[tool.symbt]`` table (a file that does not parse: yes, so its
+    reader reports the error instead of silently skipping the file)."""
+    try:
+        return _toml(text).get("tool", {}).get("symbt") is not None
+    except ValueError:
+        return True
 
 
 def _toml(text: str) -> dict[str, Any]:
@@ -205,6 +214,9 @@ def discover(*, claims: Sequence[str] = (), paper: str | os.PathLike[str] | None
     root = cfg_path.parent.resolve() if cfg_path is not None else cwd
     emitters = tuple(_source_spec(c, cwd) for c in codegen) or cfg.get("codegen") or ()
     # a project that only emits code has no claims of its own besides those of its emitted functions
+    if cfg_path is not None and not claims and not emitters and "claims" not in cfg:
+        raise ConfigError(f"{cfg_path} [tool.symbt]: no 'claims' (your claims modules or paths; "
+                          "\"symbt.claims\" for Zullo's paper), or give --claims")
     sources = tuple(_source_spec(c, cwd) for c in claims) or cfg.get("claims") or \
         (() if emitters else (PACKAGE_CLAIMS,))
     return Project(root=root, claims=tuple(dict.fromkeys(sources)), config=cfg_path,
