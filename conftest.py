@@ -20,7 +20,15 @@ _NEEDS = {
     "symbt.numeric.qd": "numba",
     "symbt.proof.flint_exact": "flint",
     "symbt.numeric.dask_orbit": "dask",
+    "symbt.numeric.ensemble.kernel_batch_step": "numba",
+    "symbt.engine.coverage.scan_labels": "pylatexenc",
+    "symbt.engine.labels": "pylatexenc",
+    "symbt.engine.latex": "pylatexenc",
+    "symbt.engine.site": "pylatexenc",
+    "symbt.report.site.mathml": "latex2mathml",
 }
+#: the same, for one doctest exactly (not the objects below it): a package's own docstring
+_NEEDS_EXACT = {"symbt.report.site": "latex2mathml"}
 
 
 def _missing(dep: str) -> bool:
@@ -34,6 +42,8 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     for item in items:
         if not isinstance(item, pytest.DoctestItem):
             continue
-        for name, dep in _NEEDS.items():
-            if (item.name == name or item.name.startswith(name + ".")) and _missing(dep):
+        needs = [dep for name, dep in _NEEDS.items() if item.name == name or item.name.startswith(name + ".")]
+        needs += [dep for name, dep in _NEEDS_EXACT.items() if item.name == name]
+        for dep in needs:
+            if _missing(dep):
                 item.add_marker(pytest.mark.skip(reason=f"needs the optional dependency {dep!r}"))
