@@ -156,6 +156,14 @@ def test_c_target_compiled_and_verified(project: Path) -> None:
     c_file.write_text(c_file.read_text().replace("return 0;", "return 0; "))
     again = cached_verify()["emit.mymodel.ramp.c"]
     assert again["status"] == "failed" and "edited by hand" in again["detail"] and not again["cached"], again
+    # ... also off the warm path (no manifest: each cached entry is checked against its own key)
+    assert run(project, "codegen", "--target", "c").returncode == 0           # the file regenerated
+    assert cached_verify()["emit.mymodel.ramp.c"]["status"] == "verified"
+    for manifest in Path(os.environ["SYMBT_CACHE_DIR"]).glob("manifest*.json"):
+        manifest.unlink()
+    c_file.write_text(c_file.read_text().replace("return 0;", "return 0; "))
+    cold = cached_verify()["emit.mymodel.ramp.c"]
+    assert cold["status"] == "failed" and not cold["cached"], cold
     # without a compiler the C claims are skipped, with the reason
 
     env = dict(os.environ, PATH=str(project / "empty"), PYTHONPATH=str(ROOT))
