@@ -83,8 +83,9 @@ def bt_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, eve
         ensemble), or flat sequences of mpmath numbers (one state); with
         ``certified=True`` also exact decimal strings.
     lam0, mu : real (float64 ensembles: also arrays broadcastable to ``batch``).
-    n : number of steps.  every : store the states after ``0, every, 2 every,
-        ...`` steps and always the last one (``every=n``: initial and final).
+    n : number of steps.
+    every : store the states after ``0, every, 2 every, ...`` steps and always
+        the last one (``every=n``: initial and final).
     branch : +1 or -1 (inverse map).
     backend : ``"auto"`` (fastest available) or float64 ``"numba"``,
         ``"python"``, ``"numpy"`` (general path only); mpmath ``"qd"``
@@ -99,11 +100,15 @@ def bt_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, eve
     ``P[0] = p`` (``rows = n + 1`` for ``every=1``).  mpmath: two lists of
     ``rows`` states (each a list of mpf at the current ``mp.dps``).
 
+    Notes
+    -----
     Errors of any step propagate as the typed errors of :func:`bt_step`; for
     ensembles :class:`NoRealMapError` lists in ``where`` every state without a
     real map.  The map preserves the spectrum, so if the first step exists all
     later ones do too (up to round-off at the boundary of existence).
 
+    Examples
+    --------
     >>> import numpy as np
     >>> P, Q = bt_orbit(np.tile([-20.0, 10, 1], (4, 1)), np.tile([1.0, 0, 0.9], (4, 1)), 10.0, 5.0, 100, every=50)
     >>> P.shape                                      # (stored states, ensemble, sites)

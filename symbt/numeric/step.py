@@ -349,12 +349,17 @@ def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_comple
 
     Raises
     ------
-    InvalidInputError, NoRealMapError, NumericRangeError (and
-    :class:`MissingDependencyError` for a forced backend that is not installed)
+    InvalidInputError, NoRealMapError, NumericRangeError
+    MissingDependencyError
+        for a forced backend that is not installed.
 
+    Notes
+    -----
     ``mu == 0`` returns copies of the input.  The algorithm and its stability
     are described in the module docstring of :mod:`symbt.numeric.step`.
 
+    Examples
+    --------
     >>> from symbt.numeric import bt_step
     >>> import mpmath
     >>> with mpmath.workdps(30):
