@@ -101,35 +101,35 @@ def coverage_table(report: dict) -> str:
     return head + "\n".join(rows) + "\n"
 
 
-def walkthrough_notebooks() -> list[Path]:
-    """Every ``derivations/NN_*.py`` converted to ``docs/walkthroughs/NN_*.ipynb`` (jupytext, unexecuted)."""
+def walkthrough_notebooks(walkthroughs: Path = WALKTHROUGHS) -> list[Path]:
+    """Every ``derivations/NN_*.py`` converted to ``walkthroughs/NN_*.ipynb`` (jupytext, unexecuted)."""
     import jupytext
 
     written = []
     scripts = sorted((ROOT / "derivations").glob("[0-9][0-9]_*.py"))
     for script in scripts:
         nb = jupytext.read(script, fmt="py:percent")
-        target = WALKTHROUGHS / f"{script.stem}.ipynb"
+        target = walkthroughs / f"{script.stem}.ipynb"
         write_if_changed(target, jupytext.writes(nb, fmt="ipynb"))
         written.append(target)
-    for stale in set(WALKTHROUGHS.glob("*.ipynb")) - set(written):
+    for stale in set(walkthroughs.glob("*.ipynb")) - set(written):
         stale.unlink()
     return written
 
 
-def generate() -> list[Path]:
-    """Write every generated page; returns their paths."""
-    GENERATED.mkdir(parents=True, exist_ok=True)
-    table, report_json = GENERATED / "claims-table.md", GENERATED / "verify.json"
+def generate(generated: Path = GENERATED, walkthroughs: Path = WALKTHROUGHS) -> list[Path]:
+    """Write every generated page (into ``docs/_generated`` and ``docs/walkthroughs``); returns their paths."""
+    generated.mkdir(parents=True, exist_ok=True)
+    table, report_json = generated / "claims-table.md", generated / "verify.json"
     run_cli("verify", "-q", "--markdown", str(table), "--json", str(report_json))
     report = json.loads(report_json.read_text(encoding="utf-8"))
-    summary = GENERATED / "claims-summary.md"
+    summary = generated / "claims-summary.md"
     write_if_changed(summary, claims_summary(report))
-    cov = GENERATED / "coverage.json"
+    cov = generated / "coverage.json"
     run_cli("coverage", "-q", "--json", str(cov))
-    coverage = GENERATED / "coverage-table.md"
+    coverage = generated / "coverage-table.md"
     write_if_changed(coverage, coverage_table(json.loads(cov.read_text(encoding="utf-8"))))
-    return [table, summary, coverage, *walkthrough_notebooks()]
+    return [table, summary, coverage, *walkthrough_notebooks(walkthroughs)]
 
 
 def _on_config_inited(app, config) -> None:
