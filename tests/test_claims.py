@@ -1,6 +1,6 @@
 """The paper's claims: every label of the core issue is covered and no claim fails.
 
-The expected errata are the outcome of the checks (see README, "Errata"); if a
+The expected errata are the outcome of the checks (see docs/claims.md, "Errata found"); if a
 derivation changes so that a claim changes status, this test fails.
 """
 import re

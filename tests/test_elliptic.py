@@ -300,7 +300,7 @@ def elliptic_outcomes():
 
 
 def test_elliptic_claims(elliptic_outcomes):
-    # pinned outcomes (README, "Errata found"): a change of status must be deliberate
+    # pinned outcomes (docs/claims.md, "Errata found"): a change of status must be deliberate
     for cid, out in elliptic_outcomes.items():
         assert out.status == EXPECTED[cid], (cid, out.detail, out.counterexample)
         assert out.n_scope == [2] and out.evidence == "sampled", cid

@@ -1,4 +1,4 @@
-"""A Markdown table of claim results (the README's claim table)."""
+"""A Markdown table of claim results (the claims table of the documentation, docs/claims.md)."""
 from __future__ import annotations
 
 from .text import evidence_text, residual_text, short_method
@@ -7,7 +7,7 @@ __all__ = ["format_markdown"]
 
 
 def format_markdown(results) -> str:
-    """A Markdown table of the results (used for the README's claim table).
+    """A Markdown table of the results (the claims table of docs/claims.md, generated when the site is built).
 
     >>> from symbt.claims.base import Claim, ClaimResult, Outcome
     >>> r = ClaimResult(Claim("t", "a|b", "s", check=None), Outcome("verified", "exact", 0.0, evidence="proof"))
