@@ -51,7 +51,7 @@ nb_merge_streams = True
 # the API reference: autosummary pages from the docstrings (numpydoc format)
 autosummary_generate = True
 autosummary_imported_members = True
-autodoc_default_options = {"members": False}
+autodoc_default_options = {"members": True}    # a class page documents its documented methods
 autodoc_typehints = "none"                 # the numpydoc Parameters sections say the types
 numpydoc_show_class_members = False        # members are listed by autosummary, not twice
 numpydoc_class_members_toctree = False
