@@ -32,7 +32,7 @@ from ._bt import images
 from ._common import fmt_state, judge_cells, per_cell
 from ._flow import gl_integral, hamiltonians_float, in_domain, moments, rel_diff, time_flow
 from .base import Outcome, Parts, claim, scene
-from .theorem1 import PHI_REAL, branch, tr1, tr2
+from .theorem1 import branch, phi_real, tr1, tr2
 
 scene("theorem2", "Theorem 2 (eqs. Hdiscr, linearcomb, eqdisc, Hdis): n BT steps = time-n flow of sum c_k H_k; "
                   "the constants of the captions of Figs. 1-2")
@@ -136,7 +136,7 @@ def _limit(expr, s: dict) -> float:
 # --------------------------------------------------------------------------- eq. Hdiscr
 
 def _parts_Hdiscr(N: int) -> Parts:
-    return Parts(printed={"Phi": PHI_REAL, "upper": mu, "time": 1},
+    return Parts(printed={"Phi": phi_real(), "upper": mu, "time": 1},
                  context={"H": "int_0^upper Phi(tr L(lam0 + mu'), tr L(lam0 - mu')) dmu'", "time": "per BT step"})
 
 
@@ -253,7 +253,7 @@ def theorem2_deep100(N: int, parts: Parts) -> Outcome:
 # --------------------------------------------------------------------------- eqs. linearcomb and eqdisc
 
 def _parts_linearcomb(N: int) -> Parts:
-    return Parts(printed={"Phi": PHI_REAL, "weight": WEIGHT, "lower": lam0 - mu, "upper": lam0 + mu})
+    return Parts(printed={"Phi": phi_real(), "weight": WEIGHT, "lower": lam0 - mu, "upper": lam0 + mu})
 
 
 @claim("linearcomb", equation="linearcomb", scene="theorem2", sizes=(2, 3), parts=_parts_linearcomb,

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 191a5e58d476c8f8ff7ebc9cc5cfe8b2a0c7e113d32382aae80479636b853782
-# symbt-codegen-content-sha256: 64052b0af114826ef13dbb4b7c219eb4c827b4effe7aa8d0811b3ff851e96922
+# symbt-codegen-derivation-sha256: 198103d00a44691125951e5a01b0198582a1ad0fed33983a22b90374a4fc375b
+# symbt-codegen-content-sha256: 77c8a3429aae6c5746cb3f8854e85d10ae93cc2ad0ec515b981021f9de7a0b05
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

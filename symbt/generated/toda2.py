@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 191a5e58d476c8f8ff7ebc9cc5cfe8b2a0c7e113d32382aae80479636b853782
-# symbt-codegen-content-sha256: 80416eb325a40ccbb1c2cc2e9db6e3a1dbd63b8a53cd4f69965d8988394c31cf
+# symbt-codegen-derivation-sha256: 198103d00a44691125951e5a01b0198582a1ad0fed33983a22b90374a4fc375b
+# symbt-codegen-content-sha256: b8bc175ae9cb78915d4a2b3c41b24cbbf3aabb4106d33524241764a3b3a2845a
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 191a5e58d476c8f8ff7ebc9cc5cfe8b2a0c7e113d32382aae80479636b853782
-# symbt-codegen-content-sha256: d697fcc939c4318a2e60a6e6181b2260a037de7697e4ee54fb84823eaf69355d
+# symbt-codegen-derivation-sha256: 198103d00a44691125951e5a01b0198582a1ad0fed33983a22b90374a4fc375b
+# symbt-codegen-content-sha256: 3e69e5eecdcd336ebc47d1314ab0f792457b532970be3a12904963701b89f5ad
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
