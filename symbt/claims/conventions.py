@@ -125,9 +125,10 @@ def _parts_screen() -> Parts:
                           "rhs": "ln|v(l1)| + ln|v(l2)|, v = (tr - b sqrt(tr^2 - 4))/2 (eq. spec, real logs)"})
 
 
-def _cell_identity(P: dict, b: int, s: int) -> tuple[sp.Expr, sp.Expr]:
-    at = {branch: b, tr1: s * (2 + a1), tr2: s * (2 + a2)}
-    return P["Phi"].subs(at), P["rhs"].subs(at)
+def _cell(b: int, s: int) -> dict:
+    """The screen's keywords for the cell {branch=b, sign_tr=s}: tr_i = s (2 + a_i) as degree-1 relations
+    (solved numerically by the screen; no substitution into the expression) and the branch pinned."""
+    return {"relations": {tr1: tr1 - s * (2 + a1), tr2: tr2 - s * (2 + a2)}, "fixed": {branch: b}}
 
 
 @claim("newkmu.screen", equation="newkmu", scene="conventions", parts=_parts_screen,
@@ -140,12 +141,15 @@ def phi_screen(parts: Parts) -> Outcome:
     last: Verdict | None = None
     for b in (1, -1):
         for s in (1, -1):
-            lhs, rhs = _cell_identity(P, b, s)
+            lhs, rhs, cell = P["Phi"], P["rhs"], _cell(b, s)
             # logarithms and acosh: the exact layer has nothing to reduce, the screen decides
-            d = decide(lhs, rhs, exact=False, digits=DIGITS, seed=1729 + 2 * b + s)
+            d = decide(lhs, rhs, exact=False, digits=DIGITS, seed=1729 + 2 * b + s, **cell)
             if not d.holds:
                 return from_decision(d, detail=f"cell branch={b:+d}, sign_tr={s:+d}")
-            control = decide(lhs, rhs * (1 + CONTROL), exact=False, digits=DIGITS, seed=1729 + 2 * b + s)
+            outside = [pt for pt in d.points for t in ("tr1", "tr2") if not s * float(pt[t]) > 2]
+            if outside or not d.points:
+                return failed(d.method, detail=f"the screen's points are not in the cell sign_tr={s:+d}: {outside[:1]}")
+            control = decide(lhs, rhs * (1 + CONTROL), exact=False, digits=DIGITS, seed=1729 + 2 * b + s, **cell)
             if control.holds or control.inconclusive or not control.counterexample:
                 return failed(control.method, residual=control.residual,
                               detail=f"the numeric screen did not refute the identity off by a relative "
