@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 198103d00a44691125951e5a01b0198582a1ad0fed33983a22b90374a4fc375b
-# symbt-codegen-content-sha256: 77c8a3429aae6c5746cb3f8854e85d10ae93cc2ad0ec515b981021f9de7a0b05
+# symbt-codegen-derivation-sha256: b74163cda8a777bc561cf8e4be582a4bbf5d7c3ad5ac1289275c9df03275a5f7
+# symbt-codegen-content-sha256: afd33e17f351e7b1133dc81b4d47f1dee80be55d1fbbb47048375ae7ee897c78
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

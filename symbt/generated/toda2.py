@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 198103d00a44691125951e5a01b0198582a1ad0fed33983a22b90374a4fc375b
-# symbt-codegen-content-sha256: b8bc175ae9cb78915d4a2b3c41b24cbbf3aabb4106d33524241764a3b3a2845a
+# symbt-codegen-derivation-sha256: b74163cda8a777bc561cf8e4be582a4bbf5d7c3ad5ac1289275c9df03275a5f7
+# symbt-codegen-content-sha256: 92d532252019281e64140f7b64f3b9ea92bd3692b96997b4acfb060b2fb3b772
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 198103d00a44691125951e5a01b0198582a1ad0fed33983a22b90374a4fc375b
-# symbt-codegen-content-sha256: 3e69e5eecdcd336ebc47d1314ab0f792457b532970be3a12904963701b89f5ad
+# symbt-codegen-derivation-sha256: b74163cda8a777bc561cf8e4be582a4bbf5d7c3ad5ac1289275c9df03275a5f7
+# symbt-codegen-content-sha256: d7df9dcbfc7f3d5d2a6cb463544928e1d3ee1c918c215eb28ef240f3d3186099
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
