@@ -111,6 +111,18 @@ def test_a_flipped_sign_of_phi_fails_claims(monkeypatch):
     assert all(s not in OK for s in got.values()), got
 
 
+def _flipped_branch(T, *, ns=mp):
+    # the planted bug: the real branch of arccosh(T/2) loses its sign
+    return ns.acosh(abs(T) / 2)
+
+
+def test_a_lost_sign_in_the_real_arccosh_fails_claims(monkeypatch):
+    # signed_arccosh_half is Phi's building block and the density of H in eqs. Hdis, AA2
+    plant(monkeypatch, literal.signed_arccosh_half, _flipped_branch)
+    got = statuses(("x.n2", "Hdis"))
+    assert all(s not in OK for s in got.values()), got
+
+
 def test_phi_one_formula_for_every_namespace():
     # the SymPy expression (claims, codegen) and the mpmath numbers are the same formula
     from symbt.codegen.derive import branch, phi_of

@@ -20,7 +20,7 @@ import numpy as np
 import sympy as sp
 
 from ..proof.cells import CellTable
-from ..reference.literal import literal_step
+from ..reference.literal import literal_step, signed_arccosh_half
 from ..reference.samples import paper_state
 from ..reference.spectral import flow_coefficients_mp
 from ..reference.taylor import hamiltonian_flow
@@ -313,7 +313,7 @@ AA2 = {"AA2_integrand": sp.acosh(((lam + I1) ** 2 - I2) / 2), "AA2_lower": lam0 
 
 def _parts_Hdis() -> Parts:
     return Parts(printed={"integrand": HDIS, "lower": lam0 - mu, "upper": lam0 + mu, **AA2},
-                 corrected={"integrand": -branch * sp.sign(tr) * sp.acosh(sp.Abs(tr) / 2), "lower": lam0 - mu,
+                 corrected={"integrand": -branch * signed_arccosh_half(tr, ns=sp), "lower": lam0 - mu,
                             "upper": lam0 + mu, **AA2},
                  context={"AA2": "compared with the printed H as complex numbers (N = 2, tr of eq. tn2)"})
 

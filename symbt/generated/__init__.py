@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b74163cda8a777bc561cf8e4be582a4bbf5d7c3ad5ac1289275c9df03275a5f7
-# symbt-codegen-content-sha256: afd33e17f351e7b1133dc81b4d47f1dee80be55d1fbbb47048375ae7ee897c78
+# symbt-codegen-derivation-sha256: b6d6d99c012b0d7944734b2a28e676c3e0639fe95520366e8337f405665a1596
+# symbt-codegen-content-sha256: 5b670a6663067044acbd127c4de0cd3f4f1bb828c1e9b08538d8c328ea6404eb
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

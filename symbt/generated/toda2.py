@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b74163cda8a777bc561cf8e4be582a4bbf5d7c3ad5ac1289275c9df03275a5f7
-# symbt-codegen-content-sha256: 92d532252019281e64140f7b64f3b9ea92bd3692b96997b4acfb060b2fb3b772
+# symbt-codegen-derivation-sha256: b6d6d99c012b0d7944734b2a28e676c3e0639fe95520366e8337f405665a1596
+# symbt-codegen-content-sha256: a6a7df3c0f8a68a6d1c987a2e7d952f0a585c6f07171676792c9934a6abeb1dd
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

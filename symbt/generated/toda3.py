@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b74163cda8a777bc561cf8e4be582a4bbf5d7c3ad5ac1289275c9df03275a5f7
-# symbt-codegen-content-sha256: d7df9dcbfc7f3d5d2a6cb463544928e1d3ee1c918c215eb28ef240f3d3186099
+# symbt-codegen-derivation-sha256: b6d6d99c012b0d7944734b2a28e676c3e0639fe95520366e8337f405665a1596
+# symbt-codegen-content-sha256: 8a04c60de5e4b790dc996e2969d2f54499a4dddbbbf2e562d60a5dc0b09fcb04
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

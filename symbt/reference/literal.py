@@ -37,8 +37,8 @@ from __future__ import annotations
 import mpmath as mp
 from mpmath import libmp as _libmp
 
-__all__ = ["lax_matrix", "literal_step", "spectral_trace_mp", "phi_from_traces", "reference_step",
-           "literal_trace"]
+__all__ = ["lax_matrix", "literal_step", "spectral_trace_mp", "phi_from_traces", "signed_arccosh_half",
+           "reference_step", "literal_trace"]
 
 
 def lax_matrix(lam, p, q):
@@ -221,7 +221,18 @@ def phi_from_traces(tr1, tr2, branch, *, ns=mp):
     >>> phi_from_traces(t1, t2, b, ns=sp)
     -b*(acosh(Abs(tr1)/2)*sign(tr1) + acosh(Abs(tr2)/2)*sign(tr2))
     """
-    return -branch * (ns.sign(tr1) * ns.acosh(abs(tr1) / 2) + ns.sign(tr2) * ns.acosh(abs(tr2) / 2))
+    return -branch * (signed_arccosh_half(tr1, ns=ns) + signed_arccosh_half(tr2, ns=ns))
+
+
+def signed_arccosh_half(T, *, ns=mp):
+    r"""The real branch of :math:`\operatorname{arccosh}(T/2)` entering Phi:
+    :math:`\operatorname{sgn}(T)\operatorname{arccosh}(|T|/2)` (:math:`|T| \ge 2`); ``ns`` as in
+    :func:`phi_from_traces` (the density of H in eqs. ``Hdis``, ``AA2`` is ``-b`` times it).
+
+    >>> mp.nstr(signed_arccosh_half(mp.mpf(-3)), 12)
+    '-0.962423650119'
+    """
+    return ns.sign(T) * ns.acosh(abs(T) / 2)
 
 
 def literal_trace(lam, p, q):
