@@ -47,9 +47,9 @@ def _sized(out: Outcome, N: int) -> Outcome:
 # --------------------------------------------------------------------------- {p_i, q_j} = delta_ij; xdot = {H, x}
 
 def _parts_poisson(N: int) -> Parts:
-    return Parts(printed={"pq": sp.eye(N), "pp": sp.zeros(N, N), "qq": sp.zeros(N, N), "hamilton": (1, -1)},
-                 context={"pq": "{p_i, q_j}", "hamilton": "(s_q, s_p): xdot = {H, x} gives qdot = s_q dH/dp, "
-                                                          "pdot = s_p dH/dq"})
+    return Parts(printed={"brackets": sp.Matrix.hstack(sp.eye(N), sp.zeros(N, N), sp.zeros(N, N)), "hamilton": (1, -1)},
+                 context={"brackets": "row i: {p_i, q_j}, then {p_i, p_j}, then {q_i, q_j} (j = 1..N)",
+                          "hamilton": "(s_q, s_p): xdot = {H, x} gives qdot = s_q dH/dp, pdot = s_p dH/dq"})
 
 
 def toda_hamiltonian(N: int) -> tuple[sp.Expr, tuple, tuple]:
@@ -73,14 +73,12 @@ def canonical_brackets(N: int, parts: Parts) -> Outcome:
     m = toda_model(N)
     P = parts.printed
     qs = [sp.log(E) for E in m.E]                       # q_j as a function of E_j = e^{q_j}
-    br = sp.Matrix
-    got = {"pq": br(N, N, lambda i, j: m.poisson(m.p[i], qs[j])),
-           "pp": br(N, N, lambda i, j: m.poisson(m.p[i], m.p[j])),
-           "qq": br(N, N, lambda i, j: m.poisson(qs[i], qs[j]))}
-    for name, what in (("pq", "{p_i, q_j}"), ("pp", "{p_i, p_j}"), ("qq", "{q_i, q_j}")):
-        d = decide(got[name], P[name])
-        if not d.holds:
-            return _sized(from_decision(d, detail=f"{what} of TodaModel.poisson is not the printed matrix"), N)
+    pairs = ((m.p, qs), (m.p, m.p), (qs, qs))         # {p_i, q_j}, {p_i, p_j}, {q_i, q_j}
+    got = sp.Matrix.hstack(*(sp.Matrix(N, N, lambda i, j, f=f, g=g: m.poisson(f[i], g[j])) for f, g in pairs))
+    d = decide(got, P["brackets"])
+    if not d.holds:
+        return _sized(from_decision(d, detail="{p_i, q_j}, {p_i, p_j}, {q_i, q_j} of TodaModel.poisson are not the "
+                                              "printed canonical brackets"), N)
     # H is the Toda Hamiltonian of the model: H_{N-1}^2/2 - H_{N-2} (coefficients of tr L)
     Hq, p, q = toda_hamiltonian(N)
     HE = m.to_E(Hq)
