@@ -226,9 +226,12 @@ def own_samples(N: int, b: int, s: int, count: int, seed: int):
     """States in the cell {branch=b, sign_tr=s}: drawn here (not by the claims' sampler), tr L from the
     polynomial trace, the image by the literal map of branch b; 60 digits."""
     rng = random.Random(f"checker-checked|{N}|{b}|{s}|{seed}")
-    out = []
+    out, draws = [], 0
     with mp.workdps(60):
         while len(out) < count:
+            draws += 1
+            if draws > 5000 * count:      # a budget, not a hang: about 1 draw in 5 has the sign
+                raise RuntimeError(f"cannot fill the cell branch={b}, sign_tr={s} (N={N}) in {draws} draws")
             p = [mp.mpf(rng.uniform(-2.5, 2.5)) for _ in range(N)]
             q = [mp.mpf(rng.uniform(-1, 1)) for _ in range(N)]
             l0, m = mp.mpf(rng.uniform(-4, 4)), mp.mpf(rng.uniform(0.1, 0.6))
