@@ -17,6 +17,7 @@ CLAIM_MODULES = (
     "section1",
     "toy",
     "toda_model",
+    "conventions",
     "single_bt",
     "single_bt_map",
     "appendix_a",

@@ -23,6 +23,7 @@ import sympy as sp
 
 from ..proof.cells import CellTable
 from ..reference import elliptic as E
+from ..reference.literal import signed_arccosh_half
 from ._common import per_cell
 from ._elliptic import (
     DPS,
@@ -221,7 +222,7 @@ T_EXPR = (lam + I1) ** 2 - I2
 
 def _parts_aa2() -> Parts:
     return Parts(printed={"integrand": sp.acosh(T_EXPR / 2), "lower": lam0 + mu, "upper": lam0 - mu},
-                 corrected={"integrand": -branch * sp.sign(T_EXPR) * sp.acosh(sp.Abs(T_EXPR) / 2),
+                 corrected={"integrand": -branch * signed_arccosh_half(T_EXPR, ns=sp),
                             "lower": lam0 - mu, "upper": lam0 + mu})
 
 

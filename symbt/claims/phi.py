@@ -23,6 +23,7 @@ import sympy as sp
 
 from ..proof import decide
 from ..proof.cells import CellTable
+from ..reference.literal import phi_from_traces
 from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import lam, local_lax
 from ._common import DPS, TOL, eta_from_states, fmt_state, judge_cells, lambdified, literal_image, map_cells, per_cell
@@ -152,8 +153,7 @@ def spec(N: int, parts: Parts, deep: bool = False):
 
 def _parts_newkmu(N: int) -> Parts:
     return Parts(printed={"Phi": -sp.acosh(tr1 / 2) - sp.acosh(tr2 / 2)},
-                 corrected={"Phi": -branch * (sp.sign(tr1) * sp.acosh(sp.Abs(tr1) / 2)
-                                              + sp.sign(tr2) * sp.acosh(sp.Abs(tr2) / 2))})
+                 corrected={"Phi": phi_from_traces(tr1, tr2, branch, ns=sp)})   # the library's real Phi
 
 
 @claim("newkmu", equation="newkmu", scene="phi", sizes=(2, 3), parts=_parts_newkmu,

@@ -38,6 +38,7 @@ from ..reference.literal import literal_step
 from ..reference.spectral import phi_gradient
 from ..reference.trace import trace, trace_gradient
 from ..symbolic.darboux import lam0, mu
+from ..symbolic.generating import implicit_derivative
 from ..symbolic.toda import lam, local_lax, toda_model
 from ._common import DPS, TOL, fmt_state, judge_cells, lambdified, per_cell
 from ._maps import TINY_DPS, TINY_MU, lax, map_images, mat_mul, mat_norm, mat_sub, single_cells, tiny_images
@@ -316,11 +317,8 @@ def poincare_cartan(parts: Parts) -> Outcome:
     def f(e, Eo, Eto):                      # the term of F at one site (eq. newgf)
         return mu * sp.log((e + mu) / (e - mu)) - 2 * e - lam0 * (sp.log(Eo) - sp.log(Eto))
 
-    def d(expr, var):                       # total derivative, eta_k = eta_k(q, q~, mu) implicit
-        out = sp.diff(expr, var)
-        for e, ww in ((eta, w), (etan, wn)):
-            out += sp.diff(expr, e) * (mu if var == mu else sp.diff(ww, var) / 2) / e
-        return out
+    def d(expr, var):                       # total derivative, eta_k = eta_k(q, q~, mu) implicit (the library's)
+        return implicit_derivative(expr, var, {eta: w, etan: wn}, mu)
 
     F_site = f(eta, E, Et) + f(etan, En, Etn)          # every term of F that depends on q_j, q~_j
     subs = {P: -lam0 - (Et * etan + E * eta) / (E - Et), Pt: -lam0 - (Et * eta + E * etan) / (E - Et),

@@ -24,6 +24,7 @@ import mpmath as mp
 import sympy as sp
 
 from ..proof.cells import CellTable
+from ..reference.literal import phi_from_traces
 from ._bt import H, fd_gradient, inverse_etas, theorem1_data
 from ._common import DPS, fmt_state, judge_cells, lambdified, per_cell
 from .base import Outcome, Parts, claim, scene
@@ -32,7 +33,14 @@ scene("theorem1", "Theorem 1 (eq. x): mu-derivative of the BT image = Hamiltonia
 
 eta, mu_ = sp.symbols("eta mu", real=True)
 tr1, tr2, branch = sp.symbols("tr1 tr2 branch", real=True)
-PHI_REAL = -branch * (sp.sign(tr1) * sp.acosh(sp.Abs(tr1) / 2) + sp.sign(tr2) * sp.acosh(sp.Abs(tr2) / 2))
+
+
+def phi_real() -> sp.Expr:
+    """The real Phi of branch ``branch`` in the traces (the one implementation, in :mod:`symbt.reference.literal`;
+    built when a claim runs, so the claims check the library's formula as it is now)."""
+    return phi_from_traces(tr1, tr2, branch, ns=sp)
+
+
 PHI_PRINTED = -sp.acosh(tr1 / 2) - sp.acosh(tr2 / 2)
 TOL1 = 1e-25
 
@@ -52,7 +60,7 @@ def _trace_gradient_of(f, d: dict) -> tuple[list, list]:
 
 
 def _parts_x(N: int) -> Parts:
-    return Parts(printed={"dFdmu_term": sp.log((eta + mu_) / (eta - mu_)), "Phi": PHI_REAL, "hamilton": (1, -1)},
+    return Parts(printed={"dFdmu_term": sp.log((eta + mu_) / (eta - mu_)), "Phi": phi_real(), "hamilton": (1, -1)},
                  context={"Phi_hat": "sum over sites k of dFdmu_term at eta = eta_k (eq. vqqtmu)",
                           "hamilton": "(s_q, s_p): dq~/dmu = s_q dPhi/dp~, dp~/dmu = s_p dPhi/dq~"})
 
@@ -97,7 +105,7 @@ def theorem1_check(N: int, parts: Parts, deep: bool = False) -> Outcome:
 
 
 def _parts_newkmu(N: int) -> Parts:
-    return Parts(printed={"Phi": PHI_PRINTED}, corrected={"Phi": PHI_REAL})
+    return Parts(printed={"Phi": PHI_PRINTED}, corrected={"Phi": phi_real()})
 
 
 @claim("x.newkmu", equation="x", scene="theorem1", sizes=(2, 3), parts=_parts_newkmu, uses=("newkmu",),

@@ -20,7 +20,7 @@ import numpy as np
 import sympy as sp
 
 from ..proof.cells import CellTable
-from ..reference.literal import literal_step
+from ..reference.literal import literal_step, signed_arccosh_half
 from ..reference.samples import paper_state
 from ..reference.spectral import flow_coefficients_mp
 from ..reference.taylor import hamiltonian_flow
@@ -32,7 +32,7 @@ from ._bt import images
 from ._common import fmt_state, judge_cells, per_cell
 from ._flow import gl_integral, hamiltonians_float, in_domain, moments, rel_diff, time_flow
 from .base import Outcome, Parts, claim, scene
-from .theorem1 import PHI_REAL, branch, tr1, tr2
+from .theorem1 import branch, phi_real, tr1, tr2
 
 scene("theorem2", "Theorem 2 (eqs. Hdiscr, linearcomb, eqdisc, Hdis): n BT steps = time-n flow of sum c_k H_k; "
                   "the constants of the captions of Figs. 1-2")
@@ -136,7 +136,7 @@ def _limit(expr, s: dict) -> float:
 # --------------------------------------------------------------------------- eq. Hdiscr
 
 def _parts_Hdiscr(N: int) -> Parts:
-    return Parts(printed={"Phi": PHI_REAL, "upper": mu, "time": 1},
+    return Parts(printed={"Phi": phi_real(), "upper": mu, "time": 1},
                  context={"H": "int_0^upper Phi(tr L(lam0 + mu'), tr L(lam0 - mu')) dmu'", "time": "per BT step"})
 
 
@@ -253,7 +253,7 @@ def theorem2_deep100(N: int, parts: Parts) -> Outcome:
 # --------------------------------------------------------------------------- eqs. linearcomb and eqdisc
 
 def _parts_linearcomb(N: int) -> Parts:
-    return Parts(printed={"Phi": PHI_REAL, "weight": WEIGHT, "lower": lam0 - mu, "upper": lam0 + mu})
+    return Parts(printed={"Phi": phi_real(), "weight": WEIGHT, "lower": lam0 - mu, "upper": lam0 + mu})
 
 
 @claim("linearcomb", equation="linearcomb", scene="theorem2", sizes=(2, 3), parts=_parts_linearcomb,
@@ -313,7 +313,7 @@ AA2 = {"AA2_integrand": sp.acosh(((lam + I1) ** 2 - I2) / 2), "AA2_lower": lam0 
 
 def _parts_Hdis() -> Parts:
     return Parts(printed={"integrand": HDIS, "lower": lam0 - mu, "upper": lam0 + mu, **AA2},
-                 corrected={"integrand": -branch * sp.sign(tr) * sp.acosh(sp.Abs(tr) / 2), "lower": lam0 - mu,
+                 corrected={"integrand": -branch * signed_arccosh_half(tr, ns=sp), "lower": lam0 - mu,
                             "upper": lam0 + mu, **AA2},
                  context={"AA2": "compared with the printed H as complex numbers (N = 2, tr of eq. tn2)"})
 

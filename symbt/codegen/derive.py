@@ -43,6 +43,7 @@ from functools import cache
 import sympy as sp
 from sympy.codegen.cfunctions import log1p
 
+from ..reference.literal import phi_from_traces
 from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import local_lax, toda_model
 
@@ -111,8 +112,8 @@ def disc(t):
 
 
 def phi_of(t1, t2):
-    """Real Phi from the two traces (corrects eq. ``newkmu``; see ``symbt.reference.literal``)."""
-    return -branch * (sp.sign(t1) * sp.acosh(sp.Abs(t1) / 2) + sp.sign(t2) * sp.acosh(sp.Abs(t2) / 2))
+    """Real Phi from the two traces (corrects eq. ``newkmu``): the one formula, ``symbt.reference.literal``'s."""
+    return phi_from_traces(t1, t2, branch, ns=sp)
 
 
 def _shift(m, expr, expand=False):

@@ -41,6 +41,7 @@ def derivation_sources(pkg: Path | None = None) -> list[Path]:
     """The files whose content determines the generated code (sorted)."""
     pkg = PACKAGE if pkg is None else Path(pkg)
     files = sorted((pkg / "symbolic").glob("*.py")) + sorted((pkg / "codegen").glob("*.py"))
+    files.append(pkg / "reference" / "literal.py")   # the real Phi of the traces (derive.phi_of) is its formula
     return [f for f in files if f.is_file()]
 
 

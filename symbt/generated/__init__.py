@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 191a5e58d476c8f8ff7ebc9cc5cfe8b2a0c7e113d32382aae80479636b853782
-# symbt-codegen-content-sha256: 64052b0af114826ef13dbb4b7c219eb4c827b4effe7aa8d0811b3ff851e96922
+# symbt-codegen-derivation-sha256: b6d6d99c012b0d7944734b2a28e676c3e0639fe95520366e8337f405665a1596
+# symbt-codegen-content-sha256: 5b670a6663067044acbd127c4de0cd3f4f1bb828c1e9b08538d8c328ea6404eb
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 191a5e58d476c8f8ff7ebc9cc5cfe8b2a0c7e113d32382aae80479636b853782
-# symbt-codegen-content-sha256: 80416eb325a40ccbb1c2cc2e9db6e3a1dbd63b8a53cd4f69965d8988394c31cf
+# symbt-codegen-derivation-sha256: b6d6d99c012b0d7944734b2a28e676c3e0639fe95520366e8337f405665a1596
+# symbt-codegen-content-sha256: a6a7df3c0f8a68a6d1c987a2e7d952f0a585c6f07171676792c9934a6abeb1dd
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

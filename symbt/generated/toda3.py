@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 191a5e58d476c8f8ff7ebc9cc5cfe8b2a0c7e113d32382aae80479636b853782
-# symbt-codegen-content-sha256: d697fcc939c4318a2e60a6e6181b2260a037de7697e4ee54fb84823eaf69355d
+# symbt-codegen-derivation-sha256: b6d6d99c012b0d7944734b2a28e676c3e0639fe95520366e8337f405665a1596
+# symbt-codegen-content-sha256: 8a04c60de5e4b790dc996e2969d2f54499a4dddbbbf2e562d60a5dc0b09fcb04
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -48,6 +48,8 @@ from functools import lru_cache
 
 import mpmath as mp
 
+from .literal import signed_arccosh_half
+
 try:  # mpmath's own backend: the Carlson loop runs there when available
     import gmpy2
 except ImportError:  # pragma: no cover
@@ -169,7 +171,7 @@ def F_real(s, k):
 
 def g_real(T):
     """sgn(T) arccosh(|T|/2): the real branch of arccosh(T/2) entering Phi (|T| >= 2)."""
-    return mp.sign(T) * mp.acosh(abs(T) / 2)
+    return signed_arccosh_half(T)
 
 
 def global_u(p, q):

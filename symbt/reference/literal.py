@@ -37,8 +37,8 @@ from __future__ import annotations
 import mpmath as mp
 from mpmath import libmp as _libmp
 
-__all__ = ["lax_matrix", "literal_step", "spectral_trace_mp", "phi_from_traces", "reference_step",
-           "literal_trace"]
+__all__ = ["lax_matrix", "literal_step", "spectral_trace_mp", "phi_from_traces", "signed_arccosh_half",
+           "reference_step", "literal_trace"]
 
 
 def lax_matrix(lam, p, q):
@@ -203,13 +203,36 @@ def _literal_step_real(p, q, lam0, mu, s1, s2):
     return mks(pt), mks(qt), info
 
 
-def phi_from_traces(tr1, tr2, branch):
+def phi_from_traces(tr1, tr2, branch, *, ns=mp):
     r"""The real Phi on the map of branch ``b`` from ``tr_i = tr L(lambda_i)`` (corrects eq. ``newkmu``).
 
     :math:`\Phi = \sum_k \ln|(\eta_k+\mu)/(\eta_k-\mu)| = -b\,(\operatorname{sgn}(tr_1)\operatorname{arccosh}(|tr_1|/2)
     + \operatorname{sgn}(tr_2)\operatorname{arccosh}(|tr_2|/2))` -- arccosh only ever sees arguments >= 1.
+
+    The one implementation of this formula: ``ns`` is the namespace that supplies ``sign`` and
+    ``acosh`` -- mpmath by default (numbers at the current precision), or the ``sympy`` module for
+    the expression that the claims (``x``, ``newkmu``, ``Hdiscr``, ...) and ``symbt codegen`` use
+    (this module never imports SymPy itself).
+
+    >>> mp.nstr(phi_from_traces(mp.mpf(3), mp.mpf(-5), -1), 12)
+    '-0.604375586853'
+    >>> import sympy as sp
+    >>> t1, t2, b = sp.symbols("tr1 tr2 b", real=True)
+    >>> phi_from_traces(t1, t2, b, ns=sp)
+    -b*(acosh(Abs(tr1)/2)*sign(tr1) + acosh(Abs(tr2)/2)*sign(tr2))
     """
-    return -branch * (mp.sign(tr1) * mp.acosh(abs(tr1) / 2) + mp.sign(tr2) * mp.acosh(abs(tr2) / 2))
+    return -branch * (signed_arccosh_half(tr1, ns=ns) + signed_arccosh_half(tr2, ns=ns))
+
+
+def signed_arccosh_half(T, *, ns=mp):
+    r"""The real branch of :math:`\operatorname{arccosh}(T/2)` entering Phi:
+    :math:`\operatorname{sgn}(T)\operatorname{arccosh}(|T|/2)` (:math:`|T| \ge 2`); ``ns`` as in
+    :func:`phi_from_traces` (the density of H in eqs. ``Hdis``, ``AA2`` is ``-b`` times it).
+
+    >>> mp.nstr(signed_arccosh_half(mp.mpf(-3)), 12)
+    '-0.962423650119'
+    """
+    return ns.sign(T) * ns.acosh(abs(T) / 2)
 
 
 def literal_trace(lam, p, q):

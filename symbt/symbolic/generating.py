@@ -35,7 +35,36 @@ import sympy as sp
 
 from .darboux import lam0, mu
 
-__all__ = ["GeneratingFunction", "generating_function"]
+__all__ = ["GeneratingFunction", "generating_function", "implicit_derivative"]
+
+
+def implicit_derivative(expr, var, etas, mu_):
+    r"""d expr / d var with each :math:`\eta` of ``etas`` an implicit function, :math:`\eta^2 = \mu^2 + w`.
+
+    ``etas`` maps each :math:`\eta` to its :math:`w`; then
+    :math:`\partial\eta/\partial s = (\partial w/\partial s)/(2\eta)` for a variable :math:`s \ne \mu`
+    and :math:`\partial\eta/\partial\mu = \mu/\eta` (``mu_`` is :math:`\mu`; :math:`w` does not
+    depend on it).  This is the one implementation of the derivatives of the generating function:
+    :meth:`GeneratingFunction.total_derivative` and the claims on eqs. ``newgf``, ``vqqtmu`` and
+    ``PoincareCartan`` all call it.
+
+    >>> import sympy as sp
+    >>> eta, mu, s = sp.symbols("eta mu s", positive=True)
+    >>> implicit_derivative(eta**2, s, {eta: s**3}, mu)      # d(mu^2 + s^3)/ds
+    3*s**2
+    >>> implicit_derivative(eta, mu, {eta: s}, mu)
+    mu/eta
+    """
+    out = sp.diff(expr, var)
+    for e, w in etas.items():
+        de = sp.diff(expr, e)
+        if de == 0:
+            continue
+        # d eta/d var = (d w/d var)/(2 eta), or mu/eta for var = mu (from eta^2 = mu^2 + w)
+        deta = mu_ / e if var == mu_ else sp.diff(w, var) / (2 * e)
+        if deta != 0:
+            out += de * deta
+    return out
 
 
 class GeneratingFunction:
@@ -65,15 +94,14 @@ class GeneratingFunction:
                         for e, E, Et in zip(self.eta, self.E, self.Et)])
 
     def total_derivative(self, expr, var):
-        """d expr / d var with every eta_j = eta_j(E, E~, mu) differentiated implicitly."""
-        out = sp.diff(expr, var)
-        for j, e in enumerate(self.eta):
-            de = sp.diff(expr, e)
-            if de == 0:
-                continue
-            dw = self.mu if var == self.mu else sp.diff(self.w(j), var) / 2
-            out += de * dw / e
-        return out
+        """d expr / d var with every eta_j = eta_j(E, E~, mu) differentiated implicitly
+        (:func:`implicit_derivative` with :math:`\\eta_j^2 = \\mu^2 + w_j`).
+
+        >>> g = generating_function(2)
+        >>> g.total_derivative(g.eta[0] ** 2, g.E[0]) - sp.diff(g.w(0), g.E[0])
+        0
+        """
+        return implicit_derivative(expr, var, {e: self.w(j) for j, e in enumerate(self.eta)}, self.mu)
 
     def dF_dq(self, j):
         """:math:`\\partial F/\\partial q_j = E_j\\,dF/dE_j`."""
@@ -99,4 +127,9 @@ class GeneratingFunction:
 
 @cache
 def generating_function(N: int) -> GeneratingFunction:
+    """Cached :class:`GeneratingFunction` (one per N).
+
+    >>> generating_function(3).N
+    3
+    """
     return GeneratingFunction(N)

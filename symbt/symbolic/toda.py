@@ -96,12 +96,24 @@ class TodaModel:
         return sp.diff(expr, self.p[j])
 
     def poisson(self, f, g):
-        """:math:`\\{f, g\\} = \\sum_i f_{p_i} g_{q_i} - f_{q_i} g_{p_i}` (paper's ``{p_i,q_j}=δ_ij``)."""
+        """:math:`\\{f, g\\} = \\sum_i f_{p_i} g_{q_i} - f_{q_i} g_{p_i}` (paper's ``{p_i,q_j}=δ_ij``).
+
+        The one bracket of the library; its sign is the claim ``intdis.poisson``'s.
+
+        >>> m = toda_model(2)
+        >>> m.poisson(m.p[0], sp.log(m.E[0])), m.poisson(sp.log(m.E[0]), m.p[0]), m.poisson(m.p[0], m.p[1])
+        (1, -1, 0)
+        """
         return sp.Add(*[self.d_p(f, i) * self.d_q(g, i) - self.d_q(f, i) * self.d_p(g, i)
                         for i in range(self.N)])
 
     def hamiltonian_vector_field(self, H):
-        """``(qdot, pdot)`` for ``xdot = {H, x}``: ``qdot = H_p``, ``pdot = -H_q``."""
+        """``(qdot, pdot)`` for ``xdot = {H, x}``: ``qdot = H_p``, ``pdot = -H_q``.
+
+        >>> m = toda_model(2)
+        >>> m.hamiltonian_vector_field(m.p[0] ** 2 / 2 + m.E[0])
+        ([p1, 0], [-E1, 0])
+        """
         return ([self.d_p(H, i) for i in range(self.N)],
                 [-self.d_q(H, i) for i in range(self.N)])
 
