@@ -210,20 +210,33 @@ def test_from_package_import_submodule_is_an_edge_to_the_submodule():
     assert edges == {"symbt.numeric.kernels", "symbt.numeric.errors"}
 
 
-# The two circles of issue 22, seen since the detector stopped excusing a package's __init__;
-# the reorganisation of symbt.numeric breaks them and empties this list.
-KNOWN_CYCLES = [
-    ["symbt.numeric.certified", "symbt.numeric.orbit"],
-    ["symbt.numeric.ensemble", "symbt.numeric.mpfast", "symbt.numeric.rows", "symbt.numeric.step"],
-]
-
-
 def test_no_import_cycle():
     cycles = _bad_cycles(_module_graph())
-    new = [c for c in cycles if c not in KNOWN_CYCLES]
-    assert not new, "import cycles: " + "; ".join(" <-> ".join(c) for c in new)
-    gone = [c for c in KNOWN_CYCLES if c not in cycles]
-    assert not gone, "broken cycles still listed in KNOWN_CYCLES: " + "; ".join(" <-> ".join(c) for c in gone)
+    assert not cycles, "import cycles: " + "; ".join(" <-> ".join(c) for c in cycles)
+
+
+# the layers inside symbt.numeric (docs/architecture.md): the step written once, in core, depends on no backend
+NUMERIC_LAYERS = (("core",), ("float64",), ("multiprec",), ("dispatch",), ("flow",), ("testing", "timings", "fast"))
+NUMERIC_LAYER_OF = {name: i for i, names in enumerate(NUMERIC_LAYERS) for name in names}
+
+
+def _numeric_part(module: str) -> str | None:
+    parts = module.split(".")
+    return parts[2] if len(parts) > 2 and parts[:2] == ["symbt", "numeric"] else None
+
+
+def test_numeric_sub_packages_import_downwards():
+    bad = []
+    for name, deps in _module_graph().items():
+        own = _numeric_part(name)
+        if own is None:
+            continue
+        assert own in NUMERIC_LAYER_OF, f"{name} is in no layer of NUMERIC_LAYERS"
+        for dep in deps:
+            other = _numeric_part(dep)
+            if other is not None and NUMERIC_LAYER_OF[other] > NUMERIC_LAYER_OF[own]:
+                bad.append(f"{name} imports {dep}")
+    assert not bad, "upward imports inside symbt.numeric:\n" + "\n".join(sorted(bad))
 
 
 def test_no_handwritten_module_over_500_lines():

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 191a5e58d476c8f8ff7ebc9cc5cfe8b2a0c7e113d32382aae80479636b853782
-# symbt-codegen-content-sha256: 64052b0af114826ef13dbb4b7c219eb4c827b4effe7aa8d0811b3ff851e96922
+# symbt-codegen-derivation-sha256: 16a40d076982f1f4d4fdc1df6e993c87cde602f5c43fb99babcd101b60a4f324
+# symbt-codegen-content-sha256: 39b921c4120bb71872401004afcecaed1b4108d5c4dbb540e53163a0e96a8e5c
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 191a5e58d476c8f8ff7ebc9cc5cfe8b2a0c7e113d32382aae80479636b853782
-# symbt-codegen-content-sha256: d697fcc939c4318a2e60a6e6181b2260a037de7697e4ee54fb84823eaf69355d
+# symbt-codegen-derivation-sha256: 16a40d076982f1f4d4fdc1df6e993c87cde602f5c43fb99babcd101b60a4f324
+# symbt-codegen-content-sha256: d609191b72747a93627ec3e83b06d3b6a60ade1a72daf652358794d17890e7de
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -13,7 +13,7 @@ tr L = sum_k H_k lambda^k (H_N = 1); branch b = +-1 means gamma_i = b sqrt(tr_i^
 (positive root) at lambda_1 = lambda_0 + mu, lambda_2 = lambda_0 - mu.
 Outside the real domain: NoRealMapError (or masked results with errors='mask');
 overflow: NumericRangeError; bad input: InvalidInputError (same names and meaning as
-symbt.numeric.errors; subclasses of ValueError / OverflowError).  An empty batch
+symbt.numeric; subclasses of ValueError / OverflowError).  An empty batch
 (state arguments of shape (0, N)) gives empty results of the matching shape.
 
 Functions: invariants, spectral_trace, hamiltonian_fields, flow_field, phi_tr, phi, phi_grad, ck_integrand, dapp_xy, bt_step, bt_orbit (centre of mass carried separately).
