@@ -11,16 +11,16 @@ import importlib.util
 import pytest
 
 #: module file -> the optional dependency it imports at module level
-_IMPORTS = {"symbt/numeric/arb.py": "flint"}
+_IMPORTS = {"symbt/numeric/multiprec/arb.py": "flint"}
 
 #: doctest (module or object, dotted) -> the optional dependency its examples need
 _NEEDS = {
-    "symbt.numeric.certified": "flint",
-    "symbt.numeric.mpfast.arb_step": "flint",
-    "symbt.numeric.qd": "numba",
+    "symbt.numeric.multiprec.certified": "flint",
+    "symbt.numeric.multiprec.choose.arb_step": "flint",
+    "symbt.numeric.multiprec.qd": "numba",
     "symbt.proof.flint_exact": "flint",
-    "symbt.numeric.dask_orbit": "dask",
-    "symbt.numeric.ensemble.kernel_batch_step": "numba",
+    "symbt.numeric.float64.dask_orbit": "dask",
+    "symbt.numeric.float64.orbit.kernel_batch_step": "numba",
     "symbt.engine.coverage.scan_labels": "pylatexenc",
     "symbt.engine.labels": "pylatexenc",
     "symbt.engine.latex": "pylatexenc",

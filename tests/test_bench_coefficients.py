@@ -1,4 +1,4 @@
-"""The one flow-coefficient routine (symbt.numeric.coefficients): float64 against 50 digits, the
+"""The one flow-coefficient routine (symbt.numeric.flow.coefficients): float64 against 50 digits, the
 mpmath path against an independent quadrature of the polynomial form, the reference wrapper."""
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The one float64 Hamiltonian vector field (symbt.numeric.field.FlowField) against 50-digit routes:
+"""The one float64 Hamiltonian vector field (symbt.numeric.flow.field.FlowField) against 50-digit routes:
 the polynomial H_k for small N, mpmath.diff of an mpmath evaluation of G = sum c_k H_k for N = 64."""
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import pytest
 
 from symbt.benchmarks.cases import chain
 from symbt.numeric import flow_coefficients, invariants
-from symbt.numeric.field import FlowField, _gradient_renormalised, transfer_gradient
+from symbt.numeric.flow.field import FlowField, _gradient_renormalised, transfer_gradient
 from symbt.reference.taylor import hamilton_equations
 from symbt.reference.trace import bonds
 

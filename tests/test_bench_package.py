@@ -88,7 +88,7 @@ def test_heyoka_transfer_field_and_real_precision():
     from symbt.benchmarks.heyoka_system import load, transfer_system
     from symbt.benchmarks.metrics import mp_state_error
     from symbt.benchmarks.reference import reference_states
-    from symbt.numeric.field import FlowField
+    from symbt.numeric.flow.field import FlowField
     hy, _ = load()
     p, q = chain(4, 4)
     f = FlowField(p, q, 4.5, 1.0)

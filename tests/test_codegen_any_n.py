@@ -15,7 +15,7 @@ from symbt.codegen import verify
 from symbt.codegen.derive import FUNCTIONS, interface
 from symbt.generated import toda2, toda3
 from symbt.numeric import bt_orbit, bt_step
-from symbt.numeric import errors as numeric_errors
+from symbt.numeric.core import errors as numeric_errors
 
 ROOT = Path(__file__).resolve().parents[1]
 NS = (4, 5, 8)

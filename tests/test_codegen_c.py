@@ -16,7 +16,7 @@ import pytest
 import symbt.codegen as cg
 from symbt.codegen import verify
 from symbt.numeric import bt_step as numeric_step
-from symbt.numeric import errors as numeric_errors
+from symbt.numeric.core import errors as numeric_errors
 from symbt.reference.literal import reference_step
 
 ROOT = Path(__file__).resolve().parents[1]

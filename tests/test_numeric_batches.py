@@ -1,7 +1,7 @@
 """Batches past one block: every member of a batch is its own single-state step (issue 26, item 2).
 
 Block sizes (see the code): the numpy route cuts a batch into blocks of ``max(256, BLOCK_ELEMENTS // N)``
-rows (:mod:`symbt.numeric.rows`), the compiled block kernel into blocks of ``max(8, min(64, 2048 // N))``
+rows (:mod:`symbt.numeric.float64.rows`), the compiled block kernel into blocks of ``max(8, min(64, 2048 // N))``
 states (``ensemble._block_rows``).  Each test below uses batches spanning several blocks of the route it
 exercises, and compares every member with the single-state call through the same route: bit for bit,
 and the same verdict (a member whose single step raises makes the batch raise, ``where`` naming exactly
@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 
 from symbt.numeric import NoRealMapError, NumericRangeError, bt_step
-from symbt.numeric.ensemble import _block_rows
-from symbt.numeric.jit import numba_available
-from symbt.numeric.step import BLOCK_ELEMENTS, _block_kernel_pays
+from symbt.numeric.core.step import BLOCK_ELEMENTS, _block_kernel_pays
+from symbt.numeric.float64.jit import numba_available
+from symbt.numeric.float64.orbit import _block_rows
 
 P0 = np.array([-20.0, 10.0, 1.0])
 Q0 = np.array([1.0, 0.0, 0.9])
@@ -126,7 +126,7 @@ def test_randomized_batches_through_the_block_kernel_equal_single_steps(branch):
 
 @pytest.mark.parametrize("branch", [1, -1])
 def test_randomized_batches_through_the_numpy_route_equal_single_steps(branch, monkeypatch):
-    import symbt.numeric.rows as rows
+    import symbt.numeric.float64.rows as rows
 
     monkeypatch.setattr(rows, "BLOCK_ELEMENTS", 1)            # blocks of 256 rows: 12 blocks at M = 3000
     M = 3000

@@ -127,7 +127,7 @@ def test_input_kinds_and_errors(monkeypatch):
             bt_orbit([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0, 3, tol=1e-10)    # tol without certified
         with pytest.raises(InvalidInputError):
             bt_orbit(P_DEC, Q_DEC, 10, 5, 3, certified=True, backend="numba")
-    from symbt.numeric import certified as cert
+    from symbt.numeric.multiprec import certified as cert
 
     monkeypatch.setattr(cert, "flint_available", lambda: False)
     with pytest.raises(MissingDependencyError, match="python-flint"):

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from symbt.numeric import NoRealMapError, NumericRangeError, bt_orbit, bt_step
-from symbt.numeric.jit import numba_available
-from symbt.numeric.kernels import stored_steps
+from symbt.numeric.float64.jit import numba_available
+from symbt.numeric.float64.kernels import stored_steps
 from symbt.numeric.testing import random_gap_case, state_error
 from symbt.reference.literal import reference_step
 

@@ -15,8 +15,8 @@ import pytest
 
 from symbt.numeric import InvalidInputError, NoRealMapError, NumericRangeError, bt_orbit, bt_step
 from symbt.numeric.fast import fast_orbit
-from symbt.numeric.jit import kernel, numba_available
-from symbt.numeric.kernels import ANCHOR, orbit_rows, stored_steps
+from symbt.numeric.float64.jit import kernel, numba_available
+from symbt.numeric.float64.kernels import ANCHOR, orbit_rows, stored_steps
 from symbt.numeric.testing import random_gap_case, state_error
 from symbt.reference.literal import reference_step
 

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from symbt.numeric import InvalidInputError, MissingDependencyError, NoRealMapError, bt_orbit, bt_step
-from symbt.numeric import errors as numeric_errors
+from symbt.numeric.core import errors as numeric_errors
 from symbt.numeric.testing import random_gap_case
 from symbt.reference.literal import reference_step
 
@@ -48,7 +48,7 @@ def test_step_both_backends_to_working_precision(dps, branch):
             pt, qt = bt_step(p, q, 10, 5, branch=branch, backend=backend)
             assert all(isinstance(v, mpmath.mpf) and +v == v for v in pt + qt)   # mpf at the caller's precision
             assert maxdiff(pt + qt, rp + rq) < tol, backend
-        from symbt.numeric.mpfast import pick_mp_backend
+        from symbt.numeric.multiprec.choose import pick_mp_backend
 
         auto = bt_step(p, q, 10, 5, branch=branch)            # auto is the backend pick_mp_backend names
         assert auto == bt_step(p, q, 10, 5, branch=branch, backend=pick_mp_backend("auto", 1))
@@ -125,9 +125,9 @@ def test_fused_arb_step_is_step_core_on_arb_midpoints():
     and a multiplication by ``-1.0`` in step_core)."""
     from flint import arb
 
-    from symbt.numeric.arb import ARB_MID, flint_prec
-    from symbt.numeric.mpfast import arb_step
-    from symbt.numeric.step import step_core
+    from symbt.numeric.core.step import step_core
+    from symbt.numeric.multiprec.arb import ARB_MID, flint_prec
+    from symbt.numeric.multiprec.choose import arb_step
 
     rng = np.random.default_rng(21)
     with flint_prec(250):

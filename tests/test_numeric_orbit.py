@@ -7,7 +7,7 @@ algorithm to all 50 digits.
 Two float64 routes are checked against the same reference: the general path
 (``backend="numpy"``: ``step_core`` on numpy arrays, ``q`` centred, ``r = exp(dq)``
 every step) and the fused kernel that ``bt_orbit`` runs by default
-(``symbt.numeric.kernels``: ratios ``r`` updated multiplicatively, positions in
+(``symbt.numeric.float64.kernels``: ratios ``r`` updated multiplicatively, positions in
 double-double, re-anchored with ``exp``/``log1p``).
 
 Measured (this machine, numpy 2.4), max of the normwise relative error

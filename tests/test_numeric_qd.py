@@ -1,4 +1,4 @@
-"""Quad-double backend (symbt.numeric.qd): arithmetic against mpmath at 80 digits, exact conversions,
+"""Quad-double backend (symbt.numeric.multiprec.qd): arithmetic against mpmath at 80 digits, exact conversions,
 the orbit against a 120-digit reference (the Arb path at 120 digits, itself checked against
 ``reference_step`` in tests/test_numeric_mpfast.py), agreement with the flint path, typed errors,
 backend choice."""
@@ -18,8 +18,8 @@ from symbt.numeric import (
     bt_orbit,
     bt_step,
 )
-from symbt.numeric import errors as numeric_errors
-from symbt.numeric.qd import QD_BITS, from_qd, qd_available, qd_fits, qd_kernel, qd_need, qd_orbit_mp, to_qd
+from symbt.numeric.core import errors as numeric_errors
+from symbt.numeric.multiprec.qd import QD_BITS, from_qd, qd_available, qd_fits, qd_kernel, qd_need, qd_orbit_mp, to_qd
 from symbt.numeric.testing import random_gap_case
 from symbt.reference.literal import reference_step
 
@@ -207,8 +207,8 @@ def test_typed_errors():
 
 
 def test_auto_chooses_qd_when_ready_and_the_precision_fits(monkeypatch):
-    from symbt.numeric import qd as qd_mod
-    from symbt.numeric.mpfast import pick_mp_backend
+    from symbt.numeric.multiprec import qd as qd_mod
+    from symbt.numeric.multiprec.choose import pick_mp_backend
 
     qd_mod.warm()
     with mpmath.workdps(50):
@@ -265,8 +265,8 @@ def test_auto_never_compiles(tmp_path):
     def fresh(marker):
         code = textwrap.dedent(f"""
             import pathlib, mpmath
-            from symbt.numeric import qd
-            from symbt.numeric.mpfast import pick_mp_backend
+            from symbt.numeric.multiprec import qd
+            from symbt.numeric.multiprec.choose import pick_mp_backend
             qd._marker_dirs = lambda: [pathlib.Path({str(tmp_path)!r})]
             if {marker!r} is not None:
                 (qd._marker_dirs()[0] / qd._MARKER).write_text({marker!r} or qd._digest())

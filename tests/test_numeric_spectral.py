@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 from symbt.numeric import NoRealMapError, bt_step, flow_coefficients, invariants, phi, spectral_trace
-from symbt.numeric.context import FLOAT
-from symbt.numeric.step import step_core
+from symbt.numeric.core.context import FLOAT
+from symbt.numeric.core.step import step_core
 from symbt.numeric.testing import outer_gap_case, random_gap_case
 from symbt.reference.literal import literal_trace
 

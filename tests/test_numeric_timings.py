@@ -4,7 +4,7 @@ import sys
 
 import pytest
 
-from symbt.numeric.mpfast import flint_available
+from symbt.numeric.multiprec.choose import flint_available
 
 _BLOCKED = """
 import sys

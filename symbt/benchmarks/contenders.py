@@ -9,7 +9,7 @@ closed-form step ``symbt.generated.toda{N}.bt_step`` iterated, and the emitted o
 ODE (need scipy): ``solve_ivp`` DOP853 (and RK45, LSODA where the case asks), ``rtol = atol``;
 3-stage Gauss--Legendre (order 6).  Vector field: the emitted ``toda{N}.flow_field`` with the
 30-digit ``c_k`` (N = 2, 3: exact polynomials, the cheapest call) or
-:class:`symbt.numeric.field.FlowField` (any N).
+:class:`symbt.numeric.flow.field.FlowField` (any N).
 """
 from __future__ import annotations
 
@@ -22,7 +22,7 @@ import numpy as np
 
 from ..numeric import bt_orbit
 from ..numeric.fast import HAVE_NUMBA, fast_orbit, kernel_backend
-from ..numeric.field import FlowField
+from ..numeric.flow.field import FlowField
 from .cases import Case
 from .integrators import gauss_legendre_orbit, scipy_orbit
 from .timing import timed
@@ -45,12 +45,12 @@ def make_field(case: Case, c: np.ndarray) -> tuple[Callable, str, FlowField | No
         cf = np.asarray(c, float)
         return (lambda p, q: gen.flow_field(cf, p, q)), "symbt.generated.toda%d.flow_field" % case.N, None
     ff = FlowField(case.p, case.q, case.lam0, case.mu, branch=case.branch)
-    return ff, "symbt.numeric.field.FlowField (%d nodes)" % ff.m, ff
+    return ff, "symbt.numeric.flow.field.FlowField (%d nodes)" % ff.m, ff
 
 
 def _kernel_falls_back(case: Case, backend: str) -> bool:
     """Does one step of ``case`` leave the fused kernel (then fast_orbit runs the general path)?"""
-    from ..numeric.kernels import ANCHOR
+    from ..numeric.float64.kernels import ANCHOR
 
     kern, _ = kernel_backend(backend)
     P = np.empty((2, case.N))

@@ -8,9 +8,9 @@ times are those of a first run (the in-memory cache still serves identical syste
   ``G = sum_k c_k H_k`` with the ``H_k`` as explicit polynomials in ``p_j`` and
   ``a_j = exp(q_{j+1} - q_j)`` (:func:`symbt.reference.taylor.hamilton_equations`); the constants
   are float64 or ``heyoka.real`` at a given precision (``const``).
-* :func:`transfer_system` (any N): the field of :class:`symbt.numeric.field.FlowField` --
+* :func:`transfer_system` (any N): the field of :class:`symbt.numeric.flow.field.FlowField` --
   ``sum_i W_i grad tr L(lam_i)`` by the same forward/backward transfer sweeps
-  (:func:`symbt.numeric.field.transfer_gradient`) on expressions, the same nodes and weights.
+  (:func:`symbt.numeric.flow.field.transfer_gradient`) on expressions, the same nodes and weights.
 
 State order: ``(q_1..q_N, p_1..p_N)``.
 """
@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from ..numeric.field import FlowField, transfer_gradient
+from ..numeric.flow.field import FlowField, transfer_gradient
 from ..reference.taylor import hamilton_equations
 
 __all__ = ["load", "polynomial_system", "parametric_system", "transfer_system", "real_prec"]
@@ -86,7 +86,7 @@ def parametric_system(hy: Any, N: int) -> list:
 
 
 def transfer_system(hy: Any, field: FlowField) -> list:
-    """The :class:`~symbt.numeric.field.FlowField` vector field as heyoka expressions (any N)."""
+    """The :class:`~symbt.numeric.flow.field.FlowField` vector field as heyoka expressions (any N)."""
     N = field.N
     qs, ps = _variables(hy, N)
     R = [hy.exp(qs[(j + 1) % N] - qs[j]) for j in range(N)]

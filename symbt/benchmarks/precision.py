@@ -31,8 +31,8 @@ def run_precision(quick: bool = False, log: Callable[[str], None] = print, hy: A
     p0, q0 = list(EXAMPLE["p"]), list(EXAMPLE["q"])
     lam0, mu = EXAMPLE["lam0"], EXAMPLE["mu"][0]
     out: dict = {"case": "paper-mu5", "steps": n}
-    from ..numeric.mpfast import pick_mp_backend
-    from ..numeric.qd import qd_available, warm
+    from ..numeric.multiprec.choose import pick_mp_backend
+    from ..numeric.multiprec.qd import qd_available, warm
 
     if qd_available():          # compiled (or loaded) apart, like heyoka's JIT: bt_orbit's auto then uses it
         out["qd_compile_s"] = warm()

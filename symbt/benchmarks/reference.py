@@ -76,7 +76,7 @@ def flow_constants(case: Case, dps: int = 30) -> np.ndarray:
     """``c_0 .. c_{N-1}`` for the ODE contenders, as float64.
 
     N <= 8: at ``dps`` digits (mpmath path of :func:`symbt.numeric.flow_coefficients`), rounded;
-    larger N (whose contenders use :class:`~symbt.numeric.field.FlowField` and only report the
+    larger N (whose contenders use :class:`~symbt.numeric.flow.field.FlowField` and only report the
     ``c_k``): the float64 path (relative accuracy ~1e-14, ``tests/test_bench_coefficients.py``).
     """
     if case.N > 8:

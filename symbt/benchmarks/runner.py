@@ -68,7 +68,7 @@ def run_case(case: Case, quick: bool = False, log: Callable[[str], None] = print
     if hy is not None and case.heyoka_tols:
         from .heyoka_peer import float_system, sweep
         if field is None and case.N > 8:
-            from ..numeric.field import FlowField
+            from ..numeric.flow.field import FlowField
             field = FlowField(case.p, case.q, case.lam0, case.mu, branch=case.branch)
         sys, desc = float_system(hy, case, c, field)
         out["heyoka_system"] = desc

@@ -64,14 +64,14 @@ def _ball(v):
 def arb_step(p, q, lam0_, mu_, b):
     """The map (N = 2) in acb balls from decimal strings: (p~, e^{q~}).
 
-    This is :func:`symbt.numeric.step.step_core` -- the step written once against an
-    arithmetic context -- run on python-flint's complex balls (:data:`symbt.numeric.arb.ACB`,
+    This is :func:`symbt.numeric.core.step.step_core` -- the step written once against an
+    arithmetic context -- run on python-flint's complex balls (:data:`symbt.numeric.multiprec.arb.ACB`,
     principal branches, the complex continuation where the real map does not exist).
     Its choices between algebraically equal formulas are made on midpoints, so every
     ball still encloses the exact image.
     """
-    from ..numeric.arb import ACB
-    from ..numeric.step import step_core
+    from ..numeric.core.step import step_core
+    from ..numeric.multiprec.arb import ACB
 
     P, Q = [_ball(v) for v in p], [_ball(v) for v in q]
     Pn, Qn, _ = step_core(ACB, P, Q, _ball(lam0_), _ball(mu_), b, check_real=False)

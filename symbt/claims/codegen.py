@@ -246,7 +246,7 @@ def step_accuracy(N: int, parts: Parts) -> Outcome:
 def orbit(N: int, parts: Parts) -> Outcome:
     from ..codegen import verify
     from ..numeric import bt_orbit
-    from ..numeric.mpfast import flint_available
+    from ..numeric.multiprec.choose import flint_available
 
     # the 50-digit reference on Arb midpoints (or plain mpmath): not the quad-double path, which would
     # load numba (and, before its first compile, take 15-30 s)

@@ -88,7 +88,7 @@ def _module_doc(N, form):
             "(positive root) at lambda_1 = lambda_0 + mu, lambda_2 = lambda_0 - mu.\n"
             "Outside the real domain: NoRealMapError (or masked results with errors='mask');\n"
             "overflow: NumericRangeError; bad input: InvalidInputError (same names and meaning as\n"
-            "symbt.numeric.errors; subclasses of ValueError / OverflowError).  An empty batch\n"
+            "symbt.numeric; subclasses of ValueError / OverflowError).  An empty batch\n"
             "(state arguments of shape (0, N)) gives empty results of the matching shape.\n\n"
             "Functions: " + ", ".join(FUNCTIONS) + ", bt_orbit (centre of mass carried separately).\n"
             '"""')

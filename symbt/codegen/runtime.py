@@ -1,7 +1,7 @@
 """Hand-written runtime pasted into every emitted Python module (part of the derivation hash).
 
 Emitted modules may import only numpy and mpmath, so they carry their own copies
-of the typed errors of :mod:`symbt.numeric.errors` -- same names, same builtin
+of the typed errors of :mod:`symbt.numeric` -- same names, same builtin
 bases, same meaning, same ``condition``/``where`` attributes -- and of the
 input checks.  ``errors="raise"`` (default) raises them; ``errors="mask"``
 returns :class:`numpy.ma.MaskedArray` results masked at the batch elements where

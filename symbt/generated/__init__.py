@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b6d6d99c012b0d7944734b2a28e676c3e0639fe95520366e8337f405665a1596
-# symbt-codegen-content-sha256: 5b670a6663067044acbd127c4de0cd3f4f1bb828c1e9b08538d8c328ea6404eb
+# symbt-codegen-derivation-sha256: 10fa26771f27601047d9275b761b7a43e7b8317dc499d15e2588f729f4115935
+# symbt-codegen-content-sha256: d9b626b5b748840d2b5e91c8520e1945d78d7bd401f26398af32667391cba304
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b6d6d99c012b0d7944734b2a28e676c3e0639fe95520366e8337f405665a1596
-# symbt-codegen-content-sha256: a6a7df3c0f8a68a6d1c987a2e7d952f0a585c6f07171676792c9934a6abeb1dd
+# symbt-codegen-derivation-sha256: 10fa26771f27601047d9275b761b7a43e7b8317dc499d15e2588f729f4115935
+# symbt-codegen-content-sha256: e90417f37ed93d39de6b21a07ef11bb3dc44fc327a8298177d1ff383cb18a5a6
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -13,7 +13,7 @@ tr L = sum_k H_k lambda^k (H_N = 1); branch b = +-1 means gamma_i = b sqrt(tr_i^
 (positive root) at lambda_1 = lambda_0 + mu, lambda_2 = lambda_0 - mu.
 Outside the real domain: NoRealMapError (or masked results with errors='mask');
 overflow: NumericRangeError; bad input: InvalidInputError (same names and meaning as
-symbt.numeric.errors; subclasses of ValueError / OverflowError).  An empty batch
+symbt.numeric; subclasses of ValueError / OverflowError).  An empty batch
 (state arguments of shape (0, N)) gives empty results of the matching shape.
 
 Functions: invariants, spectral_trace, hamiltonian_fields, flow_field, phi_tr, phi, phi_grad, ck_integrand, dapp_xy, bt_step, bt_orbit (centre of mass carried separately).

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b6d6d99c012b0d7944734b2a28e676c3e0639fe95520366e8337f405665a1596
-# symbt-codegen-content-sha256: 8a04c60de5e4b790dc996e2969d2f54499a4dddbbbf2e562d60a5dc0b09fcb04
+# symbt-codegen-derivation-sha256: 10fa26771f27601047d9275b761b7a43e7b8317dc499d15e2588f729f4115935
+# symbt-codegen-content-sha256: 800f0ff793a5a5780944ec2c546dc4c421c9eabcb876da6e14d28a198529f631
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -13,7 +13,7 @@ tr L = sum_k H_k lambda^k (H_N = 1); branch b = +-1 means gamma_i = b sqrt(tr_i^
 (positive root) at lambda_1 = lambda_0 + mu, lambda_2 = lambda_0 - mu.
 Outside the real domain: NoRealMapError (or masked results with errors='mask');
 overflow: NumericRangeError; bad input: InvalidInputError (same names and meaning as
-symbt.numeric.errors; subclasses of ValueError / OverflowError).  An empty batch
+symbt.numeric; subclasses of ValueError / OverflowError).  An empty batch
 (state arguments of shape (0, N)) gives empty results of the matching shape.
 
 Functions: invariants, spectral_trace, hamiltonian_fields, flow_field, phi_tr, phi, phi_grad, ck_integrand, dapp_xy, bt_step, bt_orbit (centre of mass carried separately).

@@ -2,21 +2,21 @@ r"""Numerics of the two-parameter Bäcklund maps of the periodic Toda chain.
 
 sympy-, scipy- and matplotlib-free; float64 (numpy, batched) and mpmath paths
 share one implementation written against a small arithmetic *context*
-(:mod:`symbt.numeric.context`; python-flint Arb balls in :mod:`symbt.numeric.arb`,
+(:mod:`symbt.numeric.core.context`; python-flint Arb balls in :mod:`symbt.numeric.multiprec.arb`,
 ``mpmath.iv`` intervals experimentally).
 
 Backends (chosen automatically; optional extras are imported lazily)
 --------------------------------------------------------------------
-* float64, one state: the fused kernel :mod:`symbt.numeric.kernels` (numba
+* float64, one state: the fused kernel :mod:`symbt.numeric.float64.kernels` (numba
   when installed, compiled on first use and cached; plain Python otherwise);
 * float64 ensembles ``(M, N)``: the fused block kernel on all cores (numba) or
-  vectorised numpy (:mod:`symbt.numeric.ensemble`); ``every=k`` stores every
+  vectorised numpy (:mod:`symbt.numeric.float64.orbit`); ``every=k`` stores every
   k-th state; :func:`dask_orbit` maps ensembles onto dask chunks;
 * mpmath numbers: Arb at the caller's precision plus guard bits via
-  python-flint (:mod:`symbt.numeric.mpfast`), else mpmath (gmpy2-backed when
+  python-flint (:mod:`symbt.numeric.multiprec.choose`), else mpmath (gmpy2-backed when
   installed);
 * ``bt_orbit(..., certified=True)`` / :func:`certified_orbit`: rigorous
-  enclosures from Arb ball arithmetic (:mod:`symbt.numeric.certified`).
+  enclosures from Arb ball arithmetic (:mod:`symbt.numeric.multiprec.certified`).
 
 Conventions
 -----------
@@ -50,7 +50,7 @@ Accuracy
 --------
 The float64 step is accurate to a few ulps of the state (normwise relative
 error <= ~2e-15 against 50-digit references, for mu from 1e-14 to 1e2,
-|q| ~ 800, lam0 = 1e5, N up to 64); see :mod:`symbt.numeric.step` for the
+|q| ~ 800, lam0 = 1e5, N up to 64); see :mod:`symbt.numeric.core.step` for the
 formulation and ``tests/test_numeric_*.py`` for the measurements.
 
 Example
@@ -66,15 +66,14 @@ True
 >>> P, Q = bt_orbit(p, q, 10.0, 5.0, 100)      # shape (101, 3)
 """
 
-from .certified import certified_orbit
-from .coefficients import flow_coefficients
-from .dask_orbit import dask_orbit
-from .errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError, QuadratureError
-from .field import FlowField
-from .lax import invariants, spectral_trace
-from .orbit import bt_orbit
-from .phi import phi
-from .step import bt_step
+from .core.errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError, QuadratureError
+from .dispatch import bt_orbit, bt_step
+from .float64.dask_orbit import dask_orbit
+from .flow.coefficients import flow_coefficients
+from .flow.field import FlowField
+from .flow.invariants import invariants, spectral_trace
+from .flow.phi import phi
+from .multiprec.certified import certified_orbit
 
 __all__ = [
     "bt_step",

@@ -2,8 +2,8 @@ r"""Fused single-orbit kernel of the float64 Bäcklund map (kept for compatibili
 
 :func:`fast_orbit` is :func:`~symbt.numeric.bt_orbit` for one float64 state
 with a choice of kernel backend; ``bt_orbit`` itself now runs the same fused
-kernel (:mod:`symbt.numeric.kernels`, numba compiled lazily by
-:mod:`symbt.numeric.jit`) whenever it applies.  The pure-Python and numba
+kernel (:mod:`symbt.numeric.float64.kernels`, numba compiled lazily by
+:mod:`symbt.numeric.float64.jit`) whenever it applies.  The pure-Python and numba
 versions run the *same* source on IEEE doubles with ``sqrt/exp/log1p`` from the
 C math library (no ``fastmath``), so their results are identical bit for bit
 (``tests/test_numeric_fast.py``).  Cases outside the kernel's fast path are
@@ -27,10 +27,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ._input import check_branch
-from .errors import InvalidInputError
-from .jit import kernel, numba_available
-from .orbit import check_steps
+from .core.errors import InvalidInputError
+from .core.inputs import check_branch, check_steps
+from .float64.jit import kernel, numba_available
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -66,7 +65,7 @@ def fast_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, e
     >>> P.shape
     (3, 3)
     """
-    from .ensemble import float_orbit
+    from .float64.orbit import float_orbit
 
     branch = check_branch(branch)
     n, every = check_steps(n, every)

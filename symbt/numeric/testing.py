@@ -19,9 +19,9 @@ from typing import TYPE_CHECKING, Any
 import mpmath
 import numpy as np
 
-from .errors import NoRealMapError
-from .lax import spectral_trace
-from .step import bt_step
+from .core.errors import NoRealMapError
+from .dispatch import bt_step
+from .flow.invariants import spectral_trace
 
 if TYPE_CHECKING:
     import numpy.typing as npt

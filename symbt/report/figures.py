@@ -10,7 +10,7 @@ gamma = +sqrt(tr^2 - 4) (the branch of eq. ``eqdisc`` and of the negative captio
 
 The c_k come from eq. ``eqdisc`` at 30 digits (:func:`symbt.numeric.flow_coefficients`);
 the flow is integrated by ``scipy.integrate.solve_ivp`` (DOP853, rtol = atol = 1e-12) on
-Hamilton's equations of sum_k c_k H_k (:class:`symbt.numeric.field.FlowField`); the iterates are
+Hamilton's equations of sum_k c_k H_k (:class:`symbt.numeric.flow.field.FlowField`); the iterates are
 :func:`symbt.numeric.bt_orbit` (float64), or a float loop over :func:`symbt.reference.literal.literal_step`
 if that is unavailable.  matplotlib and scipy are imported only here, inside :func:`main`.
 """
@@ -66,7 +66,7 @@ def _flow(mu, T, per_unit):
     import numpy as np
     from scipy.integrate import solve_ivp
 
-    from ..numeric.field import FlowField
+    from ..numeric.flow.field import FlowField
 
     f = FlowField(list(P0), list(Q0), LAM0, mu, branch=1).rhs
     t_eval = np.linspace(0.0, T, int(round(T * per_unit)) + 1)

@@ -17,14 +17,11 @@ from typing import TYPE_CHECKING, Any
 import mpmath
 import numpy as np
 
-from .context import FLOAT, Context, IVContext, MPContext
+from .context import FLOAT, IV, MP, Context
 from .errors import InvalidInputError, NumericRangeError
 
 if TYPE_CHECKING:
     import numpy.typing as npt
-
-MP = MPContext()
-IV = IVContext()
 
 _MP_TYPES = (mpmath.mpf, mpmath.mpc)
 _REAL_SCALARS = frozenset([float, int, np.float64, np.float32, np.int64, np.int32])
@@ -166,7 +163,7 @@ def float_array(x: Any, name: str) -> npt.NDArray[np.float64]:
     >>> float_array([10**400, 0], "p")
     Traceback (most recent call last):
     ...
-    symbt.numeric.errors.InvalidInputError: p: an integer beyond the float64 range; use mpmath inputs
+    symbt.numeric.core.errors.InvalidInputError: p: an integer beyond the float64 range; use mpmath inputs
     """
     if isinstance(x, np.ndarray) and x.dtype.kind in "fiub":      # fast path: already numeric
         return np.asarray(x, dtype=np.float64)
@@ -284,3 +281,24 @@ def prepare_spectral_pair(ctx: Context, lam0: Any, mu: Any, shape: tuple[int, ..
         if not ok:
             raise NumericRangeError("lam0 +- mu overflows float64")
     return lam0, mu
+
+
+_MAX_STEPS = 2 ** 62        # the kernels count steps in int64; far beyond any run
+
+
+def check_steps(n: Any, every: Any) -> tuple[int, int]:
+    """Validated ``(n, every)``: non-negative and positive integers.
+
+    ``every > n`` stores the same rows as ``every = n`` (the initial and the final state) and
+    is returned as such, so that any Python integer works; ``n`` must fit an int64.
+
+    >>> check_steps(10, 3), check_steps(10, 10**20)
+    ((10, 3), (10, 10))
+    """
+    if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
+        raise InvalidInputError("n must be a non-negative integer, got %r" % (n,))
+    if n > _MAX_STEPS:
+        raise InvalidInputError("n = %d steps is beyond the int64 range of the kernels" % n)
+    if isinstance(every, bool) or not isinstance(every, (int, np.integer)) or every < 1:
+        raise InvalidInputError("every must be a positive integer, got %r" % (every,))
+    return int(n), int(min(every, max(n, 1)))

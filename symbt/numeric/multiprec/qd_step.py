@@ -1,7 +1,7 @@
-r"""The Bäcklund step and orbit in quad-double arithmetic (:mod:`symbt.numeric.qd_arith`).
+r"""The Bäcklund step and orbit in quad-double arithmetic (:mod:`symbt.numeric.multiprec.qd_arith`).
 
-:func:`qd_step` performs the operations of :func:`~symbt.numeric.mpfast.arb_step`
-(the fused :func:`~symbt.numeric.step.step_core`) in the same order, on
+:func:`qd_step` performs the operations of :func:`~symbt.numeric.multiprec.choose.arb_step`
+(the fused :func:`~symbt.numeric.core.step.step_core`) in the same order, on
 quad-doubles, with the same decisions taken on the leading components (the
 sign of a renormalised quad-double): ``disc = (t - 2)(t + 2) > 0`` else
 "trace"; the branch of the eigenvector slope from the signs of ``t`` and
@@ -10,18 +10,18 @@ steps in one call and writes the stored states (steps ``0, every, ...`` and
 ``n``) into its output arrays.  A state is an ``(N, 4)`` float64 array (row
 ``j``: the components of site ``j``).
 
-Status codes (those of :mod:`symbt.numeric.kernels`): ``0`` ok, ``1``/``2``
+Status codes (those of :mod:`symbt.numeric.float64.kernels`): ``0`` ok, ``1``/``2``
 ``|tr L(lam1/lam2)| <= 2``, ``3`` some ``1 + x_j <= 0``, ``4`` range: a
 neighbour distance ``|q_{j+1} - q_j| > 300`` (``r_j`` must stay far inside
 the double exponent range, else its low components lose bits) or a
 non-finite value (an overflow, a division by an exact zero).  The caller
-(:mod:`symbt.numeric.qd`) turns them into the typed errors of
-:mod:`symbt.numeric.errors`, or for ``4`` falls back to the Arb path.
+(:mod:`symbt.numeric.multiprec.qd`) turns them into the typed errors of
+:mod:`symbt.numeric.core.errors`, or for ``4`` falls back to the Arb path.
 
 Example (plain Python, slow; numba compiles the same functions):
 
 >>> import numpy as np
->>> from symbt.numeric.qd_step import qd_orbit
+>>> from symbt.numeric.multiprec.qd_step import qd_orbit
 >>> P, Q = np.zeros((3, 4)), np.zeros((3, 4))
 >>> P[:, 0], Q[:, 0] = [-20.0, 10.0, 1.0], [1.0, 0.0, 0.9]
 >>> Q[2, :2] = 0.9, -2.2204460492503132e-17           # 0.9 to 106 bits

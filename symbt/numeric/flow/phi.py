@@ -1,4 +1,4 @@
-r"""The real Φ of the map (the flow coefficients ``c_k`` live in :mod:`symbt.numeric.coefficients`).
+r"""The real Φ of the map (the flow coefficients ``c_k`` live in :mod:`symbt.numeric.flow.coefficients`).
 
 Φ (paper eqs. ``vqqtmu``, ``newkmu``, App. B).  On the map,
 ``Φ = sum_k ln|(eta_k + mu)/(eta_k - mu)|`` equals ``ln|v(lam1)| - ln|v_z(lam2)|``
@@ -24,11 +24,11 @@ from typing import Any
 import mpmath
 import numpy as np
 
-from ._input import IV, as_state_pair, check_branch, prepare_spectral_pair
-from .context import FLOAT
-from .errors import InvalidInputError, NoRealMapError
-from .lax import neighbour_ratios
-from .step import eigen_slopes
+from ..core.context import FLOAT, IV
+from ..core.errors import InvalidInputError, NoRealMapError
+from ..core.inputs import as_state_pair, check_branch, prepare_spectral_pair
+from ..core.monodromy import neighbour_ratios
+from ..core.step import eigen_slopes
 
 __all__ = ["phi"]
 

@@ -1,14 +1,14 @@
-r"""Fused float64 orbit kernels: plain-Python source, compiled by numba on demand (:mod:`.jit`).
+r"""Fused float64 orbit kernels: plain-Python source, compiled by numba on demand (:mod:`symbt.numeric.float64.jit`).
 
 One arithmetic in two layouts: :func:`orbit` (one state, scalar code; this
-module) and :func:`~symbt.numeric.kernels_block.run_block` /
-:func:`~symbt.numeric.kernels_block.ensemble` (blocks of states, ``prange``
+module) and :func:`~symbt.numeric.float64.kernels_block.run_block` /
+:func:`~symbt.numeric.float64.kernels_block.ensemble` (blocks of states, ``prange``
 over blocks).  Both perform the same operations in the same order, so an
 ensemble member equals the single-state orbit bit for bit, and the
 plain-Python and numba versions are identical bit for bit too (IEEE doubles,
 libm ``sqrt/exp/log/log1p``, no ``fastmath``; ``tests/test_numeric_fast.py``).
 
-The step is that of :mod:`symbt.numeric.step` (scaled eigenvector slopes,
+The step is that of :mod:`symbt.numeric.core.step` (scaled eigenvector slopes,
 each transported in its contracting direction, cancellation-free read-out).
 
 Orbit variables.  The dynamics carries the neighbour ratios
@@ -26,7 +26,7 @@ the states of a block; the rounding per step stays at the level of the
 exp/log1p formulation (``O(eps)`` in ``log r``) and ``q`` never rounds the
 increments against ``|q|`` (the centre of mass can drift to ``|q| ~ 1e3``
 without perturbing the relative coordinates).  After one step the result
-equals :func:`~symbt.numeric.step.step_core`'s to an ulp.
+equals :func:`~symbt.numeric.core.step.step_core`'s to an ulp.
 
 Status codes per state (first failure wins): ``0`` ok, ``1``/``2``
 ``|tr L(lam1/lam2)| <= 2``, ``3`` some ``Etilde_j <= 0``, ``4`` range problem
@@ -37,7 +37,7 @@ failing state with the general path, which decides the error.
 Example
 -------
 >>> import numpy as np
->>> from symbt.numeric.kernels import orbit, orbit_rows, ANCHOR
+>>> from symbt.numeric.float64.kernels import orbit, orbit_rows, ANCHOR
 >>> P, Q = np.empty((orbit_rows(2, 1), 3)), np.empty((orbit_rows(2, 1), 3))
 >>> orbit(np.array([-20.0, 10.0, 1.0]), np.array([1.0, 0.0, 0.9]), 15.0, 5.0, 10.0, 1, 2, 1, ANCHOR, P, Q)
 0

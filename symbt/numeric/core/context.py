@@ -24,12 +24,12 @@ Decisions that only affect *accuracy* (which of two algebraically equal
 formulas to use, transport direction) may be taken on midpoints; decisions
 that affect *existence* (``|tr| > 2``, ``Etilde > 0``) use ``positive`` which
 for an interval context means "the whole interval is positive".  That is all
-a ball-arithmetic backend (python-flint ``arb``, :mod:`symbt.numeric.arb`)
+a ball-arithmetic backend (python-flint ``arb``, :mod:`symbt.numeric.multiprec.arb`)
 provides as well.
 
 Example
 -------
->>> from symbt.numeric.context import MPContext
+>>> from symbt.numeric.core.context import MPContext
 >>> ctx = MPContext()
 >>> ctx.div(1, 0), ctx.positive(ctx.sqrt(4) - 1)
 (mpf('+inf'), True)
@@ -48,11 +48,11 @@ import numpy as np
 if TYPE_CHECKING:
     import numpy.typing as npt
 
-__all__ = ["Context", "FloatContext", "MPContext", "IVContext", "FLOAT", "COMPLEX"]
+__all__ = ["Context", "FloatContext", "MPContext", "IVContext", "FLOAT", "COMPLEX", "MP", "IV"]
 
 
 class Context(Protocol):
-    """The interface :func:`~symbt.numeric.step.step_core` is written against (see module docstring).
+    """The interface :func:`~symbt.numeric.core.step.step_core` is written against (see module docstring).
 
     >>> isinstance(FLOAT.is_exact_scale, bool) and callable(MPContext.div)
     True
@@ -318,7 +318,7 @@ class IVContext(MPContext):
     Accuracy decisions use interval midpoints; existence decisions
     (``positive``) require the whole interval to be positive.  Complex
     continuation is not supported.  (For certified orbits use the Arb
-    contexts of :mod:`symbt.numeric.arb`.)
+    contexts of :mod:`symbt.numeric.multiprec.arb`.)
 
     >>> IVContext.positive(mpmath.iv.mpf([-1, 2]))
     False
@@ -358,3 +358,5 @@ class IVContext(MPContext):
 
 FLOAT = FloatContext(np.float64)
 COMPLEX = FloatContext(np.complex128)
+MP = MPContext()
+IV = IVContext()

@@ -16,7 +16,7 @@ Stable formulation (what is actually computed)
 ----------------------------------------------
 1. *Scaled slopes.*  ``u_j = E_j y_j``, ``w_j = E_j z_j`` are eigenvector slopes of
    the scaled monodromy ``M = m_N ... m_1`` with ``m_j = [[lam + p_j, -1],
-   [r_j, 0]]``, ``r_j = exp(q_{j+1} - q_j)`` (see :mod:`.lax`).  The Möbius
+   [r_j, 0]]``, ``r_j = exp(q_{j+1} - q_j)`` (see :mod:`symbt.numeric.core.monodromy`).  The Möbius
    transport becomes ``u_{j+1} = -r_j / (lam1 + p_j + u_j)``.  Only neighbour
    differences of ``q`` appear, so the map commutes exactly with ``q -> q + c``
    and never forms ``exp(q_j)``.
@@ -49,21 +49,21 @@ result with ``allow_complex=True``).  ``branch = -1`` is the inverse of
 Degenerate eigenvectors.  A slope is a point of the projective line: where an
 eigenvector is ``(0, 1)`` the slope is infinite (e.g. ``lam + p_j = 0`` on the
 backward transport).  Every context divides IEEE-style (``x / 0 = inf``,
-``x / inf = 0``, :meth:`~symbt.numeric.context.MPContext.div`), so such a slope
+``x / inf = 0``, :meth:`~symbt.numeric.core.context.MPContext.div`), so such a slope
 passes through infinity and the read-out takes its limit (``xr_j = 2 mu / d_j = 0``)
 on the float64, mpmath and Arb paths alike.
 
 Backends.  One float64 state goes through the fused kernel
-(:mod:`symbt.numeric.kernels`; numba if installed), a batch through the
-compiled block kernel of :mod:`symbt.numeric.ensemble` (numba; each state's
+(:mod:`symbt.numeric.float64.kernels`; numba if installed), a batch through the
+compiled block kernel of :mod:`symbt.numeric.float64.orbit` (numba; each state's
 step bit-identical to its single-state step) where that is faster (fewer than
 4096 states, or N >= 8), else -- and without numba -- the vectorised numpy
-route of :mod:`symbt.numeric.rows` (each member bit-identical to its
+route of :mod:`symbt.numeric.float64.rows` (each member bit-identical to its
 single-state step with ``backend="numpy"``; docs/numeric.md, "Batches");
 mpmath numbers through
 python-flint's Arb at
 the caller's precision plus guard bits when python-flint is installed
-(:mod:`symbt.numeric.mpfast`), else through mpmath.  Whatever the kernel does
+(:mod:`symbt.numeric.multiprec.choose`), else through mpmath.  Whatever the kernel does
 not handle (no real map, renormalisation, non-finite intermediates) is
 recomputed by the general path, which raises the typed errors.
 
@@ -81,36 +81,26 @@ True
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 import mpmath
 import numpy as np
 
-from ._input import (
-    IV,
-    as_state_pair,
-    check_branch,
-    pick_context,
-    prepare_spectral_pair,
-    to_output,
-    validate_float_pair,
-)
-from .context import FLOAT, Context
-from .errors import InvalidInputError, NoRealMapError, NumericRangeError
-from .lax import monodromy, neighbour_ratios
+from .context import IV, Context
+from .errors import NoRealMapError, NumericRangeError
+from .inputs import to_output
+from .monodromy import monodromy, neighbour_ratios
 
 if TYPE_CHECKING:
     import numpy.typing as npt
 
     F64 = npt.NDArray[np.float64]
 
-__all__ = ["bt_step", "step_core", "eigen_slopes", "SlopeData", "STEP_BACKENDS"]
+__all__ = ["step_core", "eigen_slopes", "SlopeData", "mp_step", "overflow_rows", "BLOCK_ELEMENTS"]
 
 _GUARD_DIGITS = 12
 #: accepted values of ``backend`` (float64: auto/numba/python/numpy; mpmath: auto/qd/flint/mpmath)
-STEP_BACKENDS = ("auto", "numba", "python", "numpy", "flint", "qd", "mpmath")
-
 
 class SlopeData:
     """Eigenvector data at one spectral parameter (internal, documented for tests).
@@ -159,8 +149,8 @@ def eigen_slopes(ctx: Context, a: Sequence[Any], r: Sequence[Any], s: int, need_
     ``s = -1`` its ``z``.  See the module docstring for the formulas.
 
     >>> import mpmath
-    >>> from symbt.numeric._input import MP
-    >>> from symbt.numeric.lax import neighbour_ratios
+    >>> from symbt.numeric.core.inputs import MP
+    >>> from symbt.numeric.core.monodromy import neighbour_ratios
     >>> r = neighbour_ratios(MP, [mpmath.mpf(1), mpmath.mpf(0), mpmath.mpf("0.9")])
     >>> S = eigen_slopes(MP, [15 + p for p in (-20, 10, 1)], r, 1)     # lam1 = 15, the paper's example
     >>> mpmath.nstr(S.t, 8), [mpmath.nstr(x, 6) for x in S.u], S.forward
@@ -223,7 +213,7 @@ def step_core(ctx: Context, P: Sequence[Any], Q: Sequence[Any], lam0: Any, mu: A
     (its ``where`` from ``shape`` and ``offset``/``index``, see :func:`where_text`).
 
     >>> import mpmath
-    >>> from symbt.numeric._input import MP
+    >>> from symbt.numeric.core.inputs import MP
     >>> P, Q, aux = step_core(MP, [mpmath.mpf(-20), 10, 1], [1, 0, mpmath.mpf('0.9')], 10, 5, 1)
     >>> mpmath.nstr(P[0], 8), sorted(aux)
     ('-19.996568', ['S1', 'S2', 'gq', 'u', 'w', 'xr'])
@@ -312,7 +302,7 @@ def _block_kernel_pays(pa: F64, lam0: Any, mu: Any) -> bool:
     return small and not bool(overflow_rows(N, lam0, mu, M).all())
 
 
-def _mp_step(ctx: Context, P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
+def mp_step(ctx: Context, P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
              allow_complex: bool) -> tuple[list[Any], list[Any]]:
     """The plain mpmath (or interval) step at ``mp.dps`` + guard digits."""
     with mpmath.workdps(mpmath.mp.dps + _GUARD_DIGITS):
@@ -320,96 +310,3 @@ def _mp_step(ctx: Context, P: list[Any], Q: list[Any], lam0: Any, mu: Any, branc
         if not ctx.isfinite_all(Pn + Qn):
             raise NumericRangeError("non-finite result in the mpmath step (degenerate eigenvector?)")
     return to_output(ctx, Pn, ()), to_output(ctx, Qn, ())
-
-
-def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_complex: bool = False,
-            backend: str = "auto") -> tuple[Any, Any]:
-    """One Bäcklund step of the periodic Toda chain.
-
-    Parameters
-    ----------
-    p, q : array_like, shape ``batch + (N,)``, N >= 2 -- or flat sequences of
-        ``mpmath.mpf`` (a single state; ``mpmath.iv`` intervals also accepted).
-    lam0, mu : real; arrays broadcastable to ``batch`` are accepted on the
-        float path.  ``lam1 = lam0 + mu``, ``lam2 = lam0 - mu``.
-    branch : +1 or -1.  ``branch=-1`` is the inverse map of ``branch=+1``.
-    allow_complex : return the complex continuation instead of raising
-        :class:`NoRealMapError` (float path: complex128 arrays; mpmath: mpc
-        values where needed).
-    backend : ``"auto"`` (default: the fastest available), or force one:
-        float64 ``"numba"`` (fused kernel; for a batch the block kernel),
-        ``"python"`` (fused kernel in plain Python, one state; a batch takes
-        the numpy route) or ``"numpy"``; mpmath ``"qd"`` (quad-double, numba;
-        ``mp.prec <= 191``), ``"flint"`` (Arb, python-flint) or ``"mpmath"``.
-
-    Returns
-    -------
-    (p_new, q_new) : float64 arrays of the input shape, or lists of mpf at the
-        current ``mp.dps`` (computed with a few guard digits).
-
-    Raises
-    ------
-    InvalidInputError, NoRealMapError, NumericRangeError
-    MissingDependencyError
-        for a forced backend that is not installed.
-
-    Notes
-    -----
-    ``mu == 0`` returns copies of the input.  The algorithm and its stability
-    are described in the module docstring of :mod:`symbt.numeric.step`.
-
-    Examples
-    --------
-    >>> from symbt.numeric import bt_step
-    >>> import mpmath
-    >>> with mpmath.workdps(30):
-    ...     pt, qt = bt_step([mpmath.mpf(-20), 10, 1], [1, 0, mpmath.mpf('0.9')], 10, 5)
-    ...     print(mpmath.nstr(qt[0], 15))
-    -0.0861422421882023
-    """
-    branch = check_branch(branch)
-    if backend not in STEP_BACKENDS:
-        raise InvalidInputError("backend must be one of %s, got %r" % (STEP_BACKENDS, backend))
-    ctx = pick_context(p, q, lam0, mu)
-    if ctx is FLOAT:
-        if backend in ("flint", "qd", "mpmath"):
-            raise InvalidInputError("backend %r needs mpmath inputs" % backend)
-        pa, qa, shape = validate_float_pair(p, q)
-        lam0, mu = prepare_spectral_pair(ctx, lam0, mu, shape)
-        N = pa.shape[-1]
-        if np.ndim(mu) == 0 and mu == 0:
-            return pa.reshape(shape + (N,)).copy(), qa.reshape(shape + (N,)).copy()
-        if shape == () and backend != "numpy" and not (backend == "auto" and _monodromy_may_overflow(pa, lam0, mu)):
-            from .ensemble import kernel_step
-
-            out = kernel_step(pa[0], qa[0], float(lam0), float(mu), branch, backend)
-            if out is not None:
-                return out
-        if shape != () and backend in ("auto", "numba"):
-            from .jit import numba_available
-
-            if numba_available() and (backend == "numba" or _block_kernel_pays(pa, lam0, mu)):
-                # each member by its single-state route: the block kernel (bit-identical to the single-state
-                # kernel), and the numpy route for exactly the members it hands back
-                from .ensemble import kernel_batch_step
-
-                skip = overflow_rows(N, lam0, mu, pa.shape[0]) if backend == "auto" else None
-                outp, outq = kernel_batch_step(pa, qa, lam0, mu, branch, allow_complex, shape, skip)
-                return outp.reshape(shape + (N,)), outq.reshape(shape + (N,))
-        from .rows import float_rows_step
-
-        outp, outq = float_rows_step(pa, qa, lam0, mu, branch, allow_complex, shape)
-        return outp.reshape(shape + (N,)), outq.reshape(shape + (N,))
-    if backend in ("numba", "python", "numpy"):
-        raise InvalidInputError("backend %r needs float64 inputs" % backend)
-    ctx, P, Q, shape = as_state_pair(p, q, lam0, mu)
-    lam0, mu = prepare_spectral_pair(ctx, lam0, mu, shape)
-    if mu == 0:
-        return to_output(ctx, P, ()), to_output(ctx, Q, ())
-    if ctx is not IV:
-        from .mpfast import mp_backend
-
-        fast: Callable[..., tuple[list[Any], list[Any]]] | None = mp_backend(backend)
-        if fast is not None:
-            return fast(P, Q, lam0, mu, branch, allow_complex)
-    return _mp_step(ctx, P, Q, lam0, mu, branch, allow_complex)

@@ -2,18 +2,18 @@ r"""High precision, fast: mpmath in, mpmath out, quad-doubles (numba) or python-
 
 For mpmath input :func:`~symbt.numeric.bt_step` and :func:`~symbt.numeric.bt_orbit`
 pick the fastest backend present (``"auto"``: ``"qd"`` if numba is there, the
-precision fits and the quad-double orbit is compiled -- :func:`~symbt.numeric.qd.qd_ready`,
-``python -m symbt.numeric.qd`` -- else ``"flint"`` if python-flint is there, else ``"mpmath"``):
+precision fits and the quad-double orbit is compiled -- :func:`~symbt.numeric.multiprec.qd.qd_ready`,
+``python -m symbt.numeric.multiprec.qd`` -- else ``"flint"`` if python-flint is there, else ``"mpmath"``):
 
 * ``"qd"`` (numba installed, ``mp.prec`` small enough for the number of steps:
-  :func:`~symbt.numeric.qd.qd_fits`): the same step in compiled quad-double
-  arithmetic (:mod:`symbt.numeric.qd`, 209 bits), all ``n`` steps in one
+  :func:`~symbt.numeric.multiprec.qd.qd_fits`): the same step in compiled quad-double
+  arithmetic (:mod:`symbt.numeric.multiprec.qd`, 209 bits), all ``n`` steps in one
   compiled call; real states only (``allow_complex`` continues on the Arb or
   mpmath path where the real map does not exist); inputs or states outside the
   double exponent range go to the next backend under ``"auto"``
   (:class:`NumericRangeError` for an explicit ``"qd"``).
-* ``"flint"`` (python-flint installed): :func:`~symbt.numeric.step.step_core`
-  on Arb balls (:data:`~symbt.numeric.arb.ARB_MID`, decisions on midpoints)
+* ``"flint"`` (python-flint installed): :func:`~symbt.numeric.core.step.step_core`
+  on Arb balls (:data:`~symbt.numeric.multiprec.arb.ARB_MID`, decisions on midpoints)
   at ``mp.prec + guard`` bits, the state kept in Arb between the steps of an
   orbit as exact midpoints (the radii are dropped after every step: this is
   midpoint arithmetic, a wide ball would make Arb trim its midpoint);
@@ -30,7 +30,7 @@ Guard bits: ``40`` for a step (like the mpmath path's 12 digits) and
 Example
 -------
 >>> import mpmath
->>> from symbt.numeric.mpfast import mp_orbit
+>>> from symbt.numeric.multiprec.choose import mp_orbit
 >>> with mpmath.workdps(50):
 ...     P, Q = mp_orbit([-20, 10, 1], [1, 0, mpmath.mpf("0.9")], 10, 5, 10, every=10)
 ...     print(mpmath.nstr(Q[-1][0], 20))
@@ -45,10 +45,11 @@ from typing import Any
 
 import mpmath
 
-from ._input import IV, as_state_pair, prepare_spectral_pair, to_output
-from .errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError, importable
-from .kernels import stored_steps
-from .step import _mp_step, step_core
+from ..core.context import IV
+from ..core.errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError, importable
+from ..core.inputs import as_state_pair, prepare_spectral_pair, to_output
+from ..core.step import mp_step, step_core
+from ..float64.kernels import stored_steps
 
 __all__ = ["flint_available", "mp_backend", "mp_orbit", "arb_step", "pick_mp_backend", "MP_BACKENDS", "GUARD_BITS"]
 
@@ -104,7 +105,7 @@ def _div(a: Any, b: Any) -> Any:
 
 
 def _slopes(a: list[Any], r: list[Any], s: int, name: str, dv: Callable[[Any, Any], Any]) -> list[Any]:
-    """:func:`~symbt.numeric.step.eigen_slopes` for real Arb midpoints, fused (same operations, same order)."""
+    """:func:`~symbt.numeric.core.step.eigen_slopes` for real Arb midpoints, fused (same operations, same order)."""
     N = len(a)
     # m_2 m_1 written out: a_1 (-1) - 0 = -a_1 and r_1 (-1) = -r_1 exactly, as step_core computes them
     A, B, C, D = a[1] * a[0] - r[0], -a[1], r[1] * a[0], -r[1]
@@ -138,7 +139,7 @@ def arb_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
              dv: Callable[[Any, Any], Any] = operator.truediv) -> tuple[list[Any], list[Any]]:
     """One step on real Arb balls with midpoint decisions: ``step_core(ARB_MID, ...)`` fused.
 
-    Performs exactly the operations of :func:`~symbt.numeric.step.step_core` in the same order
+    Performs exactly the operations of :func:`~symbt.numeric.core.step.step_core` in the same order
     (bit-identical midpoints, ``tests/test_numeric_mpfast.py``) without the context indirection;
     raises the same :class:`NoRealMapError`.  ``dv`` divides: plain division (fast; a division by
     an exact zero gives a non-finite result) or :func:`_div` (a projective infinity, as
@@ -206,9 +207,9 @@ def _flint_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
 def pick_mp_backend(backend: str, n: int = 1) -> str:
     """The backend ``"qd"``, ``"flint"`` or ``"mpmath"`` that runs ``n`` steps at the current ``mp.prec``.
 
-    ``"auto"``: ``"qd"`` if numba is present, :func:`~symbt.numeric.qd.qd_fits` and the compiled
-    orbit is ready (:func:`~symbt.numeric.qd.qd_ready`: compiled once, e.g. by
-    ``python -m symbt.numeric.qd``), else ``"flint"``
+    ``"auto"``: ``"qd"`` if numba is present, :func:`~symbt.numeric.multiprec.qd.qd_fits` and the compiled
+    orbit is ready (:func:`~symbt.numeric.multiprec.qd.qd_ready`: compiled once, e.g. by
+    ``python -m symbt.numeric.multiprec.qd``), else ``"flint"``
     if python-flint is present, else ``"mpmath"``.  An explicit backend that is missing raises
     :class:`MissingDependencyError`; ``"qd"`` at a precision it cannot carry raises
     :class:`InvalidInputError`.
@@ -259,9 +260,9 @@ def _qd_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int, allow_
             raise
     if flint_available():
         return _flint_step(P, Q, lam0, mu, branch, allow_complex)
-    from ._input import MP
+    from ..core.context import MP
 
-    return _mp_step(MP, P, Q, lam0, mu, branch, allow_complex)
+    return mp_step(MP, P, Q, lam0, mu, branch, allow_complex)
 
 
 def _qd_step_explicit(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
@@ -311,7 +312,7 @@ def mp_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, eve
     if name == "mpmath":
         pc, qc = P, Q
         for i in range(1, n + 1):
-            pc, qc = _mp_step(ctx, pc, qc, lam0, mu, branch, False)
+            pc, qc = mp_step(ctx, pc, qc, lam0, mu, branch, False)
             if i in keep:
                 outP.append(pc)
                 outQ.append(qc)

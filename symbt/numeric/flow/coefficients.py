@@ -20,7 +20,7 @@ they agree to ``rtol`` relative to the local contribution); the integrand goes t
 logarithms.  mpmath: tanh-sinh (``mpmath.quad`` on ``[lam2, lam0, lam1]``) with the values
 of ``tr`` shared between the ``k`` (same nodes), its error estimate checked.  Both paths
 evaluate the same scaled integrand (:func:`scaled_trace`).  The float64 panels are exposed as
-a quadrature rule (:func:`flow_quadrature`), which :mod:`symbt.numeric.field` reuses for the
+a quadrature rule (:func:`flow_quadrature`), which :mod:`symbt.numeric.flow.field` reuses for the
 vector field of ``G``.
 
 Examples
@@ -48,10 +48,10 @@ from typing import Any
 import mpmath
 import numpy as np
 
-from ._input import MP, _to_mp, float_array, prepare_spectral_pair
-from .context import FLOAT
-from .errors import InvalidInputError, NoRealMapError, NumericRangeError, QuadratureError
-from .step import bt_step
+from ..core.context import FLOAT, MP
+from ..core.errors import InvalidInputError, NoRealMapError, NumericRangeError, QuadratureError
+from ..core.inputs import _to_mp, float_array, prepare_spectral_pair
+from ..dispatch import bt_step
 
 __all__ = ["flow_coefficients", "flow_quadrature", "FlowQuadrature", "scaled_trace", "neighbour_ratios_of"]
 
@@ -285,7 +285,7 @@ def flow_quadrature(p: Any, q: Any, lam0: float, mu: float, *, branch: int = 1, 
 
     Panels are refined until every ``c_k`` integrand (k = 0..N, scaled) converges; if
     ``extra_rows(lam, log2_inv, T)`` is given, its rows (O(1), one vector) must converge too --
-    :mod:`symbt.numeric.field` passes the integrand of the vector field.  ``compress`` (a
+    :mod:`symbt.numeric.flow.field` passes the integrand of the vector field.  ``compress`` (a
     tolerance): replace the composite rule by the smallest single Gauss--Legendre rule on the
     whole interval (8 to 128 nodes) whose integrals agree with the composite ones to ``compress``
     (relative; the extra rows as one vector if given -- they define the field --, else every

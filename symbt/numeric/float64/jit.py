@@ -1,4 +1,4 @@
-"""Lazy numba compilation of the fused kernels of :mod:`symbt.numeric.kernels`.
+"""Lazy numba compilation of the fused kernels of :mod:`symbt.numeric.float64.kernels`.
 
 Nothing here imports numba at module import time: :func:`kernel` compiles on
 first use (a few seconds; cached on disk by numba's ``cache=True`` in a
@@ -10,7 +10,7 @@ kernel, vectorised numpy ensembles).
 
 Example
 -------
->>> from symbt.numeric.jit import kernel
+>>> from symbt.numeric.float64.jit import kernel
 >>> run_block, backend = kernel("run_block", "python")
 >>> backend
 'python'
@@ -23,7 +23,7 @@ import types
 from collections.abc import Callable
 from typing import Any
 
-from .errors import MissingDependencyError, importable
+from ..core.errors import MissingDependencyError, importable
 
 __all__ = ["numba_available", "kernel", "BACKENDS"]
 
@@ -90,7 +90,7 @@ def kernel(name: str, backend: str = "auto") -> tuple[Callable[..., Any], str]:
 
         return getattr(kernels if name == "orbit" else kernels_block, name), "python"
     if backend not in BACKENDS:
-        from .errors import InvalidInputError
+        from ..core.errors import InvalidInputError
 
         raise InvalidInputError("backend must be one of %s, got %r" % (BACKENDS, backend))
     if not numba_available():

@@ -1,11 +1,11 @@
 """The numpy route of one float64 step for the rows of a batch, decided per row.
 
 :func:`float_rows_step` steps the rows of a batch (``(M, N)`` arrays) in blocks of
-``max(256, BLOCK_ELEMENTS // N)`` rows with :func:`~symbt.numeric.step.step_core`'s elementwise numpy
+``max(256, BLOCK_ELEMENTS // N)`` rows with :func:`~symbt.numeric.core.step.step_core`'s elementwise numpy
 operations: a row's result and its verdict (real map or not, finite or not) never depend on the other rows
 or on the block it falls in, so every member of a batch equals its own single-state step with
 ``backend="numpy"`` bit for bit, and a failing batch names every failing member in
-:attr:`~symbt.numeric.errors.NoRealMapError.where`.
+:attr:`~symbt.numeric.core.errors.NoRealMapError.where`.
 
 Example
 -------
@@ -22,11 +22,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .context import COMPLEX, FLOAT
-from .errors import NoRealMapError, NumericRangeError
+from ..core.context import COMPLEX, FLOAT
+from ..core.errors import NoRealMapError, NumericRangeError
+from ..core.monodromy import MAX_DQ
+from ..core.step import BLOCK_ELEMENTS, step_core
 from .kernels import OK, POSITIVITY, RANGE, TRACE1, TRACE2
-from .lax import MAX_DQ
-from .step import BLOCK_ELEMENTS, step_core
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -40,9 +40,9 @@ __all__ = ["float_rows_step", "raise_for_rows"]
 def _float_block(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int) -> tuple[F64, F64, I64]:
     """Real step for one block of rows ``pa, qa`` (B, N): ``(B, N)`` arrays and a status code per row.
 
-    The codes are those of :mod:`.kernels` (``OK``, ``TRACE1``, ``TRACE2``, ``POSITIVITY``, ``RANGE``), decided
-    per row in the order :func:`step_core` checks them for one state, so that a row's verdict does not depend
-    on the other rows of the batch.
+    The codes are those of :mod:`symbt.numeric.float64.kernels` (``OK``, ``TRACE1``, ``TRACE2``,
+    ``POSITIVITY``, ``RANGE``), decided per row in the order :func:`step_core` checks them for one state,
+    so that a row's verdict does not depend on the other rows of the batch.
     """
     P, Q = list(pa.T.copy()), list(qa.T.copy())
     with np.errstate(all="ignore"):
@@ -80,7 +80,7 @@ def raise_for_rows(status: I64, shape: tuple[int, ...]) -> None:
     (batch indices), ``condition`` and message are those of the first -- else :class:`NumericRangeError`.
 
     >>> import numpy as np
-    >>> from symbt.numeric.kernels import OK, POSITIVITY, TRACE2
+    >>> from symbt.numeric.float64.kernels import OK, POSITIVITY, TRACE2
     >>> try:
     ...     raise_for_rows(np.array([OK, TRACE2, OK, POSITIVITY]), (2, 2))
     ... except NoRealMapError as e:

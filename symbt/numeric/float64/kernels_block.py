@@ -1,6 +1,6 @@
 r"""Block layout of the fused float64 kernels: many states at once (numba ``prange`` over blocks).
 
-The arithmetic of :func:`symbt.numeric.kernels.orbit`, operation for
+The arithmetic of :func:`symbt.numeric.float64.kernels.orbit`, operation for
 operation, on a *block* of ``B`` states held site-major, ``x[j, k]`` with the
 state index ``k`` innermost: every loop over ``k`` is a plain elementwise
 loop without calls or reductions that LLVM vectorises (AVX2: 4 states per
@@ -11,7 +11,7 @@ the block stops when all of its states have failed.
 Example
 -------
 >>> import numpy as np
->>> from symbt.numeric.kernels import ANCHOR, orbit_rows
+>>> from symbt.numeric.float64.kernels import ANCHOR, orbit_rows
 >>> P, Q, st = np.empty((2, 2, 3)), np.empty((2, 2, 3)), np.zeros(2, np.int64)
 >>> ones = np.ones(2)
 >>> run_block(np.tile([-20.0, 10, 1], (2, 1)), np.tile([1.0, 0, 0.9], (2, 1)), 15 * ones, 5 * ones, 10 * ones,
@@ -39,7 +39,7 @@ prange = range  # the ensemble kernel is compiled with numba.prange in its place
 
 def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64, C: F64, D: F64,
             u1: F64, fw: I64, status: I64, code: int) -> None:
-    """Scaled eigenvector slopes ``u[j, k]`` at ``lam[k]`` for sign ``s`` (see :mod:`.step`)."""
+    """Scaled eigenvector slopes ``u[j, k]`` at ``lam[k]`` for sign ``s`` (see :mod:`symbt.numeric.core.step`)."""
     N, B = p.shape
     for k in range(B):
         A[k] = lam[k] + p[0, k]
@@ -127,10 +127,10 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
     """``n`` steps of the states ``i0 <= i < i1`` of ``(P0, Q0)`` (shape (M, N)).
 
     ``lam1 = lam0 + mu``, ``lam2 = lam0 - mu``, ``two_mu = 2 mu`` per state;
-    stored states (see :func:`~symbt.numeric.kernels.orbit_rows`) go to
+    stored states (see :func:`~symbt.numeric.float64.kernels.orbit_rows`) go to
     ``outP, outQ`` (rows, M, N); ``status[i]`` is set (0 ok, else the first failure).
 
-    >>> from symbt.numeric.kernels import ANCHOR
+    >>> from symbt.numeric.float64.kernels import ANCHOR
     >>> st = np.zeros(1, np.int64)
     >>> run_block(np.zeros((1, 2)), np.zeros((1, 2)), np.ones(1), -np.ones(1), 2 * np.ones(1), 1, 1, 1, ANCHOR,
     ...           np.empty((2, 1, 2)), np.empty((2, 1, 2)), st, 0, 1)
@@ -220,7 +220,7 @@ def ensemble(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, n
              anchor: int, block: int, outP: F64, outQ: F64, status: I64) -> None:
     """:func:`run_block` over all blocks of ``block`` states (``prange`` when compiled).
 
-    >>> from symbt.numeric.kernels import ANCHOR
+    >>> from symbt.numeric.float64.kernels import ANCHOR
     >>> M = 3
     >>> P, Q, st = np.empty((2, M, 3)), np.empty((2, M, 3)), np.zeros(M, np.int64)
     >>> ensemble(np.tile([-20.0, 10, 1], (M, 1)), np.tile([1.0, 0, 0.9], (M, 1)), np.full(M, 15.0),

@@ -1,13 +1,13 @@
 r"""python-flint contexts: Arb real balls (``arb``) and complex balls (``acb``).
 
-In the style of mpmath's FPContext: the step (:func:`~symbt.numeric.step.step_core`)
+In the style of mpmath's FPContext: the step (:func:`~symbt.numeric.core.step.step_core`)
 is written once; a backend only binds primitives.  Two uses of ``arb``:
 
-* ``ARB_MID`` -- the fast path for mpmath input (:mod:`.mpfast`): balls at the
+* ``ARB_MID`` -- the fast path for mpmath input (:mod:`symbt.numeric.multiprec.choose`): balls at the
   caller's precision plus guard bits, every decision (existence included) on
   midpoints, as the mpmath path decides on its values.  The midpoints are
   what a midpoint arithmetic would compute.
-* ``ARB_CERTAIN`` -- certified orbits (:mod:`.certified`): existence
+* ``ARB_CERTAIN`` -- certified orbits (:mod:`symbt.numeric.multiprec.certified`): existence
   (``|tr| > 2``, ``Etilde_j > 0``) must hold on the whole ball; a ball that
   straddles the boundary raises :class:`Uncertain` (the driver raises the
   precision).  Accuracy-only choices (which of two algebraically equal
@@ -22,7 +22,7 @@ This module imports python-flint; import it only when flint is installed.
 Example
 -------
 >>> from flint import arb
->>> from symbt.numeric.arb import ARB_CERTAIN, flint_prec
+>>> from symbt.numeric.multiprec.arb import ARB_CERTAIN, flint_prec
 >>> with flint_prec(100):
 ...     ARB_CERTAIN.positive(arb(2).sqrt() - 1), ARB_CERTAIN.div(arb(1), arb(0)).is_finite()
 (True, False)

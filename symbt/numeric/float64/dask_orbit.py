@@ -2,7 +2,7 @@ r"""Ensembles out of core: :func:`dask_orbit` maps :func:`~symbt.numeric.bt_orbi
 
 Recipe.  The states are independent, so an ensemble ``(M, N)`` is chunked
 along the state axis only and every chunk runs the fused ensemble kernel
-(:mod:`symbt.numeric.ensemble`) through ``dask.array.map_blocks``; with
+(:mod:`symbt.numeric.float64.orbit`) through ``dask.array.map_blocks``; with
 ``every=k`` each chunk stores ``rows = 1 + ceil(n / k)`` states, so the
 result ``(rows, M, N)`` can stay on disk / in a cluster (``.to_zarr``,
 reductions such as ``Q[-1].mean(axis=0)`` without materialising it).
@@ -11,7 +11,7 @@ are raised when a chunk is computed; :class:`NoRealMapError`'s ``where``
 then holds indices of the whole ensemble (the chunk offset is added).
 
 dask is optional: without it :func:`dask_orbit` raises
-:class:`~symbt.numeric.errors.MissingDependencyError` (an ``ImportError``).
+:class:`~symbt.numeric.core.errors.MissingDependencyError` (an ``ImportError``).
 
 Example
 -------
@@ -32,9 +32,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .errors import InvalidInputError, MissingDependencyError, NoRealMapError
+from ..core.errors import InvalidInputError, MissingDependencyError, NoRealMapError
+from ..core.inputs import check_steps
 from .kernels import orbit_rows
-from .orbit import check_steps
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -52,7 +52,7 @@ def _import_dask() -> Any:
 
 def _chunk(block: npt.NDArray[np.float64], N: int, n: int, branch: int, every: int, backend: str,
            block_info: dict[Any, Any] | None = None) -> npt.NDArray[np.float64]:
-    from .ensemble import float_orbit
+    from .orbit import float_orbit
 
     start = block_info[0]["array-location"][0][0] if block_info else 0
     try:
@@ -79,7 +79,7 @@ def dask_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, chunks: Any = "aut
     >>> P.shape, [round(float(v), 6) for v in P[-1, 0].compute()] == [round(float(v), 6) for v in P[-1, 2].compute()]
     ((2, 3, 3), True)
     """
-    from ._input import check_branch
+    from ..core.inputs import check_branch
 
     da = _import_dask()
     branch = check_branch(branch)

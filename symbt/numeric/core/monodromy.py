@@ -24,13 +24,12 @@ exponent ``e`` so that ``M = 2**e * (A, B; C, D)``.
 Example
 -------
 >>> import numpy as np
->>> from symbt.numeric import spectral_trace, invariants
->>> p, q = np.array([-20.0, 10.0, 1.0]), np.array([1.0, 0.0, 0.9])
->>> H = invariants(p, q)               # H_0, H_1, H_2
->>> lam = 3.0
->>> bool(np.isclose(spectral_trace(lam, p, q), H[0] + H[1]*lam + H[2]*lam**2 + lam**3))
-True
-"""
+>>> from symbt.numeric import spectral_trace
+>>> from symbt.numeric.core.context import FLOAT
+>>> p, q = [np.array([x]) for x in (-20.0, 10.0, 1.0)], [np.array([x]) for x in (1.0, 0.0, 0.9)]
+>>> A, B, C, D, e = monodromy(FLOAT, [3.0 + pj for pj in p], neighbour_ratios(FLOAT, q))
+>>> bool(np.isclose(np.ldexp(A + D, e)[0], spectral_trace(3.0, [-20.0, 10.0, 1.0], [1.0, 0.0, 0.9])))
+True"""
 
 from __future__ import annotations
 
@@ -39,11 +38,10 @@ from typing import Any
 
 import numpy as np
 
-from ._input import as_state_pair, prepare_scalar
-from .context import FLOAT, Context
+from .context import Context
 from .errors import NumericRangeError
 
-__all__ = ["spectral_trace", "invariants", "neighbour_ratios", "monodromy"]
+__all__ = ["neighbour_ratios", "monodromy", "MAX_DQ"]
 
 # exp overflows/underflows (to subnormals) beyond about this difference
 MAX_DQ = 700.0
@@ -53,7 +51,7 @@ def neighbour_ratios(ctx: Context, q: Sequence[Any]) -> list[Any]:
     """``r_j = exp(q_{j+1} - q_j)`` (cyclic) as a list of context values.
 
     >>> import mpmath
-    >>> from symbt.numeric._input import MP
+    >>> from symbt.numeric.core.inputs import MP
     >>> [mpmath.nstr(x, 6) for x in neighbour_ratios(MP, [mpmath.mpf(0), mpmath.mpf(1)])]
     ['2.71828', '0.367879']
     """
@@ -88,6 +86,7 @@ def monodromy(ctx: Context, a: Sequence[Any], r: Sequence[Any]) -> tuple[Any, An
     Returns ``(A, B, C, D, e)``; ``e`` is ``0`` unless renormalisation was
     needed (float64) -- for mpmath it is always ``0``.
 
+    >>> from symbt.numeric.core.context import FLOAT
     >>> A, B, C, D, e = monodromy(FLOAT, [np.array([2.0]), np.array([3.0])], [np.array([1.0]), np.array([1.0])])
     >>> float((A + D)[0]), e                           # tr = a1 a2 - r1 - r2
     (4.0, 0)
@@ -106,88 +105,3 @@ def monodromy(ctx: Context, a: Sequence[Any], r: Sequence[Any]) -> tuple[Any, An
                       for X, X2 in ((A, A2), (B, B2), (C, C2), (D, D2)))
         e = ctx.merge(np.zeros(shape, dtype=np.int64), bad, e2)
     return A, B, C, D, e
-
-
-def spectral_trace(lam: Any, p: Any, q: Any) -> Any:
-    """``tr L(lam)`` for a state (or batch of states) ``(p, q)``; O(N) per state.
-
-    ``lam`` is a scalar (or broadcastable to the batch shape).  float64 inputs
-    give a float64 array of the batch shape (a 0-d array for one state),
-    mpmath inputs give an mpf.  Raises :class:`NumericRangeError` if the trace
-    itself overflows float64.
-
-    >>> from symbt.numeric import spectral_trace
-    >>> float(spectral_trace(0.0, [0.0, 0.0], [0.0, 0.0]))   # lam^2 + p1 p2 - 2 cosh(q1-q2)
-    -2.0
-    """
-    ctx, P, Q, shape = as_state_pair(p, q)
-    lam = prepare_scalar(ctx, lam, shape, "lam")
-    r = neighbour_ratios(ctx, Q)
-    A, B, C, D, e = monodromy(ctx, [lam + pj for pj in P], r)
-    if ctx is FLOAT:
-        with np.errstate(over="ignore"):
-            tr = np.ldexp(A + D, e)
-        if not np.all(np.isfinite(tr)):
-            raise NumericRangeError("tr L(lam) overflows float64")
-        return tr.reshape(shape)
-    return A + D
-
-
-def invariants(p: Any, q: Any) -> Any:
-    """Conserved quantities ``H_0, ..., H_{N-1}`` (coefficients of ``tr L``; ``H_N = 1``).
-
-    O(N^2) per state, no N x N matrices: the entries of the scaled monodromy
-    are propagated as polynomials in ``lam`` (coefficient arrays), using the
-    same 6-flop recursion as :func:`monodromy`.  Output has shape
-    ``batch + (N,)`` (float64) or is a list of mpf.
-
-    >>> from symbt.numeric import invariants
-    >>> [round(float(h), 12) for h in invariants([1.0, 2.0], [0.0, 0.0])]   # p1 p2 - 2, p1 + p2
-    [0.0, 3.0]
-    """
-    with np.errstate(over="ignore", invalid="ignore"):   # overflow -> NumericRangeError below
-        return _invariants(p, q)
-
-
-def _invariants(p: Any, q: Any) -> Any:
-    ctx, P, Q, shape = as_state_pair(p, q)
-    N = len(P)
-    r = neighbour_ratios(ctx, Q)
-    zero = 0.0 * P[0]
-
-    def poly(n: int) -> list[Any]:
-        return [zero] * n
-
-    # polynomials as lists of coefficients (index = power of lam)
-    A = [P[0], 1.0 + zero]
-    B = [-1.0 + zero]
-    C = [r[0] + zero]
-    D = [zero]
-    for j in range(1, N):
-        nA = poly(len(A) + 1)
-        nB = poly(len(B) + 1)
-        for k, c in enumerate(A):
-            nA[k] = nA[k] + P[j] * c
-            nA[k + 1] = nA[k + 1] + c
-        for k, c in enumerate(C):
-            nA[k] = nA[k] - c
-        for k, c in enumerate(B):
-            nB[k] = nB[k] + P[j] * c
-            nB[k + 1] = nB[k + 1] + c
-        for k, c in enumerate(D):
-            nB[k] = nB[k] - c
-        C = [r[j] * c for c in A]
-        D = [r[j] * c for c in B]
-        A, B = nA, nB
-    H = poly(N + 1)
-    for k, c in enumerate(A):  # noqa: B007
-        H[k] = H[k] + c
-    for k, c in enumerate(D):
-        H[k] = H[k] + c
-    H = H[:N]
-    if ctx is FLOAT:
-        out = np.stack([np.asarray(h, dtype=float) for h in H], axis=-1)
-        if not np.all(np.isfinite(out)):
-            raise NumericRangeError("the invariants H_k overflow float64; use mpmath inputs")
-        return out.reshape(shape + (N,))
-    return list(H)

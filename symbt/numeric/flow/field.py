@@ -7,7 +7,7 @@ the initial state; constant along the flow).  Since ``tr L(lam) = sum_k H_k lam^
     grad G(x) = -b \int_{lam0-mu}^{lam0+mu} grad tr_x L(lam) / sqrt(tr_0(lam)^2 - 4) dlam
               ~= sum_i W_i grad tr_x L(lam_i),      W_i = -b w_i / sqrt(tr_0(lam_i)^2 - 4),
 
-with the quadrature rule of the ``c_k`` (:func:`~symbt.numeric.coefficients.flow_quadrature`,
+with the quadrature rule of the ``c_k`` (:func:`~symbt.numeric.flow.coefficients.flow_quadrature`,
 refined until this integrand converges too, then compressed to one Gauss--Legendre rule of
 ``m`` nodes when that gives the same field).  The field is *exactly* the Hamiltonian vector field
 of ``sum_k c~_k H_k`` with ``c~_k = sum_i W_i lam_i^k`` (the rule's ``c_k``, :attr:`FlowField.c`),
@@ -24,7 +24,7 @@ plain arithmetic, also used to build the same field for other integrators); if a
 ``dG/dq_j = r_{j-1} dG/dr_{j-1} - r_j dG/dr_j``.
 
 >>> import numpy as np
->>> from symbt.numeric.field import FlowField
+>>> from symbt.numeric.flow.field import FlowField
 >>> f = FlowField([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0)
 >>> qdot, pdot = f(np.array([-20.0, 10.0, 1.0]), np.array([1.0, 0.0, 0.9]))
 >>> [round(float(v), 4) for v in f.c]                   # the rule's c_k
@@ -40,9 +40,9 @@ from typing import Any
 
 import numpy as np
 
-from ._input import float_array
+from ..core.errors import InvalidInputError, NumericRangeError
+from ..core.inputs import float_array
 from .coefficients import flow_quadrature, neighbour_ratios_of
-from .errors import InvalidInputError, NumericRangeError
 
 __all__ = ["FlowField", "transfer_gradient"]
 

@@ -1,8 +1,8 @@
 r"""Certified orbits: midpoints plus rigorous error bounds from Arb ball arithmetic.
 
 :func:`certified_orbit` (also ``bt_orbit(..., certified=True)``) runs
-:func:`~symbt.numeric.step.step_core` on python-flint ``arb`` balls
-(:data:`~symbt.numeric.arb.ARB_CERTAIN`).  The input is taken *exactly*:
+:func:`~symbt.numeric.core.step.step_core` on python-flint ``arb`` balls
+(:data:`~symbt.numeric.multiprec.arb.ARB_CERTAIN`).  The input is taken *exactly*:
 mpmath numbers, Python ints and floats are exact binary numbers, decimal
 strings (``"0.9"``) become balls that contain the decimal value, so the result
 encloses the exact orbit of the given input.
@@ -47,10 +47,10 @@ from typing import Any
 import mpmath
 import numpy as np
 
-from .errors import InvalidInputError, MissingDependencyError, NumericRangeError
-from .kernels import stored_steps
-from .mpfast import flint_available
-from .step import step_core
+from ..core.errors import InvalidInputError, MissingDependencyError, NumericRangeError
+from ..core.step import step_core
+from ..float64.kernels import stored_steps
+from .choose import flint_available
 
 __all__ = ["certified_orbit", "DEFAULT_MAX_PREC"]
 
@@ -207,8 +207,7 @@ def certified_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int =
     >>> mpmath.nstr(P[1][0], 10), float(Pr[1][0]) < 1e-19
     ('-19.99656766', True)
     """
-    from ._input import check_branch
-    from .orbit import check_steps
+    from ..core.inputs import check_branch, check_steps
 
     if not flint_available():
         raise MissingDependencyError("certified orbits need python-flint: pip install 'symbt[certified]'")

@@ -9,7 +9,7 @@ with the exponent range of a double (components below ``2**-1022`` lose bits,
 so values are kept well inside ``[2**-700, 2**700]`` by the callers).
 
 Every function is plain Python over floats, written so that numba compiles it
-unchanged (:mod:`symbt.numeric.qd`, lazily); run as Python the functions give
+unchanged (:mod:`symbt.numeric.multiprec.qd`, lazily); run as Python the functions give
 the same bits, slowly (tests and doctests).
 
 Error-free transformations (IEEE round-to-nearest): :func:`two_sum`
@@ -30,7 +30,7 @@ digits: ``tests/test_numeric_qd.py``.
 
 Example
 -------
->>> from symbt.numeric.qd_arith import from_float, div, mul, add_d, to_float
+>>> from symbt.numeric.multiprec.qd_arith import from_float, div, mul, add_d, to_float
 >>> third = div(from_float(1.0), from_float(3.0))
 >>> add_d(mul(third, from_float(3.0)), -1.0)[0] == 0.0 or abs(add_d(mul(third, from_float(3.0)), -1.0)[0]) < 1e-62
 True

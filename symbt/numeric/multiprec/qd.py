@@ -1,7 +1,7 @@
 r"""High precision, compiled: the Bäcklund orbit in quad-double arithmetic (numba), mpmath in and out.
 
-A quad-double (:mod:`symbt.numeric.qd_arith`) carries ``QD_BITS = 209`` bits
-with the exponent range of a double; the step (:mod:`symbt.numeric.qd_step`)
+A quad-double (:mod:`symbt.numeric.multiprec.qd_arith`) carries ``QD_BITS = 209`` bits
+with the exponent range of a double; the step (:mod:`symbt.numeric.multiprec.qd_step`)
 performs the operations of the Arb midpoint step in the same order.  This
 module compiles both with numba on first use (``cache=True``; a few seconds the
 first time, then loaded from numba's cache) and converts:
@@ -29,12 +29,12 @@ ulps at 50 digits).  At ``mp.dps = 50`` (169 bits) the rule admits
 ``n <= 4095`` steps; one step up to ``mp.prec = 191`` (57 digits).
 
 Numba missing, or ``SYMBT_NO_NUMBA=1``: :func:`qd_available` is False, and
-:mod:`symbt.numeric.mpfast` does not choose this backend.
+:mod:`symbt.numeric.multiprec.choose` does not choose this backend.
 
 Example
 -------
 >>> import mpmath
->>> from symbt.numeric.qd import qd_fits, qd_orbit_mp
+>>> from symbt.numeric.multiprec.qd import qd_fits, qd_orbit_mp
 >>> with mpmath.workdps(50):
 ...     print(qd_fits(mpmath.mp.prec, 10), qd_fits(mpmath.mp.prec + 40, 10))
 ...     P, Q = qd_orbit_mp([mpmath.mpf(-20), 10, 1], [1, 0, mpmath.mpf("0.9")], 10, 5, 10, every=10)
@@ -57,9 +57,9 @@ from typing import TYPE_CHECKING, Any
 import mpmath
 import numpy as np
 
-from .errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError
-from .jit import numba_available
-from .kernels import orbit_rows
+from ..core.errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError
+from ..float64.jit import numba_available
+from ..float64.kernels import orbit_rows
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -170,7 +170,7 @@ def _drop_stale_cache() -> None:
 def warm() -> float:
     """Compile (or load) the quad-double orbit now; returns the seconds it took.
 
-    Run once after installing (``python -m symbt.numeric.qd``; 15-30 s, then cached on disk):
+    Run once after installing (``python -m symbt.numeric.multiprec.qd``; 15-30 s, then cached on disk):
     from then on ``backend="auto"`` uses it for mpmath input whenever the precision fits.
     """
     import time
@@ -226,8 +226,8 @@ def _two_prod_fma(a: float, b: float) -> tuple[float, float]:
 
 
 def _named(fn: Callable[..., Any], name: str, **overrides: Any) -> Callable[..., Any]:
-    """:func:`~symbt.numeric.jit._clone` under another name (its own numba cache entry)."""
-    from .jit import _clone
+    """:func:`~symbt.numeric.float64.jit._clone` under another name (its own numba cache entry)."""
+    from ..float64.jit import _clone
 
     out = _clone(fn, **overrides)
     out.__name__ = out.__qualname__ = name
@@ -270,9 +270,9 @@ def _decompose(x: F64, out: Any) -> None:
 
 
 def _compile() -> None:
+    from ..float64.jit import _clone, _njit
     from . import qd_arith as A
     from . import qd_step as S
-    from .jit import _clone, _njit
 
     inl: dict[str, Callable[..., Any]] = {}
     try:
@@ -300,8 +300,8 @@ def _compile() -> None:
 
 
 def qd_kernel(name: str = "qd_orbit") -> Callable[..., Any]:
-    """The compiled function ``name`` (an arithmetic function of :mod:`.qd_arith`, ``"qd_orbit"``,
-    ``"qd_step"`` or ``"decompose"``); :class:`MissingDependencyError` without numba."""
+    """The compiled function ``name`` (an arithmetic function of :mod:`symbt.numeric.multiprec.qd_arith`,
+    ``"qd_orbit"``, ``"qd_step"`` or ``"decompose"``); :class:`MissingDependencyError` without numba."""
     if not qd_available():
         raise MissingDependencyError("the qd backend needs numba: pip install 'symbt[fast]'")
     if not _compiled:
@@ -365,7 +365,7 @@ def from_qd(x: F64, prec: int) -> list[Any]:
 
 def qd_orbit_mp(P: Sequence[Any], Q: Sequence[Any], lam0: Any, mu: Any, n: int, *, branch: int = 1,
                 every: int = 1) -> tuple[list[list[Any]], list[list[Any]]]:
-    """``n`` steps in quad-double from mpf inputs (as :func:`~symbt.numeric.mpfast.mp_orbit`, real states).
+    """``n`` steps in quad-double from mpf inputs (as :func:`~symbt.numeric.multiprec.choose.mp_orbit`, real states).
 
     Raises :class:`NoRealMapError` as the Arb path, :class:`NumericRangeError` for values outside the
     quad-double range (inputs beyond ``2**+-600``, neighbour distances beyond 300, non-finite
@@ -404,7 +404,7 @@ def qd_orbit_mp(P: Sequence[Any], Q: Sequence[Any], lam0: Any, mu: Any, n: int, 
     return out
 
 
-if __name__ == "__main__":  # pragma: no cover - ``python -m symbt.numeric.qd``
+if __name__ == "__main__":  # pragma: no cover - ``python -m symbt.numeric.multiprec.qd``
     if not qd_available():
         raise SystemExit("the quad-double backend needs numba: pip install 'symbt[fast]'")
     print("quad-double orbit compiled/loaded in %.1f s; backend='auto' now uses it for mpmath input" % warm())

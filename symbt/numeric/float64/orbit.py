@@ -3,14 +3,14 @@ r"""float64 orbits: fused kernel for one state or an ensemble, the general path,
 :func:`float_orbit` (behind :func:`~symbt.numeric.bt_orbit` for float64 input)
 
 * one state (``p`` of shape ``(N,)``, scalar ``lam0, mu``): the single-orbit
-  kernel of :mod:`.kernels` (numba if installed, else the same source as plain
+  kernel of :mod:`symbt.numeric.float64.kernels` (numba if installed, else the same source as plain
   Python);
 * an ensemble (``p`` of shape ``batch + (N,)``; ``lam0, mu`` scalars or
   broadcastable to ``batch``): the block kernel, ``prange`` over blocks of
   states on all cores (numba), else the vectorised numpy general path;
 * every state the kernel does not finish (no real map, renormalisation,
   non-finite intermediates) is recomputed from the start by the *general
-  path*: :func:`~symbt.numeric.step.step_core` on numpy arrays, with the
+  path*: :func:`~symbt.numeric.core.step.step_core` on numpy arrays, with the
   monodromy renormalised where needed, the centre of mass carried
   separately (compensated sum), and a status per state.  The general path
   decides the error: :class:`NoRealMapError` if some state has no real map
@@ -18,12 +18,12 @@ r"""float64 orbits: fused kernel for one state or an ensemble, the general path,
   else :class:`NumericRangeError`.
 
 Stored states: steps ``0, every, 2 every, ...`` and always the last one
-(:func:`~symbt.numeric.kernels.stored_steps`), shape ``(rows,) + batch + (N,)``.
+(:func:`~symbt.numeric.float64.kernels.stored_steps`), shape ``(rows,) + batch + (N,)``.
 
 Example
 -------
 >>> import numpy as np
->>> from symbt.numeric.ensemble import float_orbit
+>>> from symbt.numeric.float64.orbit import float_orbit
 >>> P, Q = float_orbit(np.array([-20.0, 10.0, 1.0]), np.array([1.0, 0.0, 0.9]), 10.0, 5.0, 100, every=50)
 >>> P1, _ = float_orbit([-20.0, 10, 1], [1.0, 0, 0.9], 10.0, 5.0, 50)
 >>> P.shape, bool(np.array_equal(P[1], P1[-1]))
@@ -36,14 +36,14 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ._input import prepare_spectral_pair, validate_float_pair
-from .context import FLOAT
-from .errors import InvalidInputError, NoRealMapError, NumericRangeError
+from ..core.context import FLOAT
+from ..core.errors import InvalidInputError, NoRealMapError, NumericRangeError
+from ..core.inputs import prepare_spectral_pair, validate_float_pair
+from ..core.monodromy import MAX_DQ
+from ..core.step import BLOCK_ELEMENTS, step_core
 from .jit import kernel, numba_available
 from .kernels import ANCHOR, OK, POSITIVITY, RANGE, TRACE1, TRACE2, orbit_rows
-from .lax import MAX_DQ
 from .rows import float_rows_step
-from .step import BLOCK_ELEMENTS, step_core
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -101,7 +101,7 @@ def kernel_batch_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_c
     ``skip`` (optional, shape (M,)): members sent to the numpy route without a kernel attempt.
 
     The block kernel steps every member with ``mu != 0`` (each bit-identical to :func:`kernel_step`); the
-    members it hands back are recomputed by the numpy route (:func:`~symbt.numeric.rows.float_rows_step`),
+    members it hands back are recomputed by the numpy route (:func:`~symbt.numeric.float64.rows.float_rows_step`),
     as the single-state step does, which decides existence and raises the typed errors (``where``: every
     failing member).
 
@@ -134,7 +134,7 @@ def general_orbit(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, n: int, eve
     """The general (numpy) path for the states ``rows`` of ``pa, qa``; fills ``P[:, rows], Q[:, rows]``.
 
     ``lam0, mu``: floats or arrays of shape (M,).  Returns ``(status, step)``
-    per state of ``rows`` (status codes of :mod:`.kernels`; ``step`` = the
+    per state of ``rows`` (status codes of :mod:`symbt.numeric.float64.kernels`; ``step`` = the
     step that failed).
 
     >>> import numpy as np
