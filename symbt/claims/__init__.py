@@ -33,6 +33,9 @@ CLAIM_MODULES = (
     "inverse",
     "certified",
     "codegen",
+    "shipped_step",
+    "shipped_spectral",
+    "shipped_emitted",
 )
 
 
