@@ -55,7 +55,7 @@ from .base import Outcome, inconclusive, judge_cells
 
 __all__ = ["EPS", "REF_DPS", "CHECK_DPS", "FD_DPS", "INFORMATIVE", "step_constant", "ship_cells", "wide_states",
            "StepRef", "step_ref", "OrbitRef", "orbit_ref", "ratios", "Tally", "State", "step_outputs",
-           "literal_state"]
+           "literal_state", "range_error"]
 
 EPS = float(np.finfo(np.float64).eps)
 REF_DPS, CHECK_DPS, FD_DPS = 50, 75, 30
@@ -263,6 +263,13 @@ class Tally:
         self.loose = 0
         self.disagree = 0
         self.notes: list[str] = []
+        self.declined: dict[str, int] = {}
+
+    def decline(self, route: str, cell: dict, st: State, b: int) -> None:
+        """The route said, with its documented ``NumericRangeError``, that the state is beyond float64 range: no
+        wrong result (counted and reported; accepted only at the wide states, see :func:`wide_states`)."""
+        self.declined[route] = self.declined.get(route, 0) + 1
+        self.add(route, cell, st, b, 0.0)
 
     def add(self, route: str, cell: dict, st: State, b: int, ratio: float, allowed: float = 0.0,
             agree: float = 0.0) -> None:
@@ -279,6 +286,9 @@ class Tally:
     def outcome(self, *, method: str, printed: str, detail: str = "") -> Outcome:
         routes = "; ".join(f"{r}: {v:.3g}" for r, v in self.per_route.items())
         text = (f"worst error/bound per route: {routes}. " + " ".join(self.notes) + " " + detail).strip()
+        if self.declined:
+            text += " Declined with NumericRangeError (documented: beyond the float64 range) at wide states: " + \
+                ", ".join(f"{r} {k}x" for r, k in self.declined.items()) + "."
         if self.disagree:
             text += f" {self.disagree} samples whose reference disagrees with itself at {REF_DPS}/{CHECK_DPS} digits."
         out = judge_cells(self.table, printed=printed, method=method, dps=REF_DPS, detail=text)
@@ -287,6 +297,11 @@ class Tally:
                                 detail=f"{self.loose} samples ill-conditioned: the bound allows a relative error "
                                        f"above {INFORMATIVE:g}. " + text)
         return out
+
+
+def range_error(exc: BaseException) -> bool:
+    """A documented range error: :class:`symbt.numeric.NumericRangeError` or an emitted module's own."""
+    return type(exc).__name__ == "NumericRangeError"
 
 
 def step_outputs(x: Any) -> list:

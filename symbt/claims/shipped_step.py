@@ -20,8 +20,19 @@ from typing import Any
 import mpmath as mp
 import numpy as np
 
-from ._shipped import EPS, REF_DPS, Tally, orbit_ref, ratios, ship_cells, step_constant, step_outputs, step_ref, \
-    wide_states
+from ._shipped import (
+    EPS,
+    REF_DPS,
+    Tally,
+    orbit_ref,
+    range_error,
+    ratios,
+    ship_cells,
+    step_constant,
+    step_outputs,
+    step_ref,
+    wide_states,
+)
 from .base import Outcome, claim, scene
 
 scene("shipped", "what ships: every public numeric entry point and emitted form against the literal map (or "
@@ -39,11 +50,17 @@ def _mpf_state(st: tuple) -> tuple:
     return [mp.mpf(v) for v in st[0]], [mp.mpf(v) for v in st[1]], mp.mpf(st[2]), mp.mpf(st[3])
 
 
-def _run(tally: Tally, route: str, fn: Callable[[], Any]) -> Any:
+class Declined(Exception):
+    """A route's documented NumericRangeError at a wide state (see :meth:`Tally.decline`)."""
+
+
+def _run(tally: Tally, route: str, fn: Callable[[], Any], wide: bool = False) -> Any:
     """``fn()``, or ``None`` (noted once per route) if it raises: an admissible state has a real map."""
     try:
         return fn()
     except Exception as exc:  # a route that raises on an admissible state fails that sample
+        if wide and range_error(exc):
+            raise Declined(route) from exc
         note = f"{route} raised {type(exc).__name__}: {exc}"[:200]
         if not any(n.startswith(route + " raised") for n in tally.notes):
             tally.notes.append(note + ".")
@@ -84,8 +101,12 @@ def step(N: int, deep: bool = False) -> Outcome:
     for cell, st, b in _samples(N, deep):
         ref = step_ref(st, b)
         for be in _float_routes(deep):
-            out = _run(tally, be, lambda: bt_step(np.array(st[0]), np.array(st[1]), st[2], st[3], branch=b,
-                                                  backend=be))
+            try:
+                out = _run(tally, be, lambda: bt_step(np.array(st[0]), np.array(st[1]), st[2], st[3], branch=b,
+                                                      backend=be), wide=cell.get("q") == "wide")
+            except Declined:
+                tally.decline(_ROUTE_NAMES[be], cell, st, b)
+                continue
             r, allowed = ratios(step_outputs(out), ref.x, ref.S, EPS, C) if out is not None else (np.inf, 0.0)
             tally.add(_ROUTE_NAMES[be], cell, st, b, r, allowed, ref.agree)
     return tally.outcome(method=f"numeric: float64 routes vs the literal map ({REF_DPS} digits), bound 16 N eps S",
