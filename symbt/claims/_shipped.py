@@ -272,8 +272,8 @@ class Tally:
         self.add(route, cell, st, b, 0.0)
 
     def add(self, route: str, cell: dict, st: State, b: int, ratio: float, allowed: float = 0.0,
-            agree: float = 0.0) -> None:
-        if agree > 10.0 ** (5 - REF_DPS):
+            agree: float = 0.0, agree_tol: float = 10.0 ** (5 - REF_DPS)) -> None:
+        if agree > agree_tol:
             self.disagree += 1
             ratio = float("inf")
         if allowed > INFORMATIVE:
@@ -290,7 +290,7 @@ class Tally:
             text += " Declined with NumericRangeError (documented: beyond the float64 range) at wide states: " + \
                 ", ".join(f"{r} {k}x" for r, k in self.declined.items()) + "."
         if self.disagree:
-            text += f" {self.disagree} samples whose reference disagrees with itself at {REF_DPS}/{CHECK_DPS} digits."
+            text += f" {self.disagree} samples whose reference disagrees with itself at two precisions."
         out = judge_cells(self.table, printed=printed, method=method, dps=REF_DPS, detail=text)
         if out.status == "verified" and self.loose:
             return inconclusive(method, residual=out.residual, evidence="sampled", printed=printed, cells=out.cells,
