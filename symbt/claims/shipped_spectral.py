@@ -10,8 +10,9 @@ r"""What ships, 2: ``invariants``, ``spectral_trace``, ``phi``, ``flow_coefficie
   forward differences;
 * ``flow_coefficients`` -- tanh-sinh quadrature (``mpmath.quad``) of ``-b int lam^k / sqrt(tr^2 - 4)`` with the
   polynomial trace, at 30 and 42 digits; bound ``10 (rtol A_k + eps (max(|lam0|,1)|dc/dlam0| +
-  max(|mu|,1)|dc/dmu|))``, ``A_k = max(|lam_1|, |lam_2|)^k int 1/sqrt(tr^2 - 4) >= int |lam|^k/sqrt(tr^2 - 4)`` (the quadrature's documented relative
-  tolerance on the absolute integral, and the end points' conditioning); mpmath at 30 digits: ``10**-25 A_k``;
+  max(|mu|,1)|dc/dmu|))`` with ``A_k = max(|lam_1|, |lam_2|)^k int 1/sqrt(tr^2 - 4)``, which bounds
+  ``int |lam|^k / sqrt(tr^2 - 4)`` (the quadrature's documented relative tolerance on the absolute integral,
+  and the end points' conditioning); mpmath at 30 digits: ``10**-25 A_k`` (its documented ``10**(5 - dps)``);
 * ``FlowField`` -- ``(dG/dp, -dG/dq)`` of ``G = sum_k c_k H_k`` by central differences of the polynomial
   ``H_k`` at 40 digits (``c_k`` from the quadrature above); bound ``10 rtol sum_k A_k |grad H_k| + 16 N eps
   sum_k |c_k| |grad H_k|``.
