@@ -36,6 +36,7 @@ CLAIM_MODULES = (
     "shipped_step",
     "shipped_spectral",
     "shipped_emitted",
+    "shipped_flow",
 )
 
 
