@@ -55,7 +55,7 @@ from .base import Outcome, inconclusive, judge_cells
 
 __all__ = ["EPS", "REF_DPS", "CHECK_DPS", "FD_DPS", "INFORMATIVE", "step_constant", "ship_cells", "wide_states",
            "StepRef", "step_ref", "OrbitRef", "orbit_ref", "ratios", "Tally", "State", "step_outputs",
-           "literal_state", "range_error"]
+           "literal_state", "range_error", "guard_digits", "literal_orbit"]
 
 EPS = float(np.finfo(np.float64).eps)
 REF_DPS, CHECK_DPS, FD_DPS = 50, 75, 30
@@ -125,7 +125,7 @@ def _exists(st: State, b: int) -> bool:
     return all(isinstance(v, mp.mpf) for v in _ref(st, b, REF_DPS))
 
 
-def _guard(st: State) -> int:
+def guard_digits(st: State) -> int:
     """Guard digits of the literal route (as :func:`~symbt.reference.literal.reference_step` chooses them): the
     forward transport loses about ``2 log10 |tr|`` digits."""
     t1, t2 = _traces(st)
@@ -133,9 +133,9 @@ def _guard(st: State) -> int:
 
 
 def _ref(st: State, b: int, dps: int, guard: int | None = None) -> list:
-    """The literal map at ``dps`` digits plus ``guard`` (default: :func:`_guard`), rounded to ``dps``."""
+    """The literal map at ``dps`` digits plus ``guard`` (default: :func:`guard_digits`), rounded to ``dps``."""
     p, q, l0, m = st
-    g = _guard(st) if guard is None else guard
+    g = guard_digits(st) if guard is None else guard
     with mp.workdps(dps + g):
         pt, qt, _ = literal_step([mp.mpf(v) for v in p], [mp.mpf(v) for v in q], mp.mpf(l0), mp.mpf(m), b)
     with mp.workdps(dps):
@@ -172,7 +172,7 @@ class StepRef:
 def step_ref(st: State, b: int) -> StepRef:
     """The literal map at REF_DPS and CHECK_DPS, and the condition scales by forward differences."""
     N = len(st[0])
-    g = _guard(st)
+    g = guard_digits(st)
     x = _ref(st, b, REF_DPS, g)
     agree = _agreement(x, _ref(st, b, CHECK_DPS, g + 25))
     S = [abs(v) if isinstance(v, mp.mpf) else mp.inf for v in x]
@@ -199,7 +199,7 @@ class OrbitRef:
     agree: float
 
 
-def _orbit(st: State, b: int, n: int, dps: int, guard: int) -> list:
+def literal_orbit(st: State, b: int, n: int, dps: int, guard: int) -> list:
     """n literal steps at ``dps + guard`` digits (the spectrum, hence the guard, is the same at every step)."""
     p, q, l0, m = st
     out = [list(p) + list(q)]
@@ -215,22 +215,22 @@ def _orbit(st: State, b: int, n: int, dps: int, guard: int) -> list:
 def orbit_ref(st: State, b: int, n: int) -> OrbitRef:
     """The literal orbit at REF_DPS and CHECK_DPS and the scales ``max_m S^(m)`` (m = 1, n/2, n)."""
     N = len(st[0])
-    g = _guard(st)
-    xs = _orbit(st, b, n, REF_DPS, g)
-    agree = max(_agreement(a, c) for a, c in zip(xs[1:], _orbit(st, b, n, CHECK_DPS, g + 25)[1:]))
+    g = guard_digits(st)
+    xs = literal_orbit(st, b, n, REF_DPS, g)
+    agree = max(_agreement(a, c) for a, c in zip(xs[1:], literal_orbit(st, b, n, CHECK_DPS, g + 25)[1:]))
     marks = sorted({1, max(n // 2, 1), n})
     S = [max(abs(xs[k][i]) for k in marks) for i in range(2 * N)]
     if agree < 1e-30:
         with mp.workdps(FD_DPS):
             xin = [mp.mpf(v) for v in _inputs(st)]
             acc = [[mp.mpf(0)] * (2 * N) for _ in marks]
-            x0 = _orbit(st, b, n, FD_DPS, g)
+            x0 = literal_orbit(st, b, n, FD_DPS, g)
             for j, v in enumerate(xin):
                 w = max(abs(v), 1)
                 h = mp.mpf(10) ** -12 * w
                 hi = list(xin)
                 hi[j] = v + h
-                fp = _orbit(_split(hi, N), b, n, FD_DPS, g)
+                fp = literal_orbit(_split(hi, N), b, n, FD_DPS, g)
                 for r, k in enumerate(marks):
                     acc[r] = [s + w * abs(a - c) / h for s, a, c in zip(acc[r], fp[k], x0[k])]
             S = [max(S[i], *(abs(xs[k][i]) + acc[r][i] for r, k in enumerate(marks))) for i in range(2 * N)]

@@ -199,9 +199,9 @@ ISSUE_STATES = (((0.0, 0.0), (0.0, 19.0), float(np.exp(9.5)), 0.3 * float(np.exp
 def _no_map(st: tuple, b: int) -> tuple[str | None, bool]:
     """``(condition, decided)``: why no real map exists (None: it exists), and whether the literal route at
     REF_DPS and CHECK_DPS (guard digits from the traces) agrees on it."""
-    from ._shipped import _guard
+    from ._shipped import guard_digits
 
-    g = _guard(st)
+    g = guard_digits(st)
     verdicts = []
     for dps in (REF_DPS + g, CHECK_DPS + g):
         _, _, info = literal_state(st, b, dps)

@@ -27,7 +27,7 @@ import mpmath as mp
 import numpy as np
 
 from ..reference.trace import hamiltonians, trace_polynomial
-from ._shipped import CHECK_DPS, EPS, FD_DPS, REF_DPS, Tally, _guard, literal_state, ship_cells, step_constant
+from ._shipped import CHECK_DPS, EPS, FD_DPS, REF_DPS, Tally, guard_digits, literal_state, ship_cells, step_constant
 from .base import Outcome, claim
 
 MP_DPS = 30
@@ -127,7 +127,7 @@ def _phi_literal(st: tuple, b: int, dps: int, g: int):
 
 @cache
 def _phi_ref(st: tuple, b: int) -> tuple:
-    g = _guard(st)
+    g = guard_digits(st)
     ref = _phi_literal(st, b, REF_DPS, g)
     agree = float(abs(ref - _phi_literal(st, b, CHECK_DPS, g + 25)) / max(1, abs(ref)))
     S = abs(ref)
