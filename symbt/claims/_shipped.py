@@ -40,6 +40,9 @@ Cells (:func:`ship_cells`): branch ``b = +-1`` x sign of ``mu`` x sign of ``tr L
 """
 from __future__ import annotations
 
+import os
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import cache
 from typing import Any
@@ -55,7 +58,8 @@ from .base import Outcome, inconclusive, judge_cells
 
 __all__ = ["EPS", "REF_DPS", "CHECK_DPS", "FD_DPS", "INFORMATIVE", "step_constant", "ship_cells", "wide_states",
            "StepRef", "step_ref", "OrbitRef", "orbit_ref", "ratios", "Tally", "State", "step_outputs",
-           "literal_state", "range_error", "guard_digits", "literal_orbit"]
+           "literal_state", "range_error", "guard_digits", "literal_orbit",
+           "without_numba"]
 
 EPS = float(np.finfo(np.float64).eps)
 REF_DPS, CHECK_DPS, FD_DPS = 50, 75, 30
@@ -297,6 +301,22 @@ class Tally:
                                 detail=f"{self.loose} samples ill-conditioned: the bound allows a relative error "
                                        f"above {INFORMATIVE:g}. " + text)
         return out
+
+
+@contextmanager
+def without_numba() -> Iterator[None]:
+    """Run the numba-free kernels (bit-identical to the compiled ones: ``tests/test_numeric_fast.py``) inside, so a
+    claim that calls an entry point whose existence check uses ``backend="auto"`` does not load or compile numba
+    (seconds on a cold cache) in the default ``symbt verify``."""
+    old = os.environ.get("SYMBT_NO_NUMBA")
+    os.environ["SYMBT_NO_NUMBA"] = "1"
+    try:
+        yield
+    finally:
+        if old is None:
+            del os.environ["SYMBT_NO_NUMBA"]
+        else:
+            os.environ["SYMBT_NO_NUMBA"] = old
 
 
 def range_error(exc: BaseException) -> bool:

@@ -27,7 +27,18 @@ import mpmath as mp
 import numpy as np
 
 from ..reference.trace import hamiltonians, trace_polynomial
-from ._shipped import CHECK_DPS, EPS, FD_DPS, REF_DPS, Tally, guard_digits, literal_state, ship_cells, step_constant
+from ._shipped import (
+    CHECK_DPS,
+    EPS,
+    FD_DPS,
+    REF_DPS,
+    Tally,
+    guard_digits,
+    literal_state,
+    ship_cells,
+    step_constant,
+    without_numba,
+)
 from .base import Outcome, claim
 
 MP_DPS = 30
@@ -257,7 +268,8 @@ def field(N: int, deep: bool = False) -> Outcome:
 
     tally = Tally()
     for cell, st, b in ship_cells(N, 2 if deep else 1):
-        F = FlowField(np.array(st[0]), np.array(st[1]), st[2], st[3], branch=b)
+        with without_numba():   # FlowField's existence check is bt_step(backend="auto")
+            F = FlowField(np.array(st[0]), np.array(st[1]), st[2], st[3], branch=b)
         moved = (tuple(v + 0.1 for v in st[0]), tuple(v - 0.05 * j for j, v in enumerate(st[1])))
         states = [(st[0], st[1]), moved]
         both = F(np.array([s[0] for s in states]), np.array([s[1] for s in states]))
