@@ -212,6 +212,7 @@ def test_flow_routes_claim_fails_fast_on_a_sign_error_in_the_builtin_route(monke
     out = run("Hdiscr.routes.n2")
     assert out.status == "failed" and time.perf_counter() - t0 < 60
     assert {c["cell"]["route"] for c in out.cells if c["printed_holds"] < c["n"]} == {"taylor"}
+    assert all(c["printed_holds"] == 0 for c in out.cells)      # every sample of the built-in route fails
 
 
 def test_builtin_flow_route_has_a_budget(monkeypatch):
@@ -219,7 +220,7 @@ def test_builtin_flow_route_has_a_budget(monkeypatch):
 
     monkeypatch.setattr(_flow, "TAYLOR_MAX_STEPS", 1)
     with pytest.raises(_flow.FlowBudgetExceeded):
-        _flow.time_flow([0.3, -0.2], [0.1, 0.4], [0.0, 5.0], 3.0, route="taylor")
+        _flow.time_flow([3.0, -2.0], [0.0, 2.0], [1.0, 0.0], 3.0, route="taylor")   # G = H_0: a Toda flow
 
 
 def test_codegen_orbit_bound_is_two_sided(monkeypatch):
