@@ -93,7 +93,7 @@ def ship_cells(N: int, per_cell: int, seed: int = 11) -> tuple:
 def wide_states(N: int) -> tuple:
     """``(cell, state, branch)`` with q spread over ~1000 (large |q_i - q_j|) where the real map exists:
     for N = 3 the state of issue 21 (branch -1), and seeded states found by rejection (both branches)."""
-    out = []
+    out: list[tuple[dict[str, Any], State, int]] = []
     if N == 3:
         st = ((-6.670844734995089, 6.749416383837502, 9.945390979638757),
               (999.5531082492741, 351.51762457052644, 699.0759141727409), -179.0, 155.0)

@@ -207,7 +207,7 @@ def _no_map(st: tuple, b: int) -> tuple[str | None, bool]:
     from ._shipped import guard_digits
 
     g = guard_digits(st)
-    verdicts = []
+    verdicts: list[str | None] = []
     for dps in (REF_DPS + g, CHECK_DPS + g):
         _, _, info = literal_state(st, b, dps)
         t1, t2 = info["tr1"], info["tr2"]
@@ -225,7 +225,7 @@ def _no_map(st: tuple, b: int) -> tuple[str | None, bool]:
 @cache
 def nomap_states(N: int) -> tuple:
     """``(state, branch, condition)`` without a real map: issue 21's (N = 2) and seeded ones."""
-    out = [(st, 1) for st in ISSUE_STATES] if N == 2 else []
+    out: list[tuple[tuple, int]] = [(st, 1) for st in ISSUE_STATES] if N == 2 else []
     rng = np.random.default_rng(777 + N)
     want = {"opposite signs": 2, "E~ <= 0": 2 if N >= 3 else 0}
     tries = 0
@@ -319,6 +319,8 @@ def nomap(deep: bool = False) -> Outcome:
                           point=fmt_state(tuple(mp.mpf(v) if not isinstance(v, tuple) else [mp.mpf(x) for x in v]
                                                 for v in st), b))
     detail = ("; ".join(bad) + ".") if bad else "every route raised NoRealMapError (the C target: its status)."
-    return judge_cells(table, printed="no real map -> NoRealMapError on every route", method="numeric: existence "
-                       "decided by the literal route (50 and 75 digits) vs each route's answer", dps=REF_DPS,
-                       detail=detail)
+    out = judge_cells(table, printed="no real map -> NoRealMapError on every route", method="numeric: existence "
+                      "decided by the literal route (50 and 75 digits) vs each route's answer", dps=REF_DPS,
+                      detail=detail)
+    out.n_scope = [2, 3, 5]
+    return out

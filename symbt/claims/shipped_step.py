@@ -135,7 +135,7 @@ def batch(N: int, deep: bool = False) -> Outcome:
         P, Q = np.array([st[0] for _, st in rows]), np.array([st[1] for _, st in rows])
         L, M = np.array([st[2] for _, st in rows]), np.array([st[3] for _, st in rows])
         for name, fn in routes.items():
-            out = _run(tally, name, lambda fn=fn: fn(P, Q, L, M, b))
+            out = _run(tally, name, lambda fn=fn: fn(P, Q, L, M, b))  # type: ignore[misc]
             for i, (cell, st) in enumerate(rows):
                 ref = step_ref(st, b)
                 r, allowed = (ratios(list(out[0][i]) + list(out[1][i]), ref.x, ref.S, EPS, C) if out is not None
@@ -211,7 +211,7 @@ def orbit(N: int, deep: bool = False) -> Outcome:
             with mp.workdps(MP_DPS):
                 u = EPS if name.startswith(("orbit: fused", "orbit: general", "ensemble", "orbit: numba")) \
                     else 2.0 ** -mp.mp.prec
-            out = _run(tally, name, lambda fn=fn: fn(st, b, n))
+            out = _run(tally, name, lambda fn=fn: fn(st, b, n))  # type: ignore[misc]
             r, allowed = (ratios(list(out[0][n]) + list(out[1][n]), ref.xs[n], ref.S, u, C * n)
                           if out is not None else (np.inf, 0.0))
             tally.add(name, cell, st, b, r, allowed, ref.agree)
