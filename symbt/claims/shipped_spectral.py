@@ -209,7 +209,12 @@ def _c_ref(st: tuple) -> tuple:
     return c, A, agree, bound
 
 
-@claim("shipped.coefficients", equation="eqdisc", scene="shipped", sizes=(2, 3),
+@claim("shipped.coefficients", equation="eqdisc", scene="shipped", sizes=(2,), deep=True,
+       where="symbt/numeric/coefficients.py: flow_coefficients",
+       statement="symbt.numeric.flow_coefficients (float64, rtol 1e-13; mpmath 30 digits) = tanh-sinh quadrature "
+                 "of -b int_{lam0-mu}^{lam0+mu} lam^k/sqrt(tr^2-4) with the polynomial trace (30 digits, checked at "
+                 "42), within 10 (rtol A_k + eps end-point conditioning), every cell (N={N})")
+@claim("shipped.coefficients", equation="eqdisc", scene="shipped", sizes=(3,),
        where="symbt/numeric/coefficients.py: flow_coefficients",
        statement="symbt.numeric.flow_coefficients (float64, rtol 1e-13; mpmath 30 digits) = tanh-sinh quadrature "
                  "of -b int_{lam0-mu}^{lam0+mu} lam^k/sqrt(tr^2-4) with the polynomial trace (30 digits, checked at "
@@ -258,7 +263,13 @@ def _field_ref(st: tuple, b: int, x: tuple) -> tuple:
     return qdot, pdot, bound[:N], bound[N:]
 
 
-@claim("shipped.field", equation="eqdisc", scene="shipped", sizes=(2, 3), where="symbt/numeric/field.py: FlowField",
+@claim("shipped.field", equation="eqdisc", scene="shipped", sizes=(2,), deep=True,
+       where="symbt/numeric/field.py: FlowField",
+       statement="symbt.numeric.FlowField (built at (p0, q0), evaluated there and at a displaced state, one state "
+                 "and a batch) = (dG/dp, -dG/dq), G = sum_k c_k H_k, by central differences of the polynomial H_k "
+                 "(40 digits) and quadrature c_k, within 10 rtol sum_k A_k|grad H_k| + 16 N eps sum_k |c_k grad H_k|, "
+                 "every cell (N={N})")
+@claim("shipped.field", equation="eqdisc", scene="shipped", sizes=(3,), where="symbt/numeric/field.py: FlowField",
        statement="symbt.numeric.FlowField (built at (p0, q0), evaluated there and at a displaced state, one state "
                  "and a batch) = (dG/dp, -dG/dq), G = sum_k c_k H_k, by central differences of the polynomial H_k "
                  "(40 digits) and quadrature c_k, within 10 rtol sum_k A_k|grad H_k| + 16 N eps sum_k |c_k grad H_k|, "

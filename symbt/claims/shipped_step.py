@@ -195,7 +195,12 @@ def _orbit_routes(deep: bool) -> dict[str, Callable[..., Any]]:
     return routes
 
 
-@claim("shipped.orbit", equation="bt_orbit", source_equation="imptransf", scene="shipped", sizes=(2, 3),
+@claim("shipped.orbit", equation="bt_orbit", source_equation="imptransf", scene="shipped", sizes=(2,), deep=True,
+       where="symbt/numeric/orbit.py, ensemble.py, kernels.py, kernels_block.py, mpfast.py: bt_orbit",
+       statement="symbt.numeric.bt_orbit (one state, ensemble, mpmath/Arb; numba and quad-double under --deep) "
+                 "after n = 10 steps (40 under --deep) = the literal orbit (50 digits) within 16 N u n "
+                 "max_m S^(m)_i (the bound grows with n as the orbit's conditioning), every cell (N={N})")
+@claim("shipped.orbit", equation="bt_orbit", source_equation="imptransf", scene="shipped", sizes=(3,),
        where="symbt/numeric/orbit.py, ensemble.py, kernels.py, kernels_block.py, mpfast.py: bt_orbit",
        statement="symbt.numeric.bt_orbit (one state, ensemble, mpmath/Arb; numba and quad-double under --deep) "
                  "after n = 10 steps (40 under --deep) = the literal orbit (50 digits) within 16 N u n "
@@ -219,7 +224,12 @@ def orbit(N: int, deep: bool = False) -> Outcome:
                          printed=f"|orbit_n - literal_n| <= {C} u n max_m S^(m)_i")
 
 
-@claim("shipped.certified", equation="bt_orbit", source_equation="imptransf", scene="shipped", sizes=(2, 3),
+@claim("shipped.certified", equation="bt_orbit", source_equation="imptransf", scene="shipped", sizes=(2,), deep=True,
+       requires=("flint",), where="symbt/numeric/certified.py: certified_orbit, bt_orbit(certified=True)",
+       statement="bt_orbit(certified=True) at 30 digits, n = 10 steps: every enclosure [mid - rad, mid + rad] "
+                 "contains the literal orbit (50 digits), and is informative (rad <= 1e-20 of the state's size), "
+                 "every cell (N={N})")
+@claim("shipped.certified", equation="bt_orbit", source_equation="imptransf", scene="shipped", sizes=(3,),
        requires=("flint",), where="symbt/numeric/certified.py: certified_orbit, bt_orbit(certified=True)",
        statement="bt_orbit(certified=True) at 30 digits, n = 10 steps: every enclosure [mid - rad, mid + rad] "
                  "contains the literal orbit (50 digits), and is informative (rad <= 1e-20 of the state's size), "
