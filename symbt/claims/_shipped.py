@@ -54,12 +54,12 @@ from ..proof.cells import CellTable
 from ..reference.literal import literal_step, literal_trace
 from ..reference.samples import admissible_states
 from ._common import fmt_state
-from .base import Outcome, inconclusive, judge_cells
+from .base import Outcome, Parts, inconclusive, judge_cells
 
 __all__ = ["EPS", "REF_DPS", "CHECK_DPS", "FD_DPS", "INFORMATIVE", "step_constant", "ship_cells", "wide_states",
            "StepRef", "step_ref", "OrbitRef", "orbit_ref", "ratios", "Tally", "State", "step_outputs",
            "literal_state", "range_error", "guard_digits", "literal_orbit",
-           "without_numba"]
+           "without_numba", "scale_parts", "scaled"]
 
 EPS = float(np.finfo(np.float64).eps)
 REF_DPS, CHECK_DPS, FD_DPS = 50, 75, 30
@@ -317,6 +317,21 @@ def without_numba() -> Iterator[None]:
             del os.environ["SYMBT_NO_NUMBA"]
         else:
             os.environ["SYMBT_NO_NUMBA"] = old
+
+
+def scale_parts(N: int | None = None) -> Parts:
+    """The statement parts of a claim about what ships: ``route output x scale = reference``, ``scale = 1``
+    (``symbt mutate`` negates it and perturbs it by 1e-6: the claim must fail on both)."""
+    return Parts(printed={"scale": 1.0})
+
+
+def scaled(values: Any, s: float) -> list:
+    """``values`` (numbers, arrays or mpf) times ``s``; mpf at their own precision, not rounded to 53 bits."""
+    out = list(values)
+    if s == 1.0:
+        return out
+    with mp.workdps(CHECK_DPS + 30):
+        return [v * mp.mpf(s) if isinstance(v, mp.mpf) else v * s for v in out]
 
 
 def range_error(exc: BaseException) -> bool:

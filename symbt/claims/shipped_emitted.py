@@ -44,13 +44,15 @@ from ._shipped import (
     literal_state,
     range_error,
     ratios,
+    scale_parts,
+    scaled,
     ship_cells,
     step_constant,
     step_outputs,
     step_ref,
     wide_states,
 )
-from .base import Outcome, claim, judge_cells, skipped
+from .base import Outcome, Parts, claim, judge_cells, skipped
 
 MP_DPS = 30
 C_OK, C_NO_MAP, C_RANGE = 0, (1, 2), 3
@@ -114,7 +116,7 @@ def c_step(N: int) -> Callable[..., tuple[int, list, list]]:
     return call
 
 
-def _check_emitted(N: int, routes: dict[str, Callable[..., Any]], deep: bool, what: str) -> Outcome:
+def _check_emitted(N: int, routes: dict[str, Callable[..., Any]], deep: bool, what: str, scale: float) -> Outcome:
     tally, C = Tally(), step_constant(N)
     for cell, st, b in ship_cells(N, 2 if deep else 1) + wide_states(N):
         ref = step_ref(st, b)
@@ -129,7 +131,8 @@ def _check_emitted(N: int, routes: dict[str, Callable[..., Any]], deep: bool, wh
                 if not any(n.startswith(name) for n in tally.notes):
                     tally.notes.append(f"{name} raised {type(exc).__name__}: {str(exc)[:120]}.")
                 out = None
-            r, allowed = ratios(step_outputs(out), ref.x, ref.S, u, C) if out is not None else (np.inf, 0.0)
+            r, allowed = (ratios(scaled(step_outputs(out), scale), ref.x, ref.S, u, C) if out is not None
+                          else (np.inf, 0.0))
             tally.add(name, cell, st, b, r, allowed, ref.agree)
     return tally.outcome(method=f"numeric: {what} vs the literal map ({REF_DPS} digits), bound 16 N u S_i",
                          printed=f"|{what} - literal| <= {C} u S_i")
@@ -146,41 +149,47 @@ def _py_routes(mod: Any) -> dict[str, Callable[..., Any]]:
     return {f"toda{mod.N} (float64)": f64, f"toda{mod.N} (mpmath)": mpr}
 
 
-@claim("shipped.emitted", equation="toda{N}.bt_step", source_equation="imptransf", scene="shipped", sizes=(2, 3),
+@claim("shipped.emitted", equation="toda{N}.bt_step", source_equation="imptransf", scene="shipped",
+       parts=scale_parts, sizes=(2, 3),
        where="symbt/generated/toda{N}.py: bt_step, bt_step_mp (closed form)",
        statement="the shipped closed form toda{N}.bt_step (float64) and bt_step_mp (30 digits) = the literal map "
                  "(50 digits) within 16 N u S_i, every branch x sign(mu) x sign(tr) cell and at q spread over "
                  "~1000 (N={N})")
-def emitted(N: int, deep: bool = False) -> Outcome:
+def emitted(N: int, parts: Parts, deep: bool = False) -> Outcome:
     mod = importlib.import_module(f"symbt.generated.toda{N}")
-    return _check_emitted(N, _py_routes(mod), deep, f"symbt.generated.toda{N}.bt_step")
+    return _check_emitted(N, _py_routes(mod), deep, f"symbt.generated.toda{N}.bt_step", parts.printed["scale"])
 
 
-@claim("shipped.loop", equation="toda{N}.bt_step", source_equation="imptransf", scene="shipped", sizes=(4, 8),
+@claim("shipped.loop", equation="toda{N}.bt_step", source_equation="imptransf", scene="shipped",
+       parts=scale_parts, sizes=(4, 8),
        deep=True, where="symbt codegen --n {N}: toda{N}.py (loop form)",
        statement="the loop form emitted by symbt codegen for N={N} (bt_step, bt_step_mp) = the literal map within "
                  "16 N u S_i, every cell and at q spread over ~1000")
-@claim("shipped.loop", equation="toda{N}.bt_step", source_equation="imptransf", scene="shipped", sizes=(5,),
+@claim("shipped.loop", equation="toda{N}.bt_step", source_equation="imptransf", scene="shipped",
+       parts=scale_parts, sizes=(5,),
        where="symbt codegen --n {N}: toda{N}.py (loop form)",
        statement="the loop form emitted by symbt codegen for N={N} (rendered into a temporary directory and "
                  "imported: bt_step float64, bt_step_mp 30 digits) = the literal map (50 digits) within 16 N u S_i, "
                  "every branch x sign(mu) x sign(tr) cell and at q spread over ~1000")
-def loop(N: int, deep: bool = False) -> Outcome:
+def loop(N: int, parts: Parts, deep: bool = False) -> Outcome:
     mod = emitted_module(N)
-    return _check_emitted(N, _py_routes(mod), deep, f"emitted toda{N}.bt_step ({mod.FORM} form)")
+    return _check_emitted(N, _py_routes(mod), deep, f"emitted toda{N}.bt_step ({mod.FORM} form)",
+                          parts.printed["scale"])
 
 
-@claim("shipped.c", equation="toda{N}_bt_step", source_equation="imptransf", scene="shipped", sizes=(2,), deep=True,
+@claim("shipped.c", equation="toda{N}_bt_step", source_equation="imptransf", scene="shipped",
+       parts=scale_parts, sizes=(2,), deep=True,
        where="symbt codegen --target c --n {N}: toda{N}.c",
        statement="the C99 target of symbt codegen for N={N}, compiled with the system C compiler, = the literal "
                  "map (50 digits) within 16 N eps S_i, every cell and at q spread over ~1000 (skipped without a "
                  "C compiler)")
-@claim("shipped.c", equation="toda{N}_bt_step", source_equation="imptransf", scene="shipped", sizes=(3, 5),
+@claim("shipped.c", equation="toda{N}_bt_step", source_equation="imptransf", scene="shipped",
+       parts=scale_parts, sizes=(3, 5),
        where="symbt codegen --target c --n {N}: toda{N}.c",
        statement="the C99 target of symbt codegen for N={N}, compiled with the system C compiler, = the literal "
                  "map (50 digits) within 16 N eps S_i, every cell and at q spread over ~1000 (skipped without a "
                  "C compiler)")
-def c_target(N: int, deep: bool = False) -> Outcome:
+def c_target(N: int, parts: Parts, deep: bool = False) -> Outcome:
     if c_compiler() is None:
         return skipped("no C compiler (cc, gcc or clang) on PATH")
     call = c_step(N)
@@ -192,7 +201,7 @@ def c_target(N: int, deep: bool = False) -> Outcome:
         if rc != C_OK:
             raise RuntimeError(f"status {rc}")
         return pt, qt
-    return _check_emitted(N, {f"toda{N}.c": run}, deep, f"C toda{N}_bt_step")
+    return _check_emitted(N, {f"toda{N}.c": run}, deep, f"C toda{N}_bt_step", parts.printed["scale"])
 
 
 # --------------------------------------------------------------------------- existence
@@ -284,14 +293,18 @@ def _nomap_routes(N: int, deep: bool) -> dict[str, Callable[..., Any]]:
     return routes
 
 
-@claim("shipped.nomap", equation="imptransf", scene="shipped",
+def _nomap_parts() -> Parts:
+    return Parts(printed={"error": "NoRealMapError"})
+
+
+@claim("shipped.nomap", equation="imptransf", scene="shipped", parts=_nomap_parts,
        where="symbt.numeric (every backend), symbt.generated.toda2/3, the loop form (N = 5), the C target",
        statement="where the exact map does not exist (tr L(lambda_1), tr L(lambda_2) of opposite signs, or some "
                  "E~_j <= 0; decided by the literal route at 50 and 75 digits), every route raises NoRealMapError "
                  "(the C target returns SYMBT_TODA_NO_REAL_MAP_*): float64 bt_step (fused kernel, general path, "
                  "batch; numba and auto under --deep), bt_orbit (one state, ensemble), mpmath and Arb, the emitted "
                  "modules (N = 2, 3, 5) and the C target (N = 5; N = 2, 3 under --deep)")
-def nomap(deep: bool = False) -> Outcome:
+def nomap(parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import NoRealMapError
 
     table = CellTable(tol=0.5)
@@ -309,7 +322,7 @@ def nomap(deep: bool = False) -> Outcome:
                         fn(st, b)
                         res, why = 1.0, "returned a finite state"
                     except (NoRealMapError, ValueError) as exc:
-                        ok = type(exc).__name__ == "NoRealMapError"
+                        ok = type(exc).__name__ == parts.printed["error"]
                         res, why = (0.0, "") if ok else (1.0, f"raised {type(exc).__name__}")
                     except Exception as exc:
                         res, why = 1.0, f"raised {type(exc).__name__}"

@@ -35,11 +35,13 @@ from ._shipped import (
     Tally,
     guard_digits,
     literal_state,
+    scale_parts,
+    scaled,
     ship_cells,
     step_constant,
     without_numba,
 )
-from .base import Outcome, claim
+from .base import Outcome, Parts, claim
 
 MP_DPS = 30
 RTOL = 1e-13       # flow_coefficients' and FlowField's default rtol
@@ -95,12 +97,13 @@ def _invariant_ref(p: tuple, q: tuple) -> tuple:
     return tuple(H[:N]), agree, tuple(S[:N]), tuple(terms)
 
 
-@claim("shipped.invariants", equation="tra", scene="shipped", sizes=(2, 3, 5),
+@claim("shipped.invariants", equation="tra", scene="shipped",
+       parts=scale_parts, sizes=(2, 3, 5),
        where="symbt/numeric/lax.py: invariants, spectral_trace",
        statement="symbt.numeric.invariants (float64 one state and batch, mpmath 30 digits) and spectral_trace at "
                  "lambda0 +- mu = the polynomial trace (closed-walk expansion, 50 digits) within 16 N u S, every "
                  "cell (N={N})")
-def invariants(N: int, deep: bool = False) -> Outcome:
+def invariants(N: int, parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import invariants as inv
     from ..numeric import spectral_trace
 
@@ -114,7 +117,7 @@ def invariants(N: int, deep: bool = False) -> Outcome:
             u_mp = 2.0 ** -mp.mp.prec
         for name, vals, u in (("invariants (float64)", inv(np.array(st[0]), np.array(st[1])), EPS),
                               ("invariants (batch)", batch[i], EPS), ("invariants (mpmath)", hm, u_mp)):
-            r = max(_ratio(v, h, C * u * s) for v, h, s in zip(vals, H, S))
+            r = max(_ratio(v, h, C * u * s) for v, h, s in zip(scaled(vals, parts.printed["scale"]), H, S))
             tally.add(name, cell, st, b, r, 0.0, agree)
         for lam in (st[2] + st[3], st[2] - st[3]):
             with mp.workdps(REF_DPS):
@@ -123,7 +126,8 @@ def invariants(N: int, deep: bool = False) -> Outcome:
                 Hx = list(H) + [mp.mpf(1)]
                 S_tr = sum(s * abs(L) ** k for k, s in enumerate(list(S) + [mp.mpf(1)]))
                 S_tr += max(abs(L), 1) * abs(sum(k * h * L ** (k - 1) for k, h in enumerate(Hx) if k))
-            r = _ratio(spectral_trace(lam, np.array(st[0]), np.array(st[1])), tr, C * EPS * S_tr)
+            v = scaled([float(spectral_trace(lam, np.array(st[0]), np.array(st[1])))], parts.printed["scale"])[0]
+            r = _ratio(v, tr, C * EPS * S_tr)
             tally.add("spectral_trace", cell, st, b, r, 0.0, agree)
     return tally.outcome(method=f"numeric: vs the polynomial trace ({REF_DPS} digits), bound 16 N u S",
                          printed=f"|invariants - polynomial| <= {C} u S_k; |spectral_trace - polynomial| <= {C} eps S")
@@ -155,11 +159,12 @@ def _phi_ref(st: tuple, b: int) -> tuple:
     return ref, agree, S
 
 
-@claim("shipped.phi", equation="newkmu", scene="shipped", sizes=(2, 3, 5), where="symbt/numeric/phi.py: phi",
+@claim("shipped.phi", equation="newkmu", scene="shipped",
+       parts=scale_parts, sizes=(2, 3, 5), where="symbt/numeric/phi.py: phi",
        statement="symbt.numeric.phi (float64 one state and batch, mpmath 30 digits) = the literal Phi = sum_k "
                  "ln|(eta_k + mu)/(eta_k - mu)|, eta_k of the literal map (50 digits), within 16 N u S, every "
                  "branch x sign(mu) x sign(tr) cell (N={N})")
-def phi(N: int, deep: bool = False) -> Outcome:
+def phi(N: int, parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import phi as phi_num
 
     tally, C = Tally(), step_constant(N)
@@ -176,6 +181,7 @@ def phi(N: int, deep: bool = False) -> Outcome:
                 u_mp = 2.0 ** -mp.mp.prec
             for name, v, u in (("phi (float64)", phi_num(np.array(st[0]), np.array(st[1]), st[2], st[3], branch=b),
                                 EPS), ("phi (batch)", batch[i], EPS), ("phi (mpmath)", pm, u_mp)):
+                v = scaled([v if isinstance(v, mp.mpf) else float(v)], parts.printed["scale"])[0]
                 tally.add(name, cell, st, b, _ratio(v, ref, C * u * S), float(C * u * S / max(1, abs(ref))), agree)
     return tally.outcome(method=f"numeric: vs sum ln|(eta+mu)/(eta-mu)| of the literal map ({REF_DPS} digits)",
                          printed=f"|phi - literal Phi| <= {C} u S")
@@ -209,17 +215,19 @@ def _c_ref(st: tuple) -> tuple:
     return c, A, agree, bound
 
 
-@claim("shipped.coefficients", equation="eqdisc", scene="shipped", sizes=(2,), deep=True,
+@claim("shipped.coefficients", equation="eqdisc", scene="shipped",
+       parts=scale_parts, sizes=(2,), deep=True,
        where="symbt/numeric/coefficients.py: flow_coefficients",
        statement="symbt.numeric.flow_coefficients (float64, rtol 1e-13; mpmath 30 digits) = tanh-sinh quadrature "
                  "of -b int_{lam0-mu}^{lam0+mu} lam^k/sqrt(tr^2-4) with the polynomial trace (30 digits, checked at "
                  "42), within 10 (rtol A_k + eps end-point conditioning), every cell (N={N})")
-@claim("shipped.coefficients", equation="eqdisc", scene="shipped", sizes=(3,),
+@claim("shipped.coefficients", equation="eqdisc", scene="shipped",
+       parts=scale_parts, sizes=(3,),
        where="symbt/numeric/coefficients.py: flow_coefficients",
        statement="symbt.numeric.flow_coefficients (float64, rtol 1e-13; mpmath 30 digits) = tanh-sinh quadrature "
                  "of -b int_{lam0-mu}^{lam0+mu} lam^k/sqrt(tr^2-4) with the polynomial trace (30 digits, checked at "
                  "42), within 10 (rtol A_k + eps end-point conditioning), every cell (N={N})")
-def coefficients(N: int, deep: bool = False) -> Outcome:
+def coefficients(N: int, parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import flow_coefficients
 
     tally = Tally()
@@ -230,12 +238,13 @@ def coefficients(N: int, deep: bool = False) -> Outcome:
         f = flow_coefficients(np.array(st[0]), np.array(st[1]), st[2], st[3], branch=b, check=False)
         with mp.workdps(QUAD_DPS):   # b * c at the reference's precision, not rounded to 53 bits
             ref = [b * x for x in c]
-        r = max(_ratio(v, x, bd) for v, x, bd in zip(f, ref, bound))
+        r = max(_ratio(v, x, bd) for v, x, bd in zip(scaled(f, parts.printed["scale"]), ref, bound))
         tally.add("flow_coefficients (float64)", cell, st, b, r, 0.0, agree, agree_tol=1e-27)
         with mp.workdps(MP_DPS):
             fm = flow_coefficients([mp.mpf(v) for v in st[0]], [mp.mpf(v) for v in st[1]], mp.mpf(st[2]),
                                    mp.mpf(st[3]), branch=b, check=False)
-        r = max(_ratio(v, x, QUAD_C * mp.mpf(10) ** (5 - MP_DPS) * a) for v, x, a in zip(fm, ref, A))
+        r = max(_ratio(v, x, QUAD_C * mp.mpf(10) ** (5 - MP_DPS) * a)
+                for v, x, a in zip(scaled(fm, parts.printed["scale"]), ref, A))
         tally.add("flow_coefficients (mpmath)", cell, st, b, r, 0.0, agree, agree_tol=1e-27)
     return tally.outcome(method="numeric: vs mpmath.quad of the eqdisc integral with the polynomial trace",
                          printed="|c_k - quadrature| <= 10 (rtol A_k + eps end-point conditioning)")
@@ -263,18 +272,20 @@ def _field_ref(st: tuple, b: int, x: tuple) -> tuple:
     return qdot, pdot, bound[:N], bound[N:]
 
 
-@claim("shipped.field", equation="eqdisc", scene="shipped", sizes=(2,), deep=True,
+@claim("shipped.field", equation="eqdisc", scene="shipped",
+       parts=scale_parts, sizes=(2,), deep=True,
        where="symbt/numeric/field.py: FlowField",
        statement="symbt.numeric.FlowField (built at (p0, q0), evaluated there and at a displaced state, one state "
                  "and a batch) = (dG/dp, -dG/dq), G = sum_k c_k H_k, by central differences of the polynomial H_k "
                  "(40 digits) and quadrature c_k, within 10 rtol sum_k A_k|grad H_k| + 16 N eps sum_k |c_k grad H_k|, "
                  "every cell (N={N})")
-@claim("shipped.field", equation="eqdisc", scene="shipped", sizes=(3,), where="symbt/numeric/field.py: FlowField",
+@claim("shipped.field", equation="eqdisc", scene="shipped",
+       parts=scale_parts, sizes=(3,), where="symbt/numeric/field.py: FlowField",
        statement="symbt.numeric.FlowField (built at (p0, q0), evaluated there and at a displaced state, one state "
                  "and a batch) = (dG/dp, -dG/dq), G = sum_k c_k H_k, by central differences of the polynomial H_k "
                  "(40 digits) and quadrature c_k, within 10 rtol sum_k A_k|grad H_k| + 16 N eps sum_k |c_k grad H_k|, "
                  "every cell (N={N})")
-def field(N: int, deep: bool = False) -> Outcome:
+def field(N: int, parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import FlowField
 
     tally = Tally()
@@ -288,7 +299,8 @@ def field(N: int, deep: bool = False) -> Outcome:
             qd, pd, bq, bp = _field_ref(st, b, x)
             one = F(np.array(x[0]), np.array(x[1]))
             for label, out in ((name, one), (name + " (batch)", (both[0][i], both[1][i]))):
-                r = max(_ratio(v, ref, bd) for v, ref, bd in zip(list(out[0]) + list(out[1]), qd + pd, bq + bp))
+                vals = scaled(list(out[0]) + list(out[1]), parts.printed["scale"])
+                r = max(_ratio(v, ref, bd) for v, ref, bd in zip(vals, qd + pd, bq + bp))
                 tally.add(label, cell, st, b, r)
     return tally.outcome(method="numeric: vs central differences of sum_k c_k H_k (polynomial trace, 40 digits)",
                          printed="|FlowField - (dG/dp, -dG/dq)| <= 10 rtol sum A|grad H| + 16 N eps sum |c grad H|")

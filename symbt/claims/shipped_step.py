@@ -27,13 +27,15 @@ from ._shipped import (
     orbit_ref,
     range_error,
     ratios,
+    scale_parts,
+    scaled,
     ship_cells,
     step_constant,
     step_outputs,
     step_ref,
     wide_states,
 )
-from .base import Outcome, claim, scene
+from .base import Outcome, Parts, claim, scene
 
 scene("shipped", "what ships: every public numeric entry point and emitted form against the literal map (or "
                  "another independent route), with two-sided bounds from the conditioning (issue 21)")
@@ -85,16 +87,16 @@ _ROUTE_NAMES = {"python": "fused kernel", "numpy": "general path", "numba": "fus
 
 
 @claim("shipped.step", equation="bt_step", source_equation="imptransf", scene="shipped", sizes=(8,), deep=True,
-       where="symbt/numeric/step.py: bt_step (float64 one state)",
+       parts=scale_parts, where="symbt/numeric/step.py: bt_step (float64 one state)",
        statement="symbt.numeric.bt_step, one float64 state, on every route, = the literal map (50 digits) within "
                  "16 N eps S_i per component, in every branch x sign(mu) x sign(tr) cell (N={N})")
 @claim("shipped.step", equation="bt_step", source_equation="imptransf", scene="shipped", sizes=(2, 3, 5),
-       where="symbt/numeric/step.py: bt_step (float64 one state)",
+       parts=scale_parts, where="symbt/numeric/step.py: bt_step (float64 one state)",
        statement="symbt.numeric.bt_step, one float64 state, on every route (fused kernel, general path; numba "
                  "and auto under --deep), = the literal map (50 digits) within 16 N eps S_i per component "
                  "(S_i: condition scale), in every branch x sign(mu) x sign(tr) cell and at q spread over ~1000 "
                  "(N={N})")
-def step(N: int, deep: bool = False) -> Outcome:
+def step(N: int, parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import bt_step
 
     tally, C = Tally(), step_constant(N)
@@ -107,18 +109,20 @@ def step(N: int, deep: bool = False) -> Outcome:
             except Declined:
                 tally.decline(_ROUTE_NAMES[be], cell, st, b)
                 continue
-            r, allowed = ratios(step_outputs(out), ref.x, ref.S, EPS, C) if out is not None else (np.inf, 0.0)
+            r, allowed = (ratios(scaled(step_outputs(out), parts.printed["scale"]), ref.x, ref.S, EPS, C)
+                          if out is not None else (np.inf, 0.0))
             tally.add(_ROUTE_NAMES[be], cell, st, b, r, allowed, ref.agree)
     return tally.outcome(method=f"numeric: float64 routes vs the literal map ({REF_DPS} digits), bound 16 N eps S",
                          printed=f"|bt_step - literal| <= {C} eps S_i")
 
 
 @claim("shipped.batch", equation="bt_step", source_equation="imptransf", scene="shipped", sizes=(2, 3, 5),
+       parts=scale_parts,
        where="symbt/numeric/step.py, rows.py, kernels_block.py: bt_step on (M, N) batches, bt_orbit ensembles",
        statement="symbt.numeric.bt_step on an (M, N) batch with per-state lambda0, mu (numpy rows; the numba "
                  "block kernel under --deep) and the block kernel of an ensemble bt_orbit (one step, plain "
                  "Python) = the literal map (50 digits) member by member within 16 N eps S_i, every cell (N={N})")
-def batch(N: int, deep: bool = False) -> Outcome:
+def batch(N: int, parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import bt_orbit, bt_step
 
     tally, C = Tally(), step_constant(N)
@@ -138,18 +142,19 @@ def batch(N: int, deep: bool = False) -> Outcome:
             out = _run(tally, name, lambda fn=fn: fn(P, Q, L, M, b))  # type: ignore[misc]
             for i, (cell, st) in enumerate(rows):
                 ref = step_ref(st, b)
-                r, allowed = (ratios(list(out[0][i]) + list(out[1][i]), ref.x, ref.S, EPS, C) if out is not None
-                              else (np.inf, 0.0))
+                r, allowed = (ratios(scaled(list(out[0][i]) + list(out[1][i]), parts.printed["scale"]), ref.x,
+                                     ref.S, EPS, C) if out is not None else (np.inf, 0.0))
                 tally.add(name, cell, st, b, r, allowed, ref.agree)
     return tally.outcome(method=f"numeric: float64 batches vs the literal map ({REF_DPS} digits), member by member",
                          printed=f"|batch member - literal| <= {C} eps S_i")
 
 
 @claim("shipped.mp", equation="bt_step", source_equation="imptransf", scene="shipped", sizes=(2, 3, 5),
+       parts=scale_parts,
        where="symbt/numeric/step.py, mpfast.py, qd.py: bt_step on mpmath numbers",
        statement="symbt.numeric.bt_step on mpmath numbers at 30 digits (backends mpmath, Arb; quad-double under "
                  "--deep) = the literal map (50 digits) within 16 N 2^-prec S_i, every cell (N={N})")
-def mp_step(N: int, deep: bool = False) -> Outcome:
+def mp_step(N: int, parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import bt_step
 
     tally, C = Tally(), step_constant(N)
@@ -161,7 +166,8 @@ def mp_step(N: int, deep: bool = False) -> Outcome:
             with mp.workdps(MP_DPS):
                 u = 2.0 ** -mp.mp.prec
                 out = _run(tally, be, lambda: bt_step(*_mpf_state(st), branch=b, backend=be))
-            r, allowed = ratios(step_outputs(out), ref.x, ref.S, u, C) if out is not None else (np.inf, 0.0)
+            r, allowed = (ratios(scaled(step_outputs(out), parts.printed["scale"]), ref.x, ref.S, u, C)
+                          if out is not None else (np.inf, 0.0))
             tally.add(_ROUTE_NAMES[be], cell, st, b, r, allowed, ref.agree)
     return tally.outcome(method=f"numeric: mpmath routes ({MP_DPS} digits) vs the literal map ({REF_DPS} digits)",
                          printed=f"|bt_step(mpf) - literal| <= {C} 2^-prec S_i")
@@ -196,16 +202,18 @@ def _orbit_routes(deep: bool) -> dict[str, Callable[..., Any]]:
 
 
 @claim("shipped.orbit", equation="bt_orbit", source_equation="imptransf", scene="shipped", sizes=(2,), deep=True,
+       parts=scale_parts,
        where="symbt/numeric/orbit.py, ensemble.py, kernels.py, kernels_block.py, mpfast.py: bt_orbit",
        statement="symbt.numeric.bt_orbit (one state, ensemble, mpmath/Arb; numba and quad-double under --deep) "
                  "after n = 10 steps (40 under --deep) = the literal orbit (50 digits) within 16 N u n "
                  "max_m S^(m)_i (the bound grows with n as the orbit's conditioning), every cell (N={N})")
 @claim("shipped.orbit", equation="bt_orbit", source_equation="imptransf", scene="shipped", sizes=(3,),
+       parts=scale_parts,
        where="symbt/numeric/orbit.py, ensemble.py, kernels.py, kernels_block.py, mpfast.py: bt_orbit",
        statement="symbt.numeric.bt_orbit (one state, ensemble, mpmath/Arb; numba and quad-double under --deep) "
                  "after n = 10 steps (40 under --deep) = the literal orbit (50 digits) within 16 N u n "
                  "max_m S^(m)_i (the bound grows with n as the orbit's conditioning), every cell (N={N})")
-def orbit(N: int, deep: bool = False) -> Outcome:
+def orbit(N: int, parts: Parts, deep: bool = False) -> Outcome:
     tally, C = Tally(), step_constant(N)
     n = DEEP_ORBIT_STEPS if deep else ORBIT_STEPS
     if not _has("flint"):
@@ -217,7 +225,8 @@ def orbit(N: int, deep: bool = False) -> Outcome:
                 u = EPS if name.startswith(("orbit: fused", "orbit: general", "ensemble", "orbit: numba")) \
                     else 2.0 ** -mp.mp.prec
             out = _run(tally, name, lambda fn=fn: fn(st, b, n))  # type: ignore[misc]
-            r, allowed = (ratios(list(out[0][n]) + list(out[1][n]), ref.xs[n], ref.S, u, C * n)
+            r, allowed = (ratios(scaled(list(out[0][n]) + list(out[1][n]), parts.printed["scale"]), ref.xs[n], ref.S,
+                                 u, C * n)
                           if out is not None else (np.inf, 0.0))
             tally.add(name, cell, st, b, r, allowed, ref.agree)
     return tally.outcome(method=f"numeric: {n}-step orbits vs the literal orbit ({REF_DPS} digits), bound 16 N u n S",
@@ -225,16 +234,18 @@ def orbit(N: int, deep: bool = False) -> Outcome:
 
 
 @claim("shipped.certified", equation="bt_orbit", source_equation="imptransf", scene="shipped", sizes=(2,), deep=True,
+       parts=scale_parts,
        requires=("flint",), where="symbt/numeric/certified.py: certified_orbit, bt_orbit(certified=True)",
        statement="bt_orbit(certified=True) at 30 digits, n = 10 steps: every enclosure [mid - rad, mid + rad] "
                  "contains the literal orbit (50 digits), and is informative (rad <= 1e-20 of the state's size), "
                  "every cell (N={N})")
 @claim("shipped.certified", equation="bt_orbit", source_equation="imptransf", scene="shipped", sizes=(3,),
+       parts=scale_parts,
        requires=("flint",), where="symbt/numeric/certified.py: certified_orbit, bt_orbit(certified=True)",
        statement="bt_orbit(certified=True) at 30 digits, n = 10 steps: every enclosure [mid - rad, mid + rad] "
                  "contains the literal orbit (50 digits), and is informative (rad <= 1e-20 of the state's size), "
                  "every cell (N={N})")
-def certified(N: int, deep: bool = False) -> Outcome:
+def certified(N: int, parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import bt_orbit
 
     tally = Tally()
@@ -251,7 +262,8 @@ def certified(N: int, deep: bool = False) -> Outcome:
         P, Q, Pr, Qr = out
         scale = max(max(abs(v) for v in ref.xs[n]), 1)
         ratio = 0.0
-        for mid, rad, r in zip(list(P[-1]) + list(Q[-1]), list(Pr[-1]) + list(Qr[-1]), ref.xs[n]):
+        mids = scaled(list(P[-1]) + list(Q[-1]), parts.printed["scale"])
+        for mid, rad, r in zip(mids, list(Pr[-1]) + list(Qr[-1]), ref.xs[n]):
             # contained: |mid - exact| <= rad; the 50-digit reference is exact to 1e-45 of the scale
             ratio = max(ratio, float(abs(mid - r) / (rad + scale * mp.mpf(10) ** -45)))
             worst_rad = max(worst_rad, float(rad / scale))
