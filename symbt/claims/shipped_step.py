@@ -165,7 +165,12 @@ def mp_step(N: int, parts: Parts, deep: bool = False) -> Outcome:
         for be in _mp_routes(deep):
             with mp.workdps(MP_DPS):
                 u = 2.0 ** -mp.mp.prec
-                out = _run(tally, be, lambda: bt_step(*_mpf_state(st), branch=b, backend=be))
+                try:
+                    out = _run(tally, be, lambda: bt_step(*_mpf_state(st), branch=b, backend=be),
+                               wide=cell.get("q") == "wide")
+                except Declined:   # quad-double: neighbour distances beyond 300 (documented)
+                    tally.decline(_ROUTE_NAMES[be], cell, st, b)
+                    continue
             r, allowed = (ratios(scaled(step_outputs(out), parts.printed["scale"]), ref.x, ref.S, u, C)
                           if out is not None else (np.inf, 0.0))
             tally.add(_ROUTE_NAMES[be], cell, st, b, r, allowed, ref.agree)
