@@ -291,7 +291,7 @@ class Tally:
         routes = "; ".join(f"{r}: {v:.3g}" for r, v in self.per_route.items())
         text = (f"worst error/bound per route: {routes}. " + " ".join(self.notes) + " " + detail).strip()
         if self.declined:
-            text += " Declined with NumericRangeError (documented: beyond the float64 range) at wide states: " + \
+            text += " Declined with NumericRangeError (a documented range limit) at wide states: " + \
                 ", ".join(f"{r} {k}x" for r, k in self.declined.items()) + "."
         if self.disagree:
             text += f" {self.disagree} samples whose reference disagrees with itself at two precisions."
