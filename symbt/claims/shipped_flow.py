@@ -4,7 +4,7 @@ The claims ``Hdiscr.n{2,3}`` integrate Hamilton's equations by the fastest route
 (:func:`symbt.claims._flow.flow_route`); with heyoka the built-in route
 (:func:`symbt.reference.taylor.hamiltonian_flow`) would never run in ``symbt verify``, and a defect in it would
 be seen only where heyoka is absent.  ``Hdiscr.routes.n{2,3}`` runs the built-in route whatever is installed
-on one state per cell (branch x sign tr, plus the paper's example for N = 3) at the same tolerance -- with
+on one state per cell (branch x sign tr) at the same tolerance -- with
 heyoka installed, ``Hdiscr.n{2,3}`` is heyoka's evidence and this claim the built-in route's; under ``--deep``
 it runs every installed route (:func:`symbt.claims._flow.flow_routes`) on 4 states per cell, each route a
 coordinate of the cell table.  The built-in route runs within its budget (``_flow.TAYLOR_MAX_STEPS`` steps per unit of
@@ -44,9 +44,12 @@ def routes(N: int, parts: Parts, deep: bool = False) -> Outcome:
     P = parts.printed
     table = CellTable(tol=TOL2)
     notes: list[str] = []
+    seen: set = set()
     for s in samples(N, 4 if deep else 1):
-        if not s["ok"]:
+        key = tuple(s["cell"].items())
+        if not s["ok"] or (not deep and key in seen):   # one state per cell by default (not the paper's too)
             continue
+        seen.add(key)
         c, im = c_from_phi(P["Phi"], s, _limit(P["upper"], s))
         for route in (_flow.flow_routes() if deep else ("taylor",)):
             r, why = _residual(s, c, float(P["time"]), route)
