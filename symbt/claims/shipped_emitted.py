@@ -20,7 +20,6 @@ literal route with guard digits at 50 and at 75 digits (both must agree): every 
 """
 from __future__ import annotations
 
-import atexit
 import ctypes
 import importlib.util
 import shutil
@@ -63,27 +62,21 @@ class _CRangeError(ArithmeticError):
 
 
 _CRangeError.__name__ = "NumericRangeError"
-_TMP: list[tempfile.TemporaryDirectory] = []
-
-
-def _tmpdir() -> Path:
-    if not _TMP:
-        _TMP.append(tempfile.TemporaryDirectory(prefix="symbt-shipped-"))
-        atexit.register(_TMP[0].cleanup)
-    return Path(_TMP[0].name)
 
 
 @cache
 def emitted_module(N: int) -> Any:
-    """The Python module ``toda{N}`` as ``symbt codegen`` renders it now, imported from a temporary directory."""
+    """The Python module ``toda{N}`` as ``symbt codegen`` renders it now, imported from a temporary directory
+    (removed once imported: nothing is left behind, whichever way the process ends)."""
     from ..codegen import render
 
-    path = _tmpdir() / f"toda{N}.py"
-    path.write_text(render((N,), "python")[f"toda{N}.py"], encoding="utf-8")
-    spec = importlib.util.spec_from_file_location(f"symbt_shipped_toda{N}", path)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
+    with tempfile.TemporaryDirectory(prefix="symbt-shipped-") as d:
+        path = Path(d) / f"toda{N}.py"
+        path.write_text(render((N,), "python")[f"toda{N}.py"], encoding="utf-8")
+        spec = importlib.util.spec_from_file_location(f"symbt_shipped_toda{N}", path)
+        assert spec is not None and spec.loader is not None
+        mod = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(mod)
     return mod
 
 
@@ -96,15 +89,17 @@ def c_step(N: int) -> Callable[..., tuple[int, list, list]]:
     """``toda{N}_bt_step`` of the C target, rendered, compiled (``-O2``) and wrapped: ``(status, p~, q~)``."""
     from ..codegen import render
 
-    d = _tmpdir()
-    for name, text in render((N,), "c").items():
-        (d / name).write_text(text, encoding="utf-8")
-    so = d / f"libtoda{N}.so"
-    cmd = [str(c_compiler()), "-std=c99", "-O2", "-shared", "-fPIC", "-o", str(so), str(d / f"toda{N}.c"), "-lm"]
-    r = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
-    if r.returncode:
-        raise RuntimeError(f"C compilation failed: {r.stderr[:300]}")
-    fn = getattr(ctypes.CDLL(str(so)), f"toda{N}_bt_step")
+    with tempfile.TemporaryDirectory(prefix="symbt-shipped-") as tmp:   # a loaded library outlives its file
+        d = Path(tmp)
+        for name, text in render((N,), "c").items():
+            (d / name).write_text(text, encoding="utf-8")
+        so = d / f"libtoda{N}.so"
+        cmd = [str(c_compiler()), "-std=c99", "-O2", "-shared", "-fPIC", "-o", str(so), str(d / f"toda{N}.c"), "-lm"]
+        r = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
+        if r.returncode:
+            raise RuntimeError(f"C compilation failed: {r.stderr[:300]}")
+        lib = ctypes.CDLL(str(so))
+    fn = getattr(lib, f"toda{N}_bt_step")
     D, P = ctypes.c_double, ctypes.POINTER(ctypes.c_double)
     fn.argtypes, fn.restype = [P, P, D, D, ctypes.c_int, P, P], ctypes.c_int
 
