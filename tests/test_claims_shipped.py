@@ -249,3 +249,14 @@ def test_tally_is_two_sided():
     t = sh.Tally()
     t.add("r", {"branch": 1}, st, 1, 0.5, allowed=1e-12, agree=1e-60)
     assert t.outcome(method="m", printed="s").status == "verified"
+
+
+@pytest.mark.parametrize("cid", ["shipped.step.n2", "shipped.invariants.n2", "shipped.phi.n2", "shipped.emitted.n2",
+                                 "Hdiscr.routes.n2"])
+def test_statement_mutants_are_killed(cid):
+    """symbt mutate's operators on the claims' parts (scale negated or perturbed by 1e-6; Theorem 2's Phi, upper
+    limit and time): every mutant fails the claim."""
+    from symbt.engine.mutate import mutate_claim
+
+    rec = mutate_claim(REGISTRY[cid], limit=4, seed=1).to_dict()
+    assert rec["mutants"] >= 2 and not rec["survivors"], rec
