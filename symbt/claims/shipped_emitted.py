@@ -113,7 +113,7 @@ def c_step(N: int) -> Callable[..., tuple[int, list, list]]:
 
 def _check_emitted(N: int, routes: dict[str, Callable[..., Any]], deep: bool, what: str, scale: float) -> Outcome:
     tally, C = Tally(), step_constant(N)
-    for cell, st, b in ship_cells(N, 2 if deep else 1) + wide_states(N):
+    for cell, st, b in ship_cells(N, 8 if deep else 2) + wide_states(N):
         ref = step_ref(st, b)
         for name, fn in routes.items():
             u = 2.0 ** -int(MP_DPS * 3.33 + 3) if name.endswith("(mpmath)") else EPS

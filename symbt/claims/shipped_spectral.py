@@ -108,7 +108,7 @@ def invariants(N: int, parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import spectral_trace
 
     tally, C = Tally(), step_constant(N)
-    samples = ship_cells(N, 2 if deep else 1)
+    samples = ship_cells(N, 8 if deep else 2)
     batch = inv(np.array([st[0] for _, st, _ in samples]), np.array([st[1] for _, st, _ in samples]))
     for i, (cell, st, b) in enumerate(samples):
         H, agree, S, terms = _invariant_ref(st[0], st[1])
@@ -168,7 +168,7 @@ def phi(N: int, parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import phi as phi_num
 
     tally, C = Tally(), step_constant(N)
-    samples = ship_cells(N, 2 if deep else 1)
+    samples = ship_cells(N, 8 if deep else 2)
     for b in (1, -1):
         rows = [(cell, st) for cell, st, bb in samples if bb == b]
         batch = phi_num(np.array([st[0] for _, st in rows]), np.array([st[1] for _, st in rows]),
@@ -231,7 +231,7 @@ def coefficients(N: int, parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import flow_coefficients
 
     tally = Tally()
-    for cell, st, b in ship_cells(N, 2 if deep else 1):
+    for cell, st, b in ship_cells(N, 4 if deep else 1):
         c, A, agree, bound = _c_ref(st)
         # check=False: the existence test is bt_step's (claims shipped.step, shipped.nomap), and with numba installed
         # it would load the compiled kernel here
@@ -289,7 +289,7 @@ def field(N: int, parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import FlowField
 
     tally = Tally()
-    for cell, st, b in ship_cells(N, 2 if deep else 1):
+    for cell, st, b in ship_cells(N, 4 if deep else 1):
         with without_numba():   # FlowField's existence check is bt_step(backend="auto")
             F = FlowField(np.array(st[0]), np.array(st[1]), st[2], st[3], branch=b)
         moved = (tuple(v + 0.1 for v in st[0]), tuple(v - 0.05 * j for j, v in enumerate(st[1])))

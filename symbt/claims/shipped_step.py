@@ -41,6 +41,8 @@ scene("shipped", "what ships: every public numeric entry point and emitted form 
                  "another independent route), with two-sided bounds from the conditioning (issue 21)")
 
 MP_DPS = 30
+#: states per cell {branch, sign_mu, sign_tr} of the one-step claims (orbits: one, two under --deep)
+PER_CELL, PER_CELL_DEEP = 2, 8
 ORBIT_STEPS, DEEP_ORBIT_STEPS = 10, 40
 
 
@@ -70,7 +72,7 @@ def _run(tally: Tally, route: str, fn: Callable[[], Any], wide: bool = False) ->
 
 
 def _samples(N: int, deep: bool) -> tuple:
-    return ship_cells(N, 2 if deep else 1) + wide_states(N)
+    return ship_cells(N, PER_CELL_DEEP if deep else PER_CELL) + wide_states(N)
 
 
 def _float_routes(deep: bool) -> list[str]:
@@ -223,7 +225,7 @@ def orbit(N: int, parts: Parts, deep: bool = False) -> Outcome:
     n = DEEP_ORBIT_STEPS if deep else ORBIT_STEPS
     if not _has("flint"):
         tally.notes.append("Arb route not run: python-flint not installed (.[certified]).")
-    for cell, st, b in ship_cells(N, 1):
+    for cell, st, b in ship_cells(N, 2 if deep else 1):
         ref = orbit_ref(st, b, n)
         for name, fn in _orbit_routes(deep).items():
             with mp.workdps(MP_DPS):
@@ -256,7 +258,7 @@ def certified(N: int, parts: Parts, deep: bool = False) -> Outcome:
     tally = Tally()
     n = DEEP_ORBIT_STEPS if deep else ORBIT_STEPS
     worst_rad = 0.0
-    for cell, st, b in ship_cells(N, 1):
+    for cell, st, b in ship_cells(N, 2 if deep else 1):
         ref = orbit_ref(st, b, n)
         with mp.workdps(MP_DPS):
             out = _run(tally, "certified", lambda: bt_orbit(list(st[0]), list(st[1]), st[2], st[3], n, branch=b,
