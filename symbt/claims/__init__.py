@@ -34,6 +34,10 @@ CLAIM_MODULES = (
     "inverse",
     "certified",
     "codegen",
+    "shipped_step",
+    "shipped_spectral",
+    "shipped_emitted",
+    "shipped_flow",
 )
 
 

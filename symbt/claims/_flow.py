@@ -11,7 +11,12 @@ far below what a wrong sign or a wrong :math:`c_k` produces (O(1) relative):
   :math:`\dot q = \partial G/\partial p`, :math:`\dot p = -\partial G/\partial q`), by heyoka's
   Taylor integrator when installed (``heyoka.taylor_adaptive``, float64, compiled once per N with
   the :math:`c_k` as runtime parameters), else by :func:`symbt.reference.taylor.hamiltonian_flow`
-  at 20 digits (:func:`flow_route` says which route runs);
+  at 20 digits (:func:`flow_route` says which route runs by default; ``route=`` forces one, and
+  :func:`flow_routes` lists every route installed: the claim ``Hdiscr.routes`` runs each of them, so
+  the built-in route is checked whatever is installed).  The built-in route runs within a budget
+  (:data:`TAYLOR_MAX_STEPS` Taylor steps, :data:`TAYLOR_SECONDS` seconds): a flow it cannot finish
+  raises :class:`FlowBudgetExceeded` instead of running for minutes (a wrong vector field that
+  blows up shrinks the steps without end);
 * :func:`moments`, :func:`solve_signed` -- the constants
   :math:`c_k(\lambda_0, m) = -\int_{\lambda_0-m}^{\lambda_0+m}\lambda^k(\operatorname{tr}L^2-4)^{-1/2}d\lambda`
   (signed m: branch b at mu is branch +1 at b mu) and their inversion by damped Newton /
@@ -32,10 +37,21 @@ import numpy as np
 
 from ..reference.trace import hamiltonians, trace_polynomial
 
-__all__ = ["gl_integral", "hamiltonians_float", "in_domain", "time_flow", "flow_route", "moments",
-           "solve_signed", "rel_diff", "QuadratureNotConverged"]
+__all__ = ["gl_integral", "hamiltonians_float", "in_domain", "time_flow", "flow_route", "flow_routes", "moments",
+           "solve_signed", "rel_diff", "QuadratureNotConverged", "FlowBudgetExceeded", "TAYLOR_MAX_STEPS",
+           "TAYLOR_SECONDS"]
 
 _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(16)
+
+
+#: the built-in route's budget: Taylor steps per unit of time (a time-1 flow of the claims' samples takes 1-3),
+#: and seconds per flow
+TAYLOR_MAX_STEPS = 16
+TAYLOR_SECONDS = 60.0
+
+
+class FlowBudgetExceeded(ArithmeticError):
+    """The built-in Taylor route did not finish a flow within :data:`TAYLOR_MAX_STEPS` / :data:`TAYLOR_SECONDS`."""
 
 
 class QuadratureNotConverged(ArithmeticError):
@@ -137,10 +153,53 @@ def flow_route() -> str:
     return "heyoka"
 
 
-def time_flow(p, q, c, t: float) -> tuple[list[float], list[float]]:
-    """``(p(t), q(t))`` under the flow of ``sum_k c_k H_k`` (``c = [c_0..c_{N-1}]`` real) from ``(p, q)``."""
+def flow_routes() -> tuple[str, ...]:
+    """Every route installed: ``("heyoka", "taylor")`` with heyoka, else ``("taylor",)``.
+
+    >>> "taylor" in flow_routes()
+    True
+    """
+    return ("heyoka", "taylor") if flow_route() == "heyoka" else ("taylor",)
+
+
+def _taylor_flow(p, q, c, t: float) -> tuple[list[float], list[float]]:
+    """The built-in route within its budget: unit-time pieces of at most TAYLOR_MAX_STEPS steps each, the clock
+    checked between them."""
+    import math
+    import time
+
+    from ..reference.taylor import hamiltonian_flow
+
     N = len(p)
-    if flow_route() == "heyoka":
+    start = time.perf_counter()
+    pieces = max(1, math.ceil(abs(float(t))))
+    with mp.workdps(20):
+        P, Q = [mp.mpf(float(v)) for v in p], [mp.mpf(float(v)) for v in q]
+        cc = [mp.mpf(float(v)) for v in c[:N]]
+        dt = mp.mpf(float(t)) / pieces
+        for _ in range(pieces):
+            try:
+                r = hamiltonian_flow(P, Q, cc, dt, max_steps=TAYLOR_MAX_STEPS)
+            except RuntimeError as exc:   # "too many steps"
+                raise FlowBudgetExceeded(f"built-in Taylor route: more than {TAYLOR_MAX_STEPS} steps per unit "
+                                         "of time") from exc
+            P, Q = list(r[0]), list(r[1])
+            if time.perf_counter() - start > TAYLOR_SECONDS:
+                raise FlowBudgetExceeded(f"built-in Taylor route: past {TAYLOR_SECONDS:g} s")
+    return [float(v) for v in P], [float(v) for v in Q]
+
+
+def time_flow(p, q, c, t: float, *, route: str | None = None) -> tuple[list[float], list[float]]:
+    """``(p(t), q(t))`` under the flow of ``sum_k c_k H_k`` (``c = [c_0..c_{N-1}]`` real) from ``(p, q)``.
+
+    ``route``: ``"heyoka"`` or ``"taylor"`` (default :func:`flow_route`).  The built-in route raises
+    :class:`FlowBudgetExceeded` past its budget.
+    """
+    N = len(p)
+    route = flow_route() if route is None else route
+    if route not in ("heyoka", "taylor"):
+        raise ValueError(f"unknown flow route {route!r}")
+    if route == "heyoka":
         ta = _heyoka_integrator(N)
         ta.time = 0.0
         ta.state[:] = [float(v) for v in q] + [float(v) for v in p]
@@ -150,12 +209,7 @@ def time_flow(p, q, c, t: float) -> tuple[list[float], list[float]]:
             raise ArithmeticError(f"heyoka: {res[0]}")
         s = ta.state
         return [float(v) for v in s[N:]], [float(v) for v in s[:N]]
-    from ..reference.taylor import hamiltonian_flow
-
-    with mp.workdps(20):
-        pt, qt = hamiltonian_flow([mp.mpf(float(v)) for v in p], [mp.mpf(float(v)) for v in q],
-                                  [mp.mpf(float(v)) for v in c[:N]], mp.mpf(float(t)))
-    return [float(v) for v in pt], [float(v) for v in qt]
+    return _taylor_flow(p, q, c, t)
 
 
 # --------------------------------------------------------------------------- the constants and their inverse
