@@ -45,6 +45,7 @@ from sympy.codegen.cfunctions import log1p
 
 from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import local_lax, toda_model
+from .printer import Quotient
 
 __all__ = ["ArgSpec", "Output", "Guard", "FunctionSpec", "specs", "sources", "interface", "branch", "tr1", "tr2", "lam",
            "lam0", "mu", "coefficient_symbols", "disc", "phi_of", "FUNCTIONS"]
@@ -81,7 +82,9 @@ class Output:
 @dataclass(frozen=True)
 class Guard:
     """``expr > 0`` exactly where the real function exists; ``condition`` is ``trace`` or ``positivity``
-    (as in ``NoRealMapError.condition``); ``stage`` 0 guards can be tested before anything else."""
+    (as in ``NoRealMapError.condition``); ``stage`` 0 guards can be tested before anything else.
+    ``condition = "range"``: ``expr`` must only be finite (else ``NumericRangeError``): an intermediate
+    whose overflow would otherwise read out as a finite wrong value."""
 
     condition: str
     label: str
@@ -278,6 +281,34 @@ def _slope(M, g, sign):
     return (dl + sign * g) / (2 * B), -2 * C / (dl - sign * g), sp.GreaterThan(sign * dl * g, 0)
 
 
+def _transported(m, lam_, u0, forward):
+    """Scaled slopes at every site from ``u0`` at site 1, each transported in its contracting direction
+    (``forward``: a condition, as :func:`symbt.numeric.step.eigen_slopes` decides it): forward
+    ``u_{j+1} = -r_j/(a_j + u_j)``, backward ``u_j = -a_j - r_j/u_{j+1}`` from ``u_{N+1} = u_1``, with
+    ``a_j = lambda + p_j``, ``r_j = exp(q_{j+1} - q_j)``.  Only neighbour differences of q enter: no entry
+    of a shifted monodromy (a product of several exponentials, 1e542 at |q_i - q_j| ~ 650) is formed."""
+    N, p, q = m.N, m.p, m.q
+    a = [lam_ + p[j] for j in range(N)]
+    r = [sp.exp(q[(j + 1) % N] - q[j]) for j in range(N)]
+    fwd = [u0]
+    for j in range(N - 1):
+        fwd.append(-Quotient(r[j], a[j] + fwd[j]))
+    bwd: list = [None] * N
+    bwd[0] = nxt = u0
+    for j in range(N - 1, 0, -1):
+        nxt = bwd[j] = -a[j] - Quotient(r[j], nxt)
+    return [u0] + [sp.Piecewise((fwd[j], forward), (bwd[j], True)) for j in range(1, N)]
+
+
+def _with_guards(spec, extra):
+    """``spec`` with the float64 guards ``extra`` (closed form only) after its trace guards, before the
+    rest: they are decided in this order (:func:`symbt.codegen.runtime` ``_guard``), so a slope that
+    overflowed is a range error, not a positivity decided from a wrong value."""
+    k = sum(g.condition == "trace" for g in spec.guards)
+    return FunctionSpec(spec.name, spec.equation, spec.summary, spec.args, spec.outputs, spec.kind,
+                        spec.guards[:k] + tuple(extra) + spec.guards[k:], spec.defs)
+
+
 def _check_dacosh():
     # d/dT arccosh(T/2) = 1/sqrt(T^2 - 4) for T > 2 (both sides positive: compare squares exactly)
     T = sp.Symbol("T", positive=True)
@@ -423,21 +454,28 @@ def _build(N: int, rewrite: bool) -> tuple:
     G1 = branch * sp.sqrt(disc(t_1))
     G2 = branch * sp.sqrt(disc(t_2))
     gs = sp.Symbol("g")
-    if rewrite:   # scaled slopes u_j = E_j y_j, w_j = E_j z_j, the cancellation-free form selected
-        u, w = [], []
-        for j in range(N):
-            f1, s1, c1 = _slope(_cyclic_monodromy(m, lam0 + mu, j), gs, +1)
-            f2, s2, c2 = _slope(_cyclic_monodromy(m, lam0 - mu, j), gs, -1)
-            u.append(sp.Piecewise((S(E[j] * f1).xreplace({gs: G1}), S(c1).xreplace({gs: G1})),
-                                  (S(E[j] * s1).xreplace({gs: G1}), True)))
-            w.append(sp.Piecewise((S(E[j] * f2).xreplace({gs: G2}), S(c2).xreplace({gs: G2})),
-                                  (S(E[j] * s2).xreplace({gs: G2}), True)))
+    if rewrite:   # scaled slopes u_j = E_j y_j, w_j = E_j z_j: site 1 from the monodromy, then transported
+        f1, s1, c1 = _slope(_cyclic_monodromy(m, lam0 + mu, 0), gs, +1)
+        f2, s2, c2 = _slope(_cyclic_monodromy(m, lam0 - mu, 0), gs, -1)
+        u0 = sp.Piecewise((S(f1).xreplace({gs: G1}), S(c1).xreplace({gs: G1})), (S(s1).xreplace({gs: G1}), True))
+        w0 = sp.Piecewise((S(f2).xreplace({gs: G2}), S(c2).xreplace({gs: G2})), (S(s2).xreplace({gs: G2}), True))
+        # u's eigenvalue (t1 - g1)/2 has |v| >= 1 iff t1 g1 <= 0, w's (t2 + g2)/2 iff t2 g2 >= 0: there the
+        # forward transport contracts, else the backward one (signs only: no product that could overflow)
+        u = _transported(m, lam0 + mu, u0, sp.LessThan(branch * sp.sign(t_1), 0))
+        w = _transported(m, lam0 - mu, w0, sp.GreaterThan(branch * sp.sign(t_2), 0))
         # y = u_1/E_1; the printed x = 2 B1 B2 (l2 - l1)/(B2 (A1-D1+g1) - B1 (A2-D2-g2)) = 2 mu/(z - y)
         d = [w[j] - u[j] for j in range(N)]
         x_, y_ = sp.exp(q[0]) * 2 * mu / d[0], sp.exp(-q[0]) * u[0]
         qt = [q[j] + log1p(-2 * mu / d[j]) for j in range(N)]
         pt = [p[j] + 2 * mu * (u[j] / d[j] - u[(j + 1) % N] / d[(j + 1) % N]) for j in range(N)]
         pos = [1 - 2 * mu / d[j] for j in range(N)]
+        # float64 guards: lam1, lam2 in different gaps when the traces differ in sign (decided exactly, on
+        # the signs); every slope and difference finite (an overflow inside a slope is an error, never a
+        # finite wrong state: a slope of +-inf would read out as 2 mu/d = 0)
+        extra = (Guard("positivity", "Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)",
+                       sp.sign(t_1) * sp.sign(t_2), 0),)
+        extra += tuple(Guard("range", f"{name}_{j + 1}", v, 1)
+                       for name, vs in (("u", u), ("w", w), ("d", d)) for j, v in enumerate(vs))
         sdefs: tuple = ()
     else:         # the paper's route: eq. xy as printed, x_j = 2 mu/(z_j - y_j), E~ = E - x, eta = x y + mu
         g1, g2 = sp.symbols("G1 G2", real=True)
@@ -461,4 +499,7 @@ def _build(N: int, rewrite: bool) -> tuple:
         pos = [1 - xs[j] / sp.exp(q[j]) for j in range(N)]
     out["dapp_xy"] = _fill(I["dapp_xy"], [[x_], [y_]], tg, sdefs)
     out["bt_step"] = _fill(I["bt_step"], [pt, qt], tg + pos, sdefs)
+    if rewrite:
+        out["dapp_xy"] = _with_guards(out["dapp_xy"], extra)
+        out["bt_step"] = _with_guards(out["bt_step"], extra)
     return tuple(out[name] for name in FUNCTIONS)

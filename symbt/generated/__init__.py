@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 191a5e58d476c8f8ff7ebc9cc5cfe8b2a0c7e113d32382aae80479636b853782
-# symbt-codegen-content-sha256: 64052b0af114826ef13dbb4b7c219eb4c827b4effe7aa8d0811b3ff851e96922
+# symbt-codegen-derivation-sha256: b2ca8d8aec1ff49edde05fb4d24724303a26e37d853bd6017e60f7d30f2c621c
+# symbt-codegen-content-sha256: 4d9908710cadd94d52f2b1b21530ab0015364eda48e7cb9ea36baea9f82498f7
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from
