@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b2ca8d8aec1ff49edde05fb4d24724303a26e37d853bd6017e60f7d30f2c621c
-# symbt-codegen-content-sha256: 4d9908710cadd94d52f2b1b21530ab0015364eda48e7cb9ea36baea9f82498f7
+# symbt-codegen-derivation-sha256: ecb38b454a35ab222ee25bb51aa9584af42c929a2b12cfd24c5123e2c450366f
+# symbt-codegen-content-sha256: a6271e2600c515a77c9ab822e134e274a172438c00c29b6950f164a1e6679674
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

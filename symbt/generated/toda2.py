@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b2ca8d8aec1ff49edde05fb4d24724303a26e37d853bd6017e60f7d30f2c621c
-# symbt-codegen-content-sha256: 7c54ba41bb185ea7aa36070c264c39d00a6d11933870ca0c127aa1b19247f5b9
+# symbt-codegen-derivation-sha256: ecb38b454a35ab222ee25bb51aa9584af42c929a2b12cfd24c5123e2c450366f
+# symbt-codegen-content-sha256: 5ce06e545c5ff13c567b279b262f7fcde6b009d889c9f1572c9fa38668887c50
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

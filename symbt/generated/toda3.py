@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b2ca8d8aec1ff49edde05fb4d24724303a26e37d853bd6017e60f7d30f2c621c
-# symbt-codegen-content-sha256: a3de4d8e76b298c7ee22b99bb2a2d293257c632fa8e68c90d3039e355ddeb039
+# symbt-codegen-derivation-sha256: ecb38b454a35ab222ee25bb51aa9584af42c929a2b12cfd24c5123e2c450366f
+# symbt-codegen-content-sha256: a47d0b29431d684137171ed975f9c16804ae5bfa0e7f0647d7642f60679ca3c6
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
