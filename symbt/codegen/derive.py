@@ -472,8 +472,8 @@ def _build(N: int, rewrite: bool) -> tuple:
         # float64 guards: lam1, lam2 in different gaps when the traces differ in sign (decided exactly, on
         # the signs); every slope and difference finite (an overflow inside a slope is an error, never a
         # finite wrong state: a slope of +-inf would read out as 2 mu/d = 0)
-        extra: tuple[Guard, ...] = (Guard("positivity", "Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)",
-                       sp.sign(t_1) * sp.sign(t_2), 0),)
+        gap = "Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)"
+        extra: tuple[Guard, ...] = (Guard("positivity", gap, sp.sign(t_1) * sp.sign(t_2), 0),)
         extra += tuple(Guard("range", f"{name}_{j + 1}", v, 1)
                        for name, vs in (("u", u), ("w", w), ("d", d)) for j, v in enumerate(vs))
         sdefs: tuple = ()

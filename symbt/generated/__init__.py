@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: ecb38b454a35ab222ee25bb51aa9584af42c929a2b12cfd24c5123e2c450366f
-# symbt-codegen-content-sha256: a6271e2600c515a77c9ab822e134e274a172438c00c29b6950f164a1e6679674
+# symbt-codegen-derivation-sha256: 6111a5766b62b3e1b93ba28bea3885a754c084251bfbd8acbb88a23282a271b8
+# symbt-codegen-content-sha256: 44964bc94fe8018fe87c81d7a134ff39bc781688a179f8f82709ca78d0e56a2d
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: ecb38b454a35ab222ee25bb51aa9584af42c929a2b12cfd24c5123e2c450366f
-# symbt-codegen-content-sha256: 5ce06e545c5ff13c567b279b262f7fcde6b009d889c9f1572c9fa38668887c50
+# symbt-codegen-derivation-sha256: 6111a5766b62b3e1b93ba28bea3885a754c084251bfbd8acbb88a23282a271b8
+# symbt-codegen-content-sha256: 569017d90343c94f357fcbfd19b8616fe6b293b08656438de39740bed427b2c7
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: ecb38b454a35ab222ee25bb51aa9584af42c929a2b12cfd24c5123e2c450366f
-# symbt-codegen-content-sha256: a47d0b29431d684137171ed975f9c16804ae5bfa0e7f0647d7642f60679ca3c6
+# symbt-codegen-derivation-sha256: 6111a5766b62b3e1b93ba28bea3885a754c084251bfbd8acbb88a23282a271b8
+# symbt-codegen-content-sha256: 2cc2f234b67ffc7b6ed15e3e2cfa360671ece264df5802835cfdc3c8bdd99cd7
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
