@@ -164,8 +164,10 @@ def c_files(N: int) -> tuple[str, str]:
     if form == "closed":
         by_name = {s.name: s for s in specs(N)}
         src += "\n/* ---- closed form: CSE of the SymPy expressions of symbt.codegen.derive ---- */\n"
-        for name in C_FUNCTIONS:
-            src += "\n" + _closed_function(by_name[name], N) + "\n"
+        body = "".join("\n" + _closed_function(by_name[name], N) + "\n" for name in C_FUNCTIONS)
+        if "sgn(" in body:   # the printer's sign (the guards' signs of the traces)
+            src += "\nstatic double sgn(double x) { return (double)((x > 0.0) - (x < 0.0)); }\n"
+        src += body
     else:
         src += _fill(LOOP, N, form)
     return src, header

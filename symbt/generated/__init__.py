@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 6111a5766b62b3e1b93ba28bea3885a754c084251bfbd8acbb88a23282a271b8
-# symbt-codegen-content-sha256: 44964bc94fe8018fe87c81d7a134ff39bc781688a179f8f82709ca78d0e56a2d
+# symbt-codegen-derivation-sha256: f07f4474f82c7209468e36f7461e7849fef95caa28ed202a199d868ef4054ab1
+# symbt-codegen-content-sha256: bc045ab5489b9c5066ae3e464fda119f0fc117a00eb5dc71306e0250aa58a0d5
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 6111a5766b62b3e1b93ba28bea3885a754c084251bfbd8acbb88a23282a271b8
-# symbt-codegen-content-sha256: 569017d90343c94f357fcbfd19b8616fe6b293b08656438de39740bed427b2c7
+# symbt-codegen-derivation-sha256: f07f4474f82c7209468e36f7461e7849fef95caa28ed202a199d868ef4054ab1
+# symbt-codegen-content-sha256: 795361592aa05b21c94cee2feb274cdcf2937551698d8e6138348951512a6e14
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

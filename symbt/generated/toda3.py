@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 6111a5766b62b3e1b93ba28bea3885a754c084251bfbd8acbb88a23282a271b8
-# symbt-codegen-content-sha256: 2cc2f234b67ffc7b6ed15e3e2cfa360671ece264df5802835cfdc3c8bdd99cd7
+# symbt-codegen-derivation-sha256: f07f4474f82c7209468e36f7461e7849fef95caa28ed202a199d868ef4054ab1
+# symbt-codegen-content-sha256: fd9300f86751b6dee9fa24f3a20335fc5cf0e0fcedb2b49f5758ad019e5515f8
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
