@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: aa64dc17cef47c90937686c1fe263cb78cf9b556fc70e1e2a3b906ebf038a0a3
-// symbt-codegen-content-sha256: 7d44b3a15f87525c565f5d49ccf538732ddf439e69ff8306044a01314595af64
+// symbt-codegen-derivation-sha256: 215194f89e032a516e6c6de6215bf52dbeeacfd9145a7ddfe986be2cfe68786e
+// symbt-codegen-content-sha256: ed918e95dafcf9b708037619ae241478d46858825c7ad1241d1eebd0c918c1de
 #include <math.h>
 #include "drag_numeric.h"
 

@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: aa64dc17cef47c90937686c1fe263cb78cf9b556fc70e1e2a3b906ebf038a0a3
-// symbt-codegen-content-sha256: 216377e11cb95c1a030c12e789cfa78e6e22e92609b212d94ec9b44ce336deed
+// symbt-codegen-derivation-sha256: 215194f89e032a516e6c6de6215bf52dbeeacfd9145a7ddfe986be2cfe68786e
+// symbt-codegen-content-sha256: bcdb8af36369101ee9e8de9da8f54480c6cea2e032c0d4d6c14fc9fd1cc57f65
 #ifndef SYMBT_EMITTED_DRAG_NUMERIC_H
 #define SYMBT_EMITTED_DRAG_NUMERIC_H
 

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: drag_numeric (declared in drag_emit)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: aa64dc17cef47c90937686c1fe263cb78cf9b556fc70e1e2a3b906ebf038a0a3
-# symbt-codegen-content-sha256: 20ef2c8b375a2b1e50fee399dfc0f93f3f9305505d79bea55989e1f46eb3eebb
+# symbt-codegen-derivation-sha256: 215194f89e032a516e6c6de6215bf52dbeeacfd9145a7ddfe986be2cfe68786e
+# symbt-codegen-content-sha256: bde12858a9713a87280f058b09e9c5d0aed01217b7b4b1c79de4c602b4eefbcd
 """drag_numeric: functions emitted by `symbt codegen` from drag_emit.
 
 Each function has a numpy float64 flavour (vectorised over broadcast arguments) and an
