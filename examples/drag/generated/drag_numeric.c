@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 215194f89e032a516e6c6de6215bf52dbeeacfd9145a7ddfe986be2cfe68786e
-// symbt-codegen-content-sha256: ed918e95dafcf9b708037619ae241478d46858825c7ad1241d1eebd0c918c1de
+// symbt-codegen-derivation-sha256: 6376203822071db07e0940ec5f2ee26fe47ec85c09810ae735190abc964f6ddf
+// symbt-codegen-content-sha256: a0eade4d4c526e742987aa2107e58883b9720ac4f7071c1d2452cad56aadc7f1
 #include <math.h>
 #include "drag_numeric.h"
 

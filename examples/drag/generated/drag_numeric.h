@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 215194f89e032a516e6c6de6215bf52dbeeacfd9145a7ddfe986be2cfe68786e
-// symbt-codegen-content-sha256: bcdb8af36369101ee9e8de9da8f54480c6cea2e032c0d4d6c14fc9fd1cc57f65
+// symbt-codegen-derivation-sha256: 6376203822071db07e0940ec5f2ee26fe47ec85c09810ae735190abc964f6ddf
+// symbt-codegen-content-sha256: cf3c40f6b6219bcaf5eee472a9e3ac00baef8085057091c57c43a2c9cb88e817
 #ifndef SYMBT_EMITTED_DRAG_NUMERIC_H
 #define SYMBT_EMITTED_DRAG_NUMERIC_H
 

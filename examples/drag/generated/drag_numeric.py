@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: drag_numeric (declared in drag_emit)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 215194f89e032a516e6c6de6215bf52dbeeacfd9145a7ddfe986be2cfe68786e
-# symbt-codegen-content-sha256: bde12858a9713a87280f058b09e9c5d0aed01217b7b4b1c79de4c602b4eefbcd
+# symbt-codegen-derivation-sha256: 6376203822071db07e0940ec5f2ee26fe47ec85c09810ae735190abc964f6ddf
+# symbt-codegen-content-sha256: 852583007045ed6f1df9af46c0c471eb5a1d429202d2e11915552c5de846569b
 """drag_numeric: functions emitted by `symbt codegen` from drag_emit.
 
 Each function has a numpy float64 flavour (vectorised over broadcast arguments) and an

@@ -101,9 +101,18 @@ class UserPrinter(ExprPrinter):
         return super()._p(e)
 
     def _add(self, e):
-        if self.flavour != "c" and len(e.args) > LONG_SUM:
-            return "sum((" + ", ".join(self.text(t) for t in e.as_ordered_terms()) + "))"
-        return super()._add(e)
+        terms = e.as_ordered_terms()
+        if self.flavour == "c" or len(terms) <= LONG_SUM:
+            return super()._add(e)
+        chunks = [super(UserPrinter, self)._add(sp.Add(*terms[k:k + LONG_SUM], evaluate=False))
+                  for k in range(0, len(terms), LONG_SUM)]
+
+        def tree(parts):   # balanced: nesting depth log2(chunks), few temporaries alive at once
+            if len(parts) == 1:
+                return parts[0]
+            mid = len(parts) // 2
+            return f"({tree(parts[:mid])}) + ({tree(parts[mid:])})"
+        return tree(chunks)
 
     def _pow(self, e):
         b, x = e.base, e.exp
@@ -122,8 +131,9 @@ class UserPrinter(ExprPrinter):
 #: above this many operations the expm1 rule is applied term by term only: SymPy's rule also tries
 #: ``factor()`` of the whole expression, which took 93 % of the emission time of a large polynomial
 FACTOR_MAX_OPS = 400
-#: a sum of more terms is printed ``sum((a, b, ...))`` in Python: a chain ``a + b + ...`` of thousands of
-#: terms makes Python's compiler raise RecursionError (the same left-to-right additions, no nesting)
+#: a sum of more terms is printed in Python as a balanced sum of partial sums of at most this many terms,
+#: ``(a + ... ) + (...)``: a chain ``a + b + ...`` of thousands of terms makes Python's compiler raise
+#: RecursionError
 LONG_SUM = 100
 
 
