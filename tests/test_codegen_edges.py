@@ -123,7 +123,8 @@ def judge_error(kind, exists, margin):
     if kind == "range":
         return None
     if kind == "no-map":
-        return None if (not exists or margin < BOUNDARY) else f"no real map reported, but it exists (margin {margin:.3g})"
+        ok = not exists or margin < BOUNDARY
+        return None if ok else f"no real map reported, but it exists (margin {margin:.3g})"
     return f"untyped error {kind}"
 
 
