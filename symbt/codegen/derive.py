@@ -18,15 +18,14 @@ rational variables :math:`E_j = e^{q_j}`).  Two builds of the same catalogue:
     are combined into one ``exp(q_i - q_j)`` -- no ``exp(q_j)`` that could overflow
     when the centre of mass drifts.
   - ``tr^2 - 4`` is written ``(tr - 2)(tr + 2)`` (no cancellation in float64).
-  - The slopes at site ``j`` are read off the *cyclically shifted* monodromy
-    ``L^(j) = l_{j-1} ... l_1 l_N ... l_j`` (no site-by-site transport, which loses
-    ``log10(v^2)`` digits); of the two equal forms ``(A - D + g)/(2B) = -2C/(A - D - g)``
-    the one without cancellation is selected (``Piecewise`` on the sign of ``(A - D) g``);
-    ``q~_j = q_j + log1p(-x_j/E_j)``, ``p~_j = p_j + 2 mu (u_j/d_j - u_{j+1}/d_{j+1})``
-    with the scaled slopes ``u_j = E_j y_j``, ``w_j = E_j z_j``, ``d_j = w_j - u_j``.
-  - *Guards*: expressions that are positive exactly where the real function exists
-    (``tr_i^2 - 4`` and ``1 - x_j/E_j = e^{q~_j - q_j}``); the emitted code raises
-    ``NoRealMapError`` (or masks) where one is not.
+  - The slope at site 1 is read off the monodromy; of ``(A - D + g)/(2B) = -2C/(A - D - g)`` the
+    form without cancellation is selected (``Piecewise`` on the sign of ``(A - D) g``); the other
+    sites by transport in the contracting direction (:func:`_transported`, as ``symbt.numeric``);
+    ``q~_j = q_j + log1p(-x_j/E_j)``, ``p~_j = p_j + 2 mu (u_j/d_j - u_{j+1}/d_{j+1})`` with the
+    scaled slopes ``u_j = E_j y_j``, ``w_j = E_j z_j``, ``d_j = w_j - u_j``.
+  - *Guards*: positive exactly where the real function exists (``tr_i^2 - 4``, the sign of
+    ``tr_1 tr_2``, ``1 - x_j/E_j = e^{q~_j - q_j}``), or finite (``range``: every slope); the code
+    raises ``NoRealMapError`` / ``NumericRangeError`` (or masks) where one is not.
 
 Branch ``b = +-1``: ``gamma_i = b sqrt(tr L(lambda_i)^2 - 4)`` (positive root) at
 ``lambda_1 = lambda_0 + mu`` and ``lambda_2 = lambda_0 - mu``.

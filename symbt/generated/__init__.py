@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: f07f4474f82c7209468e36f7461e7849fef95caa28ed202a199d868ef4054ab1
-# symbt-codegen-content-sha256: bc045ab5489b9c5066ae3e464fda119f0fc117a00eb5dc71306e0250aa58a0d5
+# symbt-codegen-derivation-sha256: ba667daaa405618e46464c56840d3b6ed6ab2b2fd200bba70eba5bbfb04e1a2f
+# symbt-codegen-content-sha256: 02e5a2e1ea5d33921f7259d294517382b00eb1a2858c6da774e30ac3f274cb22
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: f07f4474f82c7209468e36f7461e7849fef95caa28ed202a199d868ef4054ab1
-# symbt-codegen-content-sha256: 795361592aa05b21c94cee2feb274cdcf2937551698d8e6138348951512a6e14
+# symbt-codegen-derivation-sha256: ba667daaa405618e46464c56840d3b6ed6ab2b2fd200bba70eba5bbfb04e1a2f
+# symbt-codegen-content-sha256: 5ab7598fd7bdee2da7a88d49798b87b0e7d21028b951d6b1f3bb91559f76c101
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: f07f4474f82c7209468e36f7461e7849fef95caa28ed202a199d868ef4054ab1
-# symbt-codegen-content-sha256: fd9300f86751b6dee9fa24f3a20335fc5cf0e0fcedb2b49f5758ad019e5515f8
+# symbt-codegen-derivation-sha256: ba667daaa405618e46464c56840d3b6ed6ab2b2fd200bba70eba5bbfb04e1a2f
+# symbt-codegen-content-sha256: 5427f2df85121a5090c0b126f08ef9f5cce1504078528c92810c9ee7fc43bfef
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
