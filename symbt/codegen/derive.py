@@ -281,11 +281,9 @@ def _slope(M, g, sign):
 
 
 def _transported(m, lam_, u0, forward):
-    """Scaled slopes at every site from ``u0`` at site 1, each transported in its contracting direction
-    (``forward``: a condition, as :func:`symbt.numeric.step.eigen_slopes` decides it): forward
-    ``u_{j+1} = -r_j/(a_j + u_j)``, backward ``u_j = -a_j - r_j/u_{j+1}`` from ``u_{N+1} = u_1``, with
-    ``a_j = lambda + p_j``, ``r_j = exp(q_{j+1} - q_j)``.  Only neighbour differences of q enter: no entry
-    of a shifted monodromy (a product of several exponentials, 1e542 at |q_i - q_j| ~ 650) is formed."""
+    """Scaled slopes at every site from ``u0`` at site 1, transported forward ``u_{j+1} = -r_j/(a_j + u_j)``
+    where ``forward`` holds, else backward ``u_j = -a_j - r_j/u_{j+1}`` (``a_j = lambda + p_j``, ``r_j =
+    exp(q_{j+1} - q_j)``; no shifted monodromy, whose entries reach 1e542 at |q_i - q_j| ~ 650)."""
     N, p, q = m.N, m.p, m.q
     a = [lam_ + p[j] for j in range(N)]
     r = [sp.exp(q[(j + 1) % N] - q[j]) for j in range(N)]
@@ -300,9 +298,8 @@ def _transported(m, lam_, u0, forward):
 
 
 def _with_guards(spec, extra):
-    """``spec`` with the float64 guards ``extra`` (closed form only) after its trace guards, before the
-    rest: they are decided in this order (:func:`symbt.codegen.runtime` ``_guard``), so a slope that
-    overflowed is a range error, not a positivity decided from a wrong value."""
+    """``spec`` with the guards ``extra`` after its trace guards (decided in order: an overflowed slope is a
+    range error, not a positivity decided from a wrong value)."""
     k = sum(g.condition == "trace" for g in spec.guards)
     return FunctionSpec(spec.name, spec.equation, spec.summary, spec.args, spec.outputs, spec.kind,
                         spec.guards[:k] + tuple(extra) + spec.guards[k:], spec.defs)

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: ba667daaa405618e46464c56840d3b6ed6ab2b2fd200bba70eba5bbfb04e1a2f
-# symbt-codegen-content-sha256: 02e5a2e1ea5d33921f7259d294517382b00eb1a2858c6da774e30ac3f274cb22
+# symbt-codegen-derivation-sha256: 313bed43d793c7a35106446f96c23b4c861ff5490ade25d9c33672df57b9e537
+# symbt-codegen-content-sha256: f5b82994fc77318da94a8605c6e550d68ca5bbfe9b615354ce70b93d92772810
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: ba667daaa405618e46464c56840d3b6ed6ab2b2fd200bba70eba5bbfb04e1a2f
-# symbt-codegen-content-sha256: 5ab7598fd7bdee2da7a88d49798b87b0e7d21028b951d6b1f3bb91559f76c101
+# symbt-codegen-derivation-sha256: 313bed43d793c7a35106446f96c23b4c861ff5490ade25d9c33672df57b9e537
+# symbt-codegen-content-sha256: e4880cbfa84297b4b9ac0ab9685ffebf1cb5bfb2c7c252fae6064ac034f12c08
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
