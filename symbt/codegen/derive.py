@@ -465,9 +465,8 @@ def _build(N: int, rewrite: bool) -> tuple:
         qt = [q[j] + log1p(-2 * mu / d[j]) for j in range(N)]
         pt = [p[j] + 2 * mu * (u[j] / d[j] - u[(j + 1) % N] / d[(j + 1) % N]) for j in range(N)]
         pos = [1 - 2 * mu / d[j] for j in range(N)]
-        # float64 guards: lam1, lam2 in different gaps when the traces differ in sign (decided exactly, on
-        # the signs); every slope and difference finite (an overflow inside a slope is an error, never a
-        # finite wrong state: a slope of +-inf would read out as 2 mu/d = 0)
+        # traces of opposite signs: different gaps (decided on the signs); every slope finite (an inf slope
+        # would read out as 2 mu/d = 0, a finite wrong state)
         gap = "Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)"
         extra: tuple[Guard, ...] = (Guard("positivity", gap, sp.sign(t_1) * sp.sign(t_2), 0),)
         extra += tuple(Guard("range", f"{name}_{j + 1}", v, 1)

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 313bed43d793c7a35106446f96c23b4c861ff5490ade25d9c33672df57b9e537
-# symbt-codegen-content-sha256: f5b82994fc77318da94a8605c6e550d68ca5bbfe9b615354ce70b93d92772810
+# symbt-codegen-derivation-sha256: b8b6b03d4114bb621a13f3837305527c9fb5d6d93bfaacbed4242fdc2bc3dca1
+# symbt-codegen-content-sha256: c46d70d5ed4cb171cccf6501ec3a5848d69150b9b04a7a7b689afc00445eb63f
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 313bed43d793c7a35106446f96c23b4c861ff5490ade25d9c33672df57b9e537
-# symbt-codegen-content-sha256: e4880cbfa84297b4b9ac0ab9685ffebf1cb5bfb2c7c252fae6064ac034f12c08
+# symbt-codegen-derivation-sha256: b8b6b03d4114bb621a13f3837305527c9fb5d6d93bfaacbed4242fdc2bc3dca1
+# symbt-codegen-content-sha256: f997cb236fd5bcc0eaa72649b73e772b69a9a39104d8913f66f0e8f46b7f7fdf
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

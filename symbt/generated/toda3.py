@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 313bed43d793c7a35106446f96c23b4c861ff5490ade25d9c33672df57b9e537
-# symbt-codegen-content-sha256: 2553d59bc3c7bc87a332883ffeb21c22da85f17a11214517e600a32bd4bf7cf5
+# symbt-codegen-derivation-sha256: b8b6b03d4114bb621a13f3837305527c9fb5d6d93bfaacbed4242fdc2bc3dca1
+# symbt-codegen-content-sha256: 5d4a6e14076f3208c525374f79935dbf4581b3f9c7e81987eb8029db2cc2bcb4
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
