@@ -20,7 +20,7 @@ rational variables :math:`E_j = e^{q_j}`).  Two builds of the same catalogue:
   - ``tr^2 - 4`` is written ``(tr - 2)(tr + 2)`` (no cancellation in float64).
   - The slope at site 1 is read off the monodromy; of ``(A - D + g)/(2B) = -2C/(A - D - g)`` the
     form without cancellation is selected (``Piecewise`` on the sign of ``(A - D) g``); the other
-    sites by transport in the contracting direction (:func:`_transported`, as ``symbt.numeric``);
+    sites by transport in the contracting direction (:func:`.transport.transported`, as ``symbt.numeric``);
     ``q~_j = q_j + log1p(-x_j/E_j)``, ``p~_j = p_j + 2 mu (u_j/d_j - u_{j+1}/d_{j+1})`` with the
     scaled slopes ``u_j = E_j y_j``, ``w_j = E_j z_j``, ``d_j = w_j - u_j``.
   - *Guards*: positive exactly where the real function exists (``tr_i^2 - 4``, the sign of
@@ -44,7 +44,7 @@ from sympy.codegen.cfunctions import log1p
 
 from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import local_lax, toda_model
-from .printer import Quotient
+from .transport import scaled_monodromy, transported
 
 __all__ = ["ArgSpec", "Output", "Guard", "FunctionSpec", "specs", "sources", "interface", "branch", "tr1", "tr2", "lam",
            "lam0", "mu", "coefficient_symbols", "disc", "phi_of", "FUNCTIONS"]
@@ -280,23 +280,6 @@ def _slope(M, g, sign):
     return (dl + sign * g) / (2 * B), -2 * C / (dl - sign * g), sp.GreaterThan(sign * dl * g, 0)
 
 
-def _transported(m, lam_, u0, forward):
-    """Scaled slopes at every site from ``u0`` at site 1, transported forward ``u_{j+1} = -r_j/(a_j + u_j)``
-    where ``forward`` holds, else backward ``u_j = -a_j - r_j/u_{j+1}`` (``a_j = lambda + p_j``, ``r_j =
-    exp(q_{j+1} - q_j)``; no shifted monodromy, whose entries reach 1e542 at |q_i - q_j| ~ 650)."""
-    N, p, q = m.N, m.p, m.q
-    a = [lam_ + p[j] for j in range(N)]
-    r = [sp.exp(q[(j + 1) % N] - q[j]) for j in range(N)]
-    fwd = [u0]
-    for j in range(N - 1):
-        fwd.append(-Quotient(r[j], a[j] + fwd[j]))
-    bwd: list = [None] * N
-    bwd[0] = nxt = u0
-    for j in range(N - 1, 0, -1):
-        nxt = bwd[j] = -a[j] - Quotient(r[j], nxt)
-    return [u0] + [sp.Piecewise((fwd[j], forward), (bwd[j], True)) for j in range(1, N)]
-
-
 def _with_guards(spec, extra):
     """``spec`` with the guards ``extra`` after its trace guards (decided in order: an overflowed slope is a
     range error, not a positivity decided from a wrong value)."""
@@ -451,14 +434,19 @@ def _build(N: int, rewrite: bool) -> tuple:
     G2 = branch * sp.sqrt(disc(t_2))
     gs = sp.Symbol("g")
     if rewrite:   # scaled slopes u_j = E_j y_j, w_j = E_j z_j: site 1 from the monodromy, then transported
-        f1, s1, c1 = _slope(_cyclic_monodromy(m, lam0 + mu, 0), gs, +1)
-        f2, s2, c2 = _slope(_cyclic_monodromy(m, lam0 - mu, 0), gs, -1)
-        u0 = sp.Piecewise((S(f1).xreplace({gs: G1}), S(c1).xreplace({gs: G1})), (S(s1).xreplace({gs: G1}), True))
-        w0 = sp.Piecewise((S(f2).xreplace({gs: G2}), S(c2).xreplace({gs: G2})), (S(s2).xreplace({gs: G2}), True))
+        # the step's monodromies and traces as products of the scaled m_j, a_j = lambda + p_j kept whole (the
+        # trace expanded in lambda lost ~log10(lambda^N/|tr|) digits to cancellation: 115 eps x condition)
+        M1, M2 = scaled_monodromy(m, lam0 + mu), scaled_monodromy(m, lam0 - mu)
+        t_1, t_2 = M1[0, 0] + M1[1, 1], M2[0, 0] + M2[1, 1]
+        tg = [disc(t_1), disc(t_2)]
+        G1, G2 = branch * sp.sqrt(disc(t_1)), branch * sp.sqrt(disc(t_2))
+        f1, s1, c1 = (x.xreplace({gs: G1}) for x in _slope(M1, gs, +1))
+        f2, s2, c2 = (x.xreplace({gs: G2}) for x in _slope(M2, gs, -1))
+        u0, w0 = sp.Piecewise((f1, c1), (s1, True)), sp.Piecewise((f2, c2), (s2, True))
         # u's eigenvalue (t1 - g1)/2 has |v| >= 1 iff t1 g1 <= 0, w's (t2 + g2)/2 iff t2 g2 >= 0: there the
         # forward transport contracts, else the backward one (signs only: no product that could overflow)
-        u = _transported(m, lam0 + mu, u0, sp.LessThan(branch * sp.sign(t_1), 0))
-        w = _transported(m, lam0 - mu, w0, sp.GreaterThan(branch * sp.sign(t_2), 0))
+        u = transported(m, lam0 + mu, u0, sp.LessThan(branch * sp.sign(t_1), 0))
+        w = transported(m, lam0 - mu, w0, sp.GreaterThan(branch * sp.sign(t_2), 0))
         # y = u_1/E_1; the printed x = 2 B1 B2 (l2 - l1)/(B2 (A1-D1+g1) - B1 (A2-D2-g2)) = 2 mu/(z - y)
         d = [w[j] - u[j] for j in range(N)]
         x_, y_ = sp.exp(q[0]) * 2 * mu / d[0], sp.exp(-q[0]) * u[0]

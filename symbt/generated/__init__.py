@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b8b6b03d4114bb621a13f3837305527c9fb5d6d93bfaacbed4242fdc2bc3dca1
-# symbt-codegen-content-sha256: c46d70d5ed4cb171cccf6501ec3a5848d69150b9b04a7a7b689afc00445eb63f
+# symbt-codegen-derivation-sha256: 43643acc23ff8fc78bd7b38989149b40e783768af81f72731f57ea5f4dcb0323
+# symbt-codegen-content-sha256: 779609657285bd9cb2c02764f9da818f932e850b58e5138c5730a72244d0ae21
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b8b6b03d4114bb621a13f3837305527c9fb5d6d93bfaacbed4242fdc2bc3dca1
-# symbt-codegen-content-sha256: f997cb236fd5bcc0eaa72649b73e772b69a9a39104d8913f66f0e8f46b7f7fdf
+# symbt-codegen-derivation-sha256: 43643acc23ff8fc78bd7b38989149b40e783768af81f72731f57ea5f4dcb0323
+# symbt-codegen-content-sha256: 9d4db2a6279fe1e4cd42e0123333b1e7ac04cf587d649d215243104ab2f2e514
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -507,40 +507,46 @@ def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
     q1 = q[..., 0]
     q2 = q[..., 1]
     with np.errstate(all="ignore"):
-        t0 = q1 - q2
-        t1 = np.exp(t0)
-        t2 = np.exp(-t0)
-        t3 = p1*p2 - t2
-        t4 = -t1 + t3
-        t5 = lam0 + mu
-        t6 = t5*p1 + t5*p2 + t5**2
-        t7 = t4 + t6
-        t8 = (t7 - 2)*(t7 + 2)
-        t9 = lam0 - mu
-        t10 = t9*p1 + t9*p2 + t9**2
-        t11 = t10 + t4
-        t12 = (t11 - 2)*(t11 + 2)
-        t13 = np.sign(t7)
-        t14 = np.sign(t11)
-        t15 = 2*p2
-        t16 = 2*lam0
-        t17 = 2*mu
-        t18 = t16 + t17
-        t19 = branch*np.sqrt(t8)
-        t20 = t1 + t3
-        t21 = t20 + t6
-        t22 = 2*t1*p1
-        t23 = np.where(t19*t21 >= 0, (t19 + t21)/(-t15 - t18), (-t1*t18 - t22)/(-t19 + t21))
-        t24 = np.where(t13*branch <= 0, -(t2/(p1 + t23 + t5)), -p2 - t5 - t1/t23)
-        t25 = t16 - t17
-        t26 = branch*np.sqrt(t12)
-        t27 = t10 + t20
-        t28 = np.where(t26*t27 <= 0, (-t26 + t27)/(-t15 - t25), (-t1*t25 - t22)/(t26 + t27))
-        t29 = np.where(t14*branch >= 0, -(t2/(p1 + t28 + t9)), -p2 - t9 - t1/t28)
-        t30 = -t23 + t28
-        x = _pack([t17*np.exp(q1)/t30], _batch, ())
-        y = _pack([t23*np.exp(-q1)], _batch, ())
-        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t8), ('trace', 'lam2 = lam0 - mu', t12), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t13*t14), ('range', 'u_1', t23), ('range', 'u_2', t24), ('range', 'w_1', t28), ('range', 'w_2', t29), ('range', 'd_1', t30), ('range', 'd_2', -t24 + t29)])
+        t0 = lam0 + mu
+        t1 = p1 + t0
+        t2 = p2 + t0
+        t3 = -(t1*t2)
+        t4 = q1 - q2
+        t5 = np.exp(t4)
+        t6 = np.exp(-t4)
+        t7 = t5 + t6
+        t8 = t3 + t7
+        t9 = t1*t2
+        t10 = -t6
+        t11 = -t5
+        t12 = t10 + t11 + 2
+        t13 = (-t8 - 2)*(t12 + t9)
+        t14 = lam0 - mu
+        t15 = p1 + t14
+        t16 = p2 + t14
+        t17 = t15*t16
+        t18 = -t17
+        t19 = t18 + t7
+        t20 = (-t19 - 2)*(t12 + t17)
+        t21 = -np.sign(t8)
+        t22 = -np.sign(t19)
+        t23 = 2*mu
+        t24 = 2*lam0 + 2*p2
+        t25 = branch*np.sqrt(t13)
+        t26 = t10 + t5
+        t27 = t26 + t9
+        t28 = t11 + t6
+        t29 = 2*t5
+        t30 = np.where(t25*t27 >= 0, (t25 + t27)/(-t23 - t24), -(t1*t29/(-t25 - t28 - t3)))
+        t31 = np.where(t21*branch <= 0, -(t6/(t1 + t30)), -t2 - t5/t30)
+        t32 = branch*np.sqrt(t20)
+        t33 = t17 + t26
+        t34 = np.where(t32*t33 <= 0, (-t18 - t28 - t32)/(t23 - t24), -(t15*t29/(t32 + t33)))
+        t35 = np.where(t22*branch >= 0, -(t6/(t15 + t34)), -t16 - t5/t34)
+        t36 = -t30 + t34
+        x = _pack([t23*np.exp(q1)/t36], _batch, ())
+        y = _pack([t30*np.exp(-q1)], _batch, ())
+        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t13), ('trace', 'lam2 = lam0 - mu', t20), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t21*t22), ('range', 'u_1', t30), ('range', 'u_2', t31), ('range', 'w_1', t34), ('range', 'w_2', t35), ('range', 'd_1', t36), ('range', 'd_2', -t31 + t35)])
     x, y, = _finish(errors, _bad, _batch, [x, y])
     return x, y
 
@@ -574,46 +580,52 @@ def bt_step(p, q, lam0, mu, branch, errors="raise"):
     q1 = q[..., 0]
     q2 = q[..., 1]
     with np.errstate(all="ignore"):
-        t0 = q1 - q2
-        t1 = np.exp(t0)
-        t2 = np.exp(-t0)
-        t3 = p1*p2 - t2
-        t4 = -t1 + t3
-        t5 = lam0 + mu
-        t6 = t5*p1 + t5*p2 + t5**2
-        t7 = t4 + t6
-        t8 = (t7 - 2)*(t7 + 2)
-        t9 = lam0 - mu
-        t10 = t9*p1 + t9*p2 + t9**2
-        t11 = t10 + t4
-        t12 = (t11 - 2)*(t11 + 2)
-        t13 = np.sign(t7)
-        t14 = np.sign(t11)
-        t15 = 2*p2
-        t16 = 2*lam0
-        t17 = 2*mu
-        t18 = t16 + t17
-        t19 = branch*np.sqrt(t8)
-        t20 = t1 + t3
-        t21 = t20 + t6
-        t22 = 2*t1*p1
-        t23 = np.where(t19*t21 >= 0, (t19 + t21)/(-t15 - t18), (-t1*t18 - t22)/(-t19 + t21))
-        t24 = np.where(t13*branch <= 0, -(t2/(p1 + t23 + t5)), -p2 - t5 - t1/t23)
-        t25 = t16 - t17
-        t26 = branch*np.sqrt(t12)
-        t27 = t10 + t20
-        t28 = np.where(t26*t27 <= 0, (-t26 + t27)/(-t15 - t25), (-t1*t25 - t22)/(t26 + t27))
-        t29 = np.where(t14*branch >= 0, -(t2/(p1 + t28 + t9)), -p2 - t9 - t1/t28)
-        t30 = -t23 + t28
-        t31 = -t24 + t29
-        t32 = 1/t30
-        t33 = t17*t32
-        t34 = 1/t31
-        t35 = t17*t34
-        t36 = -t23*t32 + t24*t34
-        p_new = _pack([p1 - t17*t36, p2 + t17*t36], _batch, (2,))
-        q_new = _pack([q1 + np.log1p(-t33), q2 + np.log1p(-t35)], _batch, (2,))
-        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t8), ('trace', 'lam2 = lam0 - mu', t12), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t13*t14), ('range', 'u_1', t23), ('range', 'u_2', t24), ('range', 'w_1', t28), ('range', 'w_2', t29), ('range', 'd_1', t30), ('range', 'd_2', t31), ('positivity', 'Etilde_1', 1 - t33), ('positivity', 'Etilde_2', 1 - t35)])
+        t0 = lam0 + mu
+        t1 = p1 + t0
+        t2 = p2 + t0
+        t3 = -(t1*t2)
+        t4 = q1 - q2
+        t5 = np.exp(t4)
+        t6 = np.exp(-t4)
+        t7 = t5 + t6
+        t8 = t3 + t7
+        t9 = t1*t2
+        t10 = -t6
+        t11 = -t5
+        t12 = t10 + t11 + 2
+        t13 = (-t8 - 2)*(t12 + t9)
+        t14 = lam0 - mu
+        t15 = p1 + t14
+        t16 = p2 + t14
+        t17 = t15*t16
+        t18 = -t17
+        t19 = t18 + t7
+        t20 = (-t19 - 2)*(t12 + t17)
+        t21 = -np.sign(t8)
+        t22 = -np.sign(t19)
+        t23 = 2*mu
+        t24 = 2*lam0 + 2*p2
+        t25 = branch*np.sqrt(t13)
+        t26 = t10 + t5
+        t27 = t26 + t9
+        t28 = t11 + t6
+        t29 = 2*t5
+        t30 = np.where(t25*t27 >= 0, (t25 + t27)/(-t23 - t24), -(t1*t29/(-t25 - t28 - t3)))
+        t31 = np.where(t21*branch <= 0, -(t6/(t1 + t30)), -t2 - t5/t30)
+        t32 = branch*np.sqrt(t20)
+        t33 = t17 + t26
+        t34 = np.where(t32*t33 <= 0, (-t18 - t28 - t32)/(t23 - t24), -(t15*t29/(t32 + t33)))
+        t35 = np.where(t22*branch >= 0, -(t6/(t15 + t34)), -t16 - t5/t34)
+        t36 = -t30 + t34
+        t37 = -t31 + t35
+        t38 = 1/t36
+        t39 = t23*t38
+        t40 = 1/t37
+        t41 = t23*t40
+        t42 = -t30*t38 + t31*t40
+        p_new = _pack([p1 - t23*t42, p2 + t23*t42], _batch, (2,))
+        q_new = _pack([q1 + np.log1p(-t39), q2 + np.log1p(-t41)], _batch, (2,))
+        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t13), ('trace', 'lam2 = lam0 - mu', t20), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t21*t22), ('range', 'u_1', t30), ('range', 'u_2', t31), ('range', 'w_1', t34), ('range', 'w_2', t35), ('range', 'd_1', t36), ('range', 'd_2', t37), ('positivity', 'Etilde_1', 1 - t39), ('positivity', 'Etilde_2', 1 - t41)])
     p_new, q_new, = _finish(errors, _bad, _batch, [p_new, q_new])
     return p_new, q_new
 
@@ -889,49 +901,62 @@ def dapp_xy_mp(p, q, lam0, mu, branch):
     branch = _mp_branch(branch)
     try:
         s0 = lam0 + mu
-        s1 = q1 - q2
-        s2 = p1*p2 - mpmath.exp(s1) - mpmath.exp(-s1)
-        s3 = s0*p1 + s0*p2 + s0**2 + s2
-        s4 = lam0 - mu
-        s5 = s4*p1 + s4*p2 + s2 + s4**2
-        _mp_guard('trace', 'lam1 = lam0 + mu', (s3 - 2)*(s3 + 2))
-        _mp_guard('trace', 'lam2 = lam0 - mu', (s5 - 2)*(s5 + 2))
-        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s3)*mpmath.sign(s5))
-        t0 = 2*p2
-        t1 = 2*lam0
-        t2 = 2*mu
-        t3 = t1 + t2
-        t4 = lam0 + mu
-        t5 = t4*p1 + t4*p2 + t4**2
+        s1 = p1 + s0
+        s2 = p2 + s0
+        s3 = q1 - q2
+        s4 = mpmath.exp(s3)
+        s5 = mpmath.exp(-s3)
+        s6 = s4 + s5
+        s7 = -s1*s2 + s6
+        s8 = -s4 - s5 + 2
+        s9 = lam0 - mu
+        s10 = p1 + s9
+        s11 = p2 + s9
+        s12 = -s10*s11 + s6
+        _mp_guard('trace', 'lam1 = lam0 + mu', (-s7 - 2)*(s1*s2 + s8))
+        _mp_guard('trace', 'lam2 = lam0 - mu', (-s12 - 2)*(s10*s11 + s8))
+        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s12)*mpmath.sign(s7))
+        t0 = 2*mu
+        t1 = 2*lam0 + 2*p2
+        t2 = lam0 + mu
+        t3 = p1 + t2
+        t4 = p2 + t2
+        t5 = -(t3*t4)
         t6 = q1 - q2
         t7 = mpmath.exp(t6)
         t8 = mpmath.exp(-t6)
-        t9 = p1*p2 - t8
-        t10 = -t7 + t9
-        t11 = t10 + t5
-        t12 = branch*mpmath.sqrt((t11 - 2)*(t11 + 2))
-        t13 = t7 + t9
-        t14 = t13 + t5
-        t15 = 2*t7*p1
-        t16 = ((t12 + t14)/(-t0 - t3) if t12*t14 >= 0 else (-t15 - t3*t7)/(-t12 + t14))
-        t17 = (-_div(t8, p1 + t16 + t4) if branch*mpmath.sign(t11) <= 0 else -p2 - t4 - _div(t7, t16))
-        t18 = t1 - t2
-        t19 = lam0 - mu
-        t20 = t19*p1 + t19*p2 + t19**2
-        t21 = t10 + t20
-        t22 = branch*mpmath.sqrt((t21 - 2)*(t21 + 2))
-        t23 = t13 + t20
-        t24 = ((-t22 + t23)/(-t0 - t18) if t22*t23 <= 0 else (-t15 - t18*t7)/(t22 + t23))
-        t25 = (-_div(t8, p1 + t19 + t24) if branch*mpmath.sign(t21) >= 0 else -p2 - t19 - _div(t7, t24))
-        t26 = -t16 + t24
-        _mp_guard('range', 'u_1', t16)
-        _mp_guard('range', 'u_2', t17)
-        _mp_guard('range', 'w_1', t24)
-        _mp_guard('range', 'w_2', t25)
-        _mp_guard('range', 'd_1', t26)
-        _mp_guard('range', 'd_2', -t17 + t25)
-        x = t2*mpmath.exp(q1)/t26
-        y = t16*mpmath.exp(-q1)
+        t9 = t7 + t8
+        t10 = t5 + t9
+        t11 = t3*t4
+        t12 = -t8
+        t13 = -t7
+        t14 = t12 + t13 + 2
+        t15 = branch*mpmath.sqrt((-t10 - 2)*(t11 + t14))
+        t16 = t12 + t7
+        t17 = t11 + t16
+        t18 = t13 + t8
+        t19 = 2*t7
+        t20 = ((t15 + t17)/(-t0 - t1) if t15*t17 >= 0 else -(t19*t3/(-t15 - t18 - t5)))
+        t21 = (-_div(t8, t20 + t3) if branch*mpmath.sign(t10) >= 0 else -t4 - _div(t7, t20))
+        t22 = lam0 - mu
+        t23 = p1 + t22
+        t24 = p2 + t22
+        t25 = t23*t24
+        t26 = -t25
+        t27 = t26 + t9
+        t28 = branch*mpmath.sqrt((-t27 - 2)*(t14 + t25))
+        t29 = t16 + t25
+        t30 = ((-t18 - t26 - t28)/(t0 - t1) if t28*t29 <= 0 else -(t19*t23/(t28 + t29)))
+        t31 = (-_div(t8, t23 + t30) if branch*mpmath.sign(t27) <= 0 else -t24 - _div(t7, t30))
+        t32 = -t20 + t30
+        _mp_guard('range', 'u_1', t20)
+        _mp_guard('range', 'u_2', t21)
+        _mp_guard('range', 'w_1', t30)
+        _mp_guard('range', 'w_2', t31)
+        _mp_guard('range', 'd_1', t32)
+        _mp_guard('range', 'd_2', -t21 + t31)
+        x = t0*mpmath.exp(q1)/t32
+        y = t20*mpmath.exp(-q1)
     except ZeroDivisionError as exc:
         raise NumericRangeError('division by zero (degenerate eigenvector)') from exc
     return x, y
@@ -960,57 +985,70 @@ def bt_step_mp(p, q, lam0, mu, branch):
     branch = _mp_branch(branch)
     try:
         s0 = lam0 + mu
-        s1 = q1 - q2
-        s2 = p1*p2 - mpmath.exp(s1) - mpmath.exp(-s1)
-        s3 = s0*p1 + s0*p2 + s0**2 + s2
-        s4 = lam0 - mu
-        s5 = s4*p1 + s4*p2 + s2 + s4**2
-        _mp_guard('trace', 'lam1 = lam0 + mu', (s3 - 2)*(s3 + 2))
-        _mp_guard('trace', 'lam2 = lam0 - mu', (s5 - 2)*(s5 + 2))
-        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s3)*mpmath.sign(s5))
-        t0 = 2*p2
-        t1 = 2*lam0
-        t2 = 2*mu
-        t3 = t1 + t2
-        t4 = lam0 + mu
-        t5 = t4*p1 + t4*p2 + t4**2
+        s1 = p1 + s0
+        s2 = p2 + s0
+        s3 = q1 - q2
+        s4 = mpmath.exp(s3)
+        s5 = mpmath.exp(-s3)
+        s6 = s4 + s5
+        s7 = -s1*s2 + s6
+        s8 = -s4 - s5 + 2
+        s9 = lam0 - mu
+        s10 = p1 + s9
+        s11 = p2 + s9
+        s12 = -s10*s11 + s6
+        _mp_guard('trace', 'lam1 = lam0 + mu', (-s7 - 2)*(s1*s2 + s8))
+        _mp_guard('trace', 'lam2 = lam0 - mu', (-s12 - 2)*(s10*s11 + s8))
+        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s12)*mpmath.sign(s7))
+        t0 = 2*mu
+        t1 = 2*lam0 + 2*p2
+        t2 = lam0 + mu
+        t3 = p1 + t2
+        t4 = p2 + t2
+        t5 = -(t3*t4)
         t6 = q1 - q2
         t7 = mpmath.exp(t6)
         t8 = mpmath.exp(-t6)
-        t9 = p1*p2 - t8
-        t10 = -t7 + t9
-        t11 = t10 + t5
-        t12 = branch*mpmath.sqrt((t11 - 2)*(t11 + 2))
-        t13 = t7 + t9
-        t14 = t13 + t5
-        t15 = 2*t7*p1
-        t16 = ((t12 + t14)/(-t0 - t3) if t12*t14 >= 0 else (-t15 - t3*t7)/(-t12 + t14))
-        t17 = (-_div(t8, p1 + t16 + t4) if branch*mpmath.sign(t11) <= 0 else -p2 - t4 - _div(t7, t16))
-        t18 = t1 - t2
-        t19 = lam0 - mu
-        t20 = t19*p1 + t19*p2 + t19**2
-        t21 = t10 + t20
-        t22 = branch*mpmath.sqrt((t21 - 2)*(t21 + 2))
-        t23 = t13 + t20
-        t24 = ((-t22 + t23)/(-t0 - t18) if t22*t23 <= 0 else (-t15 - t18*t7)/(t22 + t23))
-        t25 = (-_div(t8, p1 + t19 + t24) if branch*mpmath.sign(t21) >= 0 else -p2 - t19 - _div(t7, t24))
-        t26 = -t16 + t24
-        t27 = -t17 + t25
-        t28 = 1/t26
-        t29 = t2*t28
-        t30 = 1/t27
-        t31 = t2*t30
-        t32 = -t16*t28 + t17*t30
-        _mp_guard('range', 'u_1', t16)
-        _mp_guard('range', 'u_2', t17)
-        _mp_guard('range', 'w_1', t24)
-        _mp_guard('range', 'w_2', t25)
-        _mp_guard('range', 'd_1', t26)
-        _mp_guard('range', 'd_2', t27)
-        _mp_guard('positivity', 'Etilde_1', 1 - t29)
-        _mp_guard('positivity', 'Etilde_2', 1 - t31)
-        p_new = [p1 - t2*t32, p2 + t2*t32]
-        q_new = [q1 + mpmath.log1p(-t29), q2 + mpmath.log1p(-t31)]
+        t9 = t7 + t8
+        t10 = t5 + t9
+        t11 = t3*t4
+        t12 = -t8
+        t13 = -t7
+        t14 = t12 + t13 + 2
+        t15 = branch*mpmath.sqrt((-t10 - 2)*(t11 + t14))
+        t16 = t12 + t7
+        t17 = t11 + t16
+        t18 = t13 + t8
+        t19 = 2*t7
+        t20 = ((t15 + t17)/(-t0 - t1) if t15*t17 >= 0 else -(t19*t3/(-t15 - t18 - t5)))
+        t21 = (-_div(t8, t20 + t3) if branch*mpmath.sign(t10) >= 0 else -t4 - _div(t7, t20))
+        t22 = lam0 - mu
+        t23 = p1 + t22
+        t24 = p2 + t22
+        t25 = t23*t24
+        t26 = -t25
+        t27 = t26 + t9
+        t28 = branch*mpmath.sqrt((-t27 - 2)*(t14 + t25))
+        t29 = t16 + t25
+        t30 = ((-t18 - t26 - t28)/(t0 - t1) if t28*t29 <= 0 else -(t19*t23/(t28 + t29)))
+        t31 = (-_div(t8, t23 + t30) if branch*mpmath.sign(t27) <= 0 else -t24 - _div(t7, t30))
+        t32 = -t20 + t30
+        t33 = -t21 + t31
+        t34 = 1/t32
+        t35 = t0*t34
+        t36 = 1/t33
+        t37 = t0*t36
+        t38 = -t20*t34 + t21*t36
+        _mp_guard('range', 'u_1', t20)
+        _mp_guard('range', 'u_2', t21)
+        _mp_guard('range', 'w_1', t30)
+        _mp_guard('range', 'w_2', t31)
+        _mp_guard('range', 'd_1', t32)
+        _mp_guard('range', 'd_2', t33)
+        _mp_guard('positivity', 'Etilde_1', 1 - t35)
+        _mp_guard('positivity', 'Etilde_2', 1 - t37)
+        p_new = [p1 - t0*t38, p2 + t0*t38]
+        q_new = [q1 + mpmath.log1p(-t35), q2 + mpmath.log1p(-t37)]
     except ZeroDivisionError as exc:
         raise NumericRangeError('division by zero (degenerate eigenvector)') from exc
     return p_new, q_new

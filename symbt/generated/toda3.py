@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b8b6b03d4114bb621a13f3837305527c9fb5d6d93bfaacbed4242fdc2bc3dca1
-# symbt-codegen-content-sha256: 5d4a6e14076f3208c525374f79935dbf4581b3f9c7e81987eb8029db2cc2bcb4
+# symbt-codegen-derivation-sha256: 43643acc23ff8fc78bd7b38989149b40e783768af81f72731f57ea5f4dcb0323
+# symbt-codegen-content-sha256: cc56a6a110f4597e62212faca711e54106f4089e3b8224df28ea50ea0a583b32
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -614,61 +614,55 @@ def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
         t0 = -q3
         t1 = np.exp(q1 + t0)
         t2 = lam0 + mu
-        t3 = -t2
-        t4 = t1*p2
-        t5 = q2 + t0
-        t6 = np.exp(-t5)
+        t3 = p2 + t2
+        t4 = -t3
+        t5 = t1*t4
+        t6 = p3 + t2
         t7 = np.exp(-q1 + q2)
-        t8 = p1*p2
-        t9 = -t6*p1 - t7*p3 + t8*p3
-        t10 = -t4 + t9
-        t11 = t2**2
-        t12 = t2*p3
-        t13 = t11*p1 + t12*p1 + t11*p2 + t12*p2 + t11*p3 + t2**3 + t2*t8 + t3*t6 + t3*t7
-        t14 = t1*t3 + t10 + t13
+        t8 = -t7
+        t9 = p1 + t2
+        t10 = t3*t9 + t8
+        t11 = np.exp(-q2 - t0)
+        t12 = t11*t9
+        t13 = t10*t6 - t12
+        t14 = t13 + t5
         t15 = (t14 - 2)*(t14 + 2)
         t16 = lam0 - mu
-        t17 = -t16
-        t18 = t16**2
-        t19 = t16*p3
-        t20 = t18*p1 + t19*p1 + t18*p2 + t19*p2 + t18*p3 + t16**3 + t16*t8
-        t21 = t17*t6 + t17*t7 + t20
-        t22 = t1*t17 + t10 + t21
-        t23 = (t22 - 2)*(t22 + 2)
-        t24 = np.sign(t14)
-        t25 = np.sign(t22)
-        t26 = 2*t11
-        t27 = 2*p2
-        t28 = t27*p3 - 2*t6
-        t29 = branch*np.sqrt(t15)
-        t30 = t1*t2
-        t31 = t4 + t9
-        t32 = t13 + t30 + t31
-        t33 = 2*p1
-        t34 = 2*t4
-        t35 = t33*t4 - 2*np.exp(t5)
-        t36 = np.where(t29*t32 >= 0, (t29 + t32)/(-2*t12 - t2*t27 - t26 - t28), (-t1*t26 - t2*t34 - t30*t33 - t35)/(-t29 + t32))
-        t37 = -(t7/(p1 + t2 + t36))
-        t38 = t24*branch <= 0
-        t39 = -p3 - t2 - t1/t36
-        t40 = p2 + t2
-        t41 = np.where(t38, t37, -t40 - t6/t39)
-        t42 = np.where(t38, -(t6/(t37 + t40)), t39)
-        t43 = 2*t18
-        t44 = branch*np.sqrt(t23)
-        t45 = t1*t16
-        t46 = t21 + t31 + t45
-        t47 = np.where(t44*(t1*t17 + t16*t6 + t16*t7 - t20 - t31) >= 0, (-t44 + t46)/(-t16*t27 - 2*t19 - t28 - t43), (-t1*t43 - t16*t34 - t33*t45 - t35)/(t44 + t46))
-        t48 = -(t7/(p1 + t16 + t47))
-        t49 = t25*branch >= 0
-        t50 = -p3 - t16 - t1/t47
-        t51 = p2 + t16
-        t52 = np.where(t49, t48, -t51 - t6/t50)
-        t53 = np.where(t49, -(t6/(t48 + t51)), t50)
-        t54 = -t36 + t47
-        x = _pack([2*mu*np.exp(q1)/t54], _batch, ())
-        y = _pack([t36*np.exp(-q1)], _batch, ())
-        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t15), ('trace', 'lam2 = lam0 - mu', t23), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t24*t25), ('range', 'u_1', t36), ('range', 'u_2', t41), ('range', 'u_3', t42), ('range', 'w_1', t47), ('range', 'w_2', t52), ('range', 'w_3', t53), ('range', 'd_1', t54), ('range', 'd_2', -t41 + t52), ('range', 'd_3', -t42 + t53)])
+        t17 = p2 + t16
+        t18 = -t17
+        t19 = t1*t18
+        t20 = p3 + t16
+        t21 = p1 + t16
+        t22 = t17*t21 + t8
+        t23 = t20*t22
+        t24 = t11*t21
+        t25 = t23 - t24
+        t26 = t19 + t25
+        t27 = (t26 - 2)*(t26 + 2)
+        t28 = np.sign(t14)
+        t29 = np.sign(t26)
+        t30 = 2*t11
+        t31 = branch*np.sqrt(t15)
+        t32 = -t10*t6 + t12 + t5
+        t33 = 2*t1
+        t34 = np.where(t31*t32 <= 0, (t13 + t31 - t5)/(t30 + 2*t4*t6), -(t10*t33/(-t31 - t32)))
+        t35 = -(t7/(t34 + t9))
+        t36 = t28*branch <= 0
+        t37 = -t6 - t1/t34
+        t38 = np.where(t36, t35, -t3 - t11/t37)
+        t39 = np.where(t36, -(t11/(t3 + t35)), t37)
+        t40 = branch*np.sqrt(t27)
+        t41 = t19 - t23 + t24
+        t42 = np.where(t40*t41 >= 0, (-t40 - t41)/(2*t18*t20 + t30), -(t22*t33/(-t19 + t25 + t40)))
+        t43 = -(t7/(t21 + t42))
+        t44 = t29*branch >= 0
+        t45 = -t20 - t1/t42
+        t46 = np.where(t44, t43, -t17 - t11/t45)
+        t47 = np.where(t44, -(t11/(t17 + t43)), t45)
+        t48 = -t34 + t42
+        x = _pack([2*mu*np.exp(q1)/t48], _batch, ())
+        y = _pack([t34*np.exp(-q1)], _batch, ())
+        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t15), ('trace', 'lam2 = lam0 - mu', t27), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t28*t29), ('range', 'u_1', t34), ('range', 'u_2', t38), ('range', 'u_3', t39), ('range', 'w_1', t42), ('range', 'w_2', t46), ('range', 'w_3', t47), ('range', 'd_1', t48), ('range', 'd_2', -t38 + t46), ('range', 'd_3', -t39 + t47)])
     x, y, = _finish(errors, _bad, _batch, [x, y])
     return x, y
 
@@ -707,73 +701,67 @@ def bt_step(p, q, lam0, mu, branch, errors="raise"):
         t0 = -q3
         t1 = np.exp(q1 + t0)
         t2 = lam0 + mu
-        t3 = -t2
-        t4 = t1*p2
-        t5 = q2 + t0
-        t6 = np.exp(-t5)
+        t3 = p2 + t2
+        t4 = -t3
+        t5 = t1*t4
+        t6 = p3 + t2
         t7 = np.exp(-q1 + q2)
-        t8 = p1*p2
-        t9 = -t6*p1 - t7*p3 + t8*p3
-        t10 = -t4 + t9
-        t11 = t2**2
-        t12 = t2*p3
-        t13 = t11*p1 + t12*p1 + t11*p2 + t12*p2 + t11*p3 + t2**3 + t2*t8 + t3*t6 + t3*t7
-        t14 = t1*t3 + t10 + t13
+        t8 = -t7
+        t9 = p1 + t2
+        t10 = t3*t9 + t8
+        t11 = np.exp(-q2 - t0)
+        t12 = t11*t9
+        t13 = t10*t6 - t12
+        t14 = t13 + t5
         t15 = (t14 - 2)*(t14 + 2)
         t16 = lam0 - mu
-        t17 = -t16
-        t18 = t16**2
-        t19 = t16*p3
-        t20 = t18*p1 + t19*p1 + t18*p2 + t19*p2 + t18*p3 + t16**3 + t16*t8
-        t21 = t17*t6 + t17*t7 + t20
-        t22 = t1*t17 + t10 + t21
-        t23 = (t22 - 2)*(t22 + 2)
-        t24 = np.sign(t14)
-        t25 = np.sign(t22)
-        t26 = 2*t11
-        t27 = 2*p2
-        t28 = t27*p3 - 2*t6
-        t29 = branch*np.sqrt(t15)
-        t30 = t1*t2
-        t31 = t4 + t9
-        t32 = t13 + t30 + t31
-        t33 = 2*p1
-        t34 = 2*t4
-        t35 = t33*t4 - 2*np.exp(t5)
-        t36 = np.where(t29*t32 >= 0, (t29 + t32)/(-2*t12 - t2*t27 - t26 - t28), (-t1*t26 - t2*t34 - t30*t33 - t35)/(-t29 + t32))
-        t37 = -(t7/(p1 + t2 + t36))
-        t38 = t24*branch <= 0
-        t39 = -p3 - t2 - t1/t36
-        t40 = p2 + t2
-        t41 = np.where(t38, t37, -t40 - t6/t39)
-        t42 = np.where(t38, -(t6/(t37 + t40)), t39)
-        t43 = 2*t18
-        t44 = branch*np.sqrt(t23)
-        t45 = t1*t16
-        t46 = t21 + t31 + t45
-        t47 = np.where(t44*(t1*t17 + t16*t6 + t16*t7 - t20 - t31) >= 0, (-t44 + t46)/(-t16*t27 - 2*t19 - t28 - t43), (-t1*t43 - t16*t34 - t33*t45 - t35)/(t44 + t46))
-        t48 = -(t7/(p1 + t16 + t47))
-        t49 = t25*branch >= 0
-        t50 = -p3 - t16 - t1/t47
-        t51 = p2 + t16
-        t52 = np.where(t49, t48, -t51 - t6/t50)
-        t53 = np.where(t49, -(t6/(t48 + t51)), t50)
-        t54 = -t36 + t47
-        t55 = -t41 + t52
-        t56 = -t42 + t53
-        t57 = 1/t54
-        t58 = 2*mu
-        t59 = t57*t58
-        t60 = 1/t55
-        t61 = t58*t60
-        t62 = 1/t56
-        t63 = t58*t62
-        t64 = -(t36*t57)
-        t65 = t41*t60
-        t66 = t42*t62
-        p_new = _pack([p1 + t58*(-t64 - t65), p2 + t58*(t65 - t66), p3 + t58*(t64 + t66)], _batch, (3,))
-        q_new = _pack([q1 + np.log1p(-t59), q2 + np.log1p(-t61), q3 + np.log1p(-t63)], _batch, (3,))
-        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t15), ('trace', 'lam2 = lam0 - mu', t23), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t24*t25), ('range', 'u_1', t36), ('range', 'u_2', t41), ('range', 'u_3', t42), ('range', 'w_1', t47), ('range', 'w_2', t52), ('range', 'w_3', t53), ('range', 'd_1', t54), ('range', 'd_2', t55), ('range', 'd_3', t56), ('positivity', 'Etilde_1', 1 - t59), ('positivity', 'Etilde_2', 1 - t61), ('positivity', 'Etilde_3', 1 - t63)])
+        t17 = p2 + t16
+        t18 = -t17
+        t19 = t1*t18
+        t20 = p3 + t16
+        t21 = p1 + t16
+        t22 = t17*t21 + t8
+        t23 = t20*t22
+        t24 = t11*t21
+        t25 = t23 - t24
+        t26 = t19 + t25
+        t27 = (t26 - 2)*(t26 + 2)
+        t28 = np.sign(t14)
+        t29 = np.sign(t26)
+        t30 = 2*t11
+        t31 = branch*np.sqrt(t15)
+        t32 = -t10*t6 + t12 + t5
+        t33 = 2*t1
+        t34 = np.where(t31*t32 <= 0, (t13 + t31 - t5)/(t30 + 2*t4*t6), -(t10*t33/(-t31 - t32)))
+        t35 = -(t7/(t34 + t9))
+        t36 = t28*branch <= 0
+        t37 = -t6 - t1/t34
+        t38 = np.where(t36, t35, -t3 - t11/t37)
+        t39 = np.where(t36, -(t11/(t3 + t35)), t37)
+        t40 = branch*np.sqrt(t27)
+        t41 = t19 - t23 + t24
+        t42 = np.where(t40*t41 >= 0, (-t40 - t41)/(2*t18*t20 + t30), -(t22*t33/(-t19 + t25 + t40)))
+        t43 = -(t7/(t21 + t42))
+        t44 = t29*branch >= 0
+        t45 = -t20 - t1/t42
+        t46 = np.where(t44, t43, -t17 - t11/t45)
+        t47 = np.where(t44, -(t11/(t17 + t43)), t45)
+        t48 = -t34 + t42
+        t49 = -t38 + t46
+        t50 = -t39 + t47
+        t51 = 1/t48
+        t52 = 2*mu
+        t53 = t51*t52
+        t54 = 1/t49
+        t55 = t52*t54
+        t56 = 1/t50
+        t57 = t52*t56
+        t58 = -(t34*t51)
+        t59 = t38*t54
+        t60 = t39*t56
+        p_new = _pack([p1 + t52*(-t58 - t59), p2 + t52*(t59 - t60), p3 + t52*(t58 + t60)], _batch, (3,))
+        q_new = _pack([q1 + np.log1p(-t53), q2 + np.log1p(-t55), q3 + np.log1p(-t57)], _batch, (3,))
+        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t15), ('trace', 'lam2 = lam0 - mu', t27), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t28*t29), ('range', 'u_1', t34), ('range', 'u_2', t38), ('range', 'u_3', t39), ('range', 'w_1', t42), ('range', 'w_2', t46), ('range', 'w_3', t47), ('range', 'd_1', t48), ('range', 'd_2', t49), ('range', 'd_3', t50), ('positivity', 'Etilde_1', 1 - t53), ('positivity', 'Etilde_2', 1 - t55), ('positivity', 'Etilde_3', 1 - t57)])
     p_new, q_new, = _finish(errors, _bad, _batch, [p_new, q_new])
     return p_new, q_new
 
@@ -1162,87 +1150,76 @@ def dapp_xy_mp(p, q, lam0, mu, branch):
     branch = _mp_branch(branch)
     try:
         s0 = lam0 + mu
-        s1 = s0**2
+        s1 = p1 + s0
         s2 = -q3
-        s3 = mpmath.exp(q1 + s2)
-        s4 = -s0
-        s5 = mpmath.exp(-q1 + q2)
-        s6 = mpmath.exp(-q2 - s2)
-        s7 = p1*p2
-        s8 = s0*p3
-        s9 = -s6*p1 - s3*p2 - s5*p3 + s7*p3
-        s10 = s1*p1 + s8*p1 + s1*p2 + s8*p2 + s1*p3 + s0**3 + s0*s7 + s3*s4 + s4*s5 + s4*s6 + s9
-        s11 = lam0 - mu
-        s12 = s11**2
-        s13 = -s11
-        s14 = s11*p3
-        s15 = s12*p1 + s14*p1 + s12*p2 + s14*p2 + s12*p3 + s11**3 + s11*s7 + s13*s3 + s13*s5 + s13*s6 + s9
-        _mp_guard('trace', 'lam1 = lam0 + mu', (s10 - 2)*(s10 + 2))
-        _mp_guard('trace', 'lam2 = lam0 - mu', (s15 - 2)*(s15 + 2))
-        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s10)*mpmath.sign(s15))
-        t0 = lam0 + mu
-        t1 = t0**2
+        s3 = mpmath.exp(-q2 - s2)
+        s4 = mpmath.exp(q1 + s2)
+        s5 = p2 + s0
+        s6 = -mpmath.exp(-q1 + q2)
+        s7 = -s1*s3 - s4*s5 + (p3 + s0)*(s1*s5 + s6)
+        s8 = lam0 - mu
+        s9 = p1 + s8
+        s10 = p2 + s8
+        s11 = -s10*s4 - s3*s9 + (s10*s9 + s6)*(p3 + s8)
+        _mp_guard('trace', 'lam1 = lam0 + mu', (s7 - 2)*(s7 + 2))
+        _mp_guard('trace', 'lam2 = lam0 - mu', (s11 - 2)*(s11 + 2))
+        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s11)*mpmath.sign(s7))
+        t0 = -q3
+        t1 = mpmath.exp(-q2 - t0)
         t2 = 2*t1
-        t3 = 2*p2
-        t4 = t0*p3
-        t5 = -q3
-        t6 = q2 + t5
-        t7 = mpmath.exp(-t6)
-        t8 = t3*p3 - 2*t7
-        t9 = mpmath.exp(q1 + t5)
-        t10 = -t0
-        t11 = mpmath.exp(-q1 + q2)
-        t12 = p1*p2
-        t13 = t1*p1 + t4*p1 + t1*p2 + t4*p2 + t1*p3 + t0**3 + t0*t12 + t10*t11 + t10*t7
-        t14 = t9*p2
-        t15 = -t7*p1 - t11*p3 + t12*p3
-        t16 = -t14 + t15
-        t17 = t10*t9 + t13 + t16
-        t18 = branch*mpmath.sqrt((t17 - 2)*(t17 + 2))
-        t19 = t0*t9
-        t20 = t14 + t15
-        t21 = t13 + t19 + t20
-        t22 = 2*p1
-        t23 = 2*t14
-        t24 = t14*t22 - 2*mpmath.exp(t6)
-        t25 = ((t18 + t21)/(-t0*t3 - t2 - 2*t4 - t8) if t18*t21 >= 0 else (-t0*t23 - t19*t22 - t2*t9 - t24)/(-t18 + t21))
-        t26 = -_div(t11, p1 + t0 + t25)
-        t27 = branch*mpmath.sign(t17) <= 0
-        t28 = -p3 - t0 - _div(t9, t25)
-        t29 = p2 + t0
-        t30 = (t26 if t27 else -t29 - _div(t7, t28))
-        t31 = (-_div(t7, t26 + t29) if t27 else t28)
-        t32 = lam0 - mu
-        t33 = t32**2
-        t34 = 2*t33
-        t35 = t32*p3
-        t36 = -t32
-        t37 = t33*p1 + t35*p1 + t33*p2 + t35*p2 + t33*p3 + t12*t32 + t32**3
-        t38 = t11*t36 + t36*t7
-        t39 = t16 + t36*t9 + t37 + t38
-        t40 = branch*mpmath.sqrt((t39 - 2)*(t39 + 2))
-        t41 = t32*t9
-        t42 = t20 + t37
-        t43 = t38 + t41 + t42
-        t44 = ((-t40 + t43)/(-t3*t32 - t34 - 2*t35 - t8) if t40*(t11*t32 + t32*t7 + t36*t9 - t42) >= 0 else (-t22*t41 - t23*t32 - t24 - t34*t9)/(t40 + t43))
-        t45 = -_div(t11, p1 + t32 + t44)
-        t46 = branch*mpmath.sign(t39) >= 0
-        t47 = -p3 - t32 - _div(t9, t44)
-        t48 = p2 + t32
-        t49 = (t45 if t46 else -t48 - _div(t7, t47))
-        t50 = (-_div(t7, t45 + t48) if t46 else t47)
-        t51 = -t25 + t44
-        _mp_guard('range', 'u_1', t25)
-        _mp_guard('range', 'u_2', t30)
-        _mp_guard('range', 'u_3', t31)
-        _mp_guard('range', 'w_1', t44)
-        _mp_guard('range', 'w_2', t49)
-        _mp_guard('range', 'w_3', t50)
-        _mp_guard('range', 'd_1', t51)
-        _mp_guard('range', 'd_2', -t30 + t49)
-        _mp_guard('range', 'd_3', -t31 + t50)
-        x = 2*mu*mpmath.exp(q1)/t51
-        y = t25*mpmath.exp(-q1)
+        t3 = lam0 + mu
+        t4 = p3 + t3
+        t5 = p2 + t3
+        t6 = -t5
+        t7 = mpmath.exp(q1 + t0)
+        t8 = t6*t7
+        t9 = mpmath.exp(-q1 + q2)
+        t10 = -t9
+        t11 = p1 + t3
+        t12 = t10 + t11*t5
+        t13 = t1*t11
+        t14 = t12*t4 - t13
+        t15 = t14 + t8
+        t16 = branch*mpmath.sqrt((t15 - 2)*(t15 + 2))
+        t17 = -t12*t4 + t13 + t8
+        t18 = 2*t7
+        t19 = ((t14 + t16 - t8)/(t2 + 2*t4*t6) if t16*t17 <= 0 else -(t12*t18/(-t16 - t17)))
+        t20 = -_div(t9, t11 + t19)
+        t21 = branch*mpmath.sign(t15) <= 0
+        t22 = -t4 - _div(t7, t19)
+        t23 = (t20 if t21 else -t5 - _div(t1, t22))
+        t24 = (-_div(t1, t20 + t5) if t21 else t22)
+        t25 = lam0 - mu
+        t26 = p3 + t25
+        t27 = p2 + t25
+        t28 = -t27
+        t29 = t28*t7
+        t30 = p1 + t25
+        t31 = t10 + t27*t30
+        t32 = t26*t31
+        t33 = t1*t30
+        t34 = t32 - t33
+        t35 = t29 + t34
+        t36 = branch*mpmath.sqrt((t35 - 2)*(t35 + 2))
+        t37 = t29 - t32 + t33
+        t38 = ((-t36 - t37)/(t2 + 2*t26*t28) if t36*t37 >= 0 else -(t18*t31/(-t29 + t34 + t36)))
+        t39 = -_div(t9, t30 + t38)
+        t40 = branch*mpmath.sign(t35) >= 0
+        t41 = -t26 - _div(t7, t38)
+        t42 = (t39 if t40 else -t27 - _div(t1, t41))
+        t43 = (-_div(t1, t27 + t39) if t40 else t41)
+        t44 = -t19 + t38
+        _mp_guard('range', 'u_1', t19)
+        _mp_guard('range', 'u_2', t23)
+        _mp_guard('range', 'u_3', t24)
+        _mp_guard('range', 'w_1', t38)
+        _mp_guard('range', 'w_2', t42)
+        _mp_guard('range', 'w_3', t43)
+        _mp_guard('range', 'd_1', t44)
+        _mp_guard('range', 'd_2', -t23 + t42)
+        _mp_guard('range', 'd_3', -t24 + t43)
+        x = 2*mu*mpmath.exp(q1)/t44
+        y = t19*mpmath.exp(-q1)
     except ZeroDivisionError as exc:
         raise NumericRangeError('division by zero (degenerate eigenvector)') from exc
     return x, y
@@ -1271,102 +1248,91 @@ def bt_step_mp(p, q, lam0, mu, branch):
     branch = _mp_branch(branch)
     try:
         s0 = lam0 + mu
-        s1 = s0**2
+        s1 = p1 + s0
         s2 = -q3
-        s3 = mpmath.exp(q1 + s2)
-        s4 = -s0
-        s5 = mpmath.exp(-q1 + q2)
-        s6 = mpmath.exp(-q2 - s2)
-        s7 = p1*p2
-        s8 = s0*p3
-        s9 = -s6*p1 - s3*p2 - s5*p3 + s7*p3
-        s10 = s1*p1 + s8*p1 + s1*p2 + s8*p2 + s1*p3 + s0**3 + s0*s7 + s3*s4 + s4*s5 + s4*s6 + s9
-        s11 = lam0 - mu
-        s12 = s11**2
-        s13 = -s11
-        s14 = s11*p3
-        s15 = s12*p1 + s14*p1 + s12*p2 + s14*p2 + s12*p3 + s11**3 + s11*s7 + s13*s3 + s13*s5 + s13*s6 + s9
-        _mp_guard('trace', 'lam1 = lam0 + mu', (s10 - 2)*(s10 + 2))
-        _mp_guard('trace', 'lam2 = lam0 - mu', (s15 - 2)*(s15 + 2))
-        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s10)*mpmath.sign(s15))
-        t0 = lam0 + mu
-        t1 = t0**2
+        s3 = mpmath.exp(-q2 - s2)
+        s4 = mpmath.exp(q1 + s2)
+        s5 = p2 + s0
+        s6 = -mpmath.exp(-q1 + q2)
+        s7 = -s1*s3 - s4*s5 + (p3 + s0)*(s1*s5 + s6)
+        s8 = lam0 - mu
+        s9 = p1 + s8
+        s10 = p2 + s8
+        s11 = -s10*s4 - s3*s9 + (s10*s9 + s6)*(p3 + s8)
+        _mp_guard('trace', 'lam1 = lam0 + mu', (s7 - 2)*(s7 + 2))
+        _mp_guard('trace', 'lam2 = lam0 - mu', (s11 - 2)*(s11 + 2))
+        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s11)*mpmath.sign(s7))
+        t0 = -q3
+        t1 = mpmath.exp(-q2 - t0)
         t2 = 2*t1
-        t3 = 2*p2
-        t4 = t0*p3
-        t5 = -q3
-        t6 = q2 + t5
-        t7 = mpmath.exp(-t6)
-        t8 = t3*p3 - 2*t7
-        t9 = mpmath.exp(q1 + t5)
-        t10 = -t0
-        t11 = mpmath.exp(-q1 + q2)
-        t12 = p1*p2
-        t13 = t1*p1 + t4*p1 + t1*p2 + t4*p2 + t1*p3 + t0**3 + t0*t12 + t10*t11 + t10*t7
-        t14 = t9*p2
-        t15 = -t7*p1 - t11*p3 + t12*p3
-        t16 = -t14 + t15
-        t17 = t10*t9 + t13 + t16
-        t18 = branch*mpmath.sqrt((t17 - 2)*(t17 + 2))
-        t19 = t0*t9
-        t20 = t14 + t15
-        t21 = t13 + t19 + t20
-        t22 = 2*p1
-        t23 = 2*t14
-        t24 = t14*t22 - 2*mpmath.exp(t6)
-        t25 = ((t18 + t21)/(-t0*t3 - t2 - 2*t4 - t8) if t18*t21 >= 0 else (-t0*t23 - t19*t22 - t2*t9 - t24)/(-t18 + t21))
-        t26 = -_div(t11, p1 + t0 + t25)
-        t27 = branch*mpmath.sign(t17) <= 0
-        t28 = -p3 - t0 - _div(t9, t25)
-        t29 = p2 + t0
-        t30 = (t26 if t27 else -t29 - _div(t7, t28))
-        t31 = (-_div(t7, t26 + t29) if t27 else t28)
-        t32 = lam0 - mu
-        t33 = t32**2
-        t34 = 2*t33
-        t35 = t32*p3
-        t36 = -t32
-        t37 = t33*p1 + t35*p1 + t33*p2 + t35*p2 + t33*p3 + t12*t32 + t32**3
-        t38 = t11*t36 + t36*t7
-        t39 = t16 + t36*t9 + t37 + t38
-        t40 = branch*mpmath.sqrt((t39 - 2)*(t39 + 2))
-        t41 = t32*t9
-        t42 = t20 + t37
-        t43 = t38 + t41 + t42
-        t44 = ((-t40 + t43)/(-t3*t32 - t34 - 2*t35 - t8) if t40*(t11*t32 + t32*t7 + t36*t9 - t42) >= 0 else (-t22*t41 - t23*t32 - t24 - t34*t9)/(t40 + t43))
-        t45 = -_div(t11, p1 + t32 + t44)
-        t46 = branch*mpmath.sign(t39) >= 0
-        t47 = -p3 - t32 - _div(t9, t44)
-        t48 = p2 + t32
-        t49 = (t45 if t46 else -t48 - _div(t7, t47))
-        t50 = (-_div(t7, t45 + t48) if t46 else t47)
-        t51 = -t25 + t44
-        t52 = -t30 + t49
-        t53 = -t31 + t50
-        t54 = 1/t51
-        t55 = 2*mu
-        t56 = t54*t55
-        t57 = 1/t52
-        t58 = t55*t57
-        t59 = 1/t53
-        t60 = t55*t59
-        t61 = -(t25*t54)
-        t62 = t30*t57
-        t63 = t31*t59
-        _mp_guard('range', 'u_1', t25)
-        _mp_guard('range', 'u_2', t30)
-        _mp_guard('range', 'u_3', t31)
-        _mp_guard('range', 'w_1', t44)
-        _mp_guard('range', 'w_2', t49)
-        _mp_guard('range', 'w_3', t50)
-        _mp_guard('range', 'd_1', t51)
-        _mp_guard('range', 'd_2', t52)
-        _mp_guard('range', 'd_3', t53)
-        _mp_guard('positivity', 'Etilde_1', 1 - t56)
-        _mp_guard('positivity', 'Etilde_2', 1 - t58)
-        _mp_guard('positivity', 'Etilde_3', 1 - t60)
-        p_new = [p1 + t55*(-t61 - t62), p2 + t55*(t62 - t63), p3 + t55*(t61 + t63)]
-        q_new = [q1 + mpmath.log1p(-t56), q2 + mpmath.log1p(-t58), q3 + mpmath.log1p(-t60)]
+        t3 = lam0 + mu
+        t4 = p3 + t3
+        t5 = p2 + t3
+        t6 = -t5
+        t7 = mpmath.exp(q1 + t0)
+        t8 = t6*t7
+        t9 = mpmath.exp(-q1 + q2)
+        t10 = -t9
+        t11 = p1 + t3
+        t12 = t10 + t11*t5
+        t13 = t1*t11
+        t14 = t12*t4 - t13
+        t15 = t14 + t8
+        t16 = branch*mpmath.sqrt((t15 - 2)*(t15 + 2))
+        t17 = -t12*t4 + t13 + t8
+        t18 = 2*t7
+        t19 = ((t14 + t16 - t8)/(t2 + 2*t4*t6) if t16*t17 <= 0 else -(t12*t18/(-t16 - t17)))
+        t20 = -_div(t9, t11 + t19)
+        t21 = branch*mpmath.sign(t15) <= 0
+        t22 = -t4 - _div(t7, t19)
+        t23 = (t20 if t21 else -t5 - _div(t1, t22))
+        t24 = (-_div(t1, t20 + t5) if t21 else t22)
+        t25 = lam0 - mu
+        t26 = p3 + t25
+        t27 = p2 + t25
+        t28 = -t27
+        t29 = t28*t7
+        t30 = p1 + t25
+        t31 = t10 + t27*t30
+        t32 = t26*t31
+        t33 = t1*t30
+        t34 = t32 - t33
+        t35 = t29 + t34
+        t36 = branch*mpmath.sqrt((t35 - 2)*(t35 + 2))
+        t37 = t29 - t32 + t33
+        t38 = ((-t36 - t37)/(t2 + 2*t26*t28) if t36*t37 >= 0 else -(t18*t31/(-t29 + t34 + t36)))
+        t39 = -_div(t9, t30 + t38)
+        t40 = branch*mpmath.sign(t35) >= 0
+        t41 = -t26 - _div(t7, t38)
+        t42 = (t39 if t40 else -t27 - _div(t1, t41))
+        t43 = (-_div(t1, t27 + t39) if t40 else t41)
+        t44 = -t19 + t38
+        t45 = -t23 + t42
+        t46 = -t24 + t43
+        t47 = 1/t44
+        t48 = 2*mu
+        t49 = t47*t48
+        t50 = 1/t45
+        t51 = t48*t50
+        t52 = 1/t46
+        t53 = t48*t52
+        t54 = -(t19*t47)
+        t55 = t23*t50
+        t56 = t24*t52
+        _mp_guard('range', 'u_1', t19)
+        _mp_guard('range', 'u_2', t23)
+        _mp_guard('range', 'u_3', t24)
+        _mp_guard('range', 'w_1', t38)
+        _mp_guard('range', 'w_2', t42)
+        _mp_guard('range', 'w_3', t43)
+        _mp_guard('range', 'd_1', t44)
+        _mp_guard('range', 'd_2', t45)
+        _mp_guard('range', 'd_3', t46)
+        _mp_guard('positivity', 'Etilde_1', 1 - t49)
+        _mp_guard('positivity', 'Etilde_2', 1 - t51)
+        _mp_guard('positivity', 'Etilde_3', 1 - t53)
+        p_new = [p1 + t48*(-t54 - t55), p2 + t48*(t55 - t56), p3 + t48*(t54 + t56)]
+        q_new = [q1 + mpmath.log1p(-t49), q2 + mpmath.log1p(-t51), q3 + mpmath.log1p(-t53)]
     except ZeroDivisionError as exc:
         raise NumericRangeError('division by zero (degenerate eigenvector)') from exc
     return p_new, q_new
