@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 43643acc23ff8fc78bd7b38989149b40e783768af81f72731f57ea5f4dcb0323
-# symbt-codegen-content-sha256: 779609657285bd9cb2c02764f9da818f932e850b58e5138c5730a72244d0ae21
+# symbt-codegen-derivation-sha256: 6c8f22423c3e171708cc3c3097b050bffd9be2df668cc308a54a53d340427ffc
+# symbt-codegen-content-sha256: c1fedf8b633d3488377df45e9012c7fbd79d68d997e3c7195160bd460ae51e40
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

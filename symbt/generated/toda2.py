@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 43643acc23ff8fc78bd7b38989149b40e783768af81f72731f57ea5f4dcb0323
-# symbt-codegen-content-sha256: 9d4db2a6279fe1e4cd42e0123333b1e7ac04cf587d649d215243104ab2f2e514
+# symbt-codegen-derivation-sha256: 6c8f22423c3e171708cc3c3097b050bffd9be2df668cc308a54a53d340427ffc
+# symbt-codegen-content-sha256: 8ace7590d9432897560e822247aa70954ab2b4387d58000960259c0ecc33c619
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

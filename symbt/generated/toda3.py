@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 43643acc23ff8fc78bd7b38989149b40e783768af81f72731f57ea5f4dcb0323
-# symbt-codegen-content-sha256: cc56a6a110f4597e62212faca711e54106f4089e3b8224df28ea50ea0a583b32
+# symbt-codegen-derivation-sha256: 6c8f22423c3e171708cc3c3097b050bffd9be2df668cc308a54a53d340427ffc
+# symbt-codegen-content-sha256: 35c167fb126df2c3b145cd6b768670f4dafe3890a001f41afabef825d08406c3
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
