@@ -227,3 +227,46 @@ def test_equation_ties_the_emitted_claims_to_their_display(tmp_path: Path) -> No
             SCENES.pop("codegen", None)
     with pytest.raises(EmitError, match="equation"):
         emit("bad_label", x, args=(x,), module="tiedmod", equation="  ", register=False)
+
+
+def test_a_sum_of_thousands_of_terms_compiles_and_is_accurate(tmp_path: Path) -> None:
+    """A sum of 6000 terms printed as one chain ``a + b + ...`` made Python's compiler raise RecursionError
+    (the N >= 10 Toda trace); the balanced partial sums compile.  End to end, (1 + x + y)^40 expanded
+    (861 terms) is emitted, imported and accurate to 16 eps S, S = sum of |terms| = (1 + |x| + |y|)^40."""
+    import sympy as sp
+
+    from symbt.codegen.user.check import load_python
+    from symbt.codegen.user.declare import emit
+    from symbt.codegen.user.files import generate
+    from symbt.codegen.user.render import LONG_SUM, UserPrinter
+
+    x, y = sp.symbols("x y", real=True)
+    chain = sp.Add(*[x ** k for k in range(6000)])
+    for flavour in ("numpy", "mpmath"):
+        code = compile(UserPrinter(flavour, {x: "x"}).text(chain), "<sum>", "eval")
+        assert abs(eval(code, {"x": 0.5}) - 2) <= 8 * 2.0 ** -52        # the geometric sum 2 - 2^-5999
+    poly = sp.expand((1 + x + y) ** 40)
+    assert len(poly.args) > 8 * LONG_SUM
+    (path,) = generate([emit("big", poly, args=(x, y), module="bigsum", register=False)], tmp_path, tmp_path)
+    mod = load_python(path)
+    for xv, yv in ((0.01, 0.02), (-0.013, 0.007), (0.2, -0.15)):
+        exact = (1 + sp.Rational(xv) + sp.Rational(yv)) ** 40
+        S = float((1 + abs(sp.Rational(xv)) + abs(sp.Rational(yv))) ** 40)
+        assert abs(float(mod.big(xv, yv)) - float(exact)) <= 16 * 2.0 ** -52 * S
+        assert abs(float(mod.big_mp(xv, yv)) - float(exact)) <= 16 * 2.0 ** -52 * S
+
+
+def test_rewriting_only_where_its_function_occurs() -> None:
+    import sympy as sp
+    from sympy.codegen.cfunctions import expm1
+
+    from symbt.codegen.user.declare import emit
+    from symbt.codegen.user.render import FACTOR_MAX_OPS, optimized
+
+    x, y = sp.symbols("x y", real=True)
+    big = sp.expand((1 + x + y) ** 30)            # no exp, no log: returned as declared (no factor())
+    assert sp.count_ops(big) > FACTOR_MAX_OPS
+    e = emit("f", [big, (big - 1) + sp.exp(x) - 1], args=(x, y), module="m", register=False)
+    plain, rewritten = optimized(e)
+    assert plain is e.exprs[0]
+    assert rewritten.has(expm1) and not rewritten.has(sp.exp)   # exp(x) - 1 -> expm1(x), term by term

@@ -7,9 +7,10 @@ geometrically with N).  For each N, one row:
 * **emit**: ``symbt.emit`` (the declaration and its checks) plus the renderer and the atomic write
   of ``<module>.py`` into a temporary directory (:func:`symbt.codegen.user.files.generate`:
   rewriting, CSE, printing, provenance header) -- the wall time and the file's size in bytes.
-  ``optimize`` (``--no-optimize``) is the declaration's flag: SymPy's ``expm1`` rewriter
-  (:mod:`sympy.codegen.rewriting`) also tries ``expr.factor()`` of the whole expression, which is
-  most of the emission time of a large polynomial such as this one;
+  ``optimize`` (``--no-optimize``) is the declaration's flag; the ``expm1``/``log1p`` rules are
+  applied only to expressions containing ``exp``/``log`` (:func:`symbt.codegen.user.render.optimized`),
+  so for this family both settings emit the same file in the same time (before 2026-11-26 SymPy's
+  rewriter tried ``expr.factor()`` of the whole trace: 93 % of the emission time, 98 s at N = 8);
 * **lambdify**: ``sympy.lambdify(args, expr, "numpy", cse=True)`` -- its wall time and the size
   of the source it generated (``inspect.getsource``);
 * **evaluation** of the emitted numpy function (imported from the written file) and of the
@@ -19,7 +20,8 @@ geometrically with N).  For each N, one row:
   verdict -- the emitted file's verdict is its claim, :mod:`symbt.engine.emitted_claims`).
 
 A source Python cannot compile (``RecursionError``: the final sum of a large expression is one
-expression of thousands of terms) is recorded as ``None`` (printed ``RecursionError``), not raised.
+expression of thousands of terms -- ``lambdify``'s from N = 10; the emitted file prints long sums as
+balanced partial sums and compiles) is recorded as ``None`` (printed ``RecursionError``), not raised.
 
 Run: ``python -m symbt.benchmarks.emission [--n 2 3 ...] [--points 10000] [--repeats 5] [--json FILE]``
 (a Markdown table on stdout).  Times depend on the machine and its load; BENCHMARKS.md records

@@ -1,6 +1,7 @@
 """``symbt codegen``: emit the SymPy derivations as numeric code (Python or C), and check it.
 
-* :mod:`.derive` -- the SymPy sources of the emitted functions and their closed forms;
+* :mod:`.derive` -- the SymPy sources of the emitted functions and their closed forms
+  (:mod:`.transport`: the closed form's slopes, built as :mod:`symbt.numeric` computes them);
   :mod:`.kernels` -- the one-site kernels of the transfer-matrix form;
 * :mod:`.emit`, :mod:`.emit_loop`, :mod:`.emit_c` -- the Python modules ``toda{N}.py``
   (closed form for N < :data:`LOOP_FROM`, loops over sites from there on) and the C99

@@ -18,15 +18,14 @@ rational variables :math:`E_j = e^{q_j}`).  Two builds of the same catalogue:
     are combined into one ``exp(q_i - q_j)`` -- no ``exp(q_j)`` that could overflow
     when the centre of mass drifts.
   - ``tr^2 - 4`` is written ``(tr - 2)(tr + 2)`` (no cancellation in float64).
-  - The slopes at site ``j`` are read off the *cyclically shifted* monodromy
-    ``L^(j) = l_{j-1} ... l_1 l_N ... l_j`` (no site-by-site transport, which loses
-    ``log10(v^2)`` digits); of the two equal forms ``(A - D + g)/(2B) = -2C/(A - D - g)``
-    the one without cancellation is selected (``Piecewise`` on the sign of ``(A - D) g``);
-    ``q~_j = q_j + log1p(-x_j/E_j)``, ``p~_j = p_j + 2 mu (u_j/d_j - u_{j+1}/d_{j+1})``
-    with the scaled slopes ``u_j = E_j y_j``, ``w_j = E_j z_j``, ``d_j = w_j - u_j``.
-  - *Guards*: expressions that are positive exactly where the real function exists
-    (``tr_i^2 - 4`` and ``1 - x_j/E_j = e^{q~_j - q_j}``); the emitted code raises
-    ``NoRealMapError`` (or masks) where one is not.
+  - The slope at site 1 is read off the monodromy; of ``(A - D + g)/(2B) = -2C/(A - D - g)`` the
+    form without cancellation is selected (``Piecewise`` on the sign of ``(A - D) g``); the other
+    sites by transport in the contracting direction (:func:`.transport.transported`, as ``symbt.numeric``);
+    ``q~_j = q_j + log1p(-x_j/E_j)``, ``p~_j = p_j + 2 mu (u_j/d_j - u_{j+1}/d_{j+1})`` with the
+    scaled slopes ``u_j = E_j y_j``, ``w_j = E_j z_j``, ``d_j = w_j - u_j``.
+  - *Guards*: positive exactly where the real function exists (``tr_i^2 - 4``, the sign of
+    ``tr_1 tr_2``, ``1 - x_j/E_j = e^{q~_j - q_j}``), or finite (``range``: every slope); the code
+    raises ``NoRealMapError`` / ``NumericRangeError`` (or masks) where one is not.
 
 Branch ``b = +-1``: ``gamma_i = b sqrt(tr L(lambda_i)^2 - 4)`` (positive root) at
 ``lambda_1 = lambda_0 + mu`` and ``lambda_2 = lambda_0 - mu``.
@@ -46,6 +45,7 @@ from sympy.codegen.cfunctions import log1p
 from ..reference.literal import phi_from_traces
 from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import local_lax, toda_model
+from .transport import scaled_monodromy, transported
 
 __all__ = ["ArgSpec", "Output", "Guard", "FunctionSpec", "specs", "sources", "interface", "branch", "tr1", "tr2", "lam",
            "lam0", "mu", "coefficient_symbols", "disc", "phi_of", "FUNCTIONS"]
@@ -82,7 +82,9 @@ class Output:
 @dataclass(frozen=True)
 class Guard:
     """``expr > 0`` exactly where the real function exists; ``condition`` is ``trace`` or ``positivity``
-    (as in ``NoRealMapError.condition``); ``stage`` 0 guards can be tested before anything else."""
+    (as in ``NoRealMapError.condition``); ``stage`` 0 guards can be tested before anything else.
+    ``condition = "range"``: ``expr`` must only be finite (else ``NumericRangeError``): an intermediate
+    whose overflow would otherwise read out as a finite wrong value."""
 
     condition: str
     label: str
@@ -279,6 +281,14 @@ def _slope(M, g, sign):
     return (dl + sign * g) / (2 * B), -2 * C / (dl - sign * g), sp.GreaterThan(sign * dl * g, 0)
 
 
+def _with_guards(spec, extra):
+    """``spec`` with the guards ``extra`` after its trace guards (decided in order: an overflowed slope is a
+    range error, not a positivity decided from a wrong value)."""
+    k = sum(g.condition == "trace" for g in spec.guards)
+    return FunctionSpec(spec.name, spec.equation, spec.summary, spec.args, spec.outputs, spec.kind,
+                        spec.guards[:k] + tuple(extra) + spec.guards[k:], spec.defs)
+
+
 def _check_dacosh():
     # d/dT arccosh(T/2) = 1/sqrt(T^2 - 4) for T > 2 (both sides positive: compare squares exactly)
     T = sp.Symbol("T", positive=True)
@@ -424,21 +434,32 @@ def _build(N: int, rewrite: bool) -> tuple:
     G1 = branch * sp.sqrt(disc(t_1))
     G2 = branch * sp.sqrt(disc(t_2))
     gs = sp.Symbol("g")
-    if rewrite:   # scaled slopes u_j = E_j y_j, w_j = E_j z_j, the cancellation-free form selected
-        u, w = [], []
-        for j in range(N):
-            f1, s1, c1 = _slope(_cyclic_monodromy(m, lam0 + mu, j), gs, +1)
-            f2, s2, c2 = _slope(_cyclic_monodromy(m, lam0 - mu, j), gs, -1)
-            u.append(sp.Piecewise((S(E[j] * f1).xreplace({gs: G1}), S(c1).xreplace({gs: G1})),
-                                  (S(E[j] * s1).xreplace({gs: G1}), True)))
-            w.append(sp.Piecewise((S(E[j] * f2).xreplace({gs: G2}), S(c2).xreplace({gs: G2})),
-                                  (S(E[j] * s2).xreplace({gs: G2}), True)))
+    if rewrite:   # scaled slopes u_j = E_j y_j, w_j = E_j z_j: site 1 from the monodromy, then transported
+        # the step's monodromies and traces as products of the scaled m_j, a_j = lambda + p_j kept whole (the
+        # trace expanded in lambda lost ~log10(lambda^N/|tr|) digits to cancellation: 115 eps x condition)
+        M1, M2 = scaled_monodromy(m, lam0 + mu), scaled_monodromy(m, lam0 - mu)
+        t_1, t_2 = M1[0, 0] + M1[1, 1], M2[0, 0] + M2[1, 1]
+        tg = [disc(t_1), disc(t_2)]
+        G1, G2 = branch * sp.sqrt(disc(t_1)), branch * sp.sqrt(disc(t_2))
+        f1, s1, c1 = (x.xreplace({gs: G1}) for x in _slope(M1, gs, +1))
+        f2, s2, c2 = (x.xreplace({gs: G2}) for x in _slope(M2, gs, -1))
+        u0, w0 = sp.Piecewise((f1, c1), (s1, True)), sp.Piecewise((f2, c2), (s2, True))
+        # u's eigenvalue (t1 - g1)/2 has |v| >= 1 iff t1 g1 <= 0, w's (t2 + g2)/2 iff t2 g2 >= 0: there the
+        # forward transport contracts, else the backward one (signs only: no product that could overflow)
+        u = transported(m, lam0 + mu, u0, sp.LessThan(branch * sp.sign(t_1), 0))
+        w = transported(m, lam0 - mu, w0, sp.GreaterThan(branch * sp.sign(t_2), 0))
         # y = u_1/E_1; the printed x = 2 B1 B2 (l2 - l1)/(B2 (A1-D1+g1) - B1 (A2-D2-g2)) = 2 mu/(z - y)
         d = [w[j] - u[j] for j in range(N)]
         x_, y_ = sp.exp(q[0]) * 2 * mu / d[0], sp.exp(-q[0]) * u[0]
         qt = [q[j] + log1p(-2 * mu / d[j]) for j in range(N)]
         pt = [p[j] + 2 * mu * (u[j] / d[j] - u[(j + 1) % N] / d[(j + 1) % N]) for j in range(N)]
         pos = [1 - 2 * mu / d[j] for j in range(N)]
+        # traces of opposite signs: different gaps (decided on the signs); every slope finite (an inf slope
+        # would read out as 2 mu/d = 0, a finite wrong state)
+        gap = "Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)"
+        extra: tuple[Guard, ...] = (Guard("positivity", gap, sp.sign(t_1) * sp.sign(t_2), 0),)
+        extra += tuple(Guard("range", f"{name}_{j + 1}", v, 1)
+                       for name, vs in (("u", u), ("w", w), ("d", d)) for j, v in enumerate(vs))
         sdefs: tuple = ()
     else:         # the paper's route: eq. xy as printed, x_j = 2 mu/(z_j - y_j), E~ = E - x, eta = x y + mu
         g1, g2 = sp.symbols("G1 G2", real=True)
@@ -462,4 +483,7 @@ def _build(N: int, rewrite: bool) -> tuple:
         pos = [1 - xs[j] / sp.exp(q[j]) for j in range(N)]
     out["dapp_xy"] = _fill(I["dapp_xy"], [[x_], [y_]], tg, sdefs)
     out["bt_step"] = _fill(I["bt_step"], [pt, qt], tg + pos, sdefs)
+    if rewrite:
+        out["dapp_xy"] = _with_guards(out["dapp_xy"], extra)
+        out["bt_step"] = _with_guards(out["bt_step"], extra)
     return tuple(out[name] for name in FUNCTIONS)

@@ -135,13 +135,14 @@ def _closed_function(spec, N):
     body, printed = cse_block(exprs, names, "c")
     lines += [f"    const double {ln};" for ln in body]
     gl, vals = printed[:len(spec.guards)], printed[len(spec.guards):]
-    for cond in ("trace", "positivity"):   # a non-finite guard is a range problem, a value <= 0 no real map
-        gs = [t for g, t in zip(spec.guards, gl) if g.condition == cond]
-        if gs:
-            lines.append(f"    if ({' || '.join(f'!isfinite({t})' for t in gs)})")
-            lines.append("        return SYMBT_TODA_RANGE;")
-            lines.append(f"    if ({' || '.join(f'!({t} > 0.0)' for t in gs)})")
-            lines.append(f"        return {_CODES[cond]};")
+    # in the spec's order, as the Python flavour decides: a non-finite guard is a range problem (and
+    # decides nothing after it), a finite value <= 0 no real map ("range" guards need only be finite)
+    for g, t in zip(spec.guards, gl):
+        lines.append(f"    if (!isfinite({t}))")
+        lines.append("        return SYMBT_TODA_RANGE;")
+        if g.condition != "range":
+            lines.append(f"    if (!({t} > 0.0))")
+            lines.append(f"        return {_CODES[g.condition]};")
     lines.append(f"    const double out[{len(vals)}] = {{{', '.join(vals)}}};")
     lines.append(f"    if (!toda{N}_finite(out, {len(vals)}))")
     lines.append("        return SYMBT_TODA_RANGE;")
@@ -163,8 +164,10 @@ def c_files(N: int) -> tuple[str, str]:
     if form == "closed":
         by_name = {s.name: s for s in specs(N)}
         src += "\n/* ---- closed form: CSE of the SymPy expressions of symbt.codegen.derive ---- */\n"
-        for name in C_FUNCTIONS:
-            src += "\n" + _closed_function(by_name[name], N) + "\n"
+        body = "".join("\n" + _closed_function(by_name[name], N) + "\n" for name in C_FUNCTIONS)
+        if "sgn(" in body:   # the printer's sign (the guards' signs of the traces)
+            src += "\nstatic double sgn(double x) { return (double)((x > 0.0) - (x < 0.0)); }\n"
+        src += body
     else:
         src += _fill(LOOP, N, form)
     return src, header

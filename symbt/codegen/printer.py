@@ -28,7 +28,22 @@ from __future__ import annotations
 import sympy as sp
 from sympy.codegen.cfunctions import log1p
 
-__all__ = ["ExprPrinter", "cse_block"]
+__all__ = ["ExprPrinter", "cse_block", "Quotient"]
+
+
+class Quotient(sp.Function):
+    """``a/b`` divided IEEE-style in every flavour: ``x/0 = +-inf``, ``x/inf = 0`` (float64 and C divide so
+    already; the mpmath flavour calls the emitted ``_div``, since an mpf division by zero raises).  Used
+    where both branches of a ``Piecewise`` are evaluated (CSE hoists them) and the branch not taken may
+    pass through an infinite slope.
+
+    >>> a, b = sp.symbols("a b")
+    >>> names = {a: "a", b: "b"}
+    >>> ExprPrinter("mpmath", names).text(-Quotient(a, b)), ExprPrinter("c", names).text(Quotient(a, b))
+    ('-_div(a, b)', 'a/b')
+    """
+
+    nargs = 2
 
 _FUNCS = {
     "numpy": {sp.exp: "np.exp", sp.log: "np.log", log1p: "np.log1p", sp.acosh: "np.arccosh",
@@ -85,6 +100,10 @@ class ExprPrinter:
             return self._pow(e)
         if isinstance(e, sp.Piecewise):
             return self._piecewise(e), _ATOM
+        if isinstance(e, Quotient):
+            if self.flavour == "mpmath":
+                return f"_div({self.text(e.args[0])}, {self.text(e.args[1])})", _ATOM
+            return f"{self._wrap(e.args[0], _MUL)}/{self._wrap(e.args[1], _MUL)}", _MUL
         if type(e) in _REL:
             a = self._wrap(e.lhs, _ADD)
             b = self._wrap(e.rhs, _ADD)

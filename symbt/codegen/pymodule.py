@@ -62,7 +62,7 @@ def function_doc(spec, N, flavour, form):
             args += ("\n        errors: 'raise' (default): NoRealMapError where the real function does not exist, "
                      "NumericRangeError on a non-finite value; 'mask': numpy.ma.MaskedArray results, masked "
                      "at those batch elements")
-            conds = sorted({g.condition for g in spec.guards})
+            conds = sorted({g.condition for g in spec.guards} - {"range"})
             kind += "; real domain: " + " and ".join(
                 {"trace": "|tr L| > 2 at each spectral parameter", "positivity": "every Etilde_j > 0"}[c]
                 for c in conds)

@@ -120,12 +120,15 @@ def _where(bad, batch):
 def _guard(errors, batch, guards):
     """``guards``: (condition, label, value) with ``value > 0`` exactly where the real function exists.
     A non-finite value is a range problem (left to ``_finish``: NumericRangeError or masked); a finite
-    value <= 0 raises NoRealMapError (errors='raise') or is masked: returns the mask of bad elements."""
+    value <= 0 raises NoRealMapError (errors='raise') or is masked: returns the mask of bad elements.
+    A ``"range"`` guard's value need only be finite (an intermediate that must not overflow).  The guards
+    are decided in order: after a non-finite one, later guards decide nothing for that element (their
+    values are computed from it)."""
     bad = np.zeros(batch, dtype=bool)
     for condition, label, value in guards:
         v = np.broadcast_to(np.asarray(value, dtype=np.float64), batch)
         fin = np.isfinite(v)
-        nok = fin & ~(v > 0)
+        nok = fin & ~(v > 0) & ~bad if condition != "range" else np.zeros(batch, dtype=bool)
         if nok.any() and errors == "raise":
             where, txt = _where(nok, batch)
             raise NoRealMapError("no real map: " + _WHY[condition] % label + txt, condition, where)
@@ -191,8 +194,18 @@ def _mp_branch(b):
     return int(b)
 
 
+def _div(a, b):
+    """``a/b`` IEEE-style in mpmath (``x/0 = +-inf``; mpmath's ``x/inf = 0``): a slope through infinity."""
+    if b:
+        return a / b
+    return mpmath.inf * mpmath.sign(a) if a else mpmath.nan
+
+
 def _mp_guard(condition, label, value):
-    if not value > 0:   # mpmath values are finite
+    if condition == "range":
+        if not mpmath.isfinite(value):
+            raise NumericRangeError("non-finite intermediate " + label)
+    elif not value > 0:   # mpmath values are finite
         raise NoRealMapError("no real map: " + _WHY[condition] % label, condition)
 '''
 

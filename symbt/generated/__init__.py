@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 10fa26771f27601047d9275b761b7a43e7b8317dc499d15e2588f729f4115935
-# symbt-codegen-content-sha256: d9b626b5b748840d2b5e91c8520e1945d78d7bd401f26398af32667391cba304
+# symbt-codegen-derivation-sha256: 3a445ac7f7c3b46dd3dd424438a795e67e05d7d1e182ca06510d54b201547a07
+# symbt-codegen-content-sha256: bc3714bdce7fb787ad1fd86c8c6b7c561964e76c66e619cf037f2a350aa7c125
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 10fa26771f27601047d9275b761b7a43e7b8317dc499d15e2588f729f4115935
-# symbt-codegen-content-sha256: e90417f37ed93d39de6b21a07ef11bb3dc44fc327a8298177d1ff383cb18a5a6
+# symbt-codegen-derivation-sha256: 3a445ac7f7c3b46dd3dd424438a795e67e05d7d1e182ca06510d54b201547a07
+# symbt-codegen-content-sha256: 2974b5300b6cfaa8d1abf6e49a3e75b1ff92dfa31df665aa05bdbc051433d5be
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -121,12 +121,15 @@ def _where(bad, batch):
 def _guard(errors, batch, guards):
     """``guards``: (condition, label, value) with ``value > 0`` exactly where the real function exists.
     A non-finite value is a range problem (left to ``_finish``: NumericRangeError or masked); a finite
-    value <= 0 raises NoRealMapError (errors='raise') or is masked: returns the mask of bad elements."""
+    value <= 0 raises NoRealMapError (errors='raise') or is masked: returns the mask of bad elements.
+    A ``"range"`` guard's value need only be finite (an intermediate that must not overflow).  The guards
+    are decided in order: after a non-finite one, later guards decide nothing for that element (their
+    values are computed from it)."""
     bad = np.zeros(batch, dtype=bool)
     for condition, label, value in guards:
         v = np.broadcast_to(np.asarray(value, dtype=np.float64), batch)
         fin = np.isfinite(v)
-        nok = fin & ~(v > 0)
+        nok = fin & ~(v > 0) & ~bad if condition != "range" else np.zeros(batch, dtype=bool)
         if nok.any() and errors == "raise":
             where, txt = _where(nok, batch)
             raise NoRealMapError("no real map: " + _WHY[condition] % label + txt, condition, where)
@@ -192,8 +195,18 @@ def _mp_branch(b):
     return int(b)
 
 
+def _div(a, b):
+    """``a/b`` IEEE-style in mpmath (``x/0 = +-inf``; mpmath's ``x/inf = 0``): a slope through infinity."""
+    if b:
+        return a / b
+    return mpmath.inf * mpmath.sign(a) if a else mpmath.nan
+
+
 def _mp_guard(condition, label, value):
-    if not value > 0:   # mpmath values are finite
+    if condition == "range":
+        if not mpmath.isfinite(value):
+            raise NumericRangeError("non-finite intermediate " + label)
+    elif not value > 0:   # mpmath values are finite
         raise NoRealMapError("no real map: " + _WHY[condition] % label, condition)
 
 
@@ -468,7 +481,7 @@ def ck_integrand(lam, p, q, errors="raise"):
 def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
     """x, y of the Darboux matrix (eq. xy; gamma_i = b sqrt(tr_i^2 - 4); computed without cancellation: y = u_1 e^{-q_1}, x = 2 mu e^{q_1}/(w_1 - u_1), u, w the scaled slopes) (eq. xy, N=2, closed form).
 
-    float64, vectorised: state arguments have shape (..., N), scalars broadcast against the batch shape; real domain: |tr L| > 2 at each spectral parameter.
+    float64, vectorised: state arguments have shape (..., N), scalars broadcast against the batch shape; real domain: every Etilde_j > 0 and |tr L| > 2 at each spectral parameter.
 
     Arguments:
         p: momenta p_1..p_2
@@ -495,32 +508,45 @@ def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
     q2 = q[..., 1]
     with np.errstate(all="ignore"):
         t0 = lam0 + mu
-        t1 = t0*p1 + t0*p2 + t0**2
-        t2 = q1 - q2
-        t3 = np.exp(t2)
-        t4 = p1*p2 - np.exp(-t2)
-        t5 = -t3 + t4
-        t6 = t1 + t5
-        t7 = (t6 - 2)*(t6 + 2)
-        t8 = lam0 - mu
-        t9 = t8*p1 + t8*p2 + t8**2
-        t10 = t5 + t9
-        t11 = (t10 - 2)*(t10 + 2)
-        t12 = 2*p2
-        t13 = 2*lam0
-        t14 = 2*mu
-        t15 = t13 + t14
-        t16 = branch*np.sqrt(t7)
-        t17 = t3 + t4
-        t18 = t1 + t17
-        t19 = 2*t3*p1
-        t20 = np.where(t16*t18 >= 0, (t16 + t18)/(-t12 - t15), (-t15*t3 - t19)/(-t16 + t18))
-        t21 = t13 - t14
-        t22 = branch*np.sqrt(t11)
-        t23 = t17 + t9
-        x = _pack([t14*np.exp(q1)/(-t20 + np.where(t22*t23 <= 0, (-t22 + t23)/(-t12 - t21), (-t19 - t21*t3)/(t22 + t23)))], _batch, ())
-        y = _pack([t20*np.exp(-q1)], _batch, ())
-        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t7), ('trace', 'lam2 = lam0 - mu', t11)])
+        t1 = p1 + t0
+        t2 = p2 + t0
+        t3 = -(t1*t2)
+        t4 = q1 - q2
+        t5 = np.exp(t4)
+        t6 = np.exp(-t4)
+        t7 = t5 + t6
+        t8 = t3 + t7
+        t9 = t1*t2
+        t10 = -t6
+        t11 = -t5
+        t12 = t10 + t11 + 2
+        t13 = (-t8 - 2)*(t12 + t9)
+        t14 = lam0 - mu
+        t15 = p1 + t14
+        t16 = p2 + t14
+        t17 = t15*t16
+        t18 = -t17
+        t19 = t18 + t7
+        t20 = (-t19 - 2)*(t12 + t17)
+        t21 = -np.sign(t8)
+        t22 = -np.sign(t19)
+        t23 = 2*mu
+        t24 = 2*lam0 + 2*p2
+        t25 = branch*np.sqrt(t13)
+        t26 = t10 + t5
+        t27 = t26 + t9
+        t28 = t11 + t6
+        t29 = 2*t5
+        t30 = np.where(t25*t27 >= 0, (t25 + t27)/(-t23 - t24), -(t1*t29/(-t25 - t28 - t3)))
+        t31 = np.where(t21*branch <= 0, -(t6/(t1 + t30)), -t2 - t5/t30)
+        t32 = branch*np.sqrt(t20)
+        t33 = t17 + t26
+        t34 = np.where(t32*t33 <= 0, (-t18 - t28 - t32)/(t23 - t24), -(t15*t29/(t32 + t33)))
+        t35 = np.where(t22*branch >= 0, -(t6/(t15 + t34)), -t16 - t5/t34)
+        t36 = -t30 + t34
+        x = _pack([t23*np.exp(q1)/t36], _batch, ())
+        y = _pack([t30*np.exp(-q1)], _batch, ())
+        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t13), ('trace', 'lam2 = lam0 - mu', t20), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t21*t22), ('range', 'u_1', t30), ('range', 'u_2', t31), ('range', 'w_1', t34), ('range', 'w_2', t35), ('range', 'd_1', t36), ('range', 'd_2', -t31 + t35)])
     x, y, = _finish(errors, _bad, _batch, [x, y])
     return x, y
 
@@ -554,54 +580,52 @@ def bt_step(p, q, lam0, mu, branch, errors="raise"):
     q1 = q[..., 0]
     q2 = q[..., 1]
     with np.errstate(all="ignore"):
-        t0 = q1 - q2
-        t1 = np.exp(-t0)
-        t2 = p1*p2
-        t3 = -t1 + t2
-        t4 = np.exp(t0)
-        t5 = -t4
-        t6 = lam0 + mu
-        t7 = t6*p1 + t6*p2 + t6**2
-        t8 = t5 + t7
-        t9 = t3 + t8
-        t10 = (t9 - 2)*(t9 + 2)
-        t11 = lam0 - mu
-        t12 = t11*p1 + t11*p2 + t11**2
-        t13 = t12 + t5
-        t14 = t13 + t3
-        t15 = (t14 - 2)*(t14 + 2)
-        t16 = 2*p2
-        t17 = 2*lam0
-        t18 = 2*mu
-        t19 = t17 + t18
-        t20 = -t16 - t19
-        t21 = branch*np.sqrt(t10)
-        t22 = t3 + t4
-        t23 = t22 + t7
-        t24 = 2*p1
-        t25 = t24*t4
-        t26 = -t19
-        t27 = -t21
-        t28 = np.where(t21*t23 >= 0, (t21 + t23)/t20, (-t25 + t26*t4)/(t23 + t27))
-        t29 = t17 - t18
-        t30 = -t16 - t29
-        t31 = branch*np.sqrt(t15)
-        t32 = -t31
-        t33 = t12 + t22
-        t34 = -t29
-        t35 = 1/(-t28 + np.where(t31*t33 <= 0, (t32 + t33)/t30, (-t25 + t34*t4)/(t31 + t33)))
-        t36 = t18*t35
-        t37 = t1*t24
-        t38 = t1 + t2
-        t39 = t38 + t8
-        t40 = np.where(t21*t39 >= 0, t1*(t21 + t39)/(t1*t26 - t37), t1*t20/(t27 + t39))
-        t41 = t13 + t38
-        t42 = 1/(-t40 + np.where(t31*t41 <= 0, t1*(t32 + t41)/(t1*t34 - t37), t1*t30/(t31 + t41)))
-        t43 = t18*t42
-        t44 = -t28*t35 + t40*t42
-        p_new = _pack([p1 - t18*t44, p2 + t18*t44], _batch, (2,))
-        q_new = _pack([q1 + np.log1p(-t36), q2 + np.log1p(-t43)], _batch, (2,))
-        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t10), ('trace', 'lam2 = lam0 - mu', t15), ('positivity', 'Etilde_1', 1 - t36), ('positivity', 'Etilde_2', 1 - t43)])
+        t0 = lam0 + mu
+        t1 = p1 + t0
+        t2 = p2 + t0
+        t3 = -(t1*t2)
+        t4 = q1 - q2
+        t5 = np.exp(t4)
+        t6 = np.exp(-t4)
+        t7 = t5 + t6
+        t8 = t3 + t7
+        t9 = t1*t2
+        t10 = -t6
+        t11 = -t5
+        t12 = t10 + t11 + 2
+        t13 = (-t8 - 2)*(t12 + t9)
+        t14 = lam0 - mu
+        t15 = p1 + t14
+        t16 = p2 + t14
+        t17 = t15*t16
+        t18 = -t17
+        t19 = t18 + t7
+        t20 = (-t19 - 2)*(t12 + t17)
+        t21 = -np.sign(t8)
+        t22 = -np.sign(t19)
+        t23 = 2*mu
+        t24 = 2*lam0 + 2*p2
+        t25 = branch*np.sqrt(t13)
+        t26 = t10 + t5
+        t27 = t26 + t9
+        t28 = t11 + t6
+        t29 = 2*t5
+        t30 = np.where(t25*t27 >= 0, (t25 + t27)/(-t23 - t24), -(t1*t29/(-t25 - t28 - t3)))
+        t31 = np.where(t21*branch <= 0, -(t6/(t1 + t30)), -t2 - t5/t30)
+        t32 = branch*np.sqrt(t20)
+        t33 = t17 + t26
+        t34 = np.where(t32*t33 <= 0, (-t18 - t28 - t32)/(t23 - t24), -(t15*t29/(t32 + t33)))
+        t35 = np.where(t22*branch >= 0, -(t6/(t15 + t34)), -t16 - t5/t34)
+        t36 = -t30 + t34
+        t37 = -t31 + t35
+        t38 = 1/t36
+        t39 = t23*t38
+        t40 = 1/t37
+        t41 = t23*t40
+        t42 = -t30*t38 + t31*t40
+        p_new = _pack([p1 - t23*t42, p2 + t23*t42], _batch, (2,))
+        q_new = _pack([q1 + np.log1p(-t39), q2 + np.log1p(-t41)], _batch, (2,))
+        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t13), ('trace', 'lam2 = lam0 - mu', t20), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t21*t22), ('range', 'u_1', t30), ('range', 'u_2', t31), ('range', 'w_1', t34), ('range', 'w_2', t35), ('range', 'd_1', t36), ('range', 'd_2', t37), ('positivity', 'Etilde_1', 1 - t39), ('positivity', 'Etilde_2', 1 - t41)])
     p_new, q_new, = _finish(errors, _bad, _batch, [p_new, q_new])
     return p_new, q_new
 
@@ -876,40 +900,63 @@ def dapp_xy_mp(p, q, lam0, mu, branch):
     mu = _mp_value(mu, 'mu')
     branch = _mp_branch(branch)
     try:
-        s0 = q1 - q2
-        s1 = p1*p2 - mpmath.exp(s0) - mpmath.exp(-s0)
-        s2 = s1 - 2
-        s3 = lam0 + mu
-        s4 = s3*p1 + s3*p2 + s3**2
-        s5 = s1 + 2
-        s6 = lam0 - mu
-        s7 = s6*p1 + s6*p2 + s6**2
-        _mp_guard('trace', 'lam1 = lam0 + mu', (s2 + s4)*(s4 + s5))
-        _mp_guard('trace', 'lam2 = lam0 - mu', (s2 + s7)*(s5 + s7))
-        t0 = 2*p2
-        t1 = 2*lam0
-        t2 = 2*mu
-        t3 = t1 + t2
-        t4 = lam0 + mu
-        t5 = t4*p1 + t4*p2 + t4**2
+        s0 = lam0 + mu
+        s1 = p1 + s0
+        s2 = p2 + s0
+        s3 = q1 - q2
+        s4 = mpmath.exp(s3)
+        s5 = mpmath.exp(-s3)
+        s6 = s4 + s5
+        s7 = -s1*s2 + s6
+        s8 = -s4 - s5 + 2
+        s9 = lam0 - mu
+        s10 = p1 + s9
+        s11 = p2 + s9
+        s12 = -s10*s11 + s6
+        _mp_guard('trace', 'lam1 = lam0 + mu', (-s7 - 2)*(s1*s2 + s8))
+        _mp_guard('trace', 'lam2 = lam0 - mu', (-s12 - 2)*(s10*s11 + s8))
+        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s12)*mpmath.sign(s7))
+        t0 = 2*mu
+        t1 = 2*lam0 + 2*p2
+        t2 = lam0 + mu
+        t3 = p1 + t2
+        t4 = p2 + t2
+        t5 = -(t3*t4)
         t6 = q1 - q2
         t7 = mpmath.exp(t6)
-        t8 = p1*p2 - mpmath.exp(-t6)
-        t9 = -t7 + t8
+        t8 = mpmath.exp(-t6)
+        t9 = t7 + t8
         t10 = t5 + t9
-        t11 = branch*mpmath.sqrt((t10 - 2)*(t10 + 2))
-        t12 = t7 + t8
-        t13 = t12 + t5
-        t14 = 2*t7*p1
-        t15 = ((t11 + t13)/(-t0 - t3) if t11*t13 >= 0 else (-t14 - t3*t7)/(-t11 + t13))
-        t16 = t1 - t2
-        t17 = lam0 - mu
-        t18 = t17*p1 + t17*p2 + t17**2
-        t19 = t18 + t9
-        t20 = branch*mpmath.sqrt((t19 - 2)*(t19 + 2))
-        t21 = t12 + t18
-        x = t2*mpmath.exp(q1)/(-t15 + ((-t20 + t21)/(-t0 - t16) if t20*t21 <= 0 else (-t14 - t16*t7)/(t20 + t21)))
-        y = t15*mpmath.exp(-q1)
+        t11 = t3*t4
+        t12 = -t8
+        t13 = -t7
+        t14 = t12 + t13 + 2
+        t15 = branch*mpmath.sqrt((-t10 - 2)*(t11 + t14))
+        t16 = t12 + t7
+        t17 = t11 + t16
+        t18 = t13 + t8
+        t19 = 2*t7
+        t20 = ((t15 + t17)/(-t0 - t1) if t15*t17 >= 0 else -(t19*t3/(-t15 - t18 - t5)))
+        t21 = (-_div(t8, t20 + t3) if branch*mpmath.sign(t10) >= 0 else -t4 - _div(t7, t20))
+        t22 = lam0 - mu
+        t23 = p1 + t22
+        t24 = p2 + t22
+        t25 = t23*t24
+        t26 = -t25
+        t27 = t26 + t9
+        t28 = branch*mpmath.sqrt((-t27 - 2)*(t14 + t25))
+        t29 = t16 + t25
+        t30 = ((-t18 - t26 - t28)/(t0 - t1) if t28*t29 <= 0 else -(t19*t23/(t28 + t29)))
+        t31 = (-_div(t8, t23 + t30) if branch*mpmath.sign(t27) <= 0 else -t24 - _div(t7, t30))
+        t32 = -t20 + t30
+        _mp_guard('range', 'u_1', t20)
+        _mp_guard('range', 'u_2', t21)
+        _mp_guard('range', 'w_1', t30)
+        _mp_guard('range', 'w_2', t31)
+        _mp_guard('range', 'd_1', t32)
+        _mp_guard('range', 'd_2', -t21 + t31)
+        x = t0*mpmath.exp(q1)/t32
+        y = t20*mpmath.exp(-q1)
     except ZeroDivisionError as exc:
         raise NumericRangeError('division by zero (degenerate eigenvector)') from exc
     return x, y
@@ -937,63 +984,71 @@ def bt_step_mp(p, q, lam0, mu, branch):
     mu = _mp_value(mu, 'mu')
     branch = _mp_branch(branch)
     try:
-        s0 = q1 - q2
-        s1 = p1*p2 - mpmath.exp(s0) - mpmath.exp(-s0)
-        s2 = s1 - 2
-        s3 = lam0 + mu
-        s4 = s3*p1 + s3*p2 + s3**2
-        s5 = s1 + 2
-        s6 = lam0 - mu
-        s7 = s6*p1 + s6*p2 + s6**2
-        _mp_guard('trace', 'lam1 = lam0 + mu', (s2 + s4)*(s4 + s5))
-        _mp_guard('trace', 'lam2 = lam0 - mu', (s2 + s7)*(s5 + s7))
-        t0 = 2*p2
-        t1 = 2*lam0
-        t2 = 2*mu
-        t3 = t1 + t2
-        t4 = -t0 - t3
-        t5 = q1 - q2
-        t6 = mpmath.exp(-t5)
-        t7 = p1*p2
-        t8 = -t6 + t7
-        t9 = mpmath.exp(t5)
-        t10 = -t9
-        t11 = lam0 + mu
-        t12 = t11*p1 + t11*p2 + t11**2
-        t13 = t10 + t12
-        t14 = t13 + t8
-        t15 = branch*mpmath.sqrt((t14 - 2)*(t14 + 2))
-        t16 = t8 + t9
-        t17 = t12 + t16
-        t18 = 2*p1
-        t19 = t18*t9
-        t20 = -t3
-        t21 = -t15
-        t22 = ((t15 + t17)/t4 if t15*t17 >= 0 else (-t19 + t20*t9)/(t17 + t21))
-        t23 = t1 - t2
-        t24 = -t0 - t23
-        t25 = lam0 - mu
-        t26 = t25*p1 + t25*p2 + t25**2
-        t27 = t10 + t26
-        t28 = t27 + t8
-        t29 = branch*mpmath.sqrt((t28 - 2)*(t28 + 2))
-        t30 = -t29
-        t31 = t16 + t26
-        t32 = -t23
-        t33 = 1/(-t22 + ((t30 + t31)/t24 if t29*t31 <= 0 else (-t19 + t32*t9)/(t29 + t31)))
-        t34 = t2*t33
-        t35 = t18*t6
-        t36 = t6 + t7
-        t37 = t13 + t36
-        t38 = (t6*(t15 + t37)/(t20*t6 - t35) if t15*t37 >= 0 else t4*t6/(t21 + t37))
-        t39 = t27 + t36
-        t40 = 1/(-t38 + (t6*(t30 + t39)/(t32*t6 - t35) if t29*t39 <= 0 else t24*t6/(t29 + t39)))
-        t41 = t2*t40
-        t42 = -t22*t33 + t38*t40
-        _mp_guard('positivity', 'Etilde_1', 1 - t34)
-        _mp_guard('positivity', 'Etilde_2', 1 - t41)
-        p_new = [p1 - t2*t42, p2 + t2*t42]
-        q_new = [q1 + mpmath.log1p(-t34), q2 + mpmath.log1p(-t41)]
+        s0 = lam0 + mu
+        s1 = p1 + s0
+        s2 = p2 + s0
+        s3 = q1 - q2
+        s4 = mpmath.exp(s3)
+        s5 = mpmath.exp(-s3)
+        s6 = s4 + s5
+        s7 = -s1*s2 + s6
+        s8 = -s4 - s5 + 2
+        s9 = lam0 - mu
+        s10 = p1 + s9
+        s11 = p2 + s9
+        s12 = -s10*s11 + s6
+        _mp_guard('trace', 'lam1 = lam0 + mu', (-s7 - 2)*(s1*s2 + s8))
+        _mp_guard('trace', 'lam2 = lam0 - mu', (-s12 - 2)*(s10*s11 + s8))
+        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s12)*mpmath.sign(s7))
+        t0 = 2*mu
+        t1 = 2*lam0 + 2*p2
+        t2 = lam0 + mu
+        t3 = p1 + t2
+        t4 = p2 + t2
+        t5 = -(t3*t4)
+        t6 = q1 - q2
+        t7 = mpmath.exp(t6)
+        t8 = mpmath.exp(-t6)
+        t9 = t7 + t8
+        t10 = t5 + t9
+        t11 = t3*t4
+        t12 = -t8
+        t13 = -t7
+        t14 = t12 + t13 + 2
+        t15 = branch*mpmath.sqrt((-t10 - 2)*(t11 + t14))
+        t16 = t12 + t7
+        t17 = t11 + t16
+        t18 = t13 + t8
+        t19 = 2*t7
+        t20 = ((t15 + t17)/(-t0 - t1) if t15*t17 >= 0 else -(t19*t3/(-t15 - t18 - t5)))
+        t21 = (-_div(t8, t20 + t3) if branch*mpmath.sign(t10) >= 0 else -t4 - _div(t7, t20))
+        t22 = lam0 - mu
+        t23 = p1 + t22
+        t24 = p2 + t22
+        t25 = t23*t24
+        t26 = -t25
+        t27 = t26 + t9
+        t28 = branch*mpmath.sqrt((-t27 - 2)*(t14 + t25))
+        t29 = t16 + t25
+        t30 = ((-t18 - t26 - t28)/(t0 - t1) if t28*t29 <= 0 else -(t19*t23/(t28 + t29)))
+        t31 = (-_div(t8, t23 + t30) if branch*mpmath.sign(t27) <= 0 else -t24 - _div(t7, t30))
+        t32 = -t20 + t30
+        t33 = -t21 + t31
+        t34 = 1/t32
+        t35 = t0*t34
+        t36 = 1/t33
+        t37 = t0*t36
+        t38 = -t20*t34 + t21*t36
+        _mp_guard('range', 'u_1', t20)
+        _mp_guard('range', 'u_2', t21)
+        _mp_guard('range', 'w_1', t30)
+        _mp_guard('range', 'w_2', t31)
+        _mp_guard('range', 'd_1', t32)
+        _mp_guard('range', 'd_2', t33)
+        _mp_guard('positivity', 'Etilde_1', 1 - t35)
+        _mp_guard('positivity', 'Etilde_2', 1 - t37)
+        p_new = [p1 - t0*t38, p2 + t0*t38]
+        q_new = [q1 + mpmath.log1p(-t35), q2 + mpmath.log1p(-t37)]
     except ZeroDivisionError as exc:
         raise NumericRangeError('division by zero (degenerate eigenvector)') from exc
     return p_new, q_new

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 10fa26771f27601047d9275b761b7a43e7b8317dc499d15e2588f729f4115935
-# symbt-codegen-content-sha256: 800f0ff793a5a5780944ec2c546dc4c421c9eabcb876da6e14d28a198529f631
+# symbt-codegen-derivation-sha256: 3a445ac7f7c3b46dd3dd424438a795e67e05d7d1e182ca06510d54b201547a07
+# symbt-codegen-content-sha256: 131291c61c7c3b7471daa5666d854a2bdad252c9cd8ef01bf7143d3a8e588450
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -121,12 +121,15 @@ def _where(bad, batch):
 def _guard(errors, batch, guards):
     """``guards``: (condition, label, value) with ``value > 0`` exactly where the real function exists.
     A non-finite value is a range problem (left to ``_finish``: NumericRangeError or masked); a finite
-    value <= 0 raises NoRealMapError (errors='raise') or is masked: returns the mask of bad elements."""
+    value <= 0 raises NoRealMapError (errors='raise') or is masked: returns the mask of bad elements.
+    A ``"range"`` guard's value need only be finite (an intermediate that must not overflow).  The guards
+    are decided in order: after a non-finite one, later guards decide nothing for that element (their
+    values are computed from it)."""
     bad = np.zeros(batch, dtype=bool)
     for condition, label, value in guards:
         v = np.broadcast_to(np.asarray(value, dtype=np.float64), batch)
         fin = np.isfinite(v)
-        nok = fin & ~(v > 0)
+        nok = fin & ~(v > 0) & ~bad if condition != "range" else np.zeros(batch, dtype=bool)
         if nok.any() and errors == "raise":
             where, txt = _where(nok, batch)
             raise NoRealMapError("no real map: " + _WHY[condition] % label + txt, condition, where)
@@ -192,8 +195,18 @@ def _mp_branch(b):
     return int(b)
 
 
+def _div(a, b):
+    """``a/b`` IEEE-style in mpmath (``x/0 = +-inf``; mpmath's ``x/inf = 0``): a slope through infinity."""
+    if b:
+        return a / b
+    return mpmath.inf * mpmath.sign(a) if a else mpmath.nan
+
+
 def _mp_guard(condition, label, value):
-    if not value > 0:   # mpmath values are finite
+    if condition == "range":
+        if not mpmath.isfinite(value):
+            raise NumericRangeError("non-finite intermediate " + label)
+    elif not value > 0:   # mpmath values are finite
         raise NoRealMapError("no real map: " + _WHY[condition] % label, condition)
 
 
@@ -570,7 +583,7 @@ def ck_integrand(lam, p, q, errors="raise"):
 def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
     """x, y of the Darboux matrix (eq. xy; gamma_i = b sqrt(tr_i^2 - 4); computed without cancellation: y = u_1 e^{-q_1}, x = 2 mu e^{q_1}/(w_1 - u_1), u, w the scaled slopes) (eq. xy, N=3, closed form).
 
-    float64, vectorised: state arguments have shape (..., N), scalars broadcast against the batch shape; real domain: |tr L| > 2 at each spectral parameter.
+    float64, vectorised: state arguments have shape (..., N), scalars broadcast against the batch shape; real domain: every Etilde_j > 0 and |tr L| > 2 at each spectral parameter.
 
     Arguments:
         p: momenta p_1..p_3
@@ -600,49 +613,56 @@ def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
     with np.errstate(all="ignore"):
         t0 = -q3
         t1 = np.exp(q1 + t0)
-        t2 = t1*p2
-        t3 = q2 + t0
-        t4 = np.exp(-t3)
-        t5 = np.exp(-q1 + q2)
-        t6 = p1*p2
-        t7 = -t4*p1 - t5*p3 + t6*p3
-        t8 = -t2 + t7
-        t9 = t8 - 2
-        t10 = lam0 + mu
-        t11 = -t10
-        t12 = t10**2
-        t13 = t10*p3
-        t14 = t12*p1 + t13*p1 + t12*p2 + t13*p2 + t12*p3 + t10**3 + t10*t6 + t11*t4 + t11*t5
-        t15 = t1*t11 + t14
-        t16 = t8 + 2
-        t17 = (t15 + t16)*(t15 + t9)
-        t18 = lam0 - mu
-        t19 = -t18
-        t20 = t18**2
-        t21 = t18*p3
-        t22 = t20*p1 + t21*p1 + t20*p2 + t21*p2 + t20*p3 + t18**3 + t18*t6
-        t23 = t19*t4 + t19*t5
-        t24 = t1*t19 + t22 + t23
-        t25 = (t16 + t24)*(t24 + t9)
-        t26 = 2*t12
-        t27 = 2*p2
-        t28 = t27*p3 - 2*t4
-        t29 = branch*np.sqrt(t17)
-        t30 = t1*t10
-        t31 = t2 + t7
-        t32 = t14 + t30 + t31
-        t33 = 2*p1
-        t34 = 2*t2
-        t35 = t2*t33 - 2*np.exp(t3)
-        t36 = np.where(t29*t32 >= 0, (t29 + t32)/(-t10*t27 - 2*t13 - t26 - t28), (-t1*t26 - t10*t34 - t30*t33 - t35)/(-t29 + t32))
-        t37 = 2*t20
-        t38 = branch*np.sqrt(t25)
-        t39 = t1*t18
-        t40 = t22 + t31
-        t41 = t23 + t39 + t40
-        x = _pack([2*mu*np.exp(q1)/(-t36 + np.where(t38*(t1*t19 + t18*t4 + t18*t5 - t40) >= 0, (-t38 + t41)/(-t18*t27 - 2*t21 - t28 - t37), (-t1*t37 - t18*t34 - t33*t39 - t35)/(t38 + t41)))], _batch, ())
-        y = _pack([t36*np.exp(-q1)], _batch, ())
-        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t17), ('trace', 'lam2 = lam0 - mu', t25)])
+        t2 = lam0 + mu
+        t3 = p2 + t2
+        t4 = -t3
+        t5 = t1*t4
+        t6 = p3 + t2
+        t7 = np.exp(-q1 + q2)
+        t8 = -t7
+        t9 = p1 + t2
+        t10 = t3*t9 + t8
+        t11 = np.exp(-q2 - t0)
+        t12 = t11*t9
+        t13 = t10*t6 - t12
+        t14 = t13 + t5
+        t15 = (t14 - 2)*(t14 + 2)
+        t16 = lam0 - mu
+        t17 = p2 + t16
+        t18 = -t17
+        t19 = t1*t18
+        t20 = p3 + t16
+        t21 = p1 + t16
+        t22 = t17*t21 + t8
+        t23 = t20*t22
+        t24 = t11*t21
+        t25 = t23 - t24
+        t26 = t19 + t25
+        t27 = (t26 - 2)*(t26 + 2)
+        t28 = np.sign(t14)
+        t29 = np.sign(t26)
+        t30 = 2*t11
+        t31 = branch*np.sqrt(t15)
+        t32 = -t10*t6 + t12 + t5
+        t33 = 2*t1
+        t34 = np.where(t31*t32 <= 0, (t13 + t31 - t5)/(t30 + 2*t4*t6), -(t10*t33/(-t31 - t32)))
+        t35 = -(t7/(t34 + t9))
+        t36 = t28*branch <= 0
+        t37 = -t6 - t1/t34
+        t38 = np.where(t36, t35, -t3 - t11/t37)
+        t39 = np.where(t36, -(t11/(t3 + t35)), t37)
+        t40 = branch*np.sqrt(t27)
+        t41 = t19 - t23 + t24
+        t42 = np.where(t40*t41 >= 0, (-t40 - t41)/(2*t18*t20 + t30), -(t22*t33/(-t19 + t25 + t40)))
+        t43 = -(t7/(t21 + t42))
+        t44 = t29*branch >= 0
+        t45 = -t20 - t1/t42
+        t46 = np.where(t44, t43, -t17 - t11/t45)
+        t47 = np.where(t44, -(t11/(t17 + t43)), t45)
+        t48 = -t34 + t42
+        x = _pack([2*mu*np.exp(q1)/t48], _batch, ())
+        y = _pack([t34*np.exp(-q1)], _batch, ())
+        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t15), ('trace', 'lam2 = lam0 - mu', t27), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t28*t29), ('range', 'u_1', t34), ('range', 'u_2', t38), ('range', 'u_3', t39), ('range', 'w_1', t42), ('range', 'w_2', t46), ('range', 'w_3', t47), ('range', 'd_1', t48), ('range', 'd_2', -t38 + t46), ('range', 'd_3', -t39 + t47)])
     x, y, = _finish(errors, _bad, _batch, [x, y])
     return x, y
 
@@ -678,114 +698,70 @@ def bt_step(p, q, lam0, mu, branch, errors="raise"):
     q2 = q[..., 1]
     q3 = q[..., 2]
     with np.errstate(all="ignore"):
-        t0 = q1 - q2
-        t1 = np.exp(-t0)
-        t2 = t1*p3
-        t3 = -t2
-        t4 = -q3
-        t5 = q2 + t4
-        t6 = np.exp(-t5)
-        t7 = t6*p1
-        t8 = p1*p2
-        t9 = t8*p3
-        t10 = -t7 + t9
-        t11 = t10 + t3
-        t12 = t11 - 2
-        t13 = lam0 + mu
-        t14 = -t13
-        t15 = t1*t14
-        t16 = t13**3
-        t17 = t13**2
-        t18 = t17*p1
-        t19 = t17*p2
-        t20 = t17*p3
-        t21 = t13*t8
-        t22 = t13*p3
-        t23 = t22*p1
-        t24 = t22*p2
-        t25 = t14*t6 + t16 + t18 + t19 + t20 + t21 + t23 + t24
-        t26 = t15 + t25
-        t27 = q1 + t4
-        t28 = np.exp(t27)
-        t29 = t28*p2
-        t30 = -t29
-        t31 = t14*t28 + t30
-        t32 = t26 + t31
-        t33 = t11 + 2
-        t34 = (t12 + t32)*(t32 + t33)
-        t35 = lam0 - mu
-        t36 = -t35
-        t37 = t1*t36
-        t38 = t36*t6
-        t39 = t35**2
-        t40 = t35*p3
-        t41 = t39*p1 + t40*p1 + t39*p2 + t40*p2 + t39*p3 + t35**3 + t35*t8
-        t42 = t37 + t38 + t41
-        t43 = t28*t36 + t30
-        t44 = t42 + t43
-        t45 = (t12 + t44)*(t33 + t44)
-        t46 = 2*t17
-        t47 = 2*p2
-        t48 = t13*t47
-        t49 = 2*t22
-        t50 = t47*p3 - 2*t6
-        t51 = -t46 - t48 - t49 - t50
-        t52 = branch*np.sqrt(t34)
-        t53 = t13*t28
-        t54 = t11 + t29
-        t55 = t26 + t53 + t54
-        t56 = 2*p1
-        t57 = 2*t29
-        t58 = -(2*np.exp(t5))
-        t59 = t29*t56 + t58
-        t60 = -t52
-        t61 = np.where(t52*t55 >= 0, (t52 + t55)/t51, (-t13*t57 - t28*t46 - t53*t56 - t59)/(t55 + t60))
-        t62 = 2*t39
-        t63 = t35*t47
-        t64 = 2*t40
-        t65 = -t50 - t62 - t63 - t64
-        t66 = branch*np.sqrt(t45)
-        t67 = -t66
-        t68 = t28*t35
-        t69 = t42 + t54 + t68
-        t70 = -(t1*t35)
-        t71 = -t35*t6 + t41
-        t72 = 1/(-t61 + np.where(t66*(t28*t36 - t54 - t70 - t71) >= 0, (t67 + t69)/t65, (-t28*t62 - t35*t57 - t56*t68 - t59)/(t66 + t69)))
-        t73 = 2*mu
-        t74 = t72*t73
-        t75 = t1*t13
-        t76 = 2*t2
-        t77 = t2*t56 + t58
-        t78 = t10 + t2
-        t79 = t25 + t31 + t75 + t78
-        t80 = np.where(t52*t79 >= 0, t1*(t52 + t79)/(-t1*t46 - t13*t76 - t56*t75 - t77), t1*t51/(t60 + t79))
-        t81 = t1*t35
-        t82 = t43 + t67
-        t83 = t38 + t41 + t78 + t81
-        t84 = -t28*t35 + t30
-        t85 = t43 + t66
-        t86 = 1/(-t80 + np.where(t66*(t1*t36 - t71 - t78 - t84) >= 0, t1*(t82 + t83)/(-t1*t62 - t35*t76 - t56*t81 - t77), t1*t65/(t83 + t85)))
-        t87 = t73*t86
-        t88 = np.exp(-t27)
-        t89 = t13*t56
-        t90 = -2*q1 + q2 + q3
-        t91 = 2*t8*t88 - 2*np.exp(t90)
-        t92 = t3 + t7 + t9
-        t93 = t13*t6 + t15 + t16 + t18 + t19 + t20 + t21 + t23 + t24 + t31 + t92
-        t94 = np.exp(t0)
-        t95 = t56*t94
-        t96 = t95*p3 - 2*np.exp(-t90)
-        t97 = np.where(t52*t93 >= 0, t88*(t52 + t93)/(-t46*t88 - t48*t88 - t88*t89 - t91), t88*(-t46*t94 - t49*t94 - t89*t94 - t96)/(t60 + t93))
-        t98 = t41 + t92
-        t99 = t35*t6 + t37 + t98
-        t100 = 1/(-t97 + np.where(t66*(t36*t6 - t70 - t84 - t98) >= 0, t88*(t82 + t99)/(-t35*t56*t88 - t62*t88 - t63*t88 - t91), t88*(-t35*t95 - t62*t94 - t64*t94 - t96)/(t85 + t99)))
-        t101 = t100*t73
-        t102 = -(t61*t72)
-        t103 = t80*t86
-        t104 = t100*t97
-        p_new = _pack([p1 + t73*(-t102 - t103), p2 + t73*(t103 - t104), p3 + t73*(t102 + t104)], _batch, (3,))
-        q_new = _pack([q1 + np.log1p(-t74), q2 + np.log1p(-t87), q3 + np.log1p(-t101)], _batch, (3,))
-        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t34), ('trace', 'lam2 = lam0 - mu', t45), ('positivity', 'Etilde_1', 1 - t74), ('positivity', 'Etilde_2', 1 - t87), ('positivity', 'Etilde_3', 1 - t101)])
+        t0 = -q3
+        t1 = np.exp(q1 + t0)
+        t2 = lam0 + mu
+        t3 = p2 + t2
+        t4 = -t3
+        t5 = t1*t4
+        t6 = p3 + t2
+        t7 = np.exp(-q1 + q2)
+        t8 = -t7
+        t9 = p1 + t2
+        t10 = t3*t9 + t8
+        t11 = np.exp(-q2 - t0)
+        t12 = t11*t9
+        t13 = t10*t6 - t12
+        t14 = t13 + t5
+        t15 = (t14 - 2)*(t14 + 2)
+        t16 = lam0 - mu
+        t17 = p2 + t16
+        t18 = -t17
+        t19 = t1*t18
+        t20 = p3 + t16
+        t21 = p1 + t16
+        t22 = t17*t21 + t8
+        t23 = t20*t22
+        t24 = t11*t21
+        t25 = t23 - t24
+        t26 = t19 + t25
+        t27 = (t26 - 2)*(t26 + 2)
+        t28 = np.sign(t14)
+        t29 = np.sign(t26)
+        t30 = 2*t11
+        t31 = branch*np.sqrt(t15)
+        t32 = -t10*t6 + t12 + t5
+        t33 = 2*t1
+        t34 = np.where(t31*t32 <= 0, (t13 + t31 - t5)/(t30 + 2*t4*t6), -(t10*t33/(-t31 - t32)))
+        t35 = -(t7/(t34 + t9))
+        t36 = t28*branch <= 0
+        t37 = -t6 - t1/t34
+        t38 = np.where(t36, t35, -t3 - t11/t37)
+        t39 = np.where(t36, -(t11/(t3 + t35)), t37)
+        t40 = branch*np.sqrt(t27)
+        t41 = t19 - t23 + t24
+        t42 = np.where(t40*t41 >= 0, (-t40 - t41)/(2*t18*t20 + t30), -(t22*t33/(-t19 + t25 + t40)))
+        t43 = -(t7/(t21 + t42))
+        t44 = t29*branch >= 0
+        t45 = -t20 - t1/t42
+        t46 = np.where(t44, t43, -t17 - t11/t45)
+        t47 = np.where(t44, -(t11/(t17 + t43)), t45)
+        t48 = -t34 + t42
+        t49 = -t38 + t46
+        t50 = -t39 + t47
+        t51 = 1/t48
+        t52 = 2*mu
+        t53 = t51*t52
+        t54 = 1/t49
+        t55 = t52*t54
+        t56 = 1/t50
+        t57 = t52*t56
+        t58 = -(t34*t51)
+        t59 = t38*t54
+        t60 = t39*t56
+        p_new = _pack([p1 + t52*(-t58 - t59), p2 + t52*(t59 - t60), p3 + t52*(t58 + t60)], _batch, (3,))
+        q_new = _pack([q1 + np.log1p(-t53), q2 + np.log1p(-t55), q3 + np.log1p(-t57)], _batch, (3,))
+        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t15), ('trace', 'lam2 = lam0 - mu', t27), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t28*t29), ('range', 'u_1', t34), ('range', 'u_2', t38), ('range', 'u_3', t39), ('range', 'w_1', t42), ('range', 'w_2', t46), ('range', 'w_3', t47), ('range', 'd_1', t48), ('range', 'd_2', t49), ('range', 'd_3', t50), ('positivity', 'Etilde_1', 1 - t53), ('positivity', 'Etilde_2', 1 - t55), ('positivity', 'Etilde_3', 1 - t57)])
     p_new, q_new, = _finish(errors, _bad, _batch, [p_new, q_new])
     return p_new, q_new
 
@@ -1173,68 +1149,77 @@ def dapp_xy_mp(p, q, lam0, mu, branch):
     mu = _mp_value(mu, 'mu')
     branch = _mp_branch(branch)
     try:
-        s0 = -q3
-        s1 = mpmath.exp(-q2 - s0)
-        s2 = mpmath.exp(q1 + s0)
-        s3 = mpmath.exp(-q1 + q2)
-        s4 = p1*p2
-        s5 = -s1*p1 - s2*p2 - s3*p3 + s4*p3
-        s6 = s5 - 2
-        s7 = lam0 + mu
-        s8 = s7**2
-        s9 = -s7
-        s10 = s7*p3
-        s11 = s10*p1 + s8*p1 + s10*p2 + s8*p2 + s8*p3 + s1*s9 + s2*s9 + s3*s9 + s4*s7 + s7**3
-        s12 = s5 + 2
-        s13 = lam0 - mu
-        s14 = s13**2
-        s15 = -s13
-        s16 = s13*p3
-        s17 = s14*p1 + s16*p1 + s14*p2 + s16*p2 + s14*p3 + s1*s15 + s13**3 + s13*s4 + s15*s2 + s15*s3
-        _mp_guard('trace', 'lam1 = lam0 + mu', (s11 + s12)*(s11 + s6))
-        _mp_guard('trace', 'lam2 = lam0 - mu', (s12 + s17)*(s17 + s6))
-        t0 = lam0 + mu
-        t1 = t0**2
+        s0 = lam0 + mu
+        s1 = p1 + s0
+        s2 = -q3
+        s3 = mpmath.exp(-q2 - s2)
+        s4 = mpmath.exp(q1 + s2)
+        s5 = p2 + s0
+        s6 = -mpmath.exp(-q1 + q2)
+        s7 = -s1*s3 - s4*s5 + (p3 + s0)*(s1*s5 + s6)
+        s8 = lam0 - mu
+        s9 = p1 + s8
+        s10 = p2 + s8
+        s11 = -s10*s4 - s3*s9 + (s10*s9 + s6)*(p3 + s8)
+        _mp_guard('trace', 'lam1 = lam0 + mu', (s7 - 2)*(s7 + 2))
+        _mp_guard('trace', 'lam2 = lam0 - mu', (s11 - 2)*(s11 + 2))
+        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s11)*mpmath.sign(s7))
+        t0 = -q3
+        t1 = mpmath.exp(-q2 - t0)
         t2 = 2*t1
-        t3 = 2*p2
-        t4 = t0*p3
-        t5 = -q3
-        t6 = q2 + t5
-        t7 = mpmath.exp(-t6)
-        t8 = t3*p3 - 2*t7
-        t9 = mpmath.exp(q1 + t5)
-        t10 = t9*p2
-        t11 = mpmath.exp(-q1 + q2)
-        t12 = p1*p2
-        t13 = -t7*p1 - t11*p3 + t12*p3
-        t14 = -t10 + t13
-        t15 = t14 - 2
-        t16 = -t0
-        t17 = t1*p1 + t4*p1 + t1*p2 + t4*p2 + t1*p3 + t0**3 + t0*t12 + t11*t16 + t16*t7
-        t18 = t16*t9 + t17
-        t19 = t14 + 2
-        t20 = branch*mpmath.sqrt((t15 + t18)*(t18 + t19))
-        t21 = t0*t9
-        t22 = t10 + t13
-        t23 = t17 + t21 + t22
-        t24 = 2*p1
-        t25 = 2*t10
-        t26 = t10*t24 - 2*mpmath.exp(t6)
-        t27 = ((t20 + t23)/(-t0*t3 - t2 - 2*t4 - t8) if t20*t23 >= 0 else (-t0*t25 - t2*t9 - t21*t24 - t26)/(-t20 + t23))
-        t28 = lam0 - mu
-        t29 = t28**2
-        t30 = 2*t29
-        t31 = t28*p3
-        t32 = -t28
-        t33 = t29*p1 + t31*p1 + t29*p2 + t31*p2 + t29*p3 + t12*t28 + t28**3
-        t34 = t11*t32 + t32*t7
-        t35 = t32*t9 + t33 + t34
-        t36 = branch*mpmath.sqrt((t15 + t35)*(t19 + t35))
-        t37 = t28*t9
-        t38 = t22 + t33
-        t39 = t34 + t37 + t38
-        x = 2*mu*mpmath.exp(q1)/(-t27 + ((-t36 + t39)/(-t28*t3 - t30 - 2*t31 - t8) if t36*(t11*t28 + t28*t7 + t32*t9 - t38) >= 0 else (-t24*t37 - t25*t28 - t26 - t30*t9)/(t36 + t39)))
-        y = t27*mpmath.exp(-q1)
+        t3 = lam0 + mu
+        t4 = p3 + t3
+        t5 = p2 + t3
+        t6 = -t5
+        t7 = mpmath.exp(q1 + t0)
+        t8 = t6*t7
+        t9 = mpmath.exp(-q1 + q2)
+        t10 = -t9
+        t11 = p1 + t3
+        t12 = t10 + t11*t5
+        t13 = t1*t11
+        t14 = t12*t4 - t13
+        t15 = t14 + t8
+        t16 = branch*mpmath.sqrt((t15 - 2)*(t15 + 2))
+        t17 = -t12*t4 + t13 + t8
+        t18 = 2*t7
+        t19 = ((t14 + t16 - t8)/(t2 + 2*t4*t6) if t16*t17 <= 0 else -(t12*t18/(-t16 - t17)))
+        t20 = -_div(t9, t11 + t19)
+        t21 = branch*mpmath.sign(t15) <= 0
+        t22 = -t4 - _div(t7, t19)
+        t23 = (t20 if t21 else -t5 - _div(t1, t22))
+        t24 = (-_div(t1, t20 + t5) if t21 else t22)
+        t25 = lam0 - mu
+        t26 = p3 + t25
+        t27 = p2 + t25
+        t28 = -t27
+        t29 = t28*t7
+        t30 = p1 + t25
+        t31 = t10 + t27*t30
+        t32 = t26*t31
+        t33 = t1*t30
+        t34 = t32 - t33
+        t35 = t29 + t34
+        t36 = branch*mpmath.sqrt((t35 - 2)*(t35 + 2))
+        t37 = t29 - t32 + t33
+        t38 = ((-t36 - t37)/(t2 + 2*t26*t28) if t36*t37 >= 0 else -(t18*t31/(-t29 + t34 + t36)))
+        t39 = -_div(t9, t30 + t38)
+        t40 = branch*mpmath.sign(t35) >= 0
+        t41 = -t26 - _div(t7, t38)
+        t42 = (t39 if t40 else -t27 - _div(t1, t41))
+        t43 = (-_div(t1, t27 + t39) if t40 else t41)
+        t44 = -t19 + t38
+        _mp_guard('range', 'u_1', t19)
+        _mp_guard('range', 'u_2', t23)
+        _mp_guard('range', 'u_3', t24)
+        _mp_guard('range', 'w_1', t38)
+        _mp_guard('range', 'w_2', t42)
+        _mp_guard('range', 'w_3', t43)
+        _mp_guard('range', 'd_1', t44)
+        _mp_guard('range', 'd_2', -t23 + t42)
+        _mp_guard('range', 'd_3', -t24 + t43)
+        x = 2*mu*mpmath.exp(q1)/t44
+        y = t19*mpmath.exp(-q1)
     except ZeroDivisionError as exc:
         raise NumericRangeError('division by zero (degenerate eigenvector)') from exc
     return x, y
@@ -1262,134 +1247,92 @@ def bt_step_mp(p, q, lam0, mu, branch):
     mu = _mp_value(mu, 'mu')
     branch = _mp_branch(branch)
     try:
-        s0 = -q3
-        s1 = mpmath.exp(-q2 - s0)
-        s2 = mpmath.exp(q1 + s0)
-        s3 = mpmath.exp(-q1 + q2)
-        s4 = p1*p2
-        s5 = -s1*p1 - s2*p2 - s3*p3 + s4*p3
-        s6 = s5 - 2
-        s7 = lam0 + mu
-        s8 = s7**2
-        s9 = -s7
-        s10 = s7*p3
-        s11 = s10*p1 + s8*p1 + s10*p2 + s8*p2 + s8*p3 + s1*s9 + s2*s9 + s3*s9 + s4*s7 + s7**3
-        s12 = s5 + 2
-        s13 = lam0 - mu
-        s14 = s13**2
-        s15 = -s13
-        s16 = s13*p3
-        s17 = s14*p1 + s16*p1 + s14*p2 + s16*p2 + s14*p3 + s1*s15 + s13**3 + s13*s4 + s15*s2 + s15*s3
-        _mp_guard('trace', 'lam1 = lam0 + mu', (s11 + s12)*(s11 + s6))
-        _mp_guard('trace', 'lam2 = lam0 - mu', (s12 + s17)*(s17 + s6))
-        t0 = lam0 + mu
-        t1 = t0**2
+        s0 = lam0 + mu
+        s1 = p1 + s0
+        s2 = -q3
+        s3 = mpmath.exp(-q2 - s2)
+        s4 = mpmath.exp(q1 + s2)
+        s5 = p2 + s0
+        s6 = -mpmath.exp(-q1 + q2)
+        s7 = -s1*s3 - s4*s5 + (p3 + s0)*(s1*s5 + s6)
+        s8 = lam0 - mu
+        s9 = p1 + s8
+        s10 = p2 + s8
+        s11 = -s10*s4 - s3*s9 + (s10*s9 + s6)*(p3 + s8)
+        _mp_guard('trace', 'lam1 = lam0 + mu', (s7 - 2)*(s7 + 2))
+        _mp_guard('trace', 'lam2 = lam0 - mu', (s11 - 2)*(s11 + 2))
+        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s11)*mpmath.sign(s7))
+        t0 = -q3
+        t1 = mpmath.exp(-q2 - t0)
         t2 = 2*t1
-        t3 = 2*p2
-        t4 = t0*t3
-        t5 = t0*p3
-        t6 = 2*t5
-        t7 = -q3
-        t8 = q2 + t7
-        t9 = mpmath.exp(-t8)
-        t10 = t3*p3 - 2*t9
-        t11 = -t10 - t2 - t4 - t6
-        t12 = q1 - q2
-        t13 = mpmath.exp(-t12)
-        t14 = t13*p3
-        t15 = -t14
-        t16 = t9*p1
-        t17 = p1*p2
-        t18 = t17*p3
-        t19 = -t16 + t18
-        t20 = t15 + t19
-        t21 = t20 - 2
-        t22 = -t0
-        t23 = t13*t22
-        t24 = t0**3
-        t25 = t1*p1
-        t26 = t1*p2
-        t27 = t1*p3
-        t28 = t0*t17
-        t29 = t5*p1
-        t30 = t5*p2
-        t31 = t22*t9 + t24 + t25 + t26 + t27 + t28 + t29 + t30
-        t32 = t23 + t31
-        t33 = q1 + t7
-        t34 = mpmath.exp(t33)
-        t35 = t34*p2
-        t36 = -t35
-        t37 = t22*t34 + t36
-        t38 = t32 + t37
-        t39 = t20 + 2
-        t40 = branch*mpmath.sqrt((t21 + t38)*(t38 + t39))
-        t41 = t0*t34
-        t42 = t20 + t35
-        t43 = t32 + t41 + t42
-        t44 = 2*p1
-        t45 = 2*t35
-        t46 = -(2*mpmath.exp(t8))
-        t47 = t35*t44 + t46
-        t48 = -t40
-        t49 = ((t40 + t43)/t11 if t40*t43 >= 0 else (-t0*t45 - t2*t34 - t41*t44 - t47)/(t43 + t48))
-        t50 = lam0 - mu
-        t51 = t50**2
-        t52 = 2*t51
-        t53 = t3*t50
-        t54 = t50*p3
-        t55 = 2*t54
-        t56 = -t10 - t52 - t53 - t55
-        t57 = -t50
-        t58 = t13*t57
-        t59 = t57*t9
-        t60 = t51*p1 + t54*p1 + t51*p2 + t54*p2 + t51*p3 + t17*t50 + t50**3
-        t61 = t58 + t59 + t60
-        t62 = t34*t57 + t36
-        t63 = t61 + t62
-        t64 = branch*mpmath.sqrt((t21 + t63)*(t39 + t63))
-        t65 = -t64
-        t66 = t34*t50
-        t67 = t42 + t61 + t66
-        t68 = -(t13*t50)
-        t69 = -t50*t9 + t60
-        t70 = 1/(-t49 + ((t65 + t67)/t56 if t64*(t34*t57 - t42 - t68 - t69) >= 0 else (-t34*t52 - t44*t66 - t45*t50 - t47)/(t64 + t67)))
-        t71 = 2*mu
-        t72 = t70*t71
-        t73 = t0*t13
-        t74 = 2*t14
-        t75 = t14*t44 + t46
-        t76 = t14 + t19
-        t77 = t31 + t37 + t73 + t76
-        t78 = (t13*(t40 + t77)/(-t0*t74 - t13*t2 - t44*t73 - t75) if t40*t77 >= 0 else t11*t13/(t48 + t77))
-        t79 = t13*t50
-        t80 = t62 + t65
-        t81 = t59 + t60 + t76 + t79
-        t82 = -t34*t50 + t36
-        t83 = t62 + t64
-        t84 = 1/(-t78 + (t13*(t80 + t81)/(-t13*t52 - t44*t79 - t50*t74 - t75) if t64*(t13*t57 - t69 - t76 - t82) >= 0 else t13*t56/(t81 + t83)))
-        t85 = t71*t84
-        t86 = mpmath.exp(-t33)
-        t87 = t0*t44
-        t88 = -2*q1 + q2 + q3
-        t89 = t3*t86*p1 - 2*mpmath.exp(t88)
-        t90 = t15 + t16 + t18
-        t91 = t0*t9 + t23 + t24 + t25 + t26 + t27 + t28 + t29 + t30 + t37 + t90
-        t92 = mpmath.exp(t12)
-        t93 = t44*t92
-        t94 = t93*p3 - 2*mpmath.exp(-t88)
-        t95 = (t86*(t40 + t91)/(-t2*t86 - t4*t86 - t86*t87 - t89) if t40*t91 >= 0 else t86*(-t2*t92 - t6*t92 - t87*t92 - t94)/(t48 + t91))
-        t96 = t60 + t90
-        t97 = t50*t9 + t58 + t96
-        t98 = 1/(-t95 + (t86*(t80 + t97)/(-t44*t50*t86 - t52*t86 - t53*t86 - t89) if t64*(t57*t9 - t68 - t82 - t96) >= 0 else t86*(-t50*t93 - t52*t92 - t55*t92 - t94)/(t83 + t97)))
-        t99 = t71*t98
-        t100 = -(t49*t70)
-        t101 = t78*t84
-        t102 = t95*t98
-        _mp_guard('positivity', 'Etilde_1', 1 - t72)
-        _mp_guard('positivity', 'Etilde_2', 1 - t85)
-        _mp_guard('positivity', 'Etilde_3', 1 - t99)
-        p_new = [p1 + t71*(-t100 - t101), p2 + t71*(t101 - t102), p3 + t71*(t100 + t102)]
-        q_new = [q1 + mpmath.log1p(-t72), q2 + mpmath.log1p(-t85), q3 + mpmath.log1p(-t99)]
+        t3 = lam0 + mu
+        t4 = p3 + t3
+        t5 = p2 + t3
+        t6 = -t5
+        t7 = mpmath.exp(q1 + t0)
+        t8 = t6*t7
+        t9 = mpmath.exp(-q1 + q2)
+        t10 = -t9
+        t11 = p1 + t3
+        t12 = t10 + t11*t5
+        t13 = t1*t11
+        t14 = t12*t4 - t13
+        t15 = t14 + t8
+        t16 = branch*mpmath.sqrt((t15 - 2)*(t15 + 2))
+        t17 = -t12*t4 + t13 + t8
+        t18 = 2*t7
+        t19 = ((t14 + t16 - t8)/(t2 + 2*t4*t6) if t16*t17 <= 0 else -(t12*t18/(-t16 - t17)))
+        t20 = -_div(t9, t11 + t19)
+        t21 = branch*mpmath.sign(t15) <= 0
+        t22 = -t4 - _div(t7, t19)
+        t23 = (t20 if t21 else -t5 - _div(t1, t22))
+        t24 = (-_div(t1, t20 + t5) if t21 else t22)
+        t25 = lam0 - mu
+        t26 = p3 + t25
+        t27 = p2 + t25
+        t28 = -t27
+        t29 = t28*t7
+        t30 = p1 + t25
+        t31 = t10 + t27*t30
+        t32 = t26*t31
+        t33 = t1*t30
+        t34 = t32 - t33
+        t35 = t29 + t34
+        t36 = branch*mpmath.sqrt((t35 - 2)*(t35 + 2))
+        t37 = t29 - t32 + t33
+        t38 = ((-t36 - t37)/(t2 + 2*t26*t28) if t36*t37 >= 0 else -(t18*t31/(-t29 + t34 + t36)))
+        t39 = -_div(t9, t30 + t38)
+        t40 = branch*mpmath.sign(t35) >= 0
+        t41 = -t26 - _div(t7, t38)
+        t42 = (t39 if t40 else -t27 - _div(t1, t41))
+        t43 = (-_div(t1, t27 + t39) if t40 else t41)
+        t44 = -t19 + t38
+        t45 = -t23 + t42
+        t46 = -t24 + t43
+        t47 = 1/t44
+        t48 = 2*mu
+        t49 = t47*t48
+        t50 = 1/t45
+        t51 = t48*t50
+        t52 = 1/t46
+        t53 = t48*t52
+        t54 = -(t19*t47)
+        t55 = t23*t50
+        t56 = t24*t52
+        _mp_guard('range', 'u_1', t19)
+        _mp_guard('range', 'u_2', t23)
+        _mp_guard('range', 'u_3', t24)
+        _mp_guard('range', 'w_1', t38)
+        _mp_guard('range', 'w_2', t42)
+        _mp_guard('range', 'w_3', t43)
+        _mp_guard('range', 'd_1', t44)
+        _mp_guard('range', 'd_2', t45)
+        _mp_guard('range', 'd_3', t46)
+        _mp_guard('positivity', 'Etilde_1', 1 - t49)
+        _mp_guard('positivity', 'Etilde_2', 1 - t51)
+        _mp_guard('positivity', 'Etilde_3', 1 - t53)
+        p_new = [p1 + t48*(-t54 - t55), p2 + t48*(t55 - t56), p3 + t48*(t54 + t56)]
+        q_new = [q1 + mpmath.log1p(-t49), q2 + mpmath.log1p(-t51), q3 + mpmath.log1p(-t53)]
     except ZeroDivisionError as exc:
         raise NumericRangeError('division by zero (degenerate eigenvector)') from exc
     return p_new, q_new

@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: aa64dc17cef47c90937686c1fe263cb78cf9b556fc70e1e2a3b906ebf038a0a3
-// symbt-codegen-content-sha256: 7d44b3a15f87525c565f5d49ccf538732ddf439e69ff8306044a01314595af64
+// symbt-codegen-derivation-sha256: 6376203822071db07e0940ec5f2ee26fe47ec85c09810ae735190abc964f6ddf
+// symbt-codegen-content-sha256: a0eade4d4c526e742987aa2107e58883b9720ac4f7071c1d2452cad56aadc7f1
 #include <math.h>
 #include "drag_numeric.h"
 

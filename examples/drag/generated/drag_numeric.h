@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: aa64dc17cef47c90937686c1fe263cb78cf9b556fc70e1e2a3b906ebf038a0a3
-// symbt-codegen-content-sha256: 216377e11cb95c1a030c12e789cfa78e6e22e92609b212d94ec9b44ce336deed
+// symbt-codegen-derivation-sha256: 6376203822071db07e0940ec5f2ee26fe47ec85c09810ae735190abc964f6ddf
+// symbt-codegen-content-sha256: cf3c40f6b6219bcaf5eee472a9e3ac00baef8085057091c57c43a2c9cb88e817
 #ifndef SYMBT_EMITTED_DRAG_NUMERIC_H
 #define SYMBT_EMITTED_DRAG_NUMERIC_H
 

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: drag_numeric (declared in drag_emit)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: aa64dc17cef47c90937686c1fe263cb78cf9b556fc70e1e2a3b906ebf038a0a3
-# symbt-codegen-content-sha256: 20ef2c8b375a2b1e50fee399dfc0f93f3f9305505d79bea55989e1f46eb3eebb
+# symbt-codegen-derivation-sha256: 6376203822071db07e0940ec5f2ee26fe47ec85c09810ae735190abc964f6ddf
+# symbt-codegen-content-sha256: 852583007045ed6f1df9af46c0c471eb5a1d429202d2e11915552c5de846569b
 """drag_numeric: functions emitted by `symbt codegen` from drag_emit.
 
 Each function has a numpy float64 flavour (vectorised over broadcast arguments) and an

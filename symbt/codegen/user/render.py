@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import sympy as sp
 from sympy.codegen.cfunctions import expm1
-from sympy.codegen.rewriting import expm1_opt, log1p_opt, optimize
+from sympy.codegen.rewriting import FuncMinusOneOptim, ReplaceOptim, expm1_opt, log1p_opt
 
 from ..printer import _ATOM, _FUNCS, _MUL, _POW, ExprPrinter
 from .declare import Emission
@@ -100,6 +100,20 @@ class UserPrinter(ExprPrinter):
             return {"numpy": str(v), "mpmath": str(v), "c": str(int(v))}[fl], _ATOM
         return super()._p(e)
 
+    def _add(self, e):
+        terms = e.as_ordered_terms()
+        if self.flavour == "c" or len(terms) <= LONG_SUM:
+            return super()._add(e)
+        chunks = [super(UserPrinter, self)._add(sp.Add(*terms[k:k + LONG_SUM], evaluate=False))
+                  for k in range(0, len(terms), LONG_SUM)]
+
+        def tree(parts):   # balanced: nesting depth log2(chunks), few temporaries alive at once
+            if len(parts) == 1:
+                return parts[0]
+            mid = len(parts) // 2
+            return f"({tree(parts[:mid])}) + ({tree(parts[mid:])})"
+        return tree(chunks)
+
     def _pow(self, e):
         b, x = e.base, e.exp
         if b is sp.E or (x.is_Rational and (x.is_Integer or x.q == 2)):
@@ -114,11 +128,44 @@ class UserPrinter(ExprPrinter):
         return f"{self._wrap(b, _POW)}**{self._wrap(x, _POW)}", _POW
 
 
+#: above this many operations the expm1 rule is applied term by term only: SymPy's rule also tries
+#: ``factor()`` of the whole expression, which took 93 % of the emission time of a large polynomial
+FACTOR_MAX_OPS = 400
+#: a sum of more terms is printed in Python as a balanced sum of partial sums of at most this many terms,
+#: ``(a + ... ) + (...)``: a chain ``a + b + ...`` of thousands of terms makes Python's compiler raise
+#: RecursionError
+LONG_SUM = 100
+
+
+def _rewritten(x: sp.Expr) -> sp.Expr:
+    """SymPy's ``optimize(x, [expm1_opt, log1p_opt])``, each rule only where its function occurs."""
+    for fn, opt in ((sp.exp, expm1_opt), (sp.log, log1p_opt)):
+        if not x.has(fn):
+            continue
+        if isinstance(opt, FuncMinusOneOptim) and sp.count_ops(x) > FACTOR_MAX_OPS:
+            new = ReplaceOptim.__call__(opt, x)
+        else:
+            new = opt(x)
+        x = opt.cheapest(x, new) if opt.cost_function is not None else new
+    return x
+
+
 def optimized(e: Emission) -> list[sp.Expr]:
-    """The elements to print: ``expm1``/``log1p`` rewriting when the declaration asks for it."""
+    """The elements to print: ``expm1``/``log1p`` rewriting when the declaration asks for it.
+
+    Each rule of :mod:`sympy.codegen.rewriting` is applied only to an expression containing its
+    function (``exp``, ``log``), and on an expression of more than :data:`FACTOR_MAX_OPS` operations
+    without the rule's whole-expression ``factor()`` attempt.
+
+    >>> import sympy as sp
+    >>> from .declare import emit
+    >>> x = sp.Symbol("x")
+    >>> optimized(emit("g", [sp.exp(x) - 1, sp.log(1 + x), x**2 - 1], args=(x,), module="m", register=False))
+    [expm1(x), log1p(x), x**2 - 1]
+    """
     if not e.optimize:
         return list(e.exprs)
-    return [optimize(x, [expm1_opt, log1p_opt]) for x in e.exprs]
+    return [_rewritten(x) for x in e.exprs]
 
 
 def _cse(exprs, names, flavour):
@@ -212,10 +259,11 @@ def python_module(module: str, emissions: list[Emission], sources: str) -> str:
     """The body (after the provenance header) of ``<module>.py``."""
     names = sorted([e.name for e in emissions] + [e.name + "_mp" for e in emissions] + ["DomainError"])
     parts = [_PY_HEAD.format(module=module, sources=sources, names=names).rstrip("\n")]
-    for e in emissions:
-        parts += ["", "", _py_function(e, optimized(e))]
-    for e in emissions:
-        parts += ["", "", _mp_function(e, optimized(e))]
+    opt = [optimized(e) for e in emissions]     # once for both flavours
+    for e, x in zip(emissions, opt):
+        parts += ["", "", _py_function(e, x)]
+    for e, x in zip(emissions, opt):
+        parts += ["", "", _mp_function(e, x)]
     return "\n".join(parts) + "\n"
 
 
