@@ -134,7 +134,7 @@ def run_verify(copy_root: Path, ids: Sequence[str] | None, timeout: float, *,
     report = copy_root / ".symbt-mutate-verify.json"
     report.unlink(missing_ok=True)
     argv = [sys.executable, "-m", "symbt", "verify", "--no-cache", "-q", "-j", "1", "--json", str(report),
-            "--budget", f"{max(timeout, 1.0):.0f}"]
+            "--budget", f"{2 * max(timeout, 1.0) + 10:.0f}"]   # our kill comes first: a hang is a timeout
     for c in claims:
         argv += ["--claims", c]
     for i in ids or ():
