@@ -17,7 +17,7 @@ import pytest
 import symbt
 
 ROOT = Path(__file__).resolve().parents[1]
-EXTRAS = {"scipy", "plot", "certified", "fast", "gmpy2", "peers", "dask", "notebooks", "rich", "latex", "report",
+EXTRAS = {"scipy", "plot", "certified", "fast", "gmpy2", "peers", "dask", "notebooks", "rich", "latex", "report", "mutate",
           "test", "all"}
 
 

@@ -72,7 +72,7 @@ def _start(tracer: Callable[..., Any]) -> None:
 
 def _stop() -> None:
     sys.settrace(None)
-    threading.settrace(None)  # type: ignore[arg-type]
+    threading.settrace(None)  # type: ignore[arg-type,unused-ignore]
 
 
 def _plain(seen: dict[str, set[int]]) -> dict[str, list[int]]:
@@ -91,11 +91,12 @@ def _traced_runs(claims: list[Any], files: set[str], timeout: float) -> dict[str
     """Run the claims one after another (in one process, as ``symbt verify -j 1`` does), recording the
     lines of ``files`` each runs: with coverage.py's C tracer when it is installed, else ``sys.settrace``."""
     result: dict[str, Any] = {"import": {}, "claims": {}, "timed_out": [], "failed": {}}
+    cov: Any = None
+    seen: dict[str, set[int]] = {}
     try:
         import coverage
-    except ImportError:
-        coverage = None
-    cov = None
+    except ImportError:   # the slower tracer of this module
+        coverage = None   # type: ignore[assignment]
     if coverage is not None:
         cov = coverage.Coverage(data_file=None, config_file=False, include=sorted(files))
         cov.start()

@@ -219,8 +219,12 @@ def _prepare(base: Path, claims: list[str], deadline: float | None,
         return doc["map"], doc["baseline"], True
     except (OSError, ValueError, KeyError):
         pass
-    left = None if deadline is None else max(deadline - time.time(), 1.0)
-    say("mapping lines to claims (one traced run of the claims) ...")
+    left = None if deadline is None else max(deadline - time.time(), 0.1)
+    import importlib.util
+
+    tracer = "coverage.py" if importlib.util.find_spec("coverage") else \
+        "sys.settrace, slower: pip install 'symbt[mutate]' for coverage.py's tracer"
+    say(f"mapping lines to claims (one traced run of the claims; {tracer}) ...")
     out = base / ".symbt-linemap.json"
     argv = [sys.executable, "-m", "symbt.engine.linemap", "--out", str(out)]
     for c in claims:
@@ -235,7 +239,7 @@ def _prepare(base: Path, claims: list[str], deadline: float | None,
         for f in list(section):
             section[f[len(prefix):] if f.startswith(prefix) else f] = section.pop(f)
     say("the unmutated verify run ...")
-    left = None if deadline is None else max(deadline - time.time(), 1.0)
+    left = None if deadline is None else max(deadline - time.time(), 0.1)
     vrun, records = run_verify(base, None, left or 3600.0, claims=claims)
     if records is None:
         raise UsageError(f"symbt verify on the unmutated copy wrote no report: {vrun.last_error()}")
@@ -257,11 +261,16 @@ def _tests_for(module: str, tests_dir: Path) -> list[Path]:
     return sorted(p for p in tests_dir.glob("test_*.py") if pat.search(p.read_text(encoding="utf-8", errors="replace")))
 
 
+def _record(item: tuple[str, str, SourceMutant], **fields: Any) -> dict[str, Any]:
+    name, rel, m = item
+    return {"id": m.id, "module": name, "file": rel, "line": m.line, "operator": m.operator, "diff": m.diff,
+            "claims": 0, "seconds": 0.0, "detail": "", **fields}
+
+
 def _run_one(copy: Path, item: tuple[str, str, SourceMutant], ids: list[str] | None, limit: float,
              ctx: dict[str, Any]) -> dict[str, Any]:
-    name, rel, m = item
-    rec = {"id": m.id, "module": name, "file": rel, "line": m.line, "operator": m.operator, "diff": m.diff,
-           "claims": len(ctx["baseline"]) if ids is None else len(ids), "detail": ""}
+    _, rel, m = item
+    rec = _record(item, claims=len(ctx["baseline"]) if ids is None else len(ids))
     path = copy / rel
     with Mutated(path, m.apply(path.read_bytes())):
         run, records = run_verify(copy, ids, limit, claims=ctx["claims"])
@@ -395,9 +404,15 @@ def main(argv: list[str] | None = None) -> int:
         try:
             linemap, baseline, cached = _prepare(base, claims, deadline, say)
         except UsageError as exc:
-            print(f"symbt mutate --source: {exc}", file=sys.stderr)
-            return EXIT_USAGE if deadline is None or time.time() < deadline else 1
-        records = _execute(args, chosen, equivalent, linemap, baseline, claims, tmp, base, deadline, project, say)
+            if deadline is None or time.time() < deadline:
+                print(f"symbt mutate --source: {exc}", file=sys.stderr)
+                return EXIT_USAGE
+            linemap, baseline, cached = {"import": {}, "claims": {}}, {}, False   # the budget ran out first
+        if baseline or deadline is None:
+            records = _execute(args, chosen, equivalent, linemap, baseline, claims, tmp, base, deadline, project, say)
+        else:
+            records = [_record(item, result="not run", detail="the budget ran out before the line map was done")
+                       for item in chosen]
     finally:
         import shutil
 
@@ -426,14 +441,12 @@ def _execute(args: argparse.Namespace, chosen: list[tuple[str, str, SourceMutant
            "tests": (project.root / "tests") if args.tests else None}
     records: list[dict[str, Any] | None] = [None] * len(chosen)
     todo = []
-    for i, (name, rel, m) in enumerate(chosen):
-        rec = {"id": m.id, "module": name, "file": rel, "line": m.line, "operator": m.operator, "diff": m.diff,
-               "claims": 0, "seconds": 0.0, "detail": ""}
+    for i, (_, rel, m) in enumerate(chosen):
         ids = claims_of_line(linemap, rel, m.line, m.line in level[rel])
         if m.id in equivalent:
-            records[i] = dict(rec, result="equivalent", detail=equivalent[m.id])
+            records[i] = _record(chosen[i], result="equivalent", detail=equivalent[m.id])
         elif ids == []:
-            records[i] = dict(rec, result="uncovered", detail="no claim runs this line")
+            records[i] = _record(chosen[i], result="uncovered", detail="no claim runs this line")
         else:
             ids = None if ids is None else [c for c in ids if c in baseline]
             est = sum(seconds.values()) if ids is None else sum(seconds.get(c, 0.0) for c in ids)
@@ -448,11 +461,9 @@ def _execute(args: argparse.Namespace, chosen: list[tuple[str, str, SourceMutant
 
     def work(task: tuple[int, list[str] | None, float]) -> None:
         i, ids, limit = task
-        name, rel, m = chosen[i]
+        m = chosen[i][2]
         if deadline is not None and time.time() >= deadline:
-            records[i] = {"id": m.id, "module": name, "file": rel, "line": m.line, "operator": m.operator,
-                          "diff": m.diff, "claims": 0, "seconds": 0.0, "result": "not run",
-                          "detail": "the budget was reached"}
+            records[i] = _record(chosen[i], result="not run", detail="the budget was reached")
             return
         if deadline is not None:
             limit = min(limit, max(deadline - time.time(), 5.0) + 5.0)
