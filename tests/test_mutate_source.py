@@ -41,6 +41,7 @@ def mutated(src: str, operator: str) -> list[str]:
     ("branch", "if a:\n    y = 2\n", ["if not (a):\n    y = 2\n"]),
     ("branch", "if not a:\n    y = 2\n", ["if a:\n    y = 2\n"]),
     ("branch", "y = b if a else c\n", ["y = b if not (a) else c\n"]),
+    ("branch", "if not (a\n        and b):\n    y = 2\n", ["if (a\n        and b):\n    y = 2\n"]),
     ("drop-factor", "y = x / 2\n", ["y = x\n"]),
     ("drop-factor", "y = 0.5 * x\n", ["y = x\n"]),
     ("tolerance", "tol = 1e-12\n", ["tol = 1e-06\n"]),
@@ -168,15 +169,32 @@ def _cli(*args):
                           cwd=ROOT, timeout=120)
 
 
-def test_bad_input_is_one_line_and_exit_2(tmp_path):
+def test_bad_input_is_one_line_and_exit_2(tmp_path, capsys):
     bad = tmp_path / "eq.toml"
     bad.write_text("[[mutant]]\nid = 3\n")
     for args in (["--source", "no_such_module"], ["--source", "proof", "--equivalents", str(bad)],
                  ["--source", "proof", "--equivalents", str(tmp_path / "missing.toml")],
-                 ["--source", "proof", "--sample", "0"], ["--source", "proof", "-j", "999"]):
-        r = _cli(*args)
-        assert r.returncode == 2, (args, r.stderr)
-        assert len(r.stderr.strip().splitlines()) == 1 and "Traceback" not in r.stderr, r.stderr
+                 ["--source", "proof", "--sample", "0"], ["--source", "proof", "-j", "999"],
+                 ["--source", "proof", "--budget", "-1"],
+                 ["--source", "proof", "--json", str(tmp_path / "no/such/x.json")]):
+        assert ms.main(args) == 2, args
+        err = capsys.readouterr().err
+        assert len(err.strip().splitlines()) == 1 and "Traceback" not in err, err
+    r = _cli("--source", "no_such_module")     # through the command line: symbt mutate hands --source over
+    assert r.returncode == 2 and r.stderr.strip() == f"symbt mutate --source: no module 'no_such_module' under {ROOT}"
+
+
+def test_a_budget_spent_before_the_map_reports_every_mutant_not_run(tmp_path, monkeypatch, capsys):
+    (tmp_path / "pyproject.toml").write_text('[tool.symbt]\nclaims = ["lib_claims.py"]\n')
+    (tmp_path / "mylib.py").write_text(LIB)
+    (tmp_path / "lib_claims.py").write_text(CLAIMS)
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("PYTHONPATH", str(ROOT))
+    monkeypatch.setenv("SYMBT_CACHE_DIR", str(tmp_path / "cache"))
+    assert ms.main(["--source", "mylib", "--budget", "0.2", "--json", str(tmp_path / "o.json"), "-q"]) == 0
+    doc = json.loads((tmp_path / "o.json").read_text())
+    assert {r["result"] for r in doc["mutants"]} == {"not run"} and doc["summary"]["total"]["not_run"] == 8
+    assert doc["summary"]["total"]["score"] is None
 
 
 def test_list_is_seeded_and_bounded_by_the_sample():
@@ -239,6 +257,10 @@ def count_to(n):
 
 def unused(x):
     return x - 1
+
+
+def never(x):
+    return x * 3
 '''
 
 CLAIMS = '''\
@@ -272,6 +294,9 @@ def test_end_to_end_on_a_small_project(tmp_path):
     (tmp_path / "pyproject.toml").write_text('[tool.symbt]\nclaims = ["lib_claims.py"]\n')
     (tmp_path / "mylib.py").write_text(LIB)
     (tmp_path / "lib_claims.py").write_text(CLAIMS)
+    (tmp_path / "tests").mkdir()
+    (tmp_path / "tests" / "test_lib.py").write_text("from mylib import unused\n\n\ndef test_unused():\n"
+                                                    "    assert unused(3) == 2\n")
     ids = {m.line_text.strip() + " " + m.description: m.id for m in find_mutants(LIB, "mylib")}
     (tmp_path / "mutants-equivalent.toml").write_text(
         f'[[mutant]]\nid = "{ids["i = 0 0 -> 1"]}"\nreason = "count_to(n) = n for n >= 1 either way"\n'
@@ -280,20 +305,22 @@ def test_end_to_end_on_a_small_project(tmp_path):
     out = tmp_path / "out.json"
     env_cache = tmp_path / "cache"
     r = subprocess.run([sys.executable, "-m", "symbt", "mutate", "--source", "mylib", "--mutant-timeout", "45",
-                        "--json", str(out), "-j", "1"], cwd=tmp_path, capture_output=True, text=True, timeout=900,
-                       env={**os.environ, "SYMBT_CACHE_DIR": str(env_cache), "PYTHONPATH": str(ROOT)})
-    assert r.returncode == 1, r.stderr   # survivors: unused() is run by no claim
+                        "--tests", "--json", str(out), "-j", "1"], cwd=tmp_path, capture_output=True, text=True,
+                       timeout=900, env={**os.environ, "SYMBT_CACHE_DIR": str(env_cache), "PYTHONPATH": str(ROOT)})
+    assert r.returncode == 1, r.stderr   # survivors: unused() is run by no claim, only by a test
     doc = json.loads(out.read_text())
     import jsonschema
 
     jsonschema.validate(doc, schema())
-    result = {rec["diff"].splitlines()[1][2:].strip(): rec["result"] for rec in doc["mutants"]}
-    assert result["return x"] == "killed"                       # double: 2 * x -> x
-    assert result["while i <= n:"] == result["while i > n:"] == "killed"
-    assert result["i = 1"] == "equivalent"
-    assert result["i += 0"] == "timeout"                        # an endless loop, stopped at the limit
-    assert result["return x + 1"] == result["return x - 0"] == "uncovered"
+    result = {(rec["line"], rec["diff"].splitlines()[1][2:].strip()): rec["result"] for rec in doc["mutants"]}
+    assert result == {
+        (2, "return x"): "killed",                   # double: 2 * x -> x
+        (6, "i = 1"): "equivalent",                  # marked, not run
+        (7, "while i <= n:"): "killed", (7, "while i > n:"): "killed",
+        (8, "i += 0"): "timeout",                    # an endless loop, stopped at the limit
+        (13, "return x + 1"): "tests", (13, "return x - 0"): "tests",   # no claim runs unused(); its test does
+        (17, "return x"): "uncovered"}               # nothing runs never()
     assert doc["stale_equivalents"] == [{"id": "mylib:99:sign:0123abcd", "reason": "a mark that matches nothing"}]
     t = doc["summary"]["modules"]["mylib"]
-    assert t["equivalent"] == 1 and t["uncovered"] == 2 and t["timeouts"] == 1
+    assert (t["equivalent"], t["uncovered"], t["timeouts"], t["killed_tests"]) == (1, 1, 1, 2)
     assert _tree_digest(tmp_path) == before                    # the real tree was never written

@@ -187,7 +187,9 @@ class _Finder(ast.NodeVisitor):
         a, b = self.span(test)
         if isinstance(test, ast.UnaryOp) and isinstance(test.op, ast.Not):
             o1, o2 = self.span(test.operand)
-            self.add(test, "branch", a, b, self.data[o1:o2].decode("utf-8"))
+            inner = self.data[o1:o2].decode("utf-8")
+            # an operand over several lines needs the brackets that `not (...)` had
+            self.add(test, "branch", a, b, f"({inner})" if "\n" in inner else inner)
         else:
             self.add(test, "branch", a, b, f"not ({self.text(test)})")
 

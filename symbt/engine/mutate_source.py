@@ -273,23 +273,28 @@ def _run_one(copy: Path, item: tuple[str, str, SourceMutant], ids: list[str] | N
     rec = _record(item, claims=len(ctx["baseline"]) if ids is None else len(ids))
     path = copy / rel
     with Mutated(path, m.apply(path.read_bytes())):
-        run, records = run_verify(copy, ids, limit, claims=ctx["claims"])
-        rec["seconds"] = round(run.seconds, 2)
-        if run.timed_out:
-            rec.update(result="timeout", detail=f"verify ran past {limit:.0f}s")
-            return rec
-        changes = verify_changes(ctx["baseline"], records, list(ctx["baseline"]) if ids is None else ids)
-        if records is None or run.code not in (0, 1):
-            rec.update(result="killed", detail=f"verify failed to run: {run.last_error()}")
-        elif changes:
-            rec.update(result="killed", detail="; ".join(changes[:3]) + (" ..." if len(changes) > 3 else ""))
+        if ids == []:   # no claim runs the line: only the tests can kill it
+            rec.update(result="uncovered", detail="no claim runs this line")
         else:
-            rec["result"] = "survived"
-        if rec["result"] == "survived" and ctx["tests"] is not None:
-            files = _tests_for(m.module, ctx["tests"])
+            run, records = run_verify(copy, ids, limit, claims=ctx["claims"])
+            rec["seconds"] = round(run.seconds, 2)
+            if run.timed_out:
+                rec.update(result="timeout", detail=f"verify ran past {limit:.0f}s")
+                return rec
+            changes = verify_changes(ctx["baseline"], records, list(ctx["baseline"]) if ids is None else ids)
+            if records is None or run.code not in (0, 1):
+                rec.update(result="killed", detail=f"verify failed to run: {run.last_error()}")
+            elif changes:
+                rec.update(result="killed", detail="; ".join(changes[:3]) + (" ..." if len(changes) > 3 else ""))
+            else:
+                rec["result"] = "survived"
+        if rec["result"] in ("survived", "uncovered") and ctx["tests"] is not None:
+            tests = copy / "tests" if (copy / "tests").is_dir() else ctx["tests"]
+            files = _tests_for(m.module, tests)
             if files:
                 t = run_command([sys.executable, "-m", "pytest", "-q", "-x", "-p", "no:cacheprovider",
                                  *map(str, files)], copy, ctx["tests_timeout"], subprocess_env(copy))
+                rec["seconds"] = round(rec["seconds"] + t.seconds, 2)
                 if t.timed_out or t.code not in (0, 5):
                     rec.update(result="tests", detail=f"{len(files)} test files, "
                                + ("timed out" if t.timed_out else f"pytest exit {t.code}"))
@@ -445,7 +450,7 @@ def _execute(args: argparse.Namespace, chosen: list[tuple[str, str, SourceMutant
         ids = claims_of_line(linemap, rel, m.line, m.line in level[rel])
         if m.id in equivalent:
             records[i] = _record(chosen[i], result="equivalent", detail=equivalent[m.id])
-        elif ids == []:
+        elif ids == [] and not args.tests:
             records[i] = _record(chosen[i], result="uncovered", detail="no claim runs this line")
         else:
             ids = None if ids is None else [c for c in ids if c in baseline]
