@@ -34,8 +34,8 @@ A marked id that matches no mutant any more is reported *stale*.  Exit status: `
 (with ``--fail-under P``: score >= P %), ``1`` otherwise, ``2`` usage error (an unknown module, a
 malformed equivalents file, a bad option: one line on stderr).
 
->>> sorted(parse_equivalents('[[mutant]]\\nid = "m:1:sign:ab"\\nreason = "dead code"\\n').items())
-[('m:1:sign:ab', 'dead code')]
+>>> sorted(parse_equivalents('[[mutant]]\\nid = "m:1:sign:0123abcd"\\nreason = "dead code"\\n').items())
+[('m:1:sign:0123abcd', 'dead code')]
 """
 from __future__ import annotations
 
