@@ -143,7 +143,7 @@ def test_equivalents_file_parses_and_matches_moved_lines_and_reports_stale_marks
             f'[[mutant]]\nid = "other.mod:9:compare:0123abcd"\nreason = "not in play"\n')
     marked = ms.parse_equivalents(text)
     moved = find_mutants("\n\n" + src, "pkg.mod")
-    found, stale = ms._match_equivalents(marked, moved, {"pkg"})
+    found, stale = ms.match_equivalents(marked, moved, {"pkg"})
     (mid,) = found
     assert mid.startswith("pkg.mod:4:sign:") and "the line moved" in found[mid]
     assert stale == [{"id": "pkg.mod:9:compare:0123abcd", "reason": "gone"}]

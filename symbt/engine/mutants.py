@@ -47,9 +47,11 @@ import ast
 import bisect
 import hashlib
 import math
+import re
 from dataclasses import dataclass
 
-__all__ = ["SourceMutant", "find_mutants", "OPERATORS", "module_level_lines"]
+__all__ = ["SourceMutant", "find_mutants", "OPERATORS", "module_level_lines", "parse_equivalents",
+           "match_equivalents", "UsageError"]
 
 OPERATORS = ("sign", "unary-minus", "index-shift", "compare", "branch", "drop-factor", "tolerance", "constant",
              "min-max", "abs")
@@ -65,6 +67,11 @@ _ABS = {"abs", "fabs", "absolute"}
 _QUIET_CALLS = {"print", "warn", "debug", "info", "warning", "error", "exception", "write"}
 #: a float constant below this (and above 0) is read as a tolerance
 TOLERANCE_BELOW = 1e-3
+
+
+class UsageError(ValueError):
+    """Bad input to ``symbt mutate --source`` (an unknown module, a malformed equivalents file): one
+    line on stderr, exit status 2."""
 
 
 @dataclass(frozen=True)
@@ -339,3 +346,57 @@ def module_level_lines(source: str | bytes) -> set[int]:
 
     mark(tree)
     return lines
+
+
+# --------------------------------------------------------------------------- the equivalents file
+
+def parse_equivalents(text: str, where: str = "equivalents file") -> dict[str, str]:
+    """``[[mutant]]`` tables with ``id`` and ``reason`` -> {id: reason}; anything else raises
+    :class:`UsageError` (one line)."""
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10
+        import tomli as tomllib
+
+    try:
+        doc = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise UsageError(f"{where}: not TOML: {exc}") from None
+    extra = set(doc) - {"mutant"}
+    if extra:
+        raise UsageError(f"{where}: unknown table(s) {', '.join(sorted(extra))}; expected [[mutant]] entries")
+    entries = doc.get("mutant", [])
+    if not isinstance(entries, list):
+        raise UsageError(f"{where}: 'mutant' must be an array of tables ([[mutant]])")
+    out: dict[str, str] = {}
+    for i, e in enumerate(entries, 1):
+        if not isinstance(e, dict) or set(e) != {"id", "reason"} or not all(isinstance(v, str) for v in e.values()):
+            raise UsageError(f"{where}: [[mutant]] #{i} must have exactly the strings 'id' and 'reason'")
+        if not re.fullmatch(r"[\w.]+:\d+:[\w-]+:[0-9a-f]{8}", e["id"]) or not e["reason"].strip():
+            raise UsageError(f"{where}: [[mutant]] #{i}: id {e['id']!r} is not module:line:operator:hash, "
+                             "or the reason is empty")
+        if e["id"] in out:
+            raise UsageError(f"{where}: [[mutant]] #{i}: {e['id']} is marked twice")
+        out[e["id"]] = e["reason"]
+    return out
+
+
+def match_equivalents(marked: dict[str, str], mutants: list[SourceMutant],
+                       modules: set[str]) -> tuple[dict[str, str], list[dict[str, str]]]:
+    """{mutant id: reason} for the marked ones (an id whose line moved matches by module, operator and
+    hash), and the stale marks (of the modules in play, by dotted prefix) that match nothing."""
+    by_id = {m.id: m for m in mutants}
+    by_key: dict[tuple[str, str, str], list[SourceMutant]] = {}
+    for m in mutants:
+        by_key.setdefault((m.module, m.operator, m.key), []).append(m)
+    found: dict[str, str] = {}
+    stale = []
+    for mid, reason in marked.items():
+        module, _, operator, key = mid.rsplit(":", 3)
+        if mid in by_id:
+            found[mid] = reason
+        elif len(by_key.get((module, operator, key), [])) == 1:
+            found[by_key[(module, operator, key)][0].id] = f"{reason} (marked as {mid}: the line moved)"
+        elif any(module == m or module.startswith(m + ".") for m in modules):
+            stale.append({"id": mid, "reason": reason})
+    return found, stale

@@ -32,7 +32,8 @@ equivalent, with a reason::
 
 A marked id that matches no mutant any more is reported *stale*.  Exit status: ``0`` no survivor
 (with ``--fail-under P``: score >= P %), ``1`` otherwise, ``2`` usage error (an unknown module, a
-malformed equivalents file, a bad option: one line on stderr).
+malformed equivalents file, a bad option: one line on stderr), ``130`` interrupted (the running
+verify processes are killed).
 
 >>> sorted(parse_equivalents('[[mutant]]\\nid = "m:1:sign:0123abcd"\\nreason = "dead code"\\n').items())
 [('m:1:sign:0123abcd', 'dead code')]
@@ -57,12 +58,12 @@ from typing import Any
 from .._files import directory_problem
 from ..report.json import emit_document, output_refused, run_info
 from ..report.mutation_source import SCHEMA_VERSION, exit_status, format_text, summary
-from .mutants import SourceMutant, find_mutants, module_level_lines
+from .mutants import SourceMutant, UsageError, find_mutants, match_equivalents, module_level_lines, parse_equivalents
 from .project import ConfigError, Project, discover
-from .source_tree import Mutated, copy_tree, run_command, run_verify, subprocess_env, verify_changes
+from .source_tree import Mutated, copy_tree, kill_running, run_command, run_verify, subprocess_env, verify_changes
 
-__all__ = ["DEFAULT_MODULES", "EQUIVALENTS_FILE", "resolve_modules", "parse_equivalents", "claims_of_line",
-           "plan", "main"]
+__all__ = ["DEFAULT_MODULES", "EQUIVALENTS_FILE", "resolve_modules", "parse_equivalents", "match_equivalents",
+           "claims_of_line", "plan", "main", "UsageError"]
 
 #: what ``symbt mutate --source`` mutates of symbt itself by default (issue 21)
 DEFAULT_MODULES = ("symbolic", "proof", "numeric", "reference", "codegen")
@@ -70,10 +71,6 @@ EQUIVALENTS_FILE = "mutants-equivalent.toml"
 EXIT_USAGE = 2
 #: a mutant's limit: this many times its claims' unmutated time, plus the start of a verify process
 TIMEOUT_FACTOR, TIMEOUT_START = 4.0, 30.0
-
-
-class UsageError(ValueError):
-    """Bad input: one line on stderr, exit status 2."""
 
 
 # --------------------------------------------------------------------------- what to mutate
@@ -106,55 +103,6 @@ def resolve_modules(names: list[str], root: Path, *, package: bool) -> dict[str,
         else:
             raise UsageError(f"no module {name!r} under {root}")
     return out
-
-
-def parse_equivalents(text: str, where: str = "equivalents file") -> dict[str, str]:
-    """``[[mutant]]`` tables with ``id`` and ``reason`` -> {id: reason}; anything else raises
-    :class:`UsageError` (one line)."""
-    import tomllib
-
-    try:
-        doc = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise UsageError(f"{where}: not TOML: {exc}") from None
-    extra = set(doc) - {"mutant"}
-    if extra:
-        raise UsageError(f"{where}: unknown table(s) {', '.join(sorted(extra))}; expected [[mutant]] entries")
-    entries = doc.get("mutant", [])
-    if not isinstance(entries, list):
-        raise UsageError(f"{where}: 'mutant' must be an array of tables ([[mutant]])")
-    out: dict[str, str] = {}
-    for i, e in enumerate(entries, 1):
-        if not isinstance(e, dict) or set(e) != {"id", "reason"} or not all(isinstance(v, str) for v in e.values()):
-            raise UsageError(f"{where}: [[mutant]] #{i} must have exactly the strings 'id' and 'reason'")
-        if not re.fullmatch(r"[\w.]+:\d+:[\w-]+:[0-9a-f]{8}", e["id"]) or not e["reason"].strip():
-            raise UsageError(f"{where}: [[mutant]] #{i}: id {e['id']!r} is not module:line:operator:hash, "
-                             "or the reason is empty")
-        if e["id"] in out:
-            raise UsageError(f"{where}: [[mutant]] #{i}: {e['id']} is marked twice")
-        out[e["id"]] = e["reason"]
-    return out
-
-
-def _match_equivalents(marked: dict[str, str], mutants: list[SourceMutant],
-                       modules: set[str]) -> tuple[dict[str, str], list[dict[str, str]]]:
-    """{mutant id: reason} for the marked ones (an id whose line moved matches by module, operator and
-    hash), and the stale marks (of the modules in play) that match nothing."""
-    by_id = {m.id: m for m in mutants}
-    by_key: dict[tuple[str, str, str], list[SourceMutant]] = {}
-    for m in mutants:
-        by_key.setdefault((m.module, m.operator, m.key), []).append(m)
-    found: dict[str, str] = {}
-    stale = []
-    for mid, reason in marked.items():
-        module, _, operator, key = mid.rsplit(":", 3)
-        if mid in by_id:
-            found[mid] = reason
-        elif len(by_key.get((module, operator, key), [])) == 1:
-            found[by_key[(module, operator, key)][0].id] = f"{reason} (marked as {mid}: the line moved)"
-        elif any(module == m or module.startswith(m + ".") for m in modules):
-            stale.append({"id": mid, "reason": reason})
-    return found, stale
 
 
 def claims_of_line(linemap: dict[str, Any], file: str, line: int, module_level: bool) -> list[str] | None:
@@ -386,7 +334,7 @@ def main(argv: list[str] | None = None) -> int:
             raise UsageError(f"-j {args.jobs}: more than the {os.cpu_count()} cores of this machine")
         project, root, package, modules, marked = _setup(args)
         chosen, every = plan(modules, root, sample=args.sample, seed=args.seed)
-        equivalent, stale = _match_equivalents(marked, every, set(modules))
+        equivalent, stale = match_equivalents(marked, every, set(modules))
     except (UsageError, ConfigError) as exc:
         print(f"symbt mutate --source: {exc}" if not str(exc).startswith("symbt") else str(exc), file=sys.stderr)
         return EXIT_USAGE
@@ -418,6 +366,10 @@ def main(argv: list[str] | None = None) -> int:
         else:
             records = [_record(item, result="not run", detail="the budget ran out before the line map was done")
                        for item in chosen]
+    except KeyboardInterrupt:
+        kill_running()
+        print("symbt mutate --source: interrupted", file=sys.stderr)
+        return 130
     finally:
         import shutil
 
@@ -470,18 +422,29 @@ def _execute(args: argparse.Namespace, chosen: list[tuple[str, str, SourceMutant
         if deadline is not None and time.time() >= deadline:
             records[i] = _record(chosen[i], result="not run", detail="the budget was reached")
             return
-        if deadline is not None:
-            limit = min(limit, max(deadline - time.time(), 5.0) + 5.0)
+        capped = deadline is not None and deadline - time.time() + 5.0 < limit
+        if capped:
+            limit = max(deadline - time.time(), 5.0) + 5.0   # type: ignore[operator]
         copy = copies.get()
         try:
+            if stop:
+                return
             rec = _run_one(copy, chosen[i], ids, limit, ctx)
         finally:
             copies.put(copy)
+        if capped and rec["result"] == "timeout":   # stopped by the budget, not by its own limit: no verdict
+            rec.update(result="not run", detail="cut short by the budget")
         records[i] = rec
         with lock:
             done[0] += 1
             say(f"[{done[0]}/{len(todo)}] {rec['result']:8s} {m.id} ({rec['seconds']:.0f}s, {rec['claims']} claims)")
 
+    stop: list[bool] = []
     with ThreadPoolExecutor(max_workers=args.jobs) as pool:
-        list(pool.map(work, todo))
+        try:
+            list(pool.map(work, todo))
+        except KeyboardInterrupt:   # no new mutant; the running ones are killed, with their workers
+            stop.append(True)
+            kill_running()
+            raise
     return [r for r in records if r is not None]

@@ -24,7 +24,10 @@ from pathlib import Path
 from typing import Any
 
 __all__ = ["IGNORED", "copy_tree", "Mutated", "subprocess_env", "Run", "run_command", "run_verify",
-           "verify_changes", "COMPARED"]
+           "verify_changes", "COMPARED", "kill_running"]
+
+#: process groups of the subprocesses running now (:func:`kill_running` ends them on Ctrl-C)
+RUNNING: set[int] = set()
 
 #: never copied: version control, caches, virtual environments, build output
 IGNORED = (".git", ".hg", "__pycache__", ".venv", "venv", ".venv-ci", "node_modules", "build", "dist", ".tox",
@@ -109,6 +112,7 @@ def run_command(argv: Sequence[str], cwd: Path, timeout: float, env: dict[str, s
     t0 = time.perf_counter()
     proc = subprocess.Popen(list(argv), cwd=cwd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True, start_new_session=True)
+    RUNNING.add(proc.pid)
     try:
         out, err = proc.communicate(timeout=max(timeout, 0.1))
         return Run(proc.returncode, out, err, time.perf_counter() - t0)
@@ -125,6 +129,17 @@ def run_command(argv: Sequence[str], cwd: Path, timeout: float, env: dict[str, s
         except ProcessLookupError:
             pass
         raise
+    finally:
+        RUNNING.discard(proc.pid)
+
+
+def kill_running() -> None:
+    """Kill the process groups of every subprocess :func:`run_command` is running now (other threads')."""
+    for pid in list(RUNNING):
+        try:
+            os.killpg(pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
 
 
 def run_verify(copy_root: Path, ids: Sequence[str] | None, timeout: float, *,
