@@ -1,7 +1,7 @@
 """Which claim executes which line: the map ``symbt mutate --source`` uses to run only the claims that
 can see a mutant.
 
-Run as ``python -m symbt.engine.linemap --out FILE [--claims SRC ...] [--timeout S] FILE.py ...``
+Run as ``python -m symbt.engine.linemap --out FILE [--claims SRC ...] [--scene NAME ...] [--timeout S] FILE.py ...``
 in the (unmutated) copy of the source tree.  It loads the project's default claims under a line
 tracer (the lines run at import time are recorded apart: a mutant there can change any claim),
 then runs the claims one after another in this process, as ``symbt verify -j 1`` does, switching
@@ -87,7 +87,7 @@ def _alarm(signum: int, frame: Any) -> None:
     raise _Alarm()
 
 
-def _traced_runs(claims: list[Any], files: set[str], timeout: float) -> dict[str, Any]:
+def _traced_runs(claims: list[Any], files: set[str], timeout: float, scenes: list[str]) -> dict[str, Any]:
     """Run the claims one after another (in one process, as ``symbt verify -j 1`` does), recording the
     lines of ``files`` each runs: with coverage.py's C tracer when it is installed, else ``sys.settrace``."""
     result: dict[str, Any] = {"import": {}, "claims": {}, "timed_out": [], "failed": {}}
@@ -106,7 +106,7 @@ def _traced_runs(claims: list[Any], files: set[str], timeout: float) -> dict[str
     from .project import discover
     from .select import select
 
-    chosen = select(None, project=discover(claims=claims))
+    chosen = select(scenes or None, project=discover(claims=claims))
     if cov is None:
         result["import"] = _plain(seen)
     previous = signal.signal(signal.SIGALRM, _alarm)
@@ -156,10 +156,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--out", required=True)
     ap.add_argument("--claims", action="append", default=[])
     ap.add_argument("--timeout", type=float, default=300.0)
+    ap.add_argument("--scene", action="append", default=[])
     ap.add_argument("files", nargs="+")
     args = ap.parse_args(argv)
     files = {str(Path(f).resolve()) for f in args.files}
-    result = _traced_runs(args.claims, files, args.timeout)
+    result = _traced_runs(args.claims, files, args.timeout, args.scene)
     Path(args.out).write_text(json.dumps(result), encoding="utf-8")
     return 0
 

@@ -12,7 +12,7 @@ The mutant is killed when a claim's status, evidence or scope differs from the u
 
 Usage::
 
-    symbt mutate --source [MODULE ...] [--claims SRC ...] [--sample K] [--seed S] [-j N]
+    symbt mutate --source [MODULE ...] [--claims SRC ...] [--scene NAME ...] [--sample K] [--seed S] [-j N]
                  [--budget SECONDS] [--mutant-timeout SECONDS] [--tests] [--equivalents FILE]
                  [--fail-under PERCENT] [--json FILE] [--list] [-q]
 
@@ -145,22 +145,22 @@ def _sources(root: Path) -> list[Path]:
     return sorted(p for p in root.rglob("*.py") if "__pycache__" not in p.parts)
 
 
-def _digest(root: Path, claims: list[str]) -> str:
+def _digest(root: Path, claims: list[str], scenes: list[str]) -> str:
     from .cache import library_versions
 
-    h = hashlib.sha256("\0".join([sys.version, library_versions(), *claims]).encode())
+    h = hashlib.sha256("\0".join([sys.version, library_versions(), *claims, "--scene", *scenes]).encode())
     for p in _sources(root):
         h.update(str(p.relative_to(root)).encode() + b"\0" + p.read_bytes())
     return h.hexdigest()[:20]
 
 
-def _prepare(base: Path, claims: list[str], deadline: float | None,
+def _prepare(base: Path, claims: list[str], scenes: list[str], deadline: float | None,
              say: Any) -> tuple[dict[str, Any], dict[str, dict[str, Any]], bool]:
     """The line map of every file of the copy and the unmutated verify records (cached in the claim
     cache dir by the digest of the sources, the claims and the library versions)."""
     from .cache import cache_dir
 
-    key = _digest(base, claims)
+    key = _digest(base, claims, scenes)
     store = cache_dir() / "mutate-source" / f"{key}.json"
     try:
         doc = json.loads(store.read_text(encoding="utf-8"))
@@ -177,6 +177,8 @@ def _prepare(base: Path, claims: list[str], deadline: float | None,
     argv = [sys.executable, "-m", "symbt.engine.linemap", "--out", str(out)]
     for c in claims:
         argv += ["--claims", c]
+    for sc in scenes:
+        argv += ["--scene", sc]
     run = run_command([*argv, *map(str, _sources(base))], base, left or 3600.0, subprocess_env(base))
     if run.code != 0:
         why = "the budget ran out" if run.timed_out else run.last_error()
@@ -188,7 +190,7 @@ def _prepare(base: Path, claims: list[str], deadline: float | None,
             section[f[len(prefix):] if f.startswith(prefix) else f] = section.pop(f)
     say("the unmutated verify run ...")
     left = None if deadline is None else max(deadline - time.time(), 0.1)
-    vrun, records = run_verify(base, None, left or 3600.0, claims=claims)
+    vrun, records = run_verify(base, scenes or None, left or 3600.0, claims=claims)
     if records is None:
         raise UsageError(f"symbt verify on the unmutated copy wrote no report: {vrun.last_error()}")
     try:
@@ -224,7 +226,7 @@ def _run_one(copy: Path, item: tuple[str, str, SourceMutant], ids: list[str] | N
         if ids == []:   # no claim runs the line: only the tests can kill it
             rec.update(result="uncovered", detail="no claim runs this line")
         else:
-            run, records = run_verify(copy, ids, limit, claims=ctx["claims"])
+            run, records = run_verify(copy, ids if ids is not None else ctx["scenes"], limit, claims=ctx["claims"])
             rec["seconds"] = round(run.seconds, 2)
             if run.timed_out:
                 rec.update(result="timeout", detail=f"verify ran past {limit:.0f}s")
@@ -273,6 +275,9 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--source", nargs="*", metavar="MODULE", required=True,
                     help="modules or packages to mutate (default for symbt: " + " ".join(DEFAULT_MODULES) + ")")
     ap.add_argument("--claims", action="append", metavar="MODULE_OR_PATH", help="your claims (as for verify)")
+    ap.add_argument("--scene", action="append", metavar="NAME",
+                    help="only these claims (scene, claim id or nK, as for verify; repeatable): a cheaper map, "
+                         "fewer kills")
     ap.add_argument("--sample", type=_positive(int), default=None, metavar="K", help="at most K mutants per module")
     ap.add_argument("--seed", type=int, default=0, help="seed of --sample and of the run order (default 0)")
     ap.add_argument("-j", "--jobs", type=_positive(int), default=min(2, os.cpu_count() or 1), metavar="N",
@@ -303,6 +308,13 @@ def _setup(args: argparse.Namespace) -> tuple[Project, Path, bool, dict[str, lis
         if not args.source:
             raise UsageError("name the modules of your package to mutate: --source MODULE ...")
     modules = resolve_modules(list(args.source or DEFAULT_MODULES), root, package=package)
+    if args.scene:   # known names only (this imports the claims; the runs happen in the copies)
+        from .select import select
+
+        try:
+            select(args.scene, project=project)
+        except KeyError as exc:
+            raise UsageError(exc.args[0]) from None
     eq_path = Path(args.equivalents) if args.equivalents else project.root / EQUIVALENTS_FILE
     marked: dict[str, str] = {}
     if eq_path.is_file():
@@ -355,7 +367,7 @@ def main(argv: list[str] | None = None) -> int:
         say(f"copying {root} ({len(chosen)} mutants of {len(modules)} modules) ...")
         base = copy_tree(root, tmp / "base", only)
         try:
-            linemap, baseline, cached = _prepare(base, claims, deadline, say)
+            linemap, baseline, cached = _prepare(base, claims, args.scene or [], deadline, say)
         except UsageError as exc:
             if deadline is None or time.time() < deadline:
                 print(f"symbt mutate --source: {exc}", file=sys.stderr)
@@ -379,7 +391,8 @@ def main(argv: list[str] | None = None) -> int:
              f"{time.time() - t0:.0f}s in all" + (f"; budget {args.budget:g}s reached" if any(
                  r["result"] == "not run" for r in records) else "")]
     doc = {"schema_version": SCHEMA_VERSION, "kind": "mutate-source", "run": run_info(),
-           "options": {"modules": list(modules), "sample": args.sample, "seed": args.seed, "jobs": args.jobs,
+           "options": {"modules": list(modules), "scenes": args.scene or [], "sample": args.sample, "seed": args.seed,
+                       "jobs": args.jobs,
                        "budget": args.budget, "tests": args.tests},
            "mutants": records, "summary": s, "stale_equivalents": stale,
            "map": {"claims": len(linemap["claims"]), "cached": cached}, "seconds": round(time.time() - t0, 1)}
@@ -394,7 +407,7 @@ def _execute(args: argparse.Namespace, chosen: list[tuple[str, str, SourceMutant
     """Classify and run the chosen mutants (in a seeded order, ``args.jobs`` at a time)."""
     level = {rel: module_level_lines((base / rel).read_bytes()) for rel in {rel for _, rel, _ in chosen}}
     seconds = {cid: e.get("seconds", 0.0) for cid, e in linemap["claims"].items()}
-    ctx = {"baseline": baseline, "claims": claims, "tests_timeout": args.tests_timeout,
+    ctx = {"baseline": baseline, "claims": claims, "scenes": args.scene or None, "tests_timeout": args.tests_timeout,
            "tests": (project.root / "tests") if args.tests else None}
     records: list[dict[str, Any] | None] = [None] * len(chosen)
     todo = []
