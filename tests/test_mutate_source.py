@@ -175,7 +175,7 @@ def test_bad_input_is_one_line_and_exit_2(tmp_path, capsys):
     for args in (["--source", "no_such_module"], ["--source", "proof", "--equivalents", str(bad)],
                  ["--source", "proof", "--equivalents", str(tmp_path / "missing.toml")],
                  ["--source", "proof", "--sample", "0"], ["--source", "proof", "-j", "999"],
-                 ["--source", "proof", "--budget", "-1"],
+                 ["--source", "proof", "--budget", "-1"], ["--source", "proof", "--scene", "no_such_scene"],
                  ["--source", "proof", "--json", str(tmp_path / "no/such/x.json")]):
         assert ms.main(args) == 2, args
         err = capsys.readouterr().err
