@@ -17,8 +17,8 @@ import pytest
 import symbt
 
 ROOT = Path(__file__).resolve().parents[1]
-EXTRAS = {"scipy", "plot", "certified", "fast", "gmpy2", "peers", "dask", "notebooks", "rich", "latex", "report", "mutate",
-          "test", "all"}
+EXTRAS = {"scipy", "plot", "certified", "fast", "gmpy2", "peers", "dask", "notebooks", "rich", "latex", "report",
+          "mutate", "test", "all"}
 
 
 @pytest.fixture(scope="module")
