@@ -188,7 +188,8 @@ def _cmd_scenes(args) -> int:
 # --------------------------------------------------------------------------- parser and dispatch
 
 _DELEGATED_HELP = {"codegen": "emit/check generated numeric modules", "bench": "work-precision benchmarks",
-                   "figures": "regenerate the paper's figures", "mutate": "mutation testing of the claims' checks",
+                   "figures": "regenerate the paper's figures",
+                   "mutate": "mutation testing of the claims' checks (--source: of the implementation)",
                    "coverage": "the paper's labelled displays: claims or reasons",
                    "init": "scaffold a claims module from your paper's labels",
                    "report": "the paper, annotated: a static HTML site from a verify run's JSON"}

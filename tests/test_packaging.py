@@ -18,7 +18,7 @@ import symbt
 
 ROOT = Path(__file__).resolve().parents[1]
 EXTRAS = {"scipy", "plot", "certified", "fast", "gmpy2", "peers", "dask", "notebooks", "rich", "latex", "report",
-          "docs", "test", "all"}
+          "docs", "mutate", "test", "all"}
 
 
 @pytest.fixture(scope="module")

@@ -442,11 +442,19 @@ def build_parser() -> argparse.ArgumentParser:
                     help="exit 1 only if the mutation score is below PERCENT (default: on any survivor)")
     ap.add_argument("--json", metavar="FILE", help="write the records and the summary as JSON ('-': stdout)")
     ap.add_argument("-q", "--quiet", action="store_true", help="no report on the terminal, no progress")
+    ap.add_argument("--source", nargs="*", metavar="MODULE",
+                    help="mutate the implementation instead (symbt's modules, or your package's): see "
+                         "'symbt mutate --source --help' and docs/mutation.md")
     return ap
 
 
 def main(argv: list[str] | None = None) -> int:
     """``symbt mutate``; returns the exit status (see the module docstring)."""
+    args_in = sys.argv[1:] if argv is None else argv
+    if "--source" in args_in[:args_in.index("--") if "--" in args_in else None]:   # the implementation, not claims
+        from .mutate_source import main as mutate_source
+
+        return mutate_source(args_in)
     try:
         args = build_parser().parse_args(argv)
     except SystemExit as exc:  # --help, or a usage error already said in one line
