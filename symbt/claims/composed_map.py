@@ -26,7 +26,6 @@ from ..symbolic.darboux import composed_darboux, lam0, lam1, lam2, mu
 from ..symbolic.toda import lam
 from ._bt import images
 from ._common import DPS, TOL, cross, eta_from_states, fmt_state, judge_cells, lambdified, per_cell, rel
-from ._compat_map import _fmt_state, _states, darboux_numeric, worst_over  # noqa: F401  (re-exported)
 from .base import Outcome, Parts, claim, from_decision, judge, scene
 
 scene("map", "the composed two-parameter BT: Darboux matrix, explicit x, y, eigenvalues, branches (N=2,3)")

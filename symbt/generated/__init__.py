@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 16a40d076982f1f4d4fdc1df6e993c87cde602f5c43fb99babcd101b60a4f324
-# symbt-codegen-content-sha256: 39b921c4120bb71872401004afcecaed1b4108d5c4dbb540e53163a0e96a8e5c
+# symbt-codegen-derivation-sha256: 5c0d50ee67c21f1ec1bffec7665dd7415abe5ac8b180497a69224e0d66c1b4d8
+# symbt-codegen-content-sha256: fd1c3d5ab90b7dbecb25af8e4e099408a9b7ca175223eabfdaf817b2cc8df635
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

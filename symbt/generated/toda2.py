@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 16a40d076982f1f4d4fdc1df6e993c87cde602f5c43fb99babcd101b60a4f324
-# symbt-codegen-content-sha256: d945346cc0f3d9ef4d3aadc61f65c54b00596c15f4133778c087b36ad9046aa8
+# symbt-codegen-derivation-sha256: 5c0d50ee67c21f1ec1bffec7665dd7415abe5ac8b180497a69224e0d66c1b4d8
+# symbt-codegen-content-sha256: dd41a9c35ca99e9fd71c26a81d46c00053d0b7f8014dce5750db3138ffec51ca
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

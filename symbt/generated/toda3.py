@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 16a40d076982f1f4d4fdc1df6e993c87cde602f5c43fb99babcd101b60a4f324
-# symbt-codegen-content-sha256: d609191b72747a93627ec3e83b06d3b6a60ade1a72daf652358794d17890e7de
+# symbt-codegen-derivation-sha256: 5c0d50ee67c21f1ec1bffec7665dd7415abe5ac8b180497a69224e0d66c1b4d8
+# symbt-codegen-content-sha256: 42a158826c74fd879df5598305155d68f4d83935edc77bcaa716428ca12950c3
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -39,10 +39,10 @@ import numpy as np
 from ..core.context import FLOAT
 from ..core.errors import InvalidInputError, NoRealMapError, NumericRangeError
 from ..core.inputs import prepare_spectral_pair, validate_float_pair
-from ..core.monodromy import MAX_DQ
+from ..core.limits import MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 from ..core.step import BLOCK_ELEMENTS, step_core
 from .jit import kernel, numba_available
-from .kernels import ANCHOR, OK, POSITIVITY, RANGE, TRACE1, TRACE2, orbit_rows
+from .kernels import ANCHOR, orbit_rows
 from .rows import float_rows_step
 
 if TYPE_CHECKING:
@@ -181,7 +181,7 @@ def _general_block(p0: F64, q0: F64, lam0: Any, mu: Any, branch: int, n: int, ev
         Qs = qr if full else [x[alive] for x in qr]
         L0, MU = (lam0, mu) if full else (_take(lam0, alive), _take(mu, alive))
         with np.errstate(all="ignore"):
-            far = np.maximum.reduce([np.abs(Qs[(j + 1) % N] - Qs[j]) for j in range(N)]) > MAX_DQ
+            far = np.maximum.reduce([np.abs(Qs[(j + 1) % N] - Qs[j]) for j in range(N)]) > MAX_DQ_FLOAT64
             far = far | ~np.isfinite(np.add.reduce(Ps) + np.add.reduce(Qs))
             if far.any():            # beyond the float64 range of the scaled formulation
                 keep = ~far

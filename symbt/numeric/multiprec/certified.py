@@ -26,7 +26,7 @@ encloses the exact orbit of the given input.
   ``|returned midpoint - exact value|``.
 
 Measured (paper's example, ``tests/test_numeric_certified.py``,
-``python -m symbt.numeric.timings``): see ``docs/numeric.md``.
+``python -m symbt.benchmarks.numeric_timings``): see ``docs/numeric.md``.
 
 Example
 -------
