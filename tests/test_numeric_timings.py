@@ -5,7 +5,7 @@ import sys
 
 import pytest
 
-from symbt.numeric.multiprec.choose import flint_available
+from symbt.numeric.multiprec.runners import flint_available
 
 _BLOCKED = """
 import sys

@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from ..numeric import bt_orbit
+from ..numeric import BackendName, bt_orbit
 from ..numeric.float64.jit import kernel, numba_available
 from ..numeric.flow.field import FlowField
 from .cases import Case
@@ -72,7 +72,8 @@ def run_bt(case: Case, rows: np.ndarray, every: int, record: Callable[..., None]
     (P, Q), t, reps = timed(lambda: bt_orbit(p0, q0, case.lam0, case.mu, case.n, branch=case.branch),
                             lambda: bt_orbit(p0, q0, case.lam0, case.mu, warm_n, branch=case.branch), quick)
     record("BT bt_orbit (auto)", "bt", P[rows], Q[rows], t, reps, nfev=case.n)
-    for be in (["numba", "python"] if numba_available() else ["python"]):
+    backends: list[BackendName] = ["numba", "python"] if numba_available() else ["python"]
+    for be in backends:
         t0 = time.perf_counter()
         bt_orbit(p0, q0, case.lam0, case.mu, 1, branch=case.branch, backend=be)
         if be == "numba":

@@ -98,8 +98,8 @@ def ensemble_throughput(M: int = 10_000, n: int = 200, repeat: int = 3) -> dict[
 def mp_speed(dps: int, n: int = 10, repeat: int = 10) -> dict[str, float]:
     """Seconds for ``n`` steps of the paper's example at ``dps`` digits: mpmath, the Arb path, quad-double."""
     from ..numeric import bt_orbit
-    from ..numeric.multiprec.choose import flint_available
     from ..numeric.multiprec.qd import qd_available, qd_fits
+    from ..numeric.multiprec.runners import flint_available
 
     out = {}
     with mpmath.workdps(dps):
@@ -211,7 +211,7 @@ def main(argv: list[str] | None = None) -> None:
     print("2. ensemble N=3 M=1e4: " + ", ".join("%s %.3g system-steps/s" % kv for kv in e.items()))
     for dps in (50, 100):
         print(_mp_line(dps))
-    from ..numeric.multiprec.choose import flint_available
+    from ..numeric.multiprec.runners import flint_available
 
     if not flint_available():   # the certified section needs Arb; the rest above degraded to what is installed
         print("4. certified orbits: skipped (python-flint is not installed: pip install \"symbt[certified]\")")

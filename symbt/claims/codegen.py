@@ -23,6 +23,7 @@ against a 50-digit orbit; the files' provenance hashes.  Sample points: seeded a
 from __future__ import annotations
 
 import importlib
+from dataclasses import replace
 
 import mpmath as mp
 import numpy as np
@@ -83,9 +84,9 @@ def _compare(N, name, parts: Parts | None = None) -> Outcome:
 
 
 def _also(out: Outcome, ok: bool, text: str) -> Outcome:
-    out.detail += "; " + text
+    out = replace(out, detail=out.detail + "; " + text)
     if not ok:
-        out.status = "failed"
+        out = replace(out, status="failed")
     return out
 
 
@@ -130,11 +131,10 @@ def flow_field(N: int, parts: Parts) -> Outcome:
 def phi_tr(parts: Parts) -> Outcome:
     outs = [_compare(N, "phi_tr", parts) for N in TARGETS]
     worst = max(outs, key=lambda o: o.residual or 0.0)
-    worst.detail = (f"toda{TARGETS}: " + worst.detail + "; phi_tr is a function of the two traces alone, "
-                    "the same for every N")
-    worst.n_scope = "all"
+    worst = replace(worst, n_scope="all", detail=f"toda{TARGETS}: " + worst.detail
+                    + "; phi_tr is a function of the two traces alone, the same for every N")
     if any(o.status != "verified" for o in outs):
-        worst.status = "failed"
+        worst = replace(worst, status="failed")
     return worst
 
 
@@ -245,12 +245,12 @@ def step_accuracy(N: int, parts: Parts) -> Outcome:
                  "symbt.numeric.bt_orbit against a 50-digit orbit (300 steps; N={N})")
 def orbit(N: int, parts: Parts) -> Outcome:
     from ..codegen import verify
-    from ..numeric import bt_orbit
-    from ..numeric.multiprec.choose import flint_available
+    from ..numeric import BackendName, bt_orbit
+    from ..numeric.multiprec.runners import flint_available
 
     # the 50-digit reference on Arb midpoints (or plain mpmath): not the quad-double path, which would
     # load numba (and, before its first compile, take 15-30 s)
-    ref_backend = "flint" if flint_available() else "mpmath"
+    ref_backend: BackendName = "flint" if flint_available() else "mpmath"
     # one orbit's round-off is a random walk: compare the RMS over several states, not one sample
     e_gen, e_num = [], []
     for p, q, l0, m in verify.map_states(N, per_sign=2):

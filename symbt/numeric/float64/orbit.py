@@ -40,6 +40,7 @@ from ..core.context import FLOAT
 from ..core.errors import InvalidInputError, NoRealMapError, NumericRangeError
 from ..core.inputs import prepare_spectral_pair, validate_float_pair
 from ..core.limits import MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
+from ..core.problem import Problem
 from ..core.step import BLOCK_ELEMENTS, step_core
 from .jit import kernel, numba_available
 from .kernels import ANCHOR, orbit_rows
@@ -285,6 +286,11 @@ def float_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, 
     pa, qa, shape = validate_float_pair(p, q)
     lam0, mu = prepare_spectral_pair(FLOAT, lam0, mu, shape)
     return validated_float_orbit(pa, qa, shape, lam0, mu, n, branch, every, backend)
+
+
+def prepared_float_orbit(pr: Problem, backend: str) -> tuple[F64, F64]:
+    """:func:`float_orbit` of a validated problem (:func:`~symbt.numeric.core.problem.prepare`)."""
+    return validated_float_orbit(pr.p, pr.q, pr.shape, pr.lam0, pr.mu, pr.n, pr.branch, pr.every, backend)
 
 
 def validated_float_orbit(pa: F64, qa: F64, shape: tuple[int, ...], lam0: Any, mu: Any, n: int, branch: int,

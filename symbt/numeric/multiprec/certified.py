@@ -50,7 +50,7 @@ import numpy as np
 from ..core.errors import InvalidInputError, MissingDependencyError, NumericRangeError
 from ..core.step import step_core
 from ..float64.kernels import stored_steps
-from .choose import flint_available
+from .runners import flint_available
 
 __all__ = ["certified_orbit", "DEFAULT_MAX_PREC"]
 

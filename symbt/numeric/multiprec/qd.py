@@ -29,7 +29,7 @@ ulps at 50 digits).  At ``mp.dps = 50`` (169 bits) the rule admits
 ``n <= 4095`` steps; one step up to ``mp.prec = 191`` (57 digits).
 
 Numba missing, or ``SYMBT_NO_NUMBA=1``: :func:`qd_available` is False, and
-:mod:`symbt.numeric.multiprec.choose` does not choose this backend.
+:mod:`symbt.numeric.backends` does not choose this backend.
 
 Example
 -------
@@ -369,7 +369,8 @@ def from_qd(x: F64, prec: int) -> list[Any]:
 
 def qd_orbit_mp(P: Sequence[Any], Q: Sequence[Any], lam0: Any, mu: Any, n: int, *, branch: int = 1,
                 every: int = 1) -> tuple[list[list[Any]], list[list[Any]]]:
-    """``n`` steps in quad-double from mpf inputs (as :func:`~symbt.numeric.multiprec.choose.mp_orbit`, real states).
+    """``n`` steps in quad-double from mpf inputs (as :func:`~symbt.numeric.multiprec.runners.flint_orbit`,
+    real states).
 
     Raises :class:`NoRealMapError` as the Arb path, :class:`NumericRangeError` for values outside the
     quad-double range (inputs beyond ``2**+-600``, neighbour distances beyond 300, non-finite

@@ -1,6 +1,6 @@
 r"""The Bäcklund step and orbit in quad-double arithmetic (:mod:`symbt.numeric.multiprec.qd_arith`).
 
-:func:`qd_step` performs the operations of :func:`~symbt.numeric.multiprec.choose.arb_step`
+:func:`qd_step` performs the operations of :func:`~symbt.numeric.multiprec.runners.arb_step`
 (the fused :func:`~symbt.numeric.core.step.step_core`) in the same order, on
 quad-doubles, with the same decisions taken on the leading components (the
 sign of a renormalised quad-double): ``disc = (t - 2)(t + 2) > 0`` else
