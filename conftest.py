@@ -16,7 +16,7 @@ _IMPORTS = {"symbt/numeric/multiprec/arb.py": "flint"}
 #: doctest (module or object, dotted) -> the optional dependency its examples need
 _NEEDS = {
     "symbt.numeric.multiprec.certified": "flint",
-    "symbt.numeric.multiprec.choose.arb_step": "flint",
+    "symbt.numeric.multiprec.runners.arb_step": "flint",
     "symbt.numeric.multiprec.qd": "numba",
     "symbt.proof.flint_exact": "flint",
     "symbt.numeric.float64.dask_orbit": "dask",

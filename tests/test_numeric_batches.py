@@ -14,9 +14,10 @@ import numpy as np
 import pytest
 
 from symbt.numeric import NoRealMapError, NumericRangeError, bt_step
-from symbt.numeric.core.step import BLOCK_ELEMENTS, _block_kernel_pays
+from symbt.numeric.core.step import BLOCK_ELEMENTS
 from symbt.numeric.float64.jit import numba_available
 from symbt.numeric.float64.orbit import _block_rows
+from symbt.numeric.float64.step import _block_kernel_pays
 
 P0 = np.array([-20.0, 10.0, 1.0])
 Q0 = np.array([1.0, 0.0, 0.9])

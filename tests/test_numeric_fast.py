@@ -14,7 +14,6 @@ import numpy as np
 import pytest
 
 from symbt.numeric import InvalidInputError, NoRealMapError, NumericRangeError, bt_orbit, bt_step
-from symbt.numeric.fast import fast_orbit
 from symbt.numeric.float64.jit import kernel, numba_available
 from symbt.numeric.float64.kernels import ANCHOR, orbit_rows, stored_steps
 from symbt.numeric.testing import random_gap_case, state_error
@@ -69,8 +68,8 @@ def test_bt_step_single_state_uses_kernel_same_formula():
 
 @needs_numba
 def test_numba_and_python_kernels_bit_identical():
-    Pn, Qn = fast_orbit(P0, Q0, 10.0, 5.0, 300, every=7, backend="numba")
-    Pp, Qp = fast_orbit(P0, Q0, 10.0, 5.0, 300, every=7, backend="python")
+    Pn, Qn = bt_orbit(P0, Q0, 10.0, 5.0, 300, every=7, backend="numba")
+    Pp, Qp = bt_orbit(P0, Q0, 10.0, 5.0, 300, every=7, backend="python")
     assert np.array_equal(Pn, Pp) and np.array_equal(Qn, Qp)
     # the block (ensemble) kernel: numba and plain Python, and against the single-orbit kernel
     rng = np.random.default_rng(4)
@@ -169,10 +168,10 @@ def test_import_is_lazy_about_numba_flint_dask():
 
 def test_no_numba_environment_falls_back_cleanly():
     code = ("import numpy as np, sys; from symbt.numeric import bt_orbit; "
-            "from symbt.numeric.fast import HAVE_NUMBA; "
+            "from symbt.numeric.float64.jit import numba_available; "
             "P, Q = bt_orbit(np.array([-20.0, 10, 1]), np.array([1.0, 0, 0.9]), 10.0, 5.0, 50); "
             "Pe, Qe = bt_orbit(np.tile([-20.0, 10, 1], (4, 1)), np.tile([1.0, 0, 0.9], (4, 1)), 10.0, 5.0, 50); "
-            "print(HAVE_NUMBA, 'numba' in sys.modules, float(abs(Pe[:, 2] - P).max()) < 1e-11)")
+            "print(numba_available(), 'numba' in sys.modules, float(abs(Pe[:, 2] - P).max()) < 1e-11)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
                          env={**__import__("os").environ, "SYMBT_NO_NUMBA": "1"})
     assert out.stdout.split() == ["False", "False", "True"], out.stdout

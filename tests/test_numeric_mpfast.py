@@ -48,10 +48,10 @@ def test_step_both_backends_to_working_precision(dps, branch):
             pt, qt = bt_step(p, q, 10, 5, branch=branch, backend=backend)
             assert all(isinstance(v, mpmath.mpf) and +v == v for v in pt + qt)   # mpf at the caller's precision
             assert maxdiff(pt + qt, rp + rq) < tol, backend
-        from symbt.numeric.multiprec.choose import pick_mp_backend
+        from symbt.numeric.backends import pick
 
-        auto = bt_step(p, q, 10, 5, branch=branch)            # auto is the backend pick_mp_backend names
-        assert auto == bt_step(p, q, 10, 5, branch=branch, backend=pick_mp_backend("auto", 1))
+        auto = bt_step(p, q, 10, 5, branch=branch)            # auto is the backend the table picks
+        assert auto == bt_step(p, q, 10, 5, branch=branch, backend=pick("auto", "mpmath", 1).name)
 
 
 @pytest.mark.parametrize("dps", [50, 100])
@@ -127,7 +127,7 @@ def test_fused_arb_step_is_step_core_on_arb_midpoints():
 
     from symbt.numeric.core.step import step_core
     from symbt.numeric.multiprec.arb import ARB_MID, flint_prec
-    from symbt.numeric.multiprec.choose import arb_step
+    from symbt.numeric.multiprec.runners import arb_step
 
     rng = np.random.default_rng(21)
     with flint_prec(250):

@@ -207,25 +207,25 @@ def test_typed_errors():
 
 
 def test_auto_chooses_qd_when_ready_and_the_precision_fits(monkeypatch):
+    from symbt.numeric.backends import pick
     from symbt.numeric.multiprec import qd as qd_mod
-    from symbt.numeric.multiprec.choose import pick_mp_backend
 
     qd_mod.warm()
     with mpmath.workdps(50):
         assert qd_fits(mpmath.mp.prec, 10) and qd_need(mpmath.mp.prec, 10) <= QD_BITS
-        assert qd_mod.qd_ready() and pick_mp_backend("auto", 10) == "qd"
+        assert qd_mod.qd_ready() and pick("auto", "mpmath", 10).name == "qd"
         p, q = mp_state(P0, Q0)
         assert bt_orbit(p, q, 10, 5, 10) == bt_orbit(p, q, 10, 5, 10, backend="qd")
         # out of range for qd: auto falls back to Arb
         far = [mpmath.mpf(0), mpmath.mpf(400), mpmath.mpf(0)]
         assert bt_orbit(p, far, 10, 5, 1) == bt_orbit(p, far, 10, 5, 1, backend="flint")
     with mpmath.workdps(100):
-        assert pick_mp_backend("auto", 10) == "flint"
+        assert pick("auto", "mpmath", 10).name == "flint"
     monkeypatch.setitem(numeric_errors._IMPORTABLE, "numba", False)
     with mpmath.workdps(50):
-        assert pick_mp_backend("auto", 10) == "flint"
+        assert pick("auto", "mpmath", 10).name == "flint"
         with pytest.raises(MissingDependencyError, match="numba"):
-            pick_mp_backend("qd", 10)
+            pick("qd", "mpmath", 10)
 
 
 def test_no_numba_switch(monkeypatch):
@@ -266,12 +266,12 @@ def test_auto_never_compiles(tmp_path):
         code = textwrap.dedent(f"""
             import pathlib, mpmath
             from symbt.numeric.multiprec import qd
-            from symbt.numeric.multiprec.choose import pick_mp_backend
+            from symbt.numeric.backends import pick
             qd._marker_dirs = lambda: [pathlib.Path({str(tmp_path)!r})]
             if {marker!r} is not None:
                 (qd._marker_dirs()[0] / qd._MARKER).write_text({marker!r} or qd._digest())
             with mpmath.workdps(50):
-                print(pick_mp_backend("auto", 10), qd.qd_ready(), bool(qd._compiled))
+                print(pick("auto", "mpmath", 10).name, qd.qd_ready(), bool(qd._compiled))
         """)
         return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                               check=True).stdout.split()

@@ -253,8 +253,8 @@ def test_interval_context_encloses():
 def test_batch_route_where_the_monodromy_leaves_the_float64_range():
     # N = 256 at lam0 = 3N + 20: |tr L| ~ 788^256, far past the kernels' range; the batch takes the numpy route
     # at once, and a forced "numba" (the kernel gives every state back to the general path) agrees with it
-    from symbt.numeric.core.step import _monodromy_may_overflow
     from symbt.numeric.float64.jit import numba_available
+    from symbt.numeric.float64.step import _monodromy_may_overflow
 
     rng = np.random.default_rng(1)
     for N, lam0, overflow in ((256, 3.0 * 256 + 20, True), (64, 3.0 * 64 + 20, False), (3, 10.0, False)):
@@ -276,7 +276,7 @@ def test_batch_route_where_the_monodromy_leaves_the_float64_range():
 
 
 def test_which_batches_go_to_the_block_kernel():
-    from symbt.numeric.core.step import _block_kernel_pays
+    from symbt.numeric.float64.step import _block_kernel_pays
 
     z = np.zeros
     assert _block_kernel_pays(z((1, 3)), 10.0, 5.0) and _block_kernel_pays(z((4095, 3)), 10.0, 5.0)

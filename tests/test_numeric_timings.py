@@ -1,16 +1,17 @@
-"""``python -m symbt.numeric.timings``: the report degrades to what is installed (no traceback without an extra)."""
+"""``python -m symbt.benchmarks.numeric_timings``: the report degrades to what is installed (no traceback
+without an extra)."""
 import subprocess
 import sys
 
 import pytest
 
-from symbt.numeric.multiprec.choose import flint_available
+from symbt.numeric.multiprec.runners import flint_available
 
 _BLOCKED = """
 import sys
 for name in ("flint", "heyoka", "numba"):
     sys.modules[name] = None          # as on a core install: importing them raises ImportError
-from symbt.numeric.timings import main
+from symbt.benchmarks.numeric_timings import main
 main(["--quick"])
 """
 
@@ -28,7 +29,7 @@ def test_report_runs_on_a_core_install():
 
 @pytest.mark.skipif(not flint_available(), reason="needs python-flint (pip install 'symbt[certified]')")
 def test_certified_radius_grows_with_the_steps():
-    from symbt.numeric.timings import certified_growth
+    from symbt.benchmarks.numeric_timings import certified_growth
 
     rows = certified_growth(prec=200, steps=(1, 5, 10, 20))
     assert [n for n, _ in rows] == [1, 5, 10, 20]

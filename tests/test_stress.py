@@ -8,11 +8,11 @@
 2. Long orbits: 1e5 steps of the paper's example keep every invariant to
    ``<= 1e-12`` relative, and the drift grows like a random walk (log-log slope
    of the RMS drift vs n well below 1); the curve is plotted by
-   ``benchmarks/invariant_drift.py``.
+   ``symbt/benchmarks/drift_figure.py``.
 3. Fuzzing (hypothesis, > 1e4 examples in all): ``bt_step``, ``bt_orbit``
    (fused single-state kernel, fused ensemble kernel with per-state ``lam0, mu``
    and ``every``, the general numpy path, the Arb fast path for mpmath input,
-   certified orbits), ``fast_orbit``, ``phi``, ``invariants``, ``spectral_trace`` and
+   certified orbits), the plain-Python kernel, ``phi``, ``invariants``, ``spectral_trace`` and
    ``flow_coefficients`` return finite values or raise a documented typed error
    (``ValueError`` subclasses -- ``InvalidInputError``, ``NoRealMapError`` --,
    ``NumericRangeError``, and ``QuadratureError`` for the quadrature); never NaN/inf,
@@ -47,7 +47,7 @@ from symbt.numeric import (
     phi,
     spectral_trace,
 )
-from symbt.numeric.fast import HAVE_NUMBA, fast_orbit
+from symbt.numeric.float64.jit import numba_available
 from symbt.numeric.testing import state_error
 
 P0 = np.array([-20.0, 10.0, 1.0])
@@ -75,17 +75,17 @@ def test_band_edge_error_within_eps_cond(side, delta):
 
 def test_fast_kernel_matches_library_and_backends():
     P, Q = bt_orbit(P0, Q0, 10.0, 5.0, 10)
-    Pf, Qf = fast_orbit(P0, Q0, 10.0, 5.0, 10, backend="python")
+    Pf, Qf = bt_orbit(P0, Q0, 10.0, 5.0, 10, backend="python")
     np.testing.assert_allclose(Pf, P, rtol=0, atol=1e-13)
     np.testing.assert_allclose(Qf, Q, rtol=0, atol=1e-13)
-    if HAVE_NUMBA:
-        Pn, Qn = fast_orbit(P0, Q0, 10.0, 5.0, 500, every=7, backend="numba")
-        Pp, Qp = fast_orbit(P0, Q0, 10.0, 5.0, 500, every=7, backend="python")
+    if numba_available():
+        Pn, Qn = bt_orbit(P0, Q0, 10.0, 5.0, 500, every=7, backend="numba")
+        Pp, Qp = bt_orbit(P0, Q0, 10.0, 5.0, 500, every=7, backend="python")
         assert np.array_equal(Pn, Pp) and np.array_equal(Qn, Qp)   # bit-identical
     # slow path (no real map) raises the library's typed error
     from symbt.numeric import NoRealMapError
     with pytest.raises(NoRealMapError):
-        fast_orbit(P0, Q0, -10.278, 0.002, 3)   # both lam_i inside the band near -10.28
+        bt_orbit(P0, Q0, -10.278, 0.002, 3, backend="python")   # both lam_i inside the band near -10.28
 
 
 # --------------------------------------------------------------------------- 2. long orbits
@@ -178,10 +178,10 @@ def test_fuzz_bt_step(s):
 
 @_cfg(1200)
 @given(states(allow_batch=False), st.integers(0, 4))
-def test_fuzz_bt_orbit_and_fast_orbit(s, n):
+def test_fuzz_bt_orbit_and_the_python_kernel(s, n):
     p, q, lam0, mu, branch = s
     out = _check(bt_orbit, p, q, lam0, mu, n, branch=branch)
-    out2 = _check(fast_orbit, p, q, lam0, mu, n, branch=branch)
+    out2 = _check(bt_orbit, p, q, lam0, mu, n, branch=branch, backend="python")
     if out is not None and out2 is not None:
         assert out[0].shape == out2[0].shape == (n + 1,) + p.shape
 
@@ -223,7 +223,7 @@ def test_fuzz_mpmath_step(s):
 
 @_cfg(300)
 @given(states(allow_batch=False), st.integers(0, 24), st.integers(1, 9))
-def test_fuzz_fast_orbit_every_against_general_path(s, n, every):
+def test_fuzz_kernel_every_against_general_path(s, n, every):
     """Fused kernel (``every``) and general path: both finite or typed; if both succeed they agree to the
     orbit's round-off (relative to the state's size)."""
     p, q, lam0, mu, branch = s

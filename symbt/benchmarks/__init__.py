@@ -17,6 +17,12 @@ Modules.  :mod:`~symbt.benchmarks.cases` (problems), :mod:`~symbt.benchmarks.ref
 :mod:`~symbt.benchmarks.drift` (invariant-drift experiment), :mod:`~symbt.benchmarks.figure`,
 :mod:`~symbt.benchmarks.tables`, :mod:`~symbt.benchmarks.cli` (``main(argv)``).
 
+The rest of symbt's performance code lives here too, each module runnable with ``python -m``:
+:mod:`~symbt.benchmarks.numeric_timings` (kernel vs ``bt_orbit``, ensembles, mpmath vs Arb vs
+quad-double, certified orbits), :mod:`~symbt.benchmarks.codegen_scaling` (size and time of the
+emitted code as N grows), :mod:`~symbt.benchmarks.drift_figure` (the invariant-drift figure) and
+:mod:`~symbt.benchmarks.throughput` (the throughput part of ``symbt bench`` on its own).
+
 Importing this package needs numpy and mpmath only; scipy, heyoka and matplotlib are imported
 where they are used, and missing ones skip their rows with a message.
 

@@ -1,9 +1,9 @@
 """The contenders of one case: float64 BT orbits and ODE integrators of the flow of ``sum c_k H_k``.
 
 BT (float64): the documented call :func:`symbt.numeric.bt_orbit` (its own backend choice: the fused
-kernel for one state); the fused kernel
-:func:`symbt.numeric.fast.fast_orbit` (numba if installed, plain Python otherwise -- both timed
-when numba is present; a kernel run that falls back to ``bt_orbit`` is labelled so); the emitted
+kernel for one state); the fused kernel forced, ``bt_orbit(..., backend="numba")`` and
+``backend="python"`` (both timed when numba is present; labelled ``BT fast_orbit (...)`` as in the recorded
+results; a kernel run that falls back to the general path is labelled so); the emitted
 closed-form step ``symbt.generated.toda{N}.bt_step`` iterated, and the emitted orbit helper
 ``toda{N}.bt_orbit`` (centre of mass carried) (N = 2, 3).
 ODE (need scipy): ``solve_ivp`` DOP853 (and RK45, LSODA where the case asks), ``rtol = atol``;
@@ -20,8 +20,8 @@ from typing import Any
 
 import numpy as np
 
-from ..numeric import bt_orbit
-from ..numeric.fast import HAVE_NUMBA, fast_orbit, kernel_backend
+from ..numeric import BackendName, bt_orbit
+from ..numeric.float64.jit import kernel, numba_available
 from ..numeric.flow.field import FlowField
 from .cases import Case
 from .integrators import gauss_legendre_orbit, scipy_orbit
@@ -49,10 +49,10 @@ def make_field(case: Case, c: np.ndarray) -> tuple[Callable, str, FlowField | No
 
 
 def _kernel_falls_back(case: Case, backend: str) -> bool:
-    """Does one step of ``case`` leave the fused kernel (then fast_orbit runs the general path)?"""
+    """Does one step of ``case`` leave the fused kernel (then the forced kernel runs the general path)?"""
     from ..numeric.float64.kernels import ANCHOR
 
-    kern, _ = kernel_backend(backend)
+    kern, _ = kernel("orbit", backend)
     P = np.empty((2, case.N))
     Q = np.empty((2, case.N))
     with np.errstate(all="ignore"):
@@ -72,15 +72,16 @@ def run_bt(case: Case, rows: np.ndarray, every: int, record: Callable[..., None]
     (P, Q), t, reps = timed(lambda: bt_orbit(p0, q0, case.lam0, case.mu, case.n, branch=case.branch),
                             lambda: bt_orbit(p0, q0, case.lam0, case.mu, warm_n, branch=case.branch), quick)
     record("BT bt_orbit (auto)", "bt", P[rows], Q[rows], t, reps, nfev=case.n)
-    for be in (["numba", "python"] if HAVE_NUMBA else ["python"]):
+    backends: list[BackendName] = ["numba", "python"] if numba_available() else ["python"]
+    for be in backends:
         t0 = time.perf_counter()
-        fast_orbit(p0, q0, case.lam0, case.mu, 1, branch=case.branch, backend=be)
+        bt_orbit(p0, q0, case.lam0, case.mu, 1, branch=case.branch, backend=be)
         if be == "numba":
             setup["numba_first_call_s"] = time.perf_counter() - t0
         label = "BT fast_orbit (%s)" % be
         if _kernel_falls_back(case, be):
             label += " [falls back to bt_orbit]"
-        (P, Q), t, reps = timed(lambda: fast_orbit(p0, q0, case.lam0, case.mu, case.n, branch=case.branch,
+        (P, Q), t, reps = timed(lambda: bt_orbit(p0, q0, case.lam0, case.mu, case.n, branch=case.branch,
                                                    every=every, backend=be), None, quick)
         record(label, "bt", P, Q, t, reps, nfev=case.n)
     t0 = time.perf_counter()

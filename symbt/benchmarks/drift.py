@@ -1,6 +1,6 @@
 """Invariant drift of long float64 Bäcklund orbits: random walk, not linear growth.
 
-Used by ``benchmarks/invariant_drift.py`` (the figure) and ``tests/test_stress.py``.
+Used by ``symbt/benchmarks/drift_figure.py`` (the figure) and ``tests/test_stress.py``.
 """
 from __future__ import annotations
 

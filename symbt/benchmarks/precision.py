@@ -31,7 +31,7 @@ def run_precision(quick: bool = False, log: Callable[[str], None] = print, hy: A
     p0, q0 = list(EXAMPLE["p"]), list(EXAMPLE["q"])
     lam0, mu = EXAMPLE["lam0"], EXAMPLE["mu"][0]
     out: dict = {"case": "paper-mu5", "steps": n}
-    from ..numeric.multiprec.choose import pick_mp_backend
+    from ..numeric.backends import pick
     from ..numeric.multiprec.qd import qd_available, warm
 
     if qd_available():          # compiled (or loaded) apart, like heyoka's JIT: bt_orbit's auto then uses it
@@ -45,7 +45,7 @@ def run_precision(quick: bool = False, log: Callable[[str], None] = print, hy: A
             Q0 = [mpmath.mpf(v) for v in q0]
             (bp, bq), tbt, reps = timed(lambda: bt_orbit(P0, Q0, mpmath.mpf(lam0), mpmath.mpf(mu), n), None, quick)
             row["bt"] = {"time_s": tbt, "repeats": reps, "err": mp_state_error(bp[-1] + bq[-1], ref),
-                         "backend": pick_mp_backend("auto", n)}
+                         "backend": pick("auto", "mpmath", n).name}
         log("  %d digits, %d steps: BT (%s) %.3e s, err %.1e" % (digits, n, row["bt"]["backend"], tbt,
                                                                  row["bt"]["err"]))
         if hy is not None:

@@ -55,3 +55,16 @@ def run_throughput(quick: bool = False, log: Callable[[str], None] = print) -> d
         out["slope_time_vs_N"] = float(np.polyfit(x, y, 1)[0])
         log("    log-log slope of time per system-step vs N (N >= 128): %.3f" % out["slope_time_vs_N"])
     return out
+
+
+def main(argv: list[str] | None = None) -> None:
+    """``python -m symbt.benchmarks.throughput [--quick]``: the throughput part of ``symbt bench`` on its own."""
+    import argparse
+
+    ap = argparse.ArgumentParser(prog="python -m symbt.benchmarks.throughput", description=main.__doc__)
+    ap.add_argument("--quick", action="store_true", help="smaller sizes, shorter timing")
+    run_throughput(quick=ap.parse_args(argv).quick)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

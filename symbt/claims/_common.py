@@ -30,7 +30,7 @@ from .base import Outcome
 from .base import judge_cells as base_judge_cells
 
 __all__ = ["DPS", "TOL", "fmt_state", "rel", "map_cells", "per_cell", "judge_cells", "eta_from_states",
-           "darboux_numeric", "lambdified", "cross"]
+           "lambdified", "cross"]
 
 DPS = 60
 TOL = mp.mpf(10) ** -40
@@ -101,11 +101,6 @@ def eta_from_states(p: list, q: list, pt: list, qt: list, lam0: Any) -> list:
         E, Et = mp.exp(q[j]), mp.exp(qt[j])
         out.append((E * (pt[j] - p[j]) - (pt[j] + lam0) * (E - Et)) / (E + Et))
     return out
-
-
-def darboux_numeric(D: Callable[..., Any], lv: Any, l0: Any, mu: Any, x: Any, y: Any) -> Any:
-    """A Darboux matrix given as a lambdified function of (lambda, lambda1, lambda2, x, y), at numbers."""
-    return mp.matrix(D(lv, l0 + mu, l0 - mu, x, y))
 
 
 def lambdified(args: Iterable[Any], expr: Any) -> Callable[..., Any]:

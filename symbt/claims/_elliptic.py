@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import random
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cache
 from typing import Any
 
@@ -318,7 +318,7 @@ class ScopedTable(CellTable):
 def outcome(table: CellTable, *, dps: int = DPS, **kw: Any) -> Outcome:
     """:func:`~symbt.claims._common.judge_cells` (digits capped at ``dps``), for N = 2."""
     out = judge_cells(table, dps=dps, **kw)
-    out.n_scope = [2]
+    out = replace(out, n_scope=[2])
     return out
 
 

@@ -22,6 +22,7 @@ True
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import Any
 
 import sympy as sp
@@ -71,11 +72,8 @@ def same_equation(a: Any, b: Any, unknowns: tuple = ()) -> Verdict:
 
 def for_all_n(out: Outcome, argument: str) -> Outcome:
     """``n_scope = "all"``, with the argument why in the detail."""
-    out.n_scope = "all"
-    out.detail = (out.detail + f" [every N: {argument}]").strip()
-    return out
+    return replace(out, n_scope="all", detail=(out.detail + f" [every N: {argument}]").strip())
 
 
 def for_sizes(out: Outcome, *sizes: int) -> Outcome:
-    out.n_scope = list(sizes)
-    return out
+    return replace(out, n_scope=list(sizes))

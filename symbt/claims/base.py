@@ -40,23 +40,26 @@ import sys
 import time
 import traceback
 from collections.abc import Callable
-from dataclasses import asdict, dataclass, field
-from typing import Any
+from dataclasses import asdict, dataclass, field, replace
+from typing import Any, Literal, get_args
 
 from ..proof.cells import CellTable
-from ..proof.verdict import EVIDENCE, Verdict
+from ..proof.verdict import EVIDENCE, Evidence, Verdict
 
 __all__ = [
     "Claim", "ClaimResult", "Outcome", "Parts", "claim", "REGISTRY", "SCENES", "scene",
     "from_decision", "judge", "judge_cells", "skipped", "failed", "inconclusive", "todo", "STATUSES", "NOT_OK",
+    "Status",
 ]
 
-STATUSES = ("verified", "erratum", "failed", "skipped", "inconclusive", "todo")
+#: the verdict of a claim (docs: the verdict reference)
+Status = Literal["verified", "erratum", "failed", "skipped", "inconclusive", "todo"]
+STATUSES: tuple[Status, ...] = get_args(Status)
 #: statuses that make a run fail (exit 1, a failed pytest item, a JUnit <failure>)
 NOT_OK = ("failed", "inconclusive", "todo")
 
 
-@dataclass
+@dataclass(frozen=True)
 class Outcome:
     """Result of one claim check (JSON-serialisable via :meth:`to_dict`).
 
@@ -68,9 +71,20 @@ class Outcome:
     "worst_residual"}``), ``scope`` the sentence generated from it, and
     ``n_scope`` the lattice sizes the claim covers (a list, or ``"all"`` with the
     argument in ``detail``).
+
+    Frozen: a check builds a changed outcome with :func:`dataclasses.replace`.
+
+    >>> from dataclasses import replace
+    >>> o = Outcome("verified", "exact")
+    >>> replace(o, n_scope=[3]).n_scope, o.n_scope
+    ([3], None)
+    >>> o.status = "failed"
+    Traceback (most recent call last):
+    ...
+    dataclasses.FrozenInstanceError: cannot assign to field 'status'
     """
 
-    status: str
+    status: Status
     method: str
     residual: float | None = None
     digits: float | None = None
@@ -80,12 +94,12 @@ class Outcome:
     detail: str = ""
     seconds: float = 0.0
     cached: bool = False
-    evidence: str | None = None
+    evidence: Evidence | None = None
     cells: list[dict[str, Any]] = field(default_factory=list)
     scope: str = ""
     n_scope: list[int] | str | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if self.status not in STATUSES:
             raise ValueError(f"unknown status {self.status!r}")
         if self.evidence is not None and self.evidence not in EVIDENCE:
@@ -191,9 +205,10 @@ class Claim:
                 out = check()
             except Exception as exc:  # a crash is a failure, reported with its cause
                 out = failed("exception", detail=f"{type(exc).__name__}: {exc}\n{traceback.format_exc(limit=4)}")
-        out.seconds = round(time.perf_counter() - t0, 4)
+        out = replace(out, seconds=round(time.perf_counter() - t0, 4))
         if out.n_scope is None and self.N is not None and out.status not in ("skipped", "todo"):
-            out.n_scope = [self.N]   # a claim about one lattice size covers that size (unless it says more)
+            # a claim about one lattice size covers that size (unless it says more)
+            out = replace(out, n_scope=[self.N])
         return out
 
 
@@ -253,7 +268,8 @@ def _for_size(text: str, N: int) -> str:
 def claim(id: str, *, equation: str, statement: str, scene: str, N: int | None = None,  # noqa: A002
           sizes: tuple[int, ...] | None = None, where: str = "", deep: bool = False,
           requires: tuple[str, ...] = (), source_equation: str | None = None,
-          parts: Callable[..., Parts] | None = None, register: bool = True, uses: tuple[str, ...] = ()):
+          parts: Callable[..., Parts] | None = None, register: bool = True, uses: tuple[str, ...] = ()
+          ) -> Callable[[Callable[..., Outcome]], Any]:
     """Decorator turning a check into registered :class:`Claim` s (claims as data).
 
     Without ``sizes`` the check takes no argument and one claim ``id`` is made
@@ -298,7 +314,7 @@ def claim(id: str, *, equation: str, statement: str, scene: str, N: int | None =
             SCENES.setdefault(scene, {"description": "", "deep": False})  # a scene needs no declaration
         return c
 
-    def wrap(fn: Callable[..., Outcome]):
+    def wrap(fn: Callable[..., Outcome]) -> Any:
         if sizes is None:
             return make(id, N, fn)
         fn.claims = [make(f"{id}.n{n}", n, fn) for n in sizes]  # type: ignore[attr-defined]
@@ -314,7 +330,8 @@ def skipped(reason: str) -> Outcome:
     return Outcome("skipped", "none", detail=reason)
 
 
-def failed(method: str, *, residual=None, detail: str = "", counterexample=None) -> Outcome:
+def failed(method: str, *, residual: float | None = None, detail: str = "",
+           counterexample: dict[str, Any] | None = None) -> Outcome:
     """Something that should hold does not (with the residual and counterexample when known)."""
     return Outcome("failed", method, residual=residual, detail=detail, counterexample=counterexample)
 
@@ -350,12 +367,13 @@ def judge_cells(table: CellTable, *, printed: str, corrected: str | None = None,
         return Outcome("failed", method, residual=pv.residual, digits=pv.digits, counterexample=where_p, **base)
     rc, _ = table.worst("corrected")
     cv = Verdict.sampled(rc, tol=table.tol, method=method, dps=dps)
-    status = "erratum" if table.corrected_holds_everywhere() else "failed"
+    status: Status = "erratum" if table.corrected_holds_everywhere() else "failed"
     return Outcome(status, f"printed: {method} | corrected: {method}", residual=pv.residual, digits=cv.digits,
                    corrected=corrected, counterexample=where_p, **base)
 
 
-def inconclusive(method: str, *, detail: str = "", residual=None, digits=None, evidence: str | None = None,
+def inconclusive(method: str, *, detail: str = "", residual: float | None = None, digits: float | None = None,
+                 evidence: Evidence | None = None,
                  printed: str | None = None, cells: list[dict[str, Any]] | None = None) -> Outcome:
     """The check cannot decide at the precision or budget given ("cannot tell"); not ok.
 
@@ -422,7 +440,7 @@ def judge(printed_decision: Verdict | CellTable, *, printed: str, corrected: str
                        evidence=printed_decision.evidence, cells=list(printed_decision.cells),
                        detail=detail or "printed statement fails and no correction is known")
     cd = corrected_check()
-    status = "erratum" if cd.holds else ("inconclusive" if cd.inconclusive else "failed")
+    status: Status = "erratum" if cd.holds else ("inconclusive" if cd.inconclusive else "failed")
     method = f"printed: {printed_decision.method} | corrected: {cd.method}"
     if cd.holds:
         extra = ""

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import replace
 from functools import cache
 
 import sympy as sp
@@ -240,8 +241,8 @@ FNS = {"A": _abel_fn, "Fr": lambda env: (lambda lam, a1, a2: env["J"].Fr((lam + 
 
 def _cert_outcome(table, t0: float, n: int, **kw):
     out = outcome(table, dps=int(PREC * 0.30103), **kw)
-    out.evidence = "certified"
-    out.detail = (out.detail + f" Arb {PREC} bits, {n / (time.perf_counter() - t0):.0f} samples/s.").strip()
+    rate = n / (time.perf_counter() - t0)
+    out = replace(out, evidence="certified", detail=(out.detail + f" Arb {PREC} bits, {rate:.0f} samples/s.").strip())
     return out
 
 

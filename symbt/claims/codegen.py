@@ -25,6 +25,7 @@ emitted one's bound); the files' provenance hashes.  Sample points: seeded admis
 from __future__ import annotations
 
 import importlib
+from dataclasses import replace
 from functools import cache
 
 import mpmath as mp
@@ -86,9 +87,9 @@ def _compare(N, name, parts: Parts | None = None) -> Outcome:
 
 
 def _also(out: Outcome, ok: bool, text: str) -> Outcome:
-    out.detail += "; " + text
+    out = replace(out, detail=out.detail + "; " + text)
     if not ok:
-        out.status = "failed"
+        out = replace(out, status="failed")
     return out
 
 
@@ -133,11 +134,10 @@ def flow_field(N: int, parts: Parts) -> Outcome:
 def phi_tr(parts: Parts) -> Outcome:
     outs = [_compare(N, "phi_tr", parts) for N in TARGETS]
     worst = max(outs, key=lambda o: o.residual or 0.0)
-    worst.detail = (f"toda{TARGETS}: " + worst.detail + "; phi_tr is a function of the two traces alone, "
-                    "the same for every N")
-    worst.n_scope = "all"
+    worst = replace(worst, n_scope="all", detail=f"toda{TARGETS}: " + worst.detail
+                    + "; phi_tr is a function of the two traces alone, the same for every N")
     if any(o.status != "verified" for o in outs):
-        worst.status = "failed"
+        worst = replace(worst, status="failed")
     return worst
 
 

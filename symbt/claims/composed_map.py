@@ -13,6 +13,7 @@ domain cell (branch x sign of tr L) by :func:`symbt.claims._common.map_cells`.
 """
 from __future__ import annotations
 
+from dataclasses import replace
 from functools import cache
 
 import mpmath as mp
@@ -26,7 +27,6 @@ from ..symbolic.darboux import composed_darboux, lam0, lam1, lam2, mu
 from ..symbolic.toda import lam
 from ._bt import images
 from ._common import DPS, TOL, cross, eta_from_states, fmt_state, judge_cells, lambdified, per_cell, rel
-from ._compat_map import _fmt_state, _states, darboux_numeric, worst_over  # noqa: F401  (re-exported)
 from .base import Outcome, Parts, claim, from_decision, judge, scene
 
 scene("map", "the composed two-parameter BT: Darboux matrix, explicit x, y, eigenvalues, branches (N=2,3)")
@@ -103,8 +103,8 @@ def xy_check(N: int, parts: Parts) -> Outcome:
                                        "conditions reduce to 0 modulo gamma_i^2 = tr_i^2 - 4, so for every N; on the "
                                        f"N={N} Lax matrix at 50 digits: residual {mp.nstr(r, 3)}")
         if r > TOL:
-            out.status = "failed"
-    out.n_scope = "all"
+            out = replace(out, status="failed")
+    out = replace(out, n_scope="all")
     return out
 
 
@@ -138,8 +138,8 @@ def v1v2_check(N: int, parts: Parts) -> Outcome:
                 detail=f"generic unimodular 2x2 matrices (every N); corrected statement on the N={N} Lax matrix at "
                        f"50 digits: residual {mp.nstr(r, 3)}")
     if r > TOL and out.status == "erratum":
-        out.status = "failed"
-    out.n_scope = "all"
+        out = replace(out, status="failed")
+    out = replace(out, n_scope="all")
     return out
 
 
@@ -160,7 +160,7 @@ def D_check(N: int, parts: Parts, deep: bool = False) -> Outcome:
                 sp.Matrix([(lam - lam1) * (lam - lam2), 0, 0, 0, 0]))
     if not d.holds:
         out = from_decision(d, detail="exact part: det D = (lambda-l1)(lambda-l2) and the kernels")
-        out.n_scope = [N]
+        out = replace(out, n_scope=[N])
         return out
     f = lambdified((lam, lam1, lam2, x, y), Dm)
     table = CellTable(tol=float(TOL))
@@ -179,7 +179,7 @@ def D_check(N: int, parts: Parts, deep: bool = False) -> Outcome:
     out = judge_cells(table, method=f"exact: det and kernels; numeric: mpmath {DPS} digits, D L adj D at l1, l2",
                       printed="det D = (lambda-l1)(lambda-l2), D(l_i) Omega_i = 0, D L adj(D) = 0 at l1, l2",
                       detail="det D and the kernels proved exactly (symbolic x, y);")
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out
 
 
@@ -210,7 +210,7 @@ def new_check(N: int, parts: Parts, deep: bool = False) -> Outcome:
                                     f"{N + deg}, checked at {npts} values of lambda per state (a proof in lambda), "
                                     "states sampled by cells",
                       printed="L~(lambda) D(lambda) = D(lambda) L(lambda)")
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out
 
 
@@ -242,7 +242,7 @@ def l1l2_check(N: int, parts: Parts, deep: bool = False) -> Outcome:
             table.add(cell, printed=worst, point=fmt_state(state, b))
     out = judge_cells(table, method=f"numeric: mpmath {DPS} digits, |L Omega x Omega| at l1, l2",
                       printed="L(l1)|Omega_1> ~ |Omega_1>, L(l2)|Omega_2> ~ |Omega_2>")
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out
 
 
@@ -286,7 +286,7 @@ def lam0mu_check(N: int, parts: Parts, deep: bool = False) -> Outcome:
                                     "of Phi at mu = 0; mixed signs: distance from the identity > 1e-3",
                       printed="(step - id)/mu -> X_Phi for gamma signs b(1, 1); b(1, -1) stays away from the identity",
                       dps=80)
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out
 
 
@@ -312,5 +312,5 @@ def branches_check(N: int, parts: Parts, deep: bool = False) -> Outcome:
     out = judge_cells(table, method=f"numeric: mpmath {DPS} digits, T_b(mu) vs T_{{r_b b}}(r_mu mu) and "
                                     "T_{inv b}(T_b(p, q)) vs (p, q)",
                       printed="T_b(l0, mu) = T_{-b}(l0, -mu) and T_{-b}(T_b(p, q)) = (p, q)")
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out

@@ -28,6 +28,8 @@ The map-sampled claims ``nlocal`` and ``GF`` are in :mod:`symbt.claims.generatin
 """
 from __future__ import annotations
 
+from dataclasses import replace
+
 import sympy as sp
 
 from ..proof import Verdict, decide
@@ -159,7 +161,7 @@ def _at_sites(g, expr):
 
 
 def _sized(out: Outcome, N: int) -> Outcome:
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out
 
 

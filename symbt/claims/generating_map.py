@@ -27,6 +27,7 @@ tolerance :math:`10^{-28}` keeps seven digits of margin while any wrong form or 
 """
 from __future__ import annotations
 
+from dataclasses import replace
 from functools import cache
 
 import mpmath as mp
@@ -46,7 +47,7 @@ GF_TOL = mp.mpf(10) ** -28
 
 
 def _sized(out, N: int):
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out
 
 

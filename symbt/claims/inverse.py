@@ -19,6 +19,8 @@ convention in the parts is not inverted back to the sampled parameters.
 """
 from __future__ import annotations
 
+from dataclasses import replace
+
 import mpmath as mp
 import numpy as np
 import sympy as sp
@@ -93,7 +95,7 @@ def _inverse(N: int, parts: Parts, count: int) -> Outcome:
                                     "parts by Gauss-Legendre",
                       printed="(lam0, mu, branch) -> c is inverted: recovered from all constants, the targeted "
                               "ones reproduced from two", dps=15, detail=f"modes {modes}; {its} Newton steps;{roots}")
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out
 
 
@@ -173,6 +175,6 @@ def inverse_attainable(N: int, parts: Parts, deep: bool = False) -> Outcome:
                       detail=f"off-surface target: least-squares optimum (lam0, mu) = ({l0_:.8g}, {m_:.8g}) leaves a "
                              f"relative residual {miss:.3g};")
     if miss <= 1e-4 and out.status == "verified":
-        out.status = "failed"
-    out.n_scope = [N]
+        out = replace(out, status="failed")
+    out = replace(out, n_scope=[N])
     return out

@@ -16,6 +16,7 @@ the cell tables (printed statements are compared with principal branches, see
 """
 from __future__ import annotations
 
+from dataclasses import replace
 from functools import cache
 
 import mpmath as mp
@@ -69,7 +70,7 @@ def eq_2122(parts: Parts):
                 corrected_check=lambda: decide(lhs, parts.corrected["rhs"]),
                 detail="p_j of eq. imptransf substituted; the printed sign of the e^{q~_j} term leaves "
                        "-2 lambda e^{q~_j} + ... (not even the lambda-dependence matches). " + LOCAL)
-    out.n_scope = "all"
+    out = replace(out, n_scope="all")
     return out
 
 
@@ -103,7 +104,7 @@ def rte(parts: Parts):
                 detail="the kernel vectors (x_j, mu-eta_j), (-x_j, mu+eta_j) are transported as printed; "
                        "both components at l1 and l2, modulo eta_{j+1}^2 = mu^2 + w_{j+1} (either sign of eta); "
                        "the sign slip follows from the one in eq. 2122. " + LOCAL)
-    out.n_scope = "all"
+    out = replace(out, n_scope="all")
     return out
 
 

@@ -28,6 +28,7 @@ Each statement is read on the actual two-parameter map of Section 3 (the literal
 from __future__ import annotations
 
 import random
+from dataclasses import replace
 
 import mpmath as mp
 import sympy as sp
@@ -53,7 +54,7 @@ FD_STEP = mp.mpf(10) ** -28
 
 
 def _sized(out: Outcome, N: int) -> Outcome:
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out
 
 
@@ -118,7 +119,7 @@ def speccurve(parts: Parts) -> Outcome:
             return from_decision(d, detail=f"N={N}")
     out = from_decision(d, detail="all N: det(M - v) = v^2 - tr M v + det M for a 2x2 M, and det L = prod det l_j = 1 "
                                   "(det l_j = 1 per site); the N=2, 3 Lax matrices also exactly")
-    out.n_scope = "all"
+    out = replace(out, n_scope="all")
     return out
 
 
@@ -335,7 +336,7 @@ def poincare_cartan(parts: Parts) -> Outcome:
                                   "j+1, which d/dq_j does not see); the dmu coefficient is a sum of per-site terms. "
                                   "With lambda_0 varying dF gains sum_k (q~_k - q_k) dlambda_0 "
                                   f"({'proved' if extra.holds else 'NOT proved'})")
-    out.n_scope = "all"
+    out = replace(out, n_scope="all")
     return out
 
 

@@ -20,6 +20,8 @@ cells ``{root = +-1}`` (for real maps :math:`\zeta < -\max_j p_j`, and the sign 
 """
 from __future__ import annotations
 
+from dataclasses import replace
+
 import mpmath as mp
 import sympy as sp
 
@@ -69,7 +71,7 @@ def local(N: int, parts: Parts, deep: bool = False) -> Outcome:
             table.add(cell, printed=worst, point=fmt_state((p, q, z, mp.mpf(0)), r, zeta=z))
     out = judge_cells(table, method=f"numeric: mpmath {DPS} digits, every site, 4 values of lambda (one = zeta)",
                       printed="l_j(p~, q~) d_j = d_{j+1} l_j(p, q), d_{N+1} = d_1")
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out
 
 
@@ -98,5 +100,5 @@ def lhdhdl(N: int, parts: Parts, deep: bool = False) -> Outcome:
             table.add(cell, printed=worst, point=fmt_state((p, q, z, mp.mpf(0)), r, zeta=z, v=v, w=w))
     out = judge_cells(table, method=f"numeric: mpmath {DPS} digits, 4 values of lambda (one = zeta); eigenvectors at "
                                     "zeta", printed="L D^ = D^ L~; L~(zeta)(alpha_1, -1) = w (alpha_1, -1), w v = 1")
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out

@@ -13,6 +13,7 @@ any constant of the parts leaves >= 1e-8 at some sample.
 """
 from __future__ import annotations
 
+from dataclasses import replace
 from functools import cache
 
 import mpmath as mp
@@ -158,7 +159,7 @@ def theorem2_check(N: int, parts: Parts, deep: bool = False) -> Outcome:
                                     f"{_route()}; c_k = int_0^mu dPhi/dH_k by Gauss-Legendre",
                       printed="one BT step of branch b = time-1 flow of H = int_0^mu Phi dmu'", dps=15,
                       detail=f"{outside} samples outside the domain |tr L| > 2 on [lam0-mu, lam0+mu];")
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out
 
 
@@ -218,7 +219,7 @@ def theorem2_deep(N: int, parts: Parts) -> Outcome:
     out = judge_cells(table, method=f"numeric: 20 iterates of the explicit map (mpmath 60 digits) vs the flow to "
                                     f"t = 1, 5, 20 by {_route()}", printed="n BT steps = time-n flow", dps=15,
                       detail=f"{skipped_} samples whose orbit leaves the real map or the domain;")
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out
 
 
@@ -246,7 +247,7 @@ def theorem2_deep100(N: int, parts: Parts) -> Outcome:
     out = judge_cells(table, method="numeric: mpmath 100 digits; 20 iterates of the explicit map vs Taylor "
                                     "integration (symbt.reference.taylor) to t = 20",
                       printed="20 BT steps = time-20 flow", dps=100, detail=f"{steps[20]} Taylor steps;")
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out
 
 
@@ -273,7 +274,7 @@ def linearcomb_check(N: int, parts: Parts, deep: bool = False) -> Outcome:
     out = judge_cells(table, method="numeric: float64 Gauss-Legendre; d/dH_k under the integral (dPhi/dtr_i by "
                                     "SymPy) vs the weight integral", printed="d/dH_k int_0^mu Phi = -b int lam^k w",
                       dps=15)
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out
 
 
@@ -301,7 +302,7 @@ def eqdisc_check(N: int, parts: Parts, deep: bool = False) -> Outcome:
                       printed="BT of branch b = time-1 flow of b sum_k c_k H_k, c_k of eq. eqdisc", dps=15,
                       detail="the paper never states which root gamma takes: the printed c_k (and the negative "
                              "caption constants) belong to gamma = +sqrt(tr^2-4);")
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out
 
 
@@ -359,5 +360,5 @@ def hdis_check(parts: Parts, deep: bool = False) -> Outcome:
                       printed="H = -int_{lam0-mu}^{lam0+mu} arccosh(tr L/2) dlam with dH/dH_k = c_k of the BT",
                       corrected="H = -b int_{lam0-mu}^{lam0+mu} sgn(tr L) arccosh(|tr L|/2) dlam, real (b = +1 for "
                                 "eq. eqdisc as printed); AA2's integral equals the printed H", dps=15)
-    out.n_scope = [2, 3]
+    out = replace(out, n_scope=[2, 3])
     return out

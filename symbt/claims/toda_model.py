@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import itertools
 import random
+from dataclasses import replace
 
 import mpmath as mp
 import sympy as sp
@@ -40,7 +41,7 @@ DEFAULT, DEEP = (2, 3, 4), (5,)
 
 
 def _sized(out: Outcome, N: int) -> Outcome:
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out
 
 
@@ -131,7 +132,7 @@ def tra(N: int, parts: Parts):
     out = from_decision(coeffs, detail=f"det(v - L) = v^2 - (A+D) v + 1; degree {N} in lambda, leading coefficient "
                                        f"1; sum H_k lambda^k vs the literal trace at 50 digits: {mp.nstr(worst, 3)}")
     if worst > mp.mpf(10) ** -40:
-        out.status = "failed"
+        out = replace(out, status="failed")
     return _sized(out, N)
 
 

@@ -15,6 +15,8 @@ Hamiltonian :math:`K = T(p(\tilde p,\tilde q), q(\tilde p,\tilde q), \mu) + \hat
 """
 from __future__ import annotations
 
+from dataclasses import replace
+
 import sympy as sp
 
 from ..proof import decide
@@ -38,8 +40,8 @@ PHI_HAT = (pt ** 2 - (qt - mu * pt) ** 2) / 2
 
 
 def _one_dof(out):
-    out.n_scope = [1]
-    out.detail = (out.detail + f" [{ONE_DOF}]").strip()
+    out = replace(out, n_scope=[1])
+    out = replace(out, detail=(out.detail + f" [{ONE_DOF}]").strip())
     return out
 
 
@@ -87,7 +89,7 @@ def toy_Phihat(parts: Parts):
     differ = decide(phi.subs({p: pt, q: qt}, simultaneous=True), Phihat)
     out = from_decision(d, detail=f"Phi(a,b) vs Phi^(a,b) as functions: {differ.verdict} (paper: they differ)")
     if differ.holds:
-        out.status = "failed"
+        out = replace(out, status="failed")
     return _one_dof(out)
 
 

@@ -10,8 +10,9 @@
 * :mod:`.files`, :mod:`.provenance` -- which files, written atomically with a provenance
   header; ``--check`` catches a missing, stale or hand-edited file without SymPy;
 * :mod:`.cli`, :mod:`.project` -- the command, acting on the checkout you stand in;
-* :mod:`.verify` -- emitted code vs the SymPy source at high precision (scene ``codegen``);
-  :mod:`.measure` -- size and time as N grows.
+* :mod:`.verify` -- emitted code vs the SymPy source at high precision (scene ``codegen``).
+
+Size and time of the emitted code as N grows: :mod:`symbt.benchmarks.codegen_scaling`.
 
 See docs/codegen.md.
 

@@ -25,6 +25,7 @@ import json
 import math
 import os
 import sys
+from dataclasses import replace
 from functools import cache
 from pathlib import Path
 from typing import Any
@@ -232,7 +233,7 @@ def read_entry(path: Path, key: str) -> Outcome | None:
         return None
     if out.status == "verified" and isinstance(out.residual, float) and math.isnan(out.residual):
         return None  # a verification with a NaN residual is no verification: recompute
-    out.cached = True
+    out = replace(out, cached=True)
     return out
 
 

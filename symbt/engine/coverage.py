@@ -131,7 +131,7 @@ def _covers(c: Any, label: str) -> bool:
 def _statuses_from_cache(claims: list) -> dict[str, str]:
     from .cache import load_cached
 
-    out = {}
+    out: dict[str, str] = {}
     for c in claims:
         o = load_cached(c)
         if o is not None:

@@ -11,6 +11,7 @@ source (:mod:`symbt.codegen.user.check`).
 from __future__ import annotations
 
 import functools
+from dataclasses import replace
 from pathlib import Path
 
 from ..claims.base import REGISTRY, SCENES, Claim, Outcome, failed, judge_cells, skipped, todo
@@ -52,7 +53,7 @@ def _check(key: tuple[str, str], flavour: str, root: Path, out: Path, *, deep: b
     res = judge_cells(table, printed=_statement(e, flavour), method=method_text(flavour),
                       detail="residual: the worst |emitted - reference| in units of the error bound "
                              "(a point holds at <= 1)")
-    res.digits = None   # the residual is in units of the bound, not a relative error: no digits to count
+    res = replace(res, digits=None)   # the residual is in units of the bound, not a relative error: no digits to count
     return res
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import signal
 import threading
+from dataclasses import replace
 
 from ..claims.base import Outcome, failed
 
@@ -38,7 +39,7 @@ def timed_out(budget: float, seconds: float | None = None) -> Outcome:
     ('inconclusive', 'timed out', 'inconclusive (timed out after 300 s)')
     """
     out = Outcome("inconclusive", TIMED_OUT, detail=f"inconclusive (timed out after {budget:g} s)")
-    out.seconds = round(budget if seconds is None else seconds, 4)
+    out = replace(out, seconds=round(budget if seconds is None else seconds, 4))
     return out
 
 

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 3a445ac7f7c3b46dd3dd424438a795e67e05d7d1e182ca06510d54b201547a07
-# symbt-codegen-content-sha256: bc3714bdce7fb787ad1fd86c8c6b7c561964e76c66e619cf037f2a350aa7c125
+# symbt-codegen-derivation-sha256: 4ab23378b17fd0d1448ef537de9519ba818ac86230fa21477b90af8dc3f70d4b
+# symbt-codegen-content-sha256: 07dff2b1e337d522f2aaa6c14a4d8c2bbae7d454c37714b44b76f2c7ac2c3bc1
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 3a445ac7f7c3b46dd3dd424438a795e67e05d7d1e182ca06510d54b201547a07
-# symbt-codegen-content-sha256: 2974b5300b6cfaa8d1abf6e49a3e75b1ff92dfa31df665aa05bdbc051433d5be
+# symbt-codegen-derivation-sha256: 4ab23378b17fd0d1448ef537de9519ba818ac86230fa21477b90af8dc3f70d4b
+# symbt-codegen-content-sha256: 82fc07943d18022befee9743b1605b0cdabdc56850fe5c1b1eca15ad7c67374b
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

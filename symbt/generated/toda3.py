@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 3a445ac7f7c3b46dd3dd424438a795e67e05d7d1e182ca06510d54b201547a07
-# symbt-codegen-content-sha256: 131291c61c7c3b7471daa5666d854a2bdad252c9cd8ef01bf7143d3a8e588450
+# symbt-codegen-derivation-sha256: 4ab23378b17fd0d1448ef537de9519ba818ac86230fa21477b90af8dc3f70d4b
+# symbt-codegen-content-sha256: bc17a8bb9bc14838036fd3c93bbbbfd5eb09b25d94ba48cb3026cf7fc9183455
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

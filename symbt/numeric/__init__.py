@@ -13,7 +13,7 @@ Backends (chosen automatically; optional extras are imported lazily)
   vectorised numpy (:mod:`symbt.numeric.float64.orbit`); ``every=k`` stores every
   k-th state; :func:`dask_orbit` maps ensembles onto dask chunks;
 * mpmath numbers: Arb at the caller's precision plus guard bits via
-  python-flint (:mod:`symbt.numeric.multiprec.choose`), else mpmath (gmpy2-backed when
+  python-flint (:mod:`symbt.numeric.backends`), else mpmath (gmpy2-backed when
   installed);
 * ``bt_orbit(..., certified=True)`` / :func:`certified_orbit`: rigorous
   enclosures from Arb ball arithmetic (:mod:`symbt.numeric.multiprec.certified`).
@@ -66,6 +66,7 @@ True
 >>> P, Q = bt_orbit(p, q, 10.0, 5.0, 100)      # shape (101, 3)
 """
 
+from .backends import BackendName
 from .core.errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError, QuadratureError
 from .dispatch import bt_orbit, bt_step
 from .float64.dask_orbit import dask_orbit
@@ -90,4 +91,5 @@ __all__ = [
     "NumericRangeError",
     "QuadratureError",
     "MissingDependencyError",
+    "BackendName",
 ]

@@ -14,7 +14,7 @@ Backends (picked automatically, see :func:`bt_step` and :func:`bt_orbit`):
   the vectorised numpy path (:mod:`symbt.numeric.float64.orbit`); ``every=k`` stores every k-th
   state only;
 * mpmath numbers: quad-doubles, python-flint's Arb at the caller's precision plus guard
-  bits, else mpmath (:mod:`symbt.numeric.multiprec.choose`);
+  bits, else mpmath (:mod:`symbt.numeric.backends`, :mod:`symbt.numeric.multiprec.runners`);
 * ``certified=True``: rigorous enclosures by Arb ball arithmetic
   (:mod:`symbt.numeric.multiprec.certified`).
 
@@ -31,32 +31,19 @@ Example
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from typing import Any, Literal, overload
 
-import numpy as np
-
-from .core.context import FLOAT, IV
+from .backends import BackendName, check_name, pick, run_orbit, run_step
 from .core.errors import InvalidInputError
-from .core.inputs import (
-    as_state_pair,
-    check_branch,
-    check_steps,
-    pick_context,
-    prepare_spectral_pair,
-    to_output,
-    validate_float_pair,
-)
-from .core.step import _block_kernel_pays, _monodromy_may_overflow, mp_step, overflow_rows
-from .float64.orbit import float_orbit
+from .core.inputs import check_branch, check_steps, to_output
+from .core.problem import StateLike, prepare
+from .float64.kernels import stored_steps
 
-__all__ = ["bt_step", "bt_orbit", "STEP_BACKENDS"]
-
-STEP_BACKENDS = ("auto", "numba", "python", "numpy", "flint", "qd", "mpmath")
+__all__ = ["bt_step", "bt_orbit"]
 
 
-def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_complex: bool = False,
-            backend: str = "auto") -> tuple[Any, Any]:
+def bt_step(p: StateLike, q: StateLike, lam0: Any, mu: Any, *, branch: int = 1, allow_complex: bool = False,
+            backend: BackendName = "auto") -> tuple[Any, Any]:
     """One Bäcklund step of the periodic Toda chain.
 
     Parameters
@@ -100,66 +87,25 @@ def bt_step(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, allow_comple
     ...     print(mpmath.nstr(qt[0], 15))
     -0.0861422421882023
     """
-    branch = check_branch(branch)
-    if backend not in STEP_BACKENDS:
-        raise InvalidInputError("backend must be one of %s, got %r" % (STEP_BACKENDS, backend))
-    ctx = pick_context(p, q, lam0, mu)
-    if ctx is FLOAT:
-        if backend in ("flint", "qd", "mpmath"):
-            raise InvalidInputError("backend %r needs mpmath inputs" % backend)
-        pa, qa, shape = validate_float_pair(p, q)
-        lam0, mu = prepare_spectral_pair(ctx, lam0, mu, shape)
-        N = pa.shape[-1]
-        if np.ndim(mu) == 0 and mu == 0:
-            return pa.reshape(shape + (N,)).copy(), qa.reshape(shape + (N,)).copy()
-        if shape == () and backend != "numpy" and not (backend == "auto" and _monodromy_may_overflow(pa, lam0, mu)):
-            from .float64.orbit import kernel_step
+    pr = prepare(p, q, lam0, mu, branch=branch)
+    check_name(backend, pr.arithmetic)
+    if pr.arithmetic == "mpmath" and pr.mu == 0:
+        return to_output(pr.ctx, pr.p, ()), to_output(pr.ctx, pr.q, ())
+    b = pick(backend, pr.arithmetic, 1, interval=pr.interval)
+    return run_step(b, pr, allow_complex, forced=backend != "auto")
 
-            out = kernel_step(pa[0], qa[0], float(lam0), float(mu), branch, backend)
-            if out is not None:
-                return out
-        if shape != () and backend in ("auto", "numba"):
-            from .float64.jit import numba_available
-
-            if numba_available() and (backend == "numba" or _block_kernel_pays(pa, lam0, mu)):
-                # each member by its single-state route: the block kernel (bit-identical to the single-state
-                # kernel), and the numpy route for exactly the members it hands back
-                from .float64.orbit import kernel_batch_step
-
-                skip = overflow_rows(N, lam0, mu, pa.shape[0]) if backend == "auto" else None
-                outp, outq = kernel_batch_step(pa, qa, lam0, mu, branch, allow_complex, shape, skip)
-                return outp.reshape(shape + (N,)), outq.reshape(shape + (N,))
-        from .float64.rows import float_rows_step
-
-        outp, outq = float_rows_step(pa, qa, lam0, mu, branch, allow_complex, shape)
-        return outp.reshape(shape + (N,)), outq.reshape(shape + (N,))
-    if backend in ("numba", "python", "numpy"):
-        raise InvalidInputError("backend %r needs float64 inputs" % backend)
-    ctx, P, Q, shape = as_state_pair(p, q, lam0, mu)
-    lam0, mu = prepare_spectral_pair(ctx, lam0, mu, shape)
-    if mu == 0:
-        return to_output(ctx, P, ()), to_output(ctx, Q, ())
-    if ctx is not IV:
-        from .multiprec.choose import mp_backend
-
-        fast: Callable[..., tuple[list[Any], list[Any]]] | None = mp_backend(backend)
-        if fast is not None:
-            return fast(P, Q, lam0, mu, branch, allow_complex)
-    return mp_step(ctx, P, Q, lam0, mu, branch, allow_complex)
+@overload
+def bt_orbit(p: StateLike, q: StateLike, lam0: Any, mu: Any, n: int, *, branch: int = ..., every: int = ...,
+             backend: BackendName = ..., certified: Literal[False] = ..., tol: Any = ...) -> tuple[Any, Any]: ...
 
 
 @overload
-def bt_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = ..., every: int = ...,
-             backend: str = ..., certified: Literal[False] = ..., tol: Any = ...) -> tuple[Any, Any]: ...
+def bt_orbit(p: StateLike, q: StateLike, lam0: Any, mu: Any, n: int, *, branch: int = ..., every: int = ...,
+             backend: BackendName = ..., certified: Literal[True], tol: Any = ...) -> tuple[Any, Any, Any, Any]: ...
 
 
-@overload
-def bt_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = ..., every: int = ...,
-             backend: str = ..., certified: Literal[True], tol: Any = ...) -> tuple[Any, Any, Any, Any]: ...
-
-
-def bt_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, every: int = 1,
-             backend: str = "auto", certified: bool = False, tol: Any = None) -> tuple[Any, ...]:
+def bt_orbit(p: StateLike, q: StateLike, lam0: Any, mu: Any, n: int, *, branch: int = 1, every: int = 1,
+             backend: BackendName = "auto", certified: bool = False, tol: Any = None) -> tuple[Any, ...]:
     """``n`` Bäcklund steps from ``(p, q)``; returns the stored states.
 
     Parameters
@@ -209,11 +155,9 @@ def bt_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, eve
         return certified_orbit(p, q, lam0, mu, n, branch=branch, every=every, tol=tol)
     if tol is not None:
         raise InvalidInputError("tol is only used with certified=True")
-    ctx = pick_context(p, q, lam0, mu)
-    if ctx is FLOAT:
-        if backend in ("flint", "qd", "mpmath"):
-            raise InvalidInputError("backend %r needs mpmath inputs" % backend)
-        return float_orbit(p, q, lam0, mu, n, branch=branch, every=every, backend=backend)
-    from .multiprec.choose import mp_orbit
-
-    return mp_orbit(p, q, lam0, mu, n, branch=branch, every=every, backend=backend)
+    pr = prepare(p, q, lam0, mu, branch=branch, n=n, every=every)
+    b = pick(backend, pr.arithmetic, pr.n, interval=pr.interval)
+    if pr.arithmetic == "mpmath" and (pr.mu == 0 or pr.n == 0):
+        rows = len(stored_steps(pr.n, pr.every))
+        return [to_output(pr.ctx, pr.p, ())] * rows, [to_output(pr.ctx, pr.q, ())] * rows
+    return run_orbit(b, pr, forced=backend != "auto")

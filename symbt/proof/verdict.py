@@ -83,7 +83,7 @@ class Verdict:
     """Whether a statement holds, how that was decided, and where it fails if it does."""
 
     holds: bool
-    evidence: str
+    evidence: Evidence
     method: str
     residual: float | None = None
     digits: float | None = None

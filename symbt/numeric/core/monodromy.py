@@ -40,11 +40,10 @@ import numpy as np
 
 from .context import Context
 from .errors import NumericRangeError
+from .limits import MAX_DQ_FLOAT64
 
-__all__ = ["neighbour_ratios", "monodromy", "MAX_DQ"]
+__all__ = ["neighbour_ratios", "monodromy"]
 
-# exp overflows/underflows (to subnormals) beyond about this difference
-MAX_DQ = 700.0
 
 
 def neighbour_ratios(ctx: Context, q: Sequence[Any]) -> list[Any]:
@@ -59,10 +58,10 @@ def neighbour_ratios(ctx: Context, q: Sequence[Any]) -> list[Any]:
     dq = [q[(j + 1) % N] - q[j] for j in range(N)]
     if not ctx.is_exact_scale:
         worst = max(float(max(np.max(d), -np.min(d))) if np.size(d) else 0.0 for d in np.real(dq))
-        if worst > MAX_DQ:
+        if worst > MAX_DQ_FLOAT64:
             raise NumericRangeError(
                 "|q_{j+1} - q_j| = %.4g exceeds the float64 range of the scaled "
-                "formulation (limit %g); use mpmath inputs" % (worst, MAX_DQ))
+                "formulation (limit %g); use mpmath inputs" % (worst, MAX_DQ_FLOAT64))
     return [ctx.exp(d) for d in dq]
 
 

@@ -63,7 +63,7 @@ single-state step with ``backend="numpy"``; docs/numeric.md, "Batches");
 mpmath numbers through
 python-flint's Arb at
 the caller's precision plus guard bits when python-flint is installed
-(:mod:`symbt.numeric.multiprec.choose`), else through mpmath.  Whatever the kernel does
+(:mod:`symbt.numeric.multiprec.runners`), else through mpmath.  Whatever the kernel does
 not handle (no real map, renormalisation, non-finite intermediates) is
 recomputed by the general path, which raises the typed errors.
 
@@ -97,7 +97,7 @@ if TYPE_CHECKING:
 
     F64 = npt.NDArray[np.float64]
 
-__all__ = ["step_core", "eigen_slopes", "SlopeData", "mp_step", "overflow_rows", "BLOCK_ELEMENTS"]
+__all__ = ["step_core", "eigen_slopes", "SlopeData", "mp_step", "BLOCK_ELEMENTS"]
 
 _GUARD_DIGITS = 12
 #: accepted values of ``backend`` (float64: auto/numba/python/numpy; mpmath: auto/qd/flint/mpmath)
@@ -257,49 +257,6 @@ def step_core(ctx: Context, P: Sequence[Any], Q: Sequence[Any], lam0: Any, mu: A
 #: rows of the batch processed at once (keeps temporaries in cache; see benchmarks)
 BLOCK_ELEMENTS = 1 << 17
 
-
-
-# log(1e150): past |tr L| ~ 1e150 the fused kernels hand a state to the general path (tr**2 would overflow)
-_KERNEL_LOG_RANGE = 345.0
-
-
-def overflow_rows(N: int, lam0: Any, mu: Any, M: int) -> npt.NDArray[np.bool_]:
-    """Per state of a batch of ``M`` (``lam0, mu`` scalars or shape ``(M,)``): True where the fused kernels
-    would give the state back.  For ``|lam_i|`` large against ``p`` and the ``e^{q_{j+1} - q_j}``,
-    ``log |tr L(lam_i)| ~ N log |lam_i|``; past ``log(1e150)`` by a margin of 10 the kernel's attempt is
-    wasted (a batch at N = 256, lam0 = 788) and ``backend="auto"`` takes the numpy route at once -- for a
-    single state and for each member of a batch alike, so that a member's route is its own.  A wrong guess
-    costs only speed and ulps: both routes decide existence and the numpy route is the fallback anyway.
-
-    >>> overflow_rows(256, np.array([788.0, 1.0]), 2.0, 2).tolist()
-    [True, False]
-    """
-    lam = np.broadcast_to(np.abs(lam0) + np.abs(mu), (M,))
-    return (lam > 1.0) & (N * np.log(np.maximum(lam, 1.0)) > _KERNEL_LOG_RANGE + 10.0)
-
-
-def _monodromy_may_overflow(pa: F64, lam0: Any, mu: Any) -> bool:
-    """True if the block kernel would give some state of ``pa`` (M, N) back (see :func:`overflow_rows`)."""
-    return bool(overflow_rows(pa.shape[-1], lam0, mu, pa.shape[0]).any())
-
-
-# measured (BENCHMARKS.md, throughput): one step of the block kernel beats the numpy route 2-5x on batches
-# below a few thousand states and at every batch size from N = 8 on; at N = 3 numpy's vectorised step wins
-# from ~5000 states (0.7-0.8x)
-_BLOCK_KERNEL_MAX_STATES_SMALL_N = 4096
-_BLOCK_KERNEL_MIN_N = 8
-
-
-def _block_kernel_pays(pa: F64, lam0: Any, mu: Any) -> bool:
-    """Whether ``backend="auto"`` sends a float64 batch ``pa`` (shape ``(M, N)``) to the compiled block kernel.
-
-    >>> import numpy as np
-    >>> [_block_kernel_pays(np.zeros((M, N)), 10.0, 1.0) for M, N in ((100, 3), (10_000, 3), (10_000, 16))]
-    [True, False, True]
-    """
-    M, N = pa.shape
-    small = M < _BLOCK_KERNEL_MAX_STATES_SMALL_N or N >= _BLOCK_KERNEL_MIN_N
-    return small and not bool(overflow_rows(N, lam0, mu, M).all())
 
 
 def mp_step(ctx: Context, P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,

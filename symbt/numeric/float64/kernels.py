@@ -52,15 +52,16 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..core.limits import MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
+
 if TYPE_CHECKING:
     import numpy.typing as npt
 
     F64 = npt.NDArray[np.float64]
     I64 = npt.NDArray[np.int64]
 
-__all__ = ["orbit", "orbit_rows", "stored_steps", "ANCHOR", "OK", "TRACE1", "TRACE2", "POSITIVITY", "RANGE"]
+__all__ = ["orbit", "orbit_rows", "stored_steps", "ANCHOR"]
 
-OK, TRACE1, TRACE2, POSITIVITY, RANGE = 0, 1, 2, 3, 4
 #: steps between re-anchoring ``r`` to ``exp`` of the accumulated positions
 ANCHOR = 16
 
@@ -171,7 +172,7 @@ def _anchor1(qh: F64, ql: F64, fh: F64, fl: F64, r: F64, p: F64) -> int:
     for j in range(N):
         jn = j + 1 if j + 1 < N else 0
         dq = (qh[jn] - qh[j]) + (ql[jn] - ql[j])
-        if not (abs(dq) <= 700.0 and abs(p[j]) < 1e300 and abs(qh[j]) < 1e300):
+        if not (abs(dq) <= MAX_DQ_FLOAT64 and abs(p[j]) < 1e300 and abs(qh[j]) < 1e300):
             return RANGE
         r[j] = math.exp(dq)
     return OK

@@ -27,7 +27,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .kernels import OK, POSITIVITY, RANGE, TRACE1, TRACE2, _dd_add, _dd_position, _logf
+from ..core.limits import MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
+from .kernels import _dd_add, _dd_position, _logf
 
 if TYPE_CHECKING:
     from .kernels import F64, I64
@@ -116,7 +117,7 @@ def _anchor(qh: F64, ql: F64, fh: F64, fl: F64, r: F64, p: F64, status: I64) -> 
         for j in range(N):
             jn = j + 1 if j + 1 < N else 0
             dq = (qh[jn, k] - qh[j, k]) + (ql[jn, k] - ql[j, k])
-            if not (abs(dq) <= 700.0 and abs(p[j, k]) < 1e300 and abs(qh[j, k]) < 1e300):
+            if not (abs(dq) <= MAX_DQ_FLOAT64 and abs(p[j, k]) < 1e300 and abs(qh[j, k]) < 1e300):
                 status[k] = status[k] if status[k] != OK else RANGE
                 dq = 0.0
             r[j, k] = math.exp(dq)

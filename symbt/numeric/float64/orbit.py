@@ -39,10 +39,11 @@ import numpy as np
 from ..core.context import FLOAT
 from ..core.errors import InvalidInputError, NoRealMapError, NumericRangeError
 from ..core.inputs import prepare_spectral_pair, validate_float_pair
-from ..core.monodromy import MAX_DQ
+from ..core.limits import MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
+from ..core.problem import Problem
 from ..core.step import BLOCK_ELEMENTS, step_core
 from .jit import kernel, numba_available
-from .kernels import ANCHOR, OK, POSITIVITY, RANGE, TRACE1, TRACE2, orbit_rows
+from .kernels import ANCHOR, orbit_rows
 from .rows import float_rows_step
 
 if TYPE_CHECKING:
@@ -181,7 +182,7 @@ def _general_block(p0: F64, q0: F64, lam0: Any, mu: Any, branch: int, n: int, ev
         Qs = qr if full else [x[alive] for x in qr]
         L0, MU = (lam0, mu) if full else (_take(lam0, alive), _take(mu, alive))
         with np.errstate(all="ignore"):
-            far = np.maximum.reduce([np.abs(Qs[(j + 1) % N] - Qs[j]) for j in range(N)]) > MAX_DQ
+            far = np.maximum.reduce([np.abs(Qs[(j + 1) % N] - Qs[j]) for j in range(N)]) > MAX_DQ_FLOAT64
             far = far | ~np.isfinite(np.add.reduce(Ps) + np.add.reduce(Qs))
             if far.any():            # beyond the float64 range of the scaled formulation
                 keep = ~far
@@ -285,6 +286,11 @@ def float_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, 
     pa, qa, shape = validate_float_pair(p, q)
     lam0, mu = prepare_spectral_pair(FLOAT, lam0, mu, shape)
     return validated_float_orbit(pa, qa, shape, lam0, mu, n, branch, every, backend)
+
+
+def prepared_float_orbit(pr: Problem, backend: str) -> tuple[F64, F64]:
+    """:func:`float_orbit` of a validated problem (:func:`~symbt.numeric.core.problem.prepare`)."""
+    return validated_float_orbit(pr.p, pr.q, pr.shape, pr.lam0, pr.mu, pr.n, pr.branch, pr.every, backend)
 
 
 def validated_float_orbit(pa: F64, qa: F64, shape: tuple[int, ...], lam0: Any, mu: Any, n: int, branch: int,

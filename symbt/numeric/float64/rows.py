@@ -24,9 +24,8 @@ import numpy as np
 
 from ..core.context import COMPLEX, FLOAT
 from ..core.errors import NoRealMapError, NumericRangeError
-from ..core.monodromy import MAX_DQ
+from ..core.limits import MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 from ..core.step import BLOCK_ELEMENTS, step_core
-from .kernels import OK, POSITIVITY, RANGE, TRACE1, TRACE2
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -40,7 +39,7 @@ __all__ = ["float_rows_step", "raise_for_rows"]
 def _float_block(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int) -> tuple[F64, F64, I64]:
     """Real step for one block of rows ``pa, qa`` (B, N): ``(B, N)`` arrays and a status code per row.
 
-    The codes are those of :mod:`symbt.numeric.float64.kernels` (``OK``, ``TRACE1``, ``TRACE2``,
+    The codes are those of :mod:`symbt.numeric.core.limits` (``OK``, ``TRACE1``, ``TRACE2``,
     ``POSITIVITY``, ``RANGE``), decided per row in the order :func:`step_core` checks them for one state,
     so that a row's verdict does not depend on the other rows of the batch.
     """
@@ -80,7 +79,7 @@ def raise_for_rows(status: I64, shape: tuple[int, ...]) -> None:
     (batch indices), ``condition`` and message are those of the first -- else :class:`NumericRangeError`.
 
     >>> import numpy as np
-    >>> from symbt.numeric.float64.kernels import OK, POSITIVITY, TRACE2
+    >>> from symbt.numeric.core.limits import OK, POSITIVITY, TRACE2
     >>> try:
     ...     raise_for_rows(np.array([OK, TRACE2, OK, POSITIVITY]), (2, 2))
     ... except NoRealMapError as e:
@@ -129,7 +128,7 @@ def float_rows_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_com
     if idx_all.size:
         # out of the scaled formulation's range (what neighbour_ratios refuses for a whole block): per row
         dq = np.abs(np.roll(qa[idx_all], -1, axis=1) - qa[idx_all]).max(axis=1)
-        far = ~(dq <= MAX_DQ)
+        far = ~(dq <= MAX_DQ_FLOAT64)
         status[idx_all[far]] = RANGE
         idx_all = idx_all[~far]
     for s0 in range(0, idx_all.size, block):

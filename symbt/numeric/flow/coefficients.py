@@ -51,11 +51,11 @@ import numpy as np
 from ..core.context import FLOAT, MP
 from ..core.errors import InvalidInputError, NoRealMapError, NumericRangeError, QuadratureError
 from ..core.inputs import _to_mp, float_array, prepare_spectral_pair
+from ..core.limits import MAX_DQ_FLOAT64
 from ..dispatch import bt_step
 
 __all__ = ["flow_coefficients", "flow_quadrature", "FlowQuadrature", "scaled_trace", "neighbour_ratios_of"]
 
-MAX_DQ = 700.0          # exp(q_{j+1} - q_j) must stay inside float64
 _LOG2 = math.log(2.0)
 
 
@@ -94,9 +94,9 @@ def neighbour_ratios_of(q: Sequence[Any]) -> list:
     if isinstance(q[0], mpmath.mpf):
         return [mpmath.exp(d) for d in dq]
     worst = max(abs(float(d)) for d in dq)
-    if worst > MAX_DQ:
+    if worst > MAX_DQ_FLOAT64:
         raise NumericRangeError("|q_{j+1} - q_j| = %.4g exceeds the float64 range (limit %g); "
-                                "use mpmath inputs" % (worst, MAX_DQ))
+                                "use mpmath inputs" % (worst, MAX_DQ_FLOAT64))
     return [math.exp(float(d)) for d in dq]
 
 

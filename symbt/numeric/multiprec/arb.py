@@ -3,7 +3,7 @@ r"""python-flint contexts: Arb real balls (``arb``) and complex balls (``acb``).
 In the style of mpmath's FPContext: the step (:func:`~symbt.numeric.core.step.step_core`)
 is written once; a backend only binds primitives.  Two uses of ``arb``:
 
-* ``ARB_MID`` -- the fast path for mpmath input (:mod:`symbt.numeric.multiprec.choose`): balls at the
+* ``ARB_MID`` -- the fast path for mpmath input (:mod:`symbt.numeric.multiprec.runners`): balls at the
   caller's precision plus guard bits, every decision (existence included) on
   midpoints, as the mpmath path decides on its values.  The midpoints are
   what a midpoint arithmetic would compute.

@@ -26,7 +26,7 @@ encloses the exact orbit of the given input.
   ``|returned midpoint - exact value|``.
 
 Measured (paper's example, ``tests/test_numeric_certified.py``,
-``python -m symbt.numeric.timings``): see ``docs/numeric.md``.
+``python -m symbt.benchmarks.numeric_timings``): see ``docs/numeric.md``.
 
 Example
 -------
@@ -50,7 +50,7 @@ import numpy as np
 from ..core.errors import InvalidInputError, MissingDependencyError, NumericRangeError
 from ..core.step import step_core
 from ..float64.kernels import stored_steps
-from .choose import flint_available
+from .runners import flint_available
 
 __all__ = ["certified_orbit", "DEFAULT_MAX_PREC"]
 

@@ -29,7 +29,7 @@ ulps at 50 digits).  At ``mp.dps = 50`` (169 bits) the rule admits
 ``n <= 4095`` steps; one step up to ``mp.prec = 191`` (57 digits).
 
 Numba missing, or ``SYMBT_NO_NUMBA=1``: :func:`qd_available` is False, and
-:mod:`symbt.numeric.multiprec.choose` does not choose this backend.
+:mod:`symbt.numeric.backends` does not choose this backend.
 
 Example
 -------
@@ -58,6 +58,7 @@ import mpmath
 import numpy as np
 
 from ..core.errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError
+from ..core.limits import MAX_DQ_QD
 from ..float64.jit import numba_available
 from ..float64.kernels import orbit_rows
 
@@ -110,8 +111,11 @@ def _digest() -> str:
     from importlib.metadata import PackageNotFoundError, version
 
     h = hashlib.sha256()
-    for name in ("qd.py", "qd_arith.py", "qd_step.py"):
-        h.update((Path(__file__).parent / name).read_bytes())
+    # numba freezes globals at compile time and checks only the calling file's time stamp, so the limits
+    # the step reads (core/limits.py) belong to the sources whose hash marks the cache current
+    here = Path(__file__).parent
+    for path in (here / "qd.py", here / "qd_arith.py", here / "qd_step.py", here.parent / "core" / "limits.py"):
+        h.update(path.read_bytes())
     try:
         h.update(version("numba").encode())
     except PackageNotFoundError:  # pragma: no cover
@@ -365,7 +369,8 @@ def from_qd(x: F64, prec: int) -> list[Any]:
 
 def qd_orbit_mp(P: Sequence[Any], Q: Sequence[Any], lam0: Any, mu: Any, n: int, *, branch: int = 1,
                 every: int = 1) -> tuple[list[list[Any]], list[list[Any]]]:
-    """``n`` steps in quad-double from mpf inputs (as :func:`~symbt.numeric.multiprec.choose.mp_orbit`, real states).
+    """``n`` steps in quad-double from mpf inputs (as :func:`~symbt.numeric.multiprec.runners.flint_orbit`,
+    real states).
 
     Raises :class:`NoRealMapError` as the Arb path, :class:`NumericRangeError` for values outside the
     quad-double range (inputs beyond ``2**+-600``, neighbour distances beyond 300, non-finite
@@ -393,8 +398,8 @@ def qd_orbit_mp(P: Sequence[Any], Q: Sequence[Any], lam0: Any, mu: Any, n: int, 
         raise NoRealMapError("no real Bäcklund map: some Etilde_j = E_j - x_j <= 0 (lam1 and lam2 lie in "
                              "different spectral gaps)", condition="positivity")
     if st != 0:
-        raise NumericRangeError("quad-double step %d left the double exponent range (|q_{j+1} - q_j| > 300 "
-                                "or a non-finite intermediate)" % i)
+        raise NumericRangeError("quad-double step %d left the double exponent range (|q_{j+1} - q_j| > %g "
+                                "or a non-finite intermediate)" % (i, MAX_DQ_QD))
     vals = from_qd(np.stack([outP, outQ], axis=1), prec)            # (rows, 2, N) values
     out: tuple[list[list[Any]], list[list[Any]]] = ([], [])
     for r in range(rows):

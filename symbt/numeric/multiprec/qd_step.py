@@ -1,6 +1,6 @@
 r"""The Bäcklund step and orbit in quad-double arithmetic (:mod:`symbt.numeric.multiprec.qd_arith`).
 
-:func:`qd_step` performs the operations of :func:`~symbt.numeric.multiprec.choose.arb_step`
+:func:`qd_step` performs the operations of :func:`~symbt.numeric.multiprec.runners.arb_step`
 (the fused :func:`~symbt.numeric.core.step.step_core`) in the same order, on
 quad-doubles, with the same decisions taken on the leading components (the
 sign of a renormalised quad-double): ``disc = (t - 2)(t + 2) > 0`` else
@@ -10,10 +10,10 @@ steps in one call and writes the stored states (steps ``0, every, ...`` and
 ``n``) into its output arrays.  A state is an ``(N, 4)`` float64 array (row
 ``j``: the components of site ``j``).
 
-Status codes (those of :mod:`symbt.numeric.float64.kernels`): ``0`` ok, ``1``/``2``
+Status codes (those of :mod:`symbt.numeric.core.limits`): ``0`` ok, ``1``/``2``
 ``|tr L(lam1/lam2)| <= 2``, ``3`` some ``1 + x_j <= 0``, ``4`` range: a
-neighbour distance ``|q_{j+1} - q_j| > 300`` (``r_j`` must stay far inside
-the double exponent range, else its low components lose bits) or a
+neighbour distance ``|q_{j+1} - q_j| > MAX_DQ_QD = 300`` (the squared trace must stay inside the
+range of the quad-double product, :mod:`symbt.numeric.core.limits`) or a
 non-finite value (an overflow, a division by an exact zero).  The caller
 (:mod:`symbt.numeric.multiprec.qd`) turns them into the typed errors of
 :mod:`symbt.numeric.core.errors`, or for ``4`` falls back to the Arb path.
@@ -40,6 +40,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..core.limits import MAX_DQ_QD, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 from .qd_arith import add, add_d, div, exp, log1p, mul, mul_pwr2, neg, renorm4, sqrt, sub
 
 if TYPE_CHECKING:
@@ -47,11 +48,7 @@ if TYPE_CHECKING:
 
     F64 = npt.NDArray[np.float64]
 
-__all__ = ["qd_step", "qd_orbit", "OK", "TRACE1", "TRACE2", "POSITIVITY", "RANGE", "MAX_DQ"]
-
-OK, TRACE1, TRACE2, POSITIVITY, RANGE = 0, 1, 2, 3, 4
-#: largest neighbour distance |q_{j+1} - q_j| the quad-double step accepts
-MAX_DQ = 300.0
+__all__ = ["qd_step", "qd_orbit"]
 
 QD = tuple[float, float, float, float]
 
@@ -113,7 +110,7 @@ def qd_step(P: F64, Q: F64, lam1: QD, lam2: QD, two_mu: QD, branch: int, work: F
     r, a, u, w, dn, xr = work[0], work[1], work[2], work[3], work[4], work[5]
     for j in range(N):
         dq = sub(_row(Q, (j + 1) % N), _row(Q, j))
-        if not abs(dq[0]) <= MAX_DQ:
+        if not abs(dq[0]) <= MAX_DQ_QD:
             return RANGE
         _put(r, j, exp(dq))
     for j in range(N):

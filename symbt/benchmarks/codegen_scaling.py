@@ -1,4 +1,4 @@
-"""Size and time of the emitted code as N grows: ``python -m symbt.codegen.measure [--n 2 3 ...]``.
+"""Size and time of the emitted code as N grows: ``python -m symbt.benchmarks.codegen_scaling [--n 2 3 ...]``.
 
 For each N and form (closed form up to ``--closed-max``, the transfer-matrix form always) it
 measures, each emission in a fresh process (no derivation cached from another N):
@@ -103,7 +103,7 @@ def _fmt(x, unit=1e6, nd=0):
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m symbt.codegen.measure", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="python -m symbt.benchmarks.codegen_scaling", description=__doc__.split("\n")[0])
     ap.add_argument("--n", type=int, nargs="+", default=list(range(2, 13)))
     ap.add_argument("--closed-max", type=int, default=6, help="largest N emitted in closed form (default 6)")
     ap.add_argument("--timeout", type=float, default=900.0, help="per emission, seconds")

@@ -1,4 +1,4 @@
-"""Side-by-side timings of the numeric backends (``python -m symbt.numeric.timings``).
+"""Side-by-side timings of the numeric backends (``python -m symbt.benchmarks.numeric_timings``).
 
 Measures, in one process (ratios are what survives a noisy machine):
 
@@ -18,7 +18,7 @@ Every number is the best of a few repetitions (``time.perf_counter``).
 
 Example
 -------
->>> from symbt.numeric.timings import best_of
+>>> from symbt.benchmarks.numeric_timings import best_of
 >>> best_of(lambda: sum(range(10)), repeat=3) >= 0
 True
 """
@@ -55,10 +55,10 @@ def best_of(fn: Callable[[], Any], repeat: int = 5) -> float:
 
 def kernel_overhead(n: int = 3500, repeat: int = 30) -> dict[str, float]:
     """Seconds for ``n`` steps: raw fused kernel, ``bt_orbit`` (one state) and the general path."""
-    from . import bt_orbit
-    from .float64.jit import kernel
-    from .float64.kernels import ANCHOR
-    from .float64.orbit import _single
+    from ..numeric import bt_orbit
+    from ..numeric.float64.jit import kernel
+    from ..numeric.float64.kernels import ANCHOR
+    from ..numeric.float64.orbit import _single
 
     fn, backend = kernel("orbit")
     p, q = np.array(P0), np.array(Q0)
@@ -73,8 +73,8 @@ def kernel_overhead(n: int = 3500, repeat: int = 30) -> dict[str, float]:
 
 def ensemble_throughput(M: int = 10_000, n: int = 200, repeat: int = 3) -> dict[str, float]:
     """System-steps per second of ``bt_orbit`` on an ``(M, 3)`` ensemble: fused kernel and numpy path."""
-    from . import bt_orbit
-    from .float64.jit import numba_available
+    from ..numeric import bt_orbit
+    from ..numeric.float64.jit import numba_available
 
     rng = np.random.default_rng(0)
     p = np.array(P0) + 0.01 * rng.normal(size=(M, 3))
@@ -97,9 +97,9 @@ def ensemble_throughput(M: int = 10_000, n: int = 200, repeat: int = 3) -> dict[
 
 def mp_speed(dps: int, n: int = 10, repeat: int = 10) -> dict[str, float]:
     """Seconds for ``n`` steps of the paper's example at ``dps`` digits: mpmath, the Arb path, quad-double."""
-    from . import bt_orbit
-    from .multiprec.choose import flint_available
-    from .multiprec.qd import qd_available, qd_fits
+    from ..numeric import bt_orbit
+    from ..numeric.multiprec.qd import qd_available, qd_fits
+    from ..numeric.multiprec.runners import flint_available
 
     out = {}
     with mpmath.workdps(dps):
@@ -126,7 +126,7 @@ def heyoka_flow(dps: int, n: int = 10) -> dict[str, float]:
         import heyoka as hy
     except ImportError:
         return {}
-    from . import bt_orbit, spectral_trace
+    from ..numeric import bt_orbit, spectral_trace
 
     N, prec = 3, int(dps * 3.33) + 1
     with mpmath.workdps(dps + 15):
@@ -170,8 +170,8 @@ def certified_growth(prec: int = 400, steps: tuple[int, ...] = (1, 10, 25, 50, 1
     """``(step, max radius)`` of the naive Arb enclosure at a fixed precision (exact input, paper's example)."""
     from flint import arb
 
-    from .core.step import step_core
-    from .multiprec.arb import ARB_CERTAIN, Uncertain, flint_prec
+    from ..numeric.core.step import step_core
+    from ..numeric.multiprec.arb import ARB_CERTAIN, Uncertain, flint_prec
 
     out = []
     with flint_prec(prec):
@@ -188,7 +188,7 @@ def certified_growth(prec: int = 400, steps: tuple[int, ...] = (1, 10, 25, 50, 1
 
 def certified_time(n: int, tol: float, dps: int) -> tuple[float, float, int]:
     """``(seconds, max radius, working precision)`` of a certified ``n``-step orbit (paper's example)."""
-    from .multiprec.certified import certified_orbit
+    from ..numeric.multiprec.certified import certified_orbit
 
     info: dict[str, Any] = {}
     with mpmath.workdps(dps):
@@ -211,7 +211,7 @@ def main(argv: list[str] | None = None) -> None:
     print("2. ensemble N=3 M=1e4: " + ", ".join("%s %.3g system-steps/s" % kv for kv in e.items()))
     for dps in (50, 100):
         print(_mp_line(dps))
-    from .multiprec.choose import flint_available
+    from ..numeric.multiprec.runners import flint_available
 
     if not flint_available():   # the certified section needs Arb; the rest above degraded to what is installed
         print("4. certified orbits: skipped (python-flint is not installed: pip install \"symbt[certified]\")")

@@ -1,26 +1,22 @@
-r"""High precision, fast: mpmath in, mpmath out, quad-doubles (numba) or python-flint's Arb inside.
+r"""High precision, fast: the step and the orbit of each backend for mpmath input, on a validated problem.
 
-For mpmath input :func:`~symbt.numeric.bt_step` and :func:`~symbt.numeric.bt_orbit`
-pick the fastest backend present (``"auto"``: ``"qd"`` if numba is there, the
-precision fits and the quad-double orbit is compiled -- :func:`~symbt.numeric.multiprec.qd.qd_ready`,
-``python -m symbt.numeric.multiprec.qd`` -- else ``"flint"`` if python-flint is there, else ``"mpmath"``):
+Which backend runs is decided by the table of :mod:`symbt.numeric.backends` (``"auto"``: ``"qd"`` if
+numba is there, the precision fits and the quad-double orbit is compiled --
+:func:`~symbt.numeric.multiprec.qd.qd_ready`, ``python -m symbt.numeric.multiprec.qd`` -- else ``"flint"``
+if python-flint is there, else ``"mpmath"``); this module only runs them:
 
-* ``"qd"`` (numba installed, ``mp.prec`` small enough for the number of steps:
-  :func:`~symbt.numeric.multiprec.qd.qd_fits`): the same step in compiled quad-double
-  arithmetic (:mod:`symbt.numeric.multiprec.qd`, 209 bits), all ``n`` steps in one
-  compiled call; real states only (``allow_complex`` continues on the Arb or
-  mpmath path where the real map does not exist); inputs or states outside the
-  double exponent range go to the next backend under ``"auto"``
-  (:class:`NumericRangeError` for an explicit ``"qd"``).
-* ``"flint"`` (python-flint installed): :func:`~symbt.numeric.core.step.step_core`
-  on Arb balls (:data:`~symbt.numeric.multiprec.arb.ARB_MID`, decisions on midpoints)
-  at ``mp.prec + guard`` bits, the state kept in Arb between the steps of an
-  orbit as exact midpoints (the radii are dropped after every step: this is
-  midpoint arithmetic, a wide ball would make Arb trim its midpoint);
-  results are the midpoints rounded to the caller's ``mp.prec``.
+* ``"qd"`` (:func:`qd_step`, :func:`qd_orbit`): the same step in compiled quad-double arithmetic
+  (:mod:`symbt.numeric.multiprec.qd`, 209 bits), all ``n`` steps in one compiled call; real states
+  only; inputs or states outside the double exponent range raise :class:`NumericRangeError`, after
+  which ``"auto"`` continues on the next backend.
+* ``"flint"`` (:func:`flint_step`, :func:`flint_orbit`): :func:`~symbt.numeric.core.step.step_core`
+  on Arb balls (:data:`~symbt.numeric.multiprec.arb.ARB_MID`, decisions on midpoints) at
+  ``mp.prec + guard`` bits, the state kept in Arb between the steps of an orbit as exact midpoints
+  (the radii are dropped after every step: this is midpoint arithmetic, a wide ball would make Arb
+  trim its midpoint); results are the midpoints rounded to the caller's ``mp.prec``.
   ``allow_complex`` uses complex balls (``acb``).
-* ``"mpmath"``: the same step on mpmath numbers (mpmath itself uses gmpy2
-  when installed: ``mpmath.libmp.BACKEND == 'gmpy'``).
+* ``"mpmath"`` (:func:`mpmath_step`, :func:`mpmath_orbit`): the same step on mpmath numbers (mpmath
+  itself uses gmpy2 when installed: ``mpmath.libmp.BACKEND == 'gmpy'``), and on ``mpmath.iv`` intervals.
 
 Guard bits: ``40`` for a step (like the mpmath path's 12 digits) and
 ``40 + 2 log2(n)`` for an ``n``-step orbit (the orbit error grows like
@@ -30,9 +26,9 @@ Guard bits: ``40`` for a step (like the mpmath path's 12 digits) and
 Example
 -------
 >>> import mpmath
->>> from symbt.numeric.multiprec.choose import mp_orbit
+>>> from symbt.numeric import bt_orbit
 >>> with mpmath.workdps(50):
-...     P, Q = mp_orbit([-20, 10, 1], [1, 0, mpmath.mpf("0.9")], 10, 5, 10, every=10)
+...     P, Q = bt_orbit([-20, 10, 1], [1, 0, mpmath.mpf("0.9")], 10, 5, 10, every=10)
 ...     print(mpmath.nstr(Q[-1][0], 20))
 0.49085150918338141214
 """
@@ -45,16 +41,15 @@ from typing import Any
 
 import mpmath
 
-from ..core.context import IV
-from ..core.errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError, importable
-from ..core.inputs import as_state_pair, prepare_spectral_pair, to_output
+from ..core.errors import NoRealMapError, NumericRangeError, importable
+from ..core.inputs import to_output
+from ..core.problem import Problem
 from ..core.step import mp_step, step_core
 from ..float64.kernels import stored_steps
 
-__all__ = ["flint_available", "mp_backend", "mp_orbit", "arb_step", "pick_mp_backend", "MP_BACKENDS", "GUARD_BITS"]
+__all__ = ["flint_available", "arb_step", "qd_step", "qd_orbit", "flint_step", "flint_orbit", "mpmath_step",
+           "mpmath_orbit", "GUARD_BITS"]
 
-#: accepted ``backend`` values for mpmath input
-MP_BACKENDS = ("auto", "flint", "qd", "mpmath")
 GUARD_BITS = 40
 
 
@@ -204,119 +199,67 @@ def _flint_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
     return [_to_mp(x) for x in Pn], [_to_mp(x) for x in Qn]
 
 
-def pick_mp_backend(backend: str, n: int = 1) -> str:
-    """The backend ``"qd"``, ``"flint"`` or ``"mpmath"`` that runs ``n`` steps at the current ``mp.prec``.
-
-    ``"auto"``: ``"qd"`` if numba is present, :func:`~symbt.numeric.multiprec.qd.qd_fits` and the compiled
-    orbit is ready (:func:`~symbt.numeric.multiprec.qd.qd_ready`: compiled once, e.g. by
-    ``python -m symbt.numeric.multiprec.qd``), else ``"flint"``
-    if python-flint is present, else ``"mpmath"``.  An explicit backend that is missing raises
-    :class:`MissingDependencyError`; ``"qd"`` at a precision it cannot carry raises
-    :class:`InvalidInputError`.
-
-    >>> pick_mp_backend("mpmath")
-    'mpmath'
-    >>> with mpmath.workdps(200):
-    ...     pick_mp_backend("auto", 10) in ("flint", "mpmath")
-    True
-    """
-    if backend not in MP_BACKENDS:
-        raise InvalidInputError("backend for mpmath input must be one of %s, got %r" % (MP_BACKENDS, backend))
-    if backend == "mpmath":
-        return backend
-    from .qd import qd_available, qd_fits, qd_need, qd_ready
-
-    if backend == "qd":
-        if not qd_available():
-            raise MissingDependencyError("the qd backend needs numba: pip install 'symbt[fast]' "
-                                         "(or unset SYMBT_NO_NUMBA)")
-        if not qd_fits(mpmath.mp.prec, n):
-            raise InvalidInputError("the qd backend carries 209 bits; mp.prec = %d with %d steps needs %d: "
-                                    "use backend='flint' (or 'auto')" % (mpmath.mp.prec, n, qd_need(mpmath.mp.prec, n)))
-        return backend
-    if backend == "auto" and qd_fits(mpmath.mp.prec, n) and qd_ready() and qd_available():
-        return "qd"
-    if not flint_available():
-        if backend == "flint":
-            raise MissingDependencyError("the flint backend needs python-flint: pip install 'symbt[certified]'")
-        return "mpmath"
-    return "flint"
-
-
-def _qd_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int, allow_complex: bool,
-             explicit: bool = False) -> tuple[list[Any], list[Any]]:
-    """One quad-double step; where the real map does not exist and ``allow_complex``, or (not ``explicit``)
-    outside the quad-double range, the Arb (or mpmath) step."""
+def qd_step(pr: Problem, allow_complex: bool) -> tuple[list[Any], list[Any]]:
+    """One quad-double step (raises where the Arb path would, and :class:`NumericRangeError` outside the
+    quad-double range: the table's fallback takes over)."""
     from .qd import qd_orbit_mp
 
-    try:
-        Pn, Qn = qd_orbit_mp(P, Q, lam0, mu, 1, branch=branch, every=1)
-        return Pn[-1], Qn[-1]
-    except NoRealMapError:
-        if not allow_complex:
-            raise
-    except NumericRangeError:
-        if explicit:
-            raise
-    if flint_available():
-        return _flint_step(P, Q, lam0, mu, branch, allow_complex)
-    from ..core.context import MP
-
-    return mp_step(MP, P, Q, lam0, mu, branch, allow_complex)
+    Pn, Qn = qd_orbit_mp(pr.p, pr.q, pr.lam0, pr.mu, 1, branch=pr.branch, every=1)
+    return Pn[-1], Qn[-1]
 
 
-def _qd_step_explicit(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
-                      allow_complex: bool) -> tuple[list[Any], list[Any]]:
-    return _qd_step(P, Q, lam0, mu, branch, allow_complex, explicit=True)
+def qd_orbit(pr: Problem) -> tuple[list[list[Any]], list[list[Any]]]:
+    """The orbit in quad-double (:func:`~symbt.numeric.multiprec.qd.qd_orbit_mp`)."""
+    from .qd import qd_orbit_mp
+
+    return qd_orbit_mp(pr.p, pr.q, pr.lam0, pr.mu, pr.n, branch=pr.branch, every=pr.every)
 
 
-def mp_backend(backend: str = "auto") -> Callable[..., tuple[list[Any], list[Any]]] | None:
-    """The fast mpmath step for ``backend`` at the current precision (``None``: use the plain mpmath path).
-
-    >>> mp_backend("mpmath") is None
-    True
-    """
-    name = pick_mp_backend(backend, 1)
-    if name == "qd":
-        return _qd_step_explicit if backend == "qd" else _qd_step
-    return _flint_step if name == "flint" else None
+def flint_step(pr: Problem, allow_complex: bool) -> tuple[list[Any], list[Any]]:
+    """One step on Arb midpoints at ``mp.prec + GUARD_BITS`` (complex balls where ``allow_complex`` needs them)."""
+    return _flint_step(pr.p, pr.q, pr.lam0, pr.mu, pr.branch, allow_complex)
 
 
-def mp_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, every: int = 1,
-             backend: str = "auto") -> tuple[list[list[Any]], list[list[Any]]]:
-    """``n`` steps from one mpmath state; lists of the stored states (mpf at ``mp.dps``).
+def mpmath_step(pr: Problem, allow_complex: bool) -> tuple[list[Any], list[Any]]:
+    """One step on mpmath numbers (or intervals) at ``mp.dps`` plus guard digits."""
+    return mp_step(pr.ctx, pr.p, pr.q, pr.lam0, pr.mu, pr.branch, allow_complex)
 
-    Stored states as for float64 orbits (steps ``0, every, ...`` and ``n``).
 
+def mpmath_orbit(pr: Problem) -> tuple[list[list[Any]], list[list[Any]]]:
+    """The orbit on mpmath numbers (or intervals), one :func:`mpmath_step` after the other.
+
+    >>> import mpmath
+    >>> from symbt.numeric.core.problem import prepare
     >>> with mpmath.workdps(40):
-    ...     P, Q = mp_orbit([-20, 10, 1], [1, 0, mpmath.mpf("0.9")], 10, 5, 2, backend="mpmath")
+    ...     P, Q = mpmath_orbit(prepare([-20, 10, 1], [1, 0, mpmath.mpf("0.9")], 10, 5, n=2))
     >>> len(P), mpmath.nstr(P[1][0], 10)
     (3, '-19.99656766')
     """
-    ctx, P, Q, _ = as_state_pair(p, q, lam0, mu)
-    lam0, mu = prepare_spectral_pair(ctx, lam0, mu, ())
-    keep = set(stored_steps(n, every))
-    outP, outQ = [to_output(ctx, P, ())], [to_output(ctx, Q, ())]
-    name = "mpmath" if ctx is IV else pick_mp_backend(backend, n)
-    if mu == 0 or n == 0:
-        return outP * len(keep), outQ * len(keep)
-    if name == "qd":
-        from .qd import qd_orbit_mp
+    keep = set(stored_steps(pr.n, pr.every))
+    outP, outQ = [to_output(pr.ctx, pr.p, ())], [to_output(pr.ctx, pr.q, ())]
+    pc, qc = pr.p, pr.q
+    for i in range(1, pr.n + 1):
+        pc, qc = mp_step(pr.ctx, pc, qc, pr.lam0, pr.mu, pr.branch, False)
+        if i in keep:
+            outP.append(pc)
+            outQ.append(qc)
+    return outP, outQ
 
-        try:
-            return qd_orbit_mp(P, Q, lam0, mu, n, branch=branch, every=every)
-        except NumericRangeError:
-            if backend == "qd":
-                raise
-            name = "flint" if flint_available() else "mpmath"
-    if name == "mpmath":
-        pc, qc = P, Q
-        for i in range(1, n + 1):
-            pc, qc = mp_step(ctx, pc, qc, lam0, mu, branch, False)
-            if i in keep:
-                outP.append(pc)
-                outQ.append(qc)
-        return outP, outQ
+
+def flint_orbit(pr: Problem) -> tuple[list[list[Any]], list[list[Any]]]:
+    """The orbit on Arb midpoints, the state kept in Arb between the steps (``GUARD_BITS + 2 log2(n)`` guard
+    bits: the orbit error grows like ``n**2`` ulps).
+
+    >>> import mpmath
+    >>> from symbt.numeric.core.problem import prepare
+    >>> with mpmath.workdps(50):
+    ...     P, Q = flint_orbit(prepare([-20, 10, 1], [1, 0, mpmath.mpf("0.9")], 10, 5, n=10, every=10))
+    ...     print(mpmath.nstr(Q[-1][0], 20))
+    0.49085150918338141214
+    """
+    P, Q, lam0, mu, branch, n = pr.p, pr.q, pr.lam0, pr.mu, pr.branch, pr.n
+    keep = set(stored_steps(n, pr.every))
+    outP, outQ = [to_output(pr.ctx, P, ())], [to_output(pr.ctx, Q, ())]
     from flint import arb
 
     from .arb import flint_prec

@@ -1,6 +1,6 @@
 """Invariant drift of long float64 Bäcklund orbits: random walk, not linear growth.
 
-Usage:  PYTHONPATH=. python benchmarks/invariant_drift.py [--n 100000] [--members 16]
+Usage:  python -m symbt.benchmarks.drift_figure [--n 100000] [--members 16]
         [--out docs/figures/invariant_drift.png]
 
 16 orbits of the paper's example (lam0 = 10, mu = 5; member 0 is the paper's
@@ -19,7 +19,7 @@ import json
 
 import numpy as np
 
-from symbt.benchmarks import invariant_drift_curve
+from .drift import invariant_drift_curve
 
 
 def main():

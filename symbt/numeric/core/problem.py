@@ -1,0 +1,82 @@
+"""One validation of the input, shared by every backend: :func:`prepare` returns a frozen :class:`Problem`.
+
+The dispatchers (:func:`~symbt.numeric.bt_step`, :func:`~symbt.numeric.bt_orbit`) call :func:`prepare`
+once; the backends of :mod:`symbt.numeric.backends` take the record and validate nothing again.
+
+Example
+-------
+>>> from symbt.numeric.core.problem import prepare
+>>> pr = prepare([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0, n=3)
+>>> pr.arithmetic, pr.shape, pr.p.shape, pr.n, pr.every
+('float64', (), (1, 3), 3, 1)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import numpy as np
+import numpy.typing as npt
+
+from .context import FLOAT, IV, Context
+from .inputs import as_state_pair, check_branch, check_steps, pick_context, prepare_spectral_pair, validate_float_pair
+
+__all__ = ["Problem", "prepare", "Arithmetic", "StateLike", "FloatArray"]
+
+#: a state as the public functions take it: float64 array-likes of shape ``batch + (N,)``, or a flat
+#: sequence of mpmath numbers (mpmath has no type information, so its numbers are ``Any``)
+StateLike = npt.ArrayLike | Sequence[Any]
+#: a validated float64 array
+FloatArray = npt.NDArray[np.float64]
+
+#: what a backend computes in: float64 arrays, or mpmath numbers (intervals included)
+Arithmetic = Literal["float64", "mpmath"]
+
+
+@dataclass(frozen=True)
+class Problem:
+    """A validated input: ``p, q`` as float64 arrays of shape ``(B, N)`` (``shape`` the batch shape)
+    or as lists of N mpmath numbers (``shape == ()``); ``lam0, mu`` as context values (float64:
+    scalars or arrays over the ``B`` states); ``branch`` in {+1, -1}; ``n`` steps storing every
+    ``every``-th state."""
+
+    ctx: Context
+    p: Any          # FloatArray (B, N), or list of N mpmath numbers
+    q: Any
+    shape: tuple[int, ...]
+    lam0: Any
+    mu: Any
+    branch: int
+    n: int = 1
+    every: int = 1
+
+    @property
+    def arithmetic(self) -> Arithmetic:
+        return "float64" if self.ctx is FLOAT else "mpmath"
+
+    @property
+    def interval(self) -> bool:
+        """True for ``mpmath.iv`` intervals (only the plain mpmath backend computes on them)."""
+        return self.ctx is IV
+
+
+def prepare(p: StateLike, q: StateLike, lam0: Any, mu: Any, *, branch: int = 1, n: int = 1, every: int = 1) -> Problem:
+    """Validate the input of a step or an orbit once (the typed errors of :mod:`symbt.numeric.core.errors`).
+
+    >>> prepare([1.0, 2.0], [0.0, 0.0], 1.0, 0.5, branch=2)
+    Traceback (most recent call last):
+    ...
+    symbt.numeric.core.errors.InvalidInputError: branch must be +1 or -1, got 2
+    """
+    branch = check_branch(branch)
+    n, every = check_steps(n, every)
+    ctx = pick_context(p, q, lam0, mu)
+    if ctx is FLOAT:
+        pa, qa, shape = validate_float_pair(p, q)
+        lam0, mu = prepare_spectral_pair(ctx, lam0, mu, shape)
+        return Problem(ctx, pa, qa, shape, lam0, mu, branch, n, every)
+    ctx, P, Q, shape = as_state_pair(p, q, lam0, mu)
+    lam0, mu = prepare_spectral_pair(ctx, lam0, mu, shape)
+    return Problem(ctx, P, Q, shape, lam0, mu, branch, n, every)
