@@ -26,6 +26,8 @@ r"""The conventions the library computes with, and one verdict through the numer
 """
 from __future__ import annotations
 
+from dataclasses import replace
+
 import sympy as sp
 
 from ..proof import Verdict, decide
@@ -40,7 +42,7 @@ SIZES = (2, 3)
 
 
 def _sized(out: Outcome, N: int) -> Outcome:
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out
 
 
@@ -159,5 +161,5 @@ def phi_screen(parts: Parts) -> Outcome:
                                      f"acosh) in each of the 4 cells branch x sign(tr), tr_i = s (2 + a_i), a_i > 0; "
                                      f"control: the same identity off by a relative {float(CONTROL):.0e} is refuted "
                                      f"with a counterexample in every cell")
-    out.n_scope = "all"
+    out = replace(out, n_scope="all")
     return out

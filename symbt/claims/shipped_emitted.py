@@ -26,6 +26,7 @@ import shutil
 import subprocess
 import tempfile
 from collections.abc import Callable
+from dataclasses import replace
 from functools import cache
 from pathlib import Path
 from typing import Any
@@ -330,5 +331,5 @@ def nomap(parts: Parts, deep: bool = False) -> Outcome:
     out = judge_cells(table, printed="no real map -> NoRealMapError on every route", method="numeric: existence "
                       "decided by the literal route (50 and 75 digits) vs each route's answer", dps=REF_DPS,
                       detail=detail)
-    out.n_scope = [2, 3, 5]
+    out = replace(out, n_scope=[2, 3, 5])
     return out

@@ -12,6 +12,8 @@ time, ``_flow.TAYLOR_SECONDS``): a wrong vector field that blows up makes the sa
 """
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from ..proof.cells import CellTable
@@ -61,5 +63,5 @@ def routes(N: int, parts: Parts, deep: bool = False) -> Outcome:
                                     f"({used})", printed="one BT step of branch b = time-1 flow of sum c_k H_k",
                       dps=15, detail=("; ".join(notes) + ";" if notes else "")
                       + ("" if deep else " the built-in route (heyoka's, when installed, is claim Hdiscr.n%d);" % N))
-    out.n_scope = [N]
+    out = replace(out, n_scope=[N])
     return out

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import importlib.util
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import mpmath as mp
 import numpy as np
@@ -36,6 +36,9 @@ from ._shipped import (
     wide_states,
 )
 from .base import Outcome, Parts, claim, scene
+
+if TYPE_CHECKING:
+    from ..numeric import BackendName
 
 scene("shipped", "what ships: every public numeric entry point and emitted form against the literal map (or "
                  "another independent route), with two-sided bounds from the conditioning (issue 21)")
@@ -75,12 +78,14 @@ def _samples(N: int, deep: bool) -> tuple:
     return ship_cells(N, PER_CELL_DEEP if deep else PER_CELL) + wide_states(N)
 
 
-def _float_routes(deep: bool) -> list[str]:
-    return ["python", "numpy"] + (["numba", "auto"] if deep and _has("numba") else [])
+def _float_routes(deep: bool) -> list[BackendName]:
+    routes: list[BackendName] = ["python", "numpy"]
+    return routes + (["numba", "auto"] if deep and _has("numba") else [])
 
 
-def _mp_routes(deep: bool) -> list[str]:
-    return (["mpmath"] + (["flint"] if _has("flint") else [])
+def _mp_routes(deep: bool) -> list[BackendName]:
+    routes: list[BackendName] = ["mpmath"]
+    return (routes + (["flint"] if _has("flint") else [])
             + (["qd"] if deep and _has("numba") else []))
 
 

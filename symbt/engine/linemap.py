@@ -120,7 +120,7 @@ def _traced_runs(claims: list[Any], files: set[str], timeout: float, scenes: lis
         t0 = time.perf_counter()
         signal.setitimer(signal.ITIMER_REAL, timeout, 1.0)
         try:
-            status = c.run().status
+            status: str = c.run().status
         except _Alarm:
             status = "timed out"
             result["timed_out"].append(c.id)
@@ -128,7 +128,7 @@ def _traced_runs(claims: list[Any], files: set[str], timeout: float, scenes: lis
             status = f"raised {type(exc).__name__}"
         finally:
             signal.setitimer(signal.ITIMER_REAL, 0)
-        entry = {"seconds": round(time.perf_counter() - t0, 3), "status": status}
+        entry: dict[str, object] = {"seconds": round(time.perf_counter() - t0, 3), "status": status}
         if cov is None:
             entry["lines"] = _plain(seen)
         result["claims"][c.id] = entry
