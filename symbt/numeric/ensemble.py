@@ -40,10 +40,10 @@ from ._input import prepare_spectral_pair, validate_float_pair
 from .context import FLOAT
 from .errors import InvalidInputError, NoRealMapError, NumericRangeError
 from .jit import kernel, numba_available
-from .kernels import ANCHOR, OK, POSITIVITY, RANGE, TRACE1, TRACE2, orbit_rows
+from .kernels import ANCHOR, ILLCOND, OK, POSITIVITY, RANGE, TRACE1, TRACE2, orbit_rows
 from .lax import MAX_DQ
-from .rows import float_rows_step
-from .step import BLOCK_ELEMENTS, step_core
+from .rows import escalate_rows, float_rows_step
+from .step import BLOCK_ELEMENTS, float_status, step_core
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -193,14 +193,21 @@ def _general_block(p0: F64, q0: F64, lam0: Any, mu: Any, branch: int, n: int, ev
             if alive.size == 0:
                 break
             Pn, Qn, aux = step_core(FLOAT, Ps, Qs, L0, MU, branch, check_real=False)
-            t1, t2 = aux["S1"].trace_ok > 0, aux["S2"].trace_ok > 0
-            pos = np.logical_and.reduce([x + 1 > 0 for x in aux["xr"]])
-            fin = np.isfinite(np.add.reduce(Pn) + np.add.reduce(Qn))
-            good = t1 & t2 & pos & fin
+        st = float_status(aux, Pn, Qn)
+        ill = np.flatnonzero(st == ILLCOND)
+        if ill.size:                 # this step of these states at higher precision (rows.escalate_rows)
+            ep, eq, est = escalate_rows(np.stack([x[ill] for x in Ps], axis=-1),
+                                        np.stack([x[ill] for x in Qs], axis=-1),
+                                        _take(L0, ill), _take(MU, ill), branch)
+            Pn = [np.array(np.broadcast_to(x, st.shape)) for x in Pn]
+            Qn = [np.array(np.broadcast_to(x, st.shape)) for x in Qn]
+            for j in range(N):
+                Pn[j][ill], Qn[j][ill] = ep[:, j], eq[:, j]
+            st[ill] = est
+        good = st == OK
         if not good.all():
             bad = ~good
-            code = np.select([~t1[bad], ~t2[bad], ~pos[bad]], [TRACE1, TRACE2, POSITIVITY], RANGE)
-            status[alive[bad]], fail[alive[bad]] = code, i
+            status[alive[bad]], fail[alive[bad]] = st[bad], i
             Pn, Qn = [x[good] for x in Pn], [x[good] for x in Qn]
             alive = alive[good]
             full = False

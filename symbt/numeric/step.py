@@ -124,10 +124,11 @@ class SlopeData:
     3.0
     """
 
-    __slots__ = ("u", "trace_ok", "forward", "t", "g", "e")
+    __slots__ = ("u", "trace_ok", "forward", "t", "g", "e", "kappa")
 
     def __init__(self, *, trace_ok: Any = None, t: Any = None, g: Any = None, e: Any = 0,
                  u: list[Any] | None = None, forward: Any = None) -> None:
+        self.kappa: Any = None
         self.trace_ok = trace_ok
         self.t = t
         self.g = g
@@ -178,6 +179,8 @@ def eigen_slopes(ctx: Context, a: Sequence[Any], r: Sequence[Any], s: int, need_
     data.forward = fwd
     if not need_slopes:
         return data
+    if ctx is FLOAT:
+        data.kappa = trace_kappa(a, r, t, disc, e)
     dl = A - D
     sg, plus = ctx.align(g, dl)           # k = dl + sign(dl) g has no cancellation
     k = dl + sg
@@ -193,6 +196,56 @@ def eigen_slopes(ctx: Context, a: Sequence[Any], r: Sequence[Any], s: int, need_
         u = [np.where(fwd, x, y) for x, y in zip(uf, ub)]
     data.u = u
     return data
+
+
+def trace_kappa(a: Sequence[Any], r: Sequence[Any], t: Any, disc: Any, e: Any) -> Any:
+    """float64 condition estimate of the trace decision: ``T |t| / |t**2 - 4|`` per row.
+
+    ``T`` is the trace of ``|m_N| ... |m_1|`` (entrywise absolute values, computed as the monodromy of
+    ``|a_j|`` and ``-r_j``, which has no cancellation), the scale of the rounding error of ``t``; ``t``,
+    ``disc`` are the scaled trace and ``t**2 - 4`` of :func:`eigen_slopes` (exponent ``e``).  Beyond
+    :data:`~symbt.numeric.kernels.KAPPA_MAX` the float64 decision ``|t| > 2`` and the slopes are not
+    trusted (the state is recomputed at higher precision, see :func:`float_status`).
+
+    >>> two = [np.array([2.0]), np.array([3.0])]
+    >>> float(trace_kappa(two, [np.array([1.0])] * 2, np.array([4.0]), np.array([12.0]), 0)[0])  # T = 8
+    2.6666666666666665
+    """
+    with np.errstate(all="ignore"):
+        Aa, _, _, Da, ea = monodromy(FLOAT, [np.abs(x) for x in a], [-x for x in r])
+        return np.ldexp(Aa + Da, ea - e) * (np.abs(t) / np.abs(disc))
+
+
+def float_status(aux: dict[str, Any], Pn: Sequence[Any], Qn: Sequence[Any]) -> npt.NDArray[np.int64]:
+    """Per-row status codes (:mod:`.kernels`) of a float64 :func:`step_core` with ``check_real=False``.
+
+    In the order of the fused kernels: ``ILLCOND`` where a trace is within ``KAPPA_MAX`` times its rounding
+    scale of ``+-2`` (:func:`trace_kappa`), ``TRACE1``/``TRACE2`` where ``|tr| <= 2``, ``POSITIVITY`` where
+    the traces have opposite signs (``lam1``, ``lam2`` in different gaps: no real map) or some
+    ``Etilde_j / E_j = 1 + xr_j <= 0``, ``ILLCOND`` where ``|xr_j| > KAPPA_MAX |1 + xr_j|`` (that sign not
+    decided), ``RANGE`` where the result is not finite.
+    """
+    from .kernels import ILLCOND, KAPPA_MAX, OK, POSITIVITY, RANGE, TRACE1, TRACE2
+
+    S1, S2 = aux["S1"], aux["S2"]
+    with np.errstate(all="ignore"):
+        ill_t = ~(S1.kappa <= KAPPA_MAX) | ~(S2.kappa <= KAPPA_MAX)
+        t1, t2 = S1.trace_ok > 0, S2.trace_ok > 0
+        opp = (S1.t < 0) != (S2.t < 0)
+        xr = aux["xr"]
+        ill_p = np.logical_or.reduce([~(np.abs(x) <= KAPPA_MAX * np.abs(x + 1)) for x in xr])
+        pos = np.logical_and.reduce([x + 1 > 0 for x in xr])
+        fin = np.isfinite(np.add.reduce(Pn) + np.add.reduce(Qn))
+    conds = [np.broadcast_to(c, np.shape(fin)) for c in (ill_t, ~t1, ~t2, opp, ill_p, ~pos, ~fin)]
+    codes = [ILLCOND, TRACE1, TRACE2, POSITIVITY, ILLCOND, POSITIVITY, RANGE]
+    return np.select(conds, codes, OK).astype(np.int64)
+
+
+def _opposite(t1: Any, t2: Any) -> Any:
+    """Traces certainly of opposite signs (elementwise for arrays; balls and intervals: certain only)."""
+    if isinstance(t1, np.ndarray) or isinstance(t2, np.ndarray):
+        return np.logical_xor(np.real(t1) < 0, np.real(t2) < 0)
+    return bool((t1 < 0 and t2 > 0) or (t1 > 0 and t2 < 0))
 
 
 def where_text(ok: Any, shape: tuple[int, ...], offset: int = 0,
@@ -242,6 +295,14 @@ def step_core(ctx: Context, P: Sequence[Any], Q: Sequence[Any], lam0: Any, mu: A
                 raise NoRealMapError(
                     "no real Bäcklund map: |tr L(%s)| <= 2, the spectral parameter lies "
                     "in a band%s" % (name, txt), condition="trace", where=where)
+        opp = _opposite(S1.t, S2.t)
+        if np.any(opp):
+            # |tr| > 2 at both points and the signs differ: lam1, lam2 lie in different spectral gaps, so
+            # some Etilde_j <= 0 in exact arithmetic -- decided here from the traces, not from the rounded xr
+            where, txt = where_text(np.logical_not(opp), shape, offset, index)
+            raise NoRealMapError(
+                "no real Bäcklund map: tr L(lam1) and tr L(lam2) have opposite signs (lam1 and lam2 lie in "
+                "different spectral gaps)%s" % txt, condition="positivity", where=where)
     u, w = S1.u, S2.u
     assert u is not None and w is not None
     two_mu = 2 * mu
