@@ -11,9 +11,10 @@ is judged by an independent route:
   where the state is ill-conditioned (``kappa > 1e10``), the literal map of :mod:`symbt.reference` at 60
   digits decides (a real result or not); a seeded subset of 1 in 50 inputs is always judged by the literal
   map too, so the screen is never the only judge;
-* accuracy: a returned state must satisfy ``max |x - x_ref| <= 32 N eps kappa s`` (``s`` the state's scale
-  ``max(|p|, |q|, |p~|, |q~|, |lam0| + |mu|)``, ``kappa`` the condition estimate of docs/numeric.md,
-  "Existence and accuracy", evaluated on the high-precision traces and ``Etilde_j / E_j``).
+* accuracy: a returned state must satisfy ``max |x - x_ref| <= 32 N eps kappa rho s`` (``s`` the state's scale
+  ``max(|p|, |q|, |p~|, |q~|, |lam0| + |mu|)``, ``rho = 1 + max |q_{j+1} - q_j|``, ``kappa`` the condition
+  estimate of docs/numeric.md, "Existence and accuracy", evaluated on the high-precision traces and
+  ``Etilde_j / E_j``).
 
 0 silent wrong results (a finite state where no real map exists, or a state beyond its bound) and 0 untyped
 errors.  The default run takes a few thousand inputs; ``SYMBT_FUZZ_DEEP=1`` (marker ``deep``) runs 1e5.
@@ -269,7 +270,7 @@ def fuzz(seed, count, full_every=50):
                      or (states and not exists) or (exists and len(states) < len(got)))
         if exists and states and not need_full:
             kappa = max(kt, _kappa_pos(q, ref[p.size:]))
-            need_full = kappa > 1e10 or any(_error(v, ref, p, q, lam0, mu) > _bound(p, kappa) for v in states)
+            need_full = kappa > 1e10 or any(_error(v, ref, p, q, lam0, mu) > _bound(p, q, kappa) for v in states)
         if need_full:
             stats["full_reference"] += 1
             ref = literal(p, q, lam0, mu, b)
@@ -285,7 +286,7 @@ def fuzz(seed, count, full_every=50):
                     failures.append((name, "finite state without a real map", None, case))
                     continue
                 kappa = max(kt, _kappa_pos(q, ref[p.size:]))
-                err, bound = _error(v, ref, p, q, lam0, mu), _bound(p, kappa)
+                err, bound = _error(v, ref, p, q, lam0, mu), _bound(p, q, kappa)
                 if not err <= bound:
                     failures.append((name, "beyond bound", "error %.3g > bound %.3g (kappa %.3g)"
                                      % (err, bound, kappa), case))
@@ -304,8 +305,11 @@ def _error(v, ref, p, q, lam0, mu):
     return float(err) / _scale(v, ref, p, q, lam0, mu)
 
 
-def _bound(p, kappa):
-    return BOUND * p.size * EPS * max(1.0, kappa)
+def _bound(p, q, kappa):
+    """The documented bound: ``32 N eps kappa rho``, ``rho = 1 + max_j |q_{j+1} - q_j|`` (the rounding of
+    ``r_j = exp(q_{j+1} - q_j)`` is relative ``eps rho``)."""
+    rho = 1.0 + float(np.max(np.abs(np.roll(q, -1) - q)))
+    return BOUND * p.size * EPS * max(1.0, kappa) * rho
 
 
 # ------------------------------------------------------------------------------------------------- the tests

@@ -196,9 +196,15 @@ def _general_block(p0: F64, q0: F64, lam0: Any, mu: Any, branch: int, n: int, ev
         st = float_status(aux, Pn, Qn)
         ill = np.flatnonzero(st == ILLCOND)
         if ill.size:                 # this step of these states at higher precision (rows.escalate_rows)
-            ep, eq, est = escalate_rows(np.stack([x[ill] for x in Ps], axis=-1),
-                                        np.stack([x[ill] for x in Qs], axis=-1),
-                                        _take(L0, ill), _take(MU, ill), branch)
+            rows_ill = alive[ill]
+            pin = np.stack([x[ill] for x in Ps], axis=-1)
+            if i == 1:               # the given input exactly (not its rounded re-centred copy)
+                ep, eq, est = escalate_rows(pin, q0[rows_ill], _take(L0, ill), _take(MU, ill), branch)
+                eq = eq - c_hi[rows_ill][:, None]
+            else:                    # the carried state: relative coordinates plus the centre, added exactly
+                ep, eq, est = escalate_rows(pin, np.stack([x[ill] for x in Qs], axis=-1), _take(L0, ill),
+                                            _take(MU, ill), branch,
+                                            np.stack([c_hi[rows_ill], c_lo[rows_ill]], axis=-1))
             Pn = [np.array(np.broadcast_to(x, st.shape)) for x in Pn]
             Qn = [np.array(np.broadcast_to(x, st.shape)) for x in Qn]
             for j in range(N):

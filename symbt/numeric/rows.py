@@ -41,16 +41,18 @@ __all__ = ["float_rows_step", "raise_for_rows", "escalate_rows", "ESCALATION_DIG
 ESCALATION_DIGITS = (40, 80, 160, 320)
 
 
-def _mp_verdict(p: F64, q: F64, lam0: float, mu: float, branch: int, dps: int) -> tuple[int, list[Any]]:
-    """One state at ``dps`` digits through the mpmath step: ``(status, values)``."""
+def _mp_verdict(p: F64, q: F64, lam0: float, mu: float, branch: int, dps: int,
+                shift: tuple[float, float] = (0.0, 0.0)) -> tuple[int, list[Any]]:
+    """One state ``(p, q + shift)`` at ``dps`` digits through the mpmath step: ``(status, p~ + (q~ - shift))``."""
     import mpmath
 
     from .errors import NoRealMapError as _NoMap
     from .step import bt_step
 
     with mpmath.workdps(dps):
+        c = mpmath.mpf(shift[0]) + mpmath.mpf(shift[1])
         P = [mpmath.mpf(float(v)) for v in p]            # float64 values are exact binary numbers
-        Q = [mpmath.mpf(float(v)) for v in q]
+        Q = [mpmath.mpf(float(v)) + c for v in q]
         try:
             Pn, Qn = bt_step(P, Q, mpmath.mpf(float(lam0)), mpmath.mpf(float(mu)), branch=branch)
         except _NoMap as err:
@@ -59,10 +61,11 @@ def _mp_verdict(p: F64, q: F64, lam0: float, mu: float, branch: int, dps: int) -
             return (TRACE2 if "lam2" in str(err) else TRACE1), []
         except NumericRangeError:
             return RANGE, []
-        return OK, list(Pn) + list(Qn)
+        return OK, list(Pn) + [v - c for v in Qn]
 
 
-def escalate_rows(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int) -> tuple[F64, F64, I64]:
+def escalate_rows(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int,
+                  shift: F64 | None = None) -> tuple[F64, F64, I64]:
     """Recompute ill-conditioned float64 states (rows of ``pa, qa``) at higher precision.
 
     Each row goes through the mpmath step (:func:`~symbt.numeric.step.bt_step` on the exact binary values of
@@ -70,6 +73,8 @@ def escalate_rows(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int) -> tuple[F6
     digits; the first precision at which both runs agree -- the same verdict, and values equal to
     ``2**-64`` of the state's scale -- decides the row: the result rounded to float64, or the no-real-map
     status.  A row not decided at the last precision gets ``RANGE`` (:class:`NumericRangeError`).
+    ``shift`` (optional, ``(M, 2)``): the state is ``q + shift[:, 0] + shift[:, 1]`` (an orbit's carried
+    centre of mass, added exactly) and the returned ``q~`` is relative to it.
 
     >>> pt, qt, st = escalate_rows(np.array([[0.0, 0.0]]), np.array([[0.0, 0.0]]), 0.0, 2.0 ** -30, 1)
     >>> st.tolist()                               # tr L(+-2**-30) = 2**-60 - 2: inside the band
@@ -82,9 +87,10 @@ def escalate_rows(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int) -> tuple[F6
     status = np.full(M, RANGE, np.int64)
     for k in range(M):
         l0, m = float(_take(lam0, k)), float(_take(mu, k))
+        sh = (0.0, 0.0) if shift is None else (float(shift[k, 0]), float(shift[k, 1]))
         for dps in ESCALATION_DIGITS:
-            st, vals = _mp_verdict(pa[k], qa[k], l0, m, branch, dps)
-            st2, vals2 = _mp_verdict(pa[k], qa[k], l0, m, branch, dps + 20)
+            st, vals = _mp_verdict(pa[k], qa[k], l0, m, branch, dps, sh)
+            st2, vals2 = _mp_verdict(pa[k], qa[k], l0, m, branch, dps + 20, sh)
             if st != st2:
                 continue
             if st == OK:
