@@ -119,3 +119,16 @@ def test_escalation_decides_an_exact_band_edge():
 
 def test_kappa_threshold_is_what_the_docs_say():
     assert KAPPA_MAX == 2.0 ** 24
+
+
+# lam ~ 1e88 at |q_2 - q_1| = 409 (kappa ~ 2e15): the given input has no real map, but its re-centred copy
+# (q - mean(q), rounded) has one -- the orbit's general path must decide on the given input (fuzz-found)
+FAR = (np.array([3.039639003075365, 2.0729077060997194]), np.array([-204.5974906157231, 204.59749061572313]),
+       -7.170475903275937e+88, -2.1802594905911873e+84, -1)
+
+
+@pytest.mark.parametrize("route", sorted(FLOAT_ROUTES))
+def test_ill_conditioned_far_state_is_decided_on_the_given_input(route):
+    assert not all(isinstance(v, mp.mpf) for v in _literal(FAR))
+    with pytest.raises(NoRealMapError):
+        FLOAT_ROUTES[route](*FAR)
