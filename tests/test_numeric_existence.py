@@ -132,3 +132,18 @@ def test_ill_conditioned_far_state_is_decided_on_the_given_input(route):
     assert not all(isinstance(v, mp.mpf) for v in _literal(FAR))
     with pytest.raises(NoRealMapError):
         FLOAT_ROUTES[route](*FAR)
+
+
+# lam1 ~ lam2 ~ -p_2 at |q_{j+1} - q_j| ~ 550: the slope difference d_2 cancels; the exact map is ill-conditioned
+# (a relative change of lam0 by 1e-17 moves q~_2 by 0.02) and every route returned q~_2 off by 0.1 (fuzz-found)
+CANCEL = (np.array([-1.2645478634923202, 0.2464648524730024, 0.3255132303147244]),
+          np.array([178.4767173369139, 189.5786335005842, -368.0553508374982]),
+          -0.24646485247300448, 1.9567680809018384e-15, 1)
+
+
+@pytest.mark.parametrize("route", sorted(FLOAT_ROUTES))
+def test_cancelling_slope_difference_is_escalated(route):
+    ref = _literal(CANCEL)
+    pt, qt = FLOAT_ROUTES[route](*CANCEL[:4], CANCEL[4])
+    err = max(abs(float(a) - float(r)) for a, r in zip(np.concatenate([pt, qt]), ref))
+    assert err <= 4 * EPS * 368.1, err

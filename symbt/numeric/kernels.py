@@ -140,8 +140,14 @@ def _slopes1(p: F64, r: F64, lam: float, s: int, u: F64, code: int, tt: F64, i: 
     Ba = 1.0
     Ca = C
     Da = 0.0
+    kn = abs(lam) + abs(p[0])       # max_j (|lam| + |p_j|) / |lam + p_j| as kn / kd (cancellation in a_j)
+    kd = abs(A)
     for j in range(1, N):
         a = lam + p[j]
+        cn = abs(lam) + abs(p[j])
+        if cn * kd > kn * abs(a):
+            kn = cn
+            kd = abs(a)
         a0 = A
         b0 = Bm
         A = a * a0 - C
@@ -163,6 +169,7 @@ def _slopes1(p: F64, r: F64, lam: float, s: int, u: F64, code: int, tt: F64, i: 
     disc = (t - 2.0) * (t + 2.0)
     if not (Aa + Da) * abs(t) <= KAPPA_MAX * abs(disc):
         return ILLCOND
+    tt[i + 2] = (Aa + Da) * abs(t) / abs(disc) * (kn / kd)   # the trace's condition times a_j's (>= 1)
     if not disc > 0.0:
         return code
     if not disc < 1e300:
@@ -228,7 +235,7 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
     w = np.empty(N)
     xr = np.empty(N)
     gq = np.empty(N)
-    tt = np.empty(2)
+    tt = np.empty(4)
     for j in range(N):
         outP[0, j] = p0[j]
         outQ[0, j] = q0[j]
@@ -245,6 +252,7 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
             return st
         if (tt[0] < 0.0) != (tt[1] < 0.0):
             return POSITIVITY        # lam1, lam2 in different gaps (|tr| > 2 decided, so the signs are)
+        kt = max(tt[2], tt[3])
         for j in range(N):
             dn = u[j] - w[j]
             x = two_mu / dn
@@ -252,8 +260,11 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
             gq[j] = u[j] / dn
             if not abs(x) < 1e300:
                 return RANGE
-            if not abs(x) <= KAPPA_MAX * abs(x + 1.0):
-                return ILLCOND       # Etilde_j / E_j = 1 + xr_j near 0 against its rounding error
+            # kappa = kt (|u| + |w|) / |u - w| (1 + |xr| / |1 + xr|): the slopes' error, the cancellation in
+            # d_j = u_j - w_j and the read-out log1p(xr_j) -- else the sign of 1 + xr_j or the result is not
+            # trusted (step.py, "Existence and accuracy in float64")
+            if not kt * (abs(u[j]) + abs(w[j])) * (abs(x + 1.0) + abs(x)) <= KAPPA_MAX * abs(dn) * abs(x + 1.0):
+                return ILLCOND
             if not x + 1.0 > 0.0:
                 return POSITIVITY
         for j in range(N):

@@ -38,11 +38,12 @@ prange = range  # the ensemble kernel is compiled with numba.prange in its place
 
 
 def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64, C: F64, D: F64,
-            u1: F64, fw: I64, status: I64, code: int, Ab: F64, tt: F64) -> None:
+            u1: F64, fw: I64, status: I64, code: int, Ab: F64, tt: F64, kt: F64, Kn: F64, Kd: F64) -> None:
     """Scaled eigenvector slopes ``u[j, k]`` at ``lam[k]`` for sign ``s`` (see :mod:`.step`).
 
-    ``tt[k]`` receives the trace; ``Ab`` (4, B) is scratch for the product of the absolute values
-    (the trace's rounding scale, :func:`~symbt.numeric.kernels._slopes1`)."""
+    ``tt[k]`` receives the trace, ``kt[k]`` the maximum of itself and the trace's condition; ``Ab`` (4, B)
+    is scratch for the product of the absolute values (the trace's rounding scale,
+    :func:`~symbt.numeric.kernels._slopes1`)."""
     N, B = p.shape
     for k in range(B):
         A[k] = lam[k] + p[0, k]
@@ -53,9 +54,15 @@ def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64,
         Ab[1, k] = 1.0
         Ab[2, k] = C[k]
         Ab[3, k] = 0.0
+        Kn[k] = abs(lam[k]) + abs(p[0, k])      # kernels._slopes1: cancellation in a_j = lam + p_j
+        Kd[k] = abs(A[k])
     for j in range(1, N):
         for k in range(B):
             a = lam[k] + p[j, k]
+            cn = abs(lam[k]) + abs(p[j, k])
+            if cn * Kd[k] > Kn[k] * abs(a):
+                Kn[k] = cn
+                Kd[k] = abs(a)
             a0 = A[k]
             b0 = Bm[k]
             A[k] = a * a0 - C[k]
@@ -84,6 +91,8 @@ def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64,
         decided = (Ab[0, k] + Ab[3, k]) * abs(t) <= KAPPA_MAX * abs(disc)
         bad = (RANGE if not inrange else ILLCOND if not decided else code if not disc > 0.0
                else RANGE if not disc < 1e300 else OK)   # tr**2 must not overflow
+        kap = (Ab[0, k] + Ab[3, k]) * abs(t) / abs(disc) * (Kn[k] / Kd[k])
+        kt[k] = kap if kap > kt[k] else kt[k]
         st = status[k]
         status[k] = st if st != OK else bad
         g = math.sqrt(disc if disc > 0.0 else 0.0)
@@ -178,6 +187,9 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
     l2 = np.empty(B)
     tm = np.empty(B)
     Ab = np.empty((4, B))
+    kt = np.empty(B)
+    Kn = np.empty(B)
+    Kd = np.empty(B)
     t1 = np.empty(B)
     t2 = np.empty(B)
     for k in range(B):
@@ -192,8 +204,10 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
     _anchor(qh, ql, fh, fl, r, p, st)
     row = 1
     for i in range(1, n + 1):
-        _slopes(p, r, l1, branch, u, tmp, A, Bm, C, D, u1, fw, st, TRACE1, Ab, t1)
-        _slopes(p, r, l2, -branch, w, tmp, A, Bm, C, D, u1, fw, st, TRACE2, Ab, t2)
+        for k in range(B):
+            kt[k] = 1.0
+        _slopes(p, r, l1, branch, u, tmp, A, Bm, C, D, u1, fw, st, TRACE1, Ab, t1, kt, Kn, Kd)
+        _slopes(p, r, l2, -branch, w, tmp, A, Bm, C, D, u1, fw, st, TRACE2, Ab, t2, kt, Kn, Kd)
         for k in range(B):
             if st[k] == OK and (t1[k] < 0.0) != (t2[k] < 0.0):
                 st[k] = POSITIVITY          # lam1, lam2 in different gaps (kernels.orbit)
@@ -203,7 +217,9 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
                 x = tm[k] / dn
                 xr[j, k] = x
                 gq[j, k] = u[j, k] / dn
-                bad = (RANGE if not abs(x) < 1e300 else ILLCOND if not abs(x) <= KAPPA_MAX * abs(x + 1.0)
+                ok = (kt[k] * (abs(u[j, k]) + abs(w[j, k])) * (abs(x + 1.0) + abs(x))
+                      <= KAPPA_MAX * abs(dn) * abs(x + 1.0))          # kernels.orbit
+                bad = (RANGE if not abs(x) < 1e300 else ILLCOND if not ok
                        else POSITIVITY if not x + 1.0 > 0.0 else OK)
                 s0 = st[k]
                 st[k] = s0 if s0 != OK else bad

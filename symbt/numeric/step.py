@@ -41,10 +41,23 @@ Stable formulation (what is actually computed)
    accuracy, so small ``mu`` costs nothing (the literal ``E - x`` and
    ``eta_j - eta_{j+1}`` lose ``log10(1/mu)`` digits).
 
-Existence: the real map needs ``|tr L(lam_i)| > 2`` and ``2 mu / d_j < 1`` for all
-``j`` (``Etilde_j > 0``); otherwise :class:`NoRealMapError` (or a complex
-result with ``allow_complex=True``).  ``branch = -1`` is the inverse of
-``branch = +1`` and equals ``branch = +1`` at ``-mu``.
+Existence: the real map needs ``|tr L(lam_i)| > 2``, traces of the same sign
+(``lam1``, ``lam2`` in one gap; opposite signs mean different gaps) and
+``1 + xr_j > 0`` for all ``j`` (``Etilde_j > 0``); otherwise
+:class:`NoRealMapError` (or a complex result with ``allow_complex=True``).
+``branch = -1`` is the inverse of ``branch = +1`` and equals ``branch = +1`` at ``-mu``.
+
+Existence and accuracy in float64.  Every float64 route decides a state only
+where the decision is conditioned: with ``T_i`` the trace of ``|m_N| ... |m_1|``,
+
+    kappa = max_j k_t (|u_j| + |w_j|) / |u_j - w_j| (1 + |xr_j| / |1 + xr_j|),
+    k_t = max_i T_i |t_i| / |t_i**2 - 4| * max_j (|lam_i| + |p_j|) / |lam_i + p_j|,
+
+a state with ``kappa > KAPPA_MAX = 2**24`` is recomputed by the mpmath step
+(:func:`symbt.numeric.rows.escalate_rows`) and rounded to float64.  A returned
+state satisfies ``max |x - x_exact| <= 32 N eps kappa rho s`` (``rho = 1 +
+max |q_{j+1} - q_j|``, ``s = max(|p|, |q|, |p~|, |q~|, |lam0| + |mu|)``,
+``eps = 2**-52``); docs/numeric.md, "Existence and accuracy".
 
 Degenerate eigenvectors.  A slope is a point of the projective line: where an
 eigenvector is ``(0, 1)`` the slope is infinite (e.g. ``lam + p_j = 0`` on the
@@ -153,7 +166,8 @@ def _backward(ctx: Context, a: Sequence[Any], r: Sequence[Any], u1: Any) -> list
     return u
 
 
-def eigen_slopes(ctx: Context, a: Sequence[Any], r: Sequence[Any], s: int, need_slopes: bool = True) -> SlopeData:
+def eigen_slopes(ctx: Context, a: Sequence[Any], r: Sequence[Any], s: int, need_slopes: bool = True,
+                 spec: tuple[Any, Sequence[Any]] | None = None) -> SlopeData:
     """Slopes of the eigenvector with eigenvalue ``(tr - s*sqrt(tr^2-4))/2`` at every site.
 
     ``a_j = lam + p_j``; ``s = +1`` gives the paper's ``y`` (for ``branch=+1``),
@@ -179,8 +193,11 @@ def eigen_slopes(ctx: Context, a: Sequence[Any], r: Sequence[Any], s: int, need_
     data.forward = fwd
     if not need_slopes:
         return data
-    if ctx is FLOAT:
-        data.kappa = trace_kappa(a, r, t, disc, e)
+    if ctx is FLOAT and spec is not None:        # float64 conditioning (``spec = (lam, p)``, a_j = lam + p_j)
+        lam, P = spec
+        with np.errstate(all="ignore"):
+            ka = np.maximum.reduce([(np.abs(lam) + np.abs(P[j])) / np.abs(a[j]) for j in range(len(a))])
+        data.kappa = trace_kappa(a, r, t, disc, e, ka)
     dl = A - D
     sg, plus = ctx.align(g, dl)           # k = dl + sign(dl) g has no cancellation
     k = dl + sg
@@ -198,12 +215,13 @@ def eigen_slopes(ctx: Context, a: Sequence[Any], r: Sequence[Any], s: int, need_
     return data
 
 
-def trace_kappa(a: Sequence[Any], r: Sequence[Any], t: Any, disc: Any, e: Any) -> Any:
+def trace_kappa(a: Sequence[Any], r: Sequence[Any], t: Any, disc: Any, e: Any, ka: Any = 1.0) -> Any:
     """float64 condition estimate of the trace decision: ``T |t| / |t**2 - 4|`` per row.
 
     ``T`` is the trace of ``|m_N| ... |m_1|`` (entrywise absolute values, computed as the monodromy of
     ``|a_j|`` and ``-r_j``, which has no cancellation), the scale of the rounding error of ``t``; ``t``,
-    ``disc`` are the scaled trace and ``t**2 - 4`` of :func:`eigen_slopes` (exponent ``e``).  Beyond
+    ``disc`` are the scaled trace and ``t**2 - 4`` of :func:`eigen_slopes` (exponent ``e``), ``ka`` the
+    cancellation factor ``max_j (|lam| + |p_j|) / |lam + p_j|`` it is multiplied by.  Beyond
     :data:`~symbt.numeric.kernels.KAPPA_MAX` the float64 decision ``|t| > 2`` and the slopes are not
     trusted (the state is recomputed at higher precision, see :func:`float_status`).
 
@@ -213,7 +231,7 @@ def trace_kappa(a: Sequence[Any], r: Sequence[Any], t: Any, disc: Any, e: Any) -
     """
     with np.errstate(all="ignore"):
         Aa, _, _, Da, ea = monodromy(FLOAT, [np.abs(x) for x in a], [-x for x in r])
-        return np.ldexp(Aa + Da, ea - e) * (np.abs(t) / np.abs(disc))
+        return np.ldexp(Aa + Da, ea - e) * (np.abs(t) / np.abs(disc)) * ka
 
 
 def float_status(aux: dict[str, Any], Pn: Sequence[Any], Qn: Sequence[Any]) -> npt.NDArray[np.int64]:
@@ -222,8 +240,8 @@ def float_status(aux: dict[str, Any], Pn: Sequence[Any], Qn: Sequence[Any]) -> n
     In the order of the fused kernels: ``ILLCOND`` where a trace is within ``KAPPA_MAX`` times its rounding
     scale of ``+-2`` (:func:`trace_kappa`), ``TRACE1``/``TRACE2`` where ``|tr| <= 2``, ``POSITIVITY`` where
     the traces have opposite signs (``lam1``, ``lam2`` in different gaps: no real map) or some
-    ``Etilde_j / E_j = 1 + xr_j <= 0``, ``ILLCOND`` where ``|xr_j| > KAPPA_MAX |1 + xr_j|`` (that sign not
-    decided), ``RANGE`` where the result is not finite.
+    ``Etilde_j / E_j = 1 + xr_j <= 0``, ``ILLCOND`` where the state's ``kappa`` (module docstring) exceeds
+    ``KAPPA_MAX`` (that sign or the result not trusted), ``RANGE`` where the result is not finite.
     """
     from .kernels import ILLCOND, KAPPA_MAX, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 
@@ -232,8 +250,11 @@ def float_status(aux: dict[str, Any], Pn: Sequence[Any], Qn: Sequence[Any]) -> n
         ill_t = ~(S1.kappa <= KAPPA_MAX) | ~(S2.kappa <= KAPPA_MAX)
         t1, t2 = S1.trace_ok > 0, S2.trace_ok > 0
         opp = (S1.t < 0) != (S2.t < 0)
-        xr = aux["xr"]
-        ill_p = np.logical_or.reduce([~(np.abs(x) <= KAPPA_MAX * np.abs(x + 1)) for x in xr])
+        xr, u, w = aux["xr"], aux["u"], aux["w"]
+        kt = np.maximum(S1.kappa, S2.kappa)
+        ill_p = np.logical_or.reduce([
+            ~(kt * (np.abs(u[j]) + np.abs(w[j])) * (np.abs(x + 1) + np.abs(x))
+              <= KAPPA_MAX * np.abs(u[j] - w[j]) * np.abs(x + 1)) for j, x in enumerate(xr)])
         pos = np.logical_and.reduce([x + 1 > 0 for x in xr])
         fin = np.isfinite(np.add.reduce(Pn) + np.add.reduce(Qn))
     conds = [np.broadcast_to(c, np.shape(fin)) for c in (ill_t, ~t1, ~t2, opp, ill_p, ~pos, ~fin)]
@@ -286,8 +307,8 @@ def step_core(ctx: Context, P: Sequence[Any], Q: Sequence[Any], lam0: Any, mu: A
     lam1, lam2 = lam0 + mu, lam0 - mu
     a1 = [lam1 + pj for pj in P]
     a2 = [lam2 + pj for pj in P]
-    S1 = eigen_slopes(ctx, a1, r, branch)
-    S2 = eigen_slopes(ctx, a2, r, -branch)
+    S1 = eigen_slopes(ctx, a1, r, branch, spec=(lam1, P))
+    S2 = eigen_slopes(ctx, a2, r, -branch, spec=(lam2, P))
     if check_real:
         for name, S in (("lam1 = lam0 + mu", S1), ("lam2 = lam0 - mu", S2)):
             if not ctx.all_positive(S.trace_ok):
