@@ -137,11 +137,13 @@ def trace_kappa_hp(p, q, lam0, mu):
     with mp.workdps(40):
         P, Q, L, M = _mpv(p), _mpv(q), mp.mpf(lam0), mp.mpf(mu)
         k = mp.mpf(1)
+        ka = mp.mpf(1)
         for lam in (L + M, L - M):
             t = literal_trace(lam, P, Q)
             d = abs(t * t - 4)
             k = max(k, _abs_trace(lam, P, Q) * abs(t) / d if d else mp.inf)
-        return float(k)
+            ka = max([ka] + [(abs(lam) + abs(x)) / abs(lam + x) if lam + x else mp.inf for x in P])
+        return float(k * ka)
 
 
 def kappa_hp(p, q, lam0, mu, branch, kt):
