@@ -17,7 +17,7 @@ is judged by an independent route:
   ``Etilde_j / E_j``).
 
 0 silent wrong results (a finite state where no real map exists, or a state beyond its bound) and 0 untyped
-errors.  The default run takes a few thousand inputs; ``SYMBT_FUZZ_DEEP=1`` (marker ``deep``) runs 1e5.
+errors.  The default run takes 400 inputs (~1 min); ``SYMBT_FUZZ_DEEP=1`` (marker ``deep``) runs 1e5.
 """
 from __future__ import annotations
 
@@ -50,9 +50,10 @@ def _edges(p, q):
             if abs(z.imag) > 1e-3 * max(1.0, abs(z)):
                 continue
             x = float(z.real)
-            for _ in range(30):
-                f = float(np.polyval(c, x))
-                d = float(np.polyval(dc, x))
+            for _ in range(30) if np.isfinite(x) else ():
+                with np.errstate(all="ignore"):
+                    f = float(np.polyval(c, x))
+                    d = float(np.polyval(dc, x))
                 if d == 0 or not np.isfinite(d):
                     break
                 x2 = x - f / d
@@ -345,9 +346,9 @@ def test_generators_cover_the_edges():
 def test_fuzz_default_run():
     """A seeded run in the default suite: 0 silent wrong results, 0 untyped errors."""
     t0 = time.perf_counter()
-    stats, failures = fuzz(seed=20261126, count=1500)
+    stats, failures = fuzz(seed=20261126, count=400)
     assert not failures, failures[:5]
-    assert stats["states"] > 200 and stats["no_map"] > 200, stats          # both verdicts exercised
+    assert stats["states"] > 80 and stats["no_map"] > 80, stats            # both verdicts exercised
     assert time.perf_counter() - t0 < 600
 
 
