@@ -275,7 +275,7 @@ def fuzz(seed, count, full_every=50):
                     results[name].append((i, v))
     for name in BATCH_ROUTES:
         results[name] = [v for _, v in sorted(results[name], key=lambda x: x[0])]
-    stats = {"inputs": len(inputs), "full_reference": 0, "no_map": 0, "states": 0, "escalation_suspects": 0}
+    stats = {"inputs": len(inputs), "full_reference": 0, "no_map": 0, "states": 0}
     failures = []
     for i, (kind, p, q, lam0, mu, b) in enumerate(inputs):
         got = {name: results[name][i] for name in results}
