@@ -43,7 +43,7 @@ def transported(m, lam_, u0, forward):
 
 def scaled_monodromy(m, lam_):
     """``M = m_N ... m_1``, ``m_j = [[lam_ + p_j, -1], [r_j, 0]]``, ``r_j = exp(q_{j+1} - q_j)``: ``S_1 L S_1^-1``
-    with ``S_1 = diag(1, E_1)`` (its slopes are the scaled ``u = E_1 y``), as :mod:`symbt.numeric.lax`."""
+    with ``S_1 = diag(1, E_1)`` (its slopes are the scaled ``u = E_1 y``), as :mod:`symbt.numeric.core.monodromy`."""
     M = sp.eye(2)
     for j in range(m.N):
         M = sp.Matrix([[lam_ + m.p[j], -1], [sp.exp(m.q[(j + 1) % m.N] - m.q[j]), 0]]) * M

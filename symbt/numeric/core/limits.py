@@ -9,6 +9,7 @@ the typed errors of :mod:`symbt.numeric.core.errors`):
 ``TRACE2``      2     ``|tr L(lam2)| <= 2``
 ``POSITIVITY``  3     some ``Etilde_j <= 0``: ``lam1`` and ``lam2`` lie in different spectral gaps
 ``RANGE``       4     beyond the arithmetic's range (the general path or the next backend takes over)
+``ILLCOND``     5     the state's condition estimate exceeds :data:`KAPPA_MAX`: recomputed at higher precision
 ==============  ====  ==========================================================================
 
 Neighbour distances.  Only ``r_j = exp(q_{j+1} - q_j)`` enters the step; how far ``|q_{j+1} - q_j|``
@@ -35,9 +36,12 @@ a value, also touch ``float64/kernels.py`` and ``float64/kernels_block.py``.
 
 from __future__ import annotations
 
-__all__ = ["OK", "TRACE1", "TRACE2", "POSITIVITY", "RANGE", "MAX_DQ_FLOAT64", "MAX_DQ_QD"]
+__all__ = ["OK", "TRACE1", "TRACE2", "POSITIVITY", "RANGE", "ILLCOND", "KAPPA_MAX", "MAX_DQ_FLOAT64", "MAX_DQ_QD"]
 
-OK, TRACE1, TRACE2, POSITIVITY, RANGE = 0, 1, 2, 3, 4
+OK, TRACE1, TRACE2, POSITIVITY, RANGE, ILLCOND = 0, 1, 2, 3, 4, 5
+#: float64 states whose condition estimate exceeds this are recomputed at higher precision
+#: (:func:`symbt.numeric.float64.rows.escalate_rows`)
+KAPPA_MAX = 2.0 ** 24
 
 #: largest neighbour distance ``|q_{j+1} - q_j|`` of the float64 paths
 MAX_DQ_FLOAT64 = 700.0

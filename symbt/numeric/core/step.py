@@ -41,10 +41,23 @@ Stable formulation (what is actually computed)
    accuracy, so small ``mu`` costs nothing (the literal ``E - x`` and
    ``eta_j - eta_{j+1}`` lose ``log10(1/mu)`` digits).
 
-Existence: the real map needs ``|tr L(lam_i)| > 2`` and ``2 mu / d_j < 1`` for all
-``j`` (``Etilde_j > 0``); otherwise :class:`NoRealMapError` (or a complex
-result with ``allow_complex=True``).  ``branch = -1`` is the inverse of
-``branch = +1`` and equals ``branch = +1`` at ``-mu``.
+Existence: the real map needs ``|tr L(lam_i)| > 2``, traces of the same sign
+(``lam1``, ``lam2`` in one gap; opposite signs mean different gaps) and
+``1 + xr_j > 0`` for all ``j`` (``Etilde_j > 0``); otherwise
+:class:`NoRealMapError` (or a complex result with ``allow_complex=True``).
+``branch = -1`` is the inverse of ``branch = +1`` and equals ``branch = +1`` at ``-mu``.
+
+Existence and accuracy in float64.  Every float64 route decides a state only
+where the decision is conditioned: with ``T_i`` the trace of ``|m_N| ... |m_1|``,
+
+    kappa = max_j k_t (|u_j| + |w_j|) / |u_j - w_j| (1 + |xr_j| / |1 + xr_j|),
+    k_t = max_i T_i |t_i| / |t_i**2 - 4| * max_j (|lam_i| + |p_j|) / |lam_i + p_j|,
+
+a state with ``kappa > KAPPA_MAX = 2**24`` is recomputed by the mpmath step
+(:func:`symbt.numeric.float64.rows.escalate_rows`) and rounded to float64.  A returned
+state satisfies ``max |x - x_exact| <= 32 N eps kappa rho s`` (``rho = 1 +
+max |q_{j+1} - q_j|``, ``s = max(|p|, |q|, |p~|, |q~|, |lam0| + |mu|)``,
+``eps = 2**-52``); docs/numeric.md, "Existence and accuracy".
 
 Degenerate eigenvectors.  A slope is a point of the projective line: where an
 eigenvector is ``(0, 1)`` the slope is infinite (e.g. ``lam + p_j = 0`` on the
@@ -87,7 +100,7 @@ from typing import TYPE_CHECKING, Any
 import mpmath
 import numpy as np
 
-from .context import IV, Context
+from .context import FLOAT, IV, Context
 from .errors import NoRealMapError, NumericRangeError
 from .inputs import to_output
 from .monodromy import monodromy, neighbour_ratios
@@ -114,10 +127,11 @@ class SlopeData:
     3.0
     """
 
-    __slots__ = ("u", "trace_ok", "forward", "t", "g", "e")
+    __slots__ = ("u", "trace_ok", "forward", "t", "g", "e", "kappa")
 
     def __init__(self, *, trace_ok: Any = None, t: Any = None, g: Any = None, e: Any = 0,
                  u: list[Any] | None = None, forward: Any = None) -> None:
+        self.kappa: Any = None
         self.trace_ok = trace_ok
         self.t = t
         self.g = g
@@ -142,7 +156,8 @@ def _backward(ctx: Context, a: Sequence[Any], r: Sequence[Any], u1: Any) -> list
     return u
 
 
-def eigen_slopes(ctx: Context, a: Sequence[Any], r: Sequence[Any], s: int, need_slopes: bool = True) -> SlopeData:
+def eigen_slopes(ctx: Context, a: Sequence[Any], r: Sequence[Any], s: int, need_slopes: bool = True,
+                 spec: tuple[Any, Sequence[Any]] | None = None) -> SlopeData:
     """Slopes of the eigenvector with eigenvalue ``(tr - s*sqrt(tr^2-4))/2`` at every site.
 
     ``a_j = lam + p_j``; ``s = +1`` gives the paper's ``y`` (for ``branch=+1``),
@@ -168,6 +183,11 @@ def eigen_slopes(ctx: Context, a: Sequence[Any], r: Sequence[Any], s: int, need_
     data.forward = fwd
     if not need_slopes:
         return data
+    if ctx is FLOAT and spec is not None:        # float64 conditioning (``spec = (lam, p)``, a_j = lam + p_j)
+        lam, P = spec
+        with np.errstate(all="ignore"):
+            ka = np.maximum.reduce([(np.abs(lam) + np.abs(P[j])) / np.abs(a[j]) for j in range(len(a))])
+        data.kappa = trace_kappa(a, r, t, disc, e, ka)
     dl = A - D
     sg, plus = ctx.align(g, dl)           # k = dl + sign(dl) g has no cancellation
     k = dl + sg
@@ -183,6 +203,60 @@ def eigen_slopes(ctx: Context, a: Sequence[Any], r: Sequence[Any], s: int, need_
         u = [np.where(fwd, x, y) for x, y in zip(uf, ub)]
     data.u = u
     return data
+
+
+def trace_kappa(a: Sequence[Any], r: Sequence[Any], t: Any, disc: Any, e: Any, ka: Any = 1.0) -> Any:
+    """float64 condition estimate of the trace decision: ``T |t| / |t**2 - 4|`` per row.
+
+    ``T`` is the trace of ``|m_N| ... |m_1|`` (entrywise absolute values, computed as the monodromy of
+    ``|a_j|`` and ``-r_j``, which has no cancellation), the scale of the rounding error of ``t``; ``t``,
+    ``disc`` are the scaled trace and ``t**2 - 4`` of :func:`eigen_slopes` (exponent ``e``), ``ka`` the
+    cancellation factor ``max_j (|lam| + |p_j|) / |lam + p_j|`` it is multiplied by.  Beyond
+    :data:`~symbt.numeric.core.limits.KAPPA_MAX` the float64 decision ``|t| > 2`` and the slopes are not
+    trusted (the state is recomputed at higher precision, see :func:`float_status`).
+
+    >>> two = [np.array([2.0]), np.array([3.0])]
+    >>> float(trace_kappa(two, [np.array([1.0])] * 2, np.array([4.0]), np.array([12.0]), 0)[0])  # T = 8
+    2.6666666666666665
+    """
+    with np.errstate(all="ignore"):
+        Aa, _, _, Da, ea = monodromy(FLOAT, [np.abs(x) for x in a], [-x for x in r])
+        return np.ldexp(Aa + Da, ea - e) * (np.abs(t) / np.abs(disc)) * ka
+
+
+def float_status(aux: dict[str, Any], Pn: Sequence[Any], Qn: Sequence[Any]) -> npt.NDArray[np.int64]:
+    """Per-row status codes (:mod:`symbt.numeric.core.limits`) of a float64 :func:`step_core` with ``check_real=False``.
+
+    In the order of the fused kernels: ``ILLCOND`` where a trace is within ``KAPPA_MAX`` times its rounding
+    scale of ``+-2`` (:func:`trace_kappa`), ``TRACE1``/``TRACE2`` where ``|tr| <= 2``, ``POSITIVITY`` where
+    the traces have opposite signs (``lam1``, ``lam2`` in different gaps: no real map) or some
+    ``Etilde_j / E_j = 1 + xr_j <= 0``, ``ILLCOND`` where the state's ``kappa`` (module docstring) exceeds
+    ``KAPPA_MAX`` (that sign or the result not trusted), ``RANGE`` where the result is not finite.
+    """
+    from .limits import ILLCOND, KAPPA_MAX, OK, POSITIVITY, RANGE, TRACE1, TRACE2
+
+    S1, S2 = aux["S1"], aux["S2"]
+    with np.errstate(all="ignore"):
+        ill_t = ~(S1.kappa <= KAPPA_MAX) | ~(S2.kappa <= KAPPA_MAX)
+        t1, t2 = S1.trace_ok > 0, S2.trace_ok > 0
+        opp = (S1.t < 0) != (S2.t < 0)
+        xr, u, w = aux["xr"], aux["u"], aux["w"]
+        kt = np.maximum(S1.kappa, S2.kappa)
+        ill_p = np.logical_or.reduce([
+            ~(kt * (np.abs(u[j]) + np.abs(w[j])) * (np.abs(x + 1) + np.abs(x))
+              <= KAPPA_MAX * np.abs(u[j] - w[j]) * np.abs(x + 1)) for j, x in enumerate(xr)])
+        pos = np.logical_and.reduce([x + 1 > 0 for x in xr])
+        fin = np.isfinite(np.add.reduce(Pn) + np.add.reduce(Qn))
+    conds = [np.broadcast_to(c, np.shape(fin)) for c in (ill_t, ~t1, ~t2, opp, ill_p, ~pos, ~fin)]
+    codes = [ILLCOND, TRACE1, TRACE2, POSITIVITY, ILLCOND, POSITIVITY, RANGE]
+    return np.select(conds, codes, OK).astype(np.int64)
+
+
+def _opposite(t1: Any, t2: Any) -> Any:
+    """Traces certainly of opposite signs (elementwise for arrays; balls and intervals: certain only)."""
+    if isinstance(t1, np.ndarray) or isinstance(t2, np.ndarray):
+        return np.logical_xor(np.real(t1) < 0, np.real(t2) < 0)
+    return bool((t1 < 0 and t2 > 0) or (t1 > 0 and t2 < 0))
 
 
 def where_text(ok: Any, shape: tuple[int, ...], offset: int = 0,
@@ -223,8 +297,8 @@ def step_core(ctx: Context, P: Sequence[Any], Q: Sequence[Any], lam0: Any, mu: A
     lam1, lam2 = lam0 + mu, lam0 - mu
     a1 = [lam1 + pj for pj in P]
     a2 = [lam2 + pj for pj in P]
-    S1 = eigen_slopes(ctx, a1, r, branch)
-    S2 = eigen_slopes(ctx, a2, r, -branch)
+    S1 = eigen_slopes(ctx, a1, r, branch, spec=(lam1, P))
+    S2 = eigen_slopes(ctx, a2, r, -branch, spec=(lam2, P))
     if check_real:
         for name, S in (("lam1 = lam0 + mu", S1), ("lam2 = lam0 - mu", S2)):
             if not ctx.all_positive(S.trace_ok):
@@ -232,6 +306,14 @@ def step_core(ctx: Context, P: Sequence[Any], Q: Sequence[Any], lam0: Any, mu: A
                 raise NoRealMapError(
                     "no real Bäcklund map: |tr L(%s)| <= 2, the spectral parameter lies "
                     "in a band%s" % (name, txt), condition="trace", where=where)
+        opp = _opposite(S1.t, S2.t)
+        if np.any(opp):
+            # |tr| > 2 at both points and the signs differ: lam1, lam2 lie in different spectral gaps, so
+            # some Etilde_j <= 0 in exact arithmetic -- decided here from the traces, not from the rounded xr
+            where, txt = where_text(np.logical_not(opp), shape, offset, index)
+            raise NoRealMapError(
+                "no real Bäcklund map: tr L(lam1) and tr L(lam2) have opposite signs (lam1 and lam2 lie in "
+                "different spectral gaps)%s" % txt, condition="positivity", where=where)
     u, w = S1.u, S2.u
     assert u is not None and w is not None
     two_mu = 2 * mu

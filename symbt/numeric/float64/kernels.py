@@ -29,10 +29,15 @@ without perturbing the relative coordinates).  After one step the result
 equals :func:`~symbt.numeric.core.step.step_core`'s to an ulp.
 
 Status codes per state (first failure wins): ``0`` ok, ``1``/``2``
-``|tr L(lam1/lam2)| <= 2``, ``3`` some ``Etilde_j <= 0``, ``4`` range problem
-(monodromy entries beyond ``1e290``, ``|q_{j+1} - q_j| > 700``, a non-finite
-intermediate such as a degenerate eigenvector).  The drivers recompute every
-failing state with the general path, which decides the error.
+``|tr L(lam1/lam2)| <= 2``, ``3`` some ``Etilde_j <= 0`` or ``tr L(lam1)``,
+``tr L(lam2)`` of opposite signs (``lam1``, ``lam2`` in different gaps), ``4``
+range problem (monodromy entries beyond ``1e290``, ``|q_{j+1} - q_j| > 700``, a
+non-finite intermediate such as a degenerate eigenvector), ``5`` ill-conditioned
+(the float64 decision or result is not trustworthy: condition estimate ``kappa``
+beyond :data:`KAPPA_MAX`, see :mod:`symbt.numeric.core.step`, "Existence and
+accuracy").  The drivers recompute every failing state with the general path,
+which decides the error (and recomputes an ill-conditioned state at higher
+precision).
 
 Example
 -------
@@ -52,7 +57,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..core.limits import MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
+from ..core.limits import ILLCOND, KAPPA_MAX, MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -117,26 +122,52 @@ def _dd_position(qh: float, ql: float, fh: float, fl: float) -> float:
     return h + lo
 
 
-def _slopes1(p: F64, r: F64, lam: float, s: int, u: F64, code: int) -> int:
-    """One state of :func:`_slopes` (same operations in the same order); returns the status."""
+def _slopes1(p: F64, r: F64, lam: float, s: int, u: F64, code: int, tt: F64, i: int) -> int:
+    """One state of :func:`_slopes` (same operations in the same order); returns the status.
+
+    ``tt[i]`` receives the trace.  The trace is decided only where it is far from ``+-2`` against its
+    rounding error: ``T |t| <= KAPPA_MAX |t**2 - 4|`` with ``T`` the trace of the product of the
+    entrywise absolute values (a bound of the rounding error's scale), else ``ILLCOND``.
+    """
     N = p.shape[0]
     A = lam + p[0]
     Bm = -1.0
     C = r[0]
     D = 0.0
+    Aa = abs(A)
+    Ba = 1.0
+    Ca = C
+    Da = 0.0
+    kn = abs(lam) + abs(p[0])       # max_j (|lam| + |p_j|) / |lam + p_j| as kn / kd (cancellation in a_j)
+    kd = abs(A)
     for j in range(1, N):
         a = lam + p[j]
+        cn = abs(lam) + abs(p[j])
+        if cn * kd > kn * abs(a):
+            kn = cn
+            kd = abs(a)
         a0 = A
         b0 = Bm
         A = a * a0 - C
         Bm = a * b0 - D
         C = r[j] * a0
         D = r[j] * b0
+        aa = abs(a)
+        a0 = Aa
+        b0 = Ba
+        Aa = aa * a0 + Ca
+        Ba = aa * b0 + Da
+        Ca = r[j] * a0
+        Da = r[j] * b0
     t = A + D
+    tt[i] = t
     if not (abs(A) < 1e290 and abs(Bm) < 1e290 and abs(C) < 1e290 and abs(D) < 1e290
             and (abs(A) > 1e-290 or abs(Bm) > 1e-290)):
         return RANGE
     disc = (t - 2.0) * (t + 2.0)
+    if not (Aa + Da) * abs(t) <= KAPPA_MAX * abs(disc):
+        return ILLCOND
+    tt[i + 2] = (Aa + Da) * abs(t) / abs(disc) * (kn / kd)   # the trace's condition times a_j's (>= 1)
     if not disc > 0.0:
         return code
     if not disc < 1e300:
@@ -202,6 +233,7 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
     w = np.empty(N)
     xr = np.empty(N)
     gq = np.empty(N)
+    tt = np.empty(4)
     for j in range(N):
         outP[0, j] = p0[j]
         outQ[0, j] = q0[j]
@@ -210,12 +242,15 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
         return st
     row = 1
     for i in range(1, n + 1):
-        st = _slopes1(p, r, lam1, branch, u, TRACE1)
+        st = _slopes1(p, r, lam1, branch, u, TRACE1, tt, 0)
         if st != OK:
             return st
-        st = _slopes1(p, r, lam2, -branch, w, TRACE2)
+        st = _slopes1(p, r, lam2, -branch, w, TRACE2, tt, 1)
         if st != OK:
             return st
+        if (tt[0] < 0.0) != (tt[1] < 0.0):
+            return POSITIVITY        # lam1, lam2 in different gaps (|tr| > 2 decided, so the signs are)
+        kt = max(tt[2], tt[3])
         for j in range(N):
             dn = u[j] - w[j]
             x = two_mu / dn
@@ -223,6 +258,11 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
             gq[j] = u[j] / dn
             if not abs(x) < 1e300:
                 return RANGE
+            # kappa = kt (|u| + |w|) / |u - w| (1 + |xr| / |1 + xr|): the slopes' error, the cancellation in
+            # d_j = u_j - w_j and the read-out log1p(xr_j) -- else the sign of 1 + xr_j or the result is not
+            # trusted (step.py, "Existence and accuracy in float64")
+            if not kt * (abs(u[j]) + abs(w[j])) * (abs(x + 1.0) + abs(x)) <= KAPPA_MAX * abs(dn) * abs(x + 1.0):
+                return ILLCOND
             if not x + 1.0 > 0.0:
                 return POSITIVITY
         for j in range(N):

@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..core.limits import MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
+from ..core.limits import ILLCOND, KAPPA_MAX, MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 from .kernels import _dd_add, _dd_position, _logf
 
 if TYPE_CHECKING:
@@ -39,23 +39,44 @@ prange = range  # the ensemble kernel is compiled with numba.prange in its place
 
 
 def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64, C: F64, D: F64,
-            u1: F64, fw: I64, status: I64, code: int) -> None:
-    """Scaled eigenvector slopes ``u[j, k]`` at ``lam[k]`` for sign ``s`` (see :mod:`symbt.numeric.core.step`)."""
+            u1: F64, fw: I64, status: I64, code: int, Ab: F64, tt: F64, kt: F64, Kn: F64, Kd: F64) -> None:
+    """Scaled eigenvector slopes ``u[j, k]`` at ``lam[k]`` for sign ``s`` (see :mod:`symbt.numeric.core.step`).
+
+    ``tt[k]`` receives the trace, ``kt[k]`` the maximum of itself and the trace's condition; ``Ab`` (4, B)
+    is scratch for the product of the absolute values (the trace's rounding scale,
+    :func:`~symbt.numeric.float64.kernels._slopes1`)."""
     N, B = p.shape
     for k in range(B):
         A[k] = lam[k] + p[0, k]
         Bm[k] = -1.0
         C[k] = r[0, k]
         D[k] = 0.0
+        Ab[0, k] = abs(A[k])
+        Ab[1, k] = 1.0
+        Ab[2, k] = C[k]
+        Ab[3, k] = 0.0
+        Kn[k] = abs(lam[k]) + abs(p[0, k])      # kernels._slopes1: cancellation in a_j = lam + p_j
+        Kd[k] = abs(A[k])
     for j in range(1, N):
         for k in range(B):
             a = lam[k] + p[j, k]
+            cn = abs(lam[k]) + abs(p[j, k])
+            if cn * Kd[k] > Kn[k] * abs(a):
+                Kn[k] = cn
+                Kd[k] = abs(a)
             a0 = A[k]
             b0 = Bm[k]
             A[k] = a * a0 - C[k]
             Bm[k] = a * b0 - D[k]
             C[k] = r[j, k] * a0
             D[k] = r[j, k] * b0
+            aa = abs(a)
+            a0 = Ab[0, k]
+            b0 = Ab[1, k]
+            Ab[0, k] = aa * a0 + Ab[2, k]
+            Ab[1, k] = aa * b0 + Ab[3, k]
+            Ab[2, k] = r[j, k] * a0
+            Ab[3, k] = r[j, k] * b0
     spos = s > 0
     nf = 0
     for k in range(B):
@@ -64,10 +85,15 @@ def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64,
         c_ = C[k]
         d_ = D[k]
         t = a_ + d_
+        tt[k] = t
         disc = (t - 2.0) * (t + 2.0)
         inrange = (abs(a_) < 1e290 and abs(b_) < 1e290 and abs(c_) < 1e290 and abs(d_) < 1e290
-                   and (abs(a_) > 1e-290 or abs(b_) > 1e-290) and disc < 1e300)   # tr**2 must not overflow
-        bad = RANGE if not inrange else (code if not disc > 0.0 else OK)
+                   and (abs(a_) > 1e-290 or abs(b_) > 1e-290))
+        decided = (Ab[0, k] + Ab[3, k]) * abs(t) <= KAPPA_MAX * abs(disc)
+        bad = (RANGE if not inrange else ILLCOND if not decided else code if not disc > 0.0
+               else RANGE if not disc < 1e300 else OK)   # tr**2 must not overflow
+        kap = (Ab[0, k] + Ab[3, k]) * abs(t) / abs(disc) * (Kn[k] / Kd[k])
+        kt[k] = kap if kap > kt[k] else kt[k]
         st = status[k]
         status[k] = st if st != OK else bad
         g = math.sqrt(disc if disc > 0.0 else 0.0)
@@ -161,6 +187,12 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
     l1 = np.empty(B)
     l2 = np.empty(B)
     tm = np.empty(B)
+    Ab = np.empty((4, B))
+    kt = np.empty(B)
+    Kn = np.empty(B)
+    Kd = np.empty(B)
+    t1 = np.empty(B)
+    t2 = np.empty(B)
     for k in range(B):
         l1[k] = lam1[i0 + k]
         l2[k] = lam2[i0 + k]
@@ -173,15 +205,23 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
     _anchor(qh, ql, fh, fl, r, p, st)
     row = 1
     for i in range(1, n + 1):
-        _slopes(p, r, l1, branch, u, tmp, A, Bm, C, D, u1, fw, st, TRACE1)
-        _slopes(p, r, l2, -branch, w, tmp, A, Bm, C, D, u1, fw, st, TRACE2)
+        for k in range(B):
+            kt[k] = 1.0
+        _slopes(p, r, l1, branch, u, tmp, A, Bm, C, D, u1, fw, st, TRACE1, Ab, t1, kt, Kn, Kd)
+        _slopes(p, r, l2, -branch, w, tmp, A, Bm, C, D, u1, fw, st, TRACE2, Ab, t2, kt, Kn, Kd)
+        for k in range(B):
+            if st[k] == OK and (t1[k] < 0.0) != (t2[k] < 0.0):
+                st[k] = POSITIVITY          # lam1, lam2 in different gaps (kernels.orbit)
         for j in range(N):
             for k in range(B):
                 dn = u[j, k] - w[j, k]
                 x = tm[k] / dn
                 xr[j, k] = x
                 gq[j, k] = u[j, k] / dn
-                bad = RANGE if not abs(x) < 1e300 else (POSITIVITY if not x + 1.0 > 0.0 else OK)
+                ok = (kt[k] * (abs(u[j, k]) + abs(w[j, k])) * (abs(x + 1.0) + abs(x))
+                      <= KAPPA_MAX * abs(dn) * abs(x + 1.0))          # kernels.orbit
+                bad = (RANGE if not abs(x) < 1e300 else ILLCOND if not ok
+                       else POSITIVITY if not x + 1.0 > 0.0 else OK)
                 s0 = st[k]
                 st[k] = s0 if s0 != OK else bad
         for j in range(N):

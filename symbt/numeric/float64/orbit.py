@@ -39,12 +39,12 @@ import numpy as np
 from ..core.context import FLOAT
 from ..core.errors import InvalidInputError, NoRealMapError, NumericRangeError
 from ..core.inputs import prepare_spectral_pair, validate_float_pair
-from ..core.limits import MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
+from ..core.limits import ILLCOND, MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 from ..core.problem import Problem
-from ..core.step import BLOCK_ELEMENTS, step_core
+from ..core.step import BLOCK_ELEMENTS, float_status, step_core
 from .jit import kernel, numba_available
 from .kernels import ANCHOR, orbit_rows
-from .rows import float_rows_step
+from .rows import escalate_rows, float_rows_step
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -194,14 +194,27 @@ def _general_block(p0: F64, q0: F64, lam0: Any, mu: Any, branch: int, n: int, ev
             if alive.size == 0:
                 break
             Pn, Qn, aux = step_core(FLOAT, Ps, Qs, L0, MU, branch, check_real=False)
-            t1, t2 = aux["S1"].trace_ok > 0, aux["S2"].trace_ok > 0
-            pos = np.logical_and.reduce([x + 1 > 0 for x in aux["xr"]])
-            fin = np.isfinite(np.add.reduce(Pn) + np.add.reduce(Qn))
-            good = t1 & t2 & pos & fin
+        st = float_status(aux, Pn, Qn)
+        ill = np.flatnonzero(st == ILLCOND)
+        if ill.size:                 # this step of these states at higher precision (rows.escalate_rows)
+            rows_ill = alive[ill]
+            pin = np.stack([x[ill] for x in Ps], axis=-1)
+            if i == 1:               # the given input exactly (not its rounded re-centred copy)
+                ep, eq, est = escalate_rows(pin, q0[rows_ill], _take(L0, ill), _take(MU, ill), branch)
+                eq = eq - c_hi[rows_ill][:, None]
+            else:                    # the carried state: relative coordinates plus the centre, added exactly
+                ep, eq, est = escalate_rows(pin, np.stack([x[ill] for x in Qs], axis=-1), _take(L0, ill),
+                                            _take(MU, ill), branch,
+                                            np.stack([c_hi[rows_ill], c_lo[rows_ill]], axis=-1))
+            Pn = [np.array(np.broadcast_to(x, st.shape)) for x in Pn]
+            Qn = [np.array(np.broadcast_to(x, st.shape)) for x in Qn]
+            for j in range(N):
+                Pn[j][ill], Qn[j][ill] = ep[:, j], eq[:, j]
+            st[ill] = est
+        good = st == OK
         if not good.all():
             bad = ~good
-            code = np.select([~t1[bad], ~t2[bad], ~pos[bad]], [TRACE1, TRACE2, POSITIVITY], RANGE)
-            status[alive[bad]], fail[alive[bad]] = code, i
+            status[alive[bad]], fail[alive[bad]] = st[bad], i
             Pn, Qn = [x[good] for x in Pn], [x[good] for x in Qn]
             alive = alive[good]
             full = False

@@ -22,10 +22,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..core.context import COMPLEX, FLOAT
+from ..core.context import COMPLEX, FLOAT, MP
 from ..core.errors import NoRealMapError, NumericRangeError
-from ..core.limits import MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
-from ..core.step import BLOCK_ELEMENTS, step_core
+from ..core.limits import ILLCOND, MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
+from ..core.step import BLOCK_ELEMENTS, float_status, mp_step, step_core
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -33,25 +33,93 @@ if TYPE_CHECKING:
     F64 = npt.NDArray[np.float64]
     I64 = npt.NDArray[np.int64]
 
-__all__ = ["float_rows_step", "raise_for_rows"]
+__all__ = ["float_rows_step", "raise_for_rows", "escalate_rows", "ESCALATION_DIGITS"]
+
+#: working precisions (decimal digits) tried for an ill-conditioned float64 state; each is checked against a
+#: second run with 20 more digits
+ESCALATION_DIGITS = (40, 80, 160, 320)
+
+
+def _mp_verdict(p: F64, q: F64, lam0: float, mu: float, branch: int, dps: int,
+                shift: tuple[float, float] = (0.0, 0.0)) -> tuple[int, list[Any]]:
+    """One state ``(p, q + shift)`` at ``dps`` digits through the mpmath step: ``(status, p~ + (q~ - shift))``."""
+    import mpmath
+
+    with mpmath.workdps(dps):
+        c = mpmath.mpf(shift[0]) + mpmath.mpf(shift[1])
+        P = [mpmath.mpf(float(v)) for v in p]            # float64 values are exact binary numbers
+        Q = [mpmath.mpf(float(v)) + c for v in q]
+        try:
+            Pn, Qn = mp_step(MP, P, Q, mpmath.mpf(float(lam0)), mpmath.mpf(float(mu)), branch, False)
+        except NoRealMapError as err:
+            if err.condition == "positivity":
+                return POSITIVITY, []
+            return (TRACE2 if "lam2" in str(err) else TRACE1), []
+        except NumericRangeError:
+            return RANGE, []
+        return OK, list(Pn) + [v - c for v in Qn]
+
+
+def escalate_rows(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int,
+                  shift: F64 | None = None) -> tuple[F64, F64, I64]:
+    """Recompute ill-conditioned float64 states (rows of ``pa, qa``) at higher precision.
+
+    Each row goes through the mpmath step (:func:`~symbt.numeric.core.step.mp_step` on the exact binary values of
+    its float64 input) at the digits of :data:`ESCALATION_DIGITS` in turn, each run repeated with 20 more
+    digits; the first precision at which both runs agree -- the same verdict, and values equal to
+    ``2**-64`` of the state's scale -- decides the row: the result rounded to float64, or the no-real-map
+    status.  A row not decided at the last precision gets ``RANGE`` (:class:`NumericRangeError`).
+    ``shift`` (optional, ``(M, 2)``): the state is ``q + shift[:, 0] + shift[:, 1]`` (an orbit's carried
+    centre of mass, added exactly) and the returned ``q~`` is relative to it.
+
+    >>> pt, qt, st = escalate_rows(np.array([[0.0, 0.0]]), np.array([[0.0, 0.0]]), 0.0, 2.0 ** -30, 1)
+    >>> st.tolist()                               # tr L(+-2**-30) = 2**-60 - 2: inside the band
+    [1]
+    """
+    import mpmath
+
+    M, N = pa.shape
+    outp, outq = pa.copy(), qa.copy()
+    status = np.full(M, RANGE, np.int64)
+    for k in range(M):
+        l0, m = float(_take(lam0, k)), float(_take(mu, k))
+        sh = (0.0, 0.0) if shift is None else (float(shift[k, 0]), float(shift[k, 1]))
+        for dps in ESCALATION_DIGITS:
+            st, vals = _mp_verdict(pa[k], qa[k], l0, m, branch, dps, sh)
+            st2, vals2 = _mp_verdict(pa[k], qa[k], l0, m, branch, dps + 20, sh)
+            if st != st2:
+                continue
+            if st == OK:
+                with mpmath.workdps(dps):
+                    scale = max(max(abs(v) for v in vals2), abs(mpmath.mpf(l0)) + abs(mpmath.mpf(m)))
+                    if max(abs(a - b) for a, b in zip(vals, vals2)) > scale * mpmath.mpf(2) ** -64:
+                        continue
+                x = np.array([float(v) for v in vals2])
+                if not np.all(np.isfinite(x)):
+                    break
+                outp[k], outq[k] = x[:N], x[N:]
+            status[k] = st
+            break
+    return outp, outq, status
 
 
 def _float_block(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int) -> tuple[F64, F64, I64]:
     """Real step for one block of rows ``pa, qa`` (B, N): ``(B, N)`` arrays and a status code per row.
 
-    The codes are those of :mod:`symbt.numeric.core.limits` (``OK``, ``TRACE1``, ``TRACE2``,
-    ``POSITIVITY``, ``RANGE``), decided per row in the order :func:`step_core` checks them for one state,
-    so that a row's verdict does not depend on the other rows of the batch.
+    The codes are those of :mod:`symbt.numeric.core.limits` (``OK``, ``TRACE1``, ``TRACE2``, ``POSITIVITY``,
+    ``RANGE``, ``ILLCOND``), decided per row (:func:`~symbt.numeric.core.step.float_status`), so that a row's
+    verdict does not depend on the other rows of the batch; ill-conditioned rows are decided and computed by :func:`escalate_rows`.
     """
     P, Q = list(pa.T.copy()), list(qa.T.copy())
     with np.errstate(all="ignore"):
         Pn, Qn, aux = step_core(FLOAT, P, Q, lam0, mu, branch, check_real=False)
-        t1, t2 = aux["S1"].trace_ok > 0, aux["S2"].trace_ok > 0
-        pos = np.logical_and.reduce([x + 1 > 0 for x in aux["xr"]])
         outp = np.stack(Pn, axis=-1)
         outq = np.stack(Qn, axis=-1)
-        fin = np.isfinite(outp).all(axis=-1) & np.isfinite(outq).all(axis=-1)
-    status = np.select([~t1, ~t2, ~pos, ~fin], [TRACE1, TRACE2, POSITIVITY, RANGE], OK).astype(np.int64)
+    status = float_status(aux, Pn, Qn)
+    ill = np.flatnonzero(status == ILLCOND)
+    if ill.size:                       # the float64 verdict or result is not trustworthy: higher precision
+        ep, eq, est = escalate_rows(pa[ill], qa[ill], _take(lam0, ill), _take(mu, ill), branch)
+        outp[ill], outq[ill], status[ill] = ep, eq, est
     return outp, outq, status
 
 

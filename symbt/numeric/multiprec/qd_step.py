@@ -69,7 +69,8 @@ def _finite(x: QD) -> bool:
 
 
 def _slopes(a: F64, r: F64, s: int, u: F64) -> int:
-    """Eigenvector slopes of the scaled monodromy (``arb_step``'s ``_slopes``) into ``u``; status 0, 1 or 4."""
+    """Eigenvector slopes of the scaled monodromy (``arb_step``'s ``_slopes``) into ``u``; status 0 (or
+    ``-1``: ok and ``tr < 0``), 1 or 4."""
     N = a.shape[0]
     a0, a1, r0, r1 = _row(a, 0), _row(a, 1), _row(r, 0), _row(r, 1)
     A, B, C, D = sub(mul(a1, a0), r0), neg(a1), mul(r1, a0), neg(r1)
@@ -101,7 +102,7 @@ def _slopes(a: F64, r: F64, s: int, u: F64) -> int:
         for j in range(N - 1, 0, -1):
             nxt = sub(neg(_row(a, j)), div(_row(r, j), nxt))
             _put(u, j, nxt)
-    return OK
+    return OK if tg else -1
 
 
 def qd_step(P: F64, Q: F64, lam1: QD, lam2: QD, two_mu: QD, branch: int, work: F64, Pn: F64, Qn: F64) -> int:
@@ -116,13 +117,16 @@ def qd_step(P: F64, Q: F64, lam1: QD, lam2: QD, two_mu: QD, branch: int, work: F
     for j in range(N):
         _put(a, j, add(lam1, _row(P, j)))
     st = _slopes(a, r, branch, u)
-    if st != OK:
+    if st > OK:
         return st
+    sign1 = st
     for j in range(N):
         _put(a, j, add(lam2, _row(P, j)))
     st = _slopes(a, r, -branch, w)
-    if st != OK:
+    if st > OK:
         return TRACE2 if st == TRACE1 else st
+    if st != sign1:
+        return POSITIVITY       # tr L(lam1), tr L(lam2) of opposite signs: lam1, lam2 in different gaps
     positive = True
     for j in range(N):
         d = sub(_row(u, j), _row(w, j))

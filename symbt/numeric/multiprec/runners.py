@@ -100,7 +100,9 @@ def _div(a: Any, b: Any) -> Any:
 
 
 def _slopes(a: list[Any], r: list[Any], s: int, name: str, dv: Callable[[Any, Any], Any]) -> list[Any]:
-    """:func:`~symbt.numeric.core.step.eigen_slopes` for real Arb midpoints, fused (same operations, same order)."""
+    """:func:`~symbt.numeric.core.step.eigen_slopes` for real Arb midpoints, fused (same operations, same order).
+
+    Returns the ``N`` slopes followed by the trace's sign (``True`` for ``tr < 0``)."""
     N = len(a)
     # m_2 m_1 written out: a_1 (-1) - 0 = -a_1 and r_1 (-1) = -r_1 exactly, as step_core computes them
     A, B, C, D = a[1] * a[0] - r[0], -a[1], r[1] * a[0], -r[1]
@@ -122,12 +124,12 @@ def _slopes(a: list[Any], r: list[Any], s: int, name: str, dv: Callable[[Any, An
     if fwd:
         for j in range(N - 1):
             u.append(dv(-r[j], a[j] + u[j]))
-        return u
+        return u + [not tg]
     u += [None] * (N - 1)
     nxt = u1
     for j in range(N - 1, 0, -1):
         nxt = u[j] = -a[j] - dv(r[j], nxt)
-    return u
+    return u + [not tg]
 
 
 def arb_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
@@ -150,6 +152,10 @@ def arb_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
     lam1, lam2 = lam0 + mu, lam0 - mu
     u = _slopes([lam1 + pj for pj in P], r, branch, "lam1 = lam0 + mu", dv)
     w = _slopes([lam2 + pj for pj in P], r, -branch, "lam2 = lam0 - mu", dv)
+    if u[-1] != w[-1]:     # the traces' signs (step_core): lam1, lam2 in different spectral gaps
+        raise NoRealMapError("no real Bäcklund map: tr L(lam1) and tr L(lam2) have opposite signs (lam1 and "
+                             "lam2 lie in different spectral gaps)", condition="positivity")
+    u, w = u[:-1], w[:-1]
     two_mu = 2 * mu
     dn = [u[j] - w[j] for j in range(N)]
     xr = [dv(two_mu, dn[j]) for j in range(N)]
