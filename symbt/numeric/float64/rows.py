@@ -108,7 +108,8 @@ def _float_block(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int) -> tuple[F64
 
     The codes are those of :mod:`symbt.numeric.core.limits` (``OK``, ``TRACE1``, ``TRACE2``, ``POSITIVITY``,
     ``RANGE``, ``ILLCOND``), decided per row (:func:`~symbt.numeric.core.step.float_status`), so that a row's
-    verdict does not depend on the other rows of the batch; ill-conditioned rows are decided and computed by :func:`escalate_rows`.
+    verdict does not depend on the other rows of the batch; ill-conditioned rows are decided and computed by
+    :func:`escalate_rows`.
     """
     P, Q = list(pa.T.copy()), list(qa.T.copy())
     with np.errstate(all="ignore"):
