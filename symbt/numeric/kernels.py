@@ -30,7 +30,7 @@ equals :func:`~symbt.numeric.step.step_core`'s to an ulp.
 
 Status codes per state (first failure wins): ``0`` ok, ``1``/``2``
 ``|tr L(lam1/lam2)| <= 2``, ``3`` some ``Etilde_j <= 0``, ``4`` range problem
-(monodromy entries beyond ``1e290``, ``|q_{j+1} - q_j| > 700``, a non-finite
+(monodromy entries beyond ``1e290`` after the exact power-of-two rescaling, ``|q_{j+1} - q_j| > 700``, a non-finite
 intermediate such as a degenerate eigenvector).  The drivers recompute every
 failing state with the general path, which decides the error.
 
@@ -63,6 +63,10 @@ __all__ = ["orbit", "orbit_rows", "stored_steps", "ANCHOR", "OK", "TRACE1", "TRA
 OK, TRACE1, TRACE2, POSITIVITY, RANGE = 0, 1, 2, 3, 4
 #: steps between re-anchoring ``r`` to ``exp`` of the accumulated positions
 ANCHOR = 16
+# monodromy entries past _BIG are multiplied by _SHRINK (powers of two: exact, the slopes only need ratios),
+# so that |tr L| ~ 1e300 and beyond (N = 256 far from the spectrum) stays in the kernel
+_BIG = 2.0 ** 400
+_SHRINK = 2.0 ** -400
 
 
 def orbit_rows(n: int, every: int) -> int:
@@ -123,6 +127,7 @@ def _slopes1(p: F64, r: F64, lam: float, s: int, u: F64, code: int) -> int:
     Bm = -1.0
     C = r[0]
     D = 0.0
+    sc = 1.0            # the monodromy is sc * [[A, Bm], [C, D]]; sc a power of two (exact rescaling)
     for j in range(1, N):
         a = lam + p[j]
         a0 = A
@@ -131,15 +136,20 @@ def _slopes1(p: F64, r: F64, lam: float, s: int, u: F64, code: int) -> int:
         Bm = a * b0 - D
         C = r[j] * a0
         D = r[j] * b0
+        if abs(A) > _BIG or abs(Bm) > _BIG:
+            A, Bm, C, D, sc = A * _SHRINK, Bm * _SHRINK, C * _SHRINK, D * _SHRINK, sc * _SHRINK
+    if abs(C) > _BIG or abs(D) > _BIG:
+        A, Bm, C, D, sc = A * _SHRINK, Bm * _SHRINK, C * _SHRINK, D * _SHRINK, sc * _SHRINK
     t = A + D
     if not (abs(A) < 1e290 and abs(Bm) < 1e290 and abs(C) < 1e290 and abs(D) < 1e290
             and (abs(A) > 1e-290 or abs(Bm) > 1e-290)):
         return RANGE
-    disc = (t - 2.0) * (t + 2.0)
+    two = 2.0 * sc
+    disc = (t - two) * (t + two)    # sc**2 (tr**2 - 4): scaling by powers of two is exact
     if not disc > 0.0:
         return code
     if not disc < 1e300:
-        return RANGE        # tr**2 overflows (|tr| > ~1e150): the general path rescales
+        return RANGE
     g = math.sqrt(disc)
     dl = A - D
     plus = dl >= 0.0

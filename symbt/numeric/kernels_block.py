@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .kernels import OK, POSITIVITY, RANGE, TRACE1, TRACE2, _dd_add, _dd_position, _logf
+from .kernels import _BIG, _SHRINK, OK, POSITIVITY, RANGE, TRACE1, TRACE2, _dd_add, _dd_position, _logf
 
 if TYPE_CHECKING:
     from .kernels import F64, I64
@@ -38,7 +38,7 @@ prange = range  # the ensemble kernel is compiled with numba.prange in its place
 
 
 def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64, C: F64, D: F64,
-            u1: F64, fw: I64, status: I64, code: int) -> None:
+            u1: F64, fw: I64, status: I64, code: int, sc: F64) -> None:
     """Scaled eigenvector slopes ``u[j, k]`` at ``lam[k]`` for sign ``s`` (see :mod:`.step`)."""
     N, B = p.shape
     for k in range(B):
@@ -46,7 +46,9 @@ def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64,
         Bm[k] = -1.0
         C[k] = r[0, k]
         D[k] = 0.0
+        sc[k] = 1.0
     for j in range(1, N):
+        big = 0
         for k in range(B):
             a = lam[k] + p[j, k]
             a0 = A[k]
@@ -55,6 +57,22 @@ def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64,
             Bm[k] = a * b0 - D[k]
             C[k] = r[j, k] * a0
             D[k] = r[j, k] * b0
+            big += 1 if (abs(A[k]) > _BIG or abs(Bm[k]) > _BIG) else 0
+        if big > 0:                    # the exact power-of-two rescaling of :func:`.kernels._slopes1`
+            for k in range(B):
+                f = _SHRINK if (abs(A[k]) > _BIG or abs(Bm[k]) > _BIG) else 1.0
+                A[k] = A[k] * f
+                Bm[k] = Bm[k] * f
+                C[k] = C[k] * f
+                D[k] = D[k] * f
+                sc[k] = sc[k] * f
+    for k in range(B):
+        f = _SHRINK if (abs(C[k]) > _BIG or abs(D[k]) > _BIG) else 1.0
+        A[k] = A[k] * f
+        Bm[k] = Bm[k] * f
+        C[k] = C[k] * f
+        D[k] = D[k] * f
+        sc[k] = sc[k] * f
     spos = s > 0
     nf = 0
     for k in range(B):
@@ -63,7 +81,8 @@ def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64,
         c_ = C[k]
         d_ = D[k]
         t = a_ + d_
-        disc = (t - 2.0) * (t + 2.0)
+        two = 2.0 * sc[k]
+        disc = (t - two) * (t + two)
         inrange = (abs(a_) < 1e290 and abs(b_) < 1e290 and abs(c_) < 1e290 and abs(d_) < 1e290
                    and (abs(a_) > 1e-290 or abs(b_) > 1e-290) and disc < 1e300)   # tr**2 must not overflow
         bad = RANGE if not inrange else (code if not disc > 0.0 else OK)
@@ -154,6 +173,7 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
     Bm = np.empty(B)
     C = np.empty(B)
     D = np.empty(B)
+    sc = np.empty(B)
     u1 = np.empty(B)
     fw = np.empty(B, np.int64)
     st = np.zeros(B, np.int64)
@@ -172,8 +192,8 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
     _anchor(qh, ql, fh, fl, r, p, st)
     row = 1
     for i in range(1, n + 1):
-        _slopes(p, r, l1, branch, u, tmp, A, Bm, C, D, u1, fw, st, TRACE1)
-        _slopes(p, r, l2, -branch, w, tmp, A, Bm, C, D, u1, fw, st, TRACE2)
+        _slopes(p, r, l1, branch, u, tmp, A, Bm, C, D, u1, fw, st, TRACE1, sc)
+        _slopes(p, r, l2, -branch, w, tmp, A, Bm, C, D, u1, fw, st, TRACE2, sc)
         for j in range(N):
             for k in range(B):
                 dn = u[j, k] - w[j, k]
