@@ -23,8 +23,8 @@ Invariants are evaluated at 50 digits (N <= 8: ``H_0..H_{N-1}``; larger N: ``tr 
 >>> n = np.arange(1, 10**4 + 1)
 >>> rel = 1e-16 * n[:, None, None].astype(float)          # a drift growing exactly like n
 >>> edges, rms, slope = windowed_rms(n, rel, nwin=6)
->>> round(slope, 2)
-1.0
+>>> abs(slope - 1.0) < 0.02                              # whole-step windows: 0.99
+True
 """
 from __future__ import annotations
 
@@ -182,8 +182,8 @@ def modular_orbit() -> Any:
 def unwrap(Q: Any) -> Any:
     """Positions with consecutive differences brought into ``(-MODULUS/2, MODULUS/2]`` (exact).
 
-    >>> unwrap(np.array([[63.5, 0.25, 1.0]])).tolist()
-    [[-0.5, 0.25, 1.0]]
+    >>> unwrap(np.array([[63.5, 0.25, 1.0]])).tolist()          # differences 0.75, 0.75
+    [[63.5, 64.25, 65.0]]
     """
     Q = np.array(Q, dtype=float)
     d = np.diff(Q, axis=-1)
