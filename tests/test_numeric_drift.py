@@ -82,3 +82,29 @@ def test_modular_read_out_is_the_kernel_orbit_and_absolute_rows_add_the_centre_r
     # the absolute rows' extra drift is the rounding of the differences at ulp(|q|) ~ 1.8e-12 here
     assert rms_a > 2 * rms_m, (rms_a, rms_m)
     assert rms_m < 1e-12 and rms_a < 1e-10
+
+
+@needs_numba
+def test_no_linear_drift_when_two_mu_differs_from_lam1_minus_lam2():
+    """``n256-chain`` (lam0 = 3.4, mu = 0.3): ``2.0 * mu`` is an ulp off ``fl(lam0 + mu) - fl(lam0 - mu)``, so a
+    read-out with ``2.0 * mu`` is not the map of the two spectral parameters the slopes were computed at -- a
+    bias in every step (before the fix the traces drifted 2.6e-16 per step, linearly: ~5e-12 after 2e4
+    steps); with ``lam1 - lam2`` (exact) the drift is a random walk (~1e-13 here)."""
+    from fractions import Fraction
+
+    from symbt.numeric import spectral_trace
+
+    p, q, lam0, mu = drift_case(256)
+    assert Fraction(lam0 + mu) - Fraction(lam0 - mu) != Fraction(2 * mu)
+    n, every = 2 * 10**4, 4 * 10**3
+    rows = orbit_rows(n, every)
+    P, Q = np.empty((rows, 256)), np.empty((rows, 256))
+    assert modular_orbit()(p, q, lam0 + mu, lam0 - mu, 2 * mu, 1, n, every, ANCHOR, P, Q) == 0
+    Q = unwrap(Q)
+    with mpmath.workdps(50):
+        def traces(pp, qq):
+            return [spectral_trace(mpmath.mpf(lam), [mpmath.mpf(float(a)) for a in pp],
+                                   [mpmath.mpf(float(b)) for b in qq]) for lam in (lam0 - mu, lam0, lam0 + mu)]
+        T0 = traces(p, q)
+        rel = np.array([[float((a - b) / abs(b)) for a, b in zip(traces(P[r], Q[r]), T0)] for r in range(1, rows)])
+    assert np.abs(rel).max() < 1e-12, np.abs(rel).max(axis=0)
