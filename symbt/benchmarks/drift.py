@@ -170,7 +170,7 @@ def modular_orbit() -> Any:
         from ..numeric import kernels as K
         from ..numeric.jit import _clone, _njit
 
-        small = {name: _njit(getattr(K, name), inline="always") for name in ("_logf", "_dd_add", "_two_diff") if hasattr(K, name)}
+        small = {name: _njit(getattr(K, name), inline="always") for name in ("_logf", "_dd_add")}
         pos = _njit(_clone(_modular_position, **small), inline="always")
         slopes1 = _njit(K._slopes1)
         anchor1 = _njit(_clone(K._anchor1, **small))

@@ -64,7 +64,7 @@ def _compile_all() -> None:
     from . import kernels as K
     from . import kernels_block as KB
 
-    small = {name: _njit(getattr(K, name), inline="always") for name in ("_logf", "_dd_add", "_two_diff")}
+    small = {name: _njit(getattr(K, name), inline="always") for name in ("_logf", "_dd_add")}
     small["_dd_position"] = _njit(_clone(K._dd_position, **small), inline="always")
     slopes1 = _njit(K._slopes1)
     anchor1 = _njit(_clone(K._anchor1, **small))

@@ -114,17 +114,6 @@ def _dd_add(hi: float, lo: float, s: float) -> tuple[float, float]:
     return h2, lo - (h2 - t)
 
 
-def _two_diff(a: float, b: float) -> tuple[float, float]:
-    """``a - b`` as ``hi + lo`` exactly (Knuth's two-sum).
-
-    >>> _two_diff(3.4 + 0.3, 3.4 - 0.3)
-    (0.5999999999999996, 0.0)
-    """
-    s = a - b
-    bp = s - a
-    return s, (a - (s - bp)) - (b + bp)
-
-
 def _dd_position(qh: float, ql: float, fh: float, fl: float) -> float:
     """The position ``qh + ql + log F`` rounded once (the state is not changed)."""
     h, lo = _dd_add(qh, ql, _logf(fh, fl))
@@ -202,8 +191,7 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
           anchor: int, outP: F64, outQ: F64) -> int:
     """``n`` steps of one state; stores the states of :func:`stored_steps` in ``outP, outQ`` (rows, N).
 
-    ``lam1 = lam0 + mu``, ``lam2 = lam0 - mu``, ``two_mu = 2 mu`` (the arithmetic uses ``lam1 - lam2``,
-    exactly, in its place: see the comment in the code).  Returns
+    ``lam1 = lam0 + mu``, ``lam2 = lam0 - mu``, ``two_mu = 2 mu``.  Returns
     the status (0 ok, else the first failure, see the module docstring).
 
     >>> P, Q = np.empty((2, 3)), np.empty((2, 3))
@@ -213,11 +201,6 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
     -0.08614224
     """
     N = p0.shape[0]
-    # 2 mu as lam1 - lam2 exactly (two-sum: tm + tl): the map conserves the invariants only if the mu of
-    # the read-out equals half the distance of the two spectral parameters it was computed at; 2.0 * mu
-    # differs from fl(lam0 + mu) - fl(lam0 - mu) by an ulp for most decimal inputs (lam0 = 3.4, mu = 0.3),
-    # a bias in every step, i.e. a drift of the invariants linear in n
-    tm, tl = _two_diff(lam1, lam2)
     p = p0.copy()
     qh = q0.copy()
     ql = np.zeros(N)
@@ -244,7 +227,7 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
             return st
         for j in range(N):
             dn = u[j] - w[j]
-            x = tm / dn + tl / dn
+            x = two_mu / dn
             xr[j] = x
             gq[j] = u[j] / dn
             if not abs(x) < 1e300:
@@ -253,8 +236,7 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
                 return POSITIVITY
         for j in range(N):
             jn = j + 1 if j + 1 < N else 0
-            dg = gq[jn] - gq[j]
-            p[j] = p[j] + (tm * dg + tl * dg)
+            p[j] = p[j] + two_mu * (gq[jn] - gq[j])
             x = xr[j]
             d = (xr[jn] - x) / (1.0 + x)
             r[j] = r[j] + r[j] * d

@@ -27,19 +27,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .kernels import (
-    _BIG,
-    _SHRINK,
-    OK,
-    POSITIVITY,
-    RANGE,
-    TRACE1,
-    TRACE2,
-    _dd_add,
-    _dd_position,
-    _logf,
-    _two_diff,
-)
+from .kernels import _BIG, _SHRINK, OK, POSITIVITY, RANGE, TRACE1, TRACE2, _dd_add, _dd_position, _logf
 
 if TYPE_CHECKING:
     from .kernels import F64, I64
@@ -192,11 +180,10 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
     l1 = np.empty(B)
     l2 = np.empty(B)
     tm = np.empty(B)
-    tl = np.empty(B)
     for k in range(B):
         l1[k] = lam1[i0 + k]
         l2[k] = lam2[i0 + k]
-        tm[k], tl[k] = _two_diff(l1[k], l2[k])    # 2 mu = lam1 - lam2 exactly (see :func:`.kernels.orbit`)
+        tm[k] = two_mu[i0 + k]
         for j in range(N):
             p[j, k] = P0[i0 + k, j]
             qh[j, k] = Q0[i0 + k, j]
@@ -210,7 +197,7 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
         for j in range(N):
             for k in range(B):
                 dn = u[j, k] - w[j, k]
-                x = tm[k] / dn + tl[k] / dn
+                x = tm[k] / dn
                 xr[j, k] = x
                 gq[j, k] = u[j, k] / dn
                 bad = RANGE if not abs(x) < 1e300 else (POSITIVITY if not x + 1.0 > 0.0 else OK)
@@ -219,8 +206,7 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
         for j in range(N):
             jn = j + 1 if j + 1 < N else 0
             for k in range(B):
-                dg = gq[jn, k] - gq[j, k]
-                p[j, k] = p[j, k] + (tm[k] * dg + tl[k] * dg)
+                p[j, k] = p[j, k] + tm[k] * (gq[jn, k] - gq[j, k])
                 x = xr[j, k]
                 d = (xr[jn, k] - x) / (1.0 + x)
                 r[j, k] = r[j, k] + r[j, k] * d
