@@ -69,7 +69,7 @@ def _compile_all() -> None:
     slopes1 = _njit(K._slopes1)
     anchor1 = _njit(_clone(K._anchor1, **small))
     orbit = _njit(_clone(K.orbit, _slopes1=slopes1, _anchor1=anchor1, **small))
-    slopes = _njit(KB._slopes)
+    slopes = _njit(_clone(KB._slopes, _shrink=_njit(KB._shrink, inline="always")))
     anchor = _njit(_clone(KB._anchor, **small))
     run_block = _njit(_clone(KB.run_block, _slopes=slopes, _anchor=anchor, **small))
     ens = _njit(_clone(KB.ensemble, run_block=run_block, prange=numba.prange), parallel=True)

@@ -31,7 +31,8 @@ equals :func:`~symbt.numeric.core.step.step_core`'s to an ulp.
 Status codes per state (first failure wins): ``0`` ok, ``1``/``2``
 ``|tr L(lam1/lam2)| <= 2``, ``3`` some ``Etilde_j <= 0`` or ``tr L(lam1)``,
 ``tr L(lam2)`` of opposite signs (``lam1``, ``lam2`` in different gaps), ``4``
-range problem (monodromy entries beyond ``1e290``, ``|q_{j+1} - q_j| > 700``, a
+range problem (monodromy entries beyond ``1e290`` after the exact power-of-two rescaling,
+``|q_{j+1} - q_j| > 700``, a
 non-finite intermediate such as a degenerate eigenvector), ``5`` ill-conditioned
 (the float64 decision or result is not trustworthy: condition estimate ``kappa``
 beyond :data:`KAPPA_MAX`, see :mod:`symbt.numeric.core.step`, "Existence and
@@ -66,6 +67,11 @@ if TYPE_CHECKING:
     I64 = npt.NDArray[np.int64]
 
 __all__ = ["orbit", "orbit_rows", "stored_steps", "ANCHOR"]
+# monodromy entries past _BIG are multiplied by _SHRINK (powers of two: exact, the slopes only need ratios),
+# so that |tr L| ~ 1e300 and beyond (N = 256 far from the spectrum) stays in the kernel; the product of the
+# absolute values (>= the monodromy entrywise) decides when, and is scaled alike
+_BIG = 2.0 ** 400
+_SHRINK = 2.0 ** -400
 
 #: steps between re-anchoring ``r`` to ``exp`` of the accumulated positions
 ANCHOR = 16
@@ -140,6 +146,7 @@ def _slopes1(p: F64, r: F64, lam: float, s: int, u: F64, code: int, tt: F64, i: 
     Da = 0.0
     kn = abs(lam) + abs(p[0])       # max_j (|lam| + |p_j|) / |lam + p_j| as kn / kd (cancellation in a_j)
     kd = abs(A)
+    sc = 1.0            # the monodromy is sc * [[A, Bm], [C, D]]; sc a power of two (exact rescaling)
     for j in range(1, N):
         a = lam + p[j]
         cn = abs(lam) + abs(p[j])
@@ -159,12 +166,19 @@ def _slopes1(p: F64, r: F64, lam: float, s: int, u: F64, code: int, tt: F64, i: 
         Ba = aa * b0 + Da
         Ca = r[j] * a0
         Da = r[j] * b0
+        if Aa > _BIG or Ba > _BIG:
+            A, Bm, C, D, sc = A * _SHRINK, Bm * _SHRINK, C * _SHRINK, D * _SHRINK, sc * _SHRINK
+            Aa, Ba, Ca, Da = Aa * _SHRINK, Ba * _SHRINK, Ca * _SHRINK, Da * _SHRINK
+    if Ca > _BIG or Da > _BIG:
+        A, Bm, C, D, sc = A * _SHRINK, Bm * _SHRINK, C * _SHRINK, D * _SHRINK, sc * _SHRINK
+        Aa, Ba, Ca, Da = Aa * _SHRINK, Ba * _SHRINK, Ca * _SHRINK, Da * _SHRINK
     t = A + D
     tt[i] = t
     if not (abs(A) < 1e290 and abs(Bm) < 1e290 and abs(C) < 1e290 and abs(D) < 1e290
             and (abs(A) > 1e-290 or abs(Bm) > 1e-290)):
         return RANGE
-    disc = (t - 2.0) * (t + 2.0)
+    two = 2.0 * sc
+    disc = (t - two) * (t + two)    # sc**2 (tr**2 - 4): scaling by powers of two is exact
     if not (Aa + Da) * abs(t) <= KAPPA_MAX * abs(disc):
         return ILLCOND
     tt[i + 2] = (Aa + Da) * abs(t) / abs(disc) * (kn / kd)   # the trace's condition times a_j's (>= 1)

@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..core.limits import ILLCOND, KAPPA_MAX, MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
-from .kernels import _dd_add, _dd_position, _logf
+from .kernels import _BIG, _SHRINK, _dd_add, _dd_position, _logf
 
 if TYPE_CHECKING:
     from .kernels import F64, I64
@@ -38,13 +38,25 @@ __all__ = ["run_block", "ensemble"]
 prange = range  # the ensemble kernel is compiled with numba.prange in its place
 
 
+def _shrink(A: F64, Bm: F64, C: F64, D: F64, Ab: F64, sc: F64, k: int) -> None:
+    """Scale member ``k``'s monodromy, its absolute-value product and ``sc`` by ``_SHRINK`` (exact)."""
+    A[k] = A[k] * _SHRINK
+    Bm[k] = Bm[k] * _SHRINK
+    C[k] = C[k] * _SHRINK
+    D[k] = D[k] * _SHRINK
+    for i in range(4):
+        Ab[i, k] = Ab[i, k] * _SHRINK
+    sc[k] = sc[k] * _SHRINK
+
+
 def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64, C: F64, D: F64,
-            u1: F64, fw: I64, status: I64, code: int, Ab: F64, tt: F64, kt: F64, Kn: F64, Kd: F64) -> None:
+            u1: F64, fw: I64, status: I64, code: int, Ab: F64, tt: F64, kt: F64, Kn: F64, Kd: F64,
+            sc: F64) -> None:
     """Scaled eigenvector slopes ``u[j, k]`` at ``lam[k]`` for sign ``s`` (see :mod:`symbt.numeric.core.step`).
 
     ``tt[k]`` receives the trace, ``kt[k]`` the maximum of itself and the trace's condition; ``Ab`` (4, B)
     is scratch for the product of the absolute values (the trace's rounding scale,
-    :func:`~symbt.numeric.float64.kernels._slopes1`)."""
+    :func:`~symbt.numeric.float64.kernels._slopes1`); ``sc[k]`` the power of two the monodromy is scaled by."""
     N, B = p.shape
     for k in range(B):
         A[k] = lam[k] + p[0, k]
@@ -57,7 +69,9 @@ def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64,
         Ab[3, k] = 0.0
         Kn[k] = abs(lam[k]) + abs(p[0, k])      # kernels._slopes1: cancellation in a_j = lam + p_j
         Kd[k] = abs(A[k])
+        sc[k] = 1.0
     for j in range(1, N):
+        big = 0
         for k in range(B):
             a = lam[k] + p[j, k]
             cn = abs(lam[k]) + abs(p[j, k])
@@ -77,6 +91,14 @@ def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64,
             Ab[1, k] = aa * b0 + Ab[3, k]
             Ab[2, k] = r[j, k] * a0
             Ab[3, k] = r[j, k] * b0
+            big += 1 if (Ab[0, k] > _BIG or Ab[1, k] > _BIG) else 0
+        if big > 0:                    # the exact power-of-two rescaling of :func:`.kernels._slopes1`
+            for k in range(B):
+                if Ab[0, k] > _BIG or Ab[1, k] > _BIG:
+                    _shrink(A, Bm, C, D, Ab, sc, k)
+    for k in range(B):
+        if Ab[2, k] > _BIG or Ab[3, k] > _BIG:
+            _shrink(A, Bm, C, D, Ab, sc, k)
     spos = s > 0
     nf = 0
     for k in range(B):
@@ -86,7 +108,8 @@ def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64,
         d_ = D[k]
         t = a_ + d_
         tt[k] = t
-        disc = (t - 2.0) * (t + 2.0)
+        two = 2.0 * sc[k]
+        disc = (t - two) * (t + two)    # sc**2 (tr**2 - 4): exact
         inrange = (abs(a_) < 1e290 and abs(b_) < 1e290 and abs(c_) < 1e290 and abs(d_) < 1e290
                    and (abs(a_) > 1e-290 or abs(b_) > 1e-290))
         decided = (Ab[0, k] + Ab[3, k]) * abs(t) <= KAPPA_MAX * abs(disc)
@@ -191,6 +214,7 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
     kt = np.empty(B)
     Kn = np.empty(B)
     Kd = np.empty(B)
+    sc = np.empty(B)
     t1 = np.empty(B)
     t2 = np.empty(B)
     for k in range(B):
@@ -207,8 +231,8 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
     for i in range(1, n + 1):
         for k in range(B):
             kt[k] = 1.0
-        _slopes(p, r, l1, branch, u, tmp, A, Bm, C, D, u1, fw, st, TRACE1, Ab, t1, kt, Kn, Kd)
-        _slopes(p, r, l2, -branch, w, tmp, A, Bm, C, D, u1, fw, st, TRACE2, Ab, t2, kt, Kn, Kd)
+        _slopes(p, r, l1, branch, u, tmp, A, Bm, C, D, u1, fw, st, TRACE1, Ab, t1, kt, Kn, Kd, sc)
+        _slopes(p, r, l2, -branch, w, tmp, A, Bm, C, D, u1, fw, st, TRACE2, Ab, t2, kt, Kn, Kd, sc)
         for k in range(B):
             if st[k] == OK and (t1[k] < 0.0) != (t2[k] < 0.0):
                 st[k] = POSITIVITY          # lam1, lam2 in different gaps (kernels.orbit)
