@@ -12,17 +12,23 @@ input (zero for exact binary input) and a ball vector ``r_k``.  One step, with `
 contains the set and ``xh_k`` (its hull):
 
 1. the plain ball image ``f(K)`` and a rigorous enclosure ``J`` of the Jacobian of the step over the
-   whole box ``K`` -- forward-mode derivatives (:class:`Dual`, a dual number over ``arb``) through
-   :func:`~symbt.numeric.step.step_core` itself, whose existence decisions (``|tr L| > 2``,
-   ``Etilde_j > 0``) hold on the whole box or raise, exactly as on the plain path;
+   whole box ``K`` (:func:`step_jacobian`): :func:`~symbt.numeric.step.step_core` on ``K`` -- its
+   existence decisions (``|tr L| > 2``, ``Etilde_j > 0``) hold on the whole box or raise, exactly as on
+   the plain path -- gives the image and the eigenvector slopes on ``K``; the slopes' gradients follow
+   from their implicit cyclic relations and the read-out is differentiated by the chain rule, in ball
+   arithmetic (forward-mode dual numbers through ``step_core``,
+   :func:`~symbt.numeric.lohner_checks.jacobian_dual`, are the independent check of this derivation);
 2. ``y = f(xh_k)`` on the exact centre (:func:`~symbt.numeric.mpfast.arb_step`, a ball);
-3. mean-value form: ``f(x) in y + J (C r0) + J (B r)``; ``C <- mid(mid(J) C)``;
-   ``B <- Q`` of a plain QR factorisation of ``mid(mid(J) B)`` (float64 Householder; ``B`` only has
-   to be exact and invertible, its inverse is enclosed rigorously); ``xh <- mid(y)`` and
+3. mean-value form: ``f(x) in y + J (C r0) + J (B r)``; ``C <- mid(J) C`` and ``B <- Q`` of a plain
+   QR factorisation of ``mid(J) B`` (no column reordering), both formed in float64 -- ``C`` and ``B``
+   only have to be exact, and ``B`` invertible: its inverse is enclosed rigorously
+   (:func:`frame_inverse`); ``xh <- mid(y)`` and
 
        r <- (B^-1 J B) r + B^-1 ((J C - C_new) r0 + (y - mid y)),
 
-   so the rounding errors of the step and the width of ``J`` go into ``r``;
+   so the rounding errors of the step and the width of ``J`` go into ``r``.  ``J`` and this frame
+   algebra run at ``jac_prec = 96`` bits: they only multiply the tiny offsets ``r``, so their own
+   rounding is a relative ``2**-90`` per step (``xh`` and ``y`` carry the working precision);
 4. the stored enclosure is the hull ``xh + C r0 + B r`` intersected with ``f(K)``.
 
 A Jacobian that is not finite (a box that contains a degenerate eigenvector, i.e. a slope at
@@ -44,19 +50,19 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import Any, NamedTuple
 
-import numpy as np
 import flint
-from flint import arb, arb_mat, arb_poly
+import numpy as np
+from flint import arb, arb_mat
 
-from .arb import ARB_CERTAIN, ArbContext, Uncertain, flint_prec
+from .arb import ARB_CERTAIN, Uncertain, flint_prec
 from .errors import NumericRangeError
 from .mpfast import arb_step
 from .step import step_core
 
-__all__ = ["Dual", "DUAL", "JacobianBlowup", "LohnerSet", "jacobian_dual", "step_jacobian", "frame_inverse", "lohner_pass", "growth_law",
-           "invariant_enclosures", "common_invariants", "float64_error_bounds"]
+__all__ = ["JacobianBlowup", "LohnerSet", "LohnerPass", "lohner_certified", "step_jacobian", "frame_inverse",
+           "lohner_pass", "growth_law"]
 
 
 class JacobianBlowup(ArithmeticError):
@@ -65,134 +71,6 @@ class JacobianBlowup(ArithmeticError):
     >>> issubclass(JacobianBlowup, ArithmeticError)
     True
     """
-
-
-class Dual:
-    """A dual number over Arb balls: a value ``v`` (``arb``) and its gradient ``d`` (a ``1 x n`` ``arb_mat``).
-
-    Enough arithmetic for :func:`~symbt.numeric.step.step_core`; every operation encloses the value and
-    the gradient of the exact function on the whole ball (the chain rule in ball arithmetic).
-
-    >>> x = Dual(arb(3), arb_mat([[1, 0]]))
-    >>> y = (x * x + 1) / x                     # x + 1/x: derivative 1 - 1/x**2
-    >>> y.v.str(10, radius=False), y.d[0, 0].str(10, radius=False)
-    ('3.333333333', '0.8888888889')
-    """
-
-    __slots__ = ("v", "d")
-
-    def __init__(self, v: Any, d: Any) -> None:
-        self.v = v
-        self.d = d
-
-    def __add__(self, o: Any) -> Dual:
-        if isinstance(o, Dual):
-            return Dual(self.v + o.v, self.d + o.d)
-        return Dual(self.v + o, self.d)
-
-    __radd__ = __add__
-
-    def __sub__(self, o: Any) -> Dual:
-        if isinstance(o, Dual):
-            return Dual(self.v - o.v, self.d - o.d)
-        return Dual(self.v - o, self.d)
-
-    def __rsub__(self, o: Any) -> Dual:
-        return Dual(o - self.v, -self.d)
-
-    def __neg__(self) -> Dual:
-        return Dual(-self.v, -self.d)
-
-    def __mul__(self, o: Any) -> Dual:
-        if isinstance(o, Dual):
-            return Dual(self.v * o.v, self.d * o.v + o.d * self.v)
-        return Dual(self.v * o, self.d * o)
-
-    __rmul__ = __mul__
-
-    def __truediv__(self, o: Any) -> Dual:
-        if isinstance(o, Dual):
-            v = self.v / o.v
-            return Dual(v, (self.d - o.d * v) * (1 / o.v))
-        return Dual(self.v / o, self.d * (1 / arb(o)))
-
-    def __rtruediv__(self, o: Any) -> Dual:          # o / self with a constant o
-        v = o / self.v
-        return Dual(v, self.d * (-v / self.v))
-
-    def mid(self) -> Any:
-        """The midpoint of the value (for the accuracy-only decisions of the step)."""
-        return self.v.mid()
-
-    def is_zero(self) -> bool:
-        return bool(self.v.is_zero())
-
-    def is_finite(self) -> bool:
-        return bool(self.v.is_finite()) and all(a.is_finite() for a in self.d.entries())
-
-
-def _dexp(x: Dual) -> Dual:
-    v = x.v.exp()
-    return Dual(v, x.d * v)
-
-
-def _dlog1p(x: Dual) -> Dual:
-    return Dual(x.v.log1p(), x.d * (1 / (1 + x.v)))
-
-
-def _dlog(x: Dual) -> Dual:
-    return Dual(x.v.log(), x.d * (1 / x.v))
-
-
-def _dsqrt(x: Dual) -> Dual:
-    v = x.v.sqrt()
-    return Dual(v, x.d * (1 / (2 * v)))
-
-
-class _DualContext(ArbContext):
-    """``ARB_CERTAIN`` on dual numbers: existence decided on whole value balls, accuracy on midpoints."""
-
-    exp = staticmethod(_dexp)
-    log = staticmethod(_dlog)
-    log1p = staticmethod(_dlog1p)
-    sqrt = staticmethod(_dsqrt)
-
-    def div(self, a: Any, b: Any) -> Any:
-        if b.is_zero():                   # a slope at infinity: no derivative here
-            raise JacobianBlowup("division by an exact zero in the Jacobian of the step")
-        return a / b
-
-    def positive(self, x: Any) -> bool:
-        return super().positive(x.v if isinstance(x, Dual) else x)
-
-    def isfinite_all(self, xs: Sequence[Any]) -> bool:
-        return all(x.is_finite() for x in xs)
-
-
-#: the context of :func:`jacobian_image`
-DUAL = _DualContext(certain=True)
-
-
-def jacobian_dual(box: Sequence[Any], lam0: Any, mu: Any, branch: int) -> tuple[list[Any], Any]:
-    """Plain ball image ``f(box)`` and the step's Jacobian over ``box`` by forward-mode :class:`Dual` numbers.
-
-    The slow, independent route (:func:`step_jacobian` is the fast one): ``step_core`` itself on dual
-    numbers.  ``box`` is the state ``(p_1..p_N, q_1..q_N)`` as Arb balls; returns the image (a list of
-    balls) and ``J`` (a ``2N x 2N`` ``arb_mat``).  Raises :class:`~symbt.numeric.arb.Uncertain`,
-    :class:`NoRealMapError`, :class:`JacobianBlowup`.
-
-    >>> img, J = jacobian_dual([arb(-20), arb(10), arb(1), arb(1), arb(0), arb(0.9)], arb(10), arb(5), 1)
-    >>> img[0].str(8, radius=False), J.nrows(), J[0, 0].str(5, radius=False)
-    ('-19.996568', 6, '1.0067')
-    """
-    n = len(box)
-    N = n // 2
-    xs = [Dual(b, arb_mat(1, n, [1 if k == i else 0 for k in range(n)])) for i, b in enumerate(box)]
-    Pn, Qn, _ = step_core(DUAL, xs[:N], xs[N:], lam0, mu, branch)
-    out = Pn + Qn
-    J = arb_mat([x.d.entries() for x in out])
-    _check_finite([x.v for x in out], J)
-    return [x.v for x in out], J
 
 
 def _check_finite(img: Sequence[Any], J: Any) -> None:
@@ -238,7 +116,8 @@ def step_jacobian(box: Sequence[Any], lam0: Any, mu: Any, branch: int,
     raise, as on the plain certified path) gives the image and the slopes; the Jacobian follows from the
     implicit relations of the slopes (:func:`_slope_rows`) and the read-out of the step, at ``jac_prec``
     bits (default: the current precision; the Jacobian only multiplies the tiny offsets ``r``, so 64-96
-    bits suffice).  Same result and errors as :func:`jacobian_dual`, several times faster.
+    bits suffice).  Encloses the same Jacobian as :func:`~symbt.numeric.lohner_checks.jacobian_dual` (forward-mode
+    dual numbers through ``step_core``), several times faster.
 
     >>> img, J = step_jacobian([arb(-20), arb(10), arb(1), arb(1), arb(0), arb(0.9)], arb(10), arb(5), 1)
     >>> J[0, 0].str(5, radius=False), sum(J[0, k] for k in range(3, 6)).contains(0)   # q-shift invariance
@@ -386,33 +265,135 @@ class LohnerSet:
         self.hull = hull
 
 
+class LohnerPass(NamedTuple):
+    """What one pass at a fixed precision gives (:func:`lohner_pass`)."""
+
+    ok: bool                                       #: every radius met the target
+    stored: list[tuple[list[Any], list[Any]]]      #: the ``(P, Q)`` balls at the kept steps
+    hist: list[float]                              #: ``excess`` after each step
+    lograd: list[float]                            #: ``log2`` of the largest radius after each step
+    done: int                                      #: steps done
+
+
+def _lograd(xs: Sequence[Any]) -> float:
+    r = max(float(x.rad()) for x in xs)
+    return math.log2(r) if r > 0 else -math.inf
+
+
 def lohner_pass(P: list[Any], Q: list[Any], lam0: Any, mu: Any, n: int, branch: int, keep: set[int],
                 excess: Callable[[list[Any]], float], *, jac_prec: int = 96, unsound: bool = False,
-                stop: float = 8.0) -> tuple[bool, list[tuple[list[Any], list[Any]]], list[float], int]:
+                stop: float = 8.0) -> LohnerPass:
     """``n`` Lohner steps from the balls ``P, Q`` at the current flint precision.
 
-    Returns ``(ok, stored, hist, done)`` like the plain certified pass: the stored ``(P, Q)`` balls at the
-    steps in ``keep``, ``hist[i] = excess(state after i steps)`` (``max log2(radius / target)``), the steps
-    done; stops early once the excess passes ``stop``.  Raises :class:`JacobianBlowup`,
-    :class:`~symbt.numeric.arb.Uncertain`, :class:`NoRealMapError`.
+    The stored ``(P, Q)`` balls at the steps in ``keep`` (and the initial state), ``hist[i] =
+    excess(state after i steps)`` (``max log2(radius / target)``), stopping early once the excess passes
+    ``stop``.  Raises :class:`JacobianBlowup`, :class:`~symbt.numeric.arb.Uncertain`,
+    :class:`NoRealMapError`.
 
-    >>> ok, stored, hist, done = lohner_pass([arb(-20), arb(10), arb(1)], [arb(1), arb(0), arb(0.9)],
-    ...                                      arb(10), arb(5), 3, 1, {3}, lambda xs: -100.0)
-    >>> ok, len(stored), done
+    >>> run = lohner_pass([arb(-20), arb(10), arb(1)], [arb(1), arb(0), arb(0.9)], arb(10), arb(5), 3, 1, {3},
+    ...                   lambda xs: -100.0)
+    >>> run.ok, len(run.stored), run.done
     (True, 2, 3)
     """
     N = len(P)
     S = LohnerSet(list(P) + list(Q), jac_prec=jac_prec, unsound=unsound)
     stored = [(list(P), list(Q))]
-    hist = [excess(S.hull)]
+    hist, lograd = [excess(S.hull)], [_lograd(S.hull)]
     for i in range(1, n + 1):
         S.step(lam0, mu, branch)
         if not all(h.is_finite() for h in S.hull):
             raise JacobianBlowup("the enclosure is no longer finite")
         e = excess(S.hull)
         hist.append(e)
+        lograd.append(_lograd(S.hull))
         if i in keep:
             stored.append((S.hull[:N], S.hull[N:]))
         if e > stop:
-            return False, stored, hist, i
-    return max(hist) <= 0, stored, hist, n
+            return LohnerPass(False, stored, hist, lograd, i)
+    return LohnerPass(max(hist) <= 0, stored, hist, lograd, n)
+
+
+def growth_law(lograd: Sequence[float], first: int = 100) -> dict[str, Any]:
+    """The radius growth ``rad(n) ~ c n**degree`` fitted (least squares in log-log) over ``first .. len - 1``.
+
+    ``lograd[i]`` is ``log2`` of the largest radius after ``i`` steps; the fit uses log-spaced steps (ten
+    per decade) from ``first`` (lowered to a tenth of the run for short runs) to the last step.  Returns
+    ``{"degree", "steps": (first, last), "log2_radius": (at first, at last)}``; ``degree`` is ``None``
+    without two usable points.
+
+    >>> law = growth_law([math.log2(1e-50 * max(i, 1) ** 2) for i in range(10001)])
+    >>> round(law["degree"], 6), law["steps"]
+    (2.0, (100, 10000))
+    """
+    last = len(lograd) - 1
+    first = max(1, min(first, last // 10))
+    pts = sorted({int(round(first * 10 ** (k / 10))) for k in range(0, 200)} & set(range(first, last + 1)) | {last})
+    xy = [(math.log2(i), lograd[i]) for i in pts if i >= 1 and math.isfinite(lograd[i])]
+    out: dict[str, Any] = {"degree": None, "steps": (first, last),
+                           "log2_radius": (lograd[first] if last >= first else None, lograd[last])}
+    if len(xy) >= 2 and xy[-1][0] > xy[0][0]:
+        X = np.array(xy)
+        out["degree"] = float(np.polyfit(X[:, 0], X[:, 1], 1)[0])
+    return out
+
+
+def _next_prec(prec: int, run: LohnerPass, n: int) -> int:
+    """Working precision for the next pass: the measured excess, extrapolated polynomially to step ``n``."""
+    hist, done = run.hist, run.done
+    finite = [i for i in range(1, done + 1) if math.isfinite(hist[i])]
+    if not finite:
+        return 2 * prec
+    i1 = finite[-1]
+    e1 = max(hist[i] for i in finite)
+    extra = e1
+    if i1 < n:
+        law = growth_law(run.lograd[:i1 + 1], first=max(1, i1 // 10))
+        degree = max(law["degree"] or 2.0, 1.0)
+        extra = e1 + 1.5 * degree * math.log2(n / i1)
+    return max(int(prec + extra + _MARGIN) + 1, prec + 32)
+
+
+_MARGIN = 16           # bits beyond the extrapolated excess
+_ATTEMPTS = 6
+#: initial working precision beyond the output precision, per bit of the number of steps (measured: the
+#: paper's example loses ~5 bits per doubling of n)
+_BITS_PER_OCTAVE = 5
+
+
+def lohner_certified(state: Callable[[], tuple[list[Any], list[Any], Any, Any]], n: int, branch: int,
+                     keep: set[int], excess: Callable[[list[Any]], float], out_prec: int, prec: int | None,
+                     max_prec: int, passes: list[int]) -> tuple[list[tuple[list[Any], list[Any]]], int, dict[str, Any]]:
+    """The precision loop of the Lohner orbit: ``(stored balls, working precision, growth law)``.
+
+    ``state()`` makes the input balls at the current flint precision; the first pass runs at ``prec`` (default
+    ``out_prec + 32 + 5 bitlen(n)``), each later one at the precision the measured growth requires
+    (:func:`_next_prec`); ``passes`` receives the precisions tried.  Raises :class:`JacobianBlowup` (the caller
+    falls back to the plain ball path), :class:`NumericRangeError` (not certified below ``max_prec``),
+    :class:`NoRealMapError`.
+
+    >>> def state():
+    ...     return [arb(-20), arb(10), arb(1)], [arb(1), arb(0), arb(0.9)], arb(10), arb(5)
+    >>> def excess(xs):                       # log2(radius / 1e-40), the worst coordinate
+    ...     return max(math.log2(float(x.rad()) / 1e-40) if x.rad() > 0 else -math.inf for x in xs)
+    >>> passes = []
+    >>> stored, prec, law = lohner_certified(state, 100, 1, {100}, excess, 64, None, 4096, passes)
+    >>> len(stored), prec == passes[-1], float(stored[1][0][0].rad()) < 1e-40
+    (2, True, True)
+    """
+    work = int(prec) if prec is not None else out_prec + 32 + _BITS_PER_OCTAVE * max(1, n).bit_length()
+    for _ in range(_ATTEMPTS):
+        if work > max_prec:
+            break
+        passes.append(work)
+        with flint_prec(work):
+            P, Q, l0, m = state()
+            try:
+                run = lohner_pass(P, Q, l0, m, n, branch, keep, excess)
+            except Uncertain:
+                work = max(2 * work, work + 64)      # an existence decision on the boundary: more bits
+                continue
+        if run.ok:
+            return run.stored, work, growth_law(run.lograd)
+        work = _next_prec(work, run, n)
+    raise NumericRangeError("certified orbit (Lohner): the enclosure could not be certified below max_prec = "
+                            "%d bits" % max_prec)
