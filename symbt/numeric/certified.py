@@ -252,8 +252,8 @@ def certified_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int =
 
         try:
             stored, info["prec"], info["growth"] = lohner_certified(
-                lambda: _state(p, q, lam0, mu), n, branch, keep, lambda xs: _excess(xs, tol, out_prec), out_prec,
-                prec, max_prec, passes)
+                lambda: _state(p, q, lam0, mu), n, branch, keep, lambda xs: _excess(xs, tol, out_prec),
+                out_prec if tol is None else max(1, math.ceil(-math.log2(tol))), prec, max_prec, passes)
             info["method"] = "lohner"
             return _outputs(stored)
         except (JacobianBlowup, NumericRangeError) as exc:

@@ -361,12 +361,13 @@ _BITS_PER_OCTAVE = 5
 
 
 def lohner_certified(state: Callable[[], tuple[list[Any], list[Any], Any, Any]], n: int, branch: int,
-                     keep: set[int], excess: Callable[[list[Any]], float], out_prec: int, prec: int | None,
+                     keep: set[int], excess: Callable[[list[Any]], float], target_bits: int, prec: int | None,
                      max_prec: int, passes: list[int]) -> tuple[list[tuple[list[Any], list[Any]]], int, dict[str, Any]]:
     """The precision loop of the Lohner orbit: ``(stored balls, working precision, growth law)``.
 
     ``state()`` makes the input balls at the current flint precision; the first pass runs at ``prec`` (default
-    ``out_prec + 32 + 5 bitlen(n)``), each later one at the precision the measured growth requires
+    ``target_bits + 24 + 5 bitlen(n)``, ``target_bits = log2(1 / target radius)``), each later one at the
+    precision the measured growth requires
     (:func:`_next_prec`); ``passes`` receives the precisions tried.  Raises :class:`JacobianBlowup` (the caller
     falls back to the plain ball path), :class:`NumericRangeError` (not certified below ``max_prec``),
     :class:`NoRealMapError`.
@@ -376,11 +377,11 @@ def lohner_certified(state: Callable[[], tuple[list[Any], list[Any], Any, Any]],
     >>> def excess(xs):                       # log2(radius / 1e-40), the worst coordinate
     ...     return max(math.log2(float(x.rad()) / 1e-40) if x.rad() > 0 else -math.inf for x in xs)
     >>> passes = []
-    >>> stored, prec, law = lohner_certified(state, 100, 1, {100}, excess, 64, None, 4096, passes)
+    >>> stored, prec, law = lohner_certified(state, 100, 1, {100}, excess, 133, None, 4096, passes)
     >>> len(stored), prec == passes[-1], float(stored[1][0][0].rad()) < 1e-40
     (2, True, True)
     """
-    work = int(prec) if prec is not None else out_prec + 32 + _BITS_PER_OCTAVE * max(1, n).bit_length()
+    work = int(prec) if prec is not None else target_bits + 24 + _BITS_PER_OCTAVE * max(1, n).bit_length()
     for _ in range(_ATTEMPTS):
         if work > max_prec:
             break

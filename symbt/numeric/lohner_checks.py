@@ -25,6 +25,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
+import mpmath
 import numpy as np
 from flint import arb, arb_mat, arb_poly
 
@@ -211,8 +212,8 @@ def invariant_enclosures(P: Sequence[Sequence[Any]], Q: Sequence[Sequence[Any]],
     return out
 
 
-def common_invariants(H: Sequence[Sequence[Any]]) -> list[Any]:
-    """The intersection, over the stored states, of the enclosures of each ``H_k``; raises
+def common_invariants(H: Sequence[Sequence[Any]], prec: int = 256) -> list[Any]:
+    """The intersection, over the stored states, of the enclosures of each ``H_k`` (at ``prec`` bits); raises
     :class:`InconsistentEnclosure` if two of them are disjoint (they cannot be, for correct enclosures).
 
     >>> h = common_invariants([[arb(1, 0.5)], [arb(1.25, 0.5)]])[0]     # [0.5, 1.5] and [0.75, 1.75]
@@ -221,17 +222,24 @@ def common_invariants(H: Sequence[Sequence[Any]]) -> list[Any]:
     >>> common_invariants([[arb(1, 0.1)], [arb(2, 0.1)]])
     Traceback (most recent call last):
     ...
-    symbt.numeric.lohner.InconsistentEnclosure: the enclosures of H_0 at stored states 0 and 1 are disjoint
+    symbt.numeric.lohner_checks.InconsistentEnclosure: the enclosures of H_0 at stored states 0 and 1 are disjoint
     """
     cur = list(H[0])
-    for i, h in enumerate(H[1:], 1):
-        for k, (c, x) in enumerate(zip(cur, h)):
-            if not c.overlaps(x):
-                first = next(j for j in range(i) if not H[j][k].overlaps(x))
-                raise InconsistentEnclosure("the enclosures of H_%d at stored states %d and %d are disjoint"
-                                            % (k, first, i))
-            cur[k] = c.intersection(x)
+    with flint_prec(prec):
+        for i, h in enumerate(H[1:], 1):
+            for k, (c, x) in enumerate(zip(cur, h)):
+                if not c.overlaps(x):
+                    first = next(j for j in range(i) if not H[j][k].overlaps(x))
+                    raise InconsistentEnclosure("the enclosures of H_%d at stored states %d and %d are disjoint"
+                                                % (k, first, i))
+                cur[k] = c.intersection(x)
     return cur
+
+
+def _float_up(x: Any) -> float:
+    """The non-negative exact Arb number ``x`` rounded up to a float."""
+    man, exp = x.man_exp()
+    return float(mpmath.mpf(mpmath.libmp.from_man_exp(int(man), int(exp), 53, "u")))
 
 
 def float64_error_bounds(P: Sequence[Sequence[Any]], Q: Sequence[Sequence[Any]], P_rad: Sequence[Sequence[Any]],
@@ -257,5 +265,5 @@ def float64_error_bounds(P: Sequence[Sequence[Any]], Q: Sequence[Sequence[Any]],
             worst = arb(0)
             for x, m, r in zip(f64, list(p) + list(q), list(pr) + list(qr)):
                 worst = worst.max(abs(arb(x) - arb(m)) + arb(r))
-            out.append(float(np.nextafter(float(worst.abs_upper()), np.inf)))
+            out.append(_float_up(worst.abs_upper()))
     return out
