@@ -1,4 +1,4 @@
-r"""Certified orbits that stay sharp: a Lohner-type method (moving frame, QR) in Arb ball arithmetic.
+r"""Certified orbits that stay sharp: a Lohner-type method (moving frame) in Arb ball arithmetic.
 
 Plain ball arithmetic (:mod:`.certified`, ``method="ball"``) loses the correlations between the
 coordinates (the wrapping effect): on the paper's example its radius grows about 2 bits per step,
@@ -19,17 +19,26 @@ contains the set and ``xh_k`` (its hull):
    arithmetic (forward-mode dual numbers through ``step_core``,
    :func:`~symbt.numeric.lohner_checks.jacobian_dual`, are the independent check of this derivation);
 2. ``y = f(xh_k)`` on the exact centre (:func:`~symbt.numeric.mpfast.arb_step`, a ball);
-3. mean-value form: ``f(x) in y + J (C r0) + J (B r)``; ``C <- mid(J) C`` and ``B <- Q`` of a plain
-   QR factorisation of ``mid(J) B`` (no column reordering), both formed in float64 -- ``C`` and ``B``
-   only have to be exact, and ``B`` invertible: its inverse is enclosed rigorously
-   (:func:`frame_inverse`); ``xh <- mid(y)`` and
-
+3. mean-value form: ``f(x) in y + J (C r0) + J (B r)``; ``C <- mid(J) C`` and ``B <- mid(J) B``
+   (both formed in float64: ``C`` and ``B`` only have to be exact, and ``B`` invertible -- its inverse
+   is enclosed rigorously, :func:`frame_inverse`); ``xh <- mid(y)`` and
        r <- (B^-1 J B) r + B^-1 ((J C - C_new) r0 + (y - mid y)),
 
    so the rounding errors of the step and the width of ``J`` go into ``r``.  ``J`` and this frame
    algebra run at ``jac_prec = 96`` bits: they only multiply the tiny offsets ``r``, so their own
    rounding is a relative ``2**-90`` per step (``xh`` and ``y`` carry the working precision);
 4. the stored enclosure is the hull ``xh + C r0 + B r`` intersected with ``f(K)``.
+
+The frame.  With ``B <- mid(J) B`` (the parallelepiped frame) ``B^-1 J B`` is the identity up to the
+width of ``J``, so ``r`` only collects the mapped rounding errors; the price is the condition number of
+``B``, which for this integrable map grows only like ``n**2`` (a shear).  When it passes
+:data:`MAX_FRAME_COND` the frame is re-orthogonalised by a plain QR factorisation of ``mid(J) B`` (no
+column reordering: the issue reports that reordering by raw column norm blew up); ``frame="qr"`` does
+that every step (Lohner's QR method, CAPD's default).  Measured on the paper's example at 256 bits
+(``python -m symbt.benchmarks.certified``, docs/certified.md): the radius grows like ``n**3.6`` with the
+product frame and like ``n**6.2`` with QR every step -- the absolute values of the triangular factors'
+oscillating off-diagonal entries pile up in ``|R| |r|`` (one power of ``n`` per superdiagonal) -- 23 bits
+apart at 1e4 steps.
 
 A Jacobian that is not finite (a box that contains a degenerate eigenvector, i.e. a slope at
 infinity, or a pole of the formulation) raises :class:`JacobianBlowup`: :func:`certified_orbit`
@@ -171,14 +180,19 @@ def _frame(F: Any) -> tuple[Any, Any]:
 
 
 _SMALL = 24       # below this size Arb's inv is faster than the Python loops of the bound
+#: the product frame is re-orthogonalised (QR) when its 1-norm condition number passes this; on the paper's
+#: example it grows like n**2 (6e4 at 1000 steps, 5e6 at 5000), so 1e12 is not reached below ~1e6 steps
+MAX_FRAME_COND = 1e12
 
 
-def frame_inverse(B: Any) -> Any:
-    """A rigorous enclosure of ``B**-1`` for an exact, nearly orthogonal ``B`` (one product, no elimination).
+def frame_inverse(B: Any, X: Any = None) -> Any:
+    """A rigorous enclosure of ``B**-1`` for an exact ``B``, given an approximate inverse ``X`` (float64 array;
+    default ``B^T``, for a nearly orthogonal ``B``): one product, no elimination.
 
-    With ``B^T B = I + D`` and ``|D|_inf <= d < 1/2``: ``B^-1 = B^T + E B^T`` with ``|E|_inf <= d / (1 - d)``,
-    so every entry of ``B^-1 - B^T`` is at most ``max|B_ij| d / (1 - d)``.  Falls back to Arb's ``inv``
-    (Gaussian elimination) when ``B`` is not nearly orthogonal, and for small matrices (faster there).
+    With ``X B = I + D`` and ``|D|_inf <= d < 1/2``: ``B^-1 = (I + D)^-1 X = X + E X`` with
+    ``|E|_inf <= d / (1 - d)``, so every entry of ``B^-1 - X`` is at most ``max|X_ij| d / (1 - d)``.  Falls
+    back to Arb's ``inv`` (Gaussian elimination) when ``X`` is not good enough, and for small matrices
+    (faster there).
 
     >>> import numpy as np
     >>> B = arb_mat(np.linalg.qr(np.arange(1.0, 1601.0).reshape(40, 40) ** 0.5)[0].tolist())
@@ -188,32 +202,37 @@ def frame_inverse(B: Any) -> Any:
     n = B.nrows()
     if n <= _SMALL:
         return B.inv()
-    Bt = B.transpose()
-    D = Bt * B
+    Xa = B.transpose() if X is None else arb_mat(np.asarray(X).tolist())
+    D = Xa * B
     d = arb(0)
     for i in range(n):
         d = d.max(arb(sum(abs(D[i, k] - (1 if i == k else 0)) for k in range(n)).abs_upper()))
     if not d < 0.5:
         return B.inv()
-    beta = max(abs(x) for x in B.entries())
+    beta = max(abs(x) for x in Xa.entries())
     rad = arb((beta * d / (1 - d)).abs_upper())
-    return Bt + arb_mat(n, n, [arb(0, rad)] * (n * n))
+    return Xa + arb_mat(n, n, [arb(0, rad)] * (n * n))
 
 
 class LohnerSet:
     """The set ``xh + C r0 + B r`` of one step (see the module docstring) and its hull.
 
     ``hull`` is the stored enclosure (a list of balls, ``p`` then ``q``).  ``jac_prec``: bits of the
-    Jacobian and the frame algebra.  ``unsound=True`` drops the rounding errors and the Jacobian's radius (a
-    deliberately wrong variant: the tests show that the containment check catches it).
+    Jacobian and the frame algebra; ``frame``: ``"product"`` (default) or ``"qr"`` (module docstring);
+    ``reorthogonalised`` counts the QR steps of the product frame.  ``unsound=True`` drops the rounding
+    errors and the Jacobian's radius (a deliberately wrong variant: the tests show that the containment
+    check catches it).
 
     >>> S = LohnerSet([arb(-20), arb(10), arb(1), arb(1), arb(0), arb(0.9)])
     >>> S.step(arb(10), arb(5), 1); S.hull[0].str(8, radius=False)
     '-19.996568'
     """
 
-    def __init__(self, balls: Sequence[Any], jac_prec: int = 96, unsound: bool = False) -> None:
+    def __init__(self, balls: Sequence[Any], jac_prec: int = 96, unsound: bool = False,
+                 frame: str = "product") -> None:
         n = len(balls)
+        self.frame = frame
+        self.reorthogonalised = 0
         self.n = n
         self.jac_prec = jac_prec
         self.xh = [b.mid() for b in balls]
@@ -229,6 +248,22 @@ class LohnerSet:
         """A box containing the set and ``xh`` (the mean-value form needs the segment ``[xh, x]``)."""
         return [h.union(c) for h, c in zip(self.hull, self.xh)]
 
+    def _new_frame(self, F: Any) -> tuple[Any, Any, Any]:
+        """``(Bf, B, enclosure of B^-1)`` for the new frame from ``F = mid(J) B`` (float64)."""
+        if not np.all(np.isfinite(F)):
+            raise JacobianBlowup("the frame matrix is not finite")
+        if self.frame == "product":
+            try:
+                X = np.linalg.inv(F)
+            except np.linalg.LinAlgError:
+                X = None
+            if X is not None and np.linalg.norm(F, 1) * np.linalg.norm(X, 1) < MAX_FRAME_COND:
+                B = arb_mat(F.tolist())
+                return F, B, frame_inverse(B, X)
+            self.reorthogonalised += 1
+        Bf, B = _frame(F)
+        return Bf, B, frame_inverse(B)
+
     def step(self, lam0: Any, mu: Any, branch: int) -> None:
         """One step: the set and its hull are replaced by enclosures of their image."""
         N = self.n // 2
@@ -243,8 +278,7 @@ class LohnerSet:
             if self.unsound:
                 J, err = J.mid(), arb_mat(self.n, 1)
             Jf = _floats(J.mid())
-            Bf, Bn = _frame(Jf @ self.Bf)
-            Binv = frame_inverse(Bn)
+            Bf, Bn, Binv = self._new_frame(Jf @ self.Bf)
             if self.unsound:
                 Binv = Binv.mid()
             rhs = err
@@ -282,7 +316,7 @@ def _lograd(xs: Sequence[Any]) -> float:
 
 def lohner_pass(P: list[Any], Q: list[Any], lam0: Any, mu: Any, n: int, branch: int, keep: set[int],
                 excess: Callable[[list[Any]], float], *, jac_prec: int = 96, unsound: bool = False,
-                stop: float = 8.0) -> LohnerPass:
+                stop: float = 8.0, frame: str = "product") -> LohnerPass:
     """``n`` Lohner steps from the balls ``P, Q`` at the current flint precision.
 
     The stored ``(P, Q)`` balls at the steps in ``keep`` (and the initial state), ``hist[i] =
@@ -296,7 +330,7 @@ def lohner_pass(P: list[Any], Q: list[Any], lam0: Any, mu: Any, n: int, branch: 
     (True, 2, 3)
     """
     N = len(P)
-    S = LohnerSet(list(P) + list(Q), jac_prec=jac_prec, unsound=unsound)
+    S = LohnerSet(list(P) + list(Q), jac_prec=jac_prec, unsound=unsound, frame=frame)
     stored = [(list(P), list(Q))]
     hist, lograd = [excess(S.hull)], [_lograd(S.hull)]
     for i in range(1, n + 1):
