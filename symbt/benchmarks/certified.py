@@ -76,10 +76,12 @@ def run_side_by_side(steps: list[int], ball_max_steps: int = 3500) -> list[dict[
 def _by_products(orbit: Any, n: int, every: int) -> dict[str, Any]:
     from ..numeric.lohner_checks import common_invariants, float64_error_bounds, invariant_enclosures
 
-    H = common_invariants(invariant_enclosures(*orbit))             # raises if two enclosures are disjoint
+    P, Q, Pr, Qr = orbit
+    H = common_invariants(invariant_enclosures(P, Q, Pr, Qr))       # raises if two enclosures are disjoint
     Pf, Qf = bt_orbit(P0, Q0, LAM0, MU, n, every=every)
-    bounds = float64_error_bounds(*orbit, Pf, Qf)
-    return {"invariants": [h.str(12, radius=True) for h in H], "float64_error": max(bounds),
+    bounds = float64_error_bounds(P, Q, Pr, Qr, Pf, Qf)
+    return {"invariants": ["%s +- %.1e" % (h.mid().str(15, radius=False), float(h.rad())) for h in H],
+            "float64_error": max(bounds),
             "float64_error_at_end": bounds[-1]}
 
 

@@ -1,5 +1,10 @@
 r"""Certified orbits: midpoints plus rigorous error bounds from Arb ball arithmetic.
 
+By default (``method="auto"``) the Lohner-type method of :mod:`.lohner` runs: its radius grows
+polynomially, not exponentially (docs/certified.md); where its Jacobian enclosure is not finite the plain
+ball path described below runs instead (``info["method"]`` says which ran).  ``method="ball"`` forces the
+plain path.
+
 :func:`certified_orbit` (also ``bt_orbit(..., certified=True)``) runs
 :func:`~symbt.numeric.step.step_core` on python-flint ``arb`` balls
 (:data:`~symbt.numeric.arb.ARB_CERTAIN`).  The input is taken *exactly*:

@@ -185,6 +185,13 @@ _SMALL = 24       # below this size Arb's inv is faster than the Python loops of
 MAX_FRAME_COND = 1e12
 
 
+def _inv(B: Any) -> Any:
+    try:
+        return B.inv()
+    except ZeroDivisionError as exc:           # Arb cannot certify that B is invertible
+        raise JacobianBlowup("the frame matrix is not certainly invertible") from exc
+
+
 def frame_inverse(B: Any, X: Any = None) -> Any:
     """A rigorous enclosure of ``B**-1`` for an exact ``B``, given an approximate inverse ``X`` (float64 array;
     default ``B^T``, for a nearly orthogonal ``B``): one product, no elimination.
@@ -201,14 +208,14 @@ def frame_inverse(B: Any, X: Any = None) -> Any:
     """
     n = B.nrows()
     if n <= _SMALL:
-        return B.inv()
+        return _inv(B)
     Xa = B.transpose() if X is None else arb_mat(np.asarray(X).tolist())
     D = Xa * B
     d = arb(0)
     for i in range(n):
         d = d.max(arb(sum(abs(D[i, k] - (1 if i == k else 0)) for k in range(n)).abs_upper()))
     if not d < 0.5:
-        return B.inv()
+        return _inv(B)
     beta = max(abs(x) for x in Xa.entries())
     rad = arb((beta * d / (1 - d)).abs_upper())
     return Xa + arb_mat(n, n, [arb(0, rad)] * (n * n))
@@ -268,7 +275,10 @@ class LohnerSet:
         """One step: the set and its hull are replaced by enclosures of their image."""
         N = self.n // 2
         img, J = step_jacobian(self._box(), lam0, mu, branch, self.jac_prec)
-        Pc, Qc = arb_step(self.xh[:N], self.xh[N:], lam0, mu, branch)
+        try:
+            Pc, Qc = arb_step(self.xh[:N], self.xh[N:], lam0, mu, branch)
+        except ArithmeticError as exc:         # a division by an exact zero at the centre
+            raise JacobianBlowup("the step at the centre is not finite") from exc
         y = Pc + Qc
         if not all(v.is_finite() for v in y):
             raise JacobianBlowup("the step at the centre is not finite")
