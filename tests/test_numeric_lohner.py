@@ -108,21 +108,32 @@ def test_every_enclosure_contains_the_300_digit_reference(case):
         assert max(abs(x - m) for x, m in zip(ref[-1][0], P[-1])) > 0
 
 
-def test_the_unsound_variant_fails_the_containment_check():
+@pytest.mark.parametrize("frame", ["product", "qr"])
+def test_the_unsound_variant_fails_the_containment_check(frame):
     """Rounding errors and the Jacobian's radius dropped: the enclosure shrinks to the midpoint orbit, which
-    the same check (same precision, same steps) rejects, while the sound pass passes it."""
+    the same check (same precision, same steps, same frame) rejects, while the sound pass passes it."""
     n = 40
     ref = reference_orbit(P64, Q64, LAM0, MU, n, 1)
     for unsound in (False, True):
         with flint_prec(160):
             run = lohner_pass([arb(x) for x in P64], [arb(x) for x in Q64], arb(LAM0), arb(MU), n, 1,
-                              set(range(n + 1)), lambda xs: -math.inf, unsound=unsound)
+                              set(range(n + 1)), lambda xs: -math.inf, unsound=unsound, frame=frame)
         assert len(run.stored) == n + 1
         bad = ball_misses(ref, run.stored)
         if unsound:
             assert len(bad) > n           # misses at (almost) every step
         else:
             assert bad == []
+
+
+def test_precision_raised_from_the_measured_growth():
+    """A first pass at too few bits measures the polynomial growth; the next pass meets the target."""
+    info = {}
+    with mpmath.workdps(50):
+        P, Q, Pr, Qr = certified_orbit(P64, Q64, LAM0, MU, 400, every=100, tol=1e-40, prec=100, info=info)
+    assert info["method"] == "lohner" and info["passes"][0] == 100 and len(info["passes"]) >= 2, info
+    assert info["prec"] <= 256
+    assert max(max(a + b) for a, b in zip(Pr, Qr)) <= 1e-40
 
 
 def fd_jacobian(p, q, lam0, mu, branch, h, dps=200):
