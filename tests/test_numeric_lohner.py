@@ -267,3 +267,12 @@ def test_3500_steps_below_1e_minus_40_at_most_256_bits():
     with mpmath.workdps(120):
         for (a, b), Pm, Qm, Pr_, Qr_ in zip(ref, P, Q, Pr, Qr):
             assert all(abs(x - m) <= r for x, m, r in zip(a + b, Pm + Qm, Pr_ + Qr_))
+
+
+def test_docs_certified_examples_run():
+    import doctest
+    import pathlib
+
+    doc = pathlib.Path(__file__).resolve().parents[1] / "docs" / "certified.md"
+    result = doctest.testfile(str(doc), module_relative=False, optionflags=doctest.ELLIPSIS)
+    assert result.attempted >= 8 and result.failed == 0, result
