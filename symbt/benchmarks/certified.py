@@ -11,8 +11,8 @@ runs in one process, on the paper's example (N = 3, ``lam0 = 10``, ``mu = 5``, e
   the 1e5-step orbit (checked to intersect) and the certified float64 error over the run;
 * random states N = 8 and N = 64 (``symbt.benchmarks.cases.chain``), 1000 steps: time, bits, growth law.
 
-``--quick``: 100 and 1000 steps, N = 8 only (a minute).  Results go to stdout (a Markdown table) and, with
-``--json``, to a file.
+``--quick``: 100 and 1000 steps, N = 8 only (a minute); ``--steps`` and ``--large`` select parts.
+Results go to stdout (a Markdown table) and, with ``--json``, to a file.
 
 >>> rows = run_side_by_side([20], ball_max_steps=20)
 >>> sorted(r["method"] for r in rows), all(r["max_radius"] <= 1e-30 for r in rows)
@@ -114,8 +114,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--json", metavar="FILE", help="also write the rows as JSON")
     ap.add_argument("--ball-max-steps", type=int, default=3500, help="longest orbit run on the ball path")
     ap.add_argument("--large", type=int, nargs="*", choices=sorted(LARGE), help="random states (default 8 64)")
+    ap.add_argument("--steps", type=int, nargs="*", help="orbit lengths of the side-by-side part "
+                    "(default 100 3500 100000)")
     args = ap.parse_args(argv)
-    steps = [100, 1000] if args.quick else [100, 3500, 100_000]
+    steps = args.steps if args.steps is not None else ([100, 1000] if args.quick else [100, 3500, 100_000])
     large = args.large if args.large is not None else ([8] if args.quick else [8, 64])
     head = {"machine": machine_info(), "date": time.strftime("%Y-%m-%d %H:%M"),
             "command": "python -m symbt.benchmarks.certified " + " ".join(sys.argv[1:] if argv is None else argv)}

@@ -83,8 +83,21 @@ class JacobianBlowup(ArithmeticError):
 
 
 def _check_finite(img: Sequence[Any], J: Any) -> None:
-    if not (all(x.is_finite() for x in img) and all(a.is_finite() for a in J.entries())):
+    # a row sum is finite iff every entry of the row is (inf and nan radii propagate): n checks, not n**2
+    sums = J * arb_mat(J.ncols(), 1, [1] * J.ncols())
+    if not (all(x.is_finite() for x in img) and all(sums[i, 0].is_finite() for i in range(J.nrows()))):
         raise JacobianBlowup("the Jacobian of the step is not finite on the current box")
+
+
+_UNITS: dict[tuple[int, int], list[Any]] = {}
+
+
+def _unit_rows(n: int) -> list[Any]:
+    """The unit rows ``e_1 .. e_n`` (``1 x n``), made once per size and precision."""
+    key = (n, flint.ctx.prec)
+    if key not in _UNITS:
+        _UNITS[key] = [arb_mat(1, n, [1 if k == i else 0 for k in range(n)]) for i in range(n)]
+    return _UNITS[key]
 
 
 def _slope_rows(u: list[Any], r: list[Any], eP: list[Any], eQ: list[Any], zero: Any, fwd: bool) -> list[Any]:
@@ -139,7 +152,7 @@ def step_jacobian(box: Sequence[Any], lam0: Any, mu: Any, branch: int,
     if not all(x.is_finite() for x in img):
         raise JacobianBlowup("the step is not finite on the current box")
     with flint_prec(jac_prec or flint.ctx.prec):
-        E = [arb_mat(1, n, [1 if k == i else 0 for k in range(n)]) for i in range(n)]
+        E = _unit_rows(n)
         eP, eQ, zero = E[:N], E[N:], arb_mat(1, n)
         Q = box[N:]
         r = [(Q[(j + 1) % N] - Q[j]).exp() for j in range(N)]
@@ -183,6 +196,7 @@ _SMALL = 24       # below this size Arb's inv is faster than the Python loops of
 #: the product frame is re-orthogonalised (QR) when its 1-norm condition number passes this; on the paper's
 #: example it grows like n**2 (6e4 at 1000 steps, 5e6 at 5000), so 1e12 is not reached below ~1e6 steps
 MAX_FRAME_COND = 1e12
+_COND_EVERY = 32       # small frames: check the condition every so many steps (rigour does not depend on it)
 
 
 def _inv(B: Any) -> Any:
@@ -239,7 +253,7 @@ class LohnerSet:
                  frame: str = "product") -> None:
         n = len(balls)
         self.frame = frame
-        self.reorthogonalised = 0
+        self.reorthogonalised = self.steps = 0
         self.n = n
         self.jac_prec = jac_prec
         self.xh = [b.mid() for b in balls]
@@ -260,11 +274,17 @@ class LohnerSet:
         if not np.all(np.isfinite(F)):
             raise JacobianBlowup("the frame matrix is not finite")
         if self.frame == "product":
-            try:
-                X = np.linalg.inv(F)
-            except np.linalg.LinAlgError:
-                X = None
-            if X is not None and np.linalg.norm(F, 1) * np.linalg.norm(X, 1) < MAX_FRAME_COND:
+            self.steps += 1
+            X = None
+            if self.n > _SMALL or self.steps % _COND_EVERY == 0:      # the condition grows slowly (n**2 here)
+                try:
+                    X = np.linalg.inv(F)
+                    cond = np.linalg.norm(F, 1) * np.linalg.norm(X, 1)
+                except np.linalg.LinAlgError:
+                    cond = math.inf
+            else:
+                cond = 0.0
+            if cond < MAX_FRAME_COND:
                 B = arb_mat(F.tolist())
                 return F, B, frame_inverse(B, X)
             self.reorthogonalised += 1
