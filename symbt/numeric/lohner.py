@@ -224,15 +224,19 @@ def frame_inverse(B: Any, X: Any = None) -> Any:
     if n <= _SMALL:
         return _inv(B)
     Xa = B.transpose() if X is None else arb_mat(np.asarray(X).tolist())
-    D = Xa * B
+    ents = (Xa * B - _identity(n)).entries()
     d = arb(0)
     for i in range(n):
-        d = d.max(arb(sum(abs(D[i, k] - (1 if i == k else 0)) for k in range(n)).abs_upper()))
+        d = d.max(arb(sum(abs(x) for x in ents[i * n:(i + 1) * n]).abs_upper()))
     if not d < 0.5:
         return _inv(B)
-    beta = max(abs(x) for x in Xa.entries())
+    beta = arb(float(np.abs(X).max())) if X is not None else max(abs(x) for x in Xa.entries())
     rad = arb((beta * d / (1 - d)).abs_upper())
     return Xa + arb_mat(n, n, [arb(0, rad)] * (n * n))
+
+
+def _identity(n: int) -> Any:
+    return arb_mat(n, n, [1 if i == j else 0 for i in range(n) for j in range(n)])
 
 
 class LohnerSet:
