@@ -11,11 +11,13 @@ import importlib.util
 import pytest
 
 #: module file -> the optional dependency it imports at module level
-_IMPORTS = {"symbt/numeric/arb.py": "flint"}
+_IMPORTS = {"symbt/numeric/arb.py": "flint", "symbt/numeric/lohner.py": "flint",
+            "symbt/numeric/lohner_checks.py": "flint"}
 
 #: doctest (module or object, dotted) -> the optional dependency its examples need
 _NEEDS = {
     "symbt.numeric.certified": "flint",
+    "symbt.benchmarks.certified": "flint",
     "symbt.numeric.mpfast.arb_step": "flint",
     "symbt.numeric.qd": "numba",
     "symbt.proof.flint_exact": "flint",
