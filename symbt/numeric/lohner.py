@@ -275,6 +275,10 @@ class LohnerSet:
 
     def _new_frame(self, F: Any) -> tuple[Any, Any, Any]:
         """``(Bf, B, enclosure of B^-1)`` for the new frame from ``F = mid(J) B`` (float64)."""
+        with np.errstate(all="ignore"):       # overflow or a singular frame is decided below, not warned
+            return self._frame_of(F)
+
+    def _frame_of(self, F: Any) -> tuple[Any, Any, Any]:
         if not np.all(np.isfinite(F)):
             raise JacobianBlowup("the frame matrix is not finite")
         if self.frame == "product":
@@ -312,12 +316,17 @@ class LohnerSet:
             if self.unsound:
                 J, err = J.mid(), arb_mat(self.n, 1)
             Jf = _floats(J.mid())
-            Bf, Bn, Binv = self._new_frame(Jf @ self.Bf)
+            with np.errstate(all="ignore"):
+                F = Jf @ self.Bf
+            Bf, Bn, Binv = self._new_frame(F)
             if self.unsound:
                 Binv = Binv.mid()
             rhs = err
             if self.has_r0:
-                self.Cf = Jf @ self.Cf
+                with np.errstate(all="ignore"):
+                    self.Cf = Jf @ self.Cf
+                if not np.all(np.isfinite(self.Cf)):
+                    raise JacobianBlowup("the matrix C is not finite")
                 Cn = arb_mat(self.Cf.tolist())
                 rhs = rhs + (J * self.C - Cn) * self.r0
                 self.C = Cn
@@ -400,8 +409,10 @@ def growth_law(lograd: Sequence[float], first: int = 100) -> dict[str, Any]:
     out: dict[str, Any] = {"degree": None, "steps": (first, last),
                            "log2_radius": (lograd[first] if last >= first else None, lograd[last])}
     if len(xy) >= 2 and xy[-1][0] > xy[0][0]:
-        X = np.array(xy)
-        out["degree"] = float(np.polyfit(X[:, 0], X[:, 1], 1)[0])
+        x = np.array([a for a, _ in xy])
+        y = np.array([b for _, b in xy])
+        x -= x.mean()
+        out["degree"] = float(np.dot(x, y - y.mean()) / np.dot(x, x))     # least-squares slope
     return out
 
 
