@@ -136,7 +136,7 @@ def step_jacobian(box: Sequence[Any], lam0: Any, mu: Any, branch: int,
 
     ``step_core`` on the box at the current precision (its existence decisions hold on the whole box or
     raise, as on the plain certified path) gives the image and the slopes; the Jacobian follows from the
-    implicit relations of the slopes (:func:`_slope_rows`) and the read-out of the step, at ``jac_prec``
+    implicit cyclic relations of the slopes (module docstring) and the read-out of the step, at ``jac_prec``
     bits (default: the current precision; the Jacobian only multiplies the tiny offsets ``r``, so 64-96
     bits suffice).  Encloses the same Jacobian as :func:`~symbt.numeric.lohner_checks.jacobian_dual` (forward-mode
     dual numbers through ``step_core``), several times faster.
@@ -446,10 +446,10 @@ def lohner_certified(state: Callable[[], tuple[list[Any], list[Any], Any, Any]],
 
     ``state()`` makes the input balls at the current flint precision; the first pass runs at ``prec`` (default
     ``target_bits + 24 + 5 bitlen(n)``, ``target_bits = log2(1 / target radius)``), each later one at the
-    precision the measured growth requires
-    (:func:`_next_prec`); ``passes`` receives the precisions tried.  Raises :class:`JacobianBlowup` (the caller
-    falls back to the plain ball path), :class:`NumericRangeError` (not certified below ``max_prec``),
-    :class:`NoRealMapError`.
+    precision the measured growth requires (the excess so far plus 1.5 times the fitted degree times
+    ``log2(n / steps done)``, plus 16 bits); ``passes`` receives the precisions tried.  Raises
+    :class:`JacobianBlowup` (the caller falls back to the plain ball path), :class:`NumericRangeError` (not
+    certified below ``max_prec``), :class:`NoRealMapError`.
 
     >>> def state():
     ...     return [arb(-20), arb(10), arb(1)], [arb(1), arb(0), arb(0.9)], arb(10), arb(5)
