@@ -11,11 +11,13 @@ import importlib.util
 import pytest
 
 #: module file -> the optional dependency it imports at module level
-_IMPORTS = {"symbt/numeric/multiprec/arb.py": "flint"}
+_IMPORTS = {"symbt/numeric/multiprec/arb.py": "flint", "symbt/numeric/multiprec/lohner.py": "flint",
+            "symbt/numeric/multiprec/lohner_checks.py": "flint"}
 
 #: doctest (module or object, dotted) -> the optional dependency its examples need
 _NEEDS = {
     "symbt.numeric.multiprec.certified": "flint",
+    "symbt.benchmarks.certified": "flint",
     "symbt.numeric.multiprec.runners.arb_step": "flint",
     "symbt.numeric.multiprec.qd": "numba",
     "symbt.proof.flint_exact": "flint",

@@ -187,13 +187,14 @@ def certified_growth(prec: int = 400, steps: tuple[int, ...] = (1, 10, 25, 50, 1
 
 
 def certified_time(n: int, tol: float, dps: int) -> tuple[float, float, int]:
-    """``(seconds, max radius, working precision)`` of a certified ``n``-step orbit (paper's example)."""
+    """``(seconds, max radius, working precision)`` of a certified ``n``-step orbit on the plain ball path
+    (paper's example; the Lohner method: ``python -m symbt.benchmarks.certified``)."""
     from ..numeric.multiprec.certified import certified_orbit
 
     info: dict[str, Any] = {}
     with mpmath.workdps(dps):
         t = time.perf_counter()
-        _, _, Pr, Qr = certified_orbit(P0, Q0, LAM0, MU, n, every=n, tol=tol, info=info)
+        _, _, Pr, Qr = certified_orbit(P0, Q0, LAM0, MU, n, every=n, tol=tol, info=info, method="ball")
         t = time.perf_counter() - t
     return t, float(max(Pr[-1] + Qr[-1])), int(info["prec"])
 

@@ -99,7 +99,7 @@ def _invariant_ref(p: tuple, q: tuple) -> tuple:
 
 @claim("shipped.invariants", equation="tra", scene="shipped",
        parts=scale_parts, sizes=(2, 3, 5),
-       where="symbt/numeric/lax.py: invariants, spectral_trace",
+       where="symbt/numeric/flow/invariants.py: invariants, spectral_trace",
        statement="symbt.numeric.invariants (float64 one state and batch, mpmath 30 digits) and spectral_trace at "
                  "lambda0 +- mu = the polynomial trace (closed-walk expansion, 50 digits) within 16 N u S, every "
                  "cell (N={N})")
@@ -160,7 +160,7 @@ def _phi_ref(st: tuple, b: int) -> tuple:
 
 
 @claim("shipped.phi", equation="newkmu", scene="shipped",
-       parts=scale_parts, sizes=(2, 3, 5), where="symbt/numeric/phi.py: phi",
+       parts=scale_parts, sizes=(2, 3, 5), where="symbt/numeric/flow/phi.py: phi",
        statement="symbt.numeric.phi (float64 one state and batch, mpmath 30 digits) = the literal Phi = sum_k "
                  "ln|(eta_k + mu)/(eta_k - mu)|, eta_k of the literal map (50 digits), within 16 N u S, every "
                  "branch x sign(mu) x sign(tr) cell (N={N})")
@@ -217,13 +217,13 @@ def _c_ref(st: tuple) -> tuple:
 
 @claim("shipped.coefficients", equation="eqdisc", scene="shipped",
        parts=scale_parts, sizes=(2,), deep=True,
-       where="symbt/numeric/coefficients.py: flow_coefficients",
+       where="symbt/numeric/flow/coefficients.py: flow_coefficients",
        statement="symbt.numeric.flow_coefficients (float64, rtol 1e-13; mpmath 30 digits) = tanh-sinh quadrature "
                  "of -b int_{lam0-mu}^{lam0+mu} lam^k/sqrt(tr^2-4) with the polynomial trace (30 digits, checked at "
                  "42), within 10 (rtol A_k + eps end-point conditioning), every cell (N={N})")
 @claim("shipped.coefficients", equation="eqdisc", scene="shipped",
        parts=scale_parts, sizes=(3,),
-       where="symbt/numeric/coefficients.py: flow_coefficients",
+       where="symbt/numeric/flow/coefficients.py: flow_coefficients",
        statement="symbt.numeric.flow_coefficients (float64, rtol 1e-13; mpmath 30 digits) = tanh-sinh quadrature "
                  "of -b int_{lam0-mu}^{lam0+mu} lam^k/sqrt(tr^2-4) with the polynomial trace (30 digits, checked at "
                  "42), within 10 (rtol A_k + eps end-point conditioning), every cell (N={N})")
@@ -274,13 +274,13 @@ def _field_ref(st: tuple, b: int, x: tuple) -> tuple:
 
 @claim("shipped.field", equation="eqdisc", scene="shipped",
        parts=scale_parts, sizes=(2,), deep=True,
-       where="symbt/numeric/field.py: FlowField",
+       where="symbt/numeric/flow/field.py: FlowField",
        statement="symbt.numeric.FlowField (built at (p0, q0), evaluated there and at a displaced state, one state "
                  "and a batch) = (dG/dp, -dG/dq), G = sum_k c_k H_k, by central differences of the polynomial H_k "
                  "(40 digits) and quadrature c_k, within 10 rtol sum_k A_k|grad H_k| + 16 N eps sum_k |c_k grad H_k|, "
                  "every cell (N={N})")
 @claim("shipped.field", equation="eqdisc", scene="shipped",
-       parts=scale_parts, sizes=(3,), where="symbt/numeric/field.py: FlowField",
+       parts=scale_parts, sizes=(3,), where="symbt/numeric/flow/field.py: FlowField",
        statement="symbt.numeric.FlowField (built at (p0, q0), evaluated there and at a displaced state, one state "
                  "and a batch) = (dG/dp, -dG/dq), G = sum_k c_k H_k, by central differences of the polynomial H_k "
                  "(40 digits) and quadrature c_k, within 10 rtol sum_k A_k|grad H_k| + 16 N eps sum_k |c_k grad H_k|, "

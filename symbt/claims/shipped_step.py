@@ -94,11 +94,11 @@ _ROUTE_NAMES = {"python": "fused kernel", "numpy": "general path", "numba": "fus
 
 
 @claim("shipped.step", equation="bt_step", source_equation="imptransf", scene="shipped", sizes=(8,), deep=True,
-       parts=scale_parts, where="symbt/numeric/step.py: bt_step (float64 one state)",
+       parts=scale_parts, where="symbt/numeric/dispatch.py, float64/step.py: bt_step (float64 one state)",
        statement="symbt.numeric.bt_step, one float64 state, on every route, = the literal map (50 digits) within "
                  "16 N eps S_i per component, in every branch x sign(mu) x sign(tr) cell (N={N})")
 @claim("shipped.step", equation="bt_step", source_equation="imptransf", scene="shipped", sizes=(2, 3, 5),
-       parts=scale_parts, where="symbt/numeric/step.py: bt_step (float64 one state)",
+       parts=scale_parts, where="symbt/numeric/dispatch.py, float64/step.py: bt_step (float64 one state)",
        statement="symbt.numeric.bt_step, one float64 state, on every route (fused kernel, general path; numba "
                  "and auto under --deep), = the literal map (50 digits) within 16 N eps S_i per component "
                  "(S_i: condition scale), in every branch x sign(mu) x sign(tr) cell and at q spread over ~1000 "
@@ -125,7 +125,7 @@ def step(N: int, parts: Parts, deep: bool = False) -> Outcome:
 
 @claim("shipped.batch", equation="bt_step", source_equation="imptransf", scene="shipped", sizes=(2, 3, 5),
        parts=scale_parts,
-       where="symbt/numeric/step.py, rows.py, kernels_block.py: bt_step on (M, N) batches, bt_orbit ensembles",
+       where="symbt/numeric/float64/step.py, rows.py, kernels_block.py: bt_step on (M, N) batches, bt_orbit ensembles",
        statement="symbt.numeric.bt_step on an (M, N) batch with per-state lambda0, mu (numpy rows; the numba "
                  "block kernel under --deep) and the block kernel of an ensemble bt_orbit (one step, plain "
                  "Python) = the literal map (50 digits) member by member within 16 N eps S_i, every cell (N={N})")
@@ -158,7 +158,7 @@ def batch(N: int, parts: Parts, deep: bool = False) -> Outcome:
 
 @claim("shipped.mp", equation="bt_step", source_equation="imptransf", scene="shipped", sizes=(2, 3, 5),
        parts=scale_parts,
-       where="symbt/numeric/step.py, mpfast.py, qd.py: bt_step on mpmath numbers",
+       where="symbt/numeric/dispatch.py, multiprec/runners.py, qd.py: bt_step on mpmath numbers",
        statement="symbt.numeric.bt_step on mpmath numbers at 30 digits (backends mpmath, Arb; quad-double under "
                  "--deep) = the literal map (50 digits) within 16 N 2^-prec S_i, every cell (N={N})")
 def mp_step(N: int, parts: Parts, deep: bool = False) -> Outcome:
@@ -215,13 +215,13 @@ def _orbit_routes(deep: bool) -> dict[str, Callable[..., Any]]:
 
 @claim("shipped.orbit", equation="bt_orbit", source_equation="imptransf", scene="shipped", sizes=(2,), deep=True,
        parts=scale_parts,
-       where="symbt/numeric/orbit.py, ensemble.py, kernels.py, kernels_block.py, mpfast.py: bt_orbit",
+       where="symbt/numeric/dispatch.py, float64/orbit.py, kernels*.py, multiprec/runners.py: bt_orbit",
        statement="symbt.numeric.bt_orbit (one state, ensemble, mpmath/Arb; numba and quad-double under --deep) "
                  "after n = 10 steps (40 under --deep) = the literal orbit (50 digits) within 16 N u n "
                  "max_m S^(m)_i (the bound grows with n as the orbit's conditioning), every cell (N={N})")
 @claim("shipped.orbit", equation="bt_orbit", source_equation="imptransf", scene="shipped", sizes=(3,),
        parts=scale_parts,
-       where="symbt/numeric/orbit.py, ensemble.py, kernels.py, kernels_block.py, mpfast.py: bt_orbit",
+       where="symbt/numeric/dispatch.py, float64/orbit.py, kernels*.py, multiprec/runners.py: bt_orbit",
        statement="symbt.numeric.bt_orbit (one state, ensemble, mpmath/Arb; numba and quad-double under --deep) "
                  "after n = 10 steps (40 under --deep) = the literal orbit (50 digits) within 16 N u n "
                  "max_m S^(m)_i (the bound grows with n as the orbit's conditioning), every cell (N={N})")
@@ -247,13 +247,13 @@ def orbit(N: int, parts: Parts, deep: bool = False) -> Outcome:
 
 @claim("shipped.certified", equation="bt_orbit", source_equation="imptransf", scene="shipped", sizes=(2,), deep=True,
        parts=scale_parts,
-       requires=("flint",), where="symbt/numeric/certified.py: certified_orbit, bt_orbit(certified=True)",
+       requires=("flint",), where="symbt/numeric/multiprec/certified.py: certified_orbit, bt_orbit(certified=True)",
        statement="bt_orbit(certified=True) at 30 digits, n = 10 steps: every enclosure [mid - rad, mid + rad] "
                  "contains the literal orbit (50 digits), and is informative (rad <= 1e-20 of the state's size), "
                  "every cell (N={N})")
 @claim("shipped.certified", equation="bt_orbit", source_equation="imptransf", scene="shipped", sizes=(3,),
        parts=scale_parts,
-       requires=("flint",), where="symbt/numeric/certified.py: certified_orbit, bt_orbit(certified=True)",
+       requires=("flint",), where="symbt/numeric/multiprec/certified.py: certified_orbit, bt_orbit(certified=True)",
        statement="bt_orbit(certified=True) at 30 digits, n = 10 steps: every enclosure [mid - rad, mid + rad] "
                  "contains the literal orbit (50 digits), and is informative (rad <= 1e-20 of the state's size), "
                  "every cell (N={N})")

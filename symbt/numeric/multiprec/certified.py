@@ -1,5 +1,10 @@
 r"""Certified orbits: midpoints plus rigorous error bounds from Arb ball arithmetic.
 
+By default (``method="auto"``) the Lohner-type method of :mod:`.lohner` runs: its radius grows
+polynomially, not exponentially (docs/certified.md); where its Jacobian enclosure is not finite the plain
+ball path described below runs instead (``info["method"]`` says which ran).  ``method="ball"`` forces the
+plain path.
+
 :func:`certified_orbit` (also ``bt_orbit(..., certified=True)``) runs
 :func:`~symbt.numeric.core.step.step_core` on python-flint ``arb`` balls
 (:data:`~symbt.numeric.multiprec.arb.ARB_CERTAIN`).  The input is taken *exactly*:
@@ -52,10 +57,12 @@ from ..core.step import step_core
 from ..float64.kernels import stored_steps
 from .runners import flint_available
 
-__all__ = ["certified_orbit", "DEFAULT_MAX_PREC"]
+__all__ = ["certified_orbit", "DEFAULT_MAX_PREC", "CERTIFIED_METHODS"]
 
 #: precision cap (bits) of the automatic precision increase
 DEFAULT_MAX_PREC = 1 << 16
+#: ``method=`` values of :func:`certified_orbit`
+CERTIFIED_METHODS = ("auto", "lohner", "ball")
 _MARGIN = 24          # extra bits beyond the estimate
 _ATTEMPTS = 8
 
@@ -182,10 +189,24 @@ def _output(balls: list[Any]) -> tuple[list[Any], list[Any]]:
     return mids, rads
 
 
+def _outputs(stored: list[tuple[list[Any], list[Any]]]) -> tuple[list[list[Any]], list[list[Any]],
+                                                                  list[list[Any]], list[list[Any]]]:
+    Pm, Qm, Pr, Qr = [], [], [], []
+    for Pb, Qb in stored:
+        a, b = _output(Pb)
+        c, d = _output(Qb)
+        Pm.append(a)
+        Pr.append(b)
+        Qm.append(c)
+        Qr.append(d)
+    return Pm, Qm, Pr, Qr
+
+
 def certified_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, every: int = 1,
                     tol: Any = None, prec: int | None = None, max_prec: int = DEFAULT_MAX_PREC,
-                    info: dict[str, Any] | None = None) -> tuple[list[list[Any]], list[list[Any]],
-                                                               list[list[Any]], list[list[Any]]]:
+                    info: dict[str, Any] | None = None,
+                    method: str = "auto") -> tuple[list[list[Any]], list[list[Any]],
+                                                   list[list[Any]], list[list[Any]]]:
     """Certified ``n``-step orbit: ``(P, Q, P_rad, Q_rad)``, lists over the stored states.
 
     ``P[i][j]`` is an mpf at the current ``mp.prec`` and
@@ -195,8 +216,14 @@ def certified_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int =
     each returned value, relative to ``max(1, |x|)``); ``prec``: first working
     precision (bits, default ``mp.prec + 32``); ``max_prec``: cap of the
     automatic increase; ``info``: a dict that receives ``passes`` (the working
-    precisions tried, bits) and ``prec`` (the one that succeeded).  Stored
-    states as in :func:`~symbt.numeric.bt_orbit`.
+    precisions tried, bits), ``prec`` (the one that succeeded), ``method``
+    (which ran) and, for ``"lohner"``, ``growth`` (the radius growth law,
+    :func:`~symbt.numeric.lohner.growth_law`), or ``fallback`` (why the plain
+    path ran instead).  ``method``: ``"auto"`` (the Lohner method of
+    :mod:`~symbt.numeric.lohner`, sharp for long orbits; the plain ball path
+    where its Jacobian enclosure is not finite, e.g. at a degenerate
+    eigenvector), ``"lohner"`` (no fallback) or ``"ball"`` (plain ball
+    arithmetic only).  Stored states as in :func:`~symbt.numeric.bt_orbit`.
 
     Raises :class:`NoRealMapError` (certainly no real map),
     :class:`NumericRangeError` (not certifiable below ``max_prec``),
@@ -217,29 +244,36 @@ def certified_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int =
         tol = float(tol)
         if not tol > 0 or not math.isfinite(tol):
             raise InvalidInputError("tol must be a positive finite number, got %r" % (tol,))
+    if method not in CERTIFIED_METHODS:
+        raise InvalidInputError("method must be one of %s, got %r" % (CERTIFIED_METHODS, method))
     out_prec = mpmath.mp.prec
     keep = set(stored_steps(n, every))
-    work = int(prec) if prec is not None else out_prec + 32
     passes: list[int] = []
-    if info is not None:
-        info["passes"] = passes
+    info = info if info is not None else {}
+    info["passes"] = passes
+    if method != "ball":
+        from .lohner import lohner_certified
+
+        try:
+            stored, info["prec"], info["growth"] = lohner_certified(
+                lambda: _state(p, q, lam0, mu), n, branch, keep, lambda xs: _excess(xs, tol, out_prec),
+                out_prec if tol is None else max(1, math.ceil(-math.log2(tol))), prec, max_prec, passes)
+            info["method"] = "lohner"
+            return _outputs(stored)
+        except ArithmeticError as exc:      # JacobianBlowup, NumericRangeError, an overflow: the plain path decides
+            if method == "lohner":
+                raise NumericRangeError("certified orbit (Lohner): %s" % exc) from exc
+            info["fallback"] = str(exc)
+    info["method"] = "ball"
+    work = int(prec) if prec is not None else out_prec + 32
     for _ in range(_ATTEMPTS):
         if work > max_prec:
             break
         passes.append(work)
         ok, stored, hist, done = _run(p, q, lam0, mu, n, branch, keep, work, tol, out_prec)
         if ok:
-            if info is not None:
-                info["prec"] = work
-            Pm, Qm, Pr, Qr = [], [], [], []
-            for Pb, Qb in stored:
-                a, b = _output(Pb)
-                c, d = _output(Qb)
-                Pm.append(a)
-                Pr.append(b)
-                Qm.append(c)
-                Qr.append(d)
-            return Pm, Qm, Pr, Qr
+            info["prec"] = work
+            return _outputs(stored)
         work = _next_prec(work, hist, done, n)
     raise NumericRangeError("certified orbit: the enclosure could not be certified below max_prec = %d bits "
                             "(a decision on the boundary of existence, a degenerate eigenvector, or too many "
