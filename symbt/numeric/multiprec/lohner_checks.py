@@ -90,6 +90,12 @@ class Dual:
         v = o / self.v
         return Dual(v, self.d * (-v / self.v))
 
+    def __lt__(self, o: Any) -> bool:               # a sign decision reads the value's ball (certain only)
+        return bool(self.v < (o.v if isinstance(o, Dual) else o))
+
+    def __gt__(self, o: Any) -> bool:
+        return bool(self.v > (o.v if isinstance(o, Dual) else o))
+
     def mid(self) -> Any:
         """The midpoint of the value (for the accuracy-only decisions of the step)."""
         return self.v.mid()
