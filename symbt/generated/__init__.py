@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 4ab23378b17fd0d1448ef537de9519ba818ac86230fa21477b90af8dc3f70d4b
-# symbt-codegen-content-sha256: 07dff2b1e337d522f2aaa6c14a4d8c2bbae7d454c37714b44b76f2c7ac2c3bc1
+# symbt-codegen-derivation-sha256: 0e37435c0b00d67c089913456c498ef19101fdec6cb12a33b54d1f0f9d483100
+# symbt-codegen-content-sha256: 23bf1921fec106365c9ea7c32c14a872cbee3896be8cc48c79f5cc7d8bc28e35
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

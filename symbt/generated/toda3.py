@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 4ab23378b17fd0d1448ef537de9519ba818ac86230fa21477b90af8dc3f70d4b
-# symbt-codegen-content-sha256: bc17a8bb9bc14838036fd3c93bbbbfd5eb09b25d94ba48cb3026cf7fc9183455
+# symbt-codegen-derivation-sha256: 0e37435c0b00d67c089913456c498ef19101fdec6cb12a33b54d1f0f9d483100
+# symbt-codegen-content-sha256: f6f058d410fc42ca70295d2774e84ecbb7a047a44d28fbefe13c49aa3e4c7f30
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
