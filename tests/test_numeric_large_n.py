@@ -90,3 +90,37 @@ def test_single_state_orbit_at_n256_past_1e150_never_takes_the_general_path(monk
         rq = np.array([float(x) for x in xq])
     err = max(np.abs(P[-1] - rp).max(), np.abs(Q[-1] - rq).max())
     assert err <= n * ULPS * EPS * _scale(P[-1], Q[-1], lam0, mu)
+
+
+@pytest.mark.parametrize("lam0,mu", [(10.0, 1.0), (3.0 * 256 + 20, 2.0)])
+def test_bt_step_at_n256_past_1e150_takes_the_kernel_single_and_batch(lam0, mu, monkeypatch):
+    # issue 26, item 5 follow-up: `bt_step` used to route N log(|lam0| + |mu|) > log(1e150) + 10 to the numpy
+    # general path at once (~2000x slower); now the single state and every batch member stay in the kernel
+    from symbt.numeric.float64 import step as S
+
+    N = 256
+    p, q = _state(N)
+    tr = spectral_trace(mpmath.mpf(lam0 + mu), [mpmath.mpf(float(x)) for x in p], [mpmath.mpf(float(x)) for x in q])
+    assert abs(tr) > mpmath.mpf(10) ** 200
+
+    def refuse(*args, **kw):
+        raise AssertionError("the general (numpy) path was taken")
+
+    monkeypatch.setattr(S, "float_rows_step", refuse)
+    monkeypatch.setattr(E, "float_rows_step", refuse)
+    pt, qt = bt_step(p, q, lam0, mu)
+    rp, rq = _mp_step(p, q, lam0, mu)
+    bound = ULPS * EPS * _scale(p, q, lam0, mu)
+    err = max(np.abs(pt - rp).max(), np.abs(qt - rq).max())
+    assert err <= bound, err / (EPS * _scale(p, q, lam0, mu))
+    assert err > 0                                    # a float64 step, not the reference itself
+    if not numba_available():
+        return                                        # without numba a batch takes the numpy route by design
+    rng = np.random.default_rng(7)
+    pa = p + 0.1 * rng.normal(size=(3, N))
+    qa = q + 0.1 * rng.normal(size=(3, N))
+    bp, bq = bt_step(pa, qa, lam0, mu)
+    for m in range(3):
+        rp, rq = _mp_step(pa[m], qa[m], lam0, mu)
+        err = max(np.abs(bp[m] - rp).max(), np.abs(bq[m] - rq).max())
+        assert err <= ULPS * EPS * _scale(pa[m], qa[m], lam0, mu), (m, err)

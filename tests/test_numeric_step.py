@@ -250,39 +250,43 @@ def test_interval_context_encloses():
         assert a.delta < 1e-9
 
 
-def test_batch_route_where_the_monodromy_leaves_the_float64_range():
-    # N = 256 at lam0 = 3N + 20: |tr L| ~ 788^256, far past the kernels' range; the batch takes the numpy route
-    # at once, and a forced "numba" (the kernel gives every state back to the general path) agrees with it
+def test_batch_far_from_the_spectrum_takes_the_kernel_member_by_member():
+    # N = 256 at lam0 = 3N + 20: |tr L| ~ 790^256 ~ 1e742, far past 1e150.  The kernels rescale the
+    # monodromy, so no member is routed to the numpy path any more: each member of the default batch is its
+    # single-state kernel step bit for bit, and within 8 ulps of max(|p|, |q|, |lam0| + |mu|) of the
+    # independent 40-digit mpmath step
     from symbt.numeric.float64.jit import numba_available
-    from symbt.numeric.float64.step import _monodromy_may_overflow
+    from symbt.numeric.float64.orbit import kernel_step
 
     rng = np.random.default_rng(1)
-    for N, lam0, overflow in ((256, 3.0 * 256 + 20, True), (64, 3.0 * 64 + 20, False), (3, 10.0, False)):
-        p = rng.normal(size=(8, N))
-        q = 0.5 * rng.normal(size=(8, N))
-        assert _monodromy_may_overflow(p, lam0, 2.0) is overflow, N
-        pt, qt = bt_step(p, q, lam0, 2.0)
-        pn, qn = bt_step(p, q, lam0, 2.0, backend="numpy")
-        if overflow or not numba_available():
-            np.testing.assert_array_equal(pt, pn)
-            np.testing.assert_array_equal(qt, qn)
-        else:
-            np.testing.assert_allclose(pt, pn, rtol=0, atol=8 * np.spacing(np.abs(p).max() + 1))
-            np.testing.assert_allclose(qt, qn, rtol=0, atol=8 * np.spacing(np.abs(q).max() + 1))
-        if numba_available():
-            pf, qf = bt_step(p, q, lam0, 2.0, backend="numba")
-            np.testing.assert_allclose(pf, pn, rtol=0, atol=8 * np.spacing(np.abs(p).max() + 1))
-            np.testing.assert_allclose(qf, qn, rtol=0, atol=8 * np.spacing(np.abs(q).max() + 1))
+    mu = 2.0
+    for N, lam0 in ((256, 3.0 * 256 + 20), (64, 3.0 * 64 + 20), (3, 10.0)):
+        p = rng.normal(size=(4, N))
+        q = 0.5 * rng.normal(size=(4, N))
+        pt, qt = bt_step(p, q, lam0, mu)
+        for m in range(4):
+            single = kernel_step(p[m], q[m], lam0, mu, 1)
+            assert single is not None, (N, m)                  # the kernel finishes it: no hand-back
+            assert np.array_equal(bt_step(p[m], q[m], lam0, mu)[0], single[0])
+            if numba_available():                              # the block kernel: bit-identical
+                assert np.array_equal(pt[m], single[0]) and np.array_equal(qt[m], single[1]), (N, m)
+            with mpmath.workdps(40):
+                rp, rq = bt_step([mpmath.mpf(float(x)) for x in p[m]], [mpmath.mpf(float(x)) for x in q[m]],
+                                 mpmath.mpf(lam0), mpmath.mpf(mu))
+            scale = max(np.abs(p[m]).max(), np.abs(q[m]).max(), lam0 + mu, 1.0)
+            err = max(np.abs(pt[m] - np.array([float(x) for x in rp])).max(),
+                      np.abs(qt[m] - np.array([float(x) for x in rq])).max())
+            assert err <= 8 * 2.0**-52 * scale, (N, m, err / (2.0**-52 * scale))
 
 
 def test_which_batches_go_to_the_block_kernel():
     from symbt.numeric.float64.step import _block_kernel_pays
 
     z = np.zeros
-    assert _block_kernel_pays(z((1, 3)), 10.0, 5.0) and _block_kernel_pays(z((4095, 3)), 10.0, 5.0)
-    assert not _block_kernel_pays(z((4096, 3)), 10.0, 5.0)          # N = 3: numpy's vectorised step wins
-    assert _block_kernel_pays(z((100_000, 8)), 10.0, 5.0)            # from N = 8 the kernel wins at any size
-    assert not _block_kernel_pays(z((16, 256)), 788.0, 2.0)          # past the kernels' float64 range
+    assert _block_kernel_pays(z((1, 3))) and _block_kernel_pays(z((4095, 3)))
+    assert not _block_kernel_pays(z((4096, 3)))          # N = 3: numpy's vectorised step wins
+    assert _block_kernel_pays(z((100_000, 8)))            # from N = 8 the kernel wins at any size
+    assert _block_kernel_pays(z((16, 256)))               # far from the spectrum too: the kernels rescale
 
 
 def test_large_batch_at_small_n_equals_the_numpy_route():
