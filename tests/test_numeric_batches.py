@@ -199,7 +199,7 @@ def test_a_large_small_n_batch_on_the_numpy_route_is_within_the_bound_of_the_def
         with pytest.raises(type(err)):
             bt_step(p[k], q[k], lam0[k], mu[k], backend="numpy")
     sel = np.array(ok)
-    assert not _block_kernel_pays(p[sel], lam0[sel], mu[sel])        # the batch takes the numpy route
+    assert not _block_kernel_pays(p[sel])        # the batch takes the numpy route
     pb, qb = bt_step(p[sel], q[sel], lam0[sel], mu[sel])
     worst = 0.0
     for i, k in enumerate(ok):
