@@ -185,7 +185,7 @@ def _slopes1(p: F64, r: F64, lam: float, s: int, u: F64, code: int, tt: F64, i: 
     if not disc > 0.0:
         return code
     if not disc < 1e300:
-        return RANGE        # tr**2 overflows (|tr| > ~1e150): the general path rescales
+        return RANGE        # (sc tr)**2 overflows: not reached after the rescaling above, kept as a guard
     g = math.sqrt(disc)
     dl = A - D
     plus = dl >= 0.0
