@@ -138,8 +138,8 @@ static int toda@@N@@_monodromy(const double *av, const double *rv, double *M)
         M[1] = B;
         M[2] = C;
         M[3] = D;
-        const double mx = fmax(fmax(fabs(A), fabs(B)), fmax(fabs(C), fabs(D)));
-        if (pass == 1 || (mx <= 0x1p500 && mx >= 0x1p-500))
+        const double mx = fmax(fmax(fabs(A), fabs(B)), fmax(fabs(C), fabs(D)));   /* fmax drops a NaN: */
+        if (pass == 1 || (toda@@N@@_finite(M, 4) && mx <= 0x1p500 && mx >= 0x1p-500))
             break;
     }
     return e;
