@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 3a445ac7f7c3b46dd3dd424438a795e67e05d7d1e182ca06510d54b201547a07
-# symbt-codegen-content-sha256: bc3714bdce7fb787ad1fd86c8c6b7c561964e76c66e619cf037f2a350aa7c125
+# symbt-codegen-derivation-sha256: 650d614065ed6258600e80021f53d7b6c037a09108116f5bd3d46d139afc6e7a
+# symbt-codegen-content-sha256: f0e5f583522612fddc51e7161476b10b77dbc00294c21b73191aeee09d49c82d
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 3a445ac7f7c3b46dd3dd424438a795e67e05d7d1e182ca06510d54b201547a07
-# symbt-codegen-content-sha256: 131291c61c7c3b7471daa5666d854a2bdad252c9cd8ef01bf7143d3a8e588450
+# symbt-codegen-derivation-sha256: 650d614065ed6258600e80021f53d7b6c037a09108116f5bd3d46d139afc6e7a
+# symbt-codegen-content-sha256: 6e42b5e07603edac3b3268fb03328c270f525761e942b01c80b25ff72c65b94c
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
