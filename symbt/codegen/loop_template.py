@@ -426,8 +426,8 @@ def _invariants(_X, P, Q):
 
 def _spectral_trace(_X, lam, P, Q):
     R = _ratios(_X, Q)
-    A, B, C, D = _monodromy([lam + p for p in P], R)
-    return @@trace@@
+    A, B, C, D, e = _scaled_monodromy(_X, [lam + p for p in P], R)
+    return _X.ldexp(@@trace@@, e)
 
 
 def _ck_integrand(_X, lam, P, Q, guards):

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 650d614065ed6258600e80021f53d7b6c037a09108116f5bd3d46d139afc6e7a
-# symbt-codegen-content-sha256: f0e5f583522612fddc51e7161476b10b77dbc00294c21b73191aeee09d49c82d
+# symbt-codegen-derivation-sha256: 9258fdeec0db7976dc375e0843c853a41fb892a67facb79bbe1c9298c2dd2905
+# symbt-codegen-content-sha256: 2b441d052ff48d07bcbf9126a3e1f28b239a599df5d00f3858eede075287811b
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

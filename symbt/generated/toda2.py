@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 650d614065ed6258600e80021f53d7b6c037a09108116f5bd3d46d139afc6e7a
-# symbt-codegen-content-sha256: 7af016c1aeb6afbcb24f9172c20957fa71b098ac4558b6b371cab0e0f4e90296
+# symbt-codegen-derivation-sha256: 9258fdeec0db7976dc375e0843c853a41fb892a67facb79bbe1c9298c2dd2905
+# symbt-codegen-content-sha256: 9f4a9fd4315563424723e2e329fd8b80aa026eafe09dcf5e246c24f413d347f3
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

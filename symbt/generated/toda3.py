@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 650d614065ed6258600e80021f53d7b6c037a09108116f5bd3d46d139afc6e7a
-# symbt-codegen-content-sha256: 6e42b5e07603edac3b3268fb03328c270f525761e942b01c80b25ff72c65b94c
+# symbt-codegen-derivation-sha256: 9258fdeec0db7976dc375e0843c853a41fb892a67facb79bbe1c9298c2dd2905
+# symbt-codegen-content-sha256: f2245f655ee117f394732eaec52041b936db150a8243e840a2c538857d2d6266
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
