@@ -1,5 +1,6 @@
-"""Emitted code at the edges (issue 21): the committed closed forms ``symbt.generated.toda2``/``toda3`` and
-their C target never return a wrong state.
+"""Emitted code at the edges (issue 21): the committed closed forms ``symbt.generated.toda2``/``toda3``, the
+loop (transfer-matrix) form that ``symbt codegen`` emits for N >= 4, and their C targets never return a wrong
+state.
 
 Every case is judged against ``symbt.reference.literal.reference_step`` (the paper's literal map at 50
 digits plus guard digits; complex where no real map exists), never against the code under test:
@@ -26,6 +27,7 @@ The fuzz samples seeded states near band edges, across spectral gaps and at larg
 from __future__ import annotations
 
 import ctypes
+import importlib.util
 import math
 import shutil
 import subprocess
@@ -54,6 +56,11 @@ FAR = ([-6.670844734995089, 6.749416383837502, 9.945390979638757],
 #: issue 21: tr L(lam1) ~ +1.2e8, tr L(lam2) ~ -9.1e7 (different gaps): no real map, for either branch
 GAPS = [([0.0, 0.0], [0.0, 19.0], math.exp(9.5), 0.3 * math.exp(9.5)),
         ([0.0, 0.0], [0.0, 200.0], 2.5e43, 0.5e43)]
+#: issue 21 (claim shipped.c.n5): the loop form's C returned q~_1 = q_1 with status OK (the monodromy at
+#: lambda_1 ~ 1e274 overflowed tr^2 - 4: an infinite slope read out as 2 mu/d = 0); its Python refused
+FAR5 = ([-7.671527, 4.302277, 6.876684, 7.203808, -0.57681],
+        [374.986031, 363.444323, 978.299961, 897.010457, 888.548403], 110.258, 101.361, 1)
+LOOP_NS = (4, 5, 8)
 
 
 # --------------------------------------------------------------------------- the reference and the bound
@@ -288,10 +295,10 @@ def _python_outcome(mod, p, q, lam0, mu, b):
     return "state", [float(v) for v in list(pt) + list(qt)]
 
 
-def fuzz(N, n, seed, c_step=None):
-    """Run ``n`` sampled inputs through the emitted module (single, and masked batch) and the C step;
-    returns ``(problems, counts)``."""
-    mod, xs = MODULES[N], sample(N, n, seed)
+def fuzz(N, n, seed, c_step=None, mod=None):
+    """Run ``n`` sampled inputs through the emitted module (``mod``, default the committed ``toda{N}``; single,
+    and masked batch) and the C step; returns ``(problems, counts)``."""
+    mod, xs = mod or MODULES[N], sample(N, n, seed)
     problems, counts = [], {}
     P, Q = (np.array([x[i] for x in xs]) for i in (0, 1))
     L0, MU, B = (np.array([x[i] for x in xs]) for i in (2, 3, 4))
@@ -330,4 +337,81 @@ def test_fuzz_emitted_step_never_wrong(N, c_steps):
 @pytest.mark.parametrize("N", (2, 3))
 def test_fuzz_emitted_step_never_wrong_deep(N, c_steps):
     problems, counts = fuzz(N, 50_000, seed=2100 + N, c_step=c_steps[N])
+    assert not problems, (len(problems), problems[:3], counts)
+
+
+# --------------------------------------------------------------------------- the loop form (N >= 4)
+
+@pytest.fixture(scope="module")
+def loop_dir(tmp_path_factory):
+    out = tmp_path_factory.mktemp("loop-edges")
+    assert cg.main(["--n", *map(str, LOOP_NS), "--out", str(out), "-q"]) == 0
+    assert cg.main(["--target", "c", "--n", *map(str, LOOP_NS), "--out", str(out), "-q"]) == 0
+    return out
+
+
+@pytest.fixture(scope="module")
+def loop_modules(loop_dir):
+    mods = {}
+    for N in LOOP_NS:
+        spec = importlib.util.spec_from_file_location(f"toda{N}_edges", loop_dir / f"toda{N}.py")
+        mods[N] = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(mods[N])
+        assert mods[N].FORM == "transfer-matrix"
+    return mods
+
+
+def _compile(CCpath, src, so):
+    r = subprocess.run([CCpath, "-std=c99", "-O2", "-Wall", "-Wextra", "-pedantic", "-Werror", "-shared", "-fPIC",
+                        "-o", str(so), str(src), "-lm"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+
+
+@pytest.fixture(scope="module")
+def c_loop_steps(loop_dir):
+    """The compiled loop-form C steps; empty without a C compiler (the tests that need one skip)."""
+    steps = {}
+    if CC is not None:
+        for N in LOOP_NS:
+            _compile(CC, loop_dir / f"toda{N}.c", loop_dir / f"libtoda{N}.so")
+            steps[N] = CStep(loop_dir / f"libtoda{N}.so", N)
+    return steps
+
+
+def test_loop_form_far_apart_positions_give_the_50_digit_step(loop_modules):
+    p, q, lam0, mu, b = FAR5
+    exists, ref, _ = reference(p, q, lam0, mu, b)
+    assert exists and abs(float(ref[5]) - 380.10056658347552) < 1e-9      # the premise (q~_1 - q_1 = 5.11)
+    mod = loop_modules[5]
+    pt, qt = mod.bt_step(p, q, lam0, mu, b)
+    assert judge_state(list(pt) + list(qt), p, q, lam0, mu, b, exists, ref) is None
+    with mp.workdps(50):
+        mpt, mqt = mod.bt_step_mp(p, q, lam0, mu, b)
+        S = condition_scale(p, q, lam0, mu, b, ref)
+        assert max(abs(a - r) / s for a, r, s in zip(mpt + mqt, ref, S)) <= mp.mpf(10) ** -45
+    P, Q = mod.bt_step(np.array([p, p]), np.array([q, q]), lam0, mu, b, errors="mask")
+    assert not np.ma.is_masked(P) and np.array_equal(np.asarray(P[1]), pt) and np.array_equal(np.asarray(Q[0]), qt)
+
+
+def test_c_loop_form_far_apart_positions(c_loop_steps):
+    if not c_loop_steps:
+        pytest.skip("no C compiler (cc, gcc or clang) on PATH")
+    p, q, lam0, mu, b = FAR5
+    exists, ref, _ = reference(p, q, lam0, mu, b)
+    rc, got = c_loop_steps[5](p, q, lam0, mu, b)
+    assert rc == OK and judge_state(got, p, q, lam0, mu, b, exists, ref) is None
+
+
+@pytest.mark.parametrize("N", LOOP_NS)
+def test_fuzz_loop_form_never_wrong(N, loop_modules, c_loop_steps):
+    """The loop form (numpy single and masked batch; C where a compiler is present) on 300 seeded inputs."""
+    problems, counts = fuzz(N, 300, seed=40 + N, c_step=c_loop_steps.get(N), mod=loop_modules[N])
+    assert not problems, (len(problems), problems[:3], counts)
+    assert counts.get("state", 0) > 60 and counts.get("no-map", 0) > 20, counts   # the sampler reaches both
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("N", LOOP_NS)
+def test_fuzz_loop_form_never_wrong_deep(N, loop_modules, c_loop_steps):
+    problems, counts = fuzz(N, 10_000, seed=4000 + N, c_step=c_loop_steps.get(N), mod=loop_modules[N])
     assert not problems, (len(problems), problems[:3], counts)

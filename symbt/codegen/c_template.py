@@ -96,37 +96,63 @@ static int toda@@N@@_ratios(const double *q, double *rv)
     return 1;
 }
 
-/* M = m_N ... m_1, m_j = [[a_j, -1], [r_j, 0]] (kernels site, update) */
-static void toda@@N@@_monodromy(const double *av, const double *rv, double *M)
+/* M = m_N ... m_1, m_j = [[a_j, -1], [r_j, 0]] (kernels site, update) as M = 2^e (M[0], M[1]; M[2], M[3]);
+   returns e.  The plain product first; if an entry leaves [2^-500, 2^500] (tr^2 - 4 or a later product
+   could overflow), the product again with the largest entry scaled into [1/2, 1) after every site by a
+   power of two (exact, as symbt.numeric) */
+static int toda@@N@@_monodromy(const double *av, const double *rv, double *M)
 {
-    double A, B, C, D;
-    {
-        const double a = av[0], r = rv[0];
-        A = @@site[0]@@;
-        B = @@site[1]@@;
-        C = @@site[2]@@;
-        D = @@site[3]@@;
+    int e = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        double A, B, C, D;
+        {
+            const double a = av[0], r = rv[0];
+            A = @@site[0]@@;
+            B = @@site[1]@@;
+            C = @@site[2]@@;
+            D = @@site[3]@@;
+        }
+        for (int j = 0; j < NS; j++) {
+            if (j > 0) {
+                const double a = av[j], r = rv[j];
+                const double nA = @@update[0]@@, nB = @@update[1]@@, nC = @@update[2]@@, nD = @@update[3]@@;
+                A = nA;
+                B = nB;
+                C = nC;
+                D = nD;
+            }
+            if (pass == 1) {
+                const double mx = fmax(fmax(fabs(A), fabs(B)), fmax(fabs(C), fabs(D)));
+                if (isfinite(mx) && mx > 0.0) {
+                    int k;
+                    (void)frexp(mx, &k);
+                    A = ldexp(A, -k);
+                    B = ldexp(B, -k);
+                    C = ldexp(C, -k);
+                    D = ldexp(D, -k);
+                    e += k;
+                }
+            }
+        }
+        M[0] = A;
+        M[1] = B;
+        M[2] = C;
+        M[3] = D;
+        const double mx = fmax(fmax(fabs(A), fabs(B)), fmax(fabs(C), fabs(D)));   /* fmax drops a NaN: */
+        if (pass == 1 || (toda@@N@@_finite(M, 4) && mx <= 0x1p500 && mx >= 0x1p-500))
+            break;
     }
-    for (int j = 1; j < NS; j++) {
-        const double a = av[j], r = rv[j];
-        const double nA = @@update[0]@@, nB = @@update[1]@@, nC = @@update[2]@@, nD = @@update[3]@@;
-        A = nA;
-        B = nB;
-        C = nC;
-        D = nD;
-    }
-    M[0] = A;
-    M[1] = B;
-    M[2] = C;
-    M[3] = D;
+    return e;
 }
 
-/* scaled slopes of the eigenvector (1, -u) with eigenvalue (t - s g)/2: root without cancellation
-   (kernels root_k, root_c), transport in the contracting direction (forward iff s t < 0) */
-static void toda@@N@@_slopes(const double *av, const double *rv, const double *M, double t, double s, double *us)
+/* scaled slopes of the eigenvector (1, -u) with eigenvalue (t - s g)/2 (M, t rescaled by 2^-e: the roots are
+   homogeneous of degree 0, kernels disc_scaled, root_k, root_c), transport in the contracting direction
+   (forward iff s t < 0); 0 if a slope or a transport denominator a_j + u_j is not finite (an infinite
+   slope would read out as 2 mu/d = 0: a finite wrong state) */
+static int toda@@N@@_slopes(const double *av, const double *rv, const double *M, double t, int e, double s, double *us)
 {
-    const double A = M[0], B = M[1], C = M[2], D = M[3];
-    const double g = sqrt(@@disc@@);
+    const double A = M[0], B = M[1], C = M[2], D = M[3], two = ldexp(2.0, -e);
+    const double g = sqrt(@@disc_scaled@@);
     const double sd = (A - D >= 0.0) ? 1.0 : -1.0;
     us[0] = (sd * s > 0.0) ? @@root_k@@ : @@root_c@@;
     if (s * t < 0.0) {
@@ -142,6 +168,10 @@ static void toda@@N@@_slopes(const double *av, const double *rv, const double *M
             us[j] = un;
         }
     }
+    for (int j = 0; j < NS; j++)
+        if (!isfinite(av[j] + us[j]))
+            return 0;
+    return 1;
 }
 
 int toda@@N@@_bt_step(const double *p, const double *q, double lam0, double mu, int branch,
@@ -158,15 +188,23 @@ int toda@@N@@_bt_step(const double *p, const double *q, double lam0, double mu, 
         a1[j] = lam0 + mu + p[j];
         a2[j] = lam0 - mu + p[j];
     }
-    toda@@N@@_monodromy(a1, rv, M1);
-    toda@@N@@_monodromy(a2, rv, M2);
+    const int e1 = toda@@N@@_monodromy(a1, rv, M1), e2 = toda@@N@@_monodromy(a2, rv, M2);
+    /* rescaled traces t_i = tr L(lambda_i) / 2^e_i */
     const double t1 = @@trace{A:M1[0],D:M1[3]}@@, t2 = @@trace{A:M2[0],D:M2[3]}@@;
-    if (!(isfinite(t1) && isfinite(t2)))
+    const double two1 = ldexp(2.0, -e1), two2 = ldexp(2.0, -e2);
+    const double d1 = @@disc_scaled{t:t1,two:two1}@@, d2 = @@disc_scaled{t:t2,two:two2}@@;
+    if (!(isfinite(d1) && isfinite(d2)))
         return SYMBT_TODA_RANGE;
-    if (!(@@disc{t:t1}@@ > 0.0) || !(@@disc{t:t2}@@ > 0.0))
+    if (!(d1 > 0.0) || !(d2 > 0.0))
         return SYMBT_TODA_NO_REAL_MAP_TRACE;
-    toda@@N@@_slopes(a1, rv, M1, t1, (double)branch, u);
-    toda@@N@@_slopes(a2, rv, M2, t2, -(double)branch, w);
+    if ((t1 > 0.0) != (t2 > 0.0))           /* lambda_1, lambda_2 in different gaps: some Etilde_j <= 0 */
+        return SYMBT_TODA_NO_REAL_MAP_POSITIVITY;
+    if (!toda@@N@@_slopes(a1, rv, M1, t1, e1, (double)branch, u)
+        || !toda@@N@@_slopes(a2, rv, M2, t2, e2, -(double)branch, w))
+        return SYMBT_TODA_RANGE;
+    for (int j = 0; j < NS; j++)
+        if (!isfinite(w[j] - u[j]))
+            return SYMBT_TODA_RANGE;
     for (int j = 0; j < NS; j++) {
         const int k = (j + 1) % NS;
         const double uj = u[j], dj = w[j] - u[j], un1 = u[k], dn1 = w[k] - u[k];
@@ -193,8 +231,8 @@ int toda@@N@@_spectral_trace(double lam, const double *p, const double *q, doubl
         return SYMBT_TODA_RANGE;
     for (int j = 0; j < NS; j++)
         av[j] = lam + p[j];
-    toda@@N@@_monodromy(av, rv, M);
-    const double t = @@trace{A:M[0],D:M[3]}@@;
+    const int e = toda@@N@@_monodromy(av, rv, M);
+    const double t = ldexp(@@trace{A:M[0],D:M[3]}@@, e);
     if (!isfinite(t))
         return SYMBT_TODA_RANGE;
     *tr = t;

@@ -10,10 +10,13 @@ formulas inside the loops are the SymPy expressions built here (printed by
   ``M = m_N ... m_1 = S_1 L S_1^{-1}`` has the trace of ``L`` and only neighbour
   differences of ``q`` enter;
 * *update* ``M <- m_j M`` (entries ``A, B, C, D``), and ``tr = A + D``,
-  ``tr^2 - 4 = (tr - 2)(tr + 2)``;
+  ``tr^2 - 4 = (tr - 2)(tr + 2)``; for ``M = 2^e (A, B; C, D)`` (float64 entries rescaled by powers
+  of two, exactly) ``disc_scaled = (t - two)(t + two) = 4^-e (tr^2 - 4)`` with ``t = A + D``,
+  ``two = 2^(1 - e)``: the sign of ``tr^2 - 4`` without forming ``tr``;
 * *eigenvector slopes*: ``M (1, -u)^T = nu (1, -u)^T`` iff ``B u^2 - (A - D) u - C = 0``;
   with ``det M = 1`` the roots ``(A - D + s g)/(2B)`` (``g^2 = tr^2 - 4``) are, without
-  cancellation, ``k/(2B)`` and ``-2C/k``, ``k = (A - D) + sign(A - D) g``; the eigenvalue of
+  cancellation, ``k/(2B)`` and ``-2C/k``, ``k = (A - D) + sign(A - D) g`` (both unchanged when ``A, B, C, D, g``
+  are scaled alike: the scaled monodromy gives the same slopes); the eigenvalue of
   ``(A - D + s g)/(2B)`` is ``(tr - s g)/2``, of modulus >= 1 (the slope attracts under forward
   transport) iff ``s tr < 0``;
 * *transport* of a slope by ``m_j`` (Möbius action): ``u' = -r/(a + u)``, and its inverse
@@ -50,13 +53,13 @@ A, B, C, D, a, r, u, un, g, mu, sd, s = sp.symbols("A B C D a r u un g mu sd s",
 P00, P01, P10, P11, S00, S01, S10, S11 = sp.symbols("P00 P01 P10 P11 S00 S01 S10 S11", real=True)
 r_prev, dr_prev, dr = sp.symbols("r_prev dr_prev dr", real=True)
 uj, dj, un1, dn1 = sp.symbols("uj dj un1 dn1", real=True)
-t, q, x1, x2 = sp.symbols("t q x1 x2", real=True)
+t, q, x1, x2, two = sp.symbols("t q x1 x2 two", real=True)
 _lam, _p = sp.symbols("lambda p", real=True)
 _E, _En = sp.symbols("E En", positive=True)
 
 #: every symbol a kernel may contain (the emitters bind them to variables of the same name)
 SYMBOLS = (A, B, C, D, a, r, u, un, g, mu, sd, s, P00, P01, P10, P11, S00, S01, S10, S11,
-           r_prev, dr_prev, dr, uj, dj, un1, dn1, t, q, x1, x2, branch, tr1, tr2)
+           r_prev, dr_prev, dr, uj, dj, un1, dn1, t, q, x1, x2, two, branch, tr1, tr2)
 
 
 def _zero(expr, what):
@@ -84,6 +87,10 @@ def kernels() -> dict:
     out["disc"] = disc(t)
     out["inv_sqrt_disc"] = 1 / sp.sqrt(disc(t))
     _zero(out["disc"] - (t ** 2 - 4), "tr^2 - 4 = (tr - 2)(tr + 2)")
+    out["disc_scaled"] = sp.Mul(t - two, t + two, evaluate=False)
+    pe = sp.Symbol("pe", positive=True)     # pe = 2^e, M = pe M_s: tr = pe t, 2 = pe two
+    _zero(pe ** 2 * out["disc_scaled"].xreplace({two: 2 / pe}) - out["disc"].xreplace({t: pe * t}),
+          "tr^2 - 4 = 4^e (t - two)(t + two), two = 2^(1 - e)")
     out["det_site"] = m_ar.det()                                 # = r: det M = prod r_j = 1
 
     # eigenvector slopes: M (1, -u) = nu (1, -u)  <=>  quadratic in u
@@ -110,6 +117,10 @@ def kernels() -> dict:
     out["eigenvalue"] = sp.expand(A - B * (dl + s * g) / (2 * B))
     _zero(out["eigenvalue"] - (A + D - s * g) / 2, "eigenvalue of the slope (A - D + s g)/(2B)")
     _zero(out["root_k"] * out["root_c"] - (-C / B), "Vieta")
+    lam_s = sp.Symbol("lambda_s", positive=True)    # the slopes of 2^e M_s are those of M_s
+    for name in ("root_k", "root_c"):
+        _zero(out[name].xreplace({A: lam_s * A, B: lam_s * B, C: lam_s * C, D: lam_s * D, g: lam_s * g}) - out[name],
+              f"{name} is homogeneous of degree 0 in (A, B, C, D, g)")
 
     # Möbius transport of a slope by m_j, forward and its inverse
     w = m_ar * sp.Matrix([1, -u])

@@ -37,6 +37,23 @@ class _NumpyOps:
     def sgn(x):
         return np.where(x >= 0, 1.0, -1.0)
 
+    ldexp = staticmethod(np.ldexp)
+
+    @staticmethod
+    def out_of_range(A, B, C, D):
+        # entries beyond [2**-500, 2**500] (or not finite): tr**2 - 4 or a later product could overflow
+        mx = np.maximum(np.maximum(np.abs(A), np.abs(B)), np.maximum(np.abs(C), np.abs(D)))
+        return ~((mx <= 2.0 ** 500) & (mx >= 2.0 ** -500))
+
+    @staticmethod
+    def renorm(A, B, C, D, e):
+        # divide by 2**k (exact) so that the largest entry lies in [1/2, 1); k carried in e
+        mx = np.maximum(np.maximum(np.abs(A), np.abs(B)), np.maximum(np.abs(C), np.abs(D)))
+        k = np.where(np.isfinite(mx) & (mx > 0), np.frexp(mx)[1], 0)
+        # float64 first: numpy would take an integer entry (the site's -1, 0) to float16
+        A, B, C, D = (np.ldexp(np.asarray(x, dtype=np.float64), -k) for x in (A, B, C, D))
+        return A, B, C, D, e + k
+
     @staticmethod
     def select(cond, f, g):
         cond = np.asarray(cond)
@@ -77,6 +94,14 @@ class _MpOps:
     @staticmethod
     def sgn(x):
         return 1 if x >= 0 else -1
+
+    @staticmethod
+    def ldexp(x, e):
+        return x          # e = 0: mpmath's exponent range needs no rescaling
+
+    @staticmethod
+    def out_of_range(A, B, C, D):
+        return False
 
     @staticmethod
     def select(cond, f, g):
@@ -211,6 +236,21 @@ def _monodromy(av, R):
     return A, B, C, D
 
 
+def _scaled_monodromy(_X, av, R):
+    """M = 2**e (A, B; C, D) = m_N ... m_1 at numbers a_j: the plain product; float64 elements whose entries
+    leave [2**-500, 2**500] are computed again with the product rescaled by a power of two after every site
+    (exact; as symbt.numeric), so that tr**2 - 4 never overflows.  Returns (A, B, C, D, e)."""
+    plain = _monodromy(av, R)
+    bad = _X.out_of_range(*plain)
+    if _X.none(bad):
+        return plain + (0,)
+    a, r = av[0], R[0]
+    A, B, C, D, e = _X.renorm(@@site@@, 0)
+    for a, r in zip(av[1:], R[1:]):
+        A, B, C, D, e = _X.renorm(@@update@@, e)
+    return tuple(_X.merge(bad, (A, B, C, D, e), plain + (0,)))
+
+
 def _forward(av, R, u1):
     """Slopes at sites 2 to N by the Moebius action of m_j (kernel 'forward')."""
     us = [u1]
@@ -232,10 +272,12 @@ def _backward(av, R, u1):
 
 def _slopes(_X, av, R, mono, t, s):
     """Scaled slopes u_j = E_j * (slope at site j) of the eigenvector (1, -u) of M with eigenvalue
-    (t - s g)/2, g = sqrt(t^2 - 4): root without cancellation at site 1 (kernels 'root_k', 'root_c'),
-    then transport in the contracting direction (forward iff |(t - s g)/2| >= 1 iff s t < 0)."""
-    A, B, C, D = mono
-    g = _X.sqrt(@@disc@@)
+    (t - s g)/2, g = sqrt(t^2 - 4): root without cancellation at site 1 (kernels 'root_k', 'root_c';
+    from the rescaled M = 2**e (A, B; C, D), t = A + D: the roots are homogeneous of degree 0), then
+    transport in the contracting direction (forward iff |(t - s g)/2| >= 1 iff s t < 0)."""
+    A, B, C, D, e = mono
+    two = _X.ldexp(2 * _X.one, -e)
+    g = _X.sqrt(@@disc_scaled@@)
     sd = _X.sgn(A - D)
     u1 = _X.select(sd * s > 0, lambda: @@root_k@@, lambda: @@root_c@@)
     fwd = s * t < 0
@@ -247,27 +289,46 @@ def _slopes(_X, av, R, mono, t, s):
 
 
 def _traces(_X, P, R, lam0, mu, guards):
-    """Monodromies and traces at lambda_1 = lambda_0 + mu, lambda_2 = lambda_0 - mu, with their guards."""
+    """Rescaled monodromies M_i = 2**e_i (A, B; C, D) at lambda_1 = lambda_0 + mu, lambda_2 = lambda_0 - mu,
+    their rescaled traces t_i = tr L(lambda_i) / 2**e_i, and the trace guards (kernel 'disc_scaled')."""
     a1 = [lam0 + mu + p for p in P]
     a2 = [lam0 - mu + p for p in P]
-    M1, M2 = _monodromy(a1, R), _monodromy(a2, R)
-    A, B, C, D = M1
+    M1, M2 = _scaled_monodromy(_X, a1, R), _scaled_monodromy(_X, a2, R)
+    A, B, C, D = M1[:4]
     t1 = @@trace@@
-    A, B, C, D = M2
+    A, B, C, D = M2[:4]
     t2 = @@trace@@
-    t = t1
-    _X.guard(guards, "trace", "lam1 = lam0 + mu", @@disc@@)
-    t = t2
-    _X.guard(guards, "trace", "lam2 = lam0 - mu", @@disc@@)
+    t, two = t1, _X.ldexp(2 * _X.one, -M1[4])
+    _X.guard(guards, "trace", "lam1 = lam0 + mu", @@disc_scaled@@)
+    t, two = t2, _X.ldexp(2 * _X.one, -M2[4])
+    _X.guard(guards, "trace", "lam2 = lam0 - mu", @@disc_scaled@@)
     return a1, a2, M1, M2, t1, t2
 
 
+def _traces_unscaled(_X, P, R, lam0, mu, guards):
+    """tr L(lambda_1), tr L(lambda_2) (non-finite beyond the float64 range), with the trace guards."""
+    M1, M2, t1, t2 = _traces(_X, P, R, lam0, mu, guards)[2:]
+    return _X.ldexp(t1, M1[4]), _X.ldexp(t2, M2[4])
+
+
+_GAP = "Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)"
+
+
 def _step_slopes(_X, P, Q, lam0, mu, b, guards):
+    """Slopes u (at lambda_1), w (at lambda_2) and d = w - u at every site, with the guards of the step:
+    traces of opposite signs (lambda_1, lambda_2 in different gaps; decided on the signs), and every
+    slope finite with its transport denominator a_j + u_j (an infinite slope, or one whose transport
+    overflowed, would read out as 2 mu/d = 0: a finite wrong state; here a range error)."""
     R = _ratios(_X, Q)
     a1, a2, M1, M2, t1, t2 = _traces(_X, P, R, lam0, mu, guards)
+    _X.guard(guards, "positivity", _GAP, _X.sign(t1) * _X.sign(t2))
     u = _slopes(_X, a1, R, M1, t1, b)           # y: eigenvalue (t1 - b g1)/2 at lambda_1
     w = _slopes(_X, a2, R, M2, t2, -b)          # z: eigenvalue (t2 + b g2)/2 at lambda_2
-    return u, w, [w[j] - u[j] for j in range(N)]
+    d = [w[j] - u[j] for j in range(N)]
+    for name, vs in (("u", [a + x for a, x in zip(a1, u)]), ("w", [a + x for a, x in zip(a2, w)]), ("d", d)):
+        for j, v in enumerate(vs):
+            _X.guard(guards, "range", f"{name}_{j + 1}", v)
+    return u, w, d
 
 
 def _step(_X, P, Q, lam0, mu, b, guards):
@@ -298,7 +359,7 @@ def _phi_tr(_X, tr1, tr2, branch, guards):
 
 def _phi(_X, P, Q, lam0, mu, branch, guards):
     R = _ratios(_X, Q)
-    tr1, tr2 = _traces(_X, P, R, lam0, mu, guards)[4:]
+    tr1, tr2 = _traces_unscaled(_X, P, R, lam0, mu, guards)
     return @@phi@@
 
 
@@ -332,7 +393,9 @@ def _trace_derivatives(av, R, one, zero):
 
 def _phi_grad(_X, P, Q, lam0, mu, branch, guards):
     R = _ratios(_X, Q)
-    a1, a2, M1, M2, tr1, tr2 = _traces(_X, P, R, lam0, mu, guards)
+    tr1, tr2 = _traces_unscaled(_X, P, R, lam0, mu, guards)
+    a1 = [lam0 + mu + p for p in P]
+    a2 = [lam0 - mu + p for p in P]
     dp1, dq1 = _trace_derivatives(a1, R, _X.one, _X.zero)
     dp2, dq2 = _trace_derivatives(a2, R, _X.one, _X.zero)
     gp, gq = [], []
@@ -363,8 +426,8 @@ def _invariants(_X, P, Q):
 
 def _spectral_trace(_X, lam, P, Q):
     R = _ratios(_X, Q)
-    A, B, C, D = _monodromy([lam + p for p in P], R)
-    return @@trace@@
+    A, B, C, D, e = _scaled_monodromy(_X, [lam + p for p in P], R)
+    return _X.ldexp(@@trace@@, e)
 
 
 def _ck_integrand(_X, lam, P, Q, guards):

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 0e37435c0b00d67c089913456c498ef19101fdec6cb12a33b54d1f0f9d483100
-# symbt-codegen-content-sha256: 23bf1921fec106365c9ea7c32c14a872cbee3896be8cc48c79f5cc7d8bc28e35
+# symbt-codegen-derivation-sha256: dc082621cdbaf8d5fd081be8466dae3bbb8bd9c6e0e5b65ed4004c5102e3b9b5
+# symbt-codegen-content-sha256: f214c5b34906bbf35c3dc2dc8b51241a73bc0eec36c662cd5ddb5cf3091f1e54
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

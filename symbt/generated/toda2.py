@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 0e37435c0b00d67c089913456c498ef19101fdec6cb12a33b54d1f0f9d483100
-# symbt-codegen-content-sha256: 10b5fe34fadd5482641945186e4a821c3ef8b018f8107efc82d54df6fe573346
+# symbt-codegen-derivation-sha256: dc082621cdbaf8d5fd081be8466dae3bbb8bd9c6e0e5b65ed4004c5102e3b9b5
+# symbt-codegen-content-sha256: 8a430dd19f8b2a210744df0d55fc69ff97d4f71ca95c606f34880b8a596b4167
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

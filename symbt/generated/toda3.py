@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 0e37435c0b00d67c089913456c498ef19101fdec6cb12a33b54d1f0f9d483100
-# symbt-codegen-content-sha256: f6f058d410fc42ca70295d2774e84ecbb7a047a44d28fbefe13c49aa3e4c7f30
+# symbt-codegen-derivation-sha256: dc082621cdbaf8d5fd081be8466dae3bbb8bd9c6e0e5b65ed4004c5102e3b9b5
+# symbt-codegen-content-sha256: 08fd09c237d5dfe154ac45de3be8c9d7d522fbacd54743a4b31a022120868e49
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
