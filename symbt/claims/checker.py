@@ -118,7 +118,8 @@ def cell_controls() -> Outcome:
     got_p, where_p = table.worst("printed")
     got_c, _ = table.worst("corrected")
     if got_p != abs(want_p[1]) or (where_p or {}).get("x") != want_p[3]["x"]:
-        return failed("CellTable", detail=f"worst printed {got_p} at {where_p} (want {abs(want_p[1])} at x={want_p[3]})")
+        return failed("CellTable", detail=f"worst printed {got_p} at {where_p} "
+                                          f"(want {abs(want_p[1])} at x={want_p[3]['x']})")
     if got_c != want_c:
         return failed("CellTable", detail=f"worst corrected {got_c} (want {want_c})")
     if table.corrected_holds_everywhere():
