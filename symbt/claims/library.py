@@ -9,19 +9,20 @@ library is called and compared with an independent route:
   ``adj d(x2, y2; lambda_2) * d(x1, y1; lambda_1)`` with the adjugate taken by SymPy's ``Matrix.adjugate``
   (not the printed ``hd``), and :func:`~symbt.symbolic.darboux.single_darboux_adjugate` is that adjugate;
   decided exactly.
-* ``library.dF.n{N}`` (N = 2; N = 3 under ``--deep``) -- :meth:`GeneratingFunction.dF_dq`, ``dF_dqt`` and
-  ``dF_dmu`` (the implicit derivatives of eq. ``newgf``) at sample points against central
-  differences (``mpmath.diff``, 40 digits) of :math:`F` with :math:`\eta_j = \pm\sqrt{\mu^2 + w_j}` written out and :math:`E_j = e^{q_j}`: no
-  implicit differentiation, no chain rule.  Both signs of the :math:`\eta_j`.  Accepted when the relative
-  difference is below :math:`10^{-25}` (the differences are good to ~35 digits at 40, the library's
-  expression is exact); a relative difference above it fails.
-* ``library.fields.n{N}`` (N = 2; N = 3 under ``--deep``) -- the sources of the emitted ``hamiltonian_fields``
-  and ``phi_grad`` (:func:`symbt.codegen.derive.sources`, evaluated by
-  :func:`symbt.codegen.verify.evaluate_source` at 40 digits) against central differences of the polynomial trace (:func:`symbt.reference.trace.hamiltonians`,
-  the closed-walk expansion, no 2x2 product) and of the literal :math:`\Phi` of the traces
-  (:func:`symbt.reference.literal.phi_from_traces` of :func:`symbt.reference.trace.trace`): the signs
-  :math:`\dot q = \partial H_k/\partial p`, :math:`\dot p = -\partial H_k/\partial q` and the variable each
-  derivative is taken by.  Same acceptance, relative to :math:`\max(1, |\text{value}|)`.
+* ``library.dF.n{N}`` (N = 2; N = 3 under ``--deep``) -- :meth:`GeneratingFunction.dF_dq`, ``dF_dqt``
+  and ``dF_dmu`` (the implicit derivatives of eq. ``newgf``) at sample points against central
+  differences (``mpmath.diff``, 40 digits) of :math:`F` with :math:`\eta_j = \pm\sqrt{\mu^2 + w_j}`
+  written out and :math:`E_j = e^{q_j}`: no implicit differentiation, no chain rule.  Both signs of
+  the :math:`\eta_j`.  Accepted when the relative difference is below :math:`10^{-25}` (the
+  differences are good to ~35 digits at 40, the library's expression is exact); above it fails.
+* ``library.fields.n{N}`` (N = 2; N = 3 under ``--deep``) -- the sources of the emitted
+  ``hamiltonian_fields`` and ``phi_grad`` (:func:`symbt.codegen.derive.sources`, evaluated by
+  :func:`symbt.codegen.verify.evaluate_source` at 40 digits) against central differences of the
+  polynomial trace (:func:`symbt.reference.trace.hamiltonians`, the closed-walk expansion, no 2x2
+  product) and of :math:`\Phi` of the traces (:func:`symbt.reference.literal.phi_from_traces` of
+  :func:`symbt.reference.trace.trace`): the signs :math:`\dot q = \partial H_k/\partial p`,
+  :math:`\dot p = -\partial H_k/\partial q` and the variable each derivative is taken by.  Same
+  acceptance, relative to :math:`\max(1, |\text{value}|)`.
 
 >>> darboux_by_adjugate().status
 'verified'
