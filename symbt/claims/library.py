@@ -190,3 +190,65 @@ def field_sources(N: int) -> Outcome:
                    detail=f"hamiltonian_fields ({2 * N * N} entries) and phi_grad ({2 * N} entries, b = +-1) at "
                           f"{len(states)} states against the polynomial trace and Phi of the traces; worst relative "
                           f"difference {float(worst):.1e} (accepted below 1e-25)")
+
+
+@claim("library.spectral", equation="newkmu", scene="library", N=2,
+       where="symbt.reference.spectral (phi_real, phi_gradient, flow_coefficients_mp's band check) and "
+             "symbt.reference.samples.admissible_states",
+       statement="admissible_states(N, s) gives states with s tr L(lambda_i) > 2.2 and a real map for b = +-1; "
+                 "phi_real = sum_k ln|(eta_k + mu)/(eta_k - mu)| of the literal map; phi_gradient = central "
+                 "differences of phi_real; flow_coefficients_mp refuses an interval that contains a band (N=2)")
+def spectral_routines() -> Outcome:
+    from ..reference.literal import literal_step
+    from ..reference.samples import admissible_states
+    from ..reference.spectral import NoRealFlowError, flow_coefficients_mp, phi_gradient, phi_real
+
+    N = 2
+    worst, where = mp.mpf(0), None
+    with mp.workdps(DPS):
+        for s in (1, -1):
+            for p, q, l0, m in admissible_states(N, s, 1):
+                t1, t2 = trace(l0 + m, p, q), trace(l0 - m, p, q)   # the polynomial trace, not the sampler's
+                if not (s * t1 > 2.2 and s * t2 > 2.2):
+                    return failed("admissible_states", counterexample={"sign_tr": s, "tr1": mp.nstr(t1, 8),
+                                                                       "tr2": mp.nstr(t2, 8)},
+                                  detail="a sampled state's traces are not of the sign asked for")
+                for b in (1, -1):
+                    info = literal_step(p, q, l0, m, b)[2]
+                    if not all(mp.im(e) == 0 and e > 0 for e in info["E_new"]):
+                        return failed("admissible_states", detail=f"no real map at a sampled state, branch {b}")
+                    lit = mp.fsum(mp.log(abs((e + m) / (e - m))) for e in info["eta"])
+                    r = _rel(phi_real(p, q, l0, m, b), lit)
+                    if r > worst:
+                        worst, where = r, {"what": "phi_real", "sign_tr": s, "branch": b}
+                    gp, gq = phi_gradient(p, q, l0, m, b)
+                    for i in range(N):
+                        for which, g in (("p", gp[i]), ("q", gq[i])):
+                            def f(x, which=which, i=i, b=b):
+                                pp, qq = list(p), list(q)
+                                (pp if which == "p" else qq)[i] = x
+                                return phi_real(pp, qq, l0, m, b)
+                            r = _rel(g, mp.diff(f, (p if which == "p" else q)[i]))
+                            if r > worst:
+                                worst, where = r, {"what": f"phi_gradient d/d{which}{i + 1}", "sign_tr": s,
+                                                   "branch": b}
+        # a band inside [lam0 - mu, lam0 + mu] with both ends in gaps (|tr| > 2 there)
+        p0, q0, l0, m = [mp.mpf(0)] * N, [mp.mpf(0)] * N, mp.mpf(0), mp.mpf(10)
+        grid = [trace(l0 - m + 2 * m * k / 400, p0, q0) for k in range(401)]
+        if not (abs(grid[0]) > 2 and abs(grid[-1]) > 2 and min(abs(v) for v in grid) <= 2):
+            return failed("control", detail="the control interval is not a band between two gaps")
+        try:
+            flow_coefficients_mp(p0, q0, l0, m)
+            return failed("flow_coefficients_mp", detail="c_k returned over [-10, 10], which contains a band of "
+                                                         "p = q = 0 (|tr L| <= 2 at a grid point)")
+        except NoRealFlowError:
+            pass
+    if worst > TOL:
+        return failed(f"numeric: {DPS} digits", residual=float(worst), counterexample=where,
+                      detail=f"phi_real or phi_gradient differs from its independent route by {float(worst):.2e}")
+    return Outcome("verified", f"numeric: literal map and central differences at {DPS} digits",
+                   residual=float(worst), evidence="sampled", n_scope=[N],
+                   detail=f"states of each sign of tr (polynomial trace), b = +-1: phi_real vs the literal eta "
+                          f"form, phi_gradient vs differences, worst relative {float(worst):.1e} (accepted below "
+                          f"1e-25); flow_coefficients_mp refuses [-10, 10] at p = q = 0 (a band inside, the ends "
+                          f"in gaps)")
