@@ -19,8 +19,8 @@ or false by a little, and require the verdict each deserves (scene ``checker``):
   :func:`symbt.proof.Verdict.sampled` caps the digits at the working precision.
 * ``checker.cells`` -- :class:`symbt.proof.cells.CellTable`: the worst printed and corrected residuals
   are the largest over all cells and samples (computed here with ``max`` over the same numbers), a
-  negative corrected residual is a failure (its size counts), and the scope sentence names the one cell
-  where a statement fails.
+  negative corrected residual is a failure (its size counts), the scope sentence names the one cell
+  where a statement fails, and a table's verdict has at most its working precision's digits.
 
 >>> screen_controls().status
 'verified'
@@ -129,5 +129,11 @@ def cell_controls() -> Outcome:
     if v.holds or v.digits is None or v.digits > 1 or "holds exactly in cells {b=+1}" not in scope \
             or "fails in {b=-1}" not in scope:
         return failed("CellTable", detail=f"verdict holds={v.holds}, digits={v.digits}, scope {scope!r}")
-    return _ok("CellTable", f"4 samples in 2 cells: worst printed {got_p:g}, corrected {got_c:g}; scope: {scope}",
-               "sampled")
+    tight = CellTable(tol=1e-20, method="control", dps=30)
+    tight.add({"b": 1}, printed=1e-40)
+    tv = tight.verdict()
+    if not tv.holds or tv.digits != 30:
+        return failed("CellTable", detail=f"a table at 30 digits with residual 1e-40: holds={tv.holds}, "
+                                          f"digits={tv.digits} (want 30: the working precision caps them)")
+    return _ok("CellTable", f"4 samples in 2 cells: worst printed {got_p:g}, corrected {got_c:g}; scope: {scope}; "
+                            "a table at 30 digits with residual 1e-40 reports 30 digits", "sampled")
