@@ -7,8 +7,9 @@ library is called and compared with an independent route:
 
 * ``library.darboux`` -- :func:`symbt.symbolic.darboux.darboux_composition` (eq. ``D1D2``) equals
   ``adj d(x2, y2; lambda_2) * d(x1, y1; lambda_1)`` with the adjugate taken by SymPy's ``Matrix.adjugate``
-  (not the printed ``hd``), and :func:`~symbt.symbolic.darboux.single_darboux_adjugate` is that adjugate;
-  decided exactly.
+  (not the printed ``hd``), :func:`~symbt.symbolic.darboux.single_darboux_adjugate` is that adjugate,
+  and :func:`~symbt.symbolic.darboux.composed_darboux` (eq. ``D``) has determinant
+  :math:`(\lambda-\lambda_1)(\lambda-\lambda_2)` for every :math:`x, y`; decided exactly.
 * ``library.dF.n{N}`` (N = 2; N = 3 under ``--deep``) -- :meth:`GeneratingFunction.dF_dq`, ``dF_dqt``
   and ``dF_dmu`` (the implicit derivatives of eq. ``newgf``) at sample points against central
   differences (``mpmath.diff``, 40 digits) of :math:`F` with :math:`\eta_j = \pm\sqrt{\mu^2 + w_j}`
@@ -37,7 +38,14 @@ import sympy as sp
 from ..proof import decide
 from ..reference.literal import phi_from_traces
 from ..reference.trace import hamiltonians, trace
-from ..symbolic.darboux import darboux_composition, lam1, lam2, single_darboux, single_darboux_adjugate
+from ..symbolic.darboux import (
+    composed_darboux,
+    darboux_composition,
+    lam1,
+    lam2,
+    single_darboux,
+    single_darboux_adjugate,
+)
 from ..symbolic.generating import generating_function
 from .base import Outcome, claim, failed, from_decision, scene
 
@@ -52,7 +60,8 @@ LAM0 = mp.mpf("0.37")   # lambda_0 of F (F is affine in it: any value)
 @claim("library.darboux", equation="D1D2", scene="library",
        where="symbt.symbolic.darboux: darboux_composition and single_darboux_adjugate (eqs. D1D2, hd)",
        statement="darboux_composition(x1, x2, y1, y2) = adj(d(x2, y2; lambda2)) d(x1, y1; lambda1), the adjugate "
-                 "by SymPy; single_darboux_adjugate = adj(single_darboux)")
+                 "by SymPy; single_darboux_adjugate = adj(single_darboux); det composed_darboux(x, y) = "
+                 "(lambda - lambda1)(lambda - lambda2)")
 def darboux_by_adjugate() -> Outcome:
     x1, x2, y1, y2, a, bb, z = sp.symbols("x1 x2 y1 y2 a b z")
     adj = single_darboux(a, bb, z).adjugate()
@@ -61,7 +70,13 @@ def darboux_by_adjugate() -> Outcome:
         return from_decision(d, detail="single_darboux_adjugate is not the adjugate of single_darboux")
     want = single_darboux(x2, y2, lam2).adjugate() * single_darboux(x1, y1, lam1)
     d = decide(darboux_composition(x1, x2, y1, y2), want)
-    out = from_decision(d, detail="exactly: entrywise, against Matrix.adjugate of eq. dj")
+    if not d.holds:
+        return from_decision(d, detail="darboux_composition is not adj d(lambda2) d(lambda1)")
+    # eq. D: det = (lambda - lambda1)(lambda - lambda2) for every x, y (the determinant of the product above)
+    lam_ = sp.Symbol("lambda")
+    d = decide(composed_darboux(a, bb, lam_=lam_).det(), (lam_ - lam1) * (lam_ - lam2))
+    out = from_decision(d, detail="exactly: entrywise, against Matrix.adjugate of eq. dj; det composed_darboux(x, y) "
+                                  "= (lambda - lambda1)(lambda - lambda2)" + ("" if d.holds else ": it is not"))
     out.n_scope = "all"
     return out
 
