@@ -17,7 +17,7 @@ library is called and compared with an independent route:
   the :math:`\eta_j`.  Accepted when the relative difference is below :math:`10^{-25}` (the
   differences are good to ~35 digits at 40, the library's expression is exact); above it fails.
 * ``library.fields.n{N}`` (N = 2; N = 3 under ``--deep``) -- the sources of the emitted
-  ``hamiltonian_fields`` and ``phi_grad`` (:func:`symbt.codegen.derive.sources`, evaluated by
+  ``hamiltonian_fields``, ``flow_field`` and ``phi_grad`` (:func:`symbt.codegen.derive.sources`, evaluated by
   :func:`symbt.codegen.verify.evaluate_source` at 40 digits) against central differences of the
   polynomial trace (:func:`symbt.reference.trace.hamiltonians`, the closed-walk expansion, no 2x2
   product) and of :math:`\Phi` of the traces (:func:`symbt.reference.literal.phi_from_traces` of
@@ -150,13 +150,15 @@ def _value(expr, env: dict):
 
 
 @claim("library.fields", equation="tra", scene="library", sizes=(3,), deep=True,
-       where="symbt.codegen.derive.sources: hamiltonian_fields and phi_grad (N={N})",
-       statement="the sources of the emitted hamiltonian_fields (qdot = dH_k/dp, pdot = -dH_k/dq) and phi_grad "
-                 "equal central differences of the polynomial trace's H_k and of Phi(tr L(l1), tr L(l2)) (N={N})")
+       where="symbt.codegen.derive.sources: hamiltonian_fields, flow_field and phi_grad (N={N})",
+       statement="the sources of the emitted hamiltonian_fields (qdot = dH_k/dp, pdot = -dH_k/dq), flow_field "
+                 "(sum_k c_k of those) and phi_grad equal central differences of the polynomial trace's H_k and of "
+                 "Phi(tr L(l1), tr L(l2)) (N={N})")
 @claim("library.fields", equation="tra", scene="library", sizes=(2,),
-       where="symbt.codegen.derive.sources: hamiltonian_fields and phi_grad (N={N})",
-       statement="the sources of the emitted hamiltonian_fields (qdot = dH_k/dp, pdot = -dH_k/dq) and phi_grad "
-                 "equal central differences of the polynomial trace's H_k and of Phi(tr L(l1), tr L(l2)) (N={N})")
+       where="symbt.codegen.derive.sources: hamiltonian_fields, flow_field and phi_grad (N={N})",
+       statement="the sources of the emitted hamiltonian_fields (qdot = dH_k/dp, pdot = -dH_k/dq), flow_field "
+                 "(sum_k c_k of those) and phi_grad equal central differences of the polynomial trace's H_k and of "
+                 "Phi(tr L(l1), tr L(l2)) (N={N})")
 def field_sources(N: int) -> Outcome:
     from ..codegen.verify import evaluate_source, map_states
 
@@ -173,14 +175,23 @@ def field_sources(N: int) -> Outcome:
                 (pp if which == "p" else qq)[i] = s
                 return hamiltonians(pp, qq)[k]
 
+            cs = [mp.mpf(k + 1) / 7 - mp.mpf(1) / 3 for k in range(N)]   # c_k of the flow field: any numbers
+            flow = evaluate_source(N, "flow_field", {"c": [float(v) for v in cs], "p": p, "q": q}, dps=DPS)
+            cs = [mp.mpf(float(v)) for v in cs]
+            comb = [mp.mpf(0)] * (2 * N)
             for k in range(N):
                 for i in range(N):
                     for which, off, sign in (("p", 0, 1), ("q", N * N, -1)):
                         fd = sign * mp.diff(lambda s: H(k, which, i, s), (P if which == "p" else Q)[i])
+                        comb[(0 if which == "p" else N) + i] += cs[k] * fd
                         r = _rel(qdot_pdot[off + k * N + i], fd)
                         if r > worst:
                             worst, where = r, {"field": f"{'qdot' if which == 'p' else 'pdot'}[{k},{i}]", "p": p,
                                                "q": q}
+            for i in range(2 * N):
+                r = _rel(flow[i], comb[i])
+                if r > worst:
+                    worst, where = r, {"field": f"flow_field {'qdot' if i < N else 'pdot'}[{i % N}]", "p": p, "q": q}
             for b in (1, -1):
                 grad = evaluate_source(N, "phi_grad", {"p": p, "q": q, "lam0": l0, "mu": m, "branch": b}, dps=DPS)
 
@@ -202,9 +213,9 @@ def field_sources(N: int) -> Outcome:
                              f"(relative to max(1, |value|); accepted below 1e-25)")
     return Outcome("verified", f"numeric: central differences (mpmath.diff) at {DPS} digits", residual=float(worst),
                    evidence="sampled", n_scope=[N],
-                   detail=f"hamiltonian_fields ({2 * N * N} entries) and phi_grad ({2 * N} entries, b = +-1) at "
-                          f"{len(states)} states against the polynomial trace and Phi of the traces; worst relative "
-                          f"difference {float(worst):.1e} (accepted below 1e-25)")
+                   detail=f"hamiltonian_fields ({2 * N * N} entries), flow_field (c_k = (k + 1)/7 - 1/3) and "
+                          f"phi_grad ({2 * N} entries, b = +-1) at {len(states)} states against the polynomial trace "
+                          f"and Phi of the traces; worst relative difference {float(worst):.1e} (accepted below 1e-25)")
 
 
 @claim("library.spectral", equation="newkmu", scene="library", N=2,
