@@ -112,3 +112,11 @@ def test_phi_real_sign(monkeypatch):
         spectral.trace(l0 - m, p, q), spectral.trace(l0 - m, p, q), b))
     assert _status(library.spectral_routines) == "failed"
     assert mp.mp.dps == 15
+
+
+def test_solve_linear_degree_zero():
+    # no root: sympy.solve's answer, not the shortcut's (which needs two coefficients)
+    from symbt.symbolic.linear import solve_linear
+    a, xx = sp.symbols("a xx")
+    assert solve_linear(a + 1, xx) == []
+    assert solve_linear(sp.Eq(xx ** 2, 4), xx) == [-2, 2]
