@@ -22,10 +22,18 @@ or false by a little, and require the verdict each deserves (scene ``checker``):
   negative corrected residual is a failure (its size counts), the scope sentence names the one cell
   where a statement fails, and a table's verdict has at most its working precision's digits.
 
+* ``checker.api`` -- the public checkers on statements of known truth: :func:`symbt.proof.solves_ode`
+  proves the logistic solution and refutes it shifted by :math:`10^{-20}`, and scopes
+  :math:`x = (t-t_0)^2/4`, :math:`x' = \sqrt x` to the cell :math:`t > t_0`;
+  :func:`symbt.proof.check_identity` takes a relation as an equation or as a mapping, and proves an
+  identity of exponentials of rational-linear forms exactly.
+
 >>> screen_controls().status
 'verified'
 """
 from __future__ import annotations
+
+from typing import Any
 
 import sympy as sp
 
@@ -137,3 +145,43 @@ def cell_controls() -> Outcome:
                                           f"digits={tv.digits} (want 30: the working precision caps them)")
     return _ok("CellTable", f"4 samples in 2 cells: worst printed {got_p:g}, corrected {got_c:g}; scope: {scope}; "
                             "a table at 30 digits with residual 1e-40 reports 30 digits", "sampled")
+
+
+@claim("checker.api", equation="checker", scene="checker",
+       where="symbt.proof.solves_ode, symbt.proof.check_identity (relations as equations or a mapping; "
+             "exponentials of rational-linear forms)",
+       statement="solves_ode proves the logistic solution and refutes it shifted by 1e-20; x = (t - t0)^2/4 solves "
+                 "x' = sqrt(x) exactly in the cell t > t0 only; check_identity proves eta^2 - mu^2 = w under "
+                 "eta^2 = mu^2 + w (given as an equation), refutes it off by 1e-20 (given as a mapping), and proves "
+                 "exp(q1/2 - q2/3)^6 = exp(3 q1 - 2 q2)")
+def api_controls() -> Outcome:
+    from ..proof.domain import Domain, sign
+    from ..proof.identity import check_identity
+    from ..proof.ode import solves_ode
+
+    tt, t0 = sp.symbols("t t0")
+    X = sp.Function("x")
+    logistic = sp.Eq(X(tt).diff(tt), X(tt) * (1 - X(tt)))
+    got: list[tuple[str, Any, Any]] = []
+    v = solves_ode(logistic, 1 / (1 + sp.exp(-tt)))
+    got.append(("logistic", v.verdict, "proved"))
+    v = solves_ode(logistic, 1 / (1 + sp.exp(-tt)) + SMALL)
+    got.append(("logistic + 1e-20", v.verdict, "false"))
+    v = solves_ode(sp.Eq(X(tt).diff(tt), sp.sqrt(X(tt))), (tt - t0) ** 2 / 4,
+                   domain=Domain({"t": (-2, 2), "t0": (-1, 1)}), splits=[sign(tt - t0)])
+    got.append(("x' = sqrt(x)", (v.verdict, v.note),
+                ("false", "printed statement holds exactly in cells {t>t0} and fails in {t<t0}")))
+    eta, mu, w = sp.symbols("eta mu w", real=True)
+    q1, q2 = sp.symbols("q1 q2", real=True)
+    r = check_identity(eta ** 2 - mu ** 2, w, relations=[sp.Eq(eta ** 2, mu ** 2 + w)])
+    got.append(("relation as an equation", r.verdict, "proved"))
+    r = check_identity(eta ** 2 - mu ** 2, w * (1 + SMALL), relations={eta: eta ** 2 - mu ** 2 - w})
+    got.append(("relation as a mapping, off by 1e-20", r.verdict, "false"))
+    r = check_identity(sp.exp(q1 / 2 - q2 / 3) ** 6, sp.exp(3 * q1 - 2 * q2))
+    got.append(("exponentials", (r.verdict, r.evidence), ("proved", "proof")))
+    bad = [(what, g, want) for what, g, want in got if g != want]
+    if bad:
+        return failed("solves_ode / check_identity", detail="; ".join(f"{w_}: got {g!r}, want {v_!r}"
+                                                                      for w_, g, v_ in bad))
+    return _ok("solves_ode / check_identity", f"{len(got)} statements of known truth, each with the verdict it "
+                                              "deserves (proved, false by proof, a cell scope)", "proof")
