@@ -16,7 +16,8 @@ or false by a little, and require the verdict each deserves (scene ``checker``):
   :math:`\int_0^\infty e^{-t}\,dt = 1`, is a value, not an undefined side.
 * ``checker.exact`` -- the exact layer: :math:`1/(x^2+1) = 1/(x^2+1) + 10^{-60}` is false *by proof*
   (a nonzero rational function), with the note that it is numerically tiny; and
-  :func:`symbt.proof.Verdict.sampled` caps the digits at the working precision.
+  :func:`symbt.proof.Verdict.sampled` reports :math:`-\log_{10}` of the residual to one decimal (24.5 for
+  :math:`3\cdot 10^{-25}`), capped at the working precision, and a residual of -0.5 does not hold.
 * ``checker.cells`` -- :class:`symbt.proof.cells.CellTable`: the worst printed and corrected residuals
   are the largest over all cells and samples (computed here with ``max`` over the same numbers), a
   negative corrected residual is a failure (its size counts), the scope sentence names the one cell
@@ -64,6 +65,9 @@ def screen_controls() -> Outcome:
     near = decide(sp.sin(x), (1 + SMALL) * sp.sin(x), exact=False)
     if near.holds or near.inconclusive or not near.counterexample:
         return failed(near.method, residual=near.residual, detail="sin x = (1 + 1e-20) sin x was not refuted")
+    if near.digits is None or not 19 <= near.digits <= 21:   # the sides agree to 20 digits, not more, not fewer
+        return failed(near.method, residual=near.residual,
+                      detail=f"sin x vs (1 + 1e-20) sin x: the screen reports {near.digits} agreeing digits (want 20)")
     rel, fixed = {u: u ** 2 + b * u - c}, {b: 3, c: 2}
     root = decide(u ** 2 + b * u, c, relations=rel, exact=False, fixed=fixed)
     if not root.holds:
@@ -103,6 +107,12 @@ def exact_controls() -> Outcome:
     v = Verdict.sampled(1e-60, tol=1e-20, method="control", dps=30)
     if not v.holds or v.digits != 30:
         return failed("Verdict.sampled", detail=f"residual 1e-60 at 30 digits: digits={v.digits} (want 30)")
+    v = Verdict.sampled(3e-25, tol=1e-20, method="control", dps=30)   # -log10(3e-25) = 24.52...
+    if not v.holds or v.digits != 24.5:
+        return failed("Verdict.sampled", detail=f"residual 3e-25: digits={v.digits} (want 24.5)")
+    v = Verdict.sampled(-0.5, tol=1e-20, method="control", dps=30)
+    if v.holds:
+        return failed("Verdict.sampled", detail="a residual of -0.5 was taken for a statement that holds")
     return _ok(d.method, "false by proof (a nonzero rational function) and noted numerically tiny; "
                          "Verdict.sampled(1e-60, dps=30) has 30 digits", "proof")
 
@@ -173,7 +183,7 @@ def api_controls() -> Outcome:
                 ("false", "printed statement holds exactly in cells {t>t0} and fails in {t<t0}")))
     eta, mu, w = sp.symbols("eta mu w", real=True)
     q1, q2 = sp.symbols("q1 q2", real=True)
-    r = check_identity(eta ** 2 - mu ** 2, w, relations=[sp.Eq(eta ** 2, mu ** 2 + w)])
+    r = check_identity(eta ** 2 - mu ** 2 - w, relations=[sp.Eq(eta ** 2, mu ** 2 + w)])   # rhs: 0 by default
     got.append(("relation as an equation", r.verdict, "proved"))
     r = check_identity(eta ** 2 - mu ** 2, w * (1 + SMALL), relations={eta: eta ** 2 - mu ** 2 - w})
     got.append(("relation as a mapping, off by 1e-20", r.verdict, "false"))
