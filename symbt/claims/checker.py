@@ -96,7 +96,8 @@ def screen_controls() -> Outcome:
 @claim("checker.exact", equation="checker", scene="checker",
        where="symbt.proof.decide, exact layer; symbt.proof.Verdict.sampled",
        statement="1/(x^2+1) = 1/(x^2+1) + 1e-60 is false by proof, noted as numerically tiny; a sampled verdict's "
-                 "digits are capped at the working precision")
+                 "digits are -log10(residual) to one decimal, capped at the working precision; a negative residual "
+                 "does not hold")
 def exact_controls() -> Outcome:
     f = 1 / (x ** 2 + 1)
     d = decide(f, f + sp.Integer(10) ** -60)
