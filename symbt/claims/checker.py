@@ -29,7 +29,7 @@ or false by a little, and require the verdict each deserves (scene ``checker``):
   :func:`symbt.proof.check_identity` takes a relation as an equation or as a mapping, and proves an
   identity of exponentials of rational-linear forms exactly.
 
->>> screen_controls().status
+>>> screen_controls.run().status
 'verified'
 """
 from __future__ import annotations

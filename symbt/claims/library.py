@@ -25,7 +25,7 @@ library is called and compared with an independent route:
   :math:`\dot p = -\partial H_k/\partial q` and the variable each derivative is taken by.  Same
   acceptance, relative to :math:`\max(1, |\text{value}|)`.
 
->>> darboux_by_adjugate().status
+>>> darboux_by_adjugate.run().status
 'verified'
 """
 from __future__ import annotations
