@@ -41,6 +41,7 @@ import sympy as sp
 from ..proof import Verdict, decide
 from ..proof import screen as screen_module
 from ..proof.cells import CellTable
+from ..proof.verdict import Evidence
 from .base import Outcome, claim, failed, scene
 
 scene("checker", "the checker checked: true statements and statements false by a little, fed to the decider, "
@@ -53,7 +54,7 @@ t = sp.Symbol("t", real=True)
 SMALL = sp.Integer(10) ** -20
 
 
-def _ok(method: str, detail: str, evidence: str) -> Outcome:
+def _ok(method: str, detail: str, evidence: Evidence) -> Outcome:
     return Outcome("verified", method, evidence=evidence, detail=detail, n_scope="all")
 
 

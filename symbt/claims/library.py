@@ -31,6 +31,7 @@ library is called and compared with an independent route:
 from __future__ import annotations
 
 import random
+from dataclasses import replace
 
 import mpmath as mp
 import sympy as sp
@@ -77,8 +78,7 @@ def darboux_by_adjugate() -> Outcome:
     d = decide(composed_darboux(a, bb, lam_=lam_).det(), (lam_ - lam1) * (lam_ - lam2))
     out = from_decision(d, detail="exactly: entrywise, against Matrix.adjugate of eq. dj; det composed_darboux(x, y) "
                                   "= (lambda - lambda1)(lambda - lambda2)" + ("" if d.holds else ": it is not"))
-    out.n_scope = "all"
-    return out
+    return replace(out, n_scope="all")
 
 
 def _rel(a, b) -> mp.mpf:
