@@ -299,6 +299,29 @@ class LohnerSet:
         Bf, B = _frame(F)
         return Bf, B, frame_inverse(B)
 
+    def _small_frame(self, Jm: Any) -> tuple[Any, Any]:
+        """``(B, enclosure of B^-1)`` of the product frame ``mid(mid(J) B)`` for small sizes, all in Arb.
+
+        Any exact invertible ``B`` keeps the method rigorous (its inverse is enclosed), so the product is
+        rounded to its midpoint at ``jac_prec`` instead of being formed in float64: no conversions between
+        Arb and numpy per step (they dominated the cost at N = 3).  The condition is checked in float64
+        every ``_COND_EVERY`` steps; past :data:`MAX_FRAME_COND` the frame is re-orthogonalised (plain QR).
+        """
+        B = (Jm * self.B).mid()
+        self.steps += 1
+        if self.steps % _COND_EVERY == 0:
+            F = _floats(B)
+            with np.errstate(all="ignore"):
+                try:
+                    cond = np.linalg.cond(F, 1) if np.all(np.isfinite(F)) else math.inf
+                except np.linalg.LinAlgError:
+                    cond = math.inf
+            if not cond < MAX_FRAME_COND:
+                self.reorthogonalised += 1
+                with np.errstate(all="ignore"):
+                    _, B = _frame(F)
+        return B, _inv(B)
+
     def step(self, lam0: Any, mu: Any, branch: int) -> None:
         """One step: the set and its hull are replaced by enclosures of their image."""
         N = self.n // 2
@@ -315,23 +338,35 @@ class LohnerSet:
         with flint_prec(self.jac_prec):
             if self.unsound:
                 J, err = J.mid(), arb_mat(self.n, 1)
-            Jf = _floats(J.mid())
-            with np.errstate(all="ignore"):
-                F = Jf @ self.Bf
-            Bf, Bn, Binv = self._new_frame(F)
+            Jm = J.mid()
+            small = self.n <= _SMALL and self.frame == "product"
+            if small:
+                Bn, Binv = self._small_frame(Jm)
+            else:
+                Jf = _floats(Jm)
+                with np.errstate(all="ignore"):
+                    F = Jf @ self.Bf
+                Bf, Bn, Binv = self._new_frame(F)
             if self.unsound:
                 Binv = Binv.mid()
             rhs = err
             if self.has_r0:
-                with np.errstate(all="ignore"):
-                    self.Cf = Jf @ self.Cf
-                if not np.all(np.isfinite(self.Cf)):
-                    raise JacobianBlowup("the matrix C is not finite")
-                Cn = arb_mat(self.Cf.tolist())
+                if small:
+                    Cn = (Jm * self.C).mid()
+                    if not all(x.is_finite() for x in Cn.entries()):
+                        raise JacobianBlowup("the matrix C is not finite")
+                else:
+                    with np.errstate(all="ignore"):
+                        self.Cf = Jf @ self.Cf
+                    if not np.all(np.isfinite(self.Cf)):
+                        raise JacobianBlowup("the matrix C is not finite")
+                    Cn = arb_mat(self.Cf.tolist())
                 rhs = rhs + (J * self.C - Cn) * self.r0
                 self.C = Cn
             self.r = (Binv * (J * self.B)) * self.r + Binv * rhs
-            self.B, self.Bf = Bn, Bf
+            self.B = Bn
+            if not small:
+                self.Bf = Bf
             lin = Bn * self.r
             if self.has_r0:
                 lin = lin + self.C * self.r0
