@@ -20,7 +20,8 @@ contains the set and ``xh_k`` (its hull):
    :func:`~symbt.numeric.lohner_checks.jacobian_dual`, are the independent check of this derivation);
 2. ``y = f(xh_k)`` on the exact centre (:func:`~symbt.numeric.multiprec.runners.arb_step`, a ball);
 3. mean-value form: ``f(x) in y + J (C r0) + J (B r)``; ``C <- mid(J) C`` and ``B <- mid(J) B``
-   (both formed in float64: ``C`` and ``B`` only have to be exact, and ``B`` invertible -- its inverse
+   (both rounded to exact midpoints, in Arb at ``jac_prec`` for ``2N <= 24``, in float64 above:
+   ``C`` and ``B`` only have to be exact, and ``B`` invertible -- its inverse
    is enclosed rigorously, :func:`frame_inverse`); ``xh <- mid(y)`` and
        r <- (B^-1 J B) r + B^-1 ((J C - C_new) r0 + (y - mid y)),
 
