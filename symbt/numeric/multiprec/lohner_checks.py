@@ -228,7 +228,7 @@ def common_invariants(H: Sequence[Sequence[Any]], prec: int = 256) -> list[Any]:
     >>> common_invariants([[arb(1, 0.1)], [arb(2, 0.1)]])
     Traceback (most recent call last):
     ...
-    symbt.numeric.lohner_checks.InconsistentEnclosure: the enclosures of H_0 at stored states 0 and 1 are disjoint
+    symbt.numeric.multiprec.lohner_checks.InconsistentEnclosure: the enclosures of H_0 at stored states 0 and 1 are disjoint
     """
     cur = list(H[0])
     with flint_prec(prec):
