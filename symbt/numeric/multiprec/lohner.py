@@ -274,11 +274,6 @@ class LohnerSet:
         """A box containing the set and ``xh`` (the mean-value form needs the segment ``[xh, x]``)."""
         return [h.union(c) for h, c in zip(self.hull, self.xh)]
 
-    def _new_frame(self, F: Any) -> tuple[Any, Any, Any]:
-        """``(Bf, B, enclosure of B^-1)`` for the new frame from ``F = mid(J) B`` (float64)."""
-        with np.errstate(all="ignore"):       # overflow or a singular frame is decided below, not warned
-            return self._frame_of(F)
-
     def _frame_of(self, F: Any) -> tuple[Any, Any, Any]:
         if not np.all(np.isfinite(F)):
             raise JacobianBlowup("the frame matrix is not finite")
@@ -301,13 +296,9 @@ class LohnerSet:
         return Bf, B, frame_inverse(B)
 
     def _small_frame(self, Jm: Any) -> tuple[Any, Any]:
-        """``(B, enclosure of B^-1)`` of the product frame ``mid(mid(J) B)`` for small sizes, all in Arb.
-
-        Any exact invertible ``B`` keeps the method rigorous (its inverse is enclosed), so the product is
-        rounded to its midpoint at ``jac_prec`` instead of being formed in float64: no conversions between
-        Arb and numpy per step (they dominated the cost at N = 3).  The condition is checked in float64
-        every ``_COND_EVERY`` steps; past :data:`MAX_FRAME_COND` the frame is re-orthogonalised (plain QR).
-        """
+        """``(B, enclosure of B^-1)``: the product frame ``mid(mid(J) B)`` of a small set, all in Arb (any exact
+        invertible ``B`` is rigorous; no numpy round trips per step, which dominated at N = 3); the condition
+        is checked in float64 every ``_COND_EVERY`` steps, past :data:`MAX_FRAME_COND` a plain QR."""
         B = (Jm * self.B).mid()
         self.steps += 1
         if self.steps % _COND_EVERY == 0:
@@ -317,10 +308,9 @@ class LohnerSet:
                     cond = np.linalg.cond(F, 1) if np.all(np.isfinite(F)) else math.inf
                 except np.linalg.LinAlgError:
                     cond = math.inf
-            if not cond < MAX_FRAME_COND:
-                self.reorthogonalised += 1
-                with np.errstate(all="ignore"):
-                    _, B = _frame(F)
+                if not cond < MAX_FRAME_COND:
+                    self.reorthogonalised += 1
+                    B = _frame(F)[1]
         return B, _inv(B)
 
     def step(self, lam0: Any, mu: Any, branch: int) -> None:
@@ -345,29 +335,22 @@ class LohnerSet:
                 Bn, Binv = self._small_frame(Jm)
             else:
                 Jf = _floats(Jm)
-                with np.errstate(all="ignore"):
-                    F = Jf @ self.Bf
-                Bf, Bn, Binv = self._new_frame(F)
+                with np.errstate(all="ignore"):      # overflow or a singular frame is decided, not warned
+                    Bf, Bn, Binv = self._frame_of(Jf @ self.Bf)
             if self.unsound:
                 Binv = Binv.mid()
             rhs = err
             if self.has_r0:
-                if small:
-                    Cn = (Jm * self.C).mid()
-                    if not all(x.is_finite() for x in Cn.entries()):
-                        raise JacobianBlowup("the matrix C is not finite")
-                else:
+                if not small:
                     with np.errstate(all="ignore"):
                         self.Cf = Jf @ self.Cf
-                    if not np.all(np.isfinite(self.Cf)):
-                        raise JacobianBlowup("the matrix C is not finite")
-                    Cn = arb_mat(self.Cf.tolist())
+                Cn = (Jm * self.C).mid() if small else arb_mat(self.Cf.tolist())
+                if not all(x.is_finite() for x in Cn.entries()):
+                    raise JacobianBlowup("the matrix C is not finite")
                 rhs = rhs + (J * self.C - Cn) * self.r0
                 self.C = Cn
             self.r = (Binv * (J * self.B)) * self.r + Binv * rhs
-            self.B = Bn
-            if not small:
-                self.Bf = Bf
+            self.B, self.Bf = Bn, (self.Bf if small else Bf)
             lin = Bn * self.r
             if self.has_r0:
                 lin = lin + self.C * self.r0
