@@ -20,7 +20,7 @@ from flint import arb  # noqa: E402
 
 from symbt.numeric import InvalidInputError, NumericRangeError, bt_orbit, bt_step, certified_orbit  # noqa: E402
 from symbt.numeric.multiprec.arb import flint_prec  # noqa: E402
-from symbt.numeric.multiprec.lohner import growth_law, lohner_pass, step_jacobian  # noqa: E402
+from symbt.numeric.multiprec.lohner import LohnerSet, growth_law, lohner_pass, step_jacobian  # noqa: E402
 from symbt.numeric.multiprec.lohner_checks import (  # noqa: E402
     InconsistentEnclosure,
     common_invariants,
@@ -125,6 +125,25 @@ def test_the_unsound_variant_fails_the_containment_check(frame):
             assert len(bad) > n           # misses at (almost) every step
         else:
             assert bad == []
+
+
+def test_small_frame_reorthogonalised_stays_sound(monkeypatch):
+    """The small product frame (formed in Arb) re-orthogonalised at a low condition threshold: the QR steps
+    really happen and every enclosure still contains the 300-digit reference."""
+    from symbt.numeric.multiprec import lohner
+
+    monkeypatch.setattr(lohner, "MAX_FRAME_COND", 50.0)
+    n = 200
+    ref = reference_orbit(P64, Q64, LAM0, MU, n, 1)
+    with flint_prec(160):
+        S = LohnerSet([arb(x) for x in P64 + Q64])
+        stored = [(S.hull[:3], S.hull[3:])]
+        for _ in range(n):
+            S.step(arb(LAM0), arb(MU), 1)
+            stored.append((S.hull[:3], S.hull[3:]))
+    assert S.reorthogonalised >= 2
+    assert ball_misses(ref, stored) == []
+    assert max(float(x.rad()) for x in S.hull) < 1e-30
 
 
 def test_precision_raised_from_the_measured_growth():

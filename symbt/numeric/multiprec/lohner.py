@@ -20,7 +20,8 @@ contains the set and ``xh_k`` (its hull):
    :func:`~symbt.numeric.lohner_checks.jacobian_dual`, are the independent check of this derivation);
 2. ``y = f(xh_k)`` on the exact centre (:func:`~symbt.numeric.multiprec.runners.arb_step`, a ball);
 3. mean-value form: ``f(x) in y + J (C r0) + J (B r)``; ``C <- mid(J) C`` and ``B <- mid(J) B``
-   (both formed in float64: ``C`` and ``B`` only have to be exact, and ``B`` invertible -- its inverse
+   (both rounded to exact midpoints, in Arb at ``jac_prec`` for ``2N <= 24``, in float64 above:
+   ``C`` and ``B`` only have to be exact, and ``B`` invertible -- its inverse
    is enclosed rigorously, :func:`frame_inverse`); ``xh <- mid(y)`` and
        r <- (B^-1 J B) r + B^-1 ((J C - C_new) r0 + (y - mid y)),
 
@@ -273,11 +274,6 @@ class LohnerSet:
         """A box containing the set and ``xh`` (the mean-value form needs the segment ``[xh, x]``)."""
         return [h.union(c) for h, c in zip(self.hull, self.xh)]
 
-    def _new_frame(self, F: Any) -> tuple[Any, Any, Any]:
-        """``(Bf, B, enclosure of B^-1)`` for the new frame from ``F = mid(J) B`` (float64)."""
-        with np.errstate(all="ignore"):       # overflow or a singular frame is decided below, not warned
-            return self._frame_of(F)
-
     def _frame_of(self, F: Any) -> tuple[Any, Any, Any]:
         if not np.all(np.isfinite(F)):
             raise JacobianBlowup("the frame matrix is not finite")
@@ -299,6 +295,24 @@ class LohnerSet:
         Bf, B = _frame(F)
         return Bf, B, frame_inverse(B)
 
+    def _small_frame(self, Jm: Any) -> tuple[Any, Any]:
+        """``(B, enclosure of B^-1)``: the product frame ``mid(mid(J) B)`` of a small set, all in Arb (any exact
+        invertible ``B`` is rigorous; no numpy round trips per step, which dominated at N = 3); the condition
+        is checked in float64 every ``_COND_EVERY`` steps, past :data:`MAX_FRAME_COND` a plain QR."""
+        B = (Jm * self.B).mid()
+        self.steps += 1
+        if self.steps % _COND_EVERY == 0:
+            F = _floats(B)
+            with np.errstate(all="ignore"):
+                try:
+                    cond = np.linalg.cond(F, 1) if np.all(np.isfinite(F)) else math.inf
+                except np.linalg.LinAlgError:
+                    cond = math.inf
+                if not cond < MAX_FRAME_COND:
+                    self.reorthogonalised += 1
+                    B = _frame(F)[1]
+        return B, _inv(B)
+
     def step(self, lam0: Any, mu: Any, branch: int) -> None:
         """One step: the set and its hull are replaced by enclosures of their image."""
         N = self.n // 2
@@ -315,23 +329,28 @@ class LohnerSet:
         with flint_prec(self.jac_prec):
             if self.unsound:
                 J, err = J.mid(), arb_mat(self.n, 1)
-            Jf = _floats(J.mid())
-            with np.errstate(all="ignore"):
-                F = Jf @ self.Bf
-            Bf, Bn, Binv = self._new_frame(F)
+            Jm = J.mid()
+            small = self.n <= _SMALL and self.frame == "product"
+            if small:
+                Bn, Binv = self._small_frame(Jm)
+            else:
+                Jf = _floats(Jm)
+                with np.errstate(all="ignore"):      # overflow or a singular frame is decided, not warned
+                    Bf, Bn, Binv = self._frame_of(Jf @ self.Bf)
             if self.unsound:
                 Binv = Binv.mid()
             rhs = err
             if self.has_r0:
-                with np.errstate(all="ignore"):
-                    self.Cf = Jf @ self.Cf
-                if not np.all(np.isfinite(self.Cf)):
+                if not small:
+                    with np.errstate(all="ignore"):
+                        self.Cf = Jf @ self.Cf
+                Cn = (Jm * self.C).mid() if small else arb_mat(self.Cf.tolist())
+                if not all(x.is_finite() for x in Cn.entries()):
                     raise JacobianBlowup("the matrix C is not finite")
-                Cn = arb_mat(self.Cf.tolist())
                 rhs = rhs + (J * self.C - Cn) * self.r0
                 self.C = Cn
             self.r = (Binv * (J * self.B)) * self.r + Binv * rhs
-            self.B, self.Bf = Bn, Bf
+            self.B, self.Bf = Bn, (self.Bf if small else Bf)
             lin = Bn * self.r
             if self.has_r0:
                 lin = lin + self.C * self.r0
