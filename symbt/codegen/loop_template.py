@@ -273,7 +273,7 @@ def _backward(av, R, u1):
 def _slopes(_X, av, R, mono, t, s):
     """Scaled slopes u_j = E_j * (slope at site j) of the eigenvector (1, -u) of M with eigenvalue
     (t - s g)/2, g = sqrt(t^2 - 4): root without cancellation at site 1 (kernels 'root_k', 'root_c';
-    from the rescaled M = 2**e (A, B; C, D), t = A + D: the roots are homogeneous of degree 0), then
+    read off the rescaled M = 2**e (A, B; C, D), t = A + D: the roots are homogeneous of degree 0), then
     transport in the contracting direction (forward iff |(t - s g)/2| >= 1 iff s t < 0)."""
     A, B, C, D, e = mono
     two = _X.ldexp(2 * _X.one, -e)

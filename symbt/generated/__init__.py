@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: dc082621cdbaf8d5fd081be8466dae3bbb8bd9c6e0e5b65ed4004c5102e3b9b5
-# symbt-codegen-content-sha256: f214c5b34906bbf35c3dc2dc8b51241a73bc0eec36c662cd5ddb5cf3091f1e54
+# symbt-codegen-derivation-sha256: 2bafc205db160129b09c792e69acc52ebdbaef6ea84810e1c101a5a6e800f18a
+# symbt-codegen-content-sha256: 9d22f0e25c0f6ef3ca082ca2b06c8f35b6eb41e115ab0eb4046620dae1ad5b62
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: dc082621cdbaf8d5fd081be8466dae3bbb8bd9c6e0e5b65ed4004c5102e3b9b5
-# symbt-codegen-content-sha256: 08fd09c237d5dfe154ac45de3be8c9d7d522fbacd54743a4b31a022120868e49
+# symbt-codegen-derivation-sha256: 2bafc205db160129b09c792e69acc52ebdbaef6ea84810e1c101a5a6e800f18a
+# symbt-codegen-content-sha256: bc9d9a64d2be719f7fbf60c6d6dba37d296e970440873ca06b62fe8cf5265ad1
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
