@@ -19,6 +19,7 @@ _NEEDS = {
     "symbt.numeric.multiprec.certified": "flint",
     "symbt.benchmarks.certified": "flint",
     "symbt.numeric.multiprec.runners.arb_step": "flint",
+    "symbt.numeric.multiprec.runners.flint_orbit": "flint",
     "symbt.numeric.multiprec.qd": "numba",
     "symbt.proof.flint_exact": "flint",
     "symbt.numeric.float64.dask_orbit": "dask",
