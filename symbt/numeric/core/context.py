@@ -40,19 +40,38 @@ from __future__ import annotations
 import math
 import operator
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import Any, Protocol, TypeAlias
 
 import mpmath
 import numpy as np
+import numpy.typing as npt
 
-if TYPE_CHECKING:
-    import numpy.typing as npt
+__all__ = ["Context", "FloatContext", "MPContext", "IVContext", "FLOAT", "COMPLEX", "MP", "IV",
+           "Value", "Cond", "Exponent", "FloatValue", "MPValue"]
 
-__all__ = ["Context", "FloatContext", "MPContext", "IVContext", "FLOAT", "COMPLEX", "MP", "IV"]
+
+#: a context value: a float64/complex128 array over the batch or a Python float (:class:`FloatContext`),
+#: an mpmath ``mpf``/``mpc`` or ``iv`` interval (:class:`MPContext`, :class:`IVContext`), an Arb ball
+#: (:mod:`symbt.numeric.multiprec.arb`).  The context-generic step mixes these with Python floats and ints;
+#: they share no static type (mpmath ships no type information), so to a type checker this is ``Any`` --
+#: the one deliberate ``Any`` of the numeric core; the name says what a parameter holds.
+Value: TypeAlias = Any
+#: a float-context value: a 1-D float64 or complex128 array over the flattened batch
+FloatValue: TypeAlias = npt.NDArray[np.inexact]
+#: an mpmath value: ``mpf``/``mpc``, or an ``mpmath.iv`` interval (mpmath ships no type information, so
+#: to a type checker this is ``Any``; the name says what is meant)
+MPValue: TypeAlias = mpmath.mpf | mpmath.mpc
+#: an existence/accuracy condition: a bool (scalar contexts) or a bool array over the batch (float)
+Cond: TypeAlias = bool | npt.NDArray[np.bool_]
+#: a power-of-two scale exponent: an int (scalar contexts) or an integer array over the batch (float)
+Exponent: TypeAlias = int | npt.NDArray[np.integer]
 
 
 class Context(Protocol):
     """The interface :func:`~symbt.numeric.core.step.step_core` is written against (see module docstring).
+
+    Each context computes with its own kind of ``Value``: :class:`FloatContext` with ``FloatValue``,
+    :class:`MPContext` with ``MPValue``, the Arb contexts with balls.
 
     >>> isinstance(FLOAT.is_exact_scale, bool) and callable(MPContext.div)
     True
@@ -61,27 +80,29 @@ class Context(Protocol):
     is_exact_scale: bool
     is_complex: bool
 
-    def exp(self, x: Any) -> Any: ...
-    def log(self, x: Any) -> Any: ...
-    def log1p(self, x: Any) -> Any: ...
-    def sqrt(self, x: Any) -> Any: ...
-    def div(self, a: Any, b: Any) -> Any: ...
-    def ldexp(self, x: Any, e: Any) -> Any: ...
-    def acosh_half_abs(self, t: Any, g: Any, e: Any) -> Any: ...
-    def re_dot(self, a: Any, b: Any) -> Any: ...
-    def positive(self, x: Any) -> Any: ...
-    def all_positive(self, x: Any) -> bool: ...
-    def align(self, g: Any, ref: Any) -> tuple[Any, Any]: ...
-    def half_plane(self, a: Any, g: Any) -> Any: ...
-    def any(self, c: Any) -> bool: ...
-    def all(self, c: Any) -> bool: ...
-    def neg(self, c: Any) -> Any: ...
-    def select(self, c: Any, f: Callable[[], Any], g: Callable[[], Any]) -> Any: ...
-    def out_of_range(self, *xs: Any) -> Any: ...
-    def renormalize(self, A: Any, B: Any, C: Any, D: Any, e: Any) -> tuple[Any, Any, Any, Any, Any]: ...
-    def subset(self, x: Any, mask: Any) -> Any: ...
-    def merge(self, full: Any, mask: Any, part: Any) -> Any: ...
-    def isfinite_all(self, xs: Sequence[Any]) -> bool: ...
+    def exp(self, x: Value) -> Value: ...
+    def log(self, x: Value) -> Value: ...
+    def log1p(self, x: Value) -> Value: ...
+    def sqrt(self, x: Value) -> Value: ...
+    def div(self, a: Value, b: Value) -> Value: ...
+    def ldexp(self, x: Value, e: Exponent) -> Value: ...
+    def acosh_half_abs(self, t: Value, g: Value, e: Exponent) -> Value: ...
+    def re_dot(self, a: Value, b: Value) -> Value: ...
+    def positive(self, x: Value) -> Cond: ...
+    def all_positive(self, x: Value) -> bool: ...
+    def align(self, g: Value, ref: Value) -> tuple[Value, Cond]: ...
+    def half_plane(self, a: Value, g: Value) -> Cond: ...
+    def any(self, c: Cond) -> bool: ...
+    def all(self, c: Cond) -> bool: ...
+    def neg(self, c: Cond) -> Cond: ...
+    def select(self, c: Cond, f: Callable[[], Value], g: Callable[[], Value]) -> Value: ...
+    def out_of_range(self, *xs: Value) -> Cond: ...
+    def renormalize(self, A: Value, B: Value, C: Value, D: Value,
+                    e: Exponent) -> tuple[Value, Value, Value, Value, Exponent]: ...
+    def subset(self, x: Value, mask: Cond) -> Value: ...
+    def merge(self, full: Value, mask: Cond, part: Value) -> Value: ...
+    def isfinite_all(self, xs: Sequence[Value]) -> bool: ...
+
 
 _LN2 = math.log(2.0)
 
@@ -107,12 +128,12 @@ class FloatContext:
     div = staticmethod(operator.truediv)   # IEEE: x / 0 = +-inf (callers silence the warning)
 
     @staticmethod
-    def ldexp(x: Any, e: Any) -> Any:
+    def ldexp(x: FloatValue | float, e: Exponent) -> FloatValue | float:
         if isinstance(e, (int, np.integer)) and e == 0:
             return x
         return np.ldexp(x, e)
 
-    def acosh_half_abs(self, t: Any, g: Any, e: Any) -> Any:
+    def acosh_half_abs(self, t: FloatValue, g: FloatValue, e: Exponent) -> FloatValue:
         """``arccosh(|t| 2**e / 2)`` given ``g = sqrt(t**2 - 4**(1-e))``.
 
         For ``e == 0`` this uses ``log1p(h - 1 + sqrt((h-1)(h+1)))`` which is
@@ -127,23 +148,23 @@ class FloatContext:
         big = np.asarray(e, dtype=float) * _LN2 + np.log(0.5 * (at + np.abs(g)))
         return np.where(np.asarray(e) == 0, small, big)
 
-    def re_dot(self, a: Any, b: Any) -> Any:
+    def re_dot(self, a: FloatValue, b: FloatValue) -> FloatValue:
         if self.is_complex:
             return (a * np.conj(b)).real
         return a * b
 
-    def positive(self, x: Any) -> Any:
+    def positive(self, x: FloatValue) -> Cond:
         if self.is_complex:
-            x = np.real(x)
+            return np.real(x) > 0
         return x > 0
 
-    def all_positive(self, x: Any) -> bool:
+    def all_positive(self, x: FloatValue) -> bool:
         """``all(x > 0)`` as a bool (a single reduction; NaN counts as failure)."""
         if self.is_complex:
-            x = np.real(x)
+            return bool(np.min(np.real(x)) > 0)
         return bool(np.min(x) > 0)
 
-    def align(self, g: Any, ref: Any) -> tuple[Any, Any]:
+    def align(self, g: FloatValue, ref: FloatValue) -> tuple[FloatValue, Cond]:
         """``+g`` or ``-g``, whichever satisfies ``Re(ref * conj(+-g)) >= 0``.
 
         Returns ``(aligned_g, is_plus)``.
@@ -153,26 +174,26 @@ class FloatContext:
             return np.where(plus, g, -g), plus
         return np.copysign(g, ref), ref >= 0
 
-    def half_plane(self, a: Any, g: Any) -> Any:
+    def half_plane(self, a: FloatValue, g: FloatValue) -> Cond:
         """``Re(a * conj(g)) >= 0`` for a principal square root ``g`` (real: ``a >= 0``)."""
         if self.is_complex:
             return (a * np.conj(g)).real >= 0
         return a >= 0
 
     @staticmethod
-    def any(c: Any) -> bool:
+    def any(c: Cond) -> bool:
         return bool(np.any(c))
 
     @staticmethod
-    def all(c: Any) -> bool:
+    def all(c: Cond) -> bool:
         return bool(np.all(c))
 
     @staticmethod
-    def neg(c: Any) -> Any:
+    def neg(c: Cond) -> Cond:
         return np.logical_not(c)
 
     @staticmethod
-    def select(c: Any, f: Callable[[], Any], g: Callable[[], Any]) -> Any:
+    def select(c: Cond, f: Callable[[], FloatValue], g: Callable[[], FloatValue]) -> FloatValue:
         if c is True or (isinstance(c, np.ndarray) and c.all()):
             return f()
         if c is False or (isinstance(c, np.ndarray) and not c.any()):
@@ -180,7 +201,7 @@ class FloatContext:
         return np.where(c, f(), g())
 
     # scaling support for the monodromy product ----------------------------
-    def out_of_range(self, *xs: Any) -> Any:
+    def out_of_range(self, *xs: FloatValue) -> Cond:
         """Mask of batch rows whose entries are non-finite or too large/small.
 
         Returns ``False`` (cheaply, by reductions only) when all is fine.
@@ -193,36 +214,38 @@ class FloatContext:
         if big < 2.0**500 and np.isfinite(big):
             # det M = 1 forces max|entry| >~ 1 per row, so no per-row test needed
             return False
-        mx: Any = None
+        mx: FloatValue | None = None
         for x in arrays:
             ax = np.abs(x)
             ax = np.where(np.isfinite(ax), ax, np.inf)
             mx = ax if mx is None else np.maximum(mx, ax)
+        assert mx is not None           # arrays is not empty
         shape = np.broadcast_shapes(*(np.shape(x) for x in arrays))
         return np.broadcast_to((mx > 2.0**500) | (mx < 2.0**-500) | np.isnan(mx), shape)
 
     @staticmethod
-    def renormalize(A: Any, B: Any, C: Any, D: Any, e: Any) -> tuple[Any, Any, Any, Any, Any]:
+    def renormalize(A: FloatValue, B: FloatValue | float, C: FloatValue, D: FloatValue | float,
+                    e: Exponent) -> tuple[FloatValue, FloatValue, FloatValue, FloatValue, Exponent]:
         mx = np.maximum(np.maximum(np.abs(A), np.abs(B)), np.maximum(np.abs(C), np.abs(D)))
         _, k = np.frexp(mx)
         k = np.where(mx > 0, k, 0)
         return (np.ldexp(A, -k), np.ldexp(B, -k), np.ldexp(C, -k), np.ldexp(D, -k), e + k)
 
     @staticmethod
-    def subset(x: Any, mask: Any) -> Any:
+    def subset(x: FloatValue, mask: Cond) -> FloatValue:
         if np.ndim(x) == 0:
             return x
         return x[mask]
 
     @staticmethod
-    def merge(full: Any, mask: Any, part: Any) -> Any:
+    def merge(full: npt.ArrayLike, mask: Cond, part: npt.ArrayLike) -> npt.NDArray[np.generic]:
         if np.ndim(full) == 0:
-            full = np.full(mask.shape, full)
+            full = np.full(np.shape(mask), full)
         full = np.array(full, copy=True)
         full[mask] = part
         return full
 
-    def isfinite_all(self, xs: Sequence[Any]) -> bool:
+    def isfinite_all(self, xs: Sequence[FloatValue]) -> bool:
         return all(bool(np.all(np.isfinite(x))) for x in xs)
 
 
@@ -241,74 +264,75 @@ class MPContext:
     log1p = staticmethod(mpmath.log1p)
 
     @staticmethod
-    def sqrt(x: Any) -> Any:
+    def sqrt(x: MPValue) -> MPValue:
         return mpmath.sqrt(x)
 
     @staticmethod
-    def div(a: Any, b: Any) -> Any:
+    def div(a: MPValue, b: MPValue) -> MPValue:
         if b == 0:
             return mpmath.nan if a == 0 else mpmath.inf
         return a / b
 
     @staticmethod
-    def ldexp(x: Any, e: Any) -> Any:
+    def ldexp(x: MPValue | float, e: Exponent) -> MPValue:
         return mpmath.ldexp(mpmath.mpf(x), int(e))
 
     @staticmethod
-    def acosh_half_abs(t: Any, g: Any, e: Any) -> Any:
+    def acosh_half_abs(t: MPValue, g: MPValue, e: Exponent) -> MPValue:
         return mpmath.acosh(abs(mpmath.ldexp(t, int(e))) / 2)
 
     @staticmethod
-    def re_dot(a: Any, b: Any) -> Any:
+    def re_dot(a: MPValue, b: MPValue) -> MPValue:
         return mpmath.re(a * mpmath.conj(b))
 
     @staticmethod
-    def positive(x: Any) -> bool:
+    def positive(x: MPValue) -> bool:
         return bool(mpmath.im(x) == 0 and mpmath.re(x) > 0)
 
-    def all_positive(self, x: Any) -> bool:
+    def all_positive(self, x: MPValue) -> bool:
         return self.positive(x)
 
-    def align(self, g: Any, ref: Any) -> tuple[Any, Any]:
+    def align(self, g: MPValue, ref: MPValue) -> tuple[MPValue, Cond]:
         plus = self.re_dot(ref, g) >= 0
         return (g if plus else -g), plus
 
-    def half_plane(self, a: Any, g: Any) -> Any:
+    def half_plane(self, a: MPValue, g: MPValue) -> Cond:
         return self.re_dot(a, g) >= 0
 
     @staticmethod
-    def any(c: Any) -> bool:
+    def any(c: Cond) -> bool:
         return bool(c)
 
     @staticmethod
-    def all(c: Any) -> bool:
+    def all(c: Cond) -> bool:
         return bool(c)
 
     @staticmethod
-    def neg(c: Any) -> Any:
+    def neg(c: Cond) -> Cond:
         return not c
 
     @staticmethod
-    def select(c: Any, f: Callable[[], Any], g: Callable[[], Any]) -> Any:
+    def select(c: Cond, f: Callable[[], MPValue], g: Callable[[], MPValue]) -> MPValue:
         return f() if c else g()
 
     @staticmethod
-    def out_of_range(*xs: Any) -> Any:
+    def out_of_range(*xs: MPValue) -> Cond:
         return False
 
     @staticmethod
-    def renormalize(A: Any, B: Any, C: Any, D: Any, e: Any) -> tuple[Any, Any, Any, Any, Any]:
+    def renormalize(A: MPValue | float, B: MPValue | float, C: MPValue | float, D: MPValue | float,
+                    e: Exponent) -> tuple[MPValue | float, MPValue | float, MPValue | float, MPValue | float, Exponent]:
         return A, B, C, D, e
 
     @staticmethod
-    def subset(x: Any, mask: Any) -> Any:
+    def subset(x: MPValue, mask: Cond) -> MPValue:
         return x
 
     @staticmethod
-    def merge(full: Any, mask: Any, part: Any) -> Any:
+    def merge(full: MPValue, mask: Cond, part: MPValue) -> MPValue:
         return part
 
-    def isfinite_all(self, xs: Sequence[Any]) -> bool:
+    def isfinite_all(self, xs: Sequence[MPValue]) -> bool:
         return all(mpmath.isfinite(x) for x in xs)
 
 
@@ -332,27 +356,27 @@ class IVContext(MPContext):
     sqrt = staticmethod(mpmath.iv.sqrt)
 
     @staticmethod
-    def div(a: Any, b: Any) -> Any:
+    def div(a: MPValue, b: MPValue) -> MPValue:
         return a / b
 
     @staticmethod
-    def ldexp(x: Any, e: Any) -> Any:
+    def ldexp(x: MPValue | float, e: Exponent) -> MPValue:
         return mpmath.iv.mpf(x) * mpmath.iv.mpf(2) ** int(e)
 
     @staticmethod
-    def acosh_half_abs(t: Any, g: Any, e: Any) -> Any:
+    def acosh_half_abs(t: MPValue, g: MPValue, e: Exponent) -> MPValue:
         h = abs(t) / 2
         return mpmath.iv.log(h + mpmath.iv.sqrt((h - 1) * (h + 1)))
 
     @staticmethod
-    def re_dot(a: Any, b: Any) -> Any:
+    def re_dot(a: MPValue, b: MPValue) -> MPValue:
         return (a * b).mid
 
     @staticmethod
-    def positive(x: Any) -> bool:
+    def positive(x: MPValue) -> bool:
         return bool(x.a > 0)
 
-    def isfinite_all(self, xs: Sequence[Any]) -> bool:
+    def isfinite_all(self, xs: Sequence[MPValue]) -> bool:
         return all(mpmath.isfinite(x.a) and mpmath.isfinite(x.b) for x in xs)
 
 

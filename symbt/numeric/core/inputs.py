@@ -12,23 +12,28 @@ from __future__ import annotations
 import math
 import numbers
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import Any, TypeAlias, cast
 
 import mpmath
 import numpy as np
+import numpy.typing as npt
 
-from .context import FLOAT, IV, MP, Context
+from .context import FLOAT, IV, MP, Context, MPValue, Value
 from .errors import InvalidInputError, NumericRangeError
 
-if TYPE_CHECKING:
-    import numpy.typing as npt
+#: a state as the public functions take it: float64 array-likes of shape ``batch + (N,)``, or a flat
+#: sequence of mpmath numbers
+StateLike: TypeAlias = npt.ArrayLike | Sequence[MPValue]
+#: a real parameter (``lam0``, ``mu``) as the public functions take it: a real number or an array
+#: broadcasting to the batch shape, or an mpmath number
+ParamLike: TypeAlias = npt.ArrayLike | MPValue
 
 _MP_TYPES = (mpmath.mpf, mpmath.mpc)
 _REAL_SCALARS = frozenset([float, int, np.float64, np.float32, np.int64, np.int32])
 _IV_TYPE = type(mpmath.iv.mpf(1))
 
 
-def _kind(x: Any) -> str | None:
+def _kind(x: object) -> str | None:
     """'iv', 'mp' or None for the mpmath-ness of a (possibly nested) object."""
     if isinstance(x, np.ndarray):
         if x.dtype != object:
@@ -47,7 +52,7 @@ def _kind(x: Any) -> str | None:
     return None
 
 
-def pick_context(*objs: Any) -> Context:
+def pick_context(*objs: object) -> Context:
     """The context of the inputs: interval, mpmath or float64.
 
     >>> import mpmath
@@ -62,7 +67,7 @@ def pick_context(*objs: Any) -> Context:
     return FLOAT
 
 
-def _to_mp(ctx: Context, seq: Any, name: str) -> list[Any]:
+def _to_mp(ctx: Context, seq: StateLike, name: str) -> list[MPValue]:
     if isinstance(seq, np.ndarray):
         seq = seq.tolist()
     if not isinstance(seq, (list, tuple)):
@@ -75,7 +80,7 @@ def _to_mp(ctx: Context, seq: Any, name: str) -> list[Any]:
     return out
 
 
-def _mp_value(ctx: Context, v: Any, name: str, complex_msg: str, finite_msg: str) -> Any:
+def _mp_value(ctx: Context, v: object, name: str, complex_msg: str, finite_msg: str) -> MPValue:
     """``v`` as an mpf (or an interval in the IV context); complex or non-finite values refused."""
     try:
         w = mpmath.iv.mpf(v) if ctx is IV else mpmath.mpmathify(v)
@@ -92,7 +97,8 @@ def _mp_value(ctx: Context, v: Any, name: str, complex_msg: str, finite_msg: str
     return w
 
 
-def as_state_pair(p: Any, q: Any, *extra: Any) -> tuple[Context, list[Any], list[Any], tuple[int, ...]]:
+def as_state_pair(p: StateLike, q: StateLike,
+                  *extra: object) -> tuple[Context, list[Value], list[Value], tuple[int, ...]]:
     """Return ``(ctx, P, Q, batch_shape)`` with P, Q lists of per-site values.
 
     >>> ctx, P, Q, shape = as_state_pair([[1.0, 2.0]] * 3, [[0.0, 0.0]] * 3)
@@ -111,7 +117,7 @@ def as_state_pair(p: Any, q: Any, *extra: Any) -> tuple[Context, list[Any], list
     return FLOAT, sites(pa), sites(qa), shape
 
 
-def sites(a2d: npt.NDArray[Any]) -> list[npt.NDArray[Any]]:
+def sites(a2d: npt.NDArray[np.float64]) -> list[npt.NDArray[np.float64]]:
     """Rows of the (N, B) transpose of a (B, N) array, as a list of contiguous arrays.
 
     >>> [x.tolist() for x in sites(np.array([[1.0, 2.0], [3.0, 4.0]]))]
@@ -121,7 +127,7 @@ def sites(a2d: npt.NDArray[Any]) -> list[npt.NDArray[Any]]:
     return [t[j] for j in range(t.shape[0])]
 
 
-def _is_complex(x: Any) -> bool:
+def _is_complex(x: object) -> bool:
     """True for complex input of any kind (numpy complex arrays/scalars, Python complex, mpc)."""
     if isinstance(x, (complex, np.complexfloating, mpmath.mpc)):
         return True
@@ -136,7 +142,7 @@ def _is_complex(x: Any) -> bool:
     return False
 
 
-def _has_text(x: Any) -> bool:
+def _has_text(x: object) -> bool:
     """True if ``x`` is, or contains, a string (numpy would parse ``"1.5"`` as a number)."""
     if isinstance(x, (str, bytes)):
         return True
@@ -151,7 +157,7 @@ def _has_text(x: Any) -> bool:
     return False
 
 
-def float_array(x: Any, name: str) -> npt.NDArray[np.float64]:
+def float_array(x: npt.ArrayLike, name: str) -> npt.NDArray[np.float64]:
     """``x`` as a float64 array, or :class:`InvalidInputError` -- the one conversion of real input.
 
     Refused, never cast: complex values, strings, dicts and other non-numbers, ragged
@@ -179,7 +185,8 @@ def float_array(x: Any, name: str) -> npt.NDArray[np.float64]:
         raise InvalidInputError("%s must be a real numeric array (same length in every row)" % name) from exc
 
 
-def validate_float_pair(p: Any, q: Any) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], tuple[int, ...]]:
+def validate_float_pair(p: npt.ArrayLike,
+                        q: npt.ArrayLike) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], tuple[int, ...]]:
     """Validated float64 ``(pa, qa, batch_shape)`` with ``pa``, ``qa`` of shape (B, N).
 
     Complex input of any kind is refused (:class:`InvalidInputError`), never cast.
@@ -202,7 +209,7 @@ def validate_float_pair(p: Any, q: Any) -> tuple[npt.NDArray[np.float64], npt.ND
     return pa.reshape(-1, N), qa.reshape(-1, N), pa.shape[:-1]
 
 
-def prepare_scalar(ctx: Context, x: Any, shape: tuple[int, ...], name: str) -> Any:
+def prepare_scalar(ctx: Context, x: ParamLike, shape: tuple[int, ...], name: str) -> Value:
     """A real parameter (lam0, mu, lam) as a context value broadcast to the batch.
 
     >>> prepare_scalar(FLOAT, 2, (), "lam0")
@@ -214,7 +221,7 @@ def prepare_scalar(ctx: Context, x: Any, shape: tuple[int, ...], name: str) -> A
         return _mp_value(ctx, x, name, "%s must be a finite real number", "%s must be a finite real number")
     if type(x) in _REAL_SCALARS:          # fast path: plain real scalars
         try:
-            v = float(x)
+            v = float(cast(float, x))         # a real scalar type, just checked
         except OverflowError as exc:
             raise InvalidInputError("%s: an integer beyond the float64 range; use mpmath inputs" % name) from exc
         if not math.isfinite(v):
@@ -237,7 +244,7 @@ def prepare_scalar(ctx: Context, x: Any, shape: tuple[int, ...], name: str) -> A
     return np.ascontiguousarray(b).reshape(-1)
 
 
-def check_branch(branch: Any) -> int:
+def check_branch(branch: object) -> int:
     """``branch`` as +1 or -1, else :class:`InvalidInputError`.
 
     >>> check_branch(-1)
@@ -248,7 +255,7 @@ def check_branch(branch: Any) -> int:
     return int(branch)
 
 
-def to_output(ctx: Context, P: Sequence[Any], shape: tuple[int, ...]) -> Any:
+def to_output(ctx: Context, P: Sequence[Value], shape: tuple[int, ...]) -> Any:   # Any: an array or a list
     """Inverse of :func:`as_state_pair` for one list of per-site values.
 
     >>> to_output(FLOAT, [np.array([1.0]), np.array([2.0])], (1,)).tolist()
@@ -261,7 +268,7 @@ def to_output(ctx: Context, P: Sequence[Any], shape: tuple[int, ...]) -> Any:
     return arr.reshape(tuple(shape) + (N,))
 
 
-def prepare_spectral_pair(ctx: Context, lam0: Any, mu: Any, shape: tuple[int, ...]) -> tuple[Any, Any]:
+def prepare_spectral_pair(ctx: Context, lam0: ParamLike, mu: ParamLike, shape: tuple[int, ...]) -> tuple[Value, Value]:
     """``(lam0, mu)`` as context values, with ``lam0 +- mu`` checked to be finite.
 
     Each of ``lam0`` and ``mu`` may be finite while ``lam0 + mu`` overflows; that is a range
@@ -286,7 +293,7 @@ def prepare_spectral_pair(ctx: Context, lam0: Any, mu: Any, shape: tuple[int, ..
 _MAX_STEPS = 2 ** 62        # the kernels count steps in int64; far beyond any run
 
 
-def check_steps(n: Any, every: Any) -> tuple[int, int]:
+def check_steps(n: object, every: object) -> tuple[int, int]:
     """Validated ``(n, every)``: non-negative and positive integers.
 
     ``every > n`` stores the same rows as ``every = n`` (the initial and the final state) and

@@ -34,11 +34,10 @@ True"""
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
 
 import numpy as np
 
-from .context import Context
+from .context import Context, Exponent, Value
 from .errors import NumericRangeError
 from .limits import MAX_DQ_FLOAT64
 
@@ -46,7 +45,7 @@ __all__ = ["neighbour_ratios", "monodromy"]
 
 
 
-def neighbour_ratios(ctx: Context, q: Sequence[Any]) -> list[Any]:
+def neighbour_ratios(ctx: Context, q: Sequence[Value]) -> list[Value]:
     """``r_j = exp(q_{j+1} - q_j)`` (cyclic) as a list of context values.
 
     >>> import mpmath
@@ -65,11 +64,12 @@ def neighbour_ratios(ctx: Context, q: Sequence[Any]) -> list[Any]:
     return [ctx.exp(d) for d in dq]
 
 
-def _product(ctx: Context, a: Sequence[Any], r: Sequence[Any], renorm: bool) -> tuple[Any, Any, Any, Any, Any]:
+def _product(ctx: Context, a: Sequence[Value], r: Sequence[Value],
+             renorm: bool) -> tuple[Value, Value, Value, Value, Exponent]:
     # M = m_N ... m_1 applied to the identity; m_j = [[a_j, -1], [r_j, 0]].
     # m_1 itself; B and D start as plain scalars (cheap broadcasting)
     A, B, C, D = a[0], -1.0, r[0], 0.0
-    e = 0
+    e: Exponent = 0
     if renorm:
         A, B, C, D, e = ctx.renormalize(A, B, C, D, e)
     for j in range(1, len(a)):
@@ -79,7 +79,7 @@ def _product(ctx: Context, a: Sequence[Any], r: Sequence[Any], renorm: bool) -> 
     return A, B, C, D, e
 
 
-def monodromy(ctx: Context, a: Sequence[Any], r: Sequence[Any]) -> tuple[Any, Any, Any, Any, Any]:
+def monodromy(ctx: Context, a: Sequence[Value], r: Sequence[Value]) -> tuple[Value, Value, Value, Value, Exponent]:
     """Scaled monodromy ``M = 2**e (A, B; C, D)`` for site lists ``a_j = lam + p_j``, ``r_j``.
 
     Returns ``(A, B, C, D, e)``; ``e`` is ``0`` unless renormalisation was

@@ -13,21 +13,26 @@ Example
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Literal
 
 import numpy as np
 import numpy.typing as npt
 
-from .context import FLOAT, IV, Context
-from .inputs import as_state_pair, check_branch, check_steps, pick_context, prepare_spectral_pair, validate_float_pair
+from .context import FLOAT, IV, Context, Value
+from .inputs import (
+    ParamLike,
+    StateLike,
+    as_state_pair,
+    check_branch,
+    check_steps,
+    pick_context,
+    prepare_spectral_pair,
+    validate_float_pair,
+)
 
-__all__ = ["Problem", "prepare", "Arithmetic", "StateLike", "FloatArray"]
+__all__ = ["Problem", "prepare", "Arithmetic", "StateLike", "ParamLike", "FloatArray"]
 
-#: a state as the public functions take it: float64 array-likes of shape ``batch + (N,)``, or a flat
-#: sequence of mpmath numbers (mpmath has no type information, so its numbers are ``Any``)
-StateLike = npt.ArrayLike | Sequence[Any]
 #: a validated float64 array
 FloatArray = npt.NDArray[np.float64]
 
@@ -43,11 +48,13 @@ class Problem:
     ``every``-th state."""
 
     ctx: Context
-    p: Any          # FloatArray (B, N), or list of N mpmath numbers
+    # FloatArray (B, N) or list[MPValue] (N): ``arithmetic`` says which, and each backend takes one kind,
+    # so a union here would only make every backend narrow what its table entry already guarantees
+    p: Any
     q: Any
     shape: tuple[int, ...]
-    lam0: Any
-    mu: Any
+    lam0: Value
+    mu: Value
     branch: int
     n: int = 1
     every: int = 1
@@ -62,7 +69,8 @@ class Problem:
         return self.ctx is IV
 
 
-def prepare(p: StateLike, q: StateLike, lam0: Any, mu: Any, *, branch: int = 1, n: int = 1, every: int = 1) -> Problem:
+def prepare(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, *, branch: int = 1, n: int = 1,
+            every: int = 1) -> Problem:
     """Validate the input of a step or an orbit once (the typed errors of :mod:`symbt.numeric.core.errors`).
 
     >>> prepare([1.0, 2.0], [0.0, 0.0], 1.0, 0.5, branch=2)

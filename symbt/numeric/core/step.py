@@ -95,12 +95,12 @@ True
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, TypedDict
 
 import mpmath
 import numpy as np
 
-from .context import FLOAT, IV, Context
+from .context import FLOAT, IV, Cond, Context, Exponent, FloatValue, MPValue, Value
 from .errors import NoRealMapError, NumericRangeError
 from .inputs import to_output
 from .monodromy import monodromy, neighbour_ratios
@@ -108,9 +108,8 @@ from .monodromy import monodromy, neighbour_ratios
 if TYPE_CHECKING:
     import numpy.typing as npt
 
-    F64 = npt.NDArray[np.float64]
 
-__all__ = ["step_core", "eigen_slopes", "SlopeData", "mp_step", "BLOCK_ELEMENTS"]
+__all__ = ["step_core", "eigen_slopes", "SlopeData", "StepAux", "mp_step", "BLOCK_ELEMENTS"]
 
 _GUARD_DIGITS = 12
 #: accepted values of ``backend`` (float64: auto/numba/python/numpy; mpmath: auto/qd/flint/mpmath)
@@ -129,9 +128,9 @@ class SlopeData:
 
     __slots__ = ("u", "trace_ok", "forward", "t", "g", "e", "kappa")
 
-    def __init__(self, *, trace_ok: Any = None, t: Any = None, g: Any = None, e: Any = 0,
-                 u: list[Any] | None = None, forward: Any = None) -> None:
-        self.kappa: Any = None
+    def __init__(self, *, trace_ok: Value = None, t: Value = None, g: Value = None, e: Exponent = 0,
+                 u: list[Value] | None = None, forward: Cond | None = None) -> None:
+        self.kappa: FloatValue | None = None
         self.trace_ok = trace_ok
         self.t = t
         self.g = g
@@ -140,24 +139,39 @@ class SlopeData:
         self.forward = forward
 
 
-def _forward(ctx: Context, a: Sequence[Any], r: Sequence[Any], u1: Any) -> list[Any]:
+class StepAux(TypedDict):
+    """The intermediates :func:`step_core` returns besides the new state (lists over the sites).
+
+    >>> sorted(StepAux.__annotations__)
+    ['S1', 'S2', 'gq', 'u', 'w', 'xr']
+    """
+
+    u: list[Value]
+    w: list[Value]
+    xr: list[Value]
+    gq: list[Value]
+    S1: SlopeData
+    S2: SlopeData
+
+
+def _forward(ctx: Context, a: Sequence[Value], r: Sequence[Value], u1: Value) -> list[Value]:
     u = [u1]
     for j in range(len(a) - 1):
         u.append(ctx.div(-r[j], a[j] + u[j]))
     return u
 
 
-def _backward(ctx: Context, a: Sequence[Any], r: Sequence[Any], u1: Any) -> list[Any]:
+def _backward(ctx: Context, a: Sequence[Value], r: Sequence[Value], u1: Value) -> list[Value]:
     N = len(a)
-    u: list[Any] = [None] * N
+    u: list[Value] = [None] * N
     u[0] = nxt = u1
     for j in range(N - 1, 0, -1):
         nxt = u[j] = -a[j] - ctx.div(r[j], nxt)
     return u
 
 
-def eigen_slopes(ctx: Context, a: Sequence[Any], r: Sequence[Any], s: int, need_slopes: bool = True,
-                 spec: tuple[Any, Sequence[Any]] | None = None) -> SlopeData:
+def eigen_slopes(ctx: Context, a: Sequence[Value], r: Sequence[Value], s: int, need_slopes: bool = True,
+                 spec: tuple[Value, Sequence[Value]] | None = None) -> SlopeData:
     """Slopes of the eigenvector with eigenvalue ``(tr - s*sqrt(tr^2-4))/2`` at every site.
 
     ``a_j = lam + p_j``; ``s = +1`` gives the paper's ``y`` (for ``branch=+1``),
@@ -205,7 +219,8 @@ def eigen_slopes(ctx: Context, a: Sequence[Any], r: Sequence[Any], s: int, need_
     return data
 
 
-def trace_kappa(a: Sequence[Any], r: Sequence[Any], t: Any, disc: Any, e: Any, ka: Any = 1.0) -> Any:
+def trace_kappa(a: Sequence[FloatValue], r: Sequence[FloatValue], t: FloatValue, disc: FloatValue, e: Exponent,
+                ka: FloatValue | float = 1.0) -> FloatValue:
     """float64 condition estimate of the trace decision: ``T |t| / |t**2 - 4|`` per row.
 
     ``T`` is the trace of ``|m_N| ... |m_1|`` (entrywise absolute values, computed as the monodromy of
@@ -224,7 +239,7 @@ def trace_kappa(a: Sequence[Any], r: Sequence[Any], t: Any, disc: Any, e: Any, k
         return np.ldexp(Aa + Da, ea - e) * (np.abs(t) / np.abs(disc)) * ka
 
 
-def float_status(aux: dict[str, Any], Pn: Sequence[Any], Qn: Sequence[Any]) -> npt.NDArray[np.int64]:
+def float_status(aux: StepAux, Pn: Sequence[FloatValue], Qn: Sequence[FloatValue]) -> npt.NDArray[np.int64]:
     """Per-row status codes (:mod:`symbt.numeric.core.limits`) of a float64 :func:`step_core` with ``check_real=False``.
 
     In the order of the fused kernels: ``ILLCOND`` where a trace is within ``KAPPA_MAX`` times its rounding
@@ -236,6 +251,7 @@ def float_status(aux: dict[str, Any], Pn: Sequence[Any], Qn: Sequence[Any]) -> n
     from .limits import ILLCOND, KAPPA_MAX, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 
     S1, S2 = aux["S1"], aux["S2"]
+    assert S1.kappa is not None and S2.kappa is not None      # set by eigen_slopes for the float context
     with np.errstate(all="ignore"):
         ill_t = ~(S1.kappa <= KAPPA_MAX) | ~(S2.kappa <= KAPPA_MAX)
         t1, t2 = S1.trace_ok > 0, S2.trace_ok > 0
@@ -252,14 +268,14 @@ def float_status(aux: dict[str, Any], Pn: Sequence[Any], Qn: Sequence[Any]) -> n
     return np.select(conds, codes, OK).astype(np.int64)
 
 
-def _opposite(t1: Any, t2: Any) -> Any:
+def _opposite(t1: Value, t2: Value) -> Cond:
     """Traces certainly of opposite signs (elementwise for arrays; balls and intervals: certain only)."""
     if isinstance(t1, np.ndarray) or isinstance(t2, np.ndarray):
         return np.logical_xor(np.real(t1) < 0, np.real(t2) < 0)
     return bool((t1 < 0 and t2 > 0) or (t1 > 0 and t2 < 0))
 
 
-def where_text(ok: Any, shape: tuple[int, ...], offset: int = 0,
+def where_text(ok: npt.ArrayLike, shape: tuple[int, ...], offset: int = 0,
                index: npt.NDArray[np.intp] | None = None) -> tuple[list[tuple[int, ...]], str]:
     """Batch indices (in ``shape``) of the rows where ``ok`` is False, and a message suffix.
 
@@ -276,9 +292,9 @@ def where_text(ok: Any, shape: tuple[int, ...], offset: int = 0,
     return where, " (batch index %s%s)" % (", ".join(map(str, where)), ", ..." if idx.size > 5 else "")
 
 
-def step_core(ctx: Context, P: Sequence[Any], Q: Sequence[Any], lam0: Any, mu: Any, branch: int, *,
+def step_core(ctx: Context, P: Sequence[Value], Q: Sequence[Value], lam0: Value, mu: Value, branch: int, *,
               check_real: bool = True, shape: tuple[int, ...] = (), offset: int = 0,
-              index: npt.NDArray[np.intp] | None = None) -> tuple[list[Any], list[Any], dict[str, Any]]:
+              index: npt.NDArray[np.intp] | None = None) -> tuple[list[Value], list[Value], StepAux]:
     """The step on per-site lists in context ``ctx``; returns ``(P~, Q~, aux)``.
 
     ``aux`` holds ``u``, ``w``, ``xr = 2 mu / (u - w)`` (``Etilde_j / E_j = 1 + xr_j``),
@@ -332,7 +348,7 @@ def step_core(ctx: Context, P: Sequence[Any], Q: Sequence[Any], lam0: Any, mu: A
     Qn = [Q[j] + ctx.log1p(xr[j]) for j in range(N)]
     gq = [ctx.div(u[j], dn[j]) for j in range(N)]     # = -u_j / d_j;  eta_j = mu - 2 mu gq_j
     Pn = [P[j] + two_mu * (gq[(j + 1) % N] - gq[j]) for j in range(N)]
-    aux = {"u": u, "w": w, "xr": xr, "S1": S1, "S2": S2, "gq": gq}
+    aux: StepAux = {"u": u, "w": w, "xr": xr, "S1": S1, "S2": S2, "gq": gq}
     return Pn, Qn, aux
 
 
@@ -341,8 +357,8 @@ BLOCK_ELEMENTS = 1 << 17
 
 
 
-def mp_step(ctx: Context, P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
-             allow_complex: bool) -> tuple[list[Any], list[Any]]:
+def mp_step(ctx: Context, P: list[MPValue], Q: list[MPValue], lam0: MPValue, mu: MPValue, branch: int,
+             allow_complex: bool) -> tuple[list[MPValue], list[MPValue]]:
     """The plain mpmath (or interval) step at ``mp.dps`` + guard digits."""
     with mpmath.workdps(mpmath.mp.dps + _GUARD_DIGITS):
         Pn, Qn, _ = step_core(ctx, P, Q, lam0, mu, branch, check_real=not allow_complex or ctx is IV)
