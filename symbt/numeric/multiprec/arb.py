@@ -32,10 +32,12 @@ from __future__ import annotations
 
 import contextlib
 from collections.abc import Callable, Iterator, Sequence
-from typing import Any
+from typing import Any, TypeAlias, TypeVar
 
 import flint
 from flint import acb, arb
+
+from ..core.context import Cond, Exponent
 
 __all__ = ["ArbContext", "AcbContext", "ARB_MID", "ARB_CERTAIN", "ACB", "Uncertain", "flint_prec"]
 
@@ -67,6 +69,12 @@ def flint_prec(bits: int) -> Iterator[None]:
         flint.ctx.prec = old
 
 
+#: a value of the Arb contexts: a real ball (``arb``) or, in :data:`ACB`, a complex ball (``acb``)
+Ball: TypeAlias = arb | acb
+#: one kind of ball throughout a call (real or complex)
+BallT = TypeVar("BallT", arb, acb)
+
+
 class ArbContext:
     """Real balls; ``certain=True`` decides existence only when it holds on the whole ball.
 
@@ -76,6 +84,7 @@ class ArbContext:
 
     is_exact_scale = True
     is_complex = False
+    # Any: re-bound to the complex-ball functions in AcbContext (one attribute, two signatures)
     exp: Any = staticmethod(arb.exp)
     log: Any = staticmethod(arb.log)
     log1p: Any = staticmethod(arb.log1p)
@@ -86,12 +95,12 @@ class ArbContext:
     def __init__(self, certain: bool) -> None:
         self.certain = certain
 
-    def div(self, a: Any, b: Any) -> Any:
+    def div(self, a: BallT, b: BallT) -> BallT:
         if b.is_zero():
             return self.nan() if a.is_zero() else self.inf()
         return a / b
 
-    def positive(self, x: Any) -> bool:
+    def positive(self, x: arb) -> bool:
         if not self.certain:
             return bool(x.mid() > 0)
         if x > 0:
@@ -100,49 +109,50 @@ class ArbContext:
             return False
         raise Uncertain("a ball straddles the boundary of existence: %s" % x.str(5, radius=True))
 
-    def all_positive(self, x: Any) -> bool:
+    def all_positive(self, x: arb) -> bool:
         return self.positive(x)
 
-    def ldexp(self, x: Any, e: Any) -> Any:
+    def ldexp(self, x: arb, e: Exponent) -> arb:
         return x * arb(2) ** int(e)
 
-    def acosh_half_abs(self, t: Any, g: Any, e: Any) -> Any:
+    def acosh_half_abs(self, t: arb, g: arb, e: Exponent) -> arb:
         return (abs(self.ldexp(t, e)) / 2).acosh()
 
-    def re_dot(self, a: Any, b: Any) -> Any:
+    def re_dot(self, a: arb, b: arb) -> arb:
         return a * b
 
-    def align(self, g: Any, ref: Any) -> tuple[Any, bool]:
+    def align(self, g: arb, ref: arb) -> tuple[arb, bool]:
         plus = (ref.mid() >= 0) == (g.mid() >= 0)     # sign of ref * g, without the product
         return (g if plus else -g), plus
 
-    def half_plane(self, a: Any, g: Any) -> bool:
+    def half_plane(self, a: arb, g: arb) -> bool:
         return bool((a.mid() >= 0) == (g.mid() >= 0))
 
-    def any(self, c: Any) -> bool:
+    def any(self, c: Cond) -> bool:
         return bool(c)
 
     all = any
 
-    def neg(self, c: Any) -> bool:
+    def neg(self, c: Cond) -> bool:
         return not c
 
-    def select(self, c: Any, f: Callable[[], Any], g: Callable[[], Any]) -> Any:
+    def select(self, c: Cond, f: Callable[[], BallT], g: Callable[[], BallT]) -> BallT:
         return f() if c else g()
 
-    def out_of_range(self, *xs: Any) -> bool:
+    def out_of_range(self, *xs: Ball) -> bool:
         return False
 
-    def renormalize(self, A: Any, B: Any, C: Any, D: Any, e: Any) -> tuple[Any, Any, Any, Any, Any]:
+    def renormalize(self, A: Ball, B: Ball, C: Ball, D: Ball,
+                    e: Exponent) -> tuple[Ball, Ball, Ball, Ball, Exponent]:
         return A, B, C, D, e
 
-    def subset(self, x: Any, mask: Any) -> Any:
+    def subset(self, x: BallT, mask: Cond) -> BallT:
         return x
 
-    def merge(self, full: Any, mask: Any, part: Any) -> Any:
+    def merge(self, full: BallT, mask: Cond, part: BallT) -> BallT:
         return part
 
-    def isfinite_all(self, xs: Sequence[Any]) -> bool:
+    def isfinite_all(self, xs: Sequence[Ball]) -> bool:
         return all(x.is_finite() for x in xs)
 
 
@@ -153,6 +163,8 @@ class AcbContext(ArbContext):
     (2.00000000000000j, False)
     """
 
+    # the real-ball primitives re-bound to complex balls (the type checker's [override]: an acb context
+    # is not an arb context, it shares the control-flow methods)
     is_complex = True
     exp = staticmethod(acb.exp)
     log = staticmethod(acb.log)
@@ -161,20 +173,20 @@ class AcbContext(ArbContext):
     nan = staticmethod(lambda: acb(arb.nan()))
     inf = staticmethod(lambda: acb(arb.pos_inf()))
 
-    def positive(self, x: Any) -> bool:
+    def positive(self, x: acb) -> bool:  # type: ignore[override]
         return bool(x.imag.is_zero() and x.real.mid() > 0)
 
-    def ldexp(self, x: Any, e: Any) -> Any:
+    def ldexp(self, x: acb, e: Exponent) -> acb:  # type: ignore[override]
         return x * acb(2) ** int(e)
 
-    def re_dot(self, a: Any, b: Any) -> Any:
+    def re_dot(self, a: acb, b: acb) -> arb:  # type: ignore[override]
         return (a * b.conjugate()).real
 
-    def align(self, g: Any, ref: Any) -> tuple[Any, bool]:
+    def align(self, g: acb, ref: acb) -> tuple[acb, bool]:  # type: ignore[override]
         plus = bool(self.re_dot(ref, g).mid() >= 0)
         return (g if plus else -g), plus
 
-    def half_plane(self, a: Any, g: Any) -> bool:
+    def half_plane(self, a: acb, g: acb) -> bool:  # type: ignore[override]
         return bool(self.re_dot(a, g).mid() >= 0)
 
 

@@ -47,27 +47,35 @@ from __future__ import annotations
 
 import math
 import numbers
-from typing import Any
+from typing import TYPE_CHECKING, Literal, get_args
 
 import mpmath
 import numpy as np
 
+from ..core.context import MPValue
 from ..core.errors import InvalidInputError, MissingDependencyError, NumericRangeError
 from ..core.step import step_core
 from ..float64.kernels import stored_steps
-from .runners import flint_available
+from .runners import MPOrbit, flint_available
 
-__all__ = ["certified_orbit", "DEFAULT_MAX_PREC", "CERTIFIED_METHODS"]
+if TYPE_CHECKING:
+    from flint import arb
+
+    from ..core.inputs import ParamLike, StateLike
+
+__all__ = ["certified_orbit", "DEFAULT_MAX_PREC", "CERTIFIED_METHODS", "CertifiedMethod"]
 
 #: precision cap (bits) of the automatic precision increase
 DEFAULT_MAX_PREC = 1 << 16
+#: ``method=`` of :func:`certified_orbit`
+CertifiedMethod = Literal["auto", "lohner", "ball"]
 #: ``method=`` values of :func:`certified_orbit`
-CERTIFIED_METHODS = ("auto", "lohner", "ball")
+CERTIFIED_METHODS: tuple[CertifiedMethod, ...] = get_args(CertifiedMethod)
 _MARGIN = 24          # extra bits beyond the estimate
 _ATTEMPTS = 8
 
 
-def _ball(x: Any, name: str) -> Any:
+def _ball(x: object, name: str) -> arb:
     """An exact input value as an Arb ball at the current flint precision."""
     from flint import arb
 
@@ -99,7 +107,7 @@ def _ball(x: Any, name: str) -> Any:
                             "string)" % (name, type(x).__name__))
 
 
-def _state(p: Any, q: Any, lam0: Any, mu: Any) -> tuple[list[Any], list[Any], Any, Any]:
+def _state(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike) -> tuple[list[arb], list[arb], arb, arb]:
     seqs = []
     for name, v in (("p", p), ("q", q)):
         if isinstance(v, np.ndarray):
@@ -116,7 +124,7 @@ def _state(p: Any, q: Any, lam0: Any, mu: Any) -> tuple[list[Any], list[Any], An
     return P, Q, _ball(lam0, "lam0"), _ball(mu, "mu")
 
 
-def _excess(xs: list[Any], tol: Any, out_prec: int) -> float:
+def _excess(xs: list[arb], tol: float | None, out_prec: int) -> float:
     """``max log2(rad / target)`` over the balls ``xs`` (``-inf`` if all are exact)."""
     worst = -math.inf
     for x in xs:
@@ -132,8 +140,8 @@ def _excess(xs: list[Any], tol: Any, out_prec: int) -> float:
     return worst
 
 
-def _run(p: Any, q: Any, lam0: Any, mu: Any, n: int, branch: int, keep: set[int], prec: int, tol: Any,
-         out_prec: int) -> tuple[bool, list[tuple[list[Any], list[Any]]], list[float], int]:
+def _run(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, n: int, branch: int, keep: set[int], prec: int,
+         tol: float | None, out_prec: int) -> tuple[bool, list[tuple[list[arb], list[arb]]], list[float], int]:
     """One pass at ``prec`` bits; returns ``(ok, stored balls, excess history, steps done)``."""
     from .arb import ARB_CERTAIN, Uncertain, flint_prec
 
@@ -171,13 +179,13 @@ def _next_prec(prec: int, hist: list[float], done: int, n: int) -> int:
     return max(int(prec + extra) + 1, prec + prec // 4 + 32)
 
 
-def _upper(x: Any) -> Any:
+def _upper(x: arb) -> MPValue:
     """An mpf upper bound (53-bit, rounded up) of the non-negative exact Arb number ``x``."""
     man, exp = x.man_exp()
     return mpmath.mpf(mpmath.libmp.from_man_exp(int(man), int(exp), 53, "u"))
 
 
-def _output(balls: list[Any]) -> tuple[list[Any], list[Any]]:
+def _output(balls: list[arb]) -> tuple[list[MPValue], list[MPValue]]:
     from flint import arb
 
     mids, rads = [], []
@@ -189,8 +197,7 @@ def _output(balls: list[Any]) -> tuple[list[Any], list[Any]]:
     return mids, rads
 
 
-def _outputs(stored: list[tuple[list[Any], list[Any]]]) -> tuple[list[list[Any]], list[list[Any]],
-                                                                  list[list[Any]], list[list[Any]]]:
+def _outputs(stored: list[tuple[list[arb], list[arb]]]) -> tuple[MPOrbit, MPOrbit, MPOrbit, MPOrbit]:
     Pm, Qm, Pr, Qr = [], [], [], []
     for Pb, Qb in stored:
         a, b = _output(Pb)
@@ -202,11 +209,10 @@ def _outputs(stored: list[tuple[list[Any], list[Any]]]) -> tuple[list[list[Any]]
     return Pm, Qm, Pr, Qr
 
 
-def certified_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, every: int = 1,
-                    tol: Any = None, prec: int | None = None, max_prec: int = DEFAULT_MAX_PREC,
-                    info: dict[str, Any] | None = None,
-                    method: str = "auto") -> tuple[list[list[Any]], list[list[Any]],
-                                                   list[list[Any]], list[list[Any]]]:
+def certified_orbit(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, n: int, *, branch: int = 1,
+                    every: int = 1, tol: float | MPValue | None = None, prec: int | None = None,
+                    max_prec: int = DEFAULT_MAX_PREC, info: dict[str, object] | None = None,
+                    method: CertifiedMethod = "auto") -> tuple[MPOrbit, MPOrbit, MPOrbit, MPOrbit]:
     """Certified ``n``-step orbit: ``(P, Q, P_rad, Q_rad)``, lists over the stored states.
 
     ``P[i][j]`` is an mpf at the current ``mp.prec`` and

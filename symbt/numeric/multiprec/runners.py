@@ -37,10 +37,11 @@ from __future__ import annotations
 
 import operator
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import mpmath
 
+from ..core.context import MPValue
 from ..core.errors import NoRealMapError, NumericRangeError, importable
 from ..core.inputs import to_output
 from ..core.problem import Problem
@@ -52,6 +53,14 @@ __all__ = ["flint_available", "arb_step", "qd_step", "qd_orbit", "flint_step", "
 
 GUARD_BITS = 40
 
+if TYPE_CHECKING:
+    from flint import acb, arb
+
+#: the stored states of an orbit: one list of N mpmath numbers per stored step
+MPOrbit: TypeAlias = "list[list[MPValue]]"
+#: a division of Arb balls (plain ``/``, or :func:`_div` with a projective infinity)
+BallDivision: TypeAlias = "Callable[[arb, arb], arb]"
+
 
 def flint_available() -> bool:
     """True if python-flint can be imported (imported once, on first call).
@@ -62,7 +71,8 @@ def flint_available() -> bool:
     return importable("flint")
 
 
-def _mpf(x: Any, _fme: Any = mpmath.libmp.from_man_exp, _make: Any = mpmath.mp.make_mpf) -> Any:
+def _mpf(x: arb, _fme: Callable[..., tuple[int, int, int, int]] = mpmath.libmp.from_man_exp,
+         _make: Callable[[tuple[int, int, int, int]], MPValue] = mpmath.mp.make_mpf) -> MPValue:
     """The midpoint of an Arb ball as an mpf rounded (to nearest) to the current ``mp.prec``."""
     if not x.is_finite():
         return mpmath.mpf(x)
@@ -70,13 +80,14 @@ def _mpf(x: Any, _fme: Any = mpmath.libmp.from_man_exp, _make: Any = mpmath.mp.m
     return _make(_fme(int(man), int(exp), mpmath.mp.prec, "n"))
 
 
-def _mpf_exact(x: Any, prec: int, _fme: Any = mpmath.libmp.from_man_exp, _make: Any = mpmath.mp.make_mpf) -> Any:
+def _mpf_exact(x: arb, prec: int, _fme: Callable[..., tuple[int, int, int, int]] = mpmath.libmp.from_man_exp,
+               _make: Callable[[tuple[int, int, int, int]], MPValue] = mpmath.mp.make_mpf) -> MPValue:
     """:func:`_mpf` for a finite ball of radius zero (no ``mid()`` needed)."""
     man, exp = x.man_exp()
     return _make(_fme(int(man), int(exp), prec, "n"))
 
 
-def _to_mp(x: Any) -> Any:
+def _to_mp(x: arb | acb) -> MPValue:
     """An Arb ball (or complex ball) as an mpmath number at the current precision (its midpoint)."""
     from flint import acb
 
@@ -91,7 +102,7 @@ class _Retry(ArithmeticError):
     """Internal: the fast step met a division by an exact zero."""
 
 
-def _div(a: Any, b: Any) -> Any:
+def _div(a: arb, b: arb) -> arb:
     if b.is_zero():                      # projective infinity, as every context (rare)
         from .arb import ARB_MID
 
@@ -99,7 +110,8 @@ def _div(a: Any, b: Any) -> Any:
     return a / b
 
 
-def _slopes(a: list[Any], r: list[Any], s: int, name: str, dv: Callable[[Any, Any], Any]) -> list[Any]:
+# Any: N balls followed by the trace's sign (a bool) in one list, as the fused step has always passed them
+def _slopes(a: list[arb], r: list[arb], s: int, name: str, dv: BallDivision) -> list[Any]:
     """:func:`~symbt.numeric.core.step.eigen_slopes` for real Arb midpoints, fused (same operations, same order).
 
     Returns the ``N`` slopes followed by the trace's sign (``True`` for ``tr < 0``)."""
@@ -120,7 +132,7 @@ def _slopes(a: list[Any], r: list[Any], s: int, name: str, dv: Callable[[Any, An
     plus = dl.mid() >= 0
     k = dl + (g if plus else -g)
     u1 = dv(k, 2 * B) if (plus if s > 0 else not plus) else dv(-2 * C, k)
-    u = [u1]
+    u: list[Any] = [u1]
     if fwd:
         for j in range(N - 1):
             u.append(dv(-r[j], a[j] + u[j]))
@@ -132,8 +144,8 @@ def _slopes(a: list[Any], r: list[Any], s: int, name: str, dv: Callable[[Any, An
     return u + [not tg]
 
 
-def arb_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
-             dv: Callable[[Any, Any], Any] = operator.truediv) -> tuple[list[Any], list[Any]]:
+def arb_step(P: list[arb], Q: list[arb], lam0: arb, mu: arb, branch: int,
+             dv: BallDivision = operator.truediv) -> tuple[list[arb], list[arb]]:
     """One step on real Arb balls with midpoint decisions: ``step_core(ARB_MID, ...)`` fused.
 
     Performs exactly the operations of :func:`~symbt.numeric.core.step.step_core` in the same order
@@ -170,7 +182,7 @@ def arb_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
     return Pn, Qn
 
 
-def _safe_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int) -> tuple[list[Any], list[Any]]:
+def _safe_step(P: list[arb], Q: list[arb], lam0: arb, mu: arb, branch: int) -> tuple[list[arb], list[arb]]:
     """:func:`arb_step` with plain division, redone with projective division if not finite;
     :class:`NumericRangeError` if still not finite."""
     try:
@@ -185,8 +197,8 @@ def _safe_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int) -> t
     return Pn, Qn
 
 
-def _flint_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
-                allow_complex: bool) -> tuple[list[Any], list[Any]]:
+def _flint_step(P: list[MPValue], Q: list[MPValue], lam0: MPValue, mu: MPValue, branch: int,
+                allow_complex: bool) -> tuple[list[MPValue], list[MPValue]]:
     from flint import acb, arb
 
     from .arb import ACB, flint_prec
@@ -205,7 +217,7 @@ def _flint_step(P: list[Any], Q: list[Any], lam0: Any, mu: Any, branch: int,
     return [_to_mp(x) for x in Pn], [_to_mp(x) for x in Qn]
 
 
-def qd_step(pr: Problem, allow_complex: bool) -> tuple[list[Any], list[Any]]:
+def qd_step(pr: Problem, allow_complex: bool) -> tuple[list[MPValue], list[MPValue]]:
     """One quad-double step (raises where the Arb path would, and :class:`NumericRangeError` outside the
     quad-double range: the table's fallback takes over)."""
     from .qd import qd_orbit_mp
@@ -214,24 +226,24 @@ def qd_step(pr: Problem, allow_complex: bool) -> tuple[list[Any], list[Any]]:
     return Pn[-1], Qn[-1]
 
 
-def qd_orbit(pr: Problem) -> tuple[list[list[Any]], list[list[Any]]]:
+def qd_orbit(pr: Problem) -> tuple[MPOrbit, MPOrbit]:
     """The orbit in quad-double (:func:`~symbt.numeric.multiprec.qd.qd_orbit_mp`)."""
     from .qd import qd_orbit_mp
 
     return qd_orbit_mp(pr.p, pr.q, pr.lam0, pr.mu, pr.n, branch=pr.branch, every=pr.every)
 
 
-def flint_step(pr: Problem, allow_complex: bool) -> tuple[list[Any], list[Any]]:
+def flint_step(pr: Problem, allow_complex: bool) -> tuple[list[MPValue], list[MPValue]]:
     """One step on Arb midpoints at ``mp.prec + GUARD_BITS`` (complex balls where ``allow_complex`` needs them)."""
     return _flint_step(pr.p, pr.q, pr.lam0, pr.mu, pr.branch, allow_complex)
 
 
-def mpmath_step(pr: Problem, allow_complex: bool) -> tuple[list[Any], list[Any]]:
+def mpmath_step(pr: Problem, allow_complex: bool) -> tuple[list[MPValue], list[MPValue]]:
     """One step on mpmath numbers (or intervals) at ``mp.dps`` plus guard digits."""
     return mp_step(pr.ctx, pr.p, pr.q, pr.lam0, pr.mu, pr.branch, allow_complex)
 
 
-def mpmath_orbit(pr: Problem) -> tuple[list[list[Any]], list[list[Any]]]:
+def mpmath_orbit(pr: Problem) -> tuple[MPOrbit, MPOrbit]:
     """The orbit on mpmath numbers (or intervals), one :func:`mpmath_step` after the other.
 
     >>> import mpmath
@@ -252,7 +264,7 @@ def mpmath_orbit(pr: Problem) -> tuple[list[list[Any]], list[list[Any]]]:
     return outP, outQ
 
 
-def flint_orbit(pr: Problem) -> tuple[list[list[Any]], list[list[Any]]]:
+def flint_orbit(pr: Problem) -> tuple[MPOrbit, MPOrbit]:
     """The orbit on Arb midpoints, the state kept in Arb between the steps (``GUARD_BITS + 2 log2(n)`` guard
     bits: the orbit error grows like ``n**2`` ulps).
 
