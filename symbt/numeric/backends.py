@@ -41,12 +41,12 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import partial
-from typing import Any, Literal, get_args
+from typing import Literal, get_args
 
 import mpmath
 
 from .core.errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError
-from .core.problem import Arithmetic, Problem
+from .core.problem import Arithmetic, OrbitOut, Problem, StateOut
 from .float64.jit import numba_available
 from .float64.orbit import prepared_float_orbit
 from .float64.step import float_step
@@ -59,7 +59,7 @@ __all__ = ["Backend", "BackendName", "BACKENDS", "FLOAT_AUTO", "check_name", "pi
 BackendName = Literal["auto", "numba", "python", "numpy", "qd", "flint", "mpmath"]
 
 
-def _always(*_: Any) -> bool:
+def _always(*_: object) -> bool:
     return True
 
 
@@ -67,21 +67,21 @@ def _always(*_: Any) -> bool:
 class Backend:
     """One row of :data:`BACKENDS` (see the module docstring)."""
 
-    name: str
+    name: BackendName
     accepts: Arithmetic
-    step: Callable[[Problem, bool], tuple[Any, Any]]
-    orbit: Callable[[Problem], tuple[Any, Any]]
+    step: Callable[[Problem, bool], tuple[StateOut, StateOut]]
+    orbit: Callable[[Problem], tuple[OrbitOut, OrbitOut]]
     available: Callable[[], bool] = _always
     fits: Callable[[int, int], bool] = _always          # (mp.prec, steps)
     ready: Callable[[], bool] = _always                 # "auto" takes it only when ready
-    fallback: str | None = None
+    fallback: BackendName | None = None
     gives_back: tuple[type[Exception], ...] = field(default=())   # errors after which "auto" falls back
     real_only: bool = False                             # no complex continuation: allow_complex falls back
     missing: str = ""                                   # the message when forced without its extra
     refusal: Callable[[int, int], str] | None = None    # the message when forced where it does not fit
 
 
-def _float64(name: str) -> Backend:
+def _float64(name: BackendName) -> Backend:
     return Backend(name, "float64", partial(float_step, backend=name), partial(prepared_float_orbit, backend=name),
                    available=numba_available if name == "numba" else _always)
 
@@ -174,7 +174,7 @@ def _next(b: Backend, exc: Exception, forced: bool, allow_complex: bool) -> Back
     return _present(b.fallback)
 
 
-def run_step(b: Backend, pr: Problem, allow_complex: bool, forced: bool) -> tuple[Any, Any]:
+def run_step(b: Backend, pr: Problem, allow_complex: bool, forced: bool) -> tuple[StateOut, StateOut]:
     """One step of ``pr`` on ``b``, continued on its fallbacks when it gives the problem back."""
     while True:
         try:
@@ -183,7 +183,7 @@ def run_step(b: Backend, pr: Problem, allow_complex: bool, forced: bool) -> tupl
             b = _next(b, exc, forced, allow_complex)
 
 
-def run_orbit(b: Backend, pr: Problem, forced: bool) -> tuple[Any, Any]:
+def run_orbit(b: Backend, pr: Problem, forced: bool) -> tuple[OrbitOut, OrbitOut]:
     """The orbit of ``pr`` on ``b``, continued on its fallbacks when it gives the problem back."""
     while True:
         try:

@@ -31,19 +31,21 @@ Example
 
 from __future__ import annotations
 
-from typing import Any, Literal, overload
+from typing import Literal, overload
 
 from .backends import BackendName, check_name, pick, run_orbit, run_step
+from .core.context import MPValue
 from .core.errors import InvalidInputError
 from .core.inputs import check_branch, check_steps, to_output
-from .core.problem import StateLike, prepare
+from .core.problem import OrbitOut, ParamLike, StateLike, StateOut, prepare
 from .float64.kernels import stored_steps
+from .multiprec.runners import MPOrbit
 
 __all__ = ["bt_step", "bt_orbit"]
 
 
-def bt_step(p: StateLike, q: StateLike, lam0: Any, mu: Any, *, branch: int = 1, allow_complex: bool = False,
-            backend: BackendName = "auto") -> tuple[Any, Any]:
+def bt_step(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, *, branch: int = 1,
+            allow_complex: bool = False, backend: BackendName = "auto") -> tuple[StateOut, StateOut]:
     """One Bäcklund step of the periodic Toda chain.
 
     Parameters
@@ -95,17 +97,20 @@ def bt_step(p: StateLike, q: StateLike, lam0: Any, mu: Any, *, branch: int = 1, 
     return run_step(b, pr, allow_complex, forced=backend != "auto")
 
 @overload
-def bt_orbit(p: StateLike, q: StateLike, lam0: Any, mu: Any, n: int, *, branch: int = ..., every: int = ...,
-             backend: BackendName = ..., certified: Literal[False] = ..., tol: Any = ...) -> tuple[Any, Any]: ...
+def bt_orbit(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, n: int, *, branch: int = ...,
+             every: int = ..., backend: BackendName = ..., certified: Literal[False] = ...,
+             tol: None = ...) -> tuple[OrbitOut, OrbitOut]: ...
 
 
 @overload
-def bt_orbit(p: StateLike, q: StateLike, lam0: Any, mu: Any, n: int, *, branch: int = ..., every: int = ...,
-             backend: BackendName = ..., certified: Literal[True], tol: Any = ...) -> tuple[Any, Any, Any, Any]: ...
+def bt_orbit(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, n: int, *, branch: int = ...,
+             every: int = ..., backend: BackendName = ..., certified: Literal[True],
+             tol: float | MPValue | None = ...) -> tuple[MPOrbit, MPOrbit, MPOrbit, MPOrbit]: ...
 
 
-def bt_orbit(p: StateLike, q: StateLike, lam0: Any, mu: Any, n: int, *, branch: int = 1, every: int = 1,
-             backend: BackendName = "auto", certified: bool = False, tol: Any = None) -> tuple[Any, ...]:
+def bt_orbit(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, n: int, *, branch: int = 1, every: int = 1,
+             backend: BackendName = "auto", certified: bool = False,
+             tol: float | MPValue | None = None) -> tuple[OrbitOut, ...]:
     """``n`` Bäcklund steps from ``(p, q)``; returns the stored states.
 
     Parameters

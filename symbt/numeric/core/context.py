@@ -47,7 +47,7 @@ import numpy as np
 import numpy.typing as npt
 
 __all__ = ["Context", "FloatContext", "MPContext", "IVContext", "FLOAT", "COMPLEX", "MP", "IV",
-           "Value", "Cond", "Exponent", "FloatValue", "MPValue"]
+           "Value", "Cond", "Exponent", "FloatValue", "FloatParam", "MPValue"]
 
 
 #: a context value: a float64/complex128 array over the batch or a Python float (:class:`FloatContext`),
@@ -58,6 +58,9 @@ __all__ = ["Context", "FloatContext", "MPContext", "IVContext", "FLOAT", "COMPLE
 Value: TypeAlias = Any
 #: a float-context value: a 1-D float64 or complex128 array over the flattened batch
 FloatValue: TypeAlias = npt.NDArray[np.inexact]
+#: a validated real parameter of the float path (``lam0``, ``mu``): a Python float, or a float64 array
+#: over the flattened batch
+FloatParam: TypeAlias = float | npt.NDArray[np.float64]
 #: an mpmath value: ``mpf``/``mpc``, or an ``mpmath.iv`` interval (mpmath ships no type information, so
 #: to a type checker this is ``Any``; the name says what is meant)
 MPValue: TypeAlias = mpmath.mpf | mpmath.mpc

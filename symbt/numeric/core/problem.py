@@ -14,7 +14,7 @@ Example
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Any, Literal, TypeAlias
 
 import numpy as np
 import numpy.typing as npt
@@ -31,10 +31,18 @@ from .inputs import (
     validate_float_pair,
 )
 
-__all__ = ["Problem", "prepare", "Arithmetic", "StateLike", "ParamLike", "FloatArray"]
+__all__ = ["Problem", "prepare", "Arithmetic", "StateLike", "ParamLike", "FloatArray", "StateOut", "OrbitOut"]
 
 #: a validated float64 array
 FloatArray = npt.NDArray[np.float64]
+#: a state as the public functions return it: a float64 array of shape ``batch + (N,)`` for float64 input,
+#: a list of N mpmath numbers for mpmath input.  Which one follows from the input's kind, which no
+#: signature can say (mpmath numbers are ``Any`` to a type checker), so this is ``Any`` -- a union would
+#: make every caller narrow what its own input already decides
+StateOut: TypeAlias = Any
+#: the stored states of an orbit, likewise: a float64 array ``(rows,) + batch + (N,)`` or a list of
+#: ``rows`` lists of N mpmath numbers
+OrbitOut: TypeAlias = Any
 
 #: what a backend computes in: float64 arrays, or mpmath numbers (intervals included)
 Arithmetic = Literal["float64", "mpmath"]

@@ -28,6 +28,7 @@ True
 
 from __future__ import annotations
 
+from types import ModuleType
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -37,12 +38,13 @@ from ..core.inputs import check_steps
 from .kernels import orbit_rows
 
 if TYPE_CHECKING:
+    import dask.array as da
     import numpy.typing as npt
 
 __all__ = ["dask_orbit"]
 
 
-def _import_dask() -> Any:
+def _import_dask() -> ModuleType:
     try:
         import dask.array as da
     except ImportError as exc:
@@ -65,8 +67,9 @@ def _chunk(block: npt.NDArray[np.float64], N: int, n: int, branch: int, every: i
     return np.stack([P, Q])
 
 
-def dask_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, chunks: Any = "auto", branch: int = 1,
-               every: int = 1, backend: str = "auto") -> tuple[Any, Any]:
+# p, q, lam0, mu: numpy array-likes or dask arrays (rebound to dask arrays below, hence Any)
+def dask_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, chunks: int | tuple[int, ...] | str = "auto",
+               branch: int = 1, every: int = 1, backend: str = "auto") -> tuple[da.Array, da.Array]:
     """Lazy ``bt_orbit`` of an ensemble: dask arrays ``P, Q`` of shape ``(rows, M, N)``.
 
     ``p, q``: ``(M, N)`` numpy or dask arrays; ``lam0, mu``: scalars or

@@ -32,11 +32,11 @@ Example
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..core.context import FLOAT
+from ..core.context import FLOAT, FloatParam, FloatValue
 from ..core.errors import InvalidInputError, NoRealMapError, NumericRangeError
 from ..core.inputs import prepare_spectral_pair, validate_float_pair
 from ..core.limits import ILLCOND, MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
@@ -94,9 +94,9 @@ def kernel_step(p: F64, q: F64, lam0: float, mu: float, branch: int,
     return (P[1], Q[1]) if st == OK else None
 
 
-def kernel_batch_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_complex: bool,
+def kernel_batch_step(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: int, allow_complex: bool,
                       shape: tuple[int, ...], skip: npt.NDArray[np.bool_] | None = None,
-                      ) -> tuple[npt.NDArray[Any], npt.NDArray[Any]]:
+                      ) -> tuple[FloatValue, FloatValue]:
     """One step of a validated batch ``pa, qa`` (M, N), each member by its single-state route.
 
     ``skip`` (optional, shape (M,)): members sent to the numpy route without a kernel attempt.
@@ -130,7 +130,7 @@ def kernel_batch_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_c
     return float_rows_step(pa, qa, lam0, mu, branch, allow_complex, shape, rows=todo, out=(P[1], Q[1]))
 
 
-def general_orbit(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, n: int, every: int,
+def general_orbit(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: int, n: int, every: int,
                   P: F64, Q: F64, rows: npt.NDArray[np.intp]) -> tuple[I64, I64]:
     """The general (numpy) path for the states ``rows`` of ``pa, qa``; fills ``P[:, rows], Q[:, rows]``.
 
@@ -157,11 +157,11 @@ def general_orbit(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, n: int, eve
     return status, fail
 
 
-def _take(x: Any, idx: npt.NDArray[np.intp]) -> Any:
-    return x[idx] if np.ndim(x) else x
+def _take(x: FloatParam, idx: npt.NDArray[np.intp]) -> FloatParam:
+    return np.asarray(x)[idx] if np.ndim(x) else x
 
 
-def _general_block(p0: F64, q0: F64, lam0: Any, mu: Any, branch: int, n: int, every: int,
+def _general_block(p0: F64, q0: F64, lam0: FloatParam, mu: FloatParam, branch: int, n: int, every: int,
                    P: F64, Q: F64, idx: npt.NDArray[np.intp]) -> tuple[I64, I64]:
     m, N = p0.shape
     status = np.zeros(m, np.int64)
@@ -282,8 +282,8 @@ def raise_for_status(status: I64, step: I64, shape: tuple[int, ...]) -> None:
     raise NumericRangeError(_MESSAGES[RANGE] + txt)
 
 
-def float_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, every: int = 1,
-                backend: str = "auto") -> tuple[F64, F64]:
+def float_orbit(p: npt.ArrayLike, q: npt.ArrayLike, lam0: npt.ArrayLike, mu: npt.ArrayLike, n: int, *,
+                branch: int = 1, every: int = 1, backend: str = "auto") -> tuple[F64, F64]:
     """``n`` steps of the float64 map from one state or an ensemble (see module docstring).
 
     ``backend``: ``"auto"``, ``"numba"``, ``"python"`` (plain-Python kernel;
@@ -297,8 +297,8 @@ def float_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, branch: int = 1, 
     if backend not in ORBIT_BACKENDS:
         raise InvalidInputError("backend must be one of %s, got %r" % (ORBIT_BACKENDS, backend))
     pa, qa, shape = validate_float_pair(p, q)
-    lam0, mu = prepare_spectral_pair(FLOAT, lam0, mu, shape)
-    return validated_float_orbit(pa, qa, shape, lam0, mu, n, branch, every, backend)
+    l0, m = prepare_spectral_pair(FLOAT, lam0, mu, shape)
+    return validated_float_orbit(pa, qa, shape, l0, m, n, branch, every, backend)
 
 
 def prepared_float_orbit(pr: Problem, backend: str) -> tuple[F64, F64]:
@@ -306,8 +306,8 @@ def prepared_float_orbit(pr: Problem, backend: str) -> tuple[F64, F64]:
     return validated_float_orbit(pr.p, pr.q, pr.shape, pr.lam0, pr.mu, pr.n, pr.branch, pr.every, backend)
 
 
-def validated_float_orbit(pa: F64, qa: F64, shape: tuple[int, ...], lam0: Any, mu: Any, n: int, branch: int,
-                          every: int, backend: str) -> tuple[F64, F64]:
+def validated_float_orbit(pa: F64, qa: F64, shape: tuple[int, ...], lam0: FloatParam, mu: FloatParam, n: int,
+                          branch: int, every: int, backend: str) -> tuple[F64, F64]:
     """:func:`float_orbit` on inputs already checked (``validate_float_pair``, ``prepare_spectral_pair``):
     ``pa, qa`` of shape ``(M, N)``, ``shape`` the batch shape; for callers that validated them already."""
     M, N = pa.shape
@@ -340,7 +340,7 @@ def validated_float_orbit(pa: F64, qa: F64, shape: tuple[int, ...], lam0: Any, m
     return P.reshape((rows,) + shape + (N,)), Q.reshape((rows,) + shape + (N,))
 
 
-def _ensemble(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, n: int, every: int, backend: str,
+def _ensemble(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: int, n: int, every: int, backend: str,
               act: npt.NDArray[np.intp], P: F64, Q: F64, status: I64) -> None:
     fn, be = kernel("ensemble", "numba" if backend == "auto" else backend)
     M, N = pa.shape

@@ -18,11 +18,11 @@ Example
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..core.context import COMPLEX, FLOAT, MP
+from ..core.context import COMPLEX, FLOAT, MP, FloatParam, FloatValue, MPValue
 from ..core.errors import NoRealMapError, NumericRangeError
 from ..core.limits import ILLCOND, MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 from ..core.step import BLOCK_ELEMENTS, float_status, mp_step, step_core
@@ -41,7 +41,7 @@ ESCALATION_DIGITS = (40, 80, 160, 320)
 
 
 def _mp_verdict(p: F64, q: F64, lam0: float, mu: float, branch: int, dps: int,
-                shift: tuple[float, float] = (0.0, 0.0)) -> tuple[int, list[Any]]:
+                shift: tuple[float, float] = (0.0, 0.0)) -> tuple[int, list[MPValue]]:
     """One state ``(p, q + shift)`` at ``dps`` digits through the mpmath step: ``(status, p~ + (q~ - shift))``."""
     import mpmath
 
@@ -60,7 +60,7 @@ def _mp_verdict(p: F64, q: F64, lam0: float, mu: float, branch: int, dps: int,
         return OK, list(Pn) + [v - c for v in Qn]
 
 
-def escalate_rows(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int,
+def escalate_rows(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: int,
                   shift: F64 | None = None) -> tuple[F64, F64, I64]:
     """Recompute ill-conditioned float64 states (rows of ``pa, qa``) at higher precision.
 
@@ -103,7 +103,7 @@ def escalate_rows(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int,
     return outp, outq, status
 
 
-def _float_block(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int) -> tuple[F64, F64, I64]:
+def _float_block(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: int) -> tuple[F64, F64, I64]:
     """Real step for one block of rows ``pa, qa`` (B, N): ``(B, N)`` arrays and a status code per row.
 
     The codes are those of :mod:`symbt.numeric.core.limits` (``OK``, ``TRACE1``, ``TRACE2``, ``POSITIVITY``,
@@ -124,7 +124,7 @@ def _float_block(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int) -> tuple[F64
     return outp, outq, status
 
 
-def _complex_rows(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int) -> tuple[npt.NDArray[Any], npt.NDArray[Any]]:
+def _complex_rows(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: int) -> tuple[FloatValue, FloatValue]:
     """The complex continuation for rows ``pa, qa`` (B, N) without a real map."""
     Pc = [x.astype(np.complex128) for x in pa.T]
     Qc = [x.astype(np.complex128) for x in qa.T]
@@ -172,9 +172,9 @@ def raise_for_rows(status: I64, shape: tuple[int, ...]) -> None:
                             "overflow); use mpmath inputs" + txt)
 
 
-def float_rows_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_complex: bool, shape: tuple[int, ...],
-                rows: npt.NDArray[np.intp] | None = None, out: tuple[F64, F64] | None = None,
-                ) -> tuple[npt.NDArray[Any], npt.NDArray[Any]]:
+def float_rows_step(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: int, allow_complex: bool,
+                    shape: tuple[int, ...], rows: npt.NDArray[np.intp] | None = None,
+                    out: tuple[F64, F64] | None = None) -> tuple[FloatValue, FloatValue]:
     """The numpy route for the rows ``rows`` (flat indices; default all) of ``pa, qa`` (M, N).
 
     Rows are cut into blocks of ``max(256, BLOCK_ELEMENTS // N)``; every row is computed by the same
@@ -187,11 +187,11 @@ def float_rows_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_com
     M, N = pa.shape
     idx_all = np.arange(M) if rows is None else rows
     if np.ndim(mu):
-        idx_all = idx_all[mu[idx_all] != 0]
+        idx_all = idx_all[np.asarray(mu)[idx_all] != 0]
     elif mu == 0:
         idx_all = idx_all[:0]
-    outp: npt.NDArray[Any] = pa.copy() if out is None else out[0]
-    outq: npt.NDArray[Any] = qa.copy() if out is None else out[1]
+    outp: FloatValue = pa.copy() if out is None else out[0]
+    outq: FloatValue = qa.copy() if out is None else out[1]
     status = np.zeros(M, np.int64)
     block = max(256, BLOCK_ELEMENTS // N)
     if idx_all.size:
@@ -201,9 +201,10 @@ def float_rows_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_com
         status[idx_all[far]] = RANGE
         idx_all = idx_all[~far]
     for s0 in range(0, idx_all.size, block):
-        idx: Any = idx_all[s0:s0 + block]
-        if idx[-1] - idx[0] + 1 == idx.size:          # contiguous rows (the usual case): views, not copies
-            idx = slice(int(idx[0]), int(idx[-1]) + 1)
+        sel = idx_all[s0:s0 + block]
+        idx: npt.NDArray[np.intp] | slice = sel
+        if sel[-1] - sel[0] + 1 == sel.size:          # contiguous rows (the usual case): views, not copies
+            idx = slice(int(sel[0]), int(sel[-1]) + 1)
         bp, bq, st = _float_block(pa[idx], qa[idx], _take(lam0, idx), _take(mu, idx), branch)
         outp[idx], outq[idx] = bp, bq
         status[idx] = st
@@ -218,5 +219,5 @@ def float_rows_step(pa: F64, qa: F64, lam0: Any, mu: Any, branch: int, allow_com
     return outp, outq
 
 
-def _take(x: Any, idx: Any) -> Any:
-    return x[idx] if np.ndim(x) else x
+def _take(x: FloatParam, idx: npt.NDArray[np.intp] | slice | int) -> FloatParam:
+    return np.asarray(x)[idx] if np.ndim(x) else x

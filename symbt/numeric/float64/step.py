@@ -16,10 +16,11 @@ array([-19.99656766,   9.78635495,   1.21021272])
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..core.context import FloatValue
 from ..core.problem import Problem
 from .jit import numba_available
 from .orbit import kernel_batch_step, kernel_step
@@ -56,7 +57,7 @@ def _block_kernel_pays(pa: F64) -> bool:
     return M < _BLOCK_KERNEL_MAX_STATES_SMALL_N or N >= _BLOCK_KERNEL_MIN_N
 
 
-def float_step(pr: Problem, allow_complex: bool, backend: str) -> tuple[npt.NDArray[Any], npt.NDArray[Any]]:
+def float_step(pr: Problem, allow_complex: bool, backend: str) -> tuple[FloatValue, FloatValue]:
     """One step of the float64 problem ``pr`` by ``backend`` (``"auto"``, ``"numba"``, ``"python"``,
     ``"numpy"``); arrays of the input shape."""
     pa, qa, shape, lam0, mu, branch = pr.p, pr.q, pr.shape, pr.lam0, pr.mu, pr.branch

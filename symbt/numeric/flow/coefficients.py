@@ -43,14 +43,14 @@ import numbers
 import warnings
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
-from typing import Any
 
 import mpmath
 import numpy as np
+import numpy.typing as npt
 
-from ..core.context import FLOAT, MP
+from ..core.context import FLOAT, MP, MPValue, Value
 from ..core.errors import InvalidInputError, NoRealMapError, NumericRangeError, QuadratureError
-from ..core.inputs import _to_mp, float_array, prepare_spectral_pair
+from ..core.inputs import ParamLike, StateLike, _to_mp, float_array, prepare_spectral_pair
 from ..core.limits import MAX_DQ_FLOAT64
 from ..dispatch import bt_step
 
@@ -61,7 +61,7 @@ _LOG2 = math.log(2.0)
 
 # --------------------------------------------------------------------------- input
 
-def _is_mp(*objs: Any) -> bool:
+def _is_mp(*objs: object) -> bool:
     for o in objs:
         if isinstance(o, (mpmath.mpf, mpmath.mpc)):
             return True
@@ -72,13 +72,13 @@ def _is_mp(*objs: Any) -> bool:
     return False
 
 
-def _branch(branch: Any) -> int:
+def _branch(branch: object) -> int:
     if isinstance(branch, bool) or not isinstance(branch, numbers.Integral) or branch not in (1, -1):
         raise InvalidInputError("branch must be +1 or -1, got %r" % (branch,))
     return int(branch)
 
 
-def _float_state(p: Any, q: Any) -> tuple[np.ndarray, np.ndarray]:
+def _float_state(p: npt.ArrayLike, q: npt.ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     pa, qa = float_array(p, "p"), float_array(q, "q")     # complex, text, 10**400: typed errors
     if pa.ndim != 1 or pa.shape != qa.shape:
         raise InvalidInputError("flow_coefficients takes a single state (p, q of shape (N,))")
@@ -87,7 +87,7 @@ def _float_state(p: Any, q: Any) -> tuple[np.ndarray, np.ndarray]:
     return pa, qa
 
 
-def neighbour_ratios_of(q: Sequence[Any]) -> list:
+def neighbour_ratios_of(q: Sequence[float] | Sequence[MPValue]) -> list[float] | list[MPValue]:
     """``r_j = exp(q_{j+1} - q_j)`` (cyclic), float64 (range-checked) or mpf."""
     N = len(q)
     dq = [q[(j + 1) % N] - q[j] for j in range(N)]
@@ -102,7 +102,7 @@ def neighbour_ratios_of(q: Sequence[Any]) -> list:
 
 # --------------------------------------------------------------------------- tr L(lam), scaled
 
-def scaled_trace(lam: Any, p: Sequence[Any], r: Sequence[Any]) -> tuple[Any, Any]:
+def scaled_trace(lam: Value, p: Sequence[Value], r: Sequence[Value]) -> tuple[Value, Value]:
     """``tr L(lam) = T * 2**e`` by the 2x2 transfer product; returns ``(T, e)``.
 
     float64: ``lam`` an array of nodes, the product renormalised by a power of two at every
@@ -277,7 +277,7 @@ def _row_scales(P: Sequence[float], r: Sequence[float], a: float, b: float, ks: 
     return np.floor(np.max(L, axis=1))
 
 
-def flow_quadrature(p: Any, q: Any, lam0: float, mu: float, *, branch: int = 1, rtol: float = 1e-13,
+def flow_quadrature(p: npt.ArrayLike, q: npt.ArrayLike, lam0: float, mu: float, *, branch: int = 1, rtol: float = 1e-13,
                     max_intervals: int = 4000,
                     extra_rows: Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray] | None = None,
                     compress: float | None = None, check: bool = True) -> FlowQuadrature:
@@ -347,8 +347,9 @@ def flow_quadrature(p: Any, q: Any, lam0: float, mu: float, *, branch: int = 1, 
 
 # --------------------------------------------------------------------------- public routine
 
-def flow_coefficients(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1, ks: Iterable[int] | None = None,
-                      check: bool = True, rtol: float = 1e-13, max_intervals: int = 4000) -> Any:
+def flow_coefficients(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, *, branch: int = 1,
+                      ks: Iterable[int] | None = None, check: bool = True, rtol: float = 1e-13,
+                      max_intervals: int = 4000) -> npt.NDArray[np.float64] | list[MPValue]:
     r"""Coefficients ``c_k`` of the flow interpolated by the map (eq. ``eqdisc``), see the module docstring.
 
     ``ks``: which ``k`` (default ``0..N-1``; ``k = N``, the coefficient of ``H_N = 1``, is
@@ -419,12 +420,13 @@ def _selection(ks: Iterable[int] | None, N: int) -> list[int]:
     return kl
 
 
-def _coefficients_mp(P: list, Q: list, lam0: Any, mu: Any, branch: int, ks: list[int]) -> list:
+def _coefficients_mp(P: list[MPValue], Q: list[MPValue], lam0: MPValue, mu: MPValue, branch: int,
+                     ks: list[int]) -> list[MPValue]:
     """mpmath path: tanh-sinh per k on the scaled integrand, ``tr`` values shared between the k."""
     r = neighbour_ratios_of(Q)
     memo: dict = {}
 
-    def inv(lam: Any) -> Any:
+    def inv(lam: MPValue) -> MPValue:
         v = memo.get(lam)
         if v is None:
             t, _ = scaled_trace(lam, P, r)
@@ -441,7 +443,7 @@ def _coefficients_mp(P: list, Q: list, lam0: Any, mu: Any, branch: int, ks: list
         probes = [a + (b - a) * mpmath.mpf(f) for f in ("0.25", "0.5", "0.75")]
         E = max(int(mpmath.floor(mpmath.log(abs(x ** k * inv(x)), 2))) for x in probes if x ** k * inv(x) != 0)
 
-        def f(lam: Any, k: int = k, E: int = E) -> Any:
+        def f(lam: MPValue, k: int = k, E: int = E) -> MPValue:
             return mpmath.ldexp(lam ** k * inv(lam), -E)
 
         val, err = mpmath.quad(f, [a, lam0, b], error=True)

@@ -24,6 +24,7 @@ plain arithmetic, also used to build the same field for other integrators); if a
 ``dG/dq_j = r_{j-1} dG/dr_{j-1} - r_j dG/dr_j``.
 
 >>> import numpy as np
+import numpy.typing as npt
 >>> from symbt.numeric.flow.field import FlowField
 >>> f = FlowField([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0)
 >>> qdot, pdot = f(np.array([-20.0, 10.0, 1.0]), np.array([1.0, 0.0, 0.9]))
@@ -36,10 +37,11 @@ plain arithmetic, also used to build the same field for other integrators); if a
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
+from ..core.context import Value
 from ..core.errors import InvalidInputError, NumericRangeError
 from ..core.inputs import float_array
 from .coefficients import flow_quadrature, neighbour_ratios_of
@@ -50,7 +52,7 @@ _HI = 2.0**900
 _LO = 2.0**-900
 
 
-def transfer_gradient(a: Sequence[Any], r: Sequence[Any], inv_s: Any) -> tuple[list, list]:
+def transfer_gradient(a: Sequence[Value], r: Sequence[Value], inv_s: Value) -> tuple[list[Value], list[Value]]:
     """``(d tr/da_j, d tr/dr_j)`` of ``tr(m_N ... m_1)``, ``m_j = [[a_j, -inv_s], [r_j, 0]]``.
 
     Plain ``+ - *`` on the entries (numpy arrays, floats, mpf or symbolic expressions):
@@ -142,7 +144,7 @@ def _node_gradient(lam: np.ndarray, log2_scale: np.ndarray, P: np.ndarray, R: np
     return da, dr
 
 
-def _finite_state(p: Any, q: Any) -> tuple[np.ndarray, np.ndarray]:
+def _finite_state(p: npt.ArrayLike, q: npt.ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """float64 ``p, q`` through the package's one conversion (:func:`float_array`), NaN/inf refused."""
     pa, qa = float_array(p, "p"), float_array(q, "q")
     if not (np.all(np.isfinite(pa)) and np.all(np.isfinite(qa))):
@@ -164,8 +166,8 @@ class FlowField:
     finite (e.g. ``|q_{j+1} - q_j| > 700``).
     """
 
-    def __init__(self, p0: Any, q0: Any, lam0: float, mu: float, *, branch: int = 1, rtol: float = 1e-13,
-                 max_intervals: int = 4000, compress: float | None = 2e-15) -> None:
+    def __init__(self, p0: npt.ArrayLike, q0: npt.ArrayLike, lam0: float, mu: float, *, branch: int = 1,
+                 rtol: float = 1e-13, max_intervals: int = 4000, compress: float | None = 2e-15) -> None:
         P0, Q0 = _finite_state(p0, q0)
         if P0.ndim != 1 or P0.shape != Q0.shape or P0.size < 2:
             raise InvalidInputError("FlowField takes one state p0, q0 of shape (N,), N >= 2")
@@ -191,7 +193,7 @@ class FlowField:
         self.c = rule.moments(range(N))
         self.nfev = 0
 
-    def __call__(self, p: Any, q: Any) -> tuple[np.ndarray, np.ndarray]:
+    def __call__(self, p: npt.ArrayLike, q: npt.ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         """``(qdot, pdot)`` for states of shape ``batch + (N,)``."""
         self.nfev += 1
         p, q = _finite_state(p, q)

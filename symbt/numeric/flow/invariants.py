@@ -16,19 +16,18 @@ True
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
+import numpy.typing as npt
 
-from ..core.context import FLOAT
+from ..core.context import FLOAT, MPValue, Value
 from ..core.errors import NumericRangeError
-from ..core.inputs import as_state_pair, prepare_scalar
+from ..core.inputs import ParamLike, StateLike, as_state_pair, prepare_scalar
 from ..core.monodromy import monodromy, neighbour_ratios
 
 __all__ = ["spectral_trace", "invariants"]
 
 
-def spectral_trace(lam: Any, p: Any, q: Any) -> Any:
+def spectral_trace(lam: ParamLike, p: StateLike, q: StateLike) -> npt.NDArray[np.float64] | MPValue:
     """``tr L(lam)`` for a state (or batch of states) ``(p, q)``; O(N) per state.
 
     ``lam`` is a scalar (or broadcastable to the batch shape).  float64 inputs
@@ -53,7 +52,7 @@ def spectral_trace(lam: Any, p: Any, q: Any) -> Any:
     return A + D
 
 
-def invariants(p: Any, q: Any) -> Any:
+def invariants(p: StateLike, q: StateLike) -> npt.NDArray[np.float64] | list[MPValue]:
     """Conserved quantities ``H_0, ..., H_{N-1}`` (coefficients of ``tr L``; ``H_N = 1``).
 
     O(N^2) per state, no N x N matrices: the entries of the scaled monodromy
@@ -69,13 +68,13 @@ def invariants(p: Any, q: Any) -> Any:
         return _invariants(p, q)
 
 
-def _invariants(p: Any, q: Any) -> Any:
+def _invariants(p: StateLike, q: StateLike) -> npt.NDArray[np.float64] | list[MPValue]:
     ctx, P, Q, shape = as_state_pair(p, q)
     N = len(P)
     r = neighbour_ratios(ctx, Q)
     zero = 0.0 * P[0]
 
-    def poly(n: int) -> list[Any]:
+    def poly(n: int) -> list[Value]:
         return [zero] * n
 
     # polynomials as lists of coefficients (index = power of lam)

@@ -19,21 +19,21 @@ Examples
 
 from __future__ import annotations
 
-from typing import Any
-
 import mpmath
 import numpy as np
+import numpy.typing as npt
 
-from ..core.context import FLOAT, IV
+from ..core.context import FLOAT, IV, MPValue
 from ..core.errors import InvalidInputError, NoRealMapError
-from ..core.inputs import as_state_pair, check_branch, prepare_spectral_pair
+from ..core.inputs import ParamLike, StateLike, as_state_pair, check_branch, prepare_spectral_pair
 from ..core.monodromy import neighbour_ratios
 from ..core.step import eigen_slopes
 
 __all__ = ["phi"]
 
 
-def phi(p: Any, q: Any, lam0: Any, mu: Any, *, branch: int = 1) -> Any:
+def phi(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, *,
+        branch: int = 1) -> npt.NDArray[np.float64] | MPValue:
     """The real Φ of the map (see module docstring); O(N) per state.
 
     Only the trace condition ``|tr L(lam_i)| > 2`` is checked (Φ is a spectral
