@@ -35,10 +35,10 @@ __all__ = ["Problem", "prepare", "Arithmetic", "StateLike", "ParamLike", "FloatA
 
 #: a validated float64 array
 FloatArray = npt.NDArray[np.float64]
-#: a state as the public functions return it: a float64 array of shape ``batch + (N,)`` for float64 input,
-#: a list of N mpmath numbers for mpmath input.  Which one follows from the input's kind, which no
-#: signature can say (mpmath numbers are ``Any`` to a type checker), so this is ``Any`` -- a union would
-#: make every caller narrow what its own input already decides
+#: a state (or N per-site values such as the invariants) as the public functions return it: a float64
+#: array of shape ``batch + (N,)`` for float64 input, a list of N mpmath numbers for mpmath input.  Which
+#: one follows from the input's kind, which no signature can say (mpmath numbers are ``Any`` to a type
+#: checker), so this is ``Any`` -- a union would make every caller narrow what its own input decides
 StateOut: TypeAlias = Any
 #: the stored states of an orbit, likewise: a float64 array ``(rows,) + batch + (N,)`` or a list of
 #: ``rows`` lists of N mpmath numbers

@@ -52,6 +52,7 @@ from ..core.context import FLOAT, MP, MPValue, Value
 from ..core.errors import InvalidInputError, NoRealMapError, NumericRangeError, QuadratureError
 from ..core.inputs import ParamLike, StateLike, _to_mp, float_array, prepare_spectral_pair
 from ..core.limits import MAX_DQ_FLOAT64
+from ..core.problem import StateOut
 from ..dispatch import bt_step
 
 __all__ = ["flow_coefficients", "flow_quadrature", "FlowQuadrature", "scaled_trace", "neighbour_ratios_of"]
@@ -349,7 +350,7 @@ def flow_quadrature(p: npt.ArrayLike, q: npt.ArrayLike, lam0: float, mu: float, 
 
 def flow_coefficients(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, *, branch: int = 1,
                       ks: Iterable[int] | None = None, check: bool = True, rtol: float = 1e-13,
-                      max_intervals: int = 4000) -> npt.NDArray[np.float64] | list[MPValue]:
+                      max_intervals: int = 4000) -> StateOut:
     r"""Coefficients ``c_k`` of the flow interpolated by the map (eq. ``eqdisc``), see the module docstring.
 
     ``ks``: which ``k`` (default ``0..N-1``; ``k = N``, the coefficient of ``H_N = 1``, is

@@ -23,6 +23,7 @@ from ..core.context import FLOAT, MPValue, Value
 from ..core.errors import NumericRangeError
 from ..core.inputs import ParamLike, StateLike, as_state_pair, prepare_scalar
 from ..core.monodromy import monodromy, neighbour_ratios
+from ..core.problem import StateOut
 
 __all__ = ["spectral_trace", "invariants"]
 
@@ -52,7 +53,7 @@ def spectral_trace(lam: ParamLike, p: StateLike, q: StateLike) -> npt.NDArray[np
     return A + D
 
 
-def invariants(p: StateLike, q: StateLike) -> npt.NDArray[np.float64] | list[MPValue]:
+def invariants(p: StateLike, q: StateLike) -> StateOut:
     """Conserved quantities ``H_0, ..., H_{N-1}`` (coefficients of ``tr L``; ``H_N = 1``).
 
     O(N^2) per state, no N x N matrices: the entries of the scaled monodromy
@@ -68,7 +69,7 @@ def invariants(p: StateLike, q: StateLike) -> npt.NDArray[np.float64] | list[MPV
         return _invariants(p, q)
 
 
-def _invariants(p: StateLike, q: StateLike) -> npt.NDArray[np.float64] | list[MPValue]:
+def _invariants(p: StateLike, q: StateLike) -> StateOut:
     ctx, P, Q, shape = as_state_pair(p, q)
     N = len(P)
     r = neighbour_ratios(ctx, Q)

@@ -212,7 +212,7 @@ def _outputs(stored: list[tuple[list[arb], list[arb]]]) -> tuple[MPOrbit, MPOrbi
 def certified_orbit(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, n: int, *, branch: int = 1,
                     every: int = 1, tol: float | MPValue | None = None, prec: int | None = None,
                     max_prec: int = DEFAULT_MAX_PREC, info: dict[str, object] | None = None,
-                    method: CertifiedMethod = "auto") -> tuple[MPOrbit, MPOrbit, MPOrbit, MPOrbit]:
+                    method: str = "auto") -> tuple[MPOrbit, MPOrbit, MPOrbit, MPOrbit]:
     """Certified ``n``-step orbit: ``(P, Q, P_rad, Q_rad)``, lists over the stored states.
 
     ``P[i][j]`` is an mpf at the current ``mp.prec`` and
