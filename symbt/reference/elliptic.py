@@ -44,11 +44,14 @@ In :math:`s = (\lambda+I_1)/\sqrt{I_2-2}` the spectral curve is :math:`w^2 = (1-
 from __future__ import annotations
 
 import math
+import random
+from collections.abc import Callable, Sequence
 from functools import lru_cache
+from typing import Any
 
 import mpmath as mp
 
-from .literal import signed_arccosh_half
+from .literal import MPNumber, signed_arccosh_half
 
 try:  # mpmath's own backend: the Carlson loop runs there when available
     import gmpy2
@@ -66,18 +69,18 @@ __all__ = [
 REGIMES = ("inner", "outer-same", "outer-opposite", "mixed", "gap")
 
 
-def actions(p, q):
+def actions(p: Sequence[mp.mpf], q: Sequence[mp.mpf]) -> tuple[mp.mpf, mp.mpf]:
     """:math:`(I_1, I_2)` of eq. ``th1th2``."""
     return (p[0] + p[1]) / 2, 2 * mp.cosh(q[0] - q[1]) + ((p[0] - p[1]) / 2) ** 2
 
 
-def modulus(I2):
+def modulus(I2: mp.mpf) -> tuple[mp.mpf, mp.mpf]:
     """``(k, m)``: the modulus and the parameter m = k^2 = (I2-2)/(I2+2)."""
     m = (I2 - 2) / (I2 + 2)
     return mp.sqrt(m), m
 
 
-def carlson_rf(x, y, z):
+def carlson_rf(x: MPNumber, y: MPNumber, z: MPNumber) -> MPNumber:
     """Carlson's R_F(x, y, z) by duplication (principal square roots), x, y, z >= 0 (at most one zero)
     or complex off the cut (-inf, 0]; at the working precision, tested against :func:`mpmath.elliprf`.
 
@@ -91,7 +94,8 @@ def carlson_rf(x, y, z):
     return _from_g(v)
 
 
-def _rf_loop(x, y, z, sqrt, scale):
+# Any: the same loop on mpmath or gmpy2 numbers (gmpy2 is optional and its numbers are not mpmath's)
+def _rf_loop(x: Any, y: Any, z: Any, sqrt: Callable[[Any], Any], scale: Any) -> Any:
     A0 = (x + y + z) / 3
     Q = max(abs(A0 - x), abs(A0 - y), abs(A0 - z)) * scale
     xm, ym, zm, A, p4 = x, y, z, A0, 1
@@ -105,37 +109,37 @@ def _rf_loop(x, y, z, sqrt, scale):
     return (1 - E2 / 10 + E3 / 14 + E2 * E2 / 24 - 3 * E2 * E3 / 44) / sqrt(A)
 
 
-def _mpf_to_g(v):
+def _mpf_to_g(v: mp.mpf) -> gmpy2.mpfr:
     sign, man, exp, _ = v._mpf_
     g = gmpy2.mul_2exp(gmpy2.mpfr(man), exp) if man else gmpy2.mpfr(0)
     return -g if sign else g
 
 
-def _to_g(v):
+def _to_g(v: MPNumber) -> gmpy2.mpfr | gmpy2.mpc:
     v = mp.mpmathify(v)
     if isinstance(v, mp.mpc):
         return gmpy2.mpc(_mpf_to_g(v.real), _mpf_to_g(v.imag))
     return _mpf_to_g(v)
 
 
-def _g_to_mpf(g):
+def _g_to_mpf(g: gmpy2.mpfr) -> mp.mpf:
     man, exp = g.as_mantissa_exp()
     return mp.mpf(mp.libmp.from_man_exp(int(man), int(exp), mp.mp.prec, "n"))
 
 
-def _from_g(g):
+def _from_g(g: gmpy2.mpfr | gmpy2.mpc) -> MPNumber:
     if isinstance(g, type(gmpy2.mpc(0))):
         return mp.mpc(_g_to_mpf(g.real), _g_to_mpf(g.imag))
     return _g_to_mpf(g)
 
 
 @lru_cache(maxsize=1 << 16)
-def _F_memo(z, m, prec):
+def _F_memo(z: MPNumber, m: mp.mpf, prec: int) -> MPNumber:
     with mp.workprec(prec):
         return z * carlson_rf(1 - z * z, 1 - m * z * z, mp.mpf(1))
 
 
-def _F_m(z, m):
+def _F_m(z: MPNumber, m: mp.mpf) -> MPNumber:
     """F in Jacobi's form z R_F(1-z^2, 1-m z^2, 1) (parameter m in [0, 1)) for real |z| <= 1 or complex z,
     memoised (F is odd; the Abel images of both sheets and the printed F share the values)."""
     if isinstance(z, mp.mpf) and z < 0:
@@ -143,7 +147,7 @@ def _F_m(z, m):
     return _F_memo(z, m, mp.mp.prec)
 
 
-def F(z, k):
+def F(z: MPNumber, k: mp.mpf) -> MPNumber:
     """The paper's F(z, k) = int_0^z dt / sqrt((1-t^2)(1-k^2 t^2)) for real |z| <= 1 (modulus k)."""
     z = mp.mpf(z)
     if abs(z) > 1:
@@ -151,12 +155,12 @@ def F(z, k):
     return _F_m(z, k ** 2)
 
 
-def F_principal(z, k):
+def F_principal(z: MPNumber, k: mp.mpf) -> MPNumber:
     """mpmath's principal continuation ellipf(asin z, k^2) -- on a branch cut for real |z| > 1."""
     return mp.ellipf(mp.asin(z), k ** 2)
 
 
-def F_real(s, k):
+def F_real(s: mp.mpf, k: mp.mpf) -> mp.mpf:
     """A real antiderivative of 1/|sqrt((1-s^2)(1-k^2 s^2))| on |s| <= 1 and on |s| >= 1/k.
 
     ``F(s, k)`` on [-1, 1]; ``-F(1/(k s), k)`` for |s| >= 1/k.  ValueError in the gaps 1 < |s| < 1/k.
@@ -169,12 +173,12 @@ def F_real(s, k):
     raise ValueError("s in a gap 1 < |s| < 1/k: no real antiderivative")
 
 
-def g_real(T):
+def g_real(T: mp.mpf) -> mp.mpf:
     """sgn(T) arccosh(|T|/2): the real branch of arccosh(T/2) entering Phi (|T| >= 2)."""
     return signed_arccosh_half(T)
 
 
-def global_u(p, q):
+def global_u(p: Sequence[mp.mpf], q: Sequence[mp.mpf]) -> tuple[mp.mpf, mp.mpf]:
     """``(u, m)``: the global angle u in (-2K, 2K] with sn u = P, cn u = C (see module docstring)."""
     _, I2 = actions(p, q)
     _, m = modulus(I2)
@@ -188,14 +192,14 @@ def global_u(p, q):
     return (2 * K - v if P >= 0 else -2 * K - v), m
 
 
-def angles(p, q):
+def angles(p: Sequence[mp.mpf], q: Sequence[mp.mpf]) -> tuple[mp.mpf, mp.mpf]:
     """Globally defined angles ``(theta1, theta2)``; theta2 in (-2K, 2K]/sqrt(I2+2)."""
     u, _ = global_u(p, q)
     _, I2 = actions(p, q)
     return q[0] + q[1], u / mp.sqrt(I2 + 2)
 
 
-def theta2_printed(p, q, *, m=None):
+def theta2_printed(p: Sequence[mp.mpf], q: Sequence[mp.mpf], *, m: mp.mpf | None = None) -> mp.mpf:
     """The printed theta2 = F(P, k)/sqrt(I2+2), principal F (``m`` overrides the parameter)."""
     _, I2 = actions(p, q)
     mm = (I2 - 2) / (I2 + 2) if m is None else m
@@ -203,12 +207,12 @@ def theta2_printed(p, q, *, m=None):
     return mp.ellipf(mp.asin(P), mm) / mp.sqrt(I2 + 2)
 
 
-def sn_cn_dn(u, m):
+def sn_cn_dn(u: MPNumber, m: mp.mpf) -> tuple[MPNumber, MPNumber, MPNumber]:
     """Jacobi sn, cn, dn at (possibly complex) u with parameter m."""
     return mp.ellipfun("sn", u, m=m), mp.ellipfun("cn", u, m=m), mp.ellipfun("dn", u, m=m)
 
 
-def abel(s, w, m):
+def abel(s: MPNumber, w: MPNumber, m: mp.mpf) -> MPNumber:
     """u with sn(u) = s and cn(u) dn(u) = w (mod 4K Z + 2iK' Z), deterministic (see module docstring).
 
     Assumes (s, w) on the curve w^2 = (1-s^2)(1-m s^2); only the sign of w selects the sheet.
@@ -232,20 +236,21 @@ def abel(s, w, m):
     return u0 if abs(cd - w) <= abs(cd + w) else 2 * K - u0
 
 
-def curve_point(P, Ea, Eb, I2):
+def curve_point(P: mp.mpf, Ea: mp.mpf, Eb: mp.mpf, I2: mp.mpf) -> tuple[mp.mpf, mp.mpf]:
     """(s, w) of a state: s = P, w = cn dn = 2 sinh(q1 - q2)/sqrt(I2^2-4) from e^{q1}/e^{q2} (branch-free)."""
     r = Ea / Eb
     return P, (r - 1 / r) / mp.sqrt(I2 ** 2 - 4)
 
 
-def spectral_point(lam, I1, I2, branch):
+def spectral_point(lam: mp.mpf, I1: mp.mpf, I2: mp.mpf,
+                   branch: int) -> tuple[MPNumber, MPNumber, mp.mpf, MPNumber]:
     """(s, w, T, gamma) of the point (lambda, gamma = branch*sqrt(tr^2-4)) of the spectral curve."""
     T = (lam + I1) ** 2 - I2
     gam = branch * mp.sqrt(T ** 2 - 4)
     return (lam + I1) / mp.sqrt(I2 - 2), gam / mp.sqrt(I2 ** 2 - 4), T, gam
 
 
-def lattice_residual(d, m):
+def lattice_residual(d: MPNumber, m: mp.mpf) -> mp.mpf:
     """Distance of d to the period lattice 4K Z + 2iK' Z (the rectangle lattice of (sn, cn dn))."""
     K, Kp = mp.ellipk(m), mp.ellipk(1 - m)
     d = mp.mpmathify(d)
@@ -253,7 +258,7 @@ def lattice_residual(d, m):
     return abs(d - 4 * K * mp.nint(mp.re(d) / (4 * K)))
 
 
-def shift(I1, I2, lam0, mu, branch):
+def shift(I1: mp.mpf, I2: mp.mpf, lam0: mp.mpf, mu: mp.mpf, branch: int) -> dict[str, MPNumber | None]:
     """The translation of one step: dict with du (in u), dtheta2, dtheta1 (complex log of v1 v2),
     dtheta1_real = branch*(g(T2) - g(T1)) (None if a |T| < 2), v1, v2, m, s_plus, s_minus, T1, T2."""
     _, m = modulus(I2)
@@ -268,7 +273,7 @@ def shift(I1, I2, lam0, mu, branch):
                 v1=v1, v2=v2, m=m, s_plus=s1, s_minus=s2, T1=T1, T2=T2)
 
 
-def printed_shift(I1, I2, lam0, mu):
+def printed_shift(I1: mp.mpf, I2: mp.mpf, lam0: mp.mpf, mu: mp.mpf) -> tuple[MPNumber, MPNumber]:
     """eq. citn as printed (principal arccosh, principal F): (dtheta1, dtheta2)."""
     k, _ = modulus(I2)
     r = mp.sqrt(I2 - 2)
@@ -278,12 +283,12 @@ def printed_shift(I1, I2, lam0, mu):
     return d1, d2
 
 
-def regime(I1, I2, lam0, mu):
+def regime(I1: mp.mpf, I2: mp.mpf, lam0: mp.mpf, mu: mp.mpf) -> str:
     """Classify (lambda_-, lambda_+) = lam0 -+ mu (mu > 0) in s = (lambda + I1)/sqrt(I2-2)."""
     k, _ = modulus(I2)
     r = mp.sqrt(I2 - 2)
 
-    def zone(s):
+    def zone(s: mp.mpf) -> str:
         if abs(s) < 1:
             return "in"
         if k * abs(s) > 1:
@@ -300,12 +305,14 @@ def regime(I1, I2, lam0, mu):
     return "mixed" if "in" in (zp, zm) else "outer-opposite"
 
 
-def regime_of_state(p, q, lam0, mu):
+def regime_of_state(p: Sequence[mp.mpf], q: Sequence[mp.mpf], lam0: mp.mpf | float | str,
+                    mu: mp.mpf | float | str) -> str:
     I1, I2 = actions(p, q)
     return regime(I1, I2, mp.mpf(lam0), mp.mpf(mu))
 
 
-def step2(p, q, lam0, mu, branch=1, *, gammas=None):
+def step2(p: Sequence[mp.mpf], q: Sequence[mp.mpf], lam0: mp.mpf, mu: mp.mpf, branch: int = 1, *,
+          gammas: tuple[MPNumber, MPNumber] | None = None) -> tuple[list[MPNumber], list[MPNumber], dict[str, Any]]:
     """One step of the map for N = 2 along the paper's route (that of ``literal_step``), scalar.
 
     L = l_2 l_1 with l_j = [[lambda + p_j, -E_j], [1/E_j, 0]]; gamma_i = b sqrt(tr_i^2 - 4); y, x of
@@ -321,7 +328,7 @@ def step2(p, q, lam0, mu, branch=1, *, gammas=None):
     lam0, mu = mp.mpmathify(lam0), mp.mpmathify(mu)
     l1, l2 = lam0 + mu, lam0 - mu
 
-    def abd(lam):
+    def abd(lam: mp.mpf) -> tuple[mp.mpf, mp.mpf, mp.mpf]:
         return (lam + p2) * (lam + p1) - E2 / E1, -(lam + p2) * E1, -E1 / E2
 
     A1, B1, D1 = abd(l1)
@@ -343,7 +350,9 @@ def step2(p, q, lam0, mu, branch=1, *, gammas=None):
     return pt, [mp.log(e) for e in Et], dict(tr1=tr1, tr2=tr2, gamma1=g1, gamma2=g2, E_new=Et, eta=eta)
 
 
-def addition_residual(p, q, lam0, mu, branch, pt=None, qt=None, Et=None, du=None):
+def addition_residual(p: Sequence[mp.mpf], q: Sequence[mp.mpf], lam0: mp.mpf, mu: mp.mpf, branch: int,
+                      pt: Sequence[MPNumber] | None = None, qt: Sequence[MPNumber] | None = None,
+                      Et: Sequence[MPNumber] | None = None, du: MPNumber | None = None) -> mp.mpf:
     """Residual of the corrected, branch-free addition formula for one step, evaluated *forward*.
 
     sn(u + du) = P~, cn(u + du) dn(u + du) = 2 sinh(q~1 - q~2)/sqrt(I2^2-4), e^{q~1+q~2} =
@@ -364,7 +373,8 @@ def addition_residual(p, q, lam0, mu, branch, pt=None, qt=None, Et=None, du=None
                abs(Et[0] * Et[1] - E1E2) / max(1, abs(E1E2)))
 
 
-def printed_addform_residual(p, q, pt, I2, lam0, mu, I1):
+def printed_addform_residual(p: Sequence[mp.mpf], q: Sequence[mp.mpf], pt: Sequence[MPNumber], I2: mp.mpf,
+                             lam0: mp.mpf, mu: mp.mpf, I1: mp.mpf) -> mp.mpf:
     """|F(P~) - F(P) - F(l-) + F(l+)| with the principal F, as printed (eq. addform)."""
     k, _ = modulus(I2)
     r = mp.sqrt(I2 - 2)
@@ -373,17 +383,18 @@ def printed_addform_residual(p, q, pt, I2, lam0, mu, I1):
     return abs(F_principal(Pt, k) - F_principal(P, k) - F_principal(lm, k) + F_principal(lp, k))
 
 
-def state_on_level(I1, I2, x, theta1, sign):
+def state_on_level(I1: mp.mpf, I2: mp.mpf, x: mp.mpf, theta1: mp.mpf,
+                   sign: int) -> tuple[list[mp.mpf], list[mp.mpf]]:
     """(p, q) with actions (I1, I2), q1 - q2 = x, q1 + q2 = theta1, sign of p1 - p2 = sign."""
     Pr = sign * mp.sqrt(I2 - 2 * mp.cosh(x))
     return [I1 + Pr, I1 - Pr], [(theta1 + x) / 2, (theta1 - x) / 2]
 
 
-def _fmt(v):
+def _fmt(v: float) -> str:
     return f"{v:.17g}"
 
 
-def sample_state(rng, *, x_sign, p_sign):
+def sample_state(rng: random.Random, *, x_sign: int, p_sign: int) -> tuple[list[str], list[str]]:
     """A random real state (decimal strings p, q) with sign(q1 - q2) = x_sign, sign(p2 - p1) = p_sign."""
     I1, I2 = rng.uniform(-2, 2), rng.uniform(2.3, 9)
     x = x_sign * rng.uniform(0.03, 0.97) * math.acosh(I2 / 2)
@@ -392,7 +403,7 @@ def sample_state(rng, *, x_sign, p_sign):
     return [_fmt(I1 + Pr), _fmt(I1 - Pr)], [_fmt((th1 + x) / 2), _fmt((th1 - x) / 2)]
 
 
-def _s_in(zone, k, rng):
+def _s_in(zone: str, k: float, rng: random.Random) -> float:
     if zone == "in":
         return rng.uniform(-0.95, 0.95)
     if zone == "gap":
@@ -406,7 +417,8 @@ _ZONES = {"inner": [("in", "in")], "outer-same": [("out+", "out+"), ("out-", "ou
           "gap": [("gap", "in"), ("gap", "out+"), ("gap", "gap")]}
 
 
-def sample_case(reg, rng, *, x_sign=None):
+def sample_case(reg: str, rng: random.Random, *,
+                x_sign: int | None = None) -> tuple[list[str], list[str], str, str]:
     """A random case of regime ``reg``: decimal strings (p, q, lam0, mu), exact at any dps.
 
     ``rng`` is a ``random.Random``; ``x_sign`` forces the sign of q1 - q2.

@@ -7,19 +7,29 @@ set is limited by Cauchy-Schwarz for the moments of the positive weight
 """
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
+from typing import Any, TypeAlias
+
 import mpmath as mp
 
+from .literal import MPLike
 from .spectral import flow_coefficients_jacobian, flow_coefficients_mp
 from .trace import hamiltonians, trace_gap
+
+#: a residual: the vector F(x), or None where F is not defined (no real flow at x)
+Residual: TypeAlias = "Callable[[list[mp.mpf]], list[mp.mpf] | None]"
+#: its Jacobian, as rows
+Jacobian: TypeAlias = "Callable[[list[mp.mpf]], Any]"
 
 __all__ = ["solve_parameters"]
 
 
-def _norm(r):
+def _norm(r: Sequence[mp.mpf]) -> mp.mpf:
     return mp.sqrt(mp.fsum(v ** 2 for v in r))
 
 
-def _line_search(F, x, dx, accept):
+def _line_search(F: Residual, x: Sequence[mp.mpf], dx: Sequence[mp.mpf],
+                 accept: Callable[[list[mp.mpf], mp.mpf], bool]) -> tuple[list[mp.mpf], mp.mpf] | None:
     """``(x + lam dx, lam)`` for the first ``lam = 1, 1/2, ...`` where F is defined and
     ``accept(F(x + lam dx), lam)`` holds; None below ``lam = 2**-30``."""
     lam = mp.mpf(1)
@@ -32,13 +42,14 @@ def _line_search(F, x, dx, accept):
     return None
 
 
-def _linearise(F, J, x):
+def _linearise(F: Residual, J: Jacobian, x: list[mp.mpf]) -> tuple[list[mp.mpf], mp.matrix] | None:
     """``(F(x), J(x))``, or None where F is not defined."""
     r = F(x)
     return None if r is None else (r, mp.matrix(J(x)))
 
 
-def _newton(F, J, x0, tol, maxit=40):
+def _newton(F: Residual, J: Jacobian, x0: Sequence[MPLike], tol: mp.mpf,
+            maxit: int = 40) -> tuple[list[mp.mpf], int] | None:
     x = [mp.mpmathify(v) for v in x0]
     for it in range(maxit):
         lin = _linearise(F, J, x)
@@ -65,11 +76,13 @@ def _newton(F, J, x0, tol, maxit=40):
         if step is None:
             return None
         x = step[0]
-    r = F(x)
-    return (x, maxit) if r is not None and max(abs(v) for v in r) < tol else None
+    rf = F(x)
+    return (x, maxit) if rf is not None and max(abs(v) for v in rf) < tol else None
 
 
-def solve_parameters(p, q, c_target, *, mode="exact", indices=None, guess=None, tol=None):
+def solve_parameters(p: Sequence[MPLike], q: Sequence[MPLike], c_target: Sequence[MPLike], *, mode: str = "exact",
+                     indices: Sequence[int] | None = None, guess: tuple[mp.mpf, mp.mpf] | None = None,
+                     tol: MPLike | None = None) -> dict[str, Any] | None:
     r"""Find (lam0, mu, branch) whose BT samples the flow of sum_k c_k H_k through (p, q).
 
     Uses the signed form c_k(lam0, mu) = -int_{lam0-mu}^{lam0+mu} lam^k/sqrt(tr^2-4) dlam
@@ -95,9 +108,9 @@ def solve_parameters(p, q, c_target, *, mode="exact", indices=None, guess=None, 
     H = hamiltonians(p, q)
     coeffs = H[::-1]
 
-    memo = {}
+    memo: dict[tuple[mp.mpf, mp.mpf], list[mp.mpf] | None] = {}
 
-    def cvec(x):
+    def cvec(x: Sequence[mp.mpf]) -> list[mp.mpf] | None:
         l0, m = x
         key = (l0, m)
         if key not in memo:
@@ -107,7 +120,7 @@ def solve_parameters(p, q, c_target, *, mode="exact", indices=None, guess=None, 
                 memo[key] = flow_coefficients_mp(p, q, l0, m, 1, check=False, ks=range(N))
         return memo[key]
 
-    def jac(x):
+    def jac(x: Sequence[mp.mpf]) -> list[tuple[mp.mpf, mp.mpf]]:
         return flow_coefficients_jacobian(p, q, x[0], x[1], 1)
 
     if mode == "exact":
@@ -120,8 +133,9 @@ def solve_parameters(p, q, c_target, *, mode="exact", indices=None, guess=None, 
         F = lambda x: (lambda c: None if c is None else
                        [c[k] / c[r] - c_target[k] / c_target[r] for k in idx[:-1]])(cvec(x))
 
-        def J(x):
+        def J(x: Sequence[mp.mpf]) -> list[list[mp.mpf]]:
             jj, c = jac(x), cvec(x)
+            assert c is not None                      # J is only taken where F is defined
             return [[(jj[k][i] * c[r] - c[k] * jj[r][i]) / c[r] ** 2 for i in (0, 1)] for k in idx[:-1]]
     elif mode == "lstsq":
         idx = tuple(indices or tuple(range(N)))
@@ -161,7 +175,8 @@ def solve_parameters(p, q, c_target, *, mode="exact", indices=None, guess=None, 
                 residual=res)
 
 
-def _gauss_newton(F, J, x0, tol, maxit=80):
+def _gauss_newton(F: Residual, J: Jacobian, x0: Sequence[MPLike], tol: mp.mpf,
+                  maxit: int = 80) -> tuple[list[mp.mpf], int] | None:
     x = [mp.mpmathify(v) for v in x0]
     for it in range(maxit):
         lin = _linearise(F, J, x)

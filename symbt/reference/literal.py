@@ -34,14 +34,27 @@ Example
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
+from types import ModuleType
+from typing import Any, TypeAlias
+
 import mpmath as mp
 from mpmath import libmp as _libmp
+
+#: a real or complex mpmath number (the literal route continues off the real line where the map is complex)
+MPNumber: TypeAlias = "mp.mpf | mp.mpc"
+#: what the routes take: mpmath numbers, or numbers and decimal strings ``mpmath.mpmathify`` converts
+MPLike: TypeAlias = "mp.mpf | mp.mpc | int | float | str"
+#: an mpf as mpmath's ``libmp`` works on it: ``(sign, mantissa, exponent, bitcount)``
+RawMPF: TypeAlias = "tuple[int, int, int, int]"
+#: ``(p_new, q_new, info)`` of :func:`literal_step`; ``info`` maps names to numbers or lists of them
+StepResult: TypeAlias = "tuple[list[MPNumber], list[MPNumber], dict[str, Any]]"
 
 __all__ = ["lax_matrix", "literal_step", "spectral_trace_mp", "phi_from_traces", "signed_arccosh_half",
            "reference_step", "literal_trace"]
 
 
-def lax_matrix(lam, p, q):
+def lax_matrix(lam: MPNumber, p: Sequence[MPNumber], q: Sequence[MPNumber]) -> mp.matrix:
     """:math:`L(\\lambda) = l_N \\cdots l_1` as an mpmath matrix (eq. ``eq:lax``).
 
     The product is written out entry by entry with the operations ``mp.matrix`` multiplication
@@ -64,7 +77,8 @@ def lax_matrix(lam, p, q):
     return mp.matrix([[a, b], [c, d]])
 
 
-def _lax_entries(lam, p, ex):
+def _lax_entries(lam: MPNumber, p: Sequence[MPNumber],
+                 ex: Sequence[tuple[MPNumber, MPNumber]]) -> tuple[MPNumber, MPNumber, MPNumber, MPNumber]:
     """The entries ``(a, b, c, d)`` of :func:`lax_matrix` from ``ex[j] = (exp(q_j), exp(-q_j))``.
 
     On real mpf the dot products are done as ``mp.fdot`` does them (exact products, one rounded
@@ -88,12 +102,13 @@ def _lax_entries(lam, p, ex):
     return a, b, c, d
 
 
-def spectral_trace_mp(lam, p, q):
+def spectral_trace_mp(lam: MPNumber, p: Sequence[MPNumber], q: Sequence[MPNumber]) -> MPNumber:
     M = lax_matrix(lam, p, q)
     return M[0, 0] + M[1, 1]
 
 
-def literal_step(p, q, lam0, mu, branch: int = 1, *, gamma_signs=None):
+def literal_step(p: Sequence[MPLike], q: Sequence[MPLike], lam0: MPLike, mu: MPLike, branch: int = 1, *,
+                 gamma_signs: tuple[int, int] | None = None) -> StepResult:
     """One step of the map along the paper's route.
 
     ``gamma_signs=(s1, s2)`` overrides the branch independently at
@@ -114,7 +129,8 @@ def literal_step(p, q, lam0, mu, branch: int = 1, *, gamma_signs=None):
     return _literal_step_generic(p, q, lam0, mu, s1, s2)
 
 
-def _literal_step_generic(p, q, lam0, mu, s1, s2):
+def _literal_step_generic(p: list[MPNumber], q: list[MPNumber], lam0: MPNumber, mu: MPNumber, s1: int,
+                          s2: int) -> StepResult:
     N = len(p)
     l1, l2 = lam0 + mu, lam0 - mu
     # exp(+-q_j) once for both matrices and for E_j: the values lax_matrix and the list below would compute
@@ -142,7 +158,7 @@ def _literal_step_generic(p, q, lam0, mu, s1, s2):
     return pt, qt, info
 
 
-def _literal_step_real(p, q, lam0, mu, s1, s2):
+def _literal_step_real(p: list[mp.mpf], q: list[mp.mpf], lam0: mp.mpf, mu: mp.mpf, s1: int, s2: int) -> StepResult:
     """:func:`_literal_step_generic` on real mpf, written on mpmath's ``libmp`` tuples.
 
     Every line performs the operation the mpf operators perform (the same ``libmp`` function, in
@@ -161,7 +177,7 @@ def _literal_step_real(p, q, lam0, mu, s1, s2):
     l1, l2 = add(l0, m, prec, rnd), sub(l0, m, prec, rnd)
     ex = [(exp(v, prec, rnd), exp(neg(v, prec, rnd), prec, rnd)) for v in Q]
 
-    def lax(lam):  # _lax_entries on tuples
+    def lax(lam: RawMPF) -> tuple[RawMPF, RawMPF, RawMPF]:  # _lax_entries on tuples
         a, b, c, d = L.fone, L.fzero, L.fzero, L.fone
         for pj, (ej, eij) in zip(P, ex):
             s, e = add(lam, pj, prec, rnd), neg(ej, prec, rnd)
@@ -195,7 +211,7 @@ def _literal_step_real(p, q, lam0, mu, s1, s2):
     pt = [sub(add(P[j], eta[j], prec, rnd), eta[(j + 1) % N], prec, rnd) for j in range(N)]
     mk = mp.mp.make_mpf
 
-    def mks(vs):
+    def mks(vs: list[RawMPF]) -> list[mp.mpf]:
         return [mk(v) for v in vs]
 
     info = dict(x=mks(xs), y=mks(ys), z=mks(zs), eta=mks(eta), tr1=mk(tr1), tr2=mk(tr2), gamma1=mk(g1),
@@ -203,7 +219,8 @@ def _literal_step_real(p, q, lam0, mu, s1, s2):
     return mks(pt), mks(qt), info
 
 
-def phi_from_traces(tr1, tr2, branch, *, ns=mp):
+# Any: mpmath numbers or SymPy expressions, as the namespace ``ns`` (a module) computes them
+def phi_from_traces(tr1: Any, tr2: Any, branch: Any, *, ns: ModuleType = mp) -> Any:
     r"""The real Phi on the map of branch ``b`` from ``tr_i = tr L(lambda_i)`` (corrects eq. ``newkmu``).
 
     :math:`\Phi = \sum_k \ln|(\eta_k+\mu)/(\eta_k-\mu)| = -b\,(\operatorname{sgn}(tr_1)\operatorname{arccosh}(|tr_1|/2)
@@ -224,7 +241,7 @@ def phi_from_traces(tr1, tr2, branch, *, ns=mp):
     return -branch * (signed_arccosh_half(tr1, ns=ns) + signed_arccosh_half(tr2, ns=ns))
 
 
-def signed_arccosh_half(T, *, ns=mp):
+def signed_arccosh_half(T: Any, *, ns: ModuleType = mp) -> Any:
     r"""The real branch of :math:`\operatorname{arccosh}(T/2)` entering Phi:
     :math:`\operatorname{sgn}(T)\operatorname{arccosh}(|T|/2)` (:math:`|T| \ge 2`); ``ns`` as in
     :func:`phi_from_traces` (the density of H in eqs. ``Hdis``, ``AA2`` is ``-b`` times it).
@@ -235,12 +252,13 @@ def signed_arccosh_half(T, *, ns=mp):
     return ns.sign(T) * ns.acosh(abs(T) / 2)
 
 
-def literal_trace(lam, p, q):
+def literal_trace(lam: MPLike, p: Sequence[MPLike], q: Sequence[MPLike]) -> MPNumber:
     """``tr L(lam)`` from the literal 2x2 product (mpmath, current precision)."""
     return spectral_trace_mp(mp.mpf(lam), [mp.mpf(v) for v in p], [mp.mpf(v) for v in q])
 
 
-def reference_step(p, q, lam0, mu, *, branch=1, guard=None, verify=False):
+def reference_step(p: Sequence[MPLike], q: Sequence[MPLike], lam0: MPLike, mu: MPLike, *, branch: int = 1,
+                   guard: int | None = None, verify: bool = False) -> tuple[list[MPNumber], list[MPNumber]]:
     """:func:`literal_step` with automatic guard digits; returns ``(p_new, q_new)`` as lists at ``mp.dps``.
 
     ``guard`` extra decimal digits are used internally (default: 20 plus twice

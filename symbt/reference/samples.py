@@ -9,6 +9,7 @@ into mpf at the working precision, so the points are the same at any dps.
 from __future__ import annotations
 
 import random
+from typing import Any
 
 import mpmath as mp
 
@@ -18,13 +19,14 @@ from .literal import literal_step
 __all__ = ["admissible_states", "paper_state"]
 
 
-def paper_state(mu: str = "5"):
+def paper_state(mu: str = "5") -> tuple[list[mp.mpf], list[mp.mpf], mp.mpf, mp.mpf]:
     """The paper's example ``(p, q, lam0, mu)`` as mpf at the current precision."""
     return ([mp.mpf(v) for v in EXAMPLE["p"]], [mp.mpf(v) for v in EXAMPLE["q"]],
             mp.mpf(EXAMPLE["lam0"]), mp.mpf(mu))
 
 
-def _real_map(p, q, lam0, mu, branch):
+def _real_map(p: list[mp.mpf], q: list[mp.mpf], lam0: mp.mpf, mu: mp.mpf,
+              branch: int) -> tuple[bool, dict[str, Any] | None]:
     try:
         pt, qt, info = literal_step(p, q, lam0, mu, branch)
     except (ZeroDivisionError, ValueError):
@@ -34,7 +36,8 @@ def _real_map(p, q, lam0, mu, branch):
     return True, info
 
 
-def admissible_states(N: int, trace_sign: int, count: int, seed: int = 0):
+def admissible_states(N: int, trace_sign: int, count: int,
+                      seed: int = 0) -> list[tuple[list[mp.mpf], list[mp.mpf], mp.mpf, mp.mpf]]:
     """``count`` tuples ``(p, q, lam0, mu)`` (lists of mpf) with sign(tr L(lambda_i)) = ``trace_sign``."""
     rng = random.Random(1000 * N + 10 * seed + (trace_sign > 0))
     out: list = []
@@ -52,6 +55,7 @@ def admissible_states(N: int, trace_sign: int, count: int, seed: int = 0):
             ok1, info = _real_map(*state, 1)
             if not ok1:
                 continue
+            assert info is not None                   # a real map has its info
             t1, t2 = info["tr1"], info["tr2"]
             if not (isinstance(t1, mp.mpf) and isinstance(t2, mp.mpf)):
                 continue

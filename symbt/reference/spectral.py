@@ -10,10 +10,12 @@ r"""Spectral quantities at high precision: the real Phi, its gradient and the fl
 """
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
+
 import mpmath as mp
 
 from ..numeric import flow_coefficients
-from .literal import phi_from_traces
+from .literal import MPLike, phi_from_traces
 from .trace import hamiltonians, trace, trace_gap, trace_gradient
 
 __all__ = ["NoRealFlowError", "phi_real", "phi_gradient", "flow_coefficients_mp", "flow_coefficients_jacobian"]
@@ -23,12 +25,13 @@ class NoRealFlowError(ValueError):
     """|tr L| <= 2 somewhere on [lam0 - mu, lam0 + mu]: Phi and the c_k are not real there."""
 
 
-def phi_real(p, q, lam0, mu, branch):
+def phi_real(p: Sequence[MPLike], q: Sequence[MPLike], lam0: mp.mpf, mu: mp.mpf, branch: int) -> mp.mpf:
     """Real Phi = -b (sgn tr1 arccosh(|tr1|/2) + sgn tr2 arccosh(|tr2|/2)), tr_i = tr L(lam0 +- mu)."""
     return phi_from_traces(trace(lam0 + mu, p, q), trace(lam0 - mu, p, q), branch)
 
 
-def phi_gradient(p, q, lam0, mu, branch):
+def phi_gradient(p: Sequence[MPLike], q: Sequence[MPLike], lam0: mp.mpf, mu: mp.mpf,
+                 branch: int) -> tuple[list[mp.mpf], list[mp.mpf]]:
     """``(dPhi/dp, dPhi/dq)``: dPhi/dtr_i = -b / sqrt(tr_i^2 - 4) (positive root, either sign of tr)."""
     N = len(p)
     gp, gq = [mp.mpf(0)] * N, [mp.mpf(0)] * N
@@ -43,7 +46,8 @@ def phi_gradient(p, q, lam0, mu, branch):
     return gp, gq
 
 
-def flow_coefficients_mp(p, q, lam0, mu, branch=1, *, check=True, ks=None):
+def flow_coefficients_mp(p: Sequence[MPLike], q: Sequence[MPLike], lam0: MPLike, mu: MPLike, branch: int = 1, *,
+                         check: bool = True, ks: Iterable[int] | None = None) -> list[mp.mpf | None]:
     """``[c_0, ..., c_N]``, c_k = -b int_{lam0-mu}^{lam0+mu} lam^k / sqrt(tr L^2 - 4) dlam (eq. ``eqdisc``).
 
     The positive root is used for both signs of tr L; ``branch`` b = +1 is the
@@ -68,7 +72,8 @@ def flow_coefficients_mp(p, q, lam0, mu, branch=1, *, check=True, ks=None):
     return [got.get(k) for k in range(N + 1)]
 
 
-def flow_coefficients_jacobian(p, q, lam0, mu, branch=1):
+def flow_coefficients_jacobian(p: Sequence[MPLike], q: Sequence[MPLike], lam0: mp.mpf, mu: mp.mpf,
+                               branch: int = 1) -> list[tuple[mp.mpf, mp.mpf]]:
     """``J[k] = (dc_k/dlam0, dc_k/dmu)`` in closed form (fundamental theorem of calculus)."""
     H = hamiltonians(p, q)
     coeffs = H[::-1]

@@ -17,16 +17,25 @@ products alone (no numerical differentiation).
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import TypeAlias
+
 import mpmath as mp
 
+from .literal import MPLike
 from .trace import bonds, trace_polynomial
+
+#: a coefficient of the flow's polynomials: an integer of the trace polynomial times an mpmath c_k
+Coefficient: TypeAlias = "int | mp.mpf"
+#: a polynomial in (p, a) as ``{exponents: coefficient}``
+Polynomial: TypeAlias = "dict[tuple[int, ...], Coefficient]"
 
 __all__ = ["hamilton_equations", "hamiltonian_flow", "FlowResult"]
 
 
-def _poly_G(N, c):
+def _poly_G(N: int, c: Sequence[Coefficient]) -> Polynomial:
     """G = sum_k c_k H_k as {(e_p, e_a): coef}."""
-    G: dict = {}
+    G: Polynomial = {}
     for key, v in trace_polynomial(N).items():
         k, e = key[0], key[1:]
         if k < len(c) and c[k]:
@@ -34,8 +43,8 @@ def _poly_G(N, c):
     return G
 
 
-def _d(poly, i):
-    out = {}
+def _d(poly: Polynomial, i: int) -> Polynomial:
+    out: Polynomial = {}
     for e, v in poly.items():
         if e[i]:
             ee = list(e)
@@ -44,8 +53,8 @@ def _d(poly, i):
     return out
 
 
-def _mul_var(poly, i):
-    out = {}
+def _mul_var(poly: Polynomial, i: int) -> Polynomial:
+    out: Polynomial = {}
     for e, v in poly.items():
         ee = list(e)
         ee[i] += 1
@@ -53,15 +62,15 @@ def _mul_var(poly, i):
     return out
 
 
-def _add(*polys, signs=None):
-    out = {}
+def _add(*polys: Polynomial, signs: Sequence[int] | None = None) -> Polynomial:
+    out: Polynomial = {}
     for s, P in zip(signs or [1] * len(polys), polys):
         for e, v in P.items():
             out[e] = out.get(e, 0) + s * v
     return {e: v for e, v in out.items() if v != 0}
 
 
-def hamilton_equations(N, c, sign=1):
+def hamilton_equations(N: int, c: Sequence[Coefficient], sign: int = 1) -> list[Polynomial]:
     """Right-hand sides in the state (q_1..q_N, p_1..p_N, a_1..a_N) as polynomials in (p, a).
 
     qdot_j = dG/dp_j;  pdot_j = -dG/dq_j = a_j dG/da_j - a_{j-1} dG/da_{j-1};
@@ -78,12 +87,13 @@ def hamilton_equations(N, c, sign=1):
 class _TaylorSystem:
     """Jet evaluation of a polynomial vector field by a DAG of binary products."""
 
-    def __init__(self, N, rhs):
+    def __init__(self, N: int, rhs: Sequence[Polynomial]) -> None:
         self.N = N
         self.nvar = 3 * N
         # variable index of monomial factor i (i < N: p_i -> state N + i; i >= N: a -> state 2N + i - N)
         self.fac_state = [N + i for i in range(N)] + [2 * N + i for i in range(N)]
-        nodes = {}  # key: sorted tuple of factor indices -> (prefix key, factor)
+        # key: sorted tuple of factor indices -> (prefix key, factor)
+        nodes: dict[tuple[int, ...], tuple[tuple[int, ...], int]] = {}
         self.terms = []
         for P in rhs:
             tl = []
@@ -96,9 +106,9 @@ class _TaylorSystem:
         self.order = sorted(nodes, key=len)
         self.nodes = nodes
 
-    def jets(self, x0, K):
+    def jets(self, x0: Sequence[mp.mpf], K: int) -> list[list[mp.mpf]]:
         X = [[v] for v in x0]
-        J = {}
+        J: dict[tuple[int, ...], list[mp.mpf]] = {}
         for key in self.order:
             J[key] = []
         for n in range(K):
@@ -122,7 +132,8 @@ class FlowResult(tuple):
     order: int = 0
 
 
-def hamiltonian_flow(p, q, c, t, *, tol=None, order=None, max_steps=200000):
+def hamiltonian_flow(p: Sequence[MPLike], q: Sequence[MPLike], c: Sequence[MPLike], t: MPLike, *,
+                     tol: MPLike | None = None, order: int | None = None, max_steps: int = 200000) -> FlowResult:
     """Time-``t`` flow of G = sum_k c_k H_k from (p, q), by an adaptive Taylor method at ``mp.dps``.
 
     ``c = [c_0, ..., c_N]`` (missing trailing entries are 0).  Negative ``t``

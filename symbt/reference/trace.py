@@ -8,20 +8,25 @@ like a Lucas number, so this is a reference for small N, independent of the 2x2 
 used everywhere else.
 
 >>> import mpmath as mp
+
+from .literal import MPLike, MPNumber
 >>> H = hamiltonians([mp.mpf("0.3"), mp.mpf("-0.2")], [mp.mpf("0.1"), mp.mpf("0.4")])
 >>> mp.nstr(H[1], 5), H[2]
 ('0.1', mpf('1.0'))
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from itertools import combinations
 
 import mpmath as mp
 
+from .literal import MPLike, MPNumber
+
 __all__ = ["trace_polynomial", "hamiltonians", "trace", "trace_gradient", "trace_gap", "bonds"]
 
 
-def trace_polynomial(N: int) -> dict:
+def trace_polynomial(N: int) -> dict[tuple[int, ...], int]:
     """``{(k, e_p1..e_pN, e_a1..e_aN): integer coefficient}`` with tr L = sum coef * lam^k p^e a^e.
 
     ``a_j = exp(q_{j+1} - q_j)`` (indices mod N).  Bond j joins sites j, j+1 and
@@ -33,7 +38,7 @@ def trace_polynomial(N: int) -> dict:
     if N < 2:
         raise ValueError("N >= 2")
     bonds = [frozenset((j, (j + 1) % N)) for j in range(N)]
-    poly: dict = {}
+    poly: dict[tuple[int, ...], int] = {}
     for r in range(N // 2 + 1):
         for M in combinations(range(N), r):
             covered = [s for b in M for s in bonds[b]]
@@ -53,12 +58,12 @@ def trace_polynomial(N: int) -> dict:
     return {k: v for k, v in poly.items() if v}
 
 
-def bonds(q):
+def bonds(q: Sequence[MPNumber]) -> list[MPNumber]:
     N = len(q)
     return [mp.exp(q[(j + 1) % N] - q[j]) for j in range(N)]
 
 
-def _mono(vals, e):
+def _mono(vals: Sequence[MPNumber], e: Sequence[int]) -> MPNumber:
     out = mp.mpf(1)
     for v, k in zip(vals, e):
         if k:
@@ -66,7 +71,7 @@ def _mono(vals, e):
     return out
 
 
-def hamiltonians(p, q):
+def hamiltonians(p: Sequence[MPLike], q: Sequence[MPLike]) -> list[MPNumber]:
     """``[H_0, ..., H_N]`` with tr L(lam) = sum_k H_k lam^k (eq. ``tra``)."""
     N = len(p)
     p = [mp.mpmathify(v) for v in p]
@@ -77,12 +82,13 @@ def hamiltonians(p, q):
     return H
 
 
-def trace(lam, p, q):
+def trace(lam: MPLike, p: Sequence[MPLike], q: Sequence[MPLike]) -> MPNumber:
     H = hamiltonians(p, q)
     return mp.polyval(H[::-1], mp.mpmathify(lam))
 
 
-def trace_gradient(lam, p, q):
+def trace_gradient(lam: MPLike, p: Sequence[MPLike],
+                   q: Sequence[MPLike]) -> tuple[list[MPNumber], list[MPNumber]]:
     """``(d tr/dp_j, d tr/dq_j)`` at lam, from the polynomial (chain rule through a_j)."""
     N = len(p)
     p = [mp.mpmathify(v) for v in p]
@@ -106,7 +112,7 @@ def trace_gradient(lam, p, q):
 
 
 
-def trace_gap(p, q, lo, hi):
+def trace_gap(p: Sequence[MPLike], q: Sequence[MPLike], lo: MPLike, hi: MPLike) -> mp.mpf:
     """min over [lo, hi] of |tr L(lam)| - 2 (end points and critical points), or 0 if tr L = +-2 somewhere."""
     H = hamiltonians(p, q)
     lo, hi = mp.mpmathify(lo), mp.mpmathify(hi)
