@@ -34,28 +34,30 @@ lam0, mu = sp.symbols("lambda0 mu", real=True)
 lam1, lam2 = sp.symbols("lambda1 lambda2", real=True)
 
 
-def single_darboux(alpha, beta, zeta_=zeta, lam_=lam) -> sp.Matrix:
+def single_darboux(alpha: sp.Expr, beta: sp.Expr, zeta_: sp.Expr = zeta, lam_: sp.Expr = lam) -> sp.Matrix:
     """Eq. ``dj`` (and ``d1`` for j = 1)."""
     return sp.Matrix([[lam_ - zeta_ - alpha * beta, -alpha], [beta, 1]])
 
 
-def single_darboux_adjugate(alpha, beta, zeta_=zeta, lam_=lam) -> sp.Matrix:
+def single_darboux_adjugate(alpha: sp.Expr, beta: sp.Expr, zeta_: sp.Expr = zeta, lam_: sp.Expr = lam) -> sp.Matrix:
     """Eq. ``hd``: the adjugate of :func:`single_darboux` as printed."""
     return sp.Matrix([[1, alpha], [-beta, lam_ - zeta_ - alpha * beta]])
 
 
-def composed_darboux(x, y, l1=lam1, l2=lam2, lam_=lam) -> sp.Matrix:
+def composed_darboux(x: sp.Expr, y: sp.Expr, l1: sp.Expr = lam1, l2: sp.Expr = lam2, lam_: sp.Expr = lam) -> sp.Matrix:
     """Eqs. ``D``/``Dapp``/``daj``: the two-parameter Darboux matrix as printed."""
     return sp.Matrix([[lam_ - l1 - x * y, -x], [y * (l1 - l2 + x * y), lam_ - l2 + x * y]])
 
 
-def darboux_composition(x1, x2, y1, y2, l1=lam1, l2=lam2, lam_=lam) -> sp.Matrix:
+def darboux_composition(x1: sp.Expr, x2: sp.Expr, y1: sp.Expr, y2: sp.Expr, l1: sp.Expr = lam1, l2: sp.Expr = lam2,
+                        lam_: sp.Expr = lam) -> sp.Matrix:
     """Eq. ``D1D2``: :math:`\\hat D(\\lambda,\\lambda_2)\\,D(\\lambda,\\lambda_1)`, expanded."""
     Dhat2 = sp.Matrix([[1, x2], [-y2, lam_ - l2 - x2 * y2]])
     D1 = sp.Matrix([[lam_ - l1 - x1 * y1, -x1], [y1, 1]])
     return (Dhat2 * D1).applyfunc(sp.expand)
 
 
-def local_relation_residual(d_here, d_next, p, E, pt, Et, lam_=lam) -> sp.Matrix:
+def local_relation_residual(d_here: sp.Matrix, d_next: sp.Matrix, p: sp.Expr, E: sp.Expr, pt: sp.Expr, Et: sp.Expr,
+                            lam_: sp.Expr = lam) -> sp.Matrix:
     """:math:`l_j(\\tilde p,\\tilde q) d_j - d_{j+1} l_j(p,q)` (zero iff the local relation holds)."""
     return (local_lax(lam_, pt, Et) * d_here - d_next * local_lax(lam_, p, E)).applyfunc(sp.expand)

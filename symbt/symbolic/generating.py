@@ -29,6 +29,7 @@ True
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
 from functools import cache, cached_property
 
 import sympy as sp
@@ -38,7 +39,7 @@ from .darboux import lam0, mu
 __all__ = ["GeneratingFunction", "generating_function", "implicit_derivative"]
 
 
-def implicit_derivative(expr, var, etas, mu_):
+def implicit_derivative(expr: sp.Expr, var: sp.Symbol, etas: Mapping[sp.Symbol, sp.Expr], mu_: sp.Symbol) -> sp.Expr:
     r"""d expr / d var with each :math:`\eta` of ``etas`` an implicit function, :math:`\eta^2 = \mu^2 + w`.
 
     ``etas`` maps each :math:`\eta` to its :math:`w`; then
@@ -77,7 +78,7 @@ class GeneratingFunction:
         self.eta = sp.symbols(f"eta1:{N + 1}", real=True)
         self.mu, self.lam0 = mu, lam0
 
-    def w(self, j: int):
+    def w(self, j: int) -> sp.Expr:
         """:math:`w_j` (0-based j; the neighbour j-1 is taken mod N)."""
         k = (j - 1) % self.N
         return (self.E[j] - self.Et[j]) * (1 / self.Et[k] - 1 / self.E[k])
@@ -87,13 +88,13 @@ class GeneratingFunction:
         return {self.eta[j]: sp.expand(self.eta[j] ** 2 - self.mu ** 2 - self.w(j)) for j in range(self.N)}
 
     @cached_property
-    def F(self):
+    def F(self) -> sp.Expr:
         """Eq. ``newgf`` with q_k = log E_k, q~_k = log E~_k."""
         mu, lam0 = self.mu, self.lam0
         return sp.Add(*[mu * sp.log((e + mu) / (e - mu)) - 2 * e - lam0 * (sp.log(E) - sp.log(Et))
                         for e, E, Et in zip(self.eta, self.E, self.Et)])
 
-    def total_derivative(self, expr, var):
+    def total_derivative(self, expr: sp.Expr, var: sp.Symbol) -> sp.Expr:
         """d expr / d var with every eta_j = eta_j(E, E~, mu) differentiated implicitly
         (:func:`implicit_derivative` with :math:`\\eta_j^2 = \\mu^2 + w_j`).
 
@@ -103,17 +104,17 @@ class GeneratingFunction:
         """
         return implicit_derivative(expr, var, {e: self.w(j) for j, e in enumerate(self.eta)}, self.mu)
 
-    def dF_dq(self, j):
+    def dF_dq(self, j: int) -> sp.Expr:
         """:math:`\\partial F/\\partial q_j = E_j\\,dF/dE_j`."""
         return self.E[j] * self.total_derivative(self.F, self.E[j])
 
-    def dF_dqt(self, j):
+    def dF_dqt(self, j: int) -> sp.Expr:
         return self.Et[j] * self.total_derivative(self.F, self.Et[j])
 
-    def dF_dmu(self):
+    def dF_dmu(self) -> sp.Expr:
         return self.total_derivative(self.F, self.mu)
 
-    def momenta_printed(self):
+    def momenta_printed(self) -> tuple[list[sp.Expr], list[sp.Expr]]:
         """Eq. ``imptransf`` as printed: (p_j, p~_j) in terms of eta, E, E~."""
         N, lam0 = self.N, self.lam0
         p, pt = [], []

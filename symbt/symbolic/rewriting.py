@@ -6,14 +6,14 @@ rational functions (decided by ``cancel``, see :mod:`symbt.proof`).
 """
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 
 import sympy as sp
 
 __all__ = ["rationalize_exponentials", "linear_integer_form"]
 
 
-def linear_integer_form(arg: sp.Expr, symbols) -> dict[sp.Symbol, int] | None:
+def linear_integer_form(arg: sp.Expr, symbols: Collection[sp.Symbol]) -> dict[sp.Symbol, int] | None:
     """``arg`` as an integer combination of ``symbols`` (no constant), else None."""
     arg = sp.expand(arg)
     coeffs: dict[sp.Symbol, int] = {}
@@ -25,7 +25,8 @@ def linear_integer_form(arg: sp.Expr, symbols) -> dict[sp.Symbol, int] | None:
     return coeffs
 
 
-def rationalize_exponentials(expr, exp_symbols: Mapping[sp.Symbol, sp.Symbol] | None = None):
+def rationalize_exponentials(expr: sp.Expr, exp_symbols: Mapping[sp.Symbol, sp.Symbol] | None = None
+                             ) -> tuple[sp.Expr, dict[sp.Symbol, sp.Symbol]]:
     """Rewrite ``exp``/``cosh``/``sinh`` of integer-linear forms as monomials.
 
     ``exp_symbols`` maps a variable ``s`` to the positive symbol standing for
@@ -49,7 +50,7 @@ def rationalize_exponentials(expr, exp_symbols: Mapping[sp.Symbol, sp.Symbol] | 
         candidates |= e.args[0].free_symbols
     symbols = set(candidates)
 
-    def repl(e):
+    def repl(e: sp.Expr) -> sp.Expr:
         form = linear_integer_form(e.args[0], symbols)
         if form is None:
             return e

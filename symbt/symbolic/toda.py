@@ -24,6 +24,7 @@ Example
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from functools import cache, cached_property
 
 import sympy as sp
@@ -33,7 +34,7 @@ __all__ = ["TodaModel", "toda_model", "local_lax"]
 lam = sp.Symbol("lambda", real=True)
 
 
-def local_lax(lam_, p, E):
+def local_lax(lam_: sp.Expr, p: sp.Expr, E: sp.Expr) -> sp.Matrix:
     """:math:`l_j(\\lambda)` of eq. ``eq:lax`` with ``E = e^{q_j}``."""
     return sp.Matrix([[lam_ + p, -E], [1 / E, 0]])
 
@@ -51,7 +52,8 @@ class TodaModel:
         self.E = sp.symbols(f"E1:{N + 1}", positive=True)
 
     # -- Lax matrix -------------------------------------------------------
-    def lax(self, lam_=None, p=None, E=None) -> sp.Matrix:
+    def lax(self, lam_: sp.Expr | None = None, p: Sequence[sp.Expr] | None = None,
+            E: Sequence[sp.Expr] | None = None) -> sp.Matrix:
         """``L = l_N ... l_1`` (eq. ``eq:lax``), entries polynomial in lambda, p and E^{±1}."""
         lam_ = self.lam if lam_ is None else lam_
         p = self.p if p is None else p
@@ -76,26 +78,26 @@ class TodaModel:
         return [sp.expand(poly.coeff_monomial(self.lam ** k)) for k in range(self.N + 1)]
 
     # -- exp(q) <-> E -----------------------------------------------------
-    def to_E(self, expr):
+    def to_E(self, expr: sp.Expr) -> sp.Expr:
         """Replace ``exp(integer combination of q)`` (and cosh/sinh) by monomials in ``E``."""
         from .rewriting import rationalize_exponentials
 
         out, _ = rationalize_exponentials(expr, dict(zip(self.q, self.E)))
         return out
 
-    def to_q(self, expr):
+    def to_q(self, expr: sp.Expr) -> sp.Expr:
         """Inverse of :meth:`to_E`."""
         return sp.sympify(expr).subs({E: sp.exp(q) for E, q in zip(self.E, self.q)})
 
     # -- calculus in canonical coordinates ---------------------------------
-    def d_q(self, expr, j: int):
+    def d_q(self, expr: sp.Expr, j: int) -> sp.Expr:
         """:math:`\\partial/\\partial q_j` of an expression in E (0-based ``j``)."""
         return self.E[j] * sp.diff(expr, self.E[j])
 
-    def d_p(self, expr, j: int):
+    def d_p(self, expr: sp.Expr, j: int) -> sp.Expr:
         return sp.diff(expr, self.p[j])
 
-    def poisson(self, f, g):
+    def poisson(self, f: sp.Expr, g: sp.Expr) -> sp.Expr:
         """:math:`\\{f, g\\} = \\sum_i f_{p_i} g_{q_i} - f_{q_i} g_{p_i}` (paper's ``{p_i,q_j}=δ_ij``).
 
         The one bracket of the library; its sign is the claim ``intdis.poisson``'s.
@@ -107,7 +109,7 @@ class TodaModel:
         return sp.Add(*[self.d_p(f, i) * self.d_q(g, i) - self.d_q(f, i) * self.d_p(g, i)
                         for i in range(self.N)])
 
-    def hamiltonian_vector_field(self, H):
+    def hamiltonian_vector_field(self, H: sp.Expr) -> tuple[list[sp.Expr], list[sp.Expr]]:
         """``(qdot, pdot)`` for ``xdot = {H, x}``: ``qdot = H_p``, ``pdot = -H_q``.
 
         >>> m = toda_model(2)
