@@ -59,13 +59,13 @@ from typing import Any
 import sympy as sp
 
 from .exact import exact_zero
-from .screen import screen
+from .screen import ScreenResult, screen
 from .verdict import SAFETY, Verdict
 
 __all__ = ["decide"]
 
 
-def _undefined(expr) -> bool:
+def _undefined(expr: sp.Expr) -> bool:
     """A side that is ``nan``/``zoo`` somewhere, or infinite outside the limits of an integral.
 
     (An infinite limit of an ``Integral`` is a value mpmath's quadrature takes; a ``Sum`` to
@@ -82,7 +82,7 @@ def _undefined(expr) -> bool:
     return bool(expr.has(sp.oo, -sp.oo))
 
 
-def decide(lhs, rhs=0, *, relations: Mapping[sp.Symbol, sp.Expr] | None = None,
+def decide(lhs: sp.Expr, rhs: sp.Expr = 0, *, relations: Mapping[sp.Symbol, sp.Expr] | None = None,
            digits: int = 50, points: int = 6, seed: int = 1729, exact: bool = True,
            fixed: Mapping[sp.Symbol, Any] | None = None) -> Verdict:
     """Decide ``lhs == rhs`` (scalars or matrices of equal shape).
@@ -152,7 +152,7 @@ def decide(lhs, rhs=0, *, relations: Mapping[sp.Symbol, sp.Expr] | None = None,
                    error=sr.error)
 
 
-def _cannot_tell(sr, digits: int) -> str:
+def _cannot_tell(sr: ScreenResult, digits: int) -> str:
     """Why the screen could not decide, in words."""
     tol = 10.0 ** (-(digits - 8))
     where = f"at {_point_brief(sr.point)}"
@@ -166,7 +166,7 @@ def _cannot_tell(sr, digits: int) -> str:
     return f"cannot tell at {digits} digits: {where} {why}; raise digits"
 
 
-def _point_brief(point, limit: int = 4) -> str:
+def _point_brief(point: Mapping[str, str] | None, limit: int = 4) -> str:
     items = list((point or {}).items())
     txt = ", ".join(f"{k}={v}" for k, v in items[:limit])
     return (txt + (", ..." if len(items) > limit else "")) or "a sample point"

@@ -45,7 +45,7 @@ def _flint_imports() -> bool:
 
 
 
-def is_rational_in_symbols(expr) -> bool:
+def is_rational_in_symbols(expr: sp.Expr) -> bool:
     """True if ``expr`` is built from symbols and numbers by +, *, integer powers."""
     if expr.is_Atom:
         return bool(expr.is_Symbol or expr.is_Rational or expr is sp.I)
@@ -56,7 +56,7 @@ def is_rational_in_symbols(expr) -> bool:
     return False
 
 
-def reduce_modulo(numerator, relations: Mapping[sp.Symbol, sp.Expr]):
+def reduce_modulo(numerator: sp.Expr, relations: Mapping[sp.Symbol, sp.Expr]) -> sp.Expr:
     """Reduce a polynomial modulo ``relations`` (symbol -> polynomial vanishing on it).
 
     The remainder of polynomial division by each relation in its symbol
@@ -78,14 +78,15 @@ def reduce_modulo(numerator, relations: Mapping[sp.Symbol, sp.Expr]):
     return out
 
 
-def _is_zero_polynomial(num) -> bool:
+def _is_zero_polynomial(num: sp.Expr) -> bool:
     """``num == 0`` as a polynomial.  Not ``num == 0`` on the tree: SymPy 1.14's ``cancel`` can return an
     unevaluated sum such as ``-1/4 + 1/4`` (``tests/test_proof_flint.py``)."""
     gens = sorted(num.free_symbols, key=sp.default_sort_key) or [sp.Dummy("t")]
     return bool(sp.Poly(num, *gens).is_zero)
 
 
-def exact_zero(diff, relations, route: str = "auto") -> tuple[bool | None, str, bool]:
+def exact_zero(diff: sp.Expr, relations: Mapping[sp.Symbol, sp.Expr],
+               route: str = "auto") -> tuple[bool | None, str, bool]:
     """Try to decide ``diff == 0`` exactly.
 
     Returns ``(zero, method, definite)``: ``zero`` is None when the exact layer

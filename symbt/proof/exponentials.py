@@ -147,7 +147,7 @@ def _exponent(e: sp.Expr) -> sp.Expr | None:
     return None
 
 
-def exponentials_as_monomials(*exprs) -> tuple[tuple[sp.Expr, ...], dict[sp.Expr, tuple[sp.Dummy, int]]]:
+def exponentials_as_monomials(*exprs: sp.Expr) -> tuple[tuple[sp.Expr, ...], dict[sp.Expr, tuple[sp.Dummy, int]]]:
     """Rewrite the exponentials of ``exprs`` (jointly) as monomials in ``S = exp(s/d_s)``.
 
     Returns the rewritten expressions and the variables used: ``{s: (S, d_s)}`` per direction ``s``
@@ -185,7 +185,7 @@ def describe_variables(variables: dict[sp.Expr, tuple[sp.Dummy, int]]) -> str:
     >>> describe_variables(exponentials_as_monomials(sp.exp(q / 2) + sp.E)[1])
     'exp_1=e, exp_q=e^(q/2)'
     """
-    def power(s, d):
+    def power(s: sp.Expr, d: int) -> str:
         base = "e" if s is sp.S.One else f"e^{s}"
         if d == 1:
             return base

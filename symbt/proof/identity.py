@@ -67,14 +67,20 @@ from __future__ import annotations
 
 import html
 import numbers
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, TypeAlias
 
 import sympy as sp
 
 from .decider import decide
 from .verdict import STATUS_COLOURS, Verdict, latex_text
+
+#: a side of an identity: a SymPy expression or matrix, a number, or a string SymPy parses
+ExprLike: TypeAlias = "sp.Basic | sp.MatrixBase | complex | str"
+#: side conditions: ``{symbol: relation}``, a list of ``Eq`` or ``(symbol, Eq)`` pairs, one ``Eq``, or None
+RelationsLike: TypeAlias = ("Mapping[sp.Symbol, sp.Basic] | Iterable[sp.Basic | tuple[sp.Symbol, sp.Basic]] | sp.Basic "
+                            "| None")
 
 __all__ = ["IdentityResult", "check_identity", "normalize_relations", "apply_assumptions", "convention_hint",
            "STATUSES"]
@@ -85,7 +91,7 @@ STATUSES = ("proved", "verified", "inconclusive", "false")
 ELLIPTIC = (sp.elliptic_k, sp.elliptic_e, sp.elliptic_f, sp.elliptic_pi)
 
 
-def _short(expr, limit: int = 80) -> str:
+def _short(expr: object, limit: int = 80) -> str:
     s = " ".join(sp.sstr(expr).split())  # matrices print on several lines
     return s if len(s) <= limit else s[: limit - 3] + "..."
 
@@ -208,7 +214,8 @@ def _symbol_lookup(exprs: Iterable[Any]) -> dict[str, sp.Symbol]:
     return out
 
 
-def apply_assumptions(assumptions: Mapping[Any, Mapping[str, bool]] | None, *exprs):
+def apply_assumptions(assumptions: Mapping[Any, Mapping[str, bool]] | None,
+                      *exprs: sp.Expr) -> tuple[Any, ...]:
     """Replace symbols by assumption-carrying ones.
 
     ``assumptions`` maps a symbol (or its name) to an assumption dict, e.g.
@@ -245,13 +252,13 @@ def apply_assumptions(assumptions: Mapping[Any, Mapping[str, bool]] | None, *exp
     return (repl, *out)
 
 
-def _as_poly_expr(rel) -> sp.Expr:
+def _as_poly_expr(rel: sp.Basic) -> sp.Expr:
     if isinstance(rel, sp.Equality):
         return sp.expand(rel.lhs - rel.rhs)
     return sp.expand(sp.sympify(rel))
 
 
-def _pick_symbol(rel) -> sp.Symbol:
+def _pick_symbol(rel: sp.Basic) -> sp.Symbol:
     if isinstance(rel, sp.Equality):
         for side in (rel.lhs, rel.rhs):
             fs = side.free_symbols
@@ -271,7 +278,7 @@ def _pick_symbol(rel) -> sp.Symbol:
     return best[0]
 
 
-def normalize_relations(relations) -> dict[sp.Symbol, sp.Expr]:
+def normalize_relations(relations: RelationsLike) -> dict[sp.Symbol, sp.Expr]:
     """Turn the accepted forms of ``relations`` into ``{symbol: polynomial}``.
 
     >>> eta, mu, w = sp.symbols("eta mu w")
@@ -315,7 +322,8 @@ def _positive_int(name: str, value: Any) -> None:
         raise ValueError(f"check_identity: {name} must be positive, got {value}")
 
 
-def _validate(*, digits, points, seed, exact, fixed, assumptions, relations) -> None:
+def _validate(*, digits: object, points: object, seed: object, exact: object, fixed: object,
+              assumptions: Mapping[Any, object] | None, relations: object) -> None:
     """Clear ``TypeError`` / ``ValueError`` for arguments the deciders would misread.
 
     >>> _validate(digits=0, points=8, seed=1, exact=True, fixed=None, assumptions=None, relations=None)
@@ -342,7 +350,7 @@ def _validate(*, digits, points, seed, exact, fixed, assumptions, relations) -> 
         raise TypeError(f"check_identity: relations must be a dict, a list or an Eq, not {type(relations).__name__}")
 
 
-def _expr(name: str, value: Any):
+def _expr(name: str, value: Any) -> sp.Basic:
     """``value`` as a SymPy expression or matrix; ``TypeError`` for what SymPy cannot read."""
     if isinstance(value, sp.MatrixBase):
         return value
@@ -361,7 +369,8 @@ def _expr(name: str, value: Any):
 
 # --------------------------------------------------------------------------- entry point
 
-def check_identity(lhs, rhs=0, *, relations=None, assumptions=None, digits: int = 50,
+def check_identity(lhs: ExprLike, rhs: ExprLike = 0, *, relations: RelationsLike = None,
+                   assumptions: Mapping[Any, Mapping[str, bool]] | None = None, digits: int = 50,
                    points: int = 8, seed: int = 1729, exact: bool = True,
                    fixed: Mapping[Any, Any] | None = None) -> IdentityResult:
     """Decide ``lhs == rhs`` (scalars or matrices); see the module docstring.
@@ -413,7 +422,7 @@ def check_identity(lhs, rhs=0, *, relations=None, assumptions=None, digits: int 
 
 # --------------------------------------------------------------------------- convention hints
 
-def _reparametrised(expr, to):
+def _reparametrised(expr: sp.Basic, to: Callable[[sp.Expr], sp.Expr]) -> sp.Basic | None:
     """``expr`` with the parameter (last argument) of every SymPy elliptic function replaced by ``to(m)``."""
     if isinstance(expr, sp.MatrixBase):
         entries = [_reparametrised(e, to) for e in expr]
@@ -432,7 +441,8 @@ _SWAPS = (
 )
 
 
-def convention_hint(lhs, rhs, *, relations=None, digits: int = 50, points: int = 8, seed: int = 1729,
+def convention_hint(lhs: sp.Basic, rhs: sp.Basic, *, relations: Mapping[sp.Symbol, sp.Expr] | None = None,
+                    digits: int = 50, points: int = 8, seed: int = 1729,
                     fixed: Mapping[Any, Any] | None = None) -> str:
     """A hint when ``lhs == rhs`` is false but holds after a modulus/parameter swap of elliptic functions.
 

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import random
 import threading
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cache
 from typing import Any
@@ -16,7 +17,7 @@ from .verdict import SAFETY
 __all__ = ["screen", "sample_symbol", "ScreenResult", "PointCheck", "tracked_quad", "high_precision"]
 
 
-def sample_symbol(sym: sp.Symbol, rng: random.Random):
+def sample_symbol(sym: sp.Symbol, rng: random.Random) -> mpmath.mpf | mpmath.mpc:
     """A random value for ``sym`` honouring its SymPy assumptions.
 
     ``integer`` (with ``even``/``odd``, sign), ``positive``/``nonnegative``,
@@ -55,20 +56,20 @@ def sample_symbol(sym: sp.Symbol, rng: random.Random):
     return mpmath.mpc(sign * mag, im)
 
 
-def _as_mp(x):
+def _as_mp(x: object) -> mpmath.mpf | mpmath.mpc:
     if isinstance(x, (mpmath.mpf, mpmath.mpc)):
         return x
     return mpmath.mpmathify(complex(x)) if isinstance(x, complex) else mpmath.mpmathify(x)
 
 
-def _fmt(v) -> str:
+def _fmt(v: mpmath.mpf | mpmath.mpc) -> str:
     return mpmath.nstr(v, 20)
 
 
 _POLE_ERRORS = (ZeroDivisionError, ValueError, OverflowError, ArithmeticError)
 
 
-def _finite(v) -> bool:
+def _finite(v: object) -> bool:
     try:
         return bool(mpmath.isfinite(v))
     except (TypeError, ValueError):
@@ -95,7 +96,7 @@ def _generic_roots(degree: int) -> tuple[tuple, list]:
     return a, sp.roots(sp.Poly(sum(a[i] * x ** (degree - i) for i in range(degree + 1)), x), multiple=True)
 
 
-def _roots(rel, s) -> list:
+def _roots(rel: sp.Expr, s: sp.Symbol) -> list[sp.Expr]:
     """The roots of a polynomial relation in ``s``, by the closed form of a generic polynomial.
 
     The coefficients are substituted into the generic solution instead of handing
@@ -111,7 +112,8 @@ def _roots(rel, s) -> list:
     return [r.xreplace(coeffs) for r in generic]
 
 
-def _solve_order(relations, known):
+def _solve_order(relations: Mapping[sp.Symbol, sp.Expr],
+                 known: Iterable[sp.Symbol]) -> list[tuple[sp.Symbol, list[sp.Expr]]]:
     """Order the constrained symbols so that each one's roots use only known symbols."""
     known = set(known)
     todo = dict(relations)
@@ -136,7 +138,8 @@ def _solve_order(relations, known):
 _QUAD_LOG = threading.local()
 
 
-def tracked_quad(f, *intervals, **kw):
+# Any: mpmath.quad's own signature (an integrand of any arity, intervals, options), passed through
+def tracked_quad(f: Callable[..., Any], *intervals: Any, **kw: Any) -> Any:
     """``mpmath.quad`` that also records its own error estimate for the screen.
 
     ``sympy.lambdify`` prints an unevaluated ``Integral`` as ``quad(lambda t: ..., (a, b))``;
@@ -165,7 +168,7 @@ _NAMESPACE = {"quad": tracked_quad}
 _MODULES = [_NAMESPACE, "mpmath"]
 
 
-def _quad_error(value, errors) -> Any:
+def _quad_error(value: mpmath.mpf | mpmath.mpc, errors: list[tuple[mpmath.mpf, mpmath.mpf]]) -> Any:
     """The error a side inherits from its quadratures: the larger of their absolute errors summed
     (a sum of integrals) and their relative errors summed times the side (a product or quotient)."""
     if not errors:
@@ -175,7 +178,7 @@ def _quad_error(value, errors) -> Any:
     return max(absolute, abs(value) * relative)
 
 
-def _evaluate(f, allv) -> tuple[Any, Any]:
+def _evaluate(f: Callable[..., Any], allv: Sequence[object]) -> tuple[Any, Any]:
     """``f(*allv)`` and the error of the quadratures it ran."""
     _QUAD_LOG.errors = []
     try:
@@ -242,7 +245,9 @@ def high_precision(digits: int) -> int:
     return 2 * digits + 10
 
 
-def _recheck(pc: PointCheck, f_l, f_r, rel_solvers, fixed, n_free: int, digits: int) -> None:
+def _recheck(pc: PointCheck, f_l: Callable[..., Any], f_r: Callable[..., Any],
+             rel_solvers: Sequence[Sequence[Callable[..., Any]]], fixed: Mapping[sp.Symbol, Any], n_free: int,
+             digits: int) -> None:
     """Evaluate the point again at :func:`high_precision`; the two evaluations' difference
     (plus the quadratures' own estimates and the rounding level) is the error of the first."""
     hi = high_precision(digits)
@@ -266,7 +271,8 @@ def _recheck(pc: PointCheck, f_l, f_r, rel_solvers, fixed, n_free: int, digits: 
         pc.error = drift + (el + er) / scale + mpmath.mpf(10) ** (-(digits + 2))
 
 
-def screen(lhs, rhs, relations, digits, points, seed, fixed, *, recheck: bool = True) -> ScreenResult:
+def screen(lhs: sp.Expr, rhs: sp.Expr, relations: Mapping[sp.Symbol, sp.Expr], digits: int, points: int, seed: int,
+           fixed: Mapping[sp.Symbol, Any], *, recheck: bool = True) -> ScreenResult:
     """Evaluate ``lhs - rhs`` at ``points`` admissible random points, knowing the evaluation's error.
 
     A point is admissible when both sides evaluate to finite numbers (poles,
@@ -378,7 +384,8 @@ def _trusted_digits(pc: PointCheck, digits: int) -> float:
     return max(0.0, min(float(-mpmath.log10(worst)), float(digits)))
 
 
-def _result(status: str, pc: PointCheck, pts, checks, digits: int) -> ScreenResult:
+def _result(status: str, pc: PointCheck, pts: list[dict[str, str]], checks: Sequence[PointCheck],
+            digits: int) -> ScreenResult:
     if status == "verified":
         dig = min(_trusted_digits(c, digits) for c in checks)
     elif status == "false":
