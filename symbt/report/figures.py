@@ -20,6 +20,13 @@ import argparse
 import sys
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    import numpy as np
+    import numpy.typing as npt
 
 from ..paper import CAPTIONS, EXAMPLE, LAM0_EXAMPLE, P_EXAMPLE, Q_EXAMPLE
 
@@ -29,7 +36,7 @@ P0, Q0, LAM0 = P_EXAMPLE, Q_EXAMPLE, LAM0_EXAMPLE
 PRINTED = {float(mu): consts for mu, consts in CAPTIONS["fig:2"].items()}
 
 
-def _constants(mu):
+def _constants(mu: float) -> list[float]:
     import mpmath as mp
 
     from ..numeric import flow_coefficients
@@ -40,13 +47,13 @@ def _constants(mu):
     return [float(v) for v in c]
 
 
-def _iterates(mu, n):
+def _iterates(mu: float, n: int) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     import numpy as np
 
     try:
         from ..numeric import bt_orbit
     except ImportError:  # pragma: no cover - fallback while symbt.numeric is incomplete
-        bt_orbit = None
+        bt_orbit = None  # type: ignore[assignment]
     if bt_orbit is not None:
         P, Q = bt_orbit(list(P0), list(Q0), LAM0, mu, n, branch=1)
         return np.asarray(P, float), np.asarray(Q, float)
@@ -62,7 +69,8 @@ def _iterates(mu, n):
     return np.array(P), np.array(Q)
 
 
-def _flow(mu, T, per_unit):
+def _flow(mu: float, T: float,
+          per_unit: int) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     import numpy as np
     from scipy.integrate import solve_ivp
 
@@ -76,7 +84,7 @@ def _flow(mu, T, per_unit):
     return sol.t, sol.y[3:].T, sol.y[:3].T  # t, P, Q
 
 
-def paper_example_data(mu, n, T=None, per_unit=20):
+def paper_example_data(mu: float, n: int, T: float | None = None, per_unit: int = 20) -> dict[str, Any]:
     """Constants, iterates and flow for the paper's example; also the max |flow(n) - BT^n(x)|."""
     import numpy as np
 
@@ -89,13 +97,13 @@ def paper_example_data(mu, n, T=None, per_unit=20):
     return dict(c=c, P=P, Q=Q, t=t, Pf=Pf, Qf=Qf, deviation=dev)
 
 
-def _cstr(c, k=3, tex=True):
+def _cstr(c: Sequence[float], k: int = 3, tex: bool = True) -> str:
     if tex:
         return ", ".join(f"$c_{i}={v:.4g}$" for i, v in enumerate(c[:k]))
     return ", ".join(f"c_{i} = {v:.12g}" for i, v in enumerate(c[:k]))
 
 
-def figure1(out: Path, n=3500):
+def figure1(out: Path, n: int = 3500) -> dict[str, Any]:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -127,7 +135,7 @@ def figure1(out: Path, n=3500):
     return d
 
 
-def figure2(out: Path, n=40):
+def figure2(out: Path, n: int = 40) -> dict[float, dict[str, Any]]:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -159,7 +167,7 @@ def figure2(out: Path, n=40):
     return devs
 
 
-def main(argv=None) -> int:
+def main(argv: Sequence[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="symbt figures", description="Regenerate Figs. 1-2 of the paper (PNG).")
     ap.add_argument("--out", default="docs/figures", help="output directory (default docs/figures)")
     ap.add_argument("--iterates", type=int, default=3500, help="BT iterates in Fig. 1 (default 3500)")

@@ -19,6 +19,7 @@ from typing import Any
 from ..proof.verdict import LATEX_COLOURS as _LATEX_COLOURS
 from ..proof.verdict import STATUS_COLOURS, latex_text
 from .text import outcome_fields, point_text, residual_text, short_method, summary
+from .views import OutcomeView, ResultView
 
 __all__ = ["result_html", "result_latex", "scene_html", "latex_text", "STATUS_COLOURS"]
 
@@ -31,7 +32,7 @@ def _badge(status: str) -> str:
             f"border-radius:3px;font-weight:bold'>{_e(status)}</span>")
 
 
-def _residual(out) -> str:
+def _residual(out: OutcomeView) -> str:
     try:
         return residual_text(out)
     except Exception:  # pragma: no cover - malformed outcome
@@ -41,7 +42,7 @@ def _residual(out) -> str:
 _FIELD_HTML = {"corrected": "<b>{}</b>", "counterexample": "<code>{}</code>"}
 
 
-def _rows(result) -> list[tuple[str, str]]:
+def _rows(result: ResultView) -> list[tuple[str, str]]:
     """(label, already-escaped HTML) rows describing one result."""
     c, o = result.claim, result.outcome
     rows = [("statement", _e(c.statement))]
@@ -63,7 +64,7 @@ def _rows(result) -> list[tuple[str, str]]:
     return rows
 
 
-def result_html(result) -> str:
+def result_html(result: ResultView) -> str:
     """One claim result as an HTML card: id, equation label, status, statement, method, residual."""
     c, o = result.claim, result.outcome
     colour = STATUS_COLOURS.get(o.status, "#555")
@@ -76,7 +77,7 @@ def result_html(result) -> str:
             f"padding:0.3em 0.8em;margin:0.4em 0'>{head}<table>{body}</table></div>")
 
 
-def result_latex(result) -> str:
+def result_latex(result: ResultView) -> str:
     """One claim result as LaTeX (a MathJax-compatible ``array`` of text lines)."""
     c, o = result.claim, result.outcome
     colour = _LATEX_COLOURS.get(o.status, "black")

@@ -35,13 +35,16 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import sys
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 from .. import __version__
 from .._files import is_stdout, output_problem, write_report
 from .text import summary
+from .views import ResultView
 
 __all__ = ["SCHEMA_VERSION", "SCHEMA_PATH", "schema", "to_json", "run_info", "dumps", "write_json", "output_refused",
            "emit_document"]
@@ -95,7 +98,7 @@ def run_info() -> dict[str, Any]:
             "machine": platform.machine(), "cpus": os.cpu_count() or 1, "libraries": libraries}
 
 
-def to_json(results, *, coverage: dict | None = None) -> dict:
+def to_json(results: Sequence[ResultView], *, coverage: dict[str, Any] | None = None) -> dict[str, Any]:
     """The report as a JSON-ready dict; ``coverage`` (label -> claims or reason) is added when given."""
     doc = {"schema_version": SCHEMA_VERSION, "generator": f"symbt {__version__}", "run": run_info(),
            "claims": [r.to_dict() for r in results], "summary": summary(results)}
@@ -104,11 +107,12 @@ def to_json(results, *, coverage: dict | None = None) -> dict:
     return _plain(doc)
 
 
-def dumps(results, *, coverage: dict | None = None) -> str:
+def dumps(results: Sequence[ResultView], *, coverage: dict[str, Any] | None = None) -> str:
     return json.dumps(to_json(results, coverage=coverage), indent=2, allow_nan=False) + "\n"
 
 
-def write_json(results, path, *, coverage: dict | None = None) -> None:
+def write_json(results: Sequence[ResultView], path: str | os.PathLike[str], *,
+               coverage: dict[str, Any] | None = None) -> None:
     """Write the report to ``path`` (see :func:`symbt._files.write_report`: ``-``, files, devices, links)."""
     write_report(path, dumps(results, coverage=coverage))
 

@@ -9,25 +9,28 @@ carriage return; lone surrogates; U+FFFE, U+FFFF) is written as ``\\xNN`` /
 """
 from __future__ import annotations
 
+import os
 import re
 import xml.etree.ElementTree as ET
+from collections.abc import Sequence
 
 from .._files import write_report
 from .text import NOT_OK, evidence_text, outcome_fields, residual_text, summary
+from .views import ResultView
 
 __all__ = ["write_junit", "junit_xml", "xml_safe"]
 
 _FORBIDDEN = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 
 
-def xml_safe(text) -> str:
+def xml_safe(text: object) -> str:
     """``text`` with every character XML 1.0 forbids replaced by a visible escape."""
     s = "" if text is None else str(text)
     return _FORBIDDEN.sub(lambda m: f"\\x{ord(m.group()):02x}" if ord(m.group()) < 0x100
                           else f"\\u{ord(m.group()):04x}", s)
 
 
-def junit_xml(results, *, suite: str = "symbt.verify") -> str:
+def junit_xml(results: Sequence[ResultView], *, suite: str = "symbt.verify") -> str:
     """JUnit XML text: one testcase per claim; ``failed``, ``inconclusive`` and ``todo`` ->
     ``<failure type="failed|inconclusive|todo">``, ``skipped`` -> ``<skipped>``.
 
@@ -64,5 +67,5 @@ def junit_xml(results, *, suite: str = "symbt.verify") -> str:
     return '<?xml version="1.0" encoding="utf-8"?>\n' + ET.tostring(suites, encoding="unicode") + "\n"
 
 
-def write_junit(results, path, *, suite: str = "symbt.verify") -> None:
+def write_junit(results: Sequence[ResultView], path: str | os.PathLike[str], *, suite: str = "symbt.verify") -> None:
     write_report(path, junit_xml(results, suite=suite))

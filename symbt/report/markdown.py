@@ -1,12 +1,15 @@
 """A Markdown table of claim results (the claims table of the documentation, docs/claims.md)."""
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from .text import evidence_text, residual_text, short_method
+from .views import ResultView
 
 __all__ = ["format_markdown"]
 
 
-def format_markdown(results) -> str:
+def format_markdown(results: Sequence[ResultView]) -> str:
     """A Markdown table of the results (the claims table of docs/claims.md, generated when the site is built).
 
     >>> from symbt.claims.base import Claim, ClaimResult, Outcome

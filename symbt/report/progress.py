@@ -23,6 +23,8 @@ import sys
 import time
 from typing import Any, TextIO
 
+from .views import ClaimView, OutcomeView
+
 __all__ = ["Progress"]
 
 
@@ -52,7 +54,7 @@ class Progress:
                                          console=Console(file=self.stream), auto_refresh=False, transient=True)
                 self._task = self._bar.add_task("", total=total)
 
-    def __call__(self, claim, outcome) -> None:
+    def __call__(self, claim: ClaimView, outcome: OutcomeView) -> None:
         self.done += 1
         if not self.enabled:
             return

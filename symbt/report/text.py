@@ -12,6 +12,11 @@ demo    1 claim: 1 verified
 """
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from .views import OutcomeView, ResultView
+
 __all__ = ["ORDER", "NOT_OK", "summary", "summary_lines", "format_short", "format_table", "residual_text",
            "short_method", "result_text", "point_text", "evidence_text"]
 
@@ -23,7 +28,7 @@ ORDER = ("verified", "erratum", "failed", "inconclusive", "todo", "skipped")
 NOT_OK = ("failed", "inconclusive", "todo")
 
 
-def summary(results) -> dict:
+def summary(results: Sequence[ResultView]) -> dict[str, Any]:
     """Counts by status, ``total``, ``seconds`` (sum of the checks' times) and ``ok``
     (no claim failed, is inconclusive or is a todo stub).
 
@@ -33,7 +38,7 @@ def summary(results) -> dict:
     >>> s["verified"], s["inconclusive"], s["todo"], s["ok"]
     (1, 1, 0, False)
     """
-    s: dict = {k: 0 for k in ORDER}
+    s: dict[str, Any] = {k: 0 for k in ORDER}
     for r in results:
         s[r.outcome.status] += 1
     s["total"] = len(results)
@@ -50,7 +55,7 @@ def _errata(n: int) -> str:
     return f"{n} errat{'um' if n == 1 else 'a'}"
 
 
-def residual_text(out) -> str:
+def residual_text(out: OutcomeView) -> str:
     if out.status in ("skipped", "todo"):
         return "-"
     if (out.method or "").startswith("exact") and not out.residual:
@@ -66,7 +71,7 @@ def residual_text(out) -> str:
     return txt
 
 
-def evidence_text(out) -> str:
+def evidence_text(out: OutcomeView) -> str:
     """``proof`` / ``certified`` / ``sampled``, or ``-`` when the outcome does not say."""
     return getattr(out, "evidence", None) or "-"
 
@@ -82,7 +87,7 @@ def short_method(m: str | None) -> str:
     return m.split(";")[0][:40]
 
 
-def point_text(point, limit: int = 12) -> str:
+def point_text(point: Mapping[str, object] | None, limit: int = 12) -> str:
     """``k = v, ...`` for a counterexample or sample point (at most ``limit`` items)."""
     if not point:
         return ""
@@ -91,7 +96,7 @@ def point_text(point, limit: int = 12) -> str:
     return txt + (", ..." if len(items) > limit else "")
 
 
-def outcome_fields(o, *, limit: int = 8) -> list[tuple[str, str]]:
+def outcome_fields(o: OutcomeView, *, limit: int = 8) -> list[tuple[str, str]]:
     """The labelled fields every reporter shows for an outcome, in one order (those present):
     ``printed``, ``corrected``, ``scope``, ``counterexample`` (as :func:`point_text`).
 
@@ -105,7 +110,7 @@ def outcome_fields(o, *, limit: int = 8) -> list[tuple[str, str]]:
     return fields
 
 
-def field_lines(o, indent: str, *, limit: int = 8) -> list[str]:
+def field_lines(o: OutcomeView, indent: str, *, limit: int = 8) -> list[str]:
     """:func:`outcome_fields` as aligned ``label: value`` lines."""
     return [f"{indent}{name + ':':<10} {value}" for name, value in outcome_fields(o, limit=limit)]
 
@@ -115,7 +120,7 @@ def _first_line(text: str | None, limit: int = 200) -> str:
     return lines[0][:limit] if lines else ""
 
 
-def summary_lines(results, *, wall: float | None = None) -> list[str]:
+def summary_lines(results: Sequence[ResultView], *, wall: float | None = None) -> list[str]:
     """The last lines of every terminal report: the counts, then time and cache use."""
     s = summary(results)
     verdict = "ok" if s["ok"] else "FAILED"
@@ -130,7 +135,7 @@ def summary_lines(results, *, wall: float | None = None) -> list[str]:
     return lines
 
 
-def cell_summary(o) -> str:
+def cell_summary(o: OutcomeView) -> str:
     """A compact form of the generated scope: in how many domain cells the printed statement holds.
 
     >>> from symbt.claims.base import Outcome
@@ -151,7 +156,7 @@ def cell_summary(o) -> str:
     return txt
 
 
-def _claim_line(r, width: int = 0) -> list[str]:
+def _claim_line(r: ResultView, width: int = 0) -> list[str]:
     """One line for a claim that is not plainly verified (failed ones get their evidence below it)."""
     c, o = r.claim, r.outcome
     head = f"{o.status:8s} {c.id.ljust(width)}  eq. {c.equation}"
@@ -174,7 +179,7 @@ def _claim_line(r, width: int = 0) -> list[str]:
     return lines
 
 
-def format_short(results, *, wall: float | None = None) -> str:
+def format_short(results: Sequence[ResultView], *, wall: float | None = None) -> str:
     """The default report: one line per scene, one per claim that is not verified, then the summary."""
     scenes: dict[str, dict[str, int]] = {}
     for r in results:
@@ -199,7 +204,7 @@ def format_short(results, *, wall: float | None = None) -> str:
     return "\n".join(lines)
 
 
-def format_table(results, *, wall: float | None = None) -> str:
+def format_table(results: Sequence[ResultView], *, wall: float | None = None) -> str:
     """The full report (``symbt verify -v``): every claim, the errata and failures in full, the summary."""
     rows = [("claim", "equation", "status", "evidence", "method", "residual", "time")]
     for r in results:
@@ -232,7 +237,7 @@ def format_table(results, *, wall: float | None = None) -> str:
     return "\n".join(lines)
 
 
-def result_text(result) -> str:
+def result_text(result: ResultView) -> str:
     """Plain-text rendering (terminal): status, id, label, statement, errata details."""
     c, o = result.claim, result.outcome
     lines = [f"[{o.status}] {c.id} (eq. {c.equation}): {c.statement}",

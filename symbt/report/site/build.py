@@ -10,7 +10,7 @@ from typing import Any
 from ..._files import atomic_write
 from .graph import graph_svg
 from .mathml import inline_parts, macros_of, to_mathml
-from .model import Site, status_text
+from .model import Display, Site, status_text
 from .pages import CSS, badge, claim_card, page, slug
 
 __all__ = ["build_site"]
@@ -38,7 +38,7 @@ class _Writer:
         href = self.link_of(name)
         return f'<a href="{_e(href)}">{_e(name)}</a>' if href else _e(name)
 
-    def math(self, d) -> str:
+    def math(self, d: Display) -> str:
         if d.kind == "equation" and d.source:
             m = to_mathml(d.source, self.macros)
             self.mathml[d.label] = m is not None
@@ -69,7 +69,7 @@ class _Writer:
                 out.append(_e(re.sub(r"\s+", " ", piece)))
         return "".join(out)
 
-    def display_block(self, d, *, link: bool = True) -> str:
+    def display_block(self, d: Display, *, link: bool = True) -> str:
         s = self.site
         status = s.status(d.label)
         name = f'<a class="label" href="{_href(d.label)}">{_e(d.label)}</a>' if link else \
@@ -110,7 +110,7 @@ class _Writer:
         svg, self.engine = graph_svg(nodes, sorted(edges), prefer_graphviz=self.prefer_graphviz)
         return f'<div class="graph">{svg}</div>'
 
-    def label_page(self, d) -> None:
+    def label_page(self, d: Display) -> None:
         s = self.site
         key = "L:" + d.label
         up, down = s.ancestors(key), s.descendants(key)
