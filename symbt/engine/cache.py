@@ -25,9 +25,11 @@ import json
 import math
 import os
 import sys
+from collections.abc import Callable
 from dataclasses import replace
 from functools import cache
 from pathlib import Path
+from types import ModuleType
 from typing import Any
 
 from .._files import atomic_write
@@ -119,14 +121,14 @@ def library_versions() -> str:
     return " ".join(parts)
 
 
-def _claim_modules_used(mod) -> list:
+def _claim_modules_used(mod: ModuleType) -> list[ModuleType]:
     """The claim's module and the sibling claim modules whose helpers it imports."""
-    used = {mod.__name__: mod}
+    used: dict[str, ModuleType | None] = {mod.__name__: mod}
     for obj in vars(mod).values():
         name = getattr(obj, "__module__", None)
         if isinstance(name, str) and name.startswith("symbt.claims.") and name not in used:
             used[name] = sys.modules.get(name)
-    return [used[k] for k in sorted(used) if used[k] is not None]
+    return [m for k in sorted(used) if (m := used[k]) is not None]
 
 
 def claim_key(c: Claim, deep: bool = False) -> str:
@@ -181,7 +183,7 @@ def _number(v: Any) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool)
 
 
-def _opt(test):
+def _opt(test: Callable[[Any], bool]) -> Callable[[Any], bool]:
     return lambda v: v is None or test(v)
 
 

@@ -41,7 +41,7 @@ import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, NoReturn
 
 from ..paper import LABELS, SECTIONS, Label
 from ..report.json import emit_document, output_refused
@@ -58,7 +58,7 @@ NO_PAPER = "no paper: give --paper PATH, or paper = \"my.tex\" in [tool.symbt] o
 class OneLineParser(argparse.ArgumentParser):
     """An argument parser whose usage errors are one line on stderr (exit 2), as every symbt command's."""
 
-    def error(self, message: str):
+    def error(self, message: str) -> NoReturn:
         print(f"{self.prog}: {message} (see '{self.prog} --help')", file=sys.stderr)
         raise SystemExit(2)
 

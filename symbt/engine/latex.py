@@ -19,7 +19,7 @@ itself, done here:
 """
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -100,7 +100,8 @@ def _definition_parser() -> Any:
             super().__init__(argspec="")
             self.kind = kind
 
-        def parse_args(self, w, pos, parsing_state=None):
+        # Any: pylatexenc's walker and parsing state (the library ships no type information)
+        def parse_args(self, w: Any, pos: int, parsing_state: Any = None) -> tuple[Any, int, int]:
             lw = _pylatexenc()
             s, p = w.s, _skip_space(w.s, pos)
             if p < len(s) and s[p] == "*":
@@ -268,7 +269,7 @@ class Definitions:
         return None
 
 
-def _iter_nodes(nodes: list[Any]):
+def _iter_nodes(nodes: list[Any]) -> Iterator[Any]:
     for node in nodes:
         if node is None:
             continue

@@ -84,7 +84,7 @@ from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from contextlib import contextmanager
 from dataclasses import asdict, dataclass, field
-from typing import Any
+from typing import Any, NoReturn
 
 from ..claims import REGISTRY
 from ..claims.base import Claim
@@ -404,7 +404,7 @@ def run(claims: list[Claim], *, limit: int | None = None, seed: int = 0, jobs: i
 # --------------------------------------------------------------------------- command line
 
 class _Parser(argparse.ArgumentParser):
-    def error(self, message: str):  # one line instead of usage + error
+    def error(self, message: str) -> NoReturn:  # one line instead of usage + error
         self.exit(EXIT_USAGE, f"{self.prog}: {message}\n")
 
 

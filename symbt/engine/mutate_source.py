@@ -53,7 +53,7 @@ import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
-from typing import Any
+from typing import Any, NoReturn
 
 from .._files import directory_problem
 from ..report.json import emit_document, output_refused, run_info
@@ -254,7 +254,7 @@ def _run_one(copy: Path, item: tuple[str, str, SourceMutant], ids: list[str] | N
 # --------------------------------------------------------------------------- command line
 
 class _Parser(argparse.ArgumentParser):
-    def error(self, message: str):  # one line instead of usage + error
+    def error(self, message: str) -> NoReturn:  # one line instead of usage + error
         raise UsageError(f"{self.prog}: {message}")
 
 

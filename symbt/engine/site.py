@@ -28,7 +28,7 @@ from typing import Any
 from ..paper import LABELS
 from .coverage import OneLineParser, find_paper
 from .labels import LatexError, scan_file
-from .project import ConfigError, discover
+from .project import ConfigError, Project, discover
 
 __all__ = ["main", "read_report"]
 
@@ -47,7 +47,7 @@ def read_report(path: str, what: str = "verify") -> dict[str, Any]:
     return doc
 
 
-def _labels(project, doc: dict[str, Any]) -> tuple[list[Any], str | None, str | None]:
+def _labels(project: Project, doc: dict[str, Any]) -> tuple[list[Any], str | None, str | None]:
     """(labels, tex, paper path): scanned from the paper when there is one."""
     paper = project.paper or (find_paper() if project.is_package else None)
     if paper is not None and Path(paper).is_file():

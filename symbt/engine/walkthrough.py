@@ -1,6 +1,8 @@
 """Walkthroughs: the ``derivations/`` scripts show claims and objects, then pin the outcomes."""
 from __future__ import annotations
 
+from typing import Any
+
 from ..claims import REGISTRY, load_all
 from ..report.text import result_text
 
@@ -24,7 +26,7 @@ class Walkthrough:
     (or an expected claim was not shown), so a changed outcome breaks the script.
     """
 
-    def __init__(self):
+    def __init__(self) -> None:
         from .runner import KeptWorkers
 
         load_all()
@@ -32,7 +34,8 @@ class Walkthrough:
         self.rich = _in_ipython()
         self.workers = KeptWorkers()   # one worker for every claim shown: it keeps the derivations it built
 
-    def display(self, *objs) -> None:
+    # Any: claim results, text, or anything IPython can display (told apart at run time)
+    def display(self, *objs: Any) -> None:
         for obj in objs:
             if self.rich:
                 from IPython.display import display
