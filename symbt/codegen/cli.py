@@ -22,6 +22,7 @@ import argparse
 import os
 import sys
 from pathlib import Path
+from typing import NoReturn
 
 from .files import LANGUAGES, TARGETS, check, file_names, generate
 from .project import DELEGATED_ENV, find_project, imported_package, is_project, run_in_checkout
@@ -34,7 +35,7 @@ class _UsageError(Exception):
 
 
 class _Parser(argparse.ArgumentParser):
-    def error(self, message):  # one line, exit 2 (argparse prints usage + message)
+    def error(self, message: str) -> NoReturn:  # one line, exit 2 (argparse prints usage + message)
         raise _UsageError(message)
 
 

@@ -20,7 +20,7 @@ import re
 import sympy as sp
 
 from .c_template import COMMON, HEADER, LOOP
-from .derive import specs
+from .derive import FunctionSpec, specs
 from .forms import form_of
 from .kernels import kernels
 from .printer import ExprPrinter, cse_block
@@ -33,12 +33,12 @@ _MARK = re.compile(r"@@(?:(coef|cdot):)?(\w+)(?:\[(\d)\])?(?:\{([^}]*)\})?@@")
 _lam, _pj = sp.symbols("lambda pj", real=True)
 
 
-def _kernel(name, item):
+def _kernel(name: str, item: str | None) -> sp.Basic:
     k = kernels()[name]
     return k[int(item)] if item is not None else k
 
 
-def _names(expr, binding=None):
+def _names(expr: sp.Basic, binding: str | None = None) -> dict[sp.Basic, str]:
     names = {s: str(s) for s in expr.free_symbols}
     for pair in filter(None, (binding or "").split(",")):
         sym, _, text = pair.partition(":")
@@ -46,7 +46,7 @@ def _names(expr, binding=None):
     return names
 
 
-def _coefficientwise(expr):
+def _coefficientwise(expr: sp.Expr) -> str:
     """A kernel linear in the entries ``A, B, C, D`` with ``a = lambda + p_j``: coefficient ``k`` of the
     result in terms of the coefficients of the entries (stored at ``X[k + 1]``, so ``X[k]`` is k - 1)."""
     a = sp.Symbol("a", real=True)
@@ -61,7 +61,7 @@ def _coefficientwise(expr):
     return " + ".join(f"({t})" for t in parts)
 
 
-def _contracted(expr, N):
+def _contracted(expr: sp.Expr, N: int) -> str:
     """``sum_k c_k [lambda^k]`` of a kernel bilinear in the prefix ``Pxy`` and suffix ``Sxy`` entries."""
     out = []
     for term in sp.Add.make_args(sp.expand(expr)):
@@ -75,8 +75,8 @@ def _contracted(expr, N):
     return " + ".join(out)
 
 
-def _fill(template, N, form):
-    def repl(m):
+def _fill(template: str, N: int, form: str) -> str:
+    def repl(m: re.Match[str]) -> str:
         kind, name, item, binding = m.groups()
         if name == "N" and kind is None:
             return str(N)
@@ -106,7 +106,7 @@ _OUT_PTRS = {"bt_step": ("pt", "qt"), "invariants": ("H",), "spectral_trace": ("
 _CODES = {"trace": "SYMBT_TODA_NO_REAL_MAP_TRACE", "positivity": "SYMBT_TODA_NO_REAL_MAP_POSITIVITY"}
 
 
-def _closed_function(spec, N):
+def _closed_function(spec: FunctionSpec, N: int) -> str:
     names = {}
     checks_ptr, checks_fin = [], []
     for a in spec.args:

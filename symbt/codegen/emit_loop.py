@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import re
 
-from .derive import FUNCTIONS, interface
+from .derive import FUNCTIONS, FunctionSpec, interface
 from .kernels import kernels
 from .loop_template import CORE
 from .printer import ExprPrinter
@@ -74,7 +74,7 @@ def printed_kernels() -> dict:
     return out
 
 
-def _core():
+def _core() -> str:
     ks = printed_kernels()
     text = CORE
     for name in sorted(set(re.findall(r"@@(\w+)@@", CORE))):
@@ -82,7 +82,7 @@ def _core():
     return text
 
 
-def _numpy_wrapper(spec, N):
+def _numpy_wrapper(spec: FunctionSpec, N: int) -> str:
     lines = numpy_prologue(spec, N, "transfer-matrix", "N")
     lines.append("    _g = []")
     call, items = _NUMPY_CALL[spec.name]
@@ -95,7 +95,7 @@ def _numpy_wrapper(spec, N):
     return "\n".join(lines)
 
 
-def _mp_wrapper(spec, N):
+def _mp_wrapper(spec: FunctionSpec, N: int) -> str:
     lines = [f"def {spec.name}_mp({signature(spec, 'mpmath')}):",
              function_doc(spec, N, "mpmath", "transfer-matrix")]
     for a in spec.args:

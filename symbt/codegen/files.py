@@ -15,6 +15,7 @@ whose bytes are already right.
 """
 from __future__ import annotations
 
+from collections.abc import Iterable
 from pathlib import Path
 
 from .._files import atomic_write, directory_problem
@@ -31,7 +32,7 @@ LANGUAGES = ("python", "c")
 DEFAULT_OUT = PACKAGE / "generated"
 
 
-def _check_args(ns, target):
+def _check_args(ns: Iterable[int], target: str) -> tuple[int, ...]:
     ns = tuple(ns)
     if target not in LANGUAGES:
         raise ValueError(f"unknown target {target!r} (choose from {', '.join(LANGUAGES)})")
@@ -40,14 +41,14 @@ def _check_args(ns, target):
     return tuple(sorted(set(ns)))
 
 
-def file_names(ns=TARGETS, target: str = "python") -> list[str]:
+def file_names(ns: Iterable[int] = TARGETS, target: str = "python") -> list[str]:
     ns = _check_args(ns, target)
     if target == "c":
         return [f"toda{N}.{ext}" for N in ns for ext in ("c", "h")]
     return ["__init__.py"] + [f"toda{N}.py" for N in ns]
 
 
-def render(ns=TARGETS, target: str = "python") -> dict[str, str]:
+def render(ns: Iterable[int] = TARGETS, target: str = "python") -> dict[str, str]:
     """File name -> full text of every generated file (runs the derivations)."""
     import sympy
 
@@ -72,7 +73,7 @@ def render(ns=TARGETS, target: str = "python") -> dict[str, str]:
     return files
 
 
-def generate(out: str | Path | None = None, ns=TARGETS, target: str = "python") -> list[Path]:
+def generate(out: str | Path | None = None, ns: Iterable[int] = TARGETS, target: str = "python") -> list[Path]:
     """Render the files and write those that differ into ``out`` (default ``symbt/generated``; required for C).
 
     Returns the paths actually written (files whose bytes are already right are left alone and
@@ -93,7 +94,8 @@ def generate(out: str | Path | None = None, ns=TARGETS, target: str = "python") 
     return list(todo)
 
 
-def check(out: str | Path | None = None, ns=TARGETS, target: str = "python", dhash: str | None = None) -> list[str]:
+def check(out: str | Path | None = None, ns: Iterable[int] = TARGETS, target: str = "python",
+          dhash: str | None = None) -> list[str]:
     """Problems with the generated files in ``out`` (empty list = up to date).  SymPy-free."""
     if out is None and target == "c":
         raise ValueError("the C target needs an output directory (--out DIR)")

@@ -62,7 +62,7 @@ SYMBOLS = (A, B, C, D, a, r, u, un, g, mu, sd, s, P00, P01, P10, P11, S00, S01, 
            r_prev, dr_prev, dr, uj, dj, un1, dn1, t, q, x1, x2, two, branch, tr1, tr2)
 
 
-def _zero(expr, what):
+def _zero(expr: sp.Expr, what: str) -> None:
     if sp.cancel(sp.expand(expr)) != 0:
         raise AssertionError(f"kernel derivation failed: {what}")
 

@@ -25,6 +25,8 @@ unprintable -- or a floating-point -- literal into the generated files.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import sympy as sp
 from sympy.codegen.cfunctions import log1p
 
@@ -70,7 +72,7 @@ class ExprPrinter:
         self.names = names  # Symbol -> python identifier
 
     # returns (text, precedence)
-    def _p(self, e):
+    def _p(self, e: sp.Basic) -> tuple[str, int]:
         if e.is_Symbol:
             try:
                 return self.names[e], _ATOM
@@ -113,14 +115,14 @@ class ExprPrinter:
             return f"{f}({self.text(e.args[0])})", _ATOM
         raise ValueError(f"cannot print {type(e).__name__}: {e}")
 
-    def text(self, e) -> str:
+    def text(self, e: sp.Basic) -> str:
         return self._p(sp.sympify(e))[0]
 
-    def _wrap(self, e, prec):
+    def _wrap(self, e: sp.Basic, prec: int) -> str:
         s, p = self._p(e)
         return s if p > prec else f"({s})"
 
-    def _add(self, e):
+    def _add(self, e: sp.Add) -> str:
         parts = []
         for i, t in enumerate(e.as_ordered_terms()):
             c, rest = t.as_coeff_Mul()
@@ -132,7 +134,7 @@ class ExprPrinter:
                 parts.append(s if i == 0 else f" + {s}")
         return "".join(parts)
 
-    def _mul(self, e):
+    def _mul(self, e: sp.Mul) -> tuple[str, int]:
         c, rest = e.as_coeff_Mul()
         if c.is_Number and c < 0:
             s = self._wrap(-e, _MUL)
@@ -156,7 +158,7 @@ class ExprPrinter:
             ds = "(" + "*".join(self._wrap(f, _MUL) for f in den) + ")"
         return f"{ns}/{ds}", _MUL
 
-    def _pow(self, e):
+    def _pow(self, e: sp.Pow) -> tuple[str, int]:
         b, x = e.base, e.exp
         if b is sp.E:
             return f"{self.funcs[sp.exp]}({self.text(x)})", _ATOM
@@ -179,7 +181,7 @@ class ExprPrinter:
             return f"{self.funcs['sqrt']}({self.text(b)})**{x.p}", _POW
         raise ValueError(f"exponent {x} not supported")
 
-    def _piecewise(self, e):
+    def _piecewise(self, e: sp.Piecewise) -> str:
         *pairs, (last, cond) = e.args
         if cond is not sp.true:
             raise ValueError("Piecewise without a default branch")
@@ -194,7 +196,8 @@ class ExprPrinter:
         return out
 
 
-def cse_block(exprs, names: dict, flavour: str, prefix: str = "t"):
+def cse_block(exprs: Sequence[sp.Basic], names: dict[sp.Basic, str], flavour: str,
+              prefix: str = "t") -> tuple[list[str], list[str]]:
     """Common subexpressions of ``exprs`` (fixed names ``t0, t1, ...``, canonical order).
 
     Returns ``(lines, outs)``: assignment lines and the printed reduced outputs.

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import hashlib
 import re
+from collections.abc import Iterable
 from pathlib import Path
 
 __all__ = ["GENERATOR_VERSION", "PACKAGE", "derivation_sources", "derivation_hash", "content_hash", "read_header",
@@ -45,7 +46,7 @@ def derivation_sources(pkg: Path | None = None) -> list[Path]:
     return [f for f in files if f.is_file()]
 
 
-def derivation_hash(sources=None, pkg: Path | None = None) -> str:
+def derivation_hash(sources: Iterable[str | Path] | None = None, pkg: Path | None = None) -> str:
     pkg = PACKAGE if pkg is None else Path(pkg)
     h = hashlib.sha256()
     h.update(f"generator {GENERATOR_VERSION}\0".encode())

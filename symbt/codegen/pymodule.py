@@ -5,19 +5,21 @@
 """
 from __future__ import annotations
 
-from .derive import FUNCTIONS
+from collections.abc import Sequence
+
+from .derive import FUNCTIONS, FunctionSpec
 from .runtime import RUNTIME
 
 __all__ = ["signature", "function_doc", "module_head", "package_init_body"]
 
 
-def signature(spec, flavour):
+def signature(spec: FunctionSpec, flavour: str) -> str:
     """Argument list; guarded numpy functions take ``errors="raise"`` (or ``"mask"``)."""
     sig = ", ".join(a.name for a in spec.args)
     return sig + (', errors="raise"' if spec.guards and flavour == "numpy" else "")
 
 
-def numpy_prologue(spec, N, form, n_text=None):
+def numpy_prologue(spec: FunctionSpec, N: int, form: str, n_text: str | None = None) -> list[str]:
     """Header, docstring and argument validation of an emitted numpy function, up to ``_batch``.
 
     ``n_text`` is the source text of the state length checked by ``_state`` (default ``str(N)``;
@@ -42,7 +44,7 @@ def numpy_prologue(spec, N, form, n_text=None):
     return lines
 
 
-def numpy_epilogue(spec, res, guard_list):
+def numpy_epilogue(spec: FunctionSpec, res: Sequence[str], guard_list: str) -> list[str]:
     """Closing lines of an emitted numpy function, shared by both forms: the guard check
     (``guard_list``: source text of the guards' list), ``_finish`` and the return."""
     names = ", ".join(res)
@@ -52,7 +54,7 @@ def numpy_epilogue(spec, res, guard_list):
             f"    {names}, = _finish(errors, _bad, _batch, [{names}])", f"    return {names}"]
 
 
-def function_doc(spec, N, flavour, form):
+def function_doc(spec: FunctionSpec, N: int, flavour: str, form: str) -> str:
     args = "\n".join(f"        {a.name}: {a.doc}" for a in spec.args)
     if flavour == "numpy":
         shape = lambda o: "batch" + ("" if not o.shape else " + " + str(o.shape))  # noqa: E731
@@ -78,7 +80,7 @@ def function_doc(spec, N, flavour, form):
             f"    {kind}.\n\n    Arguments:\n{args}\n\n    Returns:\n{outs}\n    \"\"\"")
 
 
-def _module_doc(N, form):
+def _module_doc(N: int, form: str) -> str:
     return (f'"""Generated numeric code for the N={N} periodic Toda lattice, {form} form '
             "(do not edit; run `symbt codegen`).\n\n"
             "Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading\n"
@@ -94,7 +96,7 @@ def _module_doc(N, form):
             '"""')
 
 
-def module_head(N, form):
+def module_head(N: int, form: str) -> list[str]:
     all_names = ([n for f in FUNCTIONS for n in (f, f + "_mp")] + ["bt_orbit", "bt_orbit_mp", "N", "FORM",
                  "InvalidInputError", "NoRealMapError", "NumericRangeError"])
     return [_module_doc(N, form), "", f"N = {N}", f"FORM = {form!r}", f"__all__ = {all_names!r}",

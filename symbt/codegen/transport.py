@@ -19,12 +19,13 @@ from __future__ import annotations
 
 import sympy as sp
 
+from ..symbolic.toda import TodaModel
 from .printer import Quotient
 
 __all__ = ["scaled_monodromy", "transported"]
 
 
-def transported(m, lam_, u0, forward):
+def transported(m: TodaModel, lam_: sp.Expr, u0: sp.Expr, forward: sp.Basic) -> list[sp.Expr]:
     """Scaled slopes at every site from ``u0`` at site 1, transported forward ``u_{j+1} = -r_j/(a_j + u_j)``
     where ``forward`` holds, else backward ``u_j = -a_j - r_j/u_{j+1}`` (``a_j = lambda + p_j``, ``r_j =
     exp(q_{j+1} - q_j)``; no shifted monodromy, whose entries reach 1e542 at |q_i - q_j| ~ 650)."""
@@ -41,7 +42,7 @@ def transported(m, lam_, u0, forward):
     return [u0] + [sp.Piecewise((fwd[j], forward), (bwd[j], True)) for j in range(1, N)]
 
 
-def scaled_monodromy(m, lam_):
+def scaled_monodromy(m: TodaModel, lam_: sp.Expr) -> sp.Matrix:
     """``M = m_N ... m_1``, ``m_j = [[lam_ + p_j, -1], [r_j, 0]]``, ``r_j = exp(q_{j+1} - q_j)``: ``S_1 L S_1^-1``
     with ``S_1 = diag(1, E_1)`` (its slopes are the scaled ``u = E_1 y``), as :mod:`symbt.numeric.core.monodromy`."""
     M = sp.eye(2)

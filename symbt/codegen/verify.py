@@ -26,7 +26,10 @@ functions.  :func:`step_accuracy` compares ``bt_step`` with
 from __future__ import annotations
 
 import random
+from collections.abc import Callable, Mapping, Sequence
 from functools import cache
+from types import ModuleType
+from typing import Any
 
 import mpmath as mp
 import numpy as np
@@ -34,7 +37,7 @@ import sympy as sp
 
 from ..reference.literal import literal_step, reference_step
 from ..reference.samples import admissible_states, paper_state
-from .derive import RingValue, interface, sources
+from .derive import FunctionSpec, RingValue, interface, sources
 
 __all__ = ["compare", "evaluate_source", "map_states", "points", "step_accuracy", "phi_grad_vs_fd",
            "xy_vs_printed", "F64_TOL_ULPS", "MP_TOL", "REF_DPS", "MP_DPS", "EPS"]
@@ -55,7 +58,7 @@ def map_states(N: int, per_sign: int = 2) -> list:
     return [([float(v) for v in p], [float(v) for v in q], float(l0), float(m)) for p, q, l0, m in st]
 
 
-def points(spec, N: int) -> list:
+def points(spec: FunctionSpec, N: int) -> list[dict[str, Any]]:
     """Argument dicts (python floats / lists of floats / branch ints) for one function."""
     rng = random.Random(7919 * N + len(spec.name))
     kinds = {a.name for a in spec.args}
@@ -84,7 +87,7 @@ def points(spec, N: int) -> list:
 _FUNCS = {sp.exp: mp.exp, sp.log: mp.log, sp.sign: mp.sign, sp.Abs: abs, sp.acosh: mp.acosh}
 
 
-def _interpret(e, env, memo):
+def _interpret(e: sp.Basic, env: dict[sp.Basic, Any], memo: dict[Any, Any]) -> Any:
     """Value of a SymPy expression DAG with mpmath, each distinct subexpression once (the sources'
     products of local Lax matrices share their subexpressions; a tree walk or ``lambdify`` would
     see 2^N copies)."""
@@ -120,7 +123,7 @@ def _interpret(e, env, memo):
     return v
 
 
-def _eval(c, env, memo):
+def _eval(c: Any, env: dict[sp.Basic, Any], memo: dict[Any, Any]) -> Any:
     if isinstance(c, RingValue):
         return c.evaluate(env, mp.exp, memo)
     return _interpret(sp.sympify(c), env, memo)
@@ -141,7 +144,7 @@ def evaluate_source(N: int, name: str, pt: dict, dps: int = REF_DPS) -> list:
         return [+_eval(e, env, memo) for o in spec.outputs for e in o.exprs]
 
 
-def _flat(out) -> list:
+def _flat(out: Any) -> list[Any]:
     """Flatten the (tuple of) outputs of an emitted function into a list of scalars."""
     outs = out if isinstance(out, tuple) else (out,)
     res = []
@@ -156,7 +159,8 @@ def _flat(out) -> list:
     return res
 
 
-def _scale(spec, fn_mp, pt, ref, f0):
+def _scale(spec: FunctionSpec, fn_mp: Callable[..., Any], pt: Mapping[str, Any], ref: Sequence[Any],
+           f0: Sequence[Any]) -> list[Any]:
     """S_k = |f_k| + sum_i max(|x_i|, 1) |df_k/dx_i| (forward differences of the mpmath flavour, whose value
     at the point is ``f0``: with h = 1e-18 max(|x_i|, 1) at 50 digits the quotient is good to ~18 digits,
     far more than a scale needs, at half the evaluations of central differences)."""
@@ -180,7 +184,7 @@ def _scale(spec, fn_mp, pt, ref, f0):
     return S
 
 
-def compare(mod, N: int, name: str, pts=None) -> dict:
+def compare(mod: ModuleType, N: int, name: str, pts: Sequence[dict[str, Any]] | None = None) -> dict[str, Any]:
     """Emitted ``name`` (numpy and mpmath flavours of ``mod``) vs its SymPy source; see the module doc."""
     spec = interface(N)[name]
     fn, fn_mp = getattr(mod, name), getattr(mod, name + "_mp")
@@ -216,7 +220,7 @@ def compare(mod, N: int, name: str, pts=None) -> dict:
                         "S = |f| + sum_i max(|x_i|,1)|df/dx_i|"))
 
 
-def step_accuracy(mod, N: int, states=None) -> float:
+def step_accuracy(mod: ModuleType, N: int, states: Sequence[Any] | None = None) -> float:
     """Max over admissible states and both branches of the normwise relative error of the float64
     ``bt_step`` against ``reference_step`` at 50 digits: ``||x64 - x_ref||_2 / ||x_ref||_2``, x = (p~, q~)."""
     worst = 0.0
@@ -232,7 +236,7 @@ def step_accuracy(mod, N: int, states=None) -> float:
     return worst
 
 
-def phi_grad_vs_fd(mod, N: int) -> mp.mpf:
+def phi_grad_vs_fd(mod: ModuleType, N: int) -> mp.mpf:
     """Emitted gradient vs numerical differentiation (mp.diff) of the emitted Phi, relative to max(1, |g|)."""
     worst = mp.mpf(0)
     with mp.workdps(MP_DPS):
@@ -241,7 +245,7 @@ def phi_grad_vs_fd(mod, N: int) -> mp.mpf:
                 gp, gq = mod.phi_grad_mp(p, q, l0, m, b)
                 for i in range(N):
                     for which, g in (("p", gp[i]), ("q", gq[i])):
-                        def f(t, which=which, i=i):
+                        def f(t: mp.mpf, which: str = which, i: int = i) -> mp.mpf:
                             pp, qq = list(map(mp.mpf, p)), list(map(mp.mpf, q))
                             (pp if which == "p" else qq)[i] = t
                             return mod.phi_mp(pp, qq, l0, m, b)
@@ -250,7 +254,7 @@ def phi_grad_vs_fd(mod, N: int) -> mp.mpf:
     return worst
 
 
-def xy_vs_printed(mod, N: int) -> mp.mpf:
+def xy_vs_printed(mod: ModuleType, N: int) -> mp.mpf:
     """Emitted x, y vs the printed quotients of eq. xy (symbt.reference.literal, 70 digits), relative."""
     worst = mp.mpf(0)
     for p, q, l0, m in map_states(N):
