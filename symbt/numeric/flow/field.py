@@ -24,7 +24,6 @@ plain arithmetic, also used to build the same field for other integrators); if a
 ``dG/dq_j = r_{j-1} dG/dr_{j-1} - r_j dG/dr_j``.
 
 >>> import numpy as np
-import numpy.typing as npt
 >>> from symbt.numeric.flow.field import FlowField
 >>> f = FlowField([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0)
 >>> qdot, pdot = f(np.array([-20.0, 10.0, 1.0]), np.array([1.0, 0.0, 0.9]))
