@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2bafc205db160129b09c792e69acc52ebdbaef6ea84810e1c101a5a6e800f18a
-# symbt-codegen-content-sha256: 9d22f0e25c0f6ef3ca082ca2b06c8f35b6eb41e115ab0eb4046620dae1ad5b62
+# symbt-codegen-derivation-sha256: 1219dc17f3e5aa0c89305f93e19e48e7db11473a5de121747c7f1c60c4d4fdd9
+# symbt-codegen-content-sha256: 570facc7765f7729b1faae6748bfde525fabf83f80c9354afeec491d341a5951
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2bafc205db160129b09c792e69acc52ebdbaef6ea84810e1c101a5a6e800f18a
-# symbt-codegen-content-sha256: d6497b10c61a59226cf4571d5a988beb42fa2dc4491e6ead5918b623d2f1c4b0
+# symbt-codegen-derivation-sha256: 1219dc17f3e5aa0c89305f93e19e48e7db11473a5de121747c7f1c60c4d4fdd9
+# symbt-codegen-content-sha256: 583e610539cace9eb2e882d740f2b1d1eb8c5ec8b8e22551c04bace49e97ad0d
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2bafc205db160129b09c792e69acc52ebdbaef6ea84810e1c101a5a6e800f18a
-# symbt-codegen-content-sha256: bc9d9a64d2be719f7fbf60c6d6dba37d296e970440873ca06b62fe8cf5265ad1
+# symbt-codegen-derivation-sha256: 1219dc17f3e5aa0c89305f93e19e48e7db11473a5de121747c7f1c60c4d4fdd9
+# symbt-codegen-content-sha256: 3a011f6b9732212d70100b9c459bff2f84569139dbecb0b40a9934a080f0f815
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
