@@ -12,6 +12,7 @@ References: the paper's literal map (``reference_step``) at 300 digits from the 
 """
 
 import math
+from pathlib import Path
 
 import mpmath
 import numpy as np
@@ -104,3 +105,51 @@ def test_ill_conditioned_product_frame_does_not_amplify_r():
     # (a generous 16x on cond(B) 2N eps per step: the frame's condition drifts along the orbit)
     assert 1.0 <= rad1 / rad0 <= 1.0 + n * 16 * cond * S.n * 2.0 ** -52
     assert misses(ref[1:], hulls) == []
+
+
+STATE700 = Path(__file__).parent / "data" / "lohner64_step700.npz"
+
+
+def _old_update(monkeypatch):
+    """Reinstate the update of main before the fix: ``r <- (B^-1 J B) r + ...`` on every step."""
+    frame_of = LohnerSet._frame_of
+    monkeypatch.setattr(LohnerSet, "_frame_of", lambda self, F: (*frame_of(self, F)[:3], False))
+
+
+def _stretch(steps):
+    """The saved set (``run_large(64)``'s orbit after 700 steps at the first pass's 174 bits, fixed update) run on
+    for ``steps`` steps: ``(hulls, log2 max radius of r, log2 max radius of the hull)`` at every step."""
+    from symbt.benchmarks.certified import load_state
+
+    with flint_prec(174):
+        S, step = load_state(str(STATE700))
+        assert step == 700
+        hulls, lr, lh = [list(S.hull)], [], []
+        for _ in range(steps + 1):
+            lr.append(math.log2(max(float(S.r[k, 0].rad()) for k in range(S.n))))
+            lh.append(math.log2(max(float(h.rad()) for h in S.hull)))
+            if len(lr) <= steps:
+                S.step(arb(LAM0), arb(MU), 1)
+                hulls.append(list(S.hull))
+    return hulls, lr, lh
+
+
+@pytest.mark.slow
+def test_n64_stretch_after_step_700_no_jump_and_the_old_update_jumps(monkeypatch):
+    """Issue 23's N = 64 orbit on steps 700..740 (state saved by ``python -m symbt.benchmarks.certified --trace 64
+    --save-state 700 tests/data/lohner64_step700.npz``): with the fixed update the frame coordinates ``r`` only
+    gain the mapped rounding (well under a bit over the stretch); the old update, from the same set, multiplies
+    ``r`` by ``|B^-1 J B|`` -- several bits on the same stretch: the diagnosed cause, isolated (same set, same
+    frame, only the update differs).  Every hull contains the literal map's orbit (60 digits) from step 0."""
+    m = 40
+    hulls, lr, lh = _stretch(m)
+    p, q = chain(64, 64)
+    ref = reference_orbit(list(p), list(q), 700 + m, dps=60)[700:]
+    assert misses(ref, hulls) == []
+    grow = lr[-1] - lr[0]
+    assert 0.0 <= grow < 1.0, lr            # measured 0.6 bits (one rounding spike near step 713)
+    with monkeypatch.context() as mp_:
+        _old_update(mp_)
+        _, lr_old, lh_old = _stretch(m)
+    assert lr_old[-1] - lr_old[0] > grow + 2.0, (lr_old, lr)
+    assert lh_old[-1] > lh[-1] + 2.0, (lh_old, lh)

@@ -141,8 +141,8 @@ def load_state(path: str) -> tuple[Any, int]:
     >>> S.step(arb(5.0), arb(1.5), 1)
     >>> path = os.path.join(tempfile.mkdtemp(), "s.npz"); save_state(S, 1, path)
     >>> T, step = load_state(path)
-    >>> step, (T.B == S.B), all(a.mid() == b.mid() for a, b in zip(S.xh + S.hull, T.xh + T.hull))
-    (1, True, True)
+    >>> step, (T.B == S.B), all(a.mid() == b.mid() for a, b in zip(S.xh + S.hull, T.xh + T.hull)), T.has_r0
+    (1, True, True, False)
     >>> all(a.rad() <= b.rad() <= a.rad() * (1 + 2 ** -28) for a, b in zip(S.hull, T.hull))
     True
     """
@@ -152,8 +152,8 @@ def load_state(path: str) -> tuple[Any, int]:
     from ..numeric.multiprec.lohner import LohnerSet
 
     with np.load(path) as z:
-        S = LohnerSet([_dec(s) for s in z["hull"]])
-        S.xh = [_dec(s) for s in z["xh"]]
+        S = LohnerSet([_dec(s) for s in z["xh"]])          # exact centres: no r0 term (exact input)
+        S.hull = [_dec(s) for s in z["hull"]]
         S.Bf = np.array(z["Bf"])
         S.B = arb_mat(S.Bf.tolist())
         S.r = arb_mat([[_dec(s)] for s in z["r"]])
