@@ -27,8 +27,8 @@ contains the set and ``xh_k`` (its hull):
 
    so the rounding errors of the step and the width of ``J`` go into ``r`` (above ``2N = 24``, where ``B^-1``
    is enclosed from a float64 inverse, as ``r <- r + B^-1 ((J B - B_new) r + ...)``: that enclosure never
-   multiplies ``r`` itself, docs/certified.md, "N = 64").  ``J`` and the frame algebra run at ``jac_prec = 96``
-   bits: they only multiply the tiny offsets ``r`` (``xh`` and ``y`` carry the working precision);
+   multiplies ``r``; docs/certified.md, "The N = 64 radius jump").  ``J`` and the frame algebra run at
+   ``jac_prec = 96`` bits: they only multiply the tiny offsets ``r`` (``xh``, ``y`` carry the working precision);
 4. the stored enclosure is the hull ``xh + C r0 + B r`` intersected with ``f(K)``.
 
 The frame.  With ``B <- mid(J) B`` (the parallelepiped frame) ``B^-1 J B`` is the identity up to the
