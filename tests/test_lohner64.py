@@ -137,8 +137,9 @@ def _stretch(steps):
 
 @pytest.mark.slow
 def test_n64_stretch_after_step_700_no_jump_and_the_old_update_jumps(monkeypatch):
-    """Issue 23's N = 64 orbit on steps 700..740 (state saved by ``python -m symbt.benchmarks.certified --trace 64
-    --save-state 700 tests/data/lohner64_step700.npz``): with the fixed update the frame coordinates ``r`` only
+    """Issue 23's N = 64 orbit on steps 700..740 (state saved by ``python -m symbt.benchmarks.certified
+    --trace 64 --trace-steps 700 --save-state 700 tests/data/lohner64_step700.npz``, ~3 min of CPU): with the
+    fixed update the frame coordinates ``r`` only
     gain the mapped rounding (well under a bit over the stretch); the old update, from the same set, multiplies
     ``r`` by ``|B^-1 J B|`` -- several bits on the same stretch: the diagnosed cause, isolated (same set, same
     frame, only the update differs).  Every hull contains the literal map's orbit (60 digits) from step 0."""
