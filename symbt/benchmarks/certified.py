@@ -12,6 +12,8 @@ runs in one process, on the paper's example (N = 3, ``lam0 = 10``, ``mu = 5``, e
 * random states N = 8 and N = 64 (``symbt.benchmarks.cases.chain``), 1000 steps: time, bits, growth law.
 
 ``--quick``: 100 and 1000 steps, N = 8 only (a minute); ``--steps`` and ``--large`` select parts.
+``--trace N [--trace-steps n] [--save-state STEP FILE] [--start FILE] [--budget S]``: instead, the per-step
+record of the N-site Lohner set (:func:`trace_large`; docs/certified.md, "The N = 64 radius jump").
 Results go to stdout (a Markdown table) and, with ``--json``, to a file.
 
 >>> rows = run_side_by_side([20], ball_max_steps=20)
@@ -34,7 +36,7 @@ from ..paper import LAM0_EXAMPLE, MU_EXAMPLE, P_EXAMPLE, Q_EXAMPLE
 from .cases import chain
 from .timing import machine_info
 
-__all__ = ["run_side_by_side", "run_large", "main"]
+__all__ = ["run_side_by_side", "run_large", "trace_large", "save_state", "load_state", "main"]
 
 P0, Q0, LAM0, MU = list(P_EXAMPLE), list(Q_EXAMPLE), LAM0_EXAMPLE, MU_EXAMPLE[0]
 TOL, DPS = 1e-30, 40
@@ -94,6 +96,117 @@ def run_large(N: int, n: int = 1000) -> dict[str, Any]:
     return row
 
 
+def first_pass_bits(n: int, tol: float = TOL) -> int:
+    """The working precision of the Lohner method's first pass for ``n`` steps at ``tol`` (:mod:`..lohner`).
+
+    >>> first_pass_bits(1000)
+    174
+    """
+    return math.ceil(-math.log2(tol)) + 24 + 5 * max(1, n).bit_length()
+
+
+def _enc(b: Any) -> str:
+    m, e = b.mid().man_exp()
+    rm, re_ = b.rad().mid().man_exp()
+    return "%d %d %d %d" % (int(m), int(e), int(rm), int(re_))
+
+
+def _dec(s: str) -> Any:
+    from flint import arb
+
+    from ..numeric.multiprec.arb import flint_prec
+
+    m, e, rm, re_ = (int(v) for v in s.split())
+    with flint_prec(4096):                      # exact: mantissas of at most a few hundred bits
+        return arb(arb(m) * arb(2) ** e, arb(rm) * arb(2) ** re_)
+
+
+def save_state(S: Any, step: int, path: str) -> None:
+    """Write the Lohner set ``S`` (a :class:`~symbt.numeric.multiprec.lohner.LohnerSet` on the float64 frame
+    path, exact input) after ``step`` steps to ``path`` (``.npz``): every ball and the frame, exactly."""
+    import numpy as np
+
+    np.savez_compressed(path, step=step, steps=S.steps, Bf=S.Bf, xh=[_enc(x) for x in S.xh],
+                        hull=[_enc(x) for x in S.hull], r=[_enc(S.r[k, 0]) for k in range(S.n)])
+
+
+def load_state(path: str) -> tuple[Any, int]:
+    """``(LohnerSet, step)`` from :func:`save_state`'s file (use it at the saved precision): centres and frame
+    exact, radii rounded up by at most one unit of Arb's 30-bit radius (a slightly larger, still valid set).
+
+    >>> import os, tempfile
+    >>> from flint import arb
+    >>> from symbt.numeric.multiprec.lohner import LohnerSet
+    >>> S = LohnerSet([arb(float(x)) for x in chain(13, 13)[0] + chain(13, 13)[1]])
+    >>> S.step(arb(5.0), arb(1.5), 1)
+    >>> path = os.path.join(tempfile.mkdtemp(), "s.npz"); save_state(S, 1, path)
+    >>> T, step = load_state(path)
+    >>> step, (T.B == S.B), all(a.mid() == b.mid() for a, b in zip(S.xh + S.hull, T.xh + T.hull)), T.has_r0
+    (1, True, True, False)
+    >>> all(a.rad() <= b.rad() <= a.rad() * (1 + 2 ** -28) for a, b in zip(S.hull, T.hull))
+    True
+    """
+    import numpy as np
+    from flint import arb_mat
+
+    from ..numeric.multiprec.lohner import LohnerSet
+
+    with np.load(path) as z:
+        S = LohnerSet([_dec(s) for s in z["xh"]])          # exact centres: no r0 term (exact input)
+        S.hull = [_dec(s) for s in z["hull"]]
+        S.Bf = np.array(z["Bf"])
+        S.B = arb_mat(S.Bf.tolist())
+        S.r = arb_mat([[_dec(s)] for s in z["r"]])
+        S.steps = int(z["steps"])
+        return S, int(z["step"])
+
+
+def trace_large(N: int, n: int, *, start: str | None = None, save: dict[int, str] | None = None,
+                prec: int | None = None, budget: float = 3600.0, out: Any = None) -> list[dict[str, Any]]:
+    """Per-step record of the Lohner set of ``run_large(N)``'s state at its first pass's precision.
+
+    Steps ``1 .. n`` (or from the state file ``start``, :func:`save_state`), each ``{"i", "log2_radius" (of the
+    hull), "log2_r" (of the frame coordinates), "frame_cond" (1-norm, float64), "cpu_s"}``; the state is
+    saved at the steps of ``save`` (``{step: path}``); stops after ``budget`` seconds of wall time; each record
+    is also written to ``out`` (a text stream) as a JSON line.
+
+    >>> rows = trace_large(8, 3)
+    >>> [r["i"] for r in rows], all(-170 < r["log2_radius"] < -140 for r in rows)
+    ([1, 2, 3], True)
+    """
+    import numpy as np
+    from flint import arb
+
+    from ..numeric.multiprec.arb import flint_prec
+    from ..numeric.multiprec.lohner import LohnerSet
+
+    size, seed, lam0, mu = LARGE[N]
+    bits = prec or first_pass_bits(1000)
+    rows: list[dict[str, Any]] = []
+    t0 = time.perf_counter()
+    with flint_prec(bits):
+        if start:
+            S, i0 = load_state(start)
+        else:
+            p, q = chain(size, seed)
+            S, i0 = LohnerSet([arb(float(x)) for x in list(p) + list(q)]), 0
+        l0, m = arb(lam0), arb(mu)
+        for i in range(i0 + 1, n + 1):
+            c0 = time.process_time()
+            S.step(l0, m, 1)
+            cpu = time.process_time() - c0
+            rows.append({"i": i, "log2_radius": math.log2(max(float(h.rad()) for h in S.hull)),
+                         "log2_r": math.log2(max(float(S.r[k, 0].rad()) for k in range(S.n))),
+                         "frame_cond": float(np.linalg.cond(np.asarray(S.Bf, dtype=float), 1)), "cpu_s": cpu})
+            if out is not None:
+                print(json.dumps(rows[-1]), file=out, flush=True)
+            if save and i in save:
+                save_state(S, i, save[i])
+            if time.perf_counter() - t0 > budget:
+                break
+    return rows
+
+
 def _fmt(rows: list[dict[str, Any]]) -> str:
     out = ["| N | steps | method | working bits | wall / CPU time | max radius | growth degree |",
            "|---|---|---|---|---|---|---|"]
@@ -116,7 +229,27 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--large", type=int, nargs="*", choices=sorted(LARGE), help="random states (default 8 64)")
     ap.add_argument("--steps", type=int, nargs="*", help="orbit lengths of the side-by-side part "
                     "(default 100 3500 100000)")
+    ap.add_argument("--trace", type=int, choices=sorted(LARGE), metavar="N",
+                    help="instead: the per-step record of run_large(N)'s Lohner set (trace_large), JSON lines")
+    ap.add_argument("--trace-steps", type=int, default=1000, help="last step of --trace (default 1000)")
+    ap.add_argument("--start", metavar="FILE", help="--trace: resume from a saved state")
+    ap.add_argument("--save-state", nargs=2, action="append", metavar=("STEP", "FILE"), default=[],
+                    help="--trace: save the state after STEP steps to FILE (.npz); repeatable")
+    ap.add_argument("--budget", type=float, default=3600.0, help="--trace: wall-time budget, seconds")
     args = ap.parse_args(argv)
+    if args.trace is not None:
+        try:
+            save = {int(k): v for k, v in args.save_state}
+        except ValueError:
+            print("error: --save-state STEP must be an integer", file=sys.stderr)
+            return 2
+        rows = trace_large(args.trace, args.trace_steps, start=args.start, save=save, budget=args.budget,
+                           out=sys.stdout)
+        if rows and rows[0]["i"] == 1:
+            from ..numeric.multiprec.lohner import growth_law
+
+            print(json.dumps({"growth": growth_law([-math.inf] + [r["log2_radius"] for r in rows])}))
+        return 0
     steps = args.steps if args.steps is not None else ([100, 1000] if args.quick else [100, 3500, 100_000])
     large = args.large if args.large is not None else ([8] if args.quick else [8, 64])
     head = {"machine": machine_info(), "date": time.strftime("%Y-%m-%d %H:%M"),

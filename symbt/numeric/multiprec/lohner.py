@@ -25,21 +25,19 @@ contains the set and ``xh_k`` (its hull):
    is enclosed rigorously, :func:`frame_inverse`); ``xh <- mid(y)`` and
        r <- (B^-1 J B) r + B^-1 ((J C - C_new) r0 + (y - mid y)),
 
-   so the rounding errors of the step and the width of ``J`` go into ``r``.  ``J`` and this frame
-   algebra run at ``jac_prec = 96`` bits: they only multiply the tiny offsets ``r``, so their own
-   rounding is a relative ``2**-90`` per step (``xh`` and ``y`` carry the working precision);
+   so the rounding errors of the step and the width of ``J`` go into ``r`` (above ``2N = 24``, where ``B^-1``
+   is enclosed from a float64 inverse, as ``r <- r + B^-1 ((J B - B_new) r + ...)``: that enclosure never
+   multiplies ``r``; docs/certified.md, "The N = 64 radius jump").  ``J`` and the frame algebra run at
+   ``jac_prec = 96`` bits: they only multiply the tiny offsets ``r`` (``xh``, ``y`` carry the working precision);
 4. the stored enclosure is the hull ``xh + C r0 + B r`` intersected with ``f(K)``.
 
 The frame.  With ``B <- mid(J) B`` (the parallelepiped frame) ``B^-1 J B`` is the identity up to the
 width of ``J``, so ``r`` only collects the mapped rounding errors; the price is the condition number of
-``B``, which for this integrable map grows only like ``n**2`` (a shear).  When it passes
-:data:`MAX_FRAME_COND` the frame is re-orthogonalised by a plain QR factorisation of ``mid(J) B`` (no
-column reordering: the issue reports that reordering by raw column norm blew up); ``frame="qr"`` does
-that every step (Lohner's QR method, CAPD's default).  Measured on the paper's example at 256 bits
-(``python -m symbt.benchmarks.certified``, docs/certified.md): the radius grows like ``n**3.6`` with the
-product frame and like ``n**6.2`` with QR every step -- the absolute values of the triangular factors'
-oscillating off-diagonal entries pile up in ``|R| |r|`` (one power of ``n`` per superdiagonal) -- 23 bits
-apart at 1e4 steps.
+``B``, which for this integrable map grows only like ``n**2`` (a shear).  Past :data:`MAX_FRAME_COND` the
+frame is re-orthogonalised by a plain QR factorisation of ``mid(J) B`` (no column reordering: the issue
+reports that reordering by raw column norm blew up); ``frame="qr"`` does that every step (Lohner's QR
+method, CAPD's default), measurably worse here (``n**6.2`` against ``n**3.6`` on the paper's example,
+docs/certified.md).
 
 A Jacobian that is not finite (a box that contains a degenerate eigenvector, i.e. a slope at
 infinity, or a pole of the formulation) raises :class:`JacobianBlowup`: :func:`certified_orbit`
@@ -194,8 +192,7 @@ def _frame(F: Any) -> tuple[Any, Any]:
 
 
 _SMALL = 24       # below this size Arb's inv is faster than the Python loops of the bound
-#: the product frame is re-orthogonalised (QR) when its 1-norm condition number passes this; on the paper's
-#: example it grows like n**2 (6e4 at 1000 steps, 5e6 at 5000), so 1e12 is not reached below ~1e6 steps
+#: the product frame is re-orthogonalised (QR) past this 1-norm condition (paper's example: ~n**2, 6e4 at 1000 steps)
 MAX_FRAME_COND = 1e12
 _COND_EVERY = 32       # small frames: check the condition every so many steps (rigour does not depend on it)
 
@@ -274,7 +271,8 @@ class LohnerSet:
         """A box containing the set and ``xh`` (the mean-value form needs the segment ``[xh, x]``)."""
         return [h.union(c) for h, c in zip(self.hull, self.xh)]
 
-    def _frame_of(self, F: Any) -> tuple[Any, Any, Any]:
+    def _frame_of(self, F: Any) -> tuple[Any, Any, Any, bool]:
+        """``(Bf, B, enclosure of B^-1, near)``: ``near`` if ``B`` is ``F`` itself (``B^-1 J B_old ~ I``)."""
         if not np.all(np.isfinite(F)):
             raise JacobianBlowup("the frame matrix is not finite")
         if self.frame == "product":
@@ -290,10 +288,10 @@ class LohnerSet:
                 cond = 0.0
             if cond < MAX_FRAME_COND:
                 B = arb_mat(F.tolist())
-                return F, B, frame_inverse(B, X)
+                return F, B, frame_inverse(B, X), True
             self.reorthogonalised += 1
         Bf, B = _frame(F)
-        return Bf, B, frame_inverse(B)
+        return Bf, B, frame_inverse(B), False
 
     def _small_frame(self, Jm: Any) -> tuple[Any, Any]:
         """``(B, enclosure of B^-1)``: the product frame ``mid(mid(J) B)`` of a small set, all in Arb (any exact
@@ -331,12 +329,13 @@ class LohnerSet:
                 J, err = J.mid(), arb_mat(self.n, 1)
             Jm = J.mid()
             small = self.n <= _SMALL and self.frame == "product"
+            near = False
             if small:
                 Bn, Binv = self._small_frame(Jm)
             else:
                 Jf = _floats(Jm)
                 with np.errstate(all="ignore"):      # overflow or a singular frame is decided, not warned
-                    Bf, Bn, Binv = self._frame_of(Jf @ self.Bf)
+                    Bf, Bn, Binv, near = self._frame_of(Jf @ self.Bf)
             if self.unsound:
                 Binv = Binv.mid()
             rhs = err
@@ -349,7 +348,10 @@ class LohnerSet:
                     raise JacobianBlowup("the matrix C is not finite")
                 rhs = rhs + (J * self.C - Cn) * self.r0
                 self.C = Cn
-            self.r = (Binv * (J * self.B)) * self.r + Binv * rhs
+            if near:          # B^-1 multiplies the small J B - B_new, never r (module docstring, step 3)
+                self.r = self.r + Binv * ((J * self.B - Bn) * self.r + rhs)
+            else:
+                self.r = (Binv * (J * self.B)) * self.r + Binv * rhs
             self.B, self.Bf = Bn, (self.Bf if small else Bf)
             lin = Bn * self.r
             if self.has_r0:
