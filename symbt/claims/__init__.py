@@ -38,6 +38,8 @@ CLAIM_MODULES = (
     "shipped_spectral",
     "shipped_emitted",
     "shipped_flow",
+    "shipped_qd",
+    "shipped_paths",
     "checker",
     "library",
 )
