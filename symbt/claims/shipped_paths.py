@@ -44,6 +44,8 @@ scene("numeric-paths", "the numeric paths the entry-point claims do not reach or
                        "step, fused/block/general path selection, failing batch members, tiny mu, the growth "
                        "record of certified orbits (issue 21)")
 
+#: the kernels' statuses for "no real map" (symbt.numeric.core.limits: TRACE1, TRACE2, POSITIVITY)
+NO_MAP_STATUS = (1, 2, 3)
 #: paths.growth: the certified orbit's tolerance, and how far the record may be from the returned radii (log2)
 GROWTH_TOL, GROWTH_LOG_TOL = 1e-12, 0.01
 
@@ -75,7 +77,8 @@ def _block_kernel(rows: list[tuple], b: int) -> tuple[Any, Any, Any]:
        where="symbt/numeric/float64/kernels.py, kernels_block.py, orbit.py (kernel_step), step.py",
        statement="on moderate float64 states in every branch x sign(mu) x sign(tr) cell the fused kernel finishes "
                  "each step itself (kernel_step gives none back), the block kernel reports OK for every member "
-                 "and equals the fused kernel bit for bit, and both = the literal map within 16 N eps S_i (N={N})")
+                 "and equals the fused kernel bit for bit, and both = the literal map within 16 N eps S_i; where "
+                 "no real map exists both kernels report it (N={N})")
 def kernel_paths(N: int, parts: Parts) -> Outcome:
     from ..numeric.float64.orbit import kernel_step
 
@@ -109,6 +112,23 @@ def kernel_paths(N: int, parts: Parts) -> Outcome:
                                    "for bit equal).")
                 r = math.inf
             tally.add("block kernel", cell, st, b, r, allowed, ref.agree)
+    # without a real map the kernels themselves say so (the drivers' typed error rests on their status)
+    from .shipped_emitted import nomap_states
+
+    for st, b, (cond, decided) in nomap_states(N):
+        if not decided:
+            continue
+        cell = {"branch": b, "no map": str(cond)}
+        single = kernel_step(np.array(st[0]), np.array(st[1]), st[2], st[3], b, "python")
+        tally.add("fused kernel", cell, st, b, 0.0 if single is None else math.inf)
+        try:
+            status = _block_kernel([st], b)[2]
+            ok = int(status[0]) in NO_MAP_STATUS
+        except (FloatingPointError, ZeroDivisionError, OverflowError, ValueError, IndexError):
+            ok = False
+        if not ok:
+            tally.notes.append(f"the block kernel did not report a state without a real map ({cond}).")
+        tally.add("block kernel", cell, st, b, 0.0 if ok else math.inf)
     return tally.outcome(method="numeric: the fused and block kernels alone (no fallback) vs the literal map, "
                                 "statuses and bit identity",
                          printed=f"kernels finish and |kernel - literal| <= {C} eps S_i")
