@@ -88,6 +88,12 @@ def test_block_kernel_gives_moderate_states_back(monkeypatch):
     assert status("paths.kernels.n5") == "failed"
 
 
+def test_kernels_finish_ill_conditioned_states(monkeypatch):
+    # no condition test: a state at a band edge stays in the fused kernel (mutant kernels:182)
+    monkeypatch.setattr(kernels, "KAPPA_MAX", math.inf)
+    assert status("paths.kernels.n3") == "failed"
+
+
 def test_block_kernel_misses_opposite_traces(monkeypatch):
     # the block kernel's positivity statuses lost: a state without a real map reported OK (mutant kernels_block:237)
     monkeypatch.setattr(kernels_block, "POSITIVITY", kernels_block.OK)

@@ -9,7 +9,9 @@ not take -- or whose choice they cannot see -- are checked here, each against th
   (``symbt.numeric.float64.jit.kernel("ensemble", "python")``) reports status ``OK`` for each member and
   equals the fused kernel bit for bit (documented in docs/numeric.md), and both agree with the literal map
   within ``16 N eps S_i`` -- so a range or condition test that sends moderate states to the general path
-  (whose results are right too) is seen.
+  (whose results are right too) is seen; states without a real map get a no-map status from both kernels;
+  and at ``lam1`` (or ``lam2``) 1e-9 of the gap inside a band edge (N = 3) both kernels give the state back
+  (``ILLCOND``) and ``bt_step`` (the general path, escalated) is still within ``16 N eps S_i``.
 * ``paths.failing_rows.n3`` -- batches with one member without a real map (or beyond the float64 range)
   among moderate ones: ``bt_step`` (numpy rows) and ``bt_orbit`` ensembles (block kernel with the general
   path's retry of the members it gives back; numpy) raise the single-state call's typed error, with ``where``
@@ -29,6 +31,7 @@ from __future__ import annotations
 
 import importlib.util
 import math
+from functools import cache
 from typing import Any
 
 import mpmath as mp
@@ -44,6 +47,8 @@ scene("numeric-paths", "the numeric paths the entry-point claims do not reach or
                        "step, fused/block/general path selection, failing batch members, tiny mu, the growth "
                        "record of certified orbits (issue 21)")
 
+#: paths.kernels: lam1 (or lam2) this fraction of the gap's width inside a band edge
+EDGE_GAP = 1e-9
 #: the kernels' statuses for "no real map" (symbt.numeric.core.limits: TRACE1, TRACE2, POSITIVITY)
 NO_MAP_STATUS = (1, 2, 3)
 #: paths.growth: the certified orbit's tolerance, and how far the record may be from the returned radii (log2)
@@ -72,13 +77,57 @@ def _block_kernel(rows: list[tuple], b: int) -> tuple[Any, Any, Any]:
     return P[1], Q[1], status
 
 
+@cache
+def edge_states() -> tuple:
+    """``(cell, state, branch)``: the paper's N = 3 state with ``lam1`` (or ``lam2``) at ``EDGE_GAP`` of the gap
+    width inside the edge of the gap (-10.27, -0.80) (edges by ``findroot`` on the literal trace, 40 digits)
+    and the other at the gap's middle: ill-conditioned (the kernels' condition estimate beyond KAPPA_MAX)."""
+    p, q = (-20.0, 10.0, 1.0), (1.0, 0.0, 0.9)
+    with mp.workdps(40):
+        s = mp.sign(literal_trace(mp.mpf(-5), p, q))
+        lo, hi = (mp.findroot(lambda x: literal_trace(x, p, q) - 2 * s, x0, solver="anderson")
+                  for x0 in ((-10.28, -10.26), (-0.80, -0.79)))
+    lo, hi, mid = float(lo), float(hi), float((lo + hi) / 2)
+    out = []
+    for side, (l1, l2) in (("top", (hi - EDGE_GAP * (hi - lo), mid)), ("bottom", (mid, lo + EDGE_GAP * (hi - lo)))):
+        for b in (1, -1):
+            out.append(({"branch": b, "edge": side}, (p, q, (l1 + l2) / 2, (l1 - l2) / 2), b))
+    return tuple(out)
+
+
+def _near_edge(tally: Tally, s: float) -> None:
+    """Near a band edge both kernels give the state back (ILLCOND) and bt_step's result -- the general path,
+    recomputed at higher precision -- is still the literal map within 16 N eps S_i."""
+    from ..numeric import bt_step
+    from ..numeric.core.limits import ILLCOND
+    from ..numeric.float64.orbit import kernel_step
+
+    for cell, st, b in edge_states():
+        ref = step_ref(st, b)
+        single = kernel_step(np.array(st[0]), np.array(st[1]), st[2], st[3], b, "python")
+        if single is not None:
+            tally.notes.append("the fused kernel finished a state at a band edge (condition beyond KAPPA_MAX).")
+        try:
+            code = int(_block_kernel([st], b)[2][0])
+        except (FloatingPointError, ZeroDivisionError, OverflowError, ValueError, IndexError):
+            code = -1
+        if code != ILLCOND:
+            tally.notes.append(f"the block kernel reported status {code} at a band edge (expected ILLCOND).")
+        with without_numba():
+            out = bt_step(np.array(st[0]), np.array(st[1]), st[2], st[3], branch=b)
+        r, allowed = ratios(scaled(list(out[0]) + list(out[1]), s), ref.x, ref.S, EPS, step_constant(3))
+        ok = single is None and code == ILLCOND
+        tally.add("band edge: kernels give back, bt_step", cell, st, b, r if ok else math.inf, allowed, ref.agree)
+
+
 @claim("paths.kernels", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3, 5),
        parts=scale_parts,
        where="symbt/numeric/float64/kernels.py, kernels_block.py, orbit.py (kernel_step), step.py",
        statement="on moderate float64 states in every branch x sign(mu) x sign(tr) cell the fused kernel finishes "
                  "each step itself (kernel_step gives none back), the block kernel reports OK for every member "
                  "and equals the fused kernel bit for bit, and both = the literal map within 16 N eps S_i; where "
-                 "no real map exists both kernels report it (N={N})")
+                 "no real map exists both kernels report it; 1e-9 of the gap inside a band edge (N = 3) both give "
+                 "the state back (ILLCOND) and bt_step is still within 16 N eps S_i (N={N})")
 def kernel_paths(N: int, parts: Parts) -> Outcome:
     from ..numeric.float64.orbit import kernel_step
 
@@ -112,6 +161,8 @@ def kernel_paths(N: int, parts: Parts) -> Outcome:
                                    "for bit equal).")
                 r = math.inf
             tally.add("block kernel", cell, st, b, r, allowed, ref.agree)
+    if N == 3:
+        _near_edge(tally, s)
     # without a real map the kernels themselves say so (the drivers' typed error rests on their status)
     from .shipped_emitted import nomap_states
 
