@@ -28,8 +28,8 @@ def status(cid: str) -> str:
 
 
 def test_the_scene_has_the_claims_named_here():
-    assert NUMERIC_PATHS == ["paths.failing_rows.n3", "paths.growth.n3", "paths.kernels.n3", "paths.kernels.n5",
-                             "paths.qd.n2", "paths.qd.n3", "paths.tiny_mu.n3"]
+    assert NUMERIC_PATHS == ["paths.complex.n3", "paths.failing_rows.n3", "paths.growth.n3", "paths.kernels.n3",
+                             "paths.kernels.n5", "paths.qd.n2", "paths.qd.n3", "paths.tiny_mu.n3"]
 
 
 @pytest.mark.parametrize("cid", NUMERIC_PATHS)
@@ -128,6 +128,17 @@ def test_tiny_mu_sign_of_odd_powers(monkeypatch):
     monkeypatch.setattr(coefficients, "_log2_rows", lambda lam, li, ks: (real(lam, li, ks)[0],
                                                                          np.abs(real(lam, li, ks)[1])))
     assert status("paths.tiny_mu.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.complex
+
+def test_complex_continuation_other_eigenvector(monkeypatch):
+    pytest.importorskip("flint")
+    from symbt.numeric.multiprec import arb
+
+    # the complex Arb context's square root on the other branch: the continuation follows the other eigenvector
+    monkeypatch.setattr(arb.ACB, "sqrt", lambda x: -x.sqrt())
+    assert status("paths.complex.n3") == "failed"
 
 
 # --------------------------------------------------------------------------- paths.growth
