@@ -67,6 +67,17 @@ def test_qd_negative_input(monkeypatch):
     assert status("paths.qd.n2") == "failed"
 
 
+def test_qd_decomposition_shift(monkeypatch):
+    # from_qd's decomposition: the shift of an absent component 1 instead of 0 (mutant qd:272)
+    real = qd._decompose
+
+    def wrong(x, out):
+        real(x, out)
+        out[:, 6] = np.where(out[:, 3] == 0, 1, out[:, 6])
+    monkeypatch.setattr(qd, "_decompose", wrong)
+    assert status("paths.qd.n2") == "failed"
+
+
 def test_qd_fits_rule(monkeypatch):
     # the quad-double admission rule off by one guard bit
     monkeypatch.setattr(qd, "qd_need", lambda prec, n: prec + 15 + 2 * int(n).bit_length())

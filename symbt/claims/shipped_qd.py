@@ -10,7 +10,8 @@ relative error above 1e-50 makes the claim inconclusive, so a step that fell bac
 precision fails.  Also: a state beyond ``MAX_DQ_QD = 300`` is given back with the status ``RANGE`` at the first
 step (where ``backend="auto"`` continues on the Arb path); states without a real map get a no-map status;
 ``to_qd`` splits values exactly (the sum of the limbs is the value, sign included) and refuses what it documents
-it refuses; :func:`~symbt.numeric.multiprec.qd.qd_fits` admits exactly ``mp.prec + 16 + 2 bitlen(n) <= 209``.
+it refuses; ``from_qd``'s integer decomposition (``_decompose``, plain Python) is exact;
+:func:`~symbt.numeric.multiprec.qd.qd_fits` admits exactly ``mp.prec + 16 + 2 bitlen(n) <= 209``.
 
 The compiled route (``backend="qd"``, numba) is checked by ``shipped.mp`` and ``shipped.orbit`` under ``--deep``.
 Shown to fail on planted bugs in ``tests/test_killers_numeric.py``.
@@ -143,7 +144,7 @@ def _qd_accuracy(tally: Tally, cell: dict, st: tuple, b: int, n: int, scale: flo
 def _qd_statuses(N: int, parts: Parts) -> list[str]:
     """The quad-double step's decisions and conversions (empty: all as documented)."""
     from ..numeric.core.limits import MAX_DQ_QD, OK, POSITIVITY, RANGE, TRACE1, TRACE2
-    from ..numeric.multiprec.qd import qd_fits, to_qd
+    from ..numeric.multiprec.qd import _decompose, qd_fits, to_qd
     from .shipped_emitted import nomap_states
 
     bad = []
@@ -168,6 +169,15 @@ def _qd_statuses(N: int, parts: Parts) -> list[str]:
     limbs = to_qd(vals)
     if limbs is None or any(qd_value(row) != v for row, v in zip(limbs, vals)):
         bad.append("to_qd does not split 200-bit values (negative ones included) exactly")
+    # from_qd's integer decomposition (plain Python here; numba compiles the same function): exact, also for
+    # quad-doubles with fewer than four non-zero components
+    ints = np.zeros((len(vals), 8), np.int64)
+    _decompose(np.ascontiguousarray(limbs, dtype=np.float64), ints)
+    for row, v in zip(ints.tolist(), vals):
+        m0, m1, m2, m3, s1, s2, s3, e = row
+        with mp.workprec(2400):
+            if mp.ldexp(mp.mpf((((((m0 << s1) + m1) << s2) + m2) << s3) + m3), e) != v:
+                bad.append(f"the decomposition of {mp.nstr(v, 5)} is not exact")
     with mp.workprec(260):
         refused = [+mp.pi, mp.mpf(2) ** 700, mp.mpf(2) ** -700, mp.inf]
     for v in refused:
