@@ -208,8 +208,8 @@ def _single_error(fn: Any) -> BaseException | None:
                  "bt_orbit ensembles (block kernel + the general path's retry; numpy) raise NoRealMapError with "
                  "where = that member and the single-state call's condition; a member beyond the float64 range "
                  "gives NumericRangeError; with allow_complex=True the other members equal their single-state "
-                 "steps bit for bit (N={N})")
-def failing_rows(N: int, parts: Parts) -> Outcome:
+                 "steps bit for bit; under --deep also the numba block kernel's batch step and ensemble (N={N})")
+def failing_rows(N: int, parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import NumericRangeError, bt_orbit, bt_step
     from .shipped_emitted import nomap_states
 
@@ -236,6 +236,10 @@ def failing_rows(N: int, parts: Parts) -> Outcome:
                   "bt_orbit ensemble (block kernel, retry)": lambda: bt_orbit(P, Q, L, M, 3, branch=b,
                                                                               backend="python"),
                   "bt_orbit ensemble (numpy)": lambda: bt_orbit(P, Q, L, M, 3, branch=b, backend="numpy")}
+        if deep and importlib.util.find_spec("numba") is not None:   # the compiled block kernel and its retry
+            routes["bt_step batch (numba block kernel, retry)"] = lambda: bt_step(P, Q, L, M, branch=b,
+                                                                                  backend="numba")
+            routes["bt_orbit ensemble (numba)"] = lambda: bt_orbit(P, Q, L, M, 3, branch=b, backend="numba")
         for name, fn in routes.items():
             cell = {"route": name, "member": str(cond)}
             exc = _single_error(fn)
