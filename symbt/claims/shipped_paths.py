@@ -53,6 +53,8 @@ EDGE_GAP = 1e-9
 NO_MAP_STATUS = (1, 2, 3)
 #: paths.growth: the certified orbit's tolerance, and how far the record may be from the returned radii (log2)
 GROWTH_TOL, GROWTH_LOG_TOL = 1e-12, 0.01
+#: paths.growth's steps
+GROWTH_STEPS = 12
 
 
 def _mpf_list(xs: Any) -> list:
@@ -346,7 +348,7 @@ def growth_record(N: int, parts: Parts) -> Outcome:
 
     cell, st, b = ship_cells(N, 1)[0]
     info: dict[str, Any] = {}
-    n = 12
+    n = GROWTH_STEPS
     # tol 1e-12 at 30 digits: the enclosures' radii (~2^-75) dwarf the rounding of the returned midpoints
     # (~2^-103), so the returned radii are the record's radii to ~1e-8 relative
     with mp.workdps(30):

@@ -163,23 +163,24 @@ def _qd_statuses(N: int, parts: Parts) -> list[str]:
         if code not in want:
             bad.append(f"no real map ({cond}): quad-double status {code}")
     # to_qd: exact limbs (the sum is the value, sign included) and its documented refusals
-    with mp.workprec(QD_INPUT_BITS):
+    with mp.workprec(QD_INPUT_BITS):   # the last two: at the edges of the documented range 2**+-600
         vals = [mp.mpf(-3), -mp.pi, mp.mpf(2) ** -500 * mp.e, -mp.mpf(10) ** 150 * mp.sqrt(2), mp.mpf(0),
-                mp.mpf(2) ** 590 / 3]
+                mp.mpf(2) ** 590 / 3, mp.mpf(2) ** -601, -(mp.mpf(2) ** 599) * (1 + mp.mpf(2) ** -100)]
     limbs = to_qd(vals)
     if limbs is None or any(qd_value(row) != v for row, v in zip(limbs, vals)):
         bad.append("to_qd does not split 200-bit values (negative ones included) exactly")
     # from_qd's integer decomposition (plain Python here; numba compiles the same function): exact, also for
     # quad-doubles with fewer than four non-zero components
     ints = np.zeros((len(vals), 8), np.int64)
-    _decompose(np.ascontiguousarray(limbs, dtype=np.float64), ints)
+    if limbs is not None:
+        _decompose(np.ascontiguousarray(limbs, dtype=np.float64), ints)
     for row, v in zip(ints.tolist(), vals):
         m0, m1, m2, m3, s1, s2, s3, e = row
         with mp.workprec(2400):
             if mp.ldexp(mp.mpf((((((m0 << s1) + m1) << s2) + m2) << s3) + m3), e) != v:
                 bad.append(f"the decomposition of {mp.nstr(v, 5)} is not exact")
     with mp.workprec(260):
-        refused = [+mp.pi, mp.mpf(2) ** 700, mp.mpf(2) ** -700, mp.inf]
+        refused = [+mp.pi, mp.mpf(2) ** 700, mp.mpf(2) ** -700, mp.inf, mp.mpf(2) ** 600, -mp.mpf(2) ** -602]
     for v in refused:
         if to_qd([v]) is not None:
             bad.append(f"to_qd accepted {mp.nstr(v, 5)} (documented: more than 212 bits or beyond 2**+-600)")
