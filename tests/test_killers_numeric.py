@@ -123,6 +123,14 @@ def test_where_names_the_wrong_member(monkeypatch):
     assert status("paths.failing_rows.n3") == "failed"
 
 
+def test_where_text_default_offset(monkeypatch):
+    # where_text's documented default offset 0 becomes 1 (mutant step:262)
+    from symbt.numeric.core import step as step_module
+
+    monkeypatch.setattr(step_module.where_text, "__defaults__", (1, None))
+    assert status("paths.failing_rows.n3") == "failed"
+
+
 def test_retry_skipped(monkeypatch):
     # the ensemble's members the block kernel gives back are not recomputed by the general path
     monkeypatch.setattr(orbit_module, "general_orbit",

@@ -210,7 +210,8 @@ def _single_error(fn: Any) -> BaseException | None:
                  "bt_orbit ensembles (block kernel + the general path's retry; numpy) raise NoRealMapError with "
                  "where = that member and the single-state call's condition; a member beyond the float64 range "
                  "gives NumericRangeError; with allow_complex=True the other members equal their single-state "
-                 "steps bit for bit; under --deep also the numba block kernel's batch step and ensemble (N={N})")
+                 "steps bit for bit; where_text names the failing row as documented; under --deep also the numba "
+                 "block kernel's batch step and ensemble (N={N})")
 def failing_rows(N: int, parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import NumericRangeError, bt_orbit, bt_step
     from .shipped_emitted import nomap_states
@@ -284,6 +285,11 @@ def failing_rows(N: int, parts: Parts, deep: bool = False) -> Outcome:
         err = _single_error(fn)
         why = "" if isinstance(err, NumericRangeError) else f"raised {type(err).__name__ if err else 'nothing'}"
         note({"route": name, "member": "|dq| = 710"}, far, 1, why)
+    # the helper that names the failing rows, called as documented (offset 0 by default): row 1 of a (2, 2) batch
+    from ..numeric.core.step import where_text
+
+    named = where_text([True, True, False, True], (2, 2))[0]
+    note({"route": "where_text", "member": "(1, 0)"}, far, 1, "" if named == [(1, 0)] else f"named {named}")
     detail = ("; ".join(bad) + ".") if bad else ("every batch raised the single-state call's error, naming exactly "
                                                 "the failing member; the other members are their own steps.")
     return judge_cells(table, printed="batch error = single-state error, where = the failing member",
