@@ -216,7 +216,7 @@ def test_no_import_cycle():
 
 
 # the layers inside symbt.numeric (docs/architecture.md): the step written once, in core, depends on no backend
-NUMERIC_LAYERS = (("core",), ("float64",), ("multiprec",), ("backends", "dispatch"), ("flow",), ("testing",))
+NUMERIC_LAYERS = (("core",), ("float64",), ("multiprec",), ("backends", "dispatch"), ("flow",))
 NUMERIC_LAYER_OF = {name: i for i, names in enumerate(NUMERIC_LAYERS) for name in names}
 
 

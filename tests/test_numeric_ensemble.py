@@ -9,10 +9,10 @@ import mpmath
 import numpy as np
 import pytest
 
+from symbt.benchmarks.numeric_cases import random_gap_case, state_error
 from symbt.numeric import NoRealMapError, NumericRangeError, bt_orbit, bt_step
 from symbt.numeric.float64.jit import numba_available
 from symbt.numeric.float64.kernels import stored_steps
-from symbt.numeric.testing import random_gap_case, state_error
 from symbt.reference.literal import reference_step
 
 P0 = np.array([-20.0, 10.0, 1.0])

@@ -8,9 +8,9 @@ import mpmath
 import numpy as np
 import pytest
 
+from symbt.benchmarks.numeric_cases import random_gap_case
 from symbt.numeric import InvalidInputError, MissingDependencyError, NoRealMapError, bt_orbit, bt_step
 from symbt.numeric.core import errors as numeric_errors
-from symbt.numeric.testing import random_gap_case
 from symbt.reference.literal import reference_step
 
 pytest.importorskip("flint")

@@ -40,8 +40,8 @@ long-run error.)
 import mpmath
 import numpy as np
 
+from symbt.benchmarks.numeric_cases import state_error
 from symbt.numeric import bt_orbit, invariants
-from symbt.numeric.testing import state_error
 from symbt.reference.literal import reference_step as literal_step
 
 P0 = [-20.0, 10.0, 1.0]

@@ -10,6 +10,7 @@ import mpmath
 import numpy as np
 import pytest
 
+from symbt.benchmarks.numeric_cases import random_gap_case
 from symbt.numeric import (
     InvalidInputError,
     MissingDependencyError,
@@ -20,7 +21,6 @@ from symbt.numeric import (
 )
 from symbt.numeric.core import errors as numeric_errors
 from symbt.numeric.multiprec.qd import QD_BITS, from_qd, qd_available, qd_fits, qd_kernel, qd_need, qd_orbit_mp, to_qd
-from symbt.numeric.testing import random_gap_case
 from symbt.reference.literal import reference_step
 
 pytestmark = pytest.mark.skipif(not qd_available(), reason="the qd backend needs numba")

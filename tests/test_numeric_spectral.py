@@ -4,10 +4,10 @@ import mpmath
 import numpy as np
 import pytest
 
+from symbt.benchmarks.numeric_cases import outer_gap_case, random_gap_case
 from symbt.numeric import NoRealMapError, bt_step, flow_coefficients, invariants, phi, spectral_trace
 from symbt.numeric.core.context import FLOAT
 from symbt.numeric.core.step import step_core
-from symbt.numeric.testing import outer_gap_case, random_gap_case
 from symbt.reference.literal import literal_trace
 
 P0 = np.array([-20.0, 10.0, 1.0])

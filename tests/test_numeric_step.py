@@ -3,7 +3,7 @@
 Reference: ``symbt.reference.literal.reference_step`` -- the paper's literal
 route (2x2 mpmath matrices, forward transport) at >= 50 digits plus automatic
 guard digits, i.e. a different algorithm from the one under test.  Error
-metric: ``symbt.numeric.testing.state_error`` (normwise relative, centre of
+metric: ``symbt.benchmarks.numeric_cases.state_error`` (normwise relative, centre of
 mass of q removed from the denominator only).  Measured worst cases are noted
 next to each assertion; the bound asserted everywhere is 1e-13.
 """
@@ -12,10 +12,10 @@ import mpmath
 import numpy as np
 import pytest
 
+from symbt.benchmarks.numeric_cases import outer_gap_case, random_gap_case, state_error
 from symbt.numeric import NoRealMapError, bt_step, invariants, spectral_trace
 from symbt.numeric.core.context import FLOAT
 from symbt.numeric.core.step import step_core
-from symbt.numeric.testing import outer_gap_case, random_gap_case, state_error
 from symbt.reference.literal import reference_step as literal_step
 
 # the issue's acceptance bound for one-step normwise relative error; measured worst case is ~2e-15,

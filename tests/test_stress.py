@@ -35,6 +35,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from symbt.benchmarks import band_edge_case, invariant_drift_curve, map_condition
+from symbt.benchmarks.numeric_cases import state_error
 from symbt.numeric import (
     InvalidInputError,
     NoRealMapError,
@@ -48,7 +49,6 @@ from symbt.numeric import (
     spectral_trace,
 )
 from symbt.numeric.float64.jit import numba_available
-from symbt.numeric.testing import state_error
 
 P0 = np.array([-20.0, 10.0, 1.0])
 Q0 = np.array([1.0, 0.0, 0.9])

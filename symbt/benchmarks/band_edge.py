@@ -15,8 +15,8 @@ import mpmath
 import numpy as np
 
 from ..numeric import bt_step, spectral_trace
-from ..numeric.testing import state_error
 from ..paper import P_EXAMPLE, Q_EXAMPLE
+from .numeric_cases import state_error
 
 __all__ = ["band_edge_case", "map_condition", "run_band_edge"]
 

@@ -38,6 +38,9 @@ CLAIM_MODULES = (
     "shipped_spectral",
     "shipped_emitted",
     "shipped_flow",
+    "shipped_qd",
+    "shipped_paths",
+    "shipped_complex",
     "checker",
     "library",
 )

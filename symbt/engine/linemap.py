@@ -87,7 +87,8 @@ def _alarm(signum: int, frame: Any) -> None:
     raise _Alarm()
 
 
-def _traced_runs(claims: list[Any], files: set[str], timeout: float, scenes: list[str]) -> dict[str, Any]:
+def _traced_runs(claims: list[Any], files: set[str], timeout: float, scenes: list[str],
+                 deep: bool = False) -> dict[str, Any]:
     """Run the claims one after another (in one process, as ``symbt verify -j 1`` does), recording the
     lines of ``files`` each runs: with coverage.py's C tracer when it is installed, else ``sys.settrace``."""
     result: dict[str, Any] = {"import": {}, "claims": {}, "timed_out": [], "failed": {}}
@@ -106,7 +107,7 @@ def _traced_runs(claims: list[Any], files: set[str], timeout: float, scenes: lis
     from .project import discover
     from .select import select
 
-    chosen = select(scenes or None, project=discover(claims=claims))
+    chosen = select(scenes or None, project=discover(claims=claims), include_deep=deep)
     if cov is None:
         result["import"] = _plain(seen)
     previous = signal.signal(signal.SIGALRM, _alarm)
@@ -120,7 +121,7 @@ def _traced_runs(claims: list[Any], files: set[str], timeout: float, scenes: lis
         t0 = time.perf_counter()
         signal.setitimer(signal.ITIMER_REAL, timeout, 1.0)
         try:
-            status: str = c.run().status
+            status: str = c.run(deep=deep).status
         except _Alarm:
             status = "timed out"
             result["timed_out"].append(c.id)
@@ -157,10 +158,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--claims", action="append", default=[])
     ap.add_argument("--timeout", type=float, default=300.0)
     ap.add_argument("--scene", action="append", default=[])
+    ap.add_argument("--deep", action="store_true", help="the deep claims and variants too (symbt verify --deep)")
     ap.add_argument("files", nargs="+")
     args = ap.parse_args(argv)
     files = {str(Path(f).resolve()) for f in args.files}
-    result = _traced_runs(args.claims, files, args.timeout, args.scene)
+    result = _traced_runs(args.claims, files, args.timeout, args.scene, deep=args.deep)
     Path(args.out).write_text(json.dumps(result), encoding="utf-8")
     return 0
 

@@ -13,7 +13,7 @@ The mutant is killed when a claim's status, evidence or scope differs from the u
 Usage::
 
     symbt mutate --source [MODULE ...] [--claims SRC ...] [--scene NAME ...] [--sample K] [--seed S] [-j N]
-                 [--budget SECONDS] [--mutant-timeout SECONDS] [--tests] [--equivalents FILE]
+                 [--budget SECONDS] [--mutant-timeout SECONDS] [--deep] [--tests] [--equivalents FILE]
                  [--fail-under PERCENT] [--json FILE] [--list] [-q]
 
 ``MODULE``: dotted names (``symbt.proof``, or short ``proof`` for symbt's own) of a module or a package
@@ -22,7 +22,9 @@ Usage::
 its ``pyproject.toml`` (name the modules).  ``--sample K``: at most K mutants per module, a seeded
 (``--seed``) random subset; ``--budget``: the whole run's wall clock (map included), no mutant
 starts after it; ``--mutant-timeout``: one mutant's limit (default: 4 x the unmutated time of its
-claims plus 30 s); ``--tests``: a survivor of verify runs the test files that import its module;
+claims plus 30 s); ``--deep``: the deep claims and variants too (``symbt verify --deep``: the numba-compiled
+paths, more samples) in the map and in every mutant's run; ``--tests``: a survivor of verify runs the test
+files that import its module;
 ``--equivalents FILE`` (default ``mutants-equivalent.toml`` beside the project): mutants marked
 equivalent, with a reason::
 
@@ -145,22 +147,23 @@ def _sources(root: Path) -> list[Path]:
     return sorted(p for p in root.rglob("*.py") if "__pycache__" not in p.parts)
 
 
-def _digest(root: Path, claims: list[str], scenes: list[str]) -> str:
+def _digest(root: Path, claims: list[str], scenes: list[str], deep: bool = False) -> str:
     from .cache import library_versions
 
-    h = hashlib.sha256("\0".join([sys.version, library_versions(), *claims, "--scene", *scenes]).encode())
+    h = hashlib.sha256("\0".join([sys.version, library_versions(), *claims, "--scene", *scenes]
+                                 + (["--deep"] if deep else [])).encode())
     for p in _sources(root):
         h.update(str(p.relative_to(root)).encode() + b"\0" + p.read_bytes())
     return h.hexdigest()[:20]
 
 
 def _prepare(base: Path, claims: list[str], scenes: list[str], deadline: float | None,
-             say: Any) -> tuple[dict[str, Any], dict[str, dict[str, Any]], bool]:
+             say: Any, deep: bool = False) -> tuple[dict[str, Any], dict[str, dict[str, Any]], bool]:
     """The line map of every file of the copy and the unmutated verify records (cached in the claim
     cache dir by the digest of the sources, the claims and the library versions)."""
     from .cache import cache_dir
 
-    key = _digest(base, claims, scenes)
+    key = _digest(base, claims, scenes, deep)
     store = cache_dir() / "mutate-source" / f"{key}.json"
     try:
         doc = json.loads(store.read_text(encoding="utf-8"))
@@ -179,6 +182,8 @@ def _prepare(base: Path, claims: list[str], scenes: list[str], deadline: float |
         argv += ["--claims", c]
     for sc in scenes:
         argv += ["--scene", sc]
+    if deep:
+        argv.append("--deep")
     run = run_command([*argv, *map(str, _sources(base))], base, left or 3600.0, subprocess_env(base))
     if run.code != 0:
         why = "the budget ran out" if run.timed_out else run.last_error()
@@ -190,7 +195,7 @@ def _prepare(base: Path, claims: list[str], scenes: list[str], deadline: float |
             section[f[len(prefix):] if f.startswith(prefix) else f] = section.pop(f)
     say("the unmutated verify run ...")
     left = None if deadline is None else max(deadline - time.time(), 0.1)
-    vrun, records = run_verify(base, scenes or None, left or 3600.0, claims=claims)
+    vrun, records = run_verify(base, scenes or None, left or 3600.0, claims=claims, deep=deep)
     if records is None:
         raise UsageError(f"symbt verify on the unmutated copy wrote no report: {vrun.last_error()}")
     try:
@@ -226,7 +231,8 @@ def _run_one(copy: Path, item: tuple[str, str, SourceMutant], ids: list[str] | N
         if ids == []:   # no claim runs the line: only the tests can kill it
             rec.update(result="uncovered", detail="no claim runs this line")
         else:
-            run, records = run_verify(copy, ids if ids is not None else ctx["scenes"], limit, claims=ctx["claims"])
+            run, records = run_verify(copy, ids if ids is not None else ctx["scenes"], limit, claims=ctx["claims"],
+                                      deep=ctx["deep"])
             rec["seconds"] = round(run.seconds, 2)
             if run.timed_out:
                 rec.update(result="timeout", detail=f"verify ran past {limit:.0f}s")
@@ -286,6 +292,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help="wall clock of the whole run; no mutant starts after it")
     ap.add_argument("--mutant-timeout", type=_positive(float), default=None, metavar="SECONDS",
                     help=f"one mutant's limit (default {TIMEOUT_FACTOR:g} x its claims' time + {TIMEOUT_START:g}s)")
+    ap.add_argument("--deep", action="store_true",
+                    help="include the deep claims and variants (as symbt verify --deep) in the map and in every "
+                         "mutant's run: more kills (the compiled numba paths), a slower map")
     ap.add_argument("--tests", action="store_true", help="run the test files importing the module on survivors")
     ap.add_argument("--tests-timeout", type=_positive(float), default=300.0, metavar="SECONDS")
     ap.add_argument("--equivalents", metavar="FILE", help=f"marked equivalent mutants (default {EQUIVALENTS_FILE})")
@@ -367,7 +376,7 @@ def main(argv: list[str] | None = None) -> int:
         say(f"copying {root} ({len(chosen)} mutants of {len(modules)} modules) ...")
         base = copy_tree(root, tmp / "base", only)
         try:
-            linemap, baseline, cached = _prepare(base, claims, args.scene or [], deadline, say)
+            linemap, baseline, cached = _prepare(base, claims, args.scene or [], deadline, say, deep=args.deep)
         except UsageError as exc:
             if deadline is None or time.time() < deadline:
                 print(f"symbt mutate --source: {exc}", file=sys.stderr)
@@ -393,7 +402,7 @@ def main(argv: list[str] | None = None) -> int:
     doc = {"schema_version": SCHEMA_VERSION, "kind": "mutate-source", "run": run_info(),
            "options": {"modules": list(modules), "scenes": args.scene or [], "sample": args.sample, "seed": args.seed,
                        "jobs": args.jobs,
-                       "budget": args.budget, "tests": args.tests},
+                       "budget": args.budget, "tests": args.tests, "deep": args.deep},
            "mutants": records, "summary": s, "stale_equivalents": stale,
            "map": {"claims": len(linemap["claims"]), "cached": cached}, "seconds": round(time.time() - t0, 1)}
     status = emit_document(doc, args.json, command="symbt mutate --source",
@@ -408,6 +417,7 @@ def _execute(args: argparse.Namespace, chosen: list[tuple[str, str, SourceMutant
     level = {rel: module_level_lines((base / rel).read_bytes()) for rel in {rel for _, rel, _ in chosen}}
     seconds = {cid: e.get("seconds", 0.0) for cid, e in linemap["claims"].items()}
     ctx = {"baseline": baseline, "claims": claims, "scenes": args.scene or None, "tests_timeout": args.tests_timeout,
+           "deep": args.deep,
            "tests": (project.root / "tests") if args.tests else None}
     records: list[dict[str, Any] | None] = [None] * len(chosen)
     todo = []

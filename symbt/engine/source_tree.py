@@ -143,15 +143,17 @@ def kill_running() -> None:
 
 
 def run_verify(copy_root: Path, ids: Sequence[str] | None, timeout: float, *,
-               claims: Sequence[str] = ()) -> tuple[Run, dict[str, dict[str, Any]] | None]:
-    """``symbt verify --no-cache`` of the claims ``ids`` (``None``: the default set) in a copy; the run
-    and its claims' records by id (``None`` when it wrote no report)."""
+               claims: Sequence[str] = (), deep: bool = False) -> tuple[Run, dict[str, dict[str, Any]] | None]:
+    """``symbt verify --no-cache`` of the claims ``ids`` (``None``: the default set) in a copy, with ``--deep``
+    if ``deep``; the run and its claims' records by id (``None`` when it wrote no report)."""
     report = copy_root / ".symbt-mutate-verify.json"
     report.unlink(missing_ok=True)
     argv = [sys.executable, "-m", "symbt", "verify", "--no-cache", "-q", "-j", "1", "--json", str(report),
             "--budget", f"{2 * max(timeout, 1.0) + 10:.0f}"]   # our kill comes first: a hang is a timeout
     for c in claims:
         argv += ["--claims", c]
+    if deep:
+        argv.append("--deep")
     for i in ids or ():
         argv += ["--scene", i]
     run = run_command(argv, copy_root, timeout, subprocess_env(copy_root))

@@ -1,4 +1,6 @@
-"""Helpers for testing the numerics: error metric and well-conditioned random cases.
+"""Error metric and well-conditioned random cases for the tests and benchmarks of :mod:`symbt.numeric`.
+
+(Moved here from ``symbt.numeric.testing``: it is not part of the integrator that ships.)
 
 ``state_error`` is the normwise relative error used throughout the tests::
 
@@ -19,9 +21,7 @@ from typing import TYPE_CHECKING, Any
 import mpmath
 import numpy as np
 
-from .core.errors import NoRealMapError
-from .dispatch import bt_step
-from .flow.invariants import spectral_trace
+from ..numeric import NoRealMapError, bt_step, spectral_trace
 
 if TYPE_CHECKING:
     import numpy.typing as npt

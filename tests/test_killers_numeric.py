@@ -1,0 +1,181 @@
+"""The claims of the scene ``numeric-paths`` kill the bugs they were written for (issue 21, item 4).
+
+Each test plants one single-point bug of ``symbt mutate --source``'s kind in :mod:`symbt.numeric` (the survivors
+and uncovered lines of its run, docs/mutation.md) with ``monkeypatch`` and requires the claim to fail; unpatched,
+every claim verifies.  The claims memoise only their samples and references (computed by
+:mod:`symbt.reference`, which no patch here touches), so a planted bug cannot leak between tests.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from symbt.claims import REGISTRY, load_all
+from symbt.numeric.float64 import kernels, kernels_block
+from symbt.numeric.float64 import orbit as orbit_module
+from symbt.numeric.flow import coefficients
+from symbt.numeric.multiprec import qd, qd_arith, qd_step
+
+load_all()
+
+NUMERIC_PATHS = sorted(cid for cid, c in REGISTRY.items() if c.scene == "numeric-paths")
+
+
+def status(cid: str) -> str:
+    return REGISTRY[cid].run().status
+
+
+def test_the_scene_has_the_claims_named_here():
+    assert NUMERIC_PATHS == ["paths.complex.n3", "paths.failing_rows.n3", "paths.growth.n3", "paths.kernels.n3",
+                             "paths.kernels.n5", "paths.qd.n2", "paths.qd.n3", "paths.tiny_mu.n3"]
+
+
+@pytest.mark.parametrize("cid", NUMERIC_PATHS)
+def test_unpatched_verified(cid):
+    assert status(cid) == "verified"
+
+
+# --------------------------------------------------------------------------- paths.qd
+
+def test_qd_log1p_in_double_double(monkeypatch):
+    # the read-out log1p carried to 106 bits only: a result right to 1e-32, far outside 2^-209
+    def short(x):
+        hi = math.log1p(x[0])
+        return qd_arith.renorm4(hi, 0.0, 0.0, 0.0)
+    monkeypatch.setattr(qd_step, "log1p", short)
+    assert status("paths.qd.n3") == "failed"
+
+
+def test_qd_sub_sign_of_a_limb(monkeypatch):
+    # qd_arith.sub with the sign of the second limb lost (mutant qd_arith:216 unary-minus)
+    monkeypatch.setattr(qd_step, "sub", lambda a, b: qd_arith.add(a, (-b[0], b[1], -b[2], -b[3])))
+    assert status("paths.qd.n2") == "failed"
+
+
+def test_qd_range_limit_lifted(monkeypatch):
+    # no range check: a neighbour distance of 310 is stepped instead of given back to the Arb path
+    monkeypatch.setattr(qd_step, "MAX_DQ_QD", 1e9)
+    assert status("paths.qd.n2") == "failed"
+
+
+def test_qd_negative_input(monkeypatch):
+    # to_qd loses the sign of its input (the conversion of negative values)
+    real = qd.to_qd
+    monkeypatch.setattr(qd, "to_qd", lambda values: None if (x := real(values)) is None else np.abs(x))
+    assert status("paths.qd.n2") == "failed"
+
+
+def test_qd_decomposition_shift(monkeypatch):
+    # from_qd's decomposition: the shift of an absent component 1 instead of 0 (mutant qd:272)
+    real = qd._decompose
+
+    def wrong(x, out):
+        real(x, out)
+        out[:, 6] = np.where(out[:, 3] == 0, 1, out[:, 6])
+    monkeypatch.setattr(qd, "_decompose", wrong)
+    assert status("paths.qd.n2") == "failed"
+
+
+def test_qd_fits_rule(monkeypatch):
+    # the quad-double admission rule off by one guard bit
+    monkeypatch.setattr(qd, "qd_need", lambda prec, n: prec + 15 + 2 * int(n).bit_length())
+    assert status("paths.qd.n2") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.kernels
+
+def test_fused_kernel_gives_moderate_states_back(monkeypatch):
+    # the fused kernel's condition test refuses everything: the general path (right too) takes over,
+    # which bt_step cannot show (mutant kernels:174/182)
+    monkeypatch.setattr(kernels, "KAPPA_MAX", 0.0)
+    assert status("paths.kernels.n3") == "failed"
+
+
+def test_block_kernel_gives_moderate_states_back(monkeypatch):
+    # the same in the block kernel (mutant kernels_block:67/118/247)
+    monkeypatch.setattr(kernels_block, "KAPPA_MAX", 0.0)
+    assert status("paths.kernels.n5") == "failed"
+
+
+def test_kernels_finish_ill_conditioned_states(monkeypatch):
+    # no condition test: a state at a band edge stays in the fused kernel (mutant kernels:182)
+    monkeypatch.setattr(kernels, "KAPPA_MAX", math.inf)
+    assert status("paths.kernels.n3") == "failed"
+
+
+def test_block_kernel_misses_opposite_traces(monkeypatch):
+    # the block kernel's positivity statuses lost: a state without a real map reported OK (mutant kernels_block:237)
+    monkeypatch.setattr(kernels_block, "POSITIVITY", kernels_block.OK)
+    assert status("paths.kernels.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.failing_rows
+
+def test_where_names_the_wrong_member(monkeypatch):
+    # raise_for_status reports the batch indices shifted by one (mutants orbit:271, step:262)
+    real = orbit_module.raise_for_status
+
+    def shifted(status_, step, shape):
+        real(np.roll(status_, 1), np.roll(step, 1), shape)
+    monkeypatch.setattr(orbit_module, "raise_for_status", shifted)
+    assert status("paths.failing_rows.n3") == "failed"
+
+
+def test_where_text_default_offset(monkeypatch):
+    # where_text's documented default offset 0 becomes 1 (mutant step:262)
+    from symbt.numeric.core import step as step_module
+
+    monkeypatch.setattr(step_module.where_text, "__defaults__", (1, None))
+    assert status("paths.failing_rows.n3") == "failed"
+
+
+def test_retry_skipped(monkeypatch):
+    # the ensemble's members the block kernel gives back are not recomputed by the general path
+    monkeypatch.setattr(orbit_module, "general_orbit",
+                        lambda pa, qa, lam0, mu, branch, n, every, P, Q, rows: (np.zeros(rows.size, np.int64),
+                                                                                 np.zeros(rows.size, np.int64)))
+    assert status("paths.failing_rows.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.tiny_mu
+
+def test_tiny_mu_sign_of_odd_powers(monkeypatch):
+    # lam0^k's sign at lam0 < 0 lost in the tiny-mu branch (mutant coefficients:396)
+    real = coefficients._log2_rows
+    monkeypatch.setattr(coefficients, "_log2_rows", lambda lam, li, ks: (real(lam, li, ks)[0],
+                                                                         np.abs(real(lam, li, ks)[1])))
+    assert status("paths.tiny_mu.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.complex
+
+def test_complex_continuation_other_eigenvector(monkeypatch):
+    pytest.importorskip("flint")
+    from symbt.numeric.multiprec import arb
+
+    # the complex Arb context's square root on the other branch: the continuation follows the other eigenvector
+    monkeypatch.setattr(arb.ACB, "sqrt", lambda x: -x.sqrt())
+    assert status("paths.complex.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.growth
+
+def test_growth_record_smallest_radius(monkeypatch):
+    pytest.importorskip("flint")
+    from symbt.numeric.multiprec import lohner
+
+    # the record's log2 radius of the smallest component instead of the largest (mutant lohner:375)
+    monkeypatch.setattr(lohner, "_lograd", lambda xs: math.log2(min(float(x.rad()) for x in xs) or 2.0 ** -2000))
+    assert status("paths.growth.n3") == "failed"
+
+
+def test_growth_record_without_degree(monkeypatch):
+    pytest.importorskip("flint")
+    from symbt.numeric.multiprec import lohner
+
+    # the growth law's fit skipped (mutant lohner:430): degree None
+    real = lohner.growth_law
+    monkeypatch.setattr(lohner, "growth_law", lambda lograd, first=100: dict(real(lograd, first), degree=None))
+    assert status("paths.growth.n3") == "failed"
