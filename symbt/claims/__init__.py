@@ -39,7 +39,10 @@ CLAIM_MODULES = (
     "shipped_emitted",
     "shipped_flow",
     "checker",
+    "checker_mutation",
     "library",
+    "library_reference",
+    "library_codegen",
 )
 
 
