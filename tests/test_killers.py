@@ -120,3 +120,137 @@ def test_solve_linear_degree_zero():
     a, xx = sp.symbols("a xx")
     assert solve_linear(a + 1, xx) == []
     assert solve_linear(sp.Eq(xx ** 2, 4), xx) == [-2, 2]
+
+
+# --------------------------------------------------------------------------- the claims of issue 21's second round
+
+from symbt.claims import checker_mutation, library_codegen, library_reference  # noqa: E402
+
+
+@pytest.mark.parametrize("c", [checker.api_controls, checker.domain_controls, checker_mutation.mutation_controls,
+                               library.symbol_assumptions, library_reference.inverse_round_trip,
+                               library_reference.angle_quadrants, library_codegen.emitted_user_functions,
+                               library_codegen.guard_sources])
+def test_second_round_unpatched_verified(c):
+    assert _status(c) == "verified"
+
+
+def test_api_convention_hint_lost(monkeypatch):
+    from symbt.proof import identity
+    monkeypatch.setattr(identity, "convention_hint", lambda *a, **k: "")
+    assert _status(checker.api_controls) == "failed"
+
+
+def test_api_relation_symbol(monkeypatch):
+    # an equation's constrained symbol taken from the other side (mu or w instead of eta)
+    from symbt.proof import identity
+    real = identity._pick_symbol
+    monkeypatch.setattr(identity, "_pick_symbol", lambda rel: (sorted(rel.rhs.free_symbols, key=str)[0]
+                                                                if isinstance(rel, sp.Equality) else real(rel)))
+    assert _status(checker.api_controls) == "failed"
+
+
+def test_api_ode_scale_signed(monkeypatch):
+    from symbt.proof import ode
+
+    def signed(self, **point):
+        worst = mp.mpf(0)
+        for values in self._f(*(point[n] for n in self.variables)):
+            worst = max(worst, abs(mp.fsum(values)) / max([mp.mpf(1), *values]))
+        return worst
+    monkeypatch.setattr(ode.OdeResidual, "__call__", signed)
+    assert _status(checker.api_controls) == "failed"
+
+
+def test_domain_counterexample_shown_raw(monkeypatch):
+    from symbt.proof import domain
+    monkeypatch.setattr(domain, "_shown", lambda v: v)
+    assert _status(checker.domain_controls) == "failed"
+
+
+def test_domain_args_accepted(monkeypatch):
+    # *args read as a parameter named "a": a ValueError about a missing variable instead of the TypeError
+    from symbt.proof import domain
+    real = domain._caller
+
+    def lax(fn, what, names):
+        try:
+            return real(fn, what, names)
+        except TypeError:
+            return lambda point: fn(*point.values())
+    monkeypatch.setattr(domain, "_caller", lax)
+    assert _status(checker.domain_controls) == "failed"
+
+
+@pytest.mark.parametrize("bug", ["const", "sqrt"])
+def test_mutation_operators(monkeypatch, bug):
+    from symbt.proof import mutation as m
+    if bug == "const":      # -1 -> 0 (n + 1 for every n): a repeat of drop_term, silently lost
+        op = m.OPERATORS._replace(change_const=m.Mutation("change_const", m.OPERATORS.change_const.query,
+                                                          lambda e: [(f"{e} -> {e + 1}", e + 1)]))
+    else:                   # the convention operator on powers other than 1/2
+        op = m.OPERATORS._replace(convention=m.Mutation(
+            "convention", lambda e: isinstance(e, sp.Pow) and e.exp != sp.Rational(1, 2),
+            m.OPERATORS.convention.value))
+    monkeypatch.setattr(checker_mutation, "mutants", lambda v: m.mutants(v, op))
+    assert _status(checker_mutation.mutation_controls) == "failed"
+
+
+def test_symbols_not_positive(monkeypatch):
+    real = generating.GeneratingFunction.__init__
+
+    def init(self, N):
+        real(self, N)
+        self.E = sp.symbols(f"E1:{N + 1}")
+    generating.generating_function.cache_clear()
+    monkeypatch.setattr(generating.GeneratingFunction, "__init__", init)
+    try:
+        assert _status(library.symbol_assumptions) == "failed"
+    finally:
+        generating.generating_function.cache_clear()
+
+
+@pytest.mark.parametrize("bug", ["newton_for_lstsq", "direction_jacobian"])
+def test_inverse(monkeypatch, bug):
+    from symbt.reference import inverse
+    if bug == "newton_for_lstsq":
+        monkeypatch.setattr(inverse, "_gauss_newton", inverse._newton)
+    else:                   # d(c_k/c_r)/dmu replaced by d/dlam0: a singular Jacobian
+        real = inverse.flow_coefficients_jacobian
+        monkeypatch.setattr(inverse, "flow_coefficients_jacobian",
+                            lambda *a: [[row[0], row[0]] for row in real(*a)])
+    assert _status(library_reference.inverse_round_trip) == "failed"
+
+
+def test_angle_quadrant(monkeypatch):
+    # the branch of u for cn u < 0 chosen by P <= 0 instead of P >= 0: u moves by -+4K, a period of sn and cn,
+    # out of (-2K, 2K]
+    from symbt.reference import elliptic as E
+    real = E.global_u
+
+    def wrong(p, q):
+        u, m = real(p, q)
+        K = mp.ellipk(m)
+        return (u - 4 * K if u > K else u + 4 * K if u < -K else u), m
+    monkeypatch.setattr(E, "global_u", wrong)
+    assert _status(library_reference.angle_quadrants) == "failed"
+
+
+@pytest.mark.parametrize("bug", ["stale_kept", "minmax"])
+def test_emit_user_path(monkeypatch, bug):
+    from symbt.codegen.user import files, render
+    if bug == "stale_kept":   # a file that exists is never rewritten
+        real = files.atomic_write
+        monkeypatch.setattr(files, "atomic_write", lambda path, text: None if path.exists() else real(path, text))
+    else:                     # numpy's Min and Max printed the other way round
+        monkeypatch.setitem(render._MINMAX, "numpy", ("np.maximum", "np.minimum"))
+    assert _status(library_codegen.emitted_user_functions) == "failed"
+
+
+def test_guards_trace(monkeypatch):
+    derive.sources.cache_clear()
+    monkeypatch.setattr(derive, "disc", lambda t: sp.Mul(t - 2, t + 3, evaluate=False))
+    try:
+        assert _status(library_codegen.guard_sources) == "failed"
+    finally:
+        derive.sources.cache_clear()

@@ -25,6 +25,13 @@ library is called and compared with an independent route:
   :math:`\dot p = -\partial H_k/\partial q` and the variable each derivative is taken by.  Same
   acceptance, relative to :math:`\max(1, |\text{value}|)`.
 
+* ``library.symbols`` -- the assumptions the library's symbols are documented with, read through what SymPy
+  infers from them (not the flags): :math:`E_j, \tilde E_j > 0` and :math:`\lambda_0` real make
+  :math:`\lambda_0(\ln E_j - \ln\tilde E_j)` (the last term of eq. ``newgf``) real, :math:`\eta_j` real makes
+  :math:`\sqrt{\eta_j^2} = |\eta_j|`, :math:`\lambda_0 \pm \mu` are real, and a user's
+  ``Symbol("E1", positive=True)`` is the library's :math:`E_1` (so substituting a state into :math:`F` by name
+  gives a number).
+
 >>> darboux_by_adjugate.run().status
 'verified'
 """
@@ -42,8 +49,10 @@ from ..reference.trace import hamiltonians, trace
 from ..symbolic.darboux import (
     composed_darboux,
     darboux_composition,
+    lam0,
     lam1,
     lam2,
+    mu,
     single_darboux,
     single_darboux_adjugate,
 )
@@ -276,3 +285,31 @@ def spectral_routines() -> Outcome:
                           f"form, phi_gradient vs differences, worst relative {float(worst):.1e} (accepted below "
                           f"1e-25); flow_coefficients_mp refuses [-10, 10] at p = q = 0 (a band inside, the ends "
                           f"in gaps)")
+
+
+@claim("library.symbols", equation="newgf", scene="library", N=2,
+       where="symbt.symbolic.generating.GeneratingFunction (E, Et, eta) and symbt.symbolic.darboux (lambda0, mu)",
+       statement="the library's symbols have their documented assumptions, as SymPy infers from them: lambda0 (ln E_j "
+                 "- ln E~_j) is real, sqrt(eta_j^2) = |eta_j|, lambda0 +- mu is real, and Symbol('E1', positive=True) "
+                 "is the library's E_1 (F at a state given by name is a number)")
+def symbol_assumptions() -> Outcome:
+    g = generating_function(2)
+    checks = {
+        "lambda0 (ln E_j - ln E~_j) is real": all((g.lam0 * (sp.log(E) - sp.log(Et))).is_real is True
+                                                  for E, Et in zip(g.E, g.Et)),
+        "sqrt(eta_j^2) = |eta_j|": all(sp.sqrt(e ** 2) == sp.Abs(e) for e in g.eta),
+        "lambda0 +- mu is real": (lam0 + mu).is_real is True and (lam0 - mu).is_real is True,
+    }
+    # a state given by name: E_j = e^{q_j}, E~_j = e^{q~_j} with q~_j < q_j, eta_j > 0 from its relation
+    by_name = {sp.Symbol(f"E{j + 1}", positive=True): sp.exp(sp.Rational(j, 3)) for j in range(2)}
+    by_name.update({sp.Symbol(f"Et{j + 1}", positive=True): sp.exp(sp.Rational(j, 3) - 1) for j in range(2)})
+    by_name.update({sp.Symbol("mu", real=True): sp.Rational(1, 2), sp.Symbol("lambda0", real=True): sp.Rational(1, 3)})
+    eta_vals = {sp.Symbol(f"eta{j + 1}", real=True): sp.sqrt((sp.Rational(1, 2) ** 2 + g.w(j)).xreplace(by_name))
+                for j in range(2)}
+    value = g.F.xreplace({**by_name, **eta_vals})
+    checks["F at a state given by name is a number"] = not value.free_symbols and value.evalf(20).is_real is True
+    bad = [k for k, ok in checks.items() if not ok]
+    if bad:
+        return failed("SymPy assumptions", detail="; ".join(bad))
+    return Outcome("verified", "exact: SymPy's inference from the symbols' assumptions", evidence="proof",
+                   n_scope="all", detail="; ".join(checks))

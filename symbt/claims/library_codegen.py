@@ -4,9 +4,9 @@ Scene ``library``:
 
 * ``library.emit`` -- the user code-generation path (:func:`symbt.emit`, :func:`symbt.codegen.user.files.generate`,
   :mod:`symbt.codegen.user.render`, :func:`symbt.codegen.user.check.compare`), which only ``symbt codegen`` in a
-  user's project runs.  Four small declarations (a scalar, a vector with ``Max``/``Min``, a matrix, and
-  :math:`xy + 1` near its zero) are emitted into a temporary directory over a stale file of the same name, and
-  the emitted module is imported from disk.  Three routes:
+  user's project runs.  Five small declarations (a scalar, a vector with ``Max``/``Min``, a matrix,
+  :math:`xy + 1` near its zero, and :math:`x/2 + y/3 - 1`) are emitted into a temporary directory over a
+  stale file of the same name, and the emitted module is imported from disk.  Three routes:
 
   1. *consistency* (the emitted code against the expression it was generated from): ``compare`` -- the
      SymPy source through plain ``lambdify`` at 60 digits -- accepts the numpy and mpmath flavours of every
@@ -17,7 +17,11 @@ Scene ``library``:
      :math:`\ln 2` to 1e-45;
   3. *independent formulas*: :math:`\sinh, \cosh` against :math:`(e^x \mp e^{-x})/2` by ``math.exp``,
      ``Max``/``Min`` against Python's ``max``/``min``, the rotation :math:`R` against :math:`R^T R = x^2 I`, within
-     16 ulp of the value's size.
+     16 ulp of the value's size; ``half(0.5, 1.5) = -0.25`` exactly.
+
+  The C target (where a C compiler is present; else the detail says it was not compiled): the module
+  compiles (a first term with a coefficient in (0, 1) printed ``x/2.0``, never ``--x/2.0``) and ``compare``
+  accepts :math:`xy + 1` through it.
 * ``library.guards`` -- the guards of :func:`symbt.codegen.derive.sources`' ``bt_step`` (N = 2), the paper's
   route: the trace guards :math:`(T_i - 2)(T_i + 2)` and the positivity guards :math:`1 - x_j/E_j` against
   :math:`\operatorname{tr}L(\lambda_i)^2 - 4` and :math:`\tilde E_j/E_j` of the literal map
@@ -56,6 +60,8 @@ def _declarations():
              domain=box, register=False),
         emit("cancel", x * y + 1, args=(x, y), module=MODULE,
              domain=Domain({"x": (0.99, 1.01), "y": (-1.01, -0.99)}, seed=12), register=False),
+        # a sum whose first term has a coefficient in (0, 1): printed "x/2.0 + ...", never "--x/2.0" (C's decrement)
+        emit("half", x / 2 + y / 3 - 1, args=(x, y), module=MODULE, domain=box, register=False),
     ]
 
 
@@ -75,7 +81,7 @@ def cancel_mp(x, y):
                  "ln 2) and with independent formulas (sinh, cosh by exp; Max, Min; R^T R = x^2 I); a stale file "
                  "is replaced")
 def emitted_user_functions() -> Outcome:
-    from ..codegen.user.check import compare, load_python
+    from ..codegen.user.check import compare, compiler, load_python
     from ..codegen.user.files import generate, render
 
     ems = _declarations()
@@ -101,7 +107,19 @@ def emitted_user_functions() -> Outcome:
         for flavour in ("numpy", "mpmath"):
             if compare(ems[3], wrong, flavour, per_cell=6).printed_holds_everywhere():
                 bad.append(f"compare(cancel, {flavour}) accepts a file whose constant is off by 1e-9")
+        # the C target, where a compiler is present: one compile of the whole module, cancel called through it
+        c_note = "C target not compiled (no C compiler on PATH)"
+        if compiler() is not None:
+            generate(ems, out, out, target="c")
+            try:
+                if not compare(ems[3], out / f"{MODULE}.c", "c", per_cell=6).printed_holds_everywhere():
+                    bad.append("compare(cancel, c) rejects the emitted C")
+            except RuntimeError as exc:     # load_c: it does not compile
+                bad.append(f"the emitted C: {exc}")
+            c_note = "the C target compiled; compare accepts cancel through it"
         # 2. printed numbers
+        if float(mod.half(0.5, 1.5)) != -0.25:      # 1/4 + 1/2 - 1, exact in binary
+            bad.append(f"half(0.5, 1.5) = {float(mod.half(0.5, 1.5))!r}, not -0.25")
         if float(mod.softplus(0.0)) != 0.6931471805599453:
             bad.append(f"softplus(0) = {float(mod.softplus(0.0))!r}, not ln 2 = 0.6931471805599453")
         with mp.workdps(50):
@@ -130,8 +148,9 @@ def emitted_user_functions() -> Outcome:
                                "(consistency), printed ln 2, and independent formulas", evidence="sampled",
                    n_scope="all",
                    detail=f"{len(ems)} declarations emitted over a stale file; compare accepts both flavours of "
-                          "each (6 points per cell) and rejects a file off by 1e-9; softplus(0) = ln 2; sinh, "
-                          "cosh, Max, Min and R^T R = x^2 I at 3 points within 16 ulp")
+                          "each (6 points per cell) and rejects a file off by 1e-9; softplus(0) = ln 2, "
+                          "half(0.5, 1.5) = -0.25; sinh, cosh, Max, Min and R^T R = x^2 I at 3 points within 16 "
+                          f"ulp; {c_note}")
 
 
 @claim("library.guards", equation="xy", scene="library", N=2,
