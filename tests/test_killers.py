@@ -128,7 +128,8 @@ from symbt.claims import checker_mutation, library_codegen, library_reference  #
 
 
 @pytest.mark.parametrize("c", [checker.api_controls, checker.domain_controls, checker_mutation.mutation_controls,
-                               library.symbol_assumptions, library_reference.inverse_round_trip,
+                               library.symbol_assumptions, library.linear_solutions,
+                               library_reference.inverse_round_trip,
                                library_reference.angle_quadrants, library_codegen.emitted_user_functions,
                                library_codegen.guard_sources])
 def test_second_round_unpatched_verified(c):
@@ -254,3 +255,33 @@ def test_guards_trace(monkeypatch):
         assert _status(library_codegen.guard_sources) == "failed"
     finally:
         derive.sources.cache_clear()
+
+
+def test_linear_shortcut_on_constants(monkeypatch):
+    # the shortcut taken for degree 0 instead of 1: a constant equation has no two coefficients
+    from symbt.symbolic import linear
+
+    def wrong(eq, x):
+        poly = sp.Poly(eq, x)
+        if poly.degree() == 0:
+            c1, c0 = poly.all_coeffs()
+            return [sp.cancel(-c0 / c1)]
+        return list(sp.solve(eq, x))
+    monkeypatch.setattr(linear, "solve_linear", wrong)
+    assert _status(library.linear_solutions) == "failed"
+
+
+def test_dF_eta_itself(monkeypatch):
+    # the implicit term skipped where d expr/d eta is 1 (generating:61's mutant): eta_1's own derivative is lost
+    generating.generating_function.cache_clear()
+    real = generating.implicit_derivative
+
+    def wrong(expr, var, etas, mu_):
+        if any(sp.diff(expr, e) == 1 for e in etas):
+            return sp.diff(expr, var)
+        return real(expr, var, etas, mu_)
+    monkeypatch.setattr(generating, "implicit_derivative", wrong)
+    try:
+        assert _status(library.generating_derivatives.claims[0]) == "failed"
+    finally:
+        generating.generating_function.cache_clear()
