@@ -131,7 +131,7 @@ from symbt.claims import checker_mutation, library_codegen, library_reference  #
                                library.symbol_assumptions, library.linear_solutions,
                                library_reference.inverse_round_trip,
                                library_reference.angle_quadrants, library_codegen.emitted_user_functions,
-                               library_codegen.guard_sources])
+                               library_codegen.guard_sources, library_codegen.codegen_check_controls])
 def test_second_round_unpatched_verified(c):
     assert _status(c) == "verified"
 
@@ -285,3 +285,24 @@ def test_dF_eta_itself(monkeypatch):
         assert _status(library.generating_derivatives.claims[0]) == "failed"
     finally:
         generating.generating_function.cache_clear()
+
+
+def test_codegen_check_tolerance(monkeypatch):
+    # a tolerance of 1e12 eps x condition: a function off by 1e-9 passes
+    from symbt.codegen import verify
+    monkeypatch.setattr(verify, "F64_TOL_ULPS", 1e12)
+    assert _status(library_codegen.codegen_check_controls) == "failed"
+
+
+def test_api_discrete_parameter(monkeypatch):
+    # every nonzero exact remainder taken as a proof of falsity, also where a parameter is discrete
+    from symbt.proof import ode
+    real = ode.solves_ode
+
+    def eager(*a, **k):
+        v = real(*a, **k)
+        if "left a nonzero remainder" in v.method:
+            return verdict_module.Verdict(False, "proof", v.method, residual=v.residual, definite=True)
+        return v
+    monkeypatch.setattr(ode, "solves_ode", eager)
+    assert _status(checker.api_controls) == "failed"

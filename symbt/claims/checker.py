@@ -33,7 +33,9 @@ or false by a little, and require the verdict each deserves (scene ``checker``):
   :math:`\mu^2 + w = \eta^2` is keyed by :math:`\eta`); :math:`K(k)` written with the modulus where SymPy takes
   the parameter is false *with* the hint that says so; and the sampled ODE residual is relative to the
   size of the terms: :math:`x = -10^{30}e^t` for :math:`x' = -x` (both terms :math:`-10^{30}e^t`) has
-  residual 2 (``exact=False``), not :math:`10^{30}`.
+  residual 2 (``exact=False``), not :math:`10^{30}`; and :math:`x = e^t` solves :math:`x' = nx` for
+  :math:`n \in \{1\}` (``verified``, sampled: the exact layer's nonzero :math:`(1-n)e^t` is no proof of falsity
+  where a parameter is discrete).
 
 * ``checker.domain`` -- :meth:`symbt.proof.Domain.evaluate` with the user's own residual function (named
   parameters) and a split by the sign of a function: :math:`\sqrt{x^2}\,n = x\,n` over
@@ -184,7 +186,7 @@ def cell_controls() -> Outcome:
                  "eta^2 = mu^2 + w (given as an equation), refutes it off by 1e-20 (given as a mapping), and proves "
                  "exp(q1/2 - q2/3)^6 = exp(3 q1 - 2 q2); Eq(eta^2, mu^2 + w) constrains eta from either side; "
                  "K(k) by the modulus is false with the modulus/parameter hint; x = -1e30 e^t for x' = -x has "
-                 "relative residual 2")
+                 "relative residual 2; x = e^t solves x' = n x for n in {1} (sampled, not refuted by the exact layer)")
 def api_controls() -> Outcome:
     from ..proof.domain import Domain, sign
     from ..proof.identity import check_identity
@@ -224,6 +226,12 @@ def api_controls() -> Outcome:
     v = solves_ode(sp.Eq(X(tt).diff(tt), -X(tt)), -sp.Integer(10) ** 30 * sp.exp(tt), exact=False)
     got.append(("x = -1e30 e^t for x' = -x: relative residual 2",
                 (v.verdict, v.residual is not None and abs(v.residual - 2) < 1e-12), ("false", True)))
+    # a nonzero rational residual proves nothing when a parameter is discrete: (1 - n) e^t vanishes at n = 1
+    from ..proof.domain import integers
+    n = sp.Symbol("n")
+    v = solves_ode(sp.Eq(X(tt).diff(tt), n * X(tt)), sp.exp(tt), domain=Domain({"t": (0, 1), "n": integers(1, 1)}))
+    got.append(("x = e^t for x' = n x, n in {1}", (v.verdict, v.evidence, "left a nonzero remainder" in v.method),
+                ("verified", "sampled", True)))
     bad = [(what, g, want) for what, g, want in got if g != want]
     if bad:
         return failed("solves_ode / check_identity", detail="; ".join(f"{w_}: got {g!r}, want {v_!r}"

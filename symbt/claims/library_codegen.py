@@ -4,8 +4,8 @@ Scene ``library``:
 
 * ``library.emit`` -- the user code-generation path (:func:`symbt.emit`, :func:`symbt.codegen.user.files.generate`,
   :mod:`symbt.codegen.user.render`, :func:`symbt.codegen.user.check.compare`), which only ``symbt codegen`` in a
-  user's project runs.  Five small declarations (a scalar, a vector with ``Max``/``Min``, a matrix,
-  :math:`xy + 1` near its zero, and :math:`x/2 + y/3 - 1`) are emitted into a temporary directory over a
+  user's project runs.  Six small declarations (a scalar, a vector with ``Max``/``Min``, a matrix,
+  :math:`xy + 1` near its zero, :math:`x/2 + y/3 - 1` and :math:`x + 1/3`) are emitted into a temporary directory over a
   stale file of the same name, and the emitted module is imported from disk.  Three routes:
 
   1. *consistency* (the emitted code against the expression it was generated from): ``compare`` -- the
@@ -14,7 +14,7 @@ Scene ``library``:
      float64 product rounds to ~1e-16 while :math:`|f| \le 0.02`), and rejects a hand-written file whose
      constant is off by 1e-9 (two-sided);
   2. *printed numbers*: ``softplus(0) = ln 2 = 0.6931471805599453``, ``softplus_mp(0)`` at 50 digits equals
-     :math:`\ln 2` to 1e-45;
+     :math:`\ln 2` to 1e-45, ``third_mp(0)`` is :math:`1/3` to 1e-48;
   3. *independent formulas*: :math:`\sinh, \cosh` against :math:`(e^x \mp e^{-x})/2` by ``math.exp``,
      ``Max``/``Min`` against Python's ``max``/``min``, the rotation :math:`R` against :math:`R^T R = x^2 I`, within
      16 ulp of the value's size; ``half(0.5, 1.5) = -0.25`` exactly.
@@ -22,6 +22,10 @@ Scene ``library``:
   The C target (where a C compiler is present; else the detail says it was not compiled): the module
   compiles (a first term with a coefficient in (0, 1) printed ``x/2.0``, never ``--x/2.0``) and ``compare``
   accepts :math:`xy + 1` through it.
+* ``checker.codegen`` -- the check of Zullo's emitted functions, :func:`symbt.codegen.verify.compare`, is
+  two-sided and says where it failed: the shipped ``symbt.generated.toda2.invariants`` passes, and the same
+  module with output 1 of the numpy flavour off by a relative 1e-9 fails, with output 1 and its float64
+  value as the reported counterexample.
 * ``library.guards`` -- the guards of :func:`symbt.codegen.derive.sources`' ``bt_step`` (N = 2), the paper's
   route: the trace guards :math:`(T_i - 2)(T_i + 2)` and the positivity guards :math:`1 - x_j/E_j` against
   :math:`\operatorname{tr}L(\lambda_i)^2 - 4` and :math:`\tilde E_j/E_j` of the literal map
@@ -62,6 +66,9 @@ def _declarations():
              domain=Domain({"x": (0.99, 1.01), "y": (-1.01, -0.99)}, seed=12), register=False),
         # a sum whose first term has a coefficient in (0, 1): printed "x/2.0 + ...", never "--x/2.0" (C's decrement)
         emit("half", x / 2 + y / 3 - 1, args=(x, y), module=MODULE, domain=box, register=False),
+        # a rational constant on its own: exact in mpmath (_Q(1, 3)), never a float 1/3 or C's integer 1/3
+        emit("third", x + sp.Rational(1, 3), args=(x,), module=MODULE, domain=Domain({"x": (-1, 1)}, seed=13),
+             register=False),
     ]
 
 
@@ -120,6 +127,9 @@ def emitted_user_functions() -> Outcome:
         # 2. printed numbers
         if float(mod.half(0.5, 1.5)) != -0.25:      # 1/4 + 1/2 - 1, exact in binary
             bad.append(f"half(0.5, 1.5) = {float(mod.half(0.5, 1.5))!r}, not -0.25")
+        with mp.workdps(50):
+            if abs(mod.third_mp(0) - mp.mpf(1) / 3) > mp.mpf(10) ** -48:
+                bad.append("third_mp(0) differs from 1/3 at 50 digits")
         if float(mod.softplus(0.0)) != 0.6931471805599453:
             bad.append(f"softplus(0) = {float(mod.softplus(0.0))!r}, not ln 2 = 0.6931471805599453")
         with mp.workdps(50):
@@ -149,8 +159,8 @@ def emitted_user_functions() -> Outcome:
                    n_scope="all",
                    detail=f"{len(ems)} declarations emitted over a stale file; compare accepts both flavours of "
                           "each (6 points per cell) and rejects a file off by 1e-9; softplus(0) = ln 2, "
-                          "half(0.5, 1.5) = -0.25; sinh, cosh, Max, Min and R^T R = x^2 I at 3 points within 16 "
-                          f"ulp; {c_note}")
+                          "third_mp(0) = 1/3, half(0.5, 1.5) = -0.25; sinh, cosh, Max, Min and R^T R = x^2 I at 3 "
+                          f"points within 16 ulp; {c_note}")
 
 
 @claim("library.guards", equation="xy", scene="library", N=2,
@@ -199,3 +209,46 @@ def guard_sources() -> Outcome:
                    detail=f"{len(spec.guards)} guards at {len(map_states(N))} states x 2 branches: trace guards = "
                           f"tr^2 - 4, positivity guards = E~_j/E_j; worst relative difference {float(worst):.1e} "
                           f"(accepted below 1e-20)")
+
+
+@claim("checker.codegen", equation="tra", scene="checker", N=2,
+       where="symbt.codegen.verify.compare (the check of the emitted functions against their SymPy sources)",
+       statement="codegen.verify.compare passes the shipped toda2.invariants and fails it with output 1 of the numpy "
+                 "flavour off by a relative 1e-9, reporting output 1 and its float64 value")
+def codegen_check_controls() -> Outcome:
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from ..codegen.derive import interface
+    from ..codegen.verify import compare, points
+    from ..generated import toda2
+
+    pts = points(interface(2)["invariants"], 2)[:3]
+    good = compare(toda2, 2, "invariants", pts=pts)
+    if not good["ok"]:
+        return failed("codegen.verify.compare", detail=f"the shipped toda2.invariants fails: {good['bad']}")
+
+    def off(**pt):
+        v = np.array(toda2.invariants(**pt), dtype=np.float64)
+        v[..., 1] *= 1 + 1e-9
+        return v
+
+    wrong = SimpleNamespace(invariants=off, invariants_mp=toda2.invariants_mp)
+    res = compare(wrong, 2, "invariants", pts=pts)
+    bad = res["bad"] or {}
+    want = None if not bad else repr(float(off(**_point_of(bad["point"]))[1]))
+    if res["ok"] or bad.get("output") != 1 or bad.get("f64") != want:
+        return failed("codegen.verify.compare", detail=f"a numpy flavour off by 1e-9 in output 1: ok={res['ok']}, "
+                                                       f"reported {bad} (want output 1, f64 {want})")
+    return Outcome("verified", "numeric: codegen.verify.compare on the shipped module and on a module off by 1e-9",
+                   evidence="sampled", n_scope=[2],
+                   detail=f"shipped invariants: {good['worst_f64']:.2f} eps x condition; off by 1e-9 in output 1: "
+                          f"{res['worst_f64']:.3g} eps x condition, reported at output 1 with f64 {bad['f64']}")
+
+
+def _point_of(text: str) -> dict:
+    """The point a report shows as ``repr(dict)`` of floats, lists of floats and ints."""
+    import ast
+
+    return ast.literal_eval(text)
