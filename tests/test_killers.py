@@ -211,11 +211,12 @@ def test_symbols_not_positive(monkeypatch):
         generating.generating_function.cache_clear()
 
 
-@pytest.mark.parametrize("bug", ["newton_for_lstsq", "direction_jacobian"])
+@pytest.mark.parametrize("bug", ["lstsq_stalls", "direction_jacobian"])
 def test_inverse(monkeypatch, bug):
     from symbt.reference import inverse
-    if bug == "newton_for_lstsq":
-        monkeypatch.setattr(inverse, "_gauss_newton", inverse._newton)
+    if bug == "lstsq_stalls":  # Gauss-Newton that stops where it starts: not a minimum (the swap of _newton for
+        # _gauss_newton, symbt mutate's inverse:149, also fails, but only after minutes of line searches)
+        monkeypatch.setattr(inverse, "_gauss_newton", lambda F, J, x0, tol, maxit=80: (list(x0), 0))
     else:                   # d(c_k/c_r)/dmu replaced by d/dlam0: a singular Jacobian
         real = inverse.flow_coefficients_jacobian
         monkeypatch.setattr(inverse, "flow_coefficients_jacobian",
