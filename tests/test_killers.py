@@ -307,3 +307,23 @@ def test_api_discrete_parameter(monkeypatch):
         return v
     monkeypatch.setattr(ode, "solves_ode", eager)
     assert _status(checker.api_controls) == "failed"
+
+
+@pytest.mark.parametrize("bug", ["sample_range", "state_on_level"])
+def test_angle_states(monkeypatch, bug):
+    import math
+
+    from symbt.reference import elliptic as E
+    if bug == "sample_range":   # x drawn up to acosh(I2), past acosh(I2/2): the root is clipped to 0, p1 = p2
+        def wrong(rng, *, x_sign, p_sign):
+            I1, I2 = rng.uniform(-2, 2), rng.uniform(2.3, 9)
+            x = x_sign * rng.uniform(0.03, 0.97) * math.acosh(I2)
+            Pr = -p_sign * math.sqrt(max(I2 - 2 * math.cosh(x), 0.0))
+            th1 = rng.uniform(-1, 1)
+            return [E._fmt(I1 + Pr), E._fmt(I1 - Pr)], [E._fmt((th1 + x) / 2), E._fmt((th1 - x) / 2)]
+        monkeypatch.setattr(E, "sample_state", wrong)
+    else:                       # q1 = (theta1 - x)/2: q1 - q2 = 0
+        real = E.state_on_level
+        monkeypatch.setattr(E, "state_on_level", lambda I1, I2, x, th, s: (
+            real(I1, I2, x, th, s)[0], [(th - x) / 2, (th - x) / 2]))
+    assert _status(library_reference.angle_quadrants) == "failed"

@@ -14,12 +14,18 @@ no claim, so a slip there changed no verdict (scene ``library``):
 * ``library.angle`` -- :func:`symbt.reference.elliptic.global_u`, the global angle of the N = 2 chain, at
   states in all four quadrants of :math:`(P, C)` (both signs of :math:`p_2 - p_1` and of
   :math:`q_1 - q_2`): :math:`\operatorname{sn} u = P`, :math:`\operatorname{cn} u = C` by mpmath's
-  ``ellipfun`` (Jacobi's functions, not the library's Carlson integrals) and :math:`u \in (-2K, 2K]`.
+  ``ellipfun`` (Jacobi's functions, not the library's Carlson integrals) and :math:`u \in (-2K, 2K]`; and the
+  states the elliptic claims are built from: :func:`~symbt.reference.elliptic.state_on_level` has the actions
+  :math:`(I_1, I_2)` (by :func:`~symbt.reference.elliptic.actions`), :math:`q_1 \mp q_2` and the sign of
+  :math:`p_1 - p_2` asked for, and :func:`~symbt.reference.elliptic.sample_state` the signs of :math:`q_1 - q_2`
+  and :math:`p_2 - p_1` asked for (24 seeded draws: a strictly positive :math:`I_2 - 2\cosh x` under the root).
 
 >>> angle_quadrants.run().status
 'verified'
 """
 from __future__ import annotations
+
+import random
 
 import mpmath as mp
 
@@ -96,7 +102,8 @@ ANGLE_STATES = (("0.7", "-0.4", "0.3", "-0.5"), ("-0.7", "0.4", "0.3", "-0.5"),
 @claim("library.angle", equation="th1th2", scene="library", N=2,
        where="symbt.reference.elliptic.global_u (the global angle of N = 2)",
        statement="global_u(p, q) = u with sn u = P, cn u = C (mpmath ellipfun) and -2K < u <= 2K, at states in all "
-                 "four quadrants of (P, C)")
+                 "four quadrants of (P, C); state_on_level(I1, I2, x, theta1, s) has actions (I1, I2), q1 - q2 = x, "
+                 "q1 + q2 = theta1, sign(p1 - p2) = s; sample_state gives the signs of q1 - q2 and p2 - p1 asked for")
 def angle_quadrants() -> Outcome:
     worst, where = mp.mpf(0), None
     quadrants = set()
@@ -117,9 +124,29 @@ def angle_quadrants() -> Outcome:
                 worst, where = res, {"p": [p1, p2], "q": [q1, q2]}
     if len(quadrants) != 4:
         return failed("control", detail=f"the states cover the quadrants {sorted(quadrants)}, not all four")
+    # the states the elliptic claims are built from: on the level set asked for, with the signs asked for
+    with mp.workdps(30):
+        for I1, I2, x, th, sg in (("0.4", "3.5", "0.6", "0.2", 1), ("-1.1", "6", "-1.2", "-0.7", -1)):
+            I1, I2, x, th = mp.mpf(I1), mp.mpf(I2), mp.mpf(x), mp.mpf(th)
+            p, q = E.state_on_level(I1, I2, x, th, sg)
+            got = (*E.actions(p, q), q[0] - q[1], q[0] + q[1])
+            res = max(abs(a - b) for a, b in zip(got, (I1, I2, x, th)))
+            if res > mp.mpf(10) ** -25 or mp.sign(p[0] - p[1]) != sg:
+                return failed("state_on_level", detail=f"state_on_level({I1}, {I2}, {x}, {th}, {sg}) = {p}, {q}: "
+                                                       f"actions, q1 -+ q2 off by {float(res):.2e} or the wrong sign")
+    rng = random.Random(2027)
+    for k in range(24):
+        xs, ps = (1, -1)[k % 2], (1, -1)[(k // 2) % 2]
+        p, q = E.sample_state(rng, x_sign=xs, p_sign=ps)
+        if mp.sign(mp.mpf(q[0]) - mp.mpf(q[1])) != xs or mp.sign(mp.mpf(p[1]) - mp.mpf(p[0])) != ps:
+            return failed("sample_state", counterexample={"p": p, "q": q},
+                          detail=f"sample_state(x_sign={xs}, p_sign={ps}) gave signs of q1 - q2 and p2 - p1 "
+                                 "other than asked")
     if worst > mp.mpf(10) ** -25:
         return failed("numeric: mpmath ellipfun at 30 digits", residual=float(worst), counterexample=where,
                       detail=f"sn u or cn u differs from (P, C) by {float(worst):.2e} (accepted below 1e-25)")
     return Outcome("verified", "numeric: mpmath ellipfun at 30 digits", residual=float(worst), evidence="sampled",
                    n_scope=[2], detail=f"{len(ANGLE_STATES)} states, all four quadrants of (P, C): |sn u - P|, "
-                                       f"|cn u - C| <= {float(worst):.1e} (accepted below 1e-25), u in (-2K, 2K]")
+                                       f"|cn u - C| <= {float(worst):.1e} (accepted below 1e-25), u in (-2K, 2K]; "
+                                       "state_on_level has the actions and q1 -+ q2 asked for (2 states); "
+                                       "24 sample_state draws have the signs asked for")
