@@ -81,7 +81,7 @@ def cancel_mp(x, y):
 '''
 
 
-@claim("library.emit", equation="codegen", scene="library",
+@claim("library.emit", equation="checker", scene="library",
        where="symbt.emit -> symbt.codegen.user (generate, render, check.compare): the user code-generation path",
        statement="functions declared with symbt.emit and emitted into a directory agree with their SymPy source "
                  "(compare, numpy and mpmath; a file off by 1e-9 is rejected), with printed numbers (softplus(0) = "
