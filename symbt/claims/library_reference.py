@@ -9,7 +9,7 @@ no claim, so a slip there changed no verdict (scene ``library``):
   the :math:`(\lambda_0, \mu, b)` that :func:`~symbt.reference.spectral.flow_coefficients_mp` computed them
   at (a round trip through the forward map, which the scene ``theorem2`` checks); and for a target off the
   attainable surface (:math:`c_1` changed by 1 %) the least-squares answer is a minimum of the weighted
-  residual: no point at a relative step :math:`10^{-4}` in :math:`\lambda_0` or :math:`\mu` is better
+  residual: no point at a relative step :math:`10^{-6}` in :math:`\lambda_0` or :math:`\mu` is better
   (the objective evaluated by the forward map at 20 digits, not by the closed-form Jacobian the solver uses).
 * ``library.angle`` -- :func:`symbt.reference.elliptic.global_u`, the global angle of the N = 2 chain, at
   states in all four quadrants of :math:`(P, C)` (both signs of :math:`p_2 - p_1` and of
@@ -49,7 +49,7 @@ def _objective(p, q, target, weights, l0, m):
        where="symbt.reference.inverse.solve_parameters (modes direction and lstsq; the small-mu start)",
        statement="solve_parameters recovers (lam0, mu, b) = (10, 1, +1) on the paper's N = 3 orbit from c_k computed "
                  "there (by direction); for c_1 off by 1 % its least-squares answer is a minimum "
-                 "of the weighted residual (no neighbour at a relative step 1e-4 is better)")
+                 "of the weighted residual (no neighbour at a relative step 1e-6 is better)")
 def inverse_round_trip() -> Outcome:
     with mp.workdps(15):
         p, q, l0, m = paper_state("1")
@@ -78,7 +78,7 @@ def inverse_round_trip() -> Outcome:
         at = _objective(p, q, off, weights, sol_l0, sol_m)
         worse = []
         for dl, dm in ((1, 0), (-1, 0), (0, 1), (0, -1)):
-            nb = _objective(p, q, off, weights, sol_l0 * (1 + dl * mp.mpf("1e-4")), sol_m * (1 + dm * mp.mpf("1e-4")))
+            nb = _objective(p, q, off, weights, sol_l0 * (1 + dl * mp.mpf("1e-6")), sol_m * (1 + dm * mp.mpf("1e-6")))
             if nb < at:
                 worse.append((dl, dm, float(nb)))
     if worse or at == 0:
