@@ -120,3 +120,210 @@ def test_solve_linear_degree_zero():
     a, xx = sp.symbols("a xx")
     assert solve_linear(a + 1, xx) == []
     assert solve_linear(sp.Eq(xx ** 2, 4), xx) == [-2, 2]
+
+
+# --------------------------------------------------------------------------- the claims of issue 21's second round
+
+from symbt.claims import checker_mutation, library_codegen, library_reference  # noqa: E402
+
+
+@pytest.mark.parametrize("c", [checker.api_controls, checker.domain_controls, checker_mutation.mutation_controls,
+                               library.symbol_assumptions, library.linear_solutions,
+                               library_reference.inverse_round_trip,
+                               library_reference.angle_quadrants, library_codegen.emitted_user_functions,
+                               library_codegen.guard_sources, library_codegen.codegen_check_controls])
+def test_second_round_unpatched_verified(c):
+    assert _status(c) == "verified"
+
+
+def test_api_convention_hint_lost(monkeypatch):
+    from symbt.proof import identity
+    monkeypatch.setattr(identity, "convention_hint", lambda *a, **k: "")
+    assert _status(checker.api_controls) == "failed"
+
+
+def test_api_relation_symbol(monkeypatch):
+    # an equation's constrained symbol taken from the other side (mu or w instead of eta)
+    from symbt.proof import identity
+    real = identity._pick_symbol
+    monkeypatch.setattr(identity, "_pick_symbol", lambda rel: (sorted(rel.rhs.free_symbols, key=str)[0]
+                                                                if isinstance(rel, sp.Equality) else real(rel)))
+    assert _status(checker.api_controls) == "failed"
+
+
+def test_api_ode_scale_signed(monkeypatch):
+    from symbt.proof import ode
+
+    def signed(self, **point):
+        worst = mp.mpf(0)
+        for values in self._f(*(point[n] for n in self.variables)):
+            worst = max(worst, abs(mp.fsum(values)) / max([mp.mpf(1), *values]))
+        return worst
+    monkeypatch.setattr(ode.OdeResidual, "__call__", signed)
+    assert _status(checker.api_controls) == "failed"
+
+
+def test_domain_counterexample_shown_raw(monkeypatch):
+    from symbt.proof import domain
+    monkeypatch.setattr(domain, "_shown", lambda v: v)
+    assert _status(checker.domain_controls) == "failed"
+
+
+def test_domain_args_accepted(monkeypatch):
+    # *args read as a parameter named "a": a ValueError about a missing variable instead of the TypeError
+    from symbt.proof import domain
+    real = domain._caller
+
+    def lax(fn, what, names):
+        try:
+            return real(fn, what, names)
+        except TypeError:
+            return lambda point: fn(*point.values())
+    monkeypatch.setattr(domain, "_caller", lax)
+    assert _status(checker.domain_controls) == "failed"
+
+
+@pytest.mark.parametrize("bug", ["const", "sqrt"])
+def test_mutation_operators(monkeypatch, bug):
+    from symbt.proof import mutation as m
+    if bug == "const":      # -1 -> 0 (n + 1 for every n): a repeat of drop_term, silently lost
+        op = m.OPERATORS._replace(change_const=m.Mutation("change_const", m.OPERATORS.change_const.query,
+                                                          lambda e: [(f"{e} -> {e + 1}", e + 1)]))
+    else:                   # the convention operator on powers other than 1/2
+        op = m.OPERATORS._replace(convention=m.Mutation(
+            "convention", lambda e: isinstance(e, sp.Pow) and e.exp != sp.Rational(1, 2),
+            m.OPERATORS.convention.value))
+    monkeypatch.setattr(checker_mutation, "mutants", lambda v: m.mutants(v, op))
+    assert _status(checker_mutation.mutation_controls) == "failed"
+
+
+def test_symbols_not_positive(monkeypatch):
+    real = generating.GeneratingFunction.__init__
+
+    def init(self, N):
+        real(self, N)
+        self.E = sp.symbols(f"E1:{N + 1}")
+    generating.generating_function.cache_clear()
+    monkeypatch.setattr(generating.GeneratingFunction, "__init__", init)
+    try:
+        assert _status(library.symbol_assumptions) == "failed"
+    finally:
+        generating.generating_function.cache_clear()
+
+
+@pytest.mark.parametrize("bug", ["lstsq_stalls", "direction_jacobian"])
+def test_inverse(monkeypatch, bug):
+    from symbt.reference import inverse
+    if bug == "lstsq_stalls":  # Gauss-Newton that stops where it starts: not a minimum (the swap of _newton for
+        # _gauss_newton, symbt mutate's inverse:149, also fails, but only after minutes of line searches)
+        monkeypatch.setattr(inverse, "_gauss_newton", lambda F, J, x0, tol, maxit=80: (list(x0), 0))
+    else:                   # d(c_k/c_r)/dmu replaced by d/dlam0: a singular Jacobian
+        real = inverse.flow_coefficients_jacobian
+        monkeypatch.setattr(inverse, "flow_coefficients_jacobian",
+                            lambda *a: [[row[0], row[0]] for row in real(*a)])
+    assert _status(library_reference.inverse_round_trip) == "failed"
+
+
+def test_angle_quadrant(monkeypatch):
+    # the branch of u for cn u < 0 chosen by P <= 0 instead of P >= 0: u moves by -+4K, a period of sn and cn,
+    # out of (-2K, 2K]
+    from symbt.reference import elliptic as E
+    real = E.global_u
+
+    def wrong(p, q):
+        u, m = real(p, q)
+        K = mp.ellipk(m)
+        return (u - 4 * K if u > K else u + 4 * K if u < -K else u), m
+    monkeypatch.setattr(E, "global_u", wrong)
+    assert _status(library_reference.angle_quadrants) == "failed"
+
+
+@pytest.mark.parametrize("bug", ["stale_kept", "minmax"])
+def test_emit_user_path(monkeypatch, bug):
+    from symbt.codegen.user import files, render
+    if bug == "stale_kept":   # a file that exists is never rewritten
+        real = files.atomic_write
+        monkeypatch.setattr(files, "atomic_write", lambda path, text: None if path.exists() else real(path, text))
+    else:                     # numpy's Min and Max printed the other way round
+        monkeypatch.setitem(render._MINMAX, "numpy", ("np.maximum", "np.minimum"))
+    assert _status(library_codegen.emitted_user_functions) == "failed"
+
+
+def test_guards_trace(monkeypatch):
+    derive.sources.cache_clear()
+    monkeypatch.setattr(derive, "disc", lambda t: sp.Mul(t - 2, t + 3, evaluate=False))
+    try:
+        assert _status(library_codegen.guard_sources) == "failed"
+    finally:
+        derive.sources.cache_clear()
+
+
+def test_linear_shortcut_on_constants(monkeypatch):
+    # the shortcut taken for degree 0 instead of 1: a constant equation has no two coefficients
+    from symbt.symbolic import linear
+
+    def wrong(eq, x):
+        poly = sp.Poly(eq, x)
+        if poly.degree() == 0:
+            c1, c0 = poly.all_coeffs()
+            return [sp.cancel(-c0 / c1)]
+        return list(sp.solve(eq, x))
+    monkeypatch.setattr(linear, "solve_linear", wrong)
+    assert _status(library.linear_solutions) == "failed"
+
+
+def test_dF_eta_itself(monkeypatch):
+    # the implicit term skipped where d expr/d eta is 1 (generating:61's mutant): eta_1's own derivative is lost
+    generating.generating_function.cache_clear()
+    real = generating.implicit_derivative
+
+    def wrong(expr, var, etas, mu_):
+        if any(sp.diff(expr, e) == 1 for e in etas):
+            return sp.diff(expr, var)
+        return real(expr, var, etas, mu_)
+    monkeypatch.setattr(generating, "implicit_derivative", wrong)
+    try:
+        assert _status(library.generating_derivatives.claims[0]) == "failed"
+    finally:
+        generating.generating_function.cache_clear()
+
+
+def test_codegen_check_tolerance(monkeypatch):
+    # a tolerance of 1e12 eps x condition: a function off by 1e-9 passes
+    from symbt.codegen import verify
+    monkeypatch.setattr(verify, "F64_TOL_ULPS", 1e12)
+    assert _status(library_codegen.codegen_check_controls) == "failed"
+
+
+def test_api_discrete_parameter(monkeypatch):
+    # every nonzero exact remainder taken as a proof of falsity, also where a parameter is discrete
+    from symbt.proof import ode
+    real = ode.solves_ode
+
+    def eager(*a, **k):
+        v = real(*a, **k)
+        if "left a nonzero remainder" in v.method:
+            return verdict_module.Verdict(False, "proof", v.method, residual=v.residual, definite=True)
+        return v
+    monkeypatch.setattr(ode, "solves_ode", eager)
+    assert _status(checker.api_controls) == "failed"
+
+
+@pytest.mark.parametrize("bug", ["sample_range", "state_on_level"])
+def test_angle_states(monkeypatch, bug):
+    import math
+
+    from symbt.reference import elliptic as E
+    if bug == "sample_range":   # x drawn up to acosh(I2), past acosh(I2/2): the root is clipped to 0, p1 = p2
+        def wrong(rng, *, x_sign, p_sign):
+            I1, I2 = rng.uniform(-2, 2), rng.uniform(2.3, 9)
+            x = x_sign * rng.uniform(0.03, 0.97) * math.acosh(I2)
+            Pr = -p_sign * math.sqrt(max(I2 - 2 * math.cosh(x), 0.0))
+            th1 = rng.uniform(-1, 1)
+            return [E._fmt(I1 + Pr), E._fmt(I1 - Pr)], [E._fmt((th1 + x) / 2), E._fmt((th1 - x) / 2)]
+        monkeypatch.setattr(E, "sample_state", wrong)
+    else:                       # q1 = (theta1 - x)/2: q1 - q2 = 0
+        real = E.state_on_level
+        monkeypatch.setattr(E, "state_on_level", lambda I1, I2, x, th, s: (
+            real(I1, I2, x, th, s)[0], [(th - x) / 2, (th - x) / 2]))
+    assert _status(library_reference.angle_quadrants) == "failed"

@@ -42,7 +42,10 @@ CLAIM_MODULES = (
     "shipped_paths",
     "shipped_complex",
     "checker",
+    "checker_mutation",
     "library",
+    "library_reference",
+    "library_codegen",
 )
 
 

@@ -27,7 +27,22 @@ or false by a little, and require the verdict each deserves (scene ``checker``):
   proves the logistic solution and refutes it shifted by :math:`10^{-20}`, and scopes
   :math:`x = (t-t_0)^2/4`, :math:`x' = \sqrt x` to the cell :math:`t > t_0`;
   :func:`symbt.proof.check_identity` takes a relation as an equation or as a mapping, and proves an
-  identity of exponentials of rational-linear forms exactly.
+  identity of exponentials of rational-linear forms exactly.  The details a verdict rests on: a relation
+  given as an equation constrains the symbol of the side that has one
+  (:func:`~symbt.proof.identity.normalize_relations` of :math:`\eta^2 = \mu^2 + w` and of
+  :math:`\mu^2 + w = \eta^2` is keyed by :math:`\eta`); :math:`K(k)` written with the modulus where SymPy takes
+  the parameter is false *with* the hint that says so; and the sampled ODE residual is relative to the
+  size of the terms: :math:`x = -10^{30}e^t` for :math:`x' = -x` (both terms :math:`-10^{30}e^t`) has
+  residual 2 (``exact=False``), not :math:`10^{30}`; and :math:`x = e^t` solves :math:`x' = nx` for
+  :math:`n \in \{1\}` (``verified``, sampled: the exact layer's nonzero :math:`(1-n)e^t` is no proof of falsity
+  where a parameter is discrete).
+
+* ``checker.domain`` -- :meth:`symbt.proof.Domain.evaluate` with the user's own residual function (named
+  parameters) and a split by the sign of a function: :math:`\sqrt{x^2}\,n = x\,n` over
+  :math:`x \in (-2, 2)`, :math:`n \in \{1, 2, 3\}` fails in exactly the cell :math:`x < 0`; the counterexample
+  shows the integer as an ``int`` and the real as a string of at most 17 digits (the double drawn), and
+  re-evaluated there it fails again with the same residual; a residual function with ``*args`` or a
+  positional-only parameter is a ``TypeError``.
 
 >>> screen_controls.run().status
 'verified'
@@ -169,7 +184,9 @@ def cell_controls() -> Outcome:
        statement="solves_ode proves the logistic solution and refutes it shifted by 1e-20; x = (t - t0)^2/4 solves "
                  "x' = sqrt(x) exactly in the cell t > t0 only; check_identity proves eta^2 - mu^2 = w under "
                  "eta^2 = mu^2 + w (given as an equation), refutes it off by 1e-20 (given as a mapping), and proves "
-                 "exp(q1/2 - q2/3)^6 = exp(3 q1 - 2 q2)")
+                 "exp(q1/2 - q2/3)^6 = exp(3 q1 - 2 q2); Eq(eta^2, mu^2 + w) constrains eta from either side; "
+                 "K(k) by the modulus is false with the modulus/parameter hint; x = -1e30 e^t for x' = -x has "
+                 "relative residual 2; x = e^t solves x' = n x for n in {1} (sampled, not refuted by the exact layer)")
 def api_controls() -> Outcome:
     from ..proof.domain import Domain, sign
     from ..proof.identity import check_identity
@@ -195,9 +212,78 @@ def api_controls() -> Outcome:
     got.append(("relation as a mapping, off by 1e-20", r.verdict, "false"))
     r = check_identity(sp.exp(q1 / 2 - q2 / 3) ** 6, sp.exp(3 * q1 - 2 * q2))
     got.append(("exponentials", (r.verdict, r.evidence), ("proved", "proof")))
+    # which symbol an equation constrains: the side with a single symbol (eta), from either side
+    from ..proof.identity import normalize_relations
+    keys = [list(normalize_relations([rel])) for rel in (sp.Eq(eta ** 2, mu ** 2 + w), sp.Eq(mu ** 2 + w, eta ** 2))]
+    got.append(("the symbol an equation constrains", keys, [[eta], [eta]]))
+    # the convention hint of a false elliptic identity (the modulus k where SymPy takes m = k^2)
+    k = sp.Symbol("k", positive=True)
+    r = check_identity(sp.pi / 2 * sp.hyper([sp.S.Half, sp.S.Half], [1], k ** 2), sp.elliptic_k(k), digits=20,
+                       points=3)
+    got.append(("K(k) with the modulus", (r.verdict, r.note.startswith("hint: the sides agree if the modulus k is "
+                                                                       "read as the parameter")), ("false", True)))
+    # the sampled residual is relative to the terms' size, whatever their sign
+    v = solves_ode(sp.Eq(X(tt).diff(tt), -X(tt)), -sp.Integer(10) ** 30 * sp.exp(tt), exact=False)
+    got.append(("x = -1e30 e^t for x' = -x: relative residual 2",
+                (v.verdict, v.residual is not None and abs(v.residual - 2) < 1e-12), ("false", True)))
+    # a nonzero rational residual proves nothing when a parameter is discrete: (1 - n) e^t vanishes at n = 1
+    from ..proof.domain import integers
+    n = sp.Symbol("n")
+    v = solves_ode(sp.Eq(X(tt).diff(tt), n * X(tt)), sp.exp(tt), domain=Domain({"t": (0, 1), "n": integers(1, 1)}))
+    got.append(("x = e^t for x' = n x, n in {1}", (v.verdict, v.evidence, "left a nonzero remainder" in v.method),
+                ("verified", "sampled", True)))
     bad = [(what, g, want) for what, g, want in got if g != want]
     if bad:
         return failed("solves_ode / check_identity", detail="; ".join(f"{w_}: got {g!r}, want {v_!r}"
                                                                       for w_, g, v_ in bad))
     return _ok("solves_ode / check_identity", f"{len(got)} statements of known truth, each with the verdict it "
-                                              "deserves (proved, false by proof, a cell scope)", "proof")
+                                              "deserves (proved, false by proof, a cell scope, the relation's symbol, "
+                                              "the convention hint, a relative ODE residual)", "proof")
+
+
+@claim("checker.domain", equation="checker", scene="checker",
+       where="symbt.proof.Domain.evaluate with user functions; sign() of a function; the counterexample shown",
+       statement="sqrt(x^2) n = x n over x in (-2, 2), n in {1, 2, 3} fails exactly in the cell x < 0 (split by the "
+                 "sign of a function); the counterexample shows n as an int and x as a string of <= 17 digits and "
+                 "fails again there; a residual with *args or a positional-only parameter is a TypeError")
+def domain_controls() -> Outcome:
+    import mpmath as mp
+
+    from ..proof.domain import Domain, integers, sign
+
+    def residual(x, n):     # the user's own function: named parameters, a pair (lhs, rhs)
+        return mp.sqrt(x ** 2) * n, x * n
+
+    dom = Domain({"x": (-2, 2), "n": integers(1, 3)}, seed=5)
+    table = dom.evaluate(sign(lambda x: x, name="side", labels=("x<0", "x>0")), printed=residual, dps=30, per_cell=6)
+    scope = table.scope()
+    if scope != "printed statement holds exactly in cells {x>0} and fails in {x<0}":
+        return failed("Domain.evaluate", detail=f"scope {scope!r} (want: holds in x>0, fails in x<0)")
+    worst, pt = table.worst("printed")
+    pt = pt or {}
+    # x is drawn as a double: 17 significant digits identify it (nstr drops trailing zeros)
+    if not (isinstance(pt.get("n"), int) and isinstance(pt.get("x"), str)
+            and 0 < len(pt["x"].lstrip("-").replace(".", "").strip("0")) <= 17):
+        return failed("Domain.evaluate", detail=f"counterexample shown as {pt!r} (want n an int, x a double in at "
+                                                "most 17 digits)")
+    with mp.workdps(30):
+        lhs, rhs = residual(mp.mpf(pt["x"]), pt["n"])
+        again = abs(lhs - rhs) / max(1, abs(lhs), abs(rhs))
+    if abs(again - worst) > 1e-15 * worst:
+        return failed("Domain.evaluate", detail=f"at the shown counterexample the residual is {float(again):.17g}, "
+                                                f"the table says {worst:.17g}")
+
+    def positional(x, n, /):
+        return 0
+
+    for bad in (lambda *a: 0, positional):
+        try:
+            dom.evaluate(printed=bad, per_cell=1)
+        except TypeError:
+            continue
+        except Exception as exc:    # noqa: BLE001 -- any other outcome is the defect reported
+            return failed("Domain.evaluate", detail=f"a residual without named parameters raised {exc!r}, not "
+                                                    "TypeError")
+        return failed("Domain.evaluate", detail="a residual without named parameters was accepted")
+    return _ok("Domain.evaluate", f"scope: {scope}; counterexample {pt} reproduces the residual {worst:.3g}; *args "
+                                  "and positional-only residuals are TypeErrors", "sampled")

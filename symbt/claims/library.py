@@ -11,7 +11,8 @@ library is called and compared with an independent route:
   and :func:`~symbt.symbolic.darboux.composed_darboux` (eq. ``D``) has determinant
   :math:`(\lambda-\lambda_1)(\lambda-\lambda_2)` for every :math:`x, y`; decided exactly.
 * ``library.dF.n{N}`` (N = 2; N = 3 under ``--deep``) -- :meth:`GeneratingFunction.dF_dq`, ``dF_dqt``
-  and ``dF_dmu`` (the implicit derivatives of eq. ``newgf``) at sample points against central
+  and ``dF_dmu`` (the implicit derivatives of eq. ``newgf``), and ``total_derivative`` of :math:`\eta_1` itself
+  (by :math:`\mu` and :math:`q_1`), at sample points against central
   differences (``mpmath.diff``, 40 digits) of :math:`F` with :math:`\eta_j = \pm\sqrt{\mu^2 + w_j}`
   written out and :math:`E_j = e^{q_j}`: no implicit differentiation, no chain rule.  Both signs of
   the :math:`\eta_j`.  Accepted when the relative difference is below :math:`10^{-25}` (the
@@ -24,6 +25,13 @@ library is called and compared with an independent route:
   :func:`symbt.reference.trace.trace`): the signs :math:`\dot q = \partial H_k/\partial p`,
   :math:`\dot p = -\partial H_k/\partial q` and the variable each derivative is taken by.  Same
   acceptance, relative to :math:`\max(1, |\text{value}|)`.
+
+* ``library.symbols`` -- the assumptions the library's symbols are documented with, read through what SymPy
+  infers from them (not the flags): :math:`E_j, \tilde E_j > 0` and :math:`\lambda_0` real make
+  :math:`\lambda_0(\ln E_j - \ln\tilde E_j)` (the last term of eq. ``newgf``) real, :math:`\eta_j` real makes
+  :math:`\sqrt{\eta_j^2} = |\eta_j|`, :math:`\lambda_0 \pm \mu` are real, and a user's
+  ``Symbol("E1", positive=True)`` is the library's :math:`E_1` (so substituting a state into :math:`F` by name
+  gives a number).
 
 >>> darboux_by_adjugate.run().status
 'verified'
@@ -42,8 +50,10 @@ from ..reference.trace import hamiltonians, trace
 from ..symbolic.darboux import (
     composed_darboux,
     darboux_composition,
+    lam0,
     lam1,
     lam2,
+    mu,
     single_darboux,
     single_darboux_adjugate,
 )
@@ -87,18 +97,22 @@ def _rel(a, b) -> mp.mpf:
 
 @claim("library.dF", equation="newgf", scene="library", sizes=(3,), deep=True,
        where="symbt.symbolic.generating.GeneratingFunction: dF_dq, dF_dqt, dF_dmu (N={N})",
-       statement="the library's implicit derivatives dF/dq_j = E_j dF/dE_j, dF/dq~_j and dF/dmu of eq. newgf equal "
-                 "central differences of F with eta_j = +-sqrt(mu^2 + w_j) written out (N={N})")
+       statement="the library's implicit derivatives dF/dq_j = E_j dF/dE_j, dF/dq~_j and dF/dmu of eq. newgf (and "
+                 "deta_1/dmu, deta_1/dq_1) equal central differences of F with eta_j = +-sqrt(mu^2 + w_j) written out "
+                 "(N={N})")
 @claim("library.dF", equation="newgf", scene="library", sizes=(2,),
        where="symbt.symbolic.generating.GeneratingFunction: dF_dq, dF_dqt, dF_dmu (N={N})",
-       statement="the library's implicit derivatives dF/dq_j = E_j dF/dE_j, dF/dq~_j and dF/dmu of eq. newgf equal "
-                 "central differences of F with eta_j = +-sqrt(mu^2 + w_j) written out (N={N})")
+       statement="the library's implicit derivatives dF/dq_j = E_j dF/dE_j, dF/dq~_j and dF/dmu of eq. newgf (and "
+                 "deta_1/dmu, deta_1/dq_1) equal central differences of F with eta_j = +-sqrt(mu^2 + w_j) written out "
+                 "(N={N})")
 def generating_derivatives(N: int) -> Outcome:
     g = generating_function(N)
     rng = random.Random(4243 + N)
     worst, where = mp.mpf(0), None
-    names = [f"dF/d{v}{j + 1}" for j in range(N) for v in ("q", "qt")] + ["dF/dmu"]
-    exprs = [d for j in range(N) for d in (g.dF_dq(j), g.dF_dqt(j))] + [g.dF_dmu()]
+    names = [f"dF/d{v}{j + 1}" for j in range(N) for v in ("q", "qt")] + ["dF/dmu", "deta1/dmu", "deta1/dq1"]
+    # and eta_1 itself (linear in eta: the implicit term is all there is)
+    exprs = [d for j in range(N) for d in (g.dF_dq(j), g.dF_dqt(j))] + [
+        g.dF_dmu(), g.total_derivative(g.eta[0], g.mu), g.E[0] * g.total_derivative(g.eta[0], g.E[0])]
     syms = sorted(set().union(*(e.free_symbols for e in exprs)), key=str)
     library_values = sp.lambdify(syms, exprs, "mpmath")     # one compilation for every derivative
     with mp.workdps(DPS):
@@ -117,6 +131,10 @@ def generating_derivatives(N: int) -> Outcome:
                     out += m * mp.log((e + m) / (e - m)) - 2 * e - LAM0 * (qq[j] - qqt[j])
                 return out
 
+            def eta1(qq, m, sign=sign):     # w_1 = (E_1 - E~_1)(1/E~_N - 1/E_N)
+                w1 = (mp.exp(qq[0]) - mp.exp(qt[0])) * (1 / mp.exp(qt[N - 1]) - 1 / mp.exp(qq[N - 1]))
+                return sign * mp.sqrt(m ** 2 + w1)
+
             E, Et = [mp.exp(v) for v in q], [mp.exp(v) for v in qt]
             env = {**dict(zip(g.E, E)), **dict(zip(g.Et, Et)), g.mu: m0, g.lam0: LAM0}
             for j in range(N):
@@ -127,6 +145,8 @@ def generating_derivatives(N: int) -> Outcome:
                 fds.append(mp.diff(lambda s, j=j: F([s if i == j else v for i, v in enumerate(q)], qt, m0), q[j]))
                 fds.append(mp.diff(lambda s, j=j: F(q, [s if i == j else v for i, v in enumerate(qt)], m0), qt[j]))
             fds.append(mp.diff(lambda s: F(q, qt, s), m0))
+            fds.append(mp.diff(lambda s: eta1(q, s), m0))
+            fds.append(mp.diff(lambda s: eta1([s, *q[1:]], m0), q[0]))
             for name, val, fd in zip(names, library_values(*(env[s_] for s_ in syms)), fds):
                 r = _rel(val, fd)
                 if r > worst:
@@ -137,7 +157,7 @@ def generating_derivatives(N: int) -> Outcome:
                              f"(relative; accepted below 1e-25)")
     return Outcome("verified", f"numeric: central differences (mpmath.diff) at {DPS} digits", residual=float(worst),
                    evidence="sampled", n_scope=[N],
-                   detail=f"{4 * N + 2} derivatives at 2 points (eta_j of either sign), worst relative difference "
+                   detail=f"{len(names)} derivatives at 2 points (eta_j of either sign), worst relative difference "
                           f"{float(worst):.1e} (accepted below 1e-25)")
 
 
@@ -276,3 +296,54 @@ def spectral_routines() -> Outcome:
                           f"form, phi_gradient vs differences, worst relative {float(worst):.1e} (accepted below "
                           f"1e-25); flow_coefficients_mp refuses [-10, 10] at p = q = 0 (a band inside, the ends "
                           f"in gaps)")
+
+
+@claim("library.symbols", equation="newgf", scene="library", N=2,
+       where="symbt.symbolic.generating.GeneratingFunction (E, Et, eta) and symbt.symbolic.darboux (lambda0, mu)",
+       statement="the library's symbols have their documented assumptions, as SymPy infers from them: lambda0 (ln E_j "
+                 "- ln E~_j) is real, sqrt(eta_j^2) = |eta_j|, lambda0 +- mu is real, and Symbol('E1', positive=True) "
+                 "is the library's E_1 (F at a state given by name is a number)")
+def symbol_assumptions() -> Outcome:
+    from ..symbolic.generating import GeneratingFunction
+
+    # a fresh instance, not generating_function's cached one: the symbols are this claim's own (and symbt mutate
+    # --source's line map credits it with the lines that make them)
+    g = GeneratingFunction(2)
+    checks = {
+        "lambda0 (ln E_j - ln E~_j) is real": all((g.lam0 * (sp.log(E) - sp.log(Et))).is_real is True
+                                                  for E, Et in zip(g.E, g.Et)),
+        "sqrt(eta_j^2) = |eta_j|": all(sp.sqrt(e ** 2) == sp.Abs(e) for e in g.eta),
+        "lambda0 +- mu is real": (lam0 + mu).is_real is True and (lam0 - mu).is_real is True,
+    }
+    # a state given by name: E_j = e^{q_j}, E~_j = e^{q~_j} with q~_j < q_j, eta_j > 0 from its relation
+    by_name = {sp.Symbol(f"E{j + 1}", positive=True): sp.exp(sp.Rational(j, 3)) for j in range(2)}
+    by_name.update({sp.Symbol(f"Et{j + 1}", positive=True): sp.exp(sp.Rational(j, 3) - 1) for j in range(2)})
+    by_name.update({sp.Symbol("mu", real=True): sp.Rational(1, 2), sp.Symbol("lambda0", real=True): sp.Rational(1, 3)})
+    eta_vals = {sp.Symbol(f"eta{j + 1}", real=True): sp.sqrt((sp.Rational(1, 2) ** 2 + g.w(j)).xreplace(by_name))
+                for j in range(2)}
+    value = g.F.xreplace({**by_name, **eta_vals})
+    checks["F at a state given by name is a number"] = not value.free_symbols and value.evalf(20).is_real is True
+    bad = [k for k, ok in checks.items() if not ok]
+    if bad:
+        return failed("SymPy assumptions", detail="; ".join(bad))
+    return Outcome("verified", "exact: SymPy's inference from the symbols' assumptions", evidence="proof",
+                   n_scope="all", detail="; ".join(checks))
+
+
+@claim("library.linear", equation="l1l2", scene="library",
+       where="symbt.symbolic.linear.solve_linear (the eigen-equations and transports of the derivations)",
+       statement="solve_linear gives -b/a for a x + b = 0, no root for the constant equation a + 1 = 0 and for "
+                 "(a - a) x + 1 = 0, and sympy.solve's roots for x^2 = 4")
+def linear_solutions() -> Outcome:
+    from ..symbolic.linear import solve_linear
+
+    a, bb, xx = sp.symbols("a b x")
+    cases = [("a x + b = 0", solve_linear(a * xx + bb, xx), [-bb / a]),
+             ("a + 1 = 0 (no x)", solve_linear(a + 1, xx), []),
+             ("0 x + 1 = 0", solve_linear(sp.Add(a * xx, -a * xx, 1, evaluate=False), xx), []),
+             ("x^2 = 4", sorted(solve_linear(sp.Eq(xx ** 2, 4), xx)), [-2, 2])]
+    bad = [f"{what}: {got} (want {want})" for what, got, want in cases if got != want]
+    if bad:
+        return failed("solve_linear", detail="; ".join(bad))
+    return Outcome("verified", "exact: solve_linear on equations of known roots", evidence="proof", n_scope="all",
+                   detail="; ".join(f"{what}: {got}" for what, got, _ in cases))
