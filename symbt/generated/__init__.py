@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2bafc205db160129b09c792e69acc52ebdbaef6ea84810e1c101a5a6e800f18a
-# symbt-codegen-content-sha256: 9d22f0e25c0f6ef3ca082ca2b06c8f35b6eb41e115ab0eb4046620dae1ad5b62
+# symbt-codegen-derivation-sha256: 0943a2be50f02db708d63577762c89bb8164de57d2b79bc249d72c246ce26336
+# symbt-codegen-content-sha256: 31f7b9c20621134ad94512e00eeef97a0811702d29f9c7f0cf4043b71cfea21a
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

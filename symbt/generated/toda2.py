@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2bafc205db160129b09c792e69acc52ebdbaef6ea84810e1c101a5a6e800f18a
-# symbt-codegen-content-sha256: d6497b10c61a59226cf4571d5a988beb42fa2dc4491e6ead5918b623d2f1c4b0
+# symbt-codegen-derivation-sha256: 0943a2be50f02db708d63577762c89bb8164de57d2b79bc249d72c246ce26336
+# symbt-codegen-content-sha256: e8496c67559b7a1aeb1a52d77de1e0a6766a92cebb36c2f0e015c144e80e48ff
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2bafc205db160129b09c792e69acc52ebdbaef6ea84810e1c101a5a6e800f18a
-# symbt-codegen-content-sha256: bc9d9a64d2be719f7fbf60c6d6dba37d296e970440873ca06b62fe8cf5265ad1
+# symbt-codegen-derivation-sha256: 0943a2be50f02db708d63577762c89bb8164de57d2b79bc249d72c246ce26336
+# symbt-codegen-content-sha256: 7b8cb20b6921c9e91e07a5be9dbcd094c82bf13f1d611a8bd30e2def417417bc
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
