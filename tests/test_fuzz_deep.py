@@ -220,6 +220,10 @@ def deep_chunk(seed, count, mods, csteps):
         exists = isinstance(ref, list)
         stats["states" if exists else "no_map"] += 1
         stats["refused_existing"] += exists and len(states) < len(got)
+        for n, v in got.items() if exists else ():
+            if isinstance(v, str):        # a typed refusal where the map exists, by route and error
+                key = "refused %s %s" % (n, v.split(":")[0])
+                stats[key] = stats.get(key, 0) + 1
         k = kt if kappa is None else kappa[0]
         for n, v in states.items():
             if not exists and n in ("emitted", "C") and _near_boundary(p, q, lam0, mu, b):
