@@ -289,9 +289,9 @@ def _slopes(_X, av, R, mono, t, s):
 
 
 # The root read off M carries M's rounding errors, eps times the entries of |m_N| ... |m_1|, which can exceed
-# those of M by many orders (cancellation in the product: N = 8, a root 1e5 eps off while the step's output is
+# those of M by many orders (cancellation in the product: N = 8, a root 10**5 eps off while the step's output is
 # well-conditioned).  One turn of the transport in the contracting direction multiplies the root's error by
-# the ratio of the eigenvalues, 1/|(t - s g)/2|**2 (here 1e-12), and adds only the transport's own rounding,
+# the ratio of the eigenvalues, 1/|(t - s g)/2|**2 (there 10**-12), and adds only the transport's own rounding,
 # which the slopes at sites 2 to N carry anyway: the refined root is as accurate as the transport.
 def _turn_forward(av, R, u1):
     """The slope at site N + 1 = site 1 after one forward turn from ``u1``."""

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 0943a2be50f02db708d63577762c89bb8164de57d2b79bc249d72c246ce26336
-# symbt-codegen-content-sha256: 31f7b9c20621134ad94512e00eeef97a0811702d29f9c7f0cf4043b71cfea21a
+# symbt-codegen-derivation-sha256: 9e36f85c9555eab2eea236a06f847d691e8814c9d32a5217f6196ab16fedecb5
+# symbt-codegen-content-sha256: 3f2f12bcae5447294c1c2bdd11a2443a33afb991201c9b6fdf906be301e25c21
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 0943a2be50f02db708d63577762c89bb8164de57d2b79bc249d72c246ce26336
-# symbt-codegen-content-sha256: e8496c67559b7a1aeb1a52d77de1e0a6766a92cebb36c2f0e015c144e80e48ff
+# symbt-codegen-derivation-sha256: 9e36f85c9555eab2eea236a06f847d691e8814c9d32a5217f6196ab16fedecb5
+# symbt-codegen-content-sha256: 7bba884fccb2dba5ce329824b16fdb45654fd8c4d4695b1ec6136e44104cefac
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

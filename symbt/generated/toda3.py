@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 0943a2be50f02db708d63577762c89bb8164de57d2b79bc249d72c246ce26336
-# symbt-codegen-content-sha256: 7b8cb20b6921c9e91e07a5be9dbcd094c82bf13f1d611a8bd30e2def417417bc
+# symbt-codegen-derivation-sha256: 9e36f85c9555eab2eea236a06f847d691e8814c9d32a5217f6196ab16fedecb5
+# symbt-codegen-content-sha256: 86adad4643e7b4c7bbb7a872a8b9482eb591dfb248aa4a4e03275b628e9bd4b4
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
