@@ -155,17 +155,29 @@ static int toda@@N@@_slopes(const double *av, const double *rv, const double *M,
     const double g = sqrt(@@disc_scaled@@);
     const double sd = (A - D >= 0.0) ? 1.0 : -1.0;
     us[0] = (sd * s > 0.0) ? @@root_k@@ : @@root_c@@;
-    if (s * t < 0.0) {
-        for (int j = 0; j < NS - 1; j++) {
-            const double a = av[j], r = rv[j], u = us[j];
-            us[j + 1] = @@forward@@;
-        }
-    } else {
-        double un = us[0];
-        for (int j = NS - 1; j > 0; j--) {
-            const double a = av[j], r = rv[j];
-            un = @@backward@@;
-            us[j] = un;
+    /* pass 0 is one turn that refines the root (the loop template's _turn_forward, _turn_backward: the root
+       carries the rounding of |m_N| ... |m_1|, the turn contracts it by the ratio of the eigenvalues) */
+    for (int pass = 0; pass < 2; pass++) {
+        if (s * t < 0.0) {
+            for (int j = 0; j < NS - 1; j++) {
+                const double a = av[j], r = rv[j], u = us[j];
+                us[j + 1] = @@forward@@;
+            }
+            if (pass == 0) {
+                const double a = av[NS - 1], r = rv[NS - 1], u = us[NS - 1];
+                us[0] = @@forward@@;
+            }
+        } else {
+            double un = us[0];
+            for (int j = NS - 1; j > 0; j--) {
+                const double a = av[j], r = rv[j];
+                un = @@backward@@;
+                us[j] = un;
+            }
+            if (pass == 0) {
+                const double a = av[0], r = rv[0];
+                us[0] = @@backward@@;
+            }
         }
     }
     for (int j = 0; j < NS; j++)

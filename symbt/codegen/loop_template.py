@@ -282,10 +282,27 @@ def _slopes(_X, av, R, mono, t, s):
     u1 = _X.select(sd * s > 0, lambda: @@root_k@@, lambda: @@root_c@@)
     fwd = s * t < 0
     if _X.every(fwd):
-        return _forward(av, R, u1)
+        return _forward(av, R, _turn_forward(av, R, u1))
     if _X.none(fwd):
-        return _backward(av, R, u1)
-    return _X.merge(fwd, _forward(av, R, u1), _backward(av, R, u1))
+        return _backward(av, R, _turn_backward(av, R, u1))
+    return _X.merge(fwd, _forward(av, R, _turn_forward(av, R, u1)), _backward(av, R, _turn_backward(av, R, u1)))
+
+
+# The root read off M carries M's rounding errors, eps times the entries of |m_N| ... |m_1|, which can exceed
+# those of M by many orders (cancellation in the product: N = 8, a root 10**5 eps off while the step's output is
+# well-conditioned).  One turn of the transport in the contracting direction multiplies the root's error by
+# the ratio of the eigenvalues, 1/|(t - s g)/2|**2 (there 10**-12), and adds only the transport's own rounding,
+# which the slopes at sites 2 to N carry anyway: the refined root is as accurate as the transport.
+def _turn_forward(av, R, u1):
+    """The slope at site N + 1 = site 1 after one forward turn from ``u1``."""
+    a, r, u = av[N - 1], R[N - 1], _forward(av, R, u1)[N - 1]
+    return @@forward@@
+
+
+def _turn_backward(av, R, u1):
+    """The slope at site 1 after one backward turn from ``u_{N+1} = u1``."""
+    a, r, un = av[0], R[0], _backward(av, R, u1)[1]
+    return @@backward@@
 
 
 def _traces(_X, P, R, lam0, mu, guards):

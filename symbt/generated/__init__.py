@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 1219dc17f3e5aa0c89305f93e19e48e7db11473a5de121747c7f1c60c4d4fdd9
-# symbt-codegen-content-sha256: 570facc7765f7729b1faae6748bfde525fabf83f80c9354afeec491d341a5951
+# symbt-codegen-derivation-sha256: 3d9bb0e49350aad2f9b6038b092b3997b5c6311f35b09e783961454dcec4ce9e
+# symbt-codegen-content-sha256: 982234d400d54a716a456bc1b105ce223fedbf9cba9ab0ace394578648abb688
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 1219dc17f3e5aa0c89305f93e19e48e7db11473a5de121747c7f1c60c4d4fdd9
-# symbt-codegen-content-sha256: 3a011f6b9732212d70100b9c459bff2f84569139dbecb0b40a9934a080f0f815
+# symbt-codegen-derivation-sha256: 3d9bb0e49350aad2f9b6038b092b3997b5c6311f35b09e783961454dcec4ce9e
+# symbt-codegen-content-sha256: eca556e68c2199eaed5487312bb41a57cc94a55f3905196246744fa9d7a7a984
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
