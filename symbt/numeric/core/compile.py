@@ -86,24 +86,39 @@ def clone(fn: Callable[..., Any], name: str | None = None, **overrides: Any) -> 
 
 
 def sources_digest(functions: Iterable[Any], extra: Iterable[Path] = ()) -> str:
-    """A short hash of the source files the given functions come from (and of ``extra`` files).
+    """A short hash of what the given functions are: the source files they come from (and ``extra``
+    files), the qualified names of those without a source (builtins such as ``operator.add``).
 
+    >>> import operator
+    >>> sources_digest([operator.add]) != sources_digest([operator.mul])
+    True
     >>> len(sources_digest([sources_digest]))
     10
     """
     files = set(extra)
+    names = set()
     for fn in functions:
         py = getattr(fn, "py_func", fn)             # a numba dispatcher: its Python function
         try:
             src = inspect.getsourcefile(py)
-        except TypeError:                            # a builtin (math.sqrt): nothing to hash
-            continue
+        except TypeError:                            # a builtin: its name says what it computes
+            src = None
         if src:
             files.add(Path(src))
+        else:
+            names.add("%s.%s" % (getattr(py, "__module__", None), getattr(py, "__qualname__", repr(py))))
     h = hashlib.sha256()
     for path in sorted(files):
         h.update(path.read_bytes())
+    for name in sorted(names):
+        h.update(name.encode())
     return h.hexdigest()[:10]
+
+
+def _role(v: Any) -> str:
+    py = getattr(v, "py_func", v)
+    opts = getattr(v, "targetoptions", {})
+    return "%s.%s%s" % (getattr(py, "__module__", ""), getattr(py, "__qualname__", repr(py)), sorted(opts.items()))
 
 
 def instantiate(source: Mapping[str, Callable[..., Any]], arithmetic: Mapping[str, Any], *, tag: str,
@@ -118,6 +133,10 @@ def instantiate(source: Mapping[str, Callable[..., Any]], arithmetic: Mapping[st
     """
     inline = set(inline)
     digest = sources_digest(list(source.values()) + [v for v in arithmetic.values() if callable(v)], extra)
+    # which function plays which role (add_d = operator.add), and how it is compiled, belong to the
+    # arithmetic too: a caller inlines the callee's code, so its cache entry depends on both
+    roles = sorted((k, _role(v)) for k, v in arithmetic.items()) + sorted((k, k in inline) for k in source)
+    digest = hashlib.sha256((digest + repr(roles)).encode()).hexdigest()[:10]
     env = dict(arithmetic)
     out: dict[str, Callable[..., Any]] = {}
     for name, fn in source.items():

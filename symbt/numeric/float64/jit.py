@@ -50,22 +50,28 @@ def _fused_step() -> Callable[..., Any]:
 
     shrunk = njit(K._shrunk, inline="always")
     hooks = {name: njit(clone(fn, _shrunk=shrunk), inline="always") for name, fn in K.HOOKS.items()}
-    return instantiate(SOURCE, {**K.OPERATIONS, **hooks}, tag="f64", jit=True, extra=K._EXTRA)["step"]
+    return instantiate(SOURCE, {**K.OPERATIONS, **hooks}, tag="f64", jit=True, inline=("slopes", "step"),
+                       extra=K._EXTRA)["step"]
+
+
+def _orbit(small: dict[str, Callable[..., Any]]) -> Callable[..., Any]:
+    """The single-state driver :func:`.kernels.orbit` around the compiled fused step (named after what it
+    inlines, so that numba's cache never serves a driver built on other helpers)."""
+    from . import kernels as K
+
+    env = {"step": _fused_step(), **small}
+    env["_anchor1"] = instantiate({"_anchor1": K._anchor1}, small, tag="f64", jit=True, extra=K._EXTRA)["_anchor1"]
+    return instantiate({"orbit": K.orbit}, env, tag="f64", jit=True, extra=K._EXTRA)["orbit"]
 
 
 def orbit_with(**overrides: Callable[..., Any]) -> Callable[..., Any]:
     """The single-state kernel :func:`~symbt.numeric.float64.kernels.orbit` compiled with some of its
     helpers replaced (plain-Python functions, compiled here to be inlined; they may call ``_logf`` and
     ``_dd_add``), e.g. ``_dd_position``, the read-out of a stored position.  Needs numba."""
-    import numba
-
-    from . import kernels as K
-
     small = _small()
     for name, fn in overrides.items():
         small[name] = njit(clone(fn, **small), inline="always")
-    anchor1 = njit(clone(K._anchor1, **small))
-    return numba.njit(clone(K.orbit, step=_fused_step(), _anchor1=anchor1, **small))
+    return _orbit(small)
 
 
 def _compile_all() -> None:
@@ -75,13 +81,12 @@ def _compile_all() -> None:
     from . import kernels_block as KB
 
     small = _small()
-    anchor1 = njit(clone(K._anchor1, **small))
-    orbit = njit(clone(K.orbit, step=_fused_step(), _anchor1=anchor1, **small))
-    slopes = njit(clone(KB._slopes, _shrink=njit(KB._shrink, inline="always")))
-    anchor = njit(clone(KB._anchor, **small))
-    run_block = njit(clone(KB.run_block, _slopes=slopes, _anchor=anchor, **small))
+    block = {"_slopes": njit(clone(KB._slopes, _shrink=njit(KB._shrink, inline="always")))}
+    block["_anchor"] = njit(clone(KB._anchor, **small))
+    run_block = instantiate({"run_block": KB.run_block}, {**block, **small}, tag="f64", jit=True,
+                            extra=K._EXTRA)["run_block"]
     ens = njit(clone(KB.ensemble, run_block=run_block, prange=numba.prange), parallel=True)
-    _compiled.update(orbit=orbit, run_block=run_block, ensemble=ens)
+    _compiled.update(orbit=_orbit(small), run_block=run_block, ensemble=ens)
 
 
 def kernel(name: str, backend: str = "auto") -> tuple[Callable[..., Any], str]:
