@@ -65,7 +65,7 @@ def njit(fn: Callable[..., Any], **opts: Any) -> Callable[..., Any]:
         return numba.njit(cache=False, fastmath=False, error_model="numpy", **opts)(fn)
 
 
-def clone(fn: Callable[..., Any], name: str | None = None, **overrides: Any) -> Callable[..., Any]:
+def clone(fn: Callable[..., Any], name: str | None = None, /, **overrides: Any) -> Callable[..., Any]:
     """A copy of ``fn`` whose module globals are overridden by ``overrides`` (``fn`` itself is unchanged).
 
     ``name`` renames the copy (its own numba cache entry).

@@ -37,6 +37,7 @@ Example (the float64 instantiation, plain Python):
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 from .limits import ILLCOND, OK, POSITIVITY, RANGE, TRACE1, TRACE2
@@ -153,4 +154,4 @@ def step(p: Any, r: Any, pos: Any, lam1: Any, lam2: Any, two_mu: Any, branch: in
 
 
 #: the source in dependency order, for :func:`~symbt.numeric.core.compile.instantiate`
-SOURCE = {"slopes": slopes, "step": step}
+SOURCE: dict[str, Callable[..., Any]] = {"slopes": slopes, "step": step}

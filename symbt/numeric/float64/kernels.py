@@ -9,7 +9,11 @@ plain-Python and numba versions are identical bit for bit too (IEEE doubles,
 libm ``sqrt/exp/log/log1p``, no ``fastmath``; ``tests/test_numeric_fast.py``).
 
 The step is that of :mod:`symbt.numeric.core.step` (scaled eigenvector slopes,
-each transported in its contracting direction, cancellation-free read-out).
+each transported in its contracting direction, cancellation-free read-out),
+in the scalar form written once in :mod:`symbt.numeric.core.fused`: this module
+holds its float64 arithmetic (:data:`OPERATIONS`: the operators themselves) and
+hooks (:data:`HOOKS`: the condition estimate, the power-of-two rescaling, the
+range tests, the update of the ratios and factors below) and the orbit driver.
 
 Orbit variables.  The dynamics carries the neighbour ratios
 ``r_j = exp(q_{j+1} - q_j)`` (all a step needs) and updates them as the map
@@ -235,7 +239,8 @@ def _advance(r: F64, pos: tuple[F64, F64], j: int, x: float, xn: float, pj: floa
 
 
 #: the hooks of the float64 arithmetic (compiled with ``inline="always"`` by :mod:`.jit`)
-HOOKS = {"hi": _hi, "track_init": _track_init, "track": _track, "rescale": _rescale, "rescale_last": _rescale_last,
+HOOKS: dict[str, Callable[..., Any]] = {
+    "hi": _hi, "track_init": _track_init, "track": _track, "rescale": _rescale, "rescale_last": _rescale_last,
          "in_range": _in_range, "two_of": _two_of, "decided": _decided, "disc_fits": _disc_fits,
          "step_kappa": _step_kappa, "bounded": _bounded, "trusted": _trusted, "advance": _advance}
 #: the operations of the float64 arithmetic (the same in plain Python and under numba)

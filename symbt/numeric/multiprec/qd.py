@@ -57,9 +57,9 @@ from typing import TYPE_CHECKING, Any
 import mpmath
 import numpy as np
 
+from ..core.compile import numba_available
 from ..core.errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError
 from ..core.limits import MAX_DQ_QD
-from ..core.compile import numba_available
 from ..float64.kernels import orbit_rows
 
 if TYPE_CHECKING:

@@ -129,7 +129,8 @@ def _advance(r: F64, Q: F64, j: int, x: QD, xn: QD, pj: QD) -> bool:
 
 
 #: the hooks of the quad-double arithmetic (compiled with ``inline="always"`` by :mod:`.qd`)
-HOOKS = {"hi": _hi, "track_init": _track_init, "track": _track, "rescale": _rescale, "rescale_last": _rescale,
+HOOKS: dict[str, Callable[..., Any]] = {
+    "hi": _hi, "track_init": _track_init, "track": _track, "rescale": _rescale, "rescale_last": _rescale,
          "in_range": _in_range, "two_of": _two_of, "decided": _decided, "disc_fits": _disc_fits,
          "step_kappa": _step_kappa, "bounded": _finite, "trusted": _trusted, "advance": _advance,
          "ld": _row, "st": _put}
