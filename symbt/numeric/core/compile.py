@@ -103,7 +103,7 @@ def sources_digest(functions: Iterable[Any], extra: Iterable[Path] = ()) -> str:
             src = inspect.getsourcefile(py)
         except TypeError:                            # a builtin: its name says what it computes
             src = None
-        if src:
+        if src and Path(src).is_file():              # (not a doctest's or an interpreter's pseudo-file)
             files.add(Path(src))
         else:
             names.add("%s.%s" % (getattr(py, "__module__", None), getattr(py, "__qualname__", repr(py))))
