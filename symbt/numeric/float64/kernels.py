@@ -150,6 +150,14 @@ def _hi(x: float) -> float:
     return x
 
 
+def _ld(a: F64, j: int) -> float:
+    return a[j]
+
+
+def _st(a: F64, j: int, x: float) -> None:
+    a[j] = x
+
+
 def _track_init(lam: float, p0: float, a0: float, r0: float) -> Track:
     """The product of the entrywise absolute values (``Aa, Ba, Ca, Da``, the trace's rounding scale),
     ``max_j (|lam| + |p_j|) / |lam + p_j|`` as ``kn / kd`` (cancellation in ``a_j``) and the scale ``sc``
@@ -242,11 +250,11 @@ def _advance(r: F64, pos: tuple[F64, F64], j: int, x: float, xn: float, pj: floa
 HOOKS: dict[str, Callable[..., Any]] = {
     "hi": _hi, "track_init": _track_init, "track": _track, "rescale": _rescale, "rescale_last": _rescale_last,
          "in_range": _in_range, "two_of": _two_of, "decided": _decided, "disc_fits": _disc_fits,
-         "step_kappa": _step_kappa, "bounded": _bounded, "trusted": _trusted, "advance": _advance}
+         "step_kappa": _step_kappa, "bounded": _bounded, "trusted": _trusted, "advance": _advance,
+    "ld": _ld, "st": _st}
 #: the operations of the float64 arithmetic (the same in plain Python and under numba)
 OPERATIONS = {"add": operator.add, "sub": operator.sub, "mul": operator.mul, "div": operator.truediv,
-              "neg": operator.neg, "sqrt": math.sqrt, "add_d": operator.add, "mul2": operator.mul,
-              "ld": operator.getitem, "st": operator.setitem}
+              "neg": operator.neg, "sqrt": math.sqrt, "add_d": operator.add, "mul2": operator.mul}
 
 
 @cache
