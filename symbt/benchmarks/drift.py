@@ -165,17 +165,9 @@ def modular_orbit() -> Any:
     which are below 32 in modulus here), each rounded once at a magnitude below 64 instead of ``|q|``.
     """
     if "orbit" not in _MODULAR:
-        import numba
+        from ..numeric.float64.jit import orbit_with
 
-        from ..numeric.float64 import kernels as K
-        from ..numeric.float64.jit import _clone, _njit
-
-        small = {name: _njit(getattr(K, name), inline="always") for name in ("_logf", "_dd_add")}
-        pos = _njit(_clone(_modular_position, **small), inline="always")
-        slopes1 = _njit(K._slopes1)
-        anchor1 = _njit(_clone(K._anchor1, **small))
-        _MODULAR["orbit"] = numba.njit(_clone(K.orbit, _slopes1=slopes1, _anchor1=anchor1,
-                                              _dd_position=pos, **small))
+        _MODULAR["orbit"] = orbit_with(_dd_position=_modular_position)
     return _MODULAR["orbit"]
 
 

@@ -1,10 +1,11 @@
 """Lazy numba compilation of the fused kernels of :mod:`symbt.numeric.float64.kernels`.
 
 Nothing here imports numba at module import time: :func:`kernel` compiles on
-first use (a few seconds; cached on disk by numba's ``cache=True`` in a
-``__pycache__`` next to the source, or in numba's user-wide cache directory /
-``NUMBA_CACHE_DIR`` when the package directory is read-only; if no cache
-location works the kernels are compiled without caching).  Set
+first use (a few seconds, then cached on disk) with the helpers of
+:mod:`symbt.numeric.core.compile`, shared with the quad-double kernels: the
+single-state orbit is the fused step of :mod:`symbt.numeric.core.fused`
+instantiated with the float64 operators and the hooks of
+:mod:`symbt.numeric.float64.kernels`.  Set
 ``SYMBT_NO_NUMBA=1`` to force the numba-free paths (plain-Python single-orbit
 kernel, vectorised numpy ensembles).
 
@@ -18,14 +19,14 @@ Example
 
 from __future__ import annotations
 
-import os
-import types
 from collections.abc import Callable
 from typing import Any
 
-from ..core.errors import MissingDependencyError, importable
+from ..core.compile import clone, instantiate, njit, numba_available
+from ..core.errors import MissingDependencyError
+from ..core.fused import SOURCE
 
-__all__ = ["numba_available", "kernel", "BACKENDS"]
+__all__ = ["numba_available", "kernel", "orbit_with", "BACKENDS"]
 
 BACKENDS = ("auto", "numba", "python")
 
@@ -33,29 +34,44 @@ _compiled: dict[str, Callable[..., Any]] = {}
 _LOCK: dict[str, Any] = {}
 
 
-def numba_available() -> bool:
-    """True if numba imports (tried once) and ``SYMBT_NO_NUMBA`` is not set.
+def _small() -> dict[str, Callable[..., Any]]:
+    """The double-double helpers of :mod:`.kernels`, compiled to be inlined."""
+    from . import kernels as K
 
-    >>> isinstance(numba_available(), bool)
-    True
-    """
-    return os.environ.get("SYMBT_NO_NUMBA", "") in ("", "0") and importable("numba")
-
-
-def _njit(fn: Callable[..., Any], **opts: Any) -> Callable[..., Any]:
-    import numba
-
-    try:
-        return numba.njit(cache=True, fastmath=False, error_model="numpy", **opts)(fn)
-    except Exception:  # pragma: no cover - no writable cache location
-        return numba.njit(cache=False, fastmath=False, error_model="numpy", **opts)(fn)
+    small = {name: njit(getattr(K, name), inline="always") for name in ("_logf", "_dd_add")}
+    small["_dd_position"] = njit(clone(K._dd_position, **small), inline="always")
+    return small
 
 
-def _clone(fn: Callable[..., Any], **overrides: Any) -> Callable[..., Any]:
-    """``fn`` with its module globals overridden (to call the compiled helpers)."""
-    g = dict(fn.__globals__)
-    g.update(overrides)
-    return types.FunctionType(fn.__code__, g, fn.__name__, fn.__defaults__, fn.__closure__)
+def _fused_step() -> Callable[..., Any]:
+    """The fused step of :mod:`symbt.numeric.core.fused` in float64: the operators and the hooks of
+    :mod:`.kernels` (hooks inlined)."""
+    from . import kernels as K
+
+    shrunk = njit(K._shrunk, inline="always")
+    hooks = {name: njit(clone(fn, _shrunk=shrunk), inline="always") for name, fn in K.HOOKS.items()}
+    return instantiate(SOURCE, {**K.OPERATIONS, **hooks}, tag="f64", jit=True, inline=("slopes", "step"),
+                       extra=K._EXTRA)["step"]
+
+
+def _orbit(small: dict[str, Callable[..., Any]]) -> Callable[..., Any]:
+    """The single-state driver :func:`.kernels.orbit` around the compiled fused step (named after what it
+    inlines, so that numba's cache never serves a driver built on other helpers)."""
+    from . import kernels as K
+
+    env = {"step": _fused_step(), **small}
+    env["_anchor1"] = instantiate({"_anchor1": K._anchor1}, small, tag="f64", jit=True, extra=K._EXTRA)["_anchor1"]
+    return instantiate({"orbit": K.orbit}, env, tag="f64", jit=True, extra=K._EXTRA)["orbit"]
+
+
+def orbit_with(**overrides: Callable[..., Any]) -> Callable[..., Any]:
+    """The single-state kernel :func:`~symbt.numeric.float64.kernels.orbit` compiled with some of its
+    helpers replaced (plain-Python functions, compiled here to be inlined; they may call ``_logf`` and
+    ``_dd_add``), e.g. ``_dd_position``, the read-out of a stored position.  Needs numba."""
+    small = _small()
+    for name, fn in overrides.items():
+        small[name] = njit(clone(fn, **small), inline="always")
+    return _orbit(small)
 
 
 def _compile_all() -> None:
@@ -64,16 +80,13 @@ def _compile_all() -> None:
     from . import kernels as K
     from . import kernels_block as KB
 
-    small = {name: _njit(getattr(K, name), inline="always") for name in ("_logf", "_dd_add")}
-    small["_dd_position"] = _njit(_clone(K._dd_position, **small), inline="always")
-    slopes1 = _njit(K._slopes1)
-    anchor1 = _njit(_clone(K._anchor1, **small))
-    orbit = _njit(_clone(K.orbit, _slopes1=slopes1, _anchor1=anchor1, **small))
-    slopes = _njit(_clone(KB._slopes, _shrink=_njit(KB._shrink, inline="always")))
-    anchor = _njit(_clone(KB._anchor, **small))
-    run_block = _njit(_clone(KB.run_block, _slopes=slopes, _anchor=anchor, **small))
-    ens = _njit(_clone(KB.ensemble, run_block=run_block, prange=numba.prange), parallel=True)
-    _compiled.update(orbit=orbit, run_block=run_block, ensemble=ens)
+    small = _small()
+    block = {"_slopes": njit(clone(KB._slopes, _shrink=njit(KB._shrink, inline="always")))}
+    block["_anchor"] = njit(clone(KB._anchor, **small))
+    run_block = instantiate({"run_block": KB.run_block}, {**block, **small}, tag="f64", jit=True,
+                            extra=K._EXTRA)["run_block"]
+    ens = njit(clone(KB.ensemble, run_block=run_block, prange=numba.prange), parallel=True)
+    _compiled.update(orbit=_orbit(small), run_block=run_block, ensemble=ens)
 
 
 def kernel(name: str, backend: str = "auto") -> tuple[Callable[..., Any], str]:

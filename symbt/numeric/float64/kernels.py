@@ -9,7 +9,11 @@ plain-Python and numba versions are identical bit for bit too (IEEE doubles,
 libm ``sqrt/exp/log/log1p``, no ``fastmath``; ``tests/test_numeric_fast.py``).
 
 The step is that of :mod:`symbt.numeric.core.step` (scaled eigenvector slopes,
-each transported in its contracting direction, cancellation-free read-out).
+each transported in its contracting direction, cancellation-free read-out),
+in the scalar form written once in :mod:`symbt.numeric.core.fused`: this module
+holds its float64 arithmetic (:data:`OPERATIONS`: the operators themselves) and
+hooks (:data:`HOOKS`: the condition estimate, the power-of-two rescaling, the
+range tests, the update of the ratios and factors below) and the orbit driver.
 
 Orbit variables.  The dynamics carries the neighbour ratios
 ``r_j = exp(q_{j+1} - q_j)`` (all a step needs) and updates them as the map
@@ -54,11 +58,18 @@ Example
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+import operator
+from collections.abc import Callable
+from functools import cache
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..core.limits import ILLCOND, KAPPA_MAX, MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
+from ..core import limits
+from ..core.compile import instantiate
+from ..core.fused import SOURCE
+from ..core.limits import KAPPA_MAX, MAX_DQ_FLOAT64, OK, RANGE
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -66,12 +77,17 @@ if TYPE_CHECKING:
     F64 = npt.NDArray[np.float64]
     I64 = npt.NDArray[np.int64]
 
-__all__ = ["orbit", "orbit_rows", "stored_steps", "ANCHOR"]
+Track = tuple[float, float, float, float, float, float, float]
+
+__all__ = ["orbit", "orbit_rows", "stored_steps", "python_kernels", "ANCHOR", "HOOKS", "OPERATIONS"]
 # monodromy entries past _BIG are multiplied by _SHRINK (powers of two: exact, the slopes only need ratios),
 # so that |tr L| ~ 1e300 and beyond (N = 256 far from the spectrum) stays in the kernel; the product of the
 # absolute values (>= the monodromy entrywise) decides when, and is scaled alike
 _BIG = 2.0 ** 400
 _SHRINK = 2.0 ** -400
+
+# the limits are frozen into the compiled step: their file belongs to its cache key (core/compile.py)
+_EXTRA = (Path(limits.__file__),)
 
 #: steps between re-anchoring ``r`` to ``exp`` of the accumulated positions
 ANCHOR = 16
@@ -128,80 +144,127 @@ def _dd_position(qh: float, ql: float, fh: float, fl: float) -> float:
     return h + lo
 
 
-def _slopes1(p: F64, r: F64, lam: float, s: int, u: F64, code: int, tt: F64, i: int) -> int:
-    """One state of :func:`_slopes` (same operations in the same order); returns the status.
+# the float64 arithmetic of the fused step (core/fused.py): the operators themselves (numba compiles
+# operator.add as ``+``), and the hooks of what float64 needs beyond the operations
+def _hi(x: float) -> float:
+    return x
 
-    ``tt[i]`` receives the trace.  The trace is decided only where it is far from ``+-2`` against its
-    rounding error: ``T |t| <= KAPPA_MAX |t**2 - 4|`` with ``T`` the trace of the product of the
-    entrywise absolute values (a bound of the rounding error's scale), else ``ILLCOND``.
+
+def _ld(a: F64, j: int) -> float:
+    return a[j]
+
+
+def _st(a: F64, j: int, x: float) -> None:
+    a[j] = x
+
+
+def _track_init(lam: float, p0: float, a0: float, r0: float) -> Track:
+    """The product of the entrywise absolute values (``Aa, Ba, Ca, Da``, the trace's rounding scale),
+    ``max_j (|lam| + |p_j|) / |lam + p_j|`` as ``kn / kd`` (cancellation in ``a_j``) and the scale ``sc``
+    (a power of two: the monodromy is ``sc [[A, B], [C, D]]``), after the first factor."""
+    return abs(a0), 1.0, r0, 0.0, abs(lam) + abs(p0), abs(a0), 1.0
+
+
+def _track(aux: Track, lam: float, pj: float, a: float, rj: float) -> Track:
+    Aa, Ba, Ca, Da, kn, kd, sc = aux
+    cn = abs(lam) + abs(pj)
+    if cn * kd > kn * abs(a):
+        kn = cn
+        kd = abs(a)
+    aa = abs(a)
+    return aa * Aa + Ca, aa * Ba + Da, rj * Aa, rj * Ba, kn, kd, sc
+
+
+def _shrunk(A: float, B: float, C: float, D: float, aux: Track) -> tuple[float, float, float, float, Track]:
+    Aa, Ba, Ca, Da, kn, kd, sc = aux
+    S = _SHRINK
+    return A * S, B * S, C * S, D * S, (Aa * S, Ba * S, Ca * S, Da * S, kn, kd, sc * S)
+
+
+def _rescale(A: float, B: float, C: float, D: float, aux: Track) -> tuple[float, float, float, float, Track]:
+    if aux[0] > _BIG or aux[1] > _BIG:
+        return _shrunk(A, B, C, D, aux)
+    return A, B, C, D, aux
+
+
+def _rescale_last(A: float, B: float, C: float, D: float, aux: Track) -> tuple[float, float, float, float, Track]:
+    if aux[2] > _BIG or aux[3] > _BIG:
+        return _shrunk(A, B, C, D, aux)
+    return A, B, C, D, aux
+
+
+def _in_range(A: float, B: float, C: float, D: float, t: float) -> bool:
+    return (abs(A) < 1e290 and abs(B) < 1e290 and abs(C) < 1e290 and abs(D) < 1e290
+            and (abs(A) > 1e-290 or abs(B) > 1e-290))
+
+
+def _two_of(aux: Track) -> float:
+    return 2.0 * aux[6]
+
+
+def _decided(aux: Track, t: float, disc: float, tt: F64, i: int) -> bool:
+    """The trace is decided only where it is far from ``+-2`` against its rounding error:
+    ``T |t| <= KAPPA_MAX |t**2 - 4|`` with ``T`` the trace of the product of the entrywise absolute
+    values; ``tt[i + 2]`` receives the trace's condition times ``a_j``'s (>= 1)."""
+    T = aux[0] + aux[3]
+    if not T * abs(t) <= KAPPA_MAX * abs(disc):
+        return False
+    tt[i + 2] = T * abs(t) / abs(disc) * (aux[4] / aux[5])
+    return True
+
+
+def _disc_fits(disc: float) -> bool:
+    return disc < 1e300     # (sc tr)**2 overflows: not reached after the rescaling, kept as a guard
+
+
+def _step_kappa(tt: F64) -> float:
+    return max(tt[2], tt[3])
+
+
+def _bounded(x: float) -> bool:
+    return abs(x) < 1e300
+
+
+def _trusted(kt: float, u: float, w: float, dn: float, x: float) -> bool:
+    # kappa = kt (|u| + |w|) / |u - w| (1 + |xr| / |1 + xr|): the slopes' error, the cancellation in
+    # d_j = u_j - w_j and the read-out log1p(xr_j) -- else the sign of 1 + xr_j or the result is not
+    # trusted (step.py, "Existence and accuracy in float64")
+    return kt * (abs(u) + abs(w)) * (abs(x + 1.0) + abs(x)) <= KAPPA_MAX * abs(dn) * abs(x + 1.0)
+
+
+def _advance(r: F64, pos: tuple[F64, F64], j: int, x: float, xn: float, pj: float) -> bool:
+    """``r_j <- r_j (1 + xr_{j+1}) / (1 + xr_j)`` and ``F_j <- F_j (1 + xr_j)`` in double-double."""
+    fh, fl = pos
+    d = (xn - x) / (1.0 + x)
+    r[j] = r[j] + r[j] * d
+    a = fh[j]
+    t = a * x
+    s = a + t
+    bp = s - a
+    fl[j] = fl[j] + fl[j] * x + ((a - (s - bp)) + (t - bp))
+    fh[j] = s
+    return True
+
+
+#: the hooks of the float64 arithmetic (compiled with ``inline="always"`` by :mod:`.jit`)
+HOOKS: dict[str, Callable[..., Any]] = {
+    "hi": _hi, "track_init": _track_init, "track": _track, "rescale": _rescale, "rescale_last": _rescale_last,
+         "in_range": _in_range, "two_of": _two_of, "decided": _decided, "disc_fits": _disc_fits,
+         "step_kappa": _step_kappa, "bounded": _bounded, "trusted": _trusted, "advance": _advance,
+    "ld": _ld, "st": _st}
+#: the operations of the float64 arithmetic (the same in plain Python and under numba)
+OPERATIONS = {"add": operator.add, "sub": operator.sub, "mul": operator.mul, "div": operator.truediv,
+              "neg": operator.neg, "sqrt": math.sqrt, "add_d": operator.add, "mul2": operator.mul}
+
+
+@cache
+def python_kernels() -> dict[str, Callable[..., Any]]:
+    """The fused step (:mod:`symbt.numeric.core.fused`) in float64, plain Python (``slopes``, ``step``).
+
+    >>> sorted(python_kernels())
+    ['slopes', 'step']
     """
-    N = p.shape[0]
-    A = lam + p[0]
-    Bm = -1.0
-    C = r[0]
-    D = 0.0
-    Aa = abs(A)
-    Ba = 1.0
-    Ca = C
-    Da = 0.0
-    kn = abs(lam) + abs(p[0])       # max_j (|lam| + |p_j|) / |lam + p_j| as kn / kd (cancellation in a_j)
-    kd = abs(A)
-    sc = 1.0            # the monodromy is sc * [[A, Bm], [C, D]]; sc a power of two (exact rescaling)
-    for j in range(1, N):
-        a = lam + p[j]
-        cn = abs(lam) + abs(p[j])
-        if cn * kd > kn * abs(a):
-            kn = cn
-            kd = abs(a)
-        a0 = A
-        b0 = Bm
-        A = a * a0 - C
-        Bm = a * b0 - D
-        C = r[j] * a0
-        D = r[j] * b0
-        aa = abs(a)
-        a0 = Aa
-        b0 = Ba
-        Aa = aa * a0 + Ca
-        Ba = aa * b0 + Da
-        Ca = r[j] * a0
-        Da = r[j] * b0
-        if Aa > _BIG or Ba > _BIG:
-            A, Bm, C, D, sc = A * _SHRINK, Bm * _SHRINK, C * _SHRINK, D * _SHRINK, sc * _SHRINK
-            Aa, Ba, Ca, Da = Aa * _SHRINK, Ba * _SHRINK, Ca * _SHRINK, Da * _SHRINK
-    if Ca > _BIG or Da > _BIG:
-        A, Bm, C, D, sc = A * _SHRINK, Bm * _SHRINK, C * _SHRINK, D * _SHRINK, sc * _SHRINK
-        Aa, Ba, Ca, Da = Aa * _SHRINK, Ba * _SHRINK, Ca * _SHRINK, Da * _SHRINK
-    t = A + D
-    tt[i] = t
-    if not (abs(A) < 1e290 and abs(Bm) < 1e290 and abs(C) < 1e290 and abs(D) < 1e290
-            and (abs(A) > 1e-290 or abs(Bm) > 1e-290)):
-        return RANGE
-    two = 2.0 * sc
-    disc = (t - two) * (t + two)    # sc**2 (tr**2 - 4): scaling by powers of two is exact
-    if not (Aa + Da) * abs(t) <= KAPPA_MAX * abs(disc):
-        return ILLCOND
-    tt[i + 2] = (Aa + Da) * abs(t) / abs(disc) * (kn / kd)   # the trace's condition times a_j's (>= 1)
-    if not disc > 0.0:
-        return code
-    if not disc < 1e300:
-        return RANGE        # (sc tr)**2 overflows: not reached after the rescaling above, kept as a guard
-    g = math.sqrt(disc)
-    dl = A - D
-    plus = dl >= 0.0
-    kk = dl + (g if plus else -g)
-    tk = plus == (s > 0)
-    num = kk if tk else -2.0 * C
-    den = 2.0 * Bm if tk else kk
-    u[0] = num / den
-    if (t < 0.0) if s > 0 else (t >= 0.0):
-        for j in range(N - 1):
-            u[j + 1] = -r[j] / (lam + p[j] + u[j])
-    else:
-        for j in range(N - 1, 0, -1):
-            jn = j + 1 if j + 1 < N else 0
-            u[j] = -(lam + p[j]) - r[j] / u[jn]
-    return OK
+    return instantiate(SOURCE, {**OPERATIONS, **HOOKS}, tag="f64", jit=False, extra=_EXTRA)
 
 
 def _anchor1(qh: F64, ql: F64, fh: F64, fl: F64, r: F64, p: F64) -> int:
@@ -254,43 +317,12 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
     st = _anchor1(qh, ql, fh, fl, r, p)
     if st != OK:
         return st
+    pos = (fh, fl)
     row = 1
     for i in range(1, n + 1):
-        st = _slopes1(p, r, lam1, branch, u, TRACE1, tt, 0)
+        st = step(p, r, pos, lam1, lam2, two_mu, branch, u, w, xr, gq, tt)
         if st != OK:
             return st
-        st = _slopes1(p, r, lam2, -branch, w, TRACE2, tt, 1)
-        if st != OK:
-            return st
-        if (tt[0] < 0.0) != (tt[1] < 0.0):
-            return POSITIVITY        # lam1, lam2 in different gaps (|tr| > 2 decided, so the signs are)
-        kt = max(tt[2], tt[3])
-        for j in range(N):
-            dn = u[j] - w[j]
-            x = two_mu / dn
-            xr[j] = x
-            gq[j] = u[j] / dn
-            if not abs(x) < 1e300:
-                return RANGE
-            # kappa = kt (|u| + |w|) / |u - w| (1 + |xr| / |1 + xr|): the slopes' error, the cancellation in
-            # d_j = u_j - w_j and the read-out log1p(xr_j) -- else the sign of 1 + xr_j or the result is not
-            # trusted (step.py, "Existence and accuracy in float64")
-            if not kt * (abs(u[j]) + abs(w[j])) * (abs(x + 1.0) + abs(x)) <= KAPPA_MAX * abs(dn) * abs(x + 1.0):
-                return ILLCOND
-            if not x + 1.0 > 0.0:
-                return POSITIVITY
-        for j in range(N):
-            jn = j + 1 if j + 1 < N else 0
-            p[j] = p[j] + two_mu * (gq[jn] - gq[j])
-            x = xr[j]
-            d = (xr[jn] - x) / (1.0 + x)
-            r[j] = r[j] + r[j] * d
-            a = fh[j]
-            t = a * x
-            s = a + t
-            bp = s - a
-            fl[j] = fl[j] + fl[j] * x + ((a - (s - bp)) + (t - bp))
-            fh[j] = s
         if i % anchor == 0:
             st = _anchor1(qh, ql, fh, fl, r, p)
             if st != OK:
@@ -304,3 +336,7 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
                 outQ[row, j] = y
             row += 1
     return OK
+
+
+# the plain-Python step :func:`orbit` calls (jit.py compiles ``orbit`` with the numba instance in its place)
+step = python_kernels()["step"]

@@ -55,8 +55,8 @@ def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64,
     """Scaled eigenvector slopes ``u[j, k]`` at ``lam[k]`` for sign ``s`` (see :mod:`symbt.numeric.core.step`).
 
     ``tt[k]`` receives the trace, ``kt[k]`` the maximum of itself and the trace's condition; ``Ab`` (4, B)
-    is scratch for the product of the absolute values (the trace's rounding scale,
-    :func:`~symbt.numeric.float64.kernels._slopes1`); ``sc[k]`` the power of two the monodromy is scaled by."""
+    is scratch for the product of the absolute values (the trace's rounding scale, the float64 hooks of
+    :mod:`symbt.numeric.core.fused` in :mod:`.kernels`); ``sc[k]`` the power of two the monodromy is scaled by."""
     N, B = p.shape
     for k in range(B):
         A[k] = lam[k] + p[0, k]
@@ -67,7 +67,7 @@ def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64,
         Ab[1, k] = 1.0
         Ab[2, k] = C[k]
         Ab[3, k] = 0.0
-        Kn[k] = abs(lam[k]) + abs(p[0, k])      # kernels._slopes1: cancellation in a_j = lam + p_j
+        Kn[k] = abs(lam[k]) + abs(p[0, k])      # kernels._track_init: cancellation in a_j = lam + p_j
         Kd[k] = abs(A[k])
         sc[k] = 1.0
     for j in range(1, N):
@@ -92,7 +92,7 @@ def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64,
             Ab[2, k] = r[j, k] * a0
             Ab[3, k] = r[j, k] * b0
             big += 1 if (Ab[0, k] > _BIG or Ab[1, k] > _BIG) else 0
-        if big > 0:                    # the exact power-of-two rescaling of :func:`.kernels._slopes1`
+        if big > 0:                    # the exact power-of-two rescaling of :func:`.kernels._rescale`
             for k in range(B):
                 if Ab[0, k] > _BIG or Ab[1, k] > _BIG:
                     _shrink(A, Bm, C, D, Ab, sc, k)

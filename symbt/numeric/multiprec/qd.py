@@ -57,9 +57,9 @@ from typing import TYPE_CHECKING, Any
 import mpmath
 import numpy as np
 
+from ..core.compile import numba_available
 from ..core.errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError
 from ..core.limits import MAX_DQ_QD
-from ..float64.jit import numba_available
 from ..float64.kernels import orbit_rows
 
 if TYPE_CHECKING:
@@ -83,7 +83,6 @@ _SMALL = ("two_sum", "quick_two_sum", "three_sum", "three_sum2", "neg", "mul_pwr
 #: inlined into the transcendental functions and the division, called from the step (compile time)
 _BASIC = ("add", "sub", "add_d", "mul", "mul_d")
 _FUNCS = ("div", "sqrt", "exp_parts", "exp", "expm1", "log1p")
-_STEP = ("_row", "_put", "_finite", "_slopes", "qd_step", "qd_orbit")
 
 
 def qd_available() -> bool:
@@ -114,7 +113,9 @@ def _digest() -> str:
     # numba freezes globals at compile time and checks only the calling file's time stamp, so the limits
     # the step reads (core/limits.py) belong to the sources whose hash marks the cache current
     here = Path(__file__).parent
-    for path in (here / "qd.py", here / "qd_arith.py", here / "qd_step.py", here.parent / "core" / "limits.py"):
+    core = here.parent / "core"
+    for path in (here / "qd.py", here / "qd_arith.py", here / "qd_step.py", core / "limits.py", core / "fused.py",
+                 core / "compile.py"):
         h.update(path.read_bytes())
     try:
         h.update(version("numba").encode())
@@ -229,15 +230,6 @@ def _two_prod_fma(a: float, b: float) -> tuple[float, float]:
     return p, _fma(a, b, -p)             # type: ignore[name-defined]  # noqa: F821 - the compiled intrinsic
 
 
-def _named(fn: Callable[..., Any], name: str, **overrides: Any) -> Callable[..., Any]:
-    """:func:`~symbt.numeric.float64.jit._clone` under another name (its own numba cache entry)."""
-    from ..float64.jit import _clone
-
-    out = _clone(fn, **overrides)
-    out.__name__ = out.__qualname__ = name
-    return out
-
-
 def _decompose(x: F64, out: Any) -> None:
     """Row ``i`` of ``x`` (``(k, 4)`` doubles) -> ``out[i] = (m0, m1, m2, m3, s1, s2, s3, e)``: integer mantissas
     (``|m| < 2**53``), shifts and exponent with ``sum x[i] = ((((m0 << s1) + m1) << s2) + m2 << s3) + m3) 2**e``
@@ -274,38 +266,44 @@ def _decompose(x: F64, out: Any) -> None:
 
 
 def _compile() -> None:
-    from ..float64.jit import _clone, _njit
+    from ..core.compile import clone, instantiate, njit
+    from ..core.fused import SOURCE
     from . import qd_arith as A
     from . import qd_step as S
 
     inl: dict[str, Callable[..., Any]] = {}
     try:
         fma = _fma_intrinsic()
-        tp = _njit(_named(_two_prod_fma, "two_prod_fma", _fma=fma), inline="always")
+        tp = njit(clone(_two_prod_fma, "two_prod_fma", _fma=fma), inline="always")
         tp(1.0 + 2.0 ** -30, 1.0 + 2.0 ** -30)
     except Exception:  # pragma: no cover - no FMA intrinsic: Dekker's split (same bits, slower)
-        tp = _njit(A.two_prod, inline="always")
+        tp = njit(A.two_prod, inline="always")
     inl["two_prod"] = tp
     for name in _SMALL:
-        inl[name] = _njit(_clone(getattr(A, name), **inl), inline="always")
+        inl[name] = njit(clone(getattr(A, name), **inl), inline="always")
     for name in ("renorm5", "renorm4"):      # branchy: a call (inlining it everywhere costs minutes of compile time)
-        inl[name] = _njit(_clone(getattr(A, name), **inl))
+        inl[name] = njit(clone(getattr(A, name), **inl))
     done = dict(inl)
     for name in _BASIC:
         fn = getattr(A, name)
-        inl[name] = _njit(_named(fn, name + "_inl", **inl), inline="always")
-        done[name] = _njit(_clone(fn, **done))
+        inl[name] = njit(clone(fn, name + "_inl", **inl), inline="always")
+        done[name] = njit(clone(fn, **done))
     for name in _FUNCS:
-        done[name] = _njit(_clone(getattr(A, name), **{**done, **inl}))
-    for name in _STEP:
-        done[name] = _njit(_clone(getattr(S, name), **done))
-    done["decompose"] = _njit(_decompose)
+        done[name] = njit(clone(getattr(A, name), **{**done, **inl}))
+    # the fused step (core/fused.py) with the quad-double operations (calls) and hooks
+    for name in ("_row", "_put", "_finite"):
+        done[name] = njit(getattr(S, name))
+    hooks = {name: njit(clone(fn, **done)) for name, fn in S.HOOKS.items()}
+    ops = {name: done[fn] for name, fn in S.OPERATIONS.items()}
+    fused = instantiate(SOURCE, {**ops, **hooks}, tag="qd", jit=True, extra=S._EXTRA)
+    done["qd_orbit"] = njit(clone(S.qd_orbit, step=fused["step"], **done))
+    done["decompose"] = njit(_decompose)
     _compiled.update(done)
 
 
 def qd_kernel(name: str = "qd_orbit") -> Callable[..., Any]:
     """The compiled function ``name`` (an arithmetic function of :mod:`symbt.numeric.multiprec.qd_arith`,
-    ``"qd_orbit"``, ``"qd_step"`` or ``"decompose"``); :class:`MissingDependencyError` without numba."""
+    ``"qd_orbit"`` or ``"decompose"``); :class:`MissingDependencyError` without numba."""
     if not qd_available():
         raise MissingDependencyError("the qd backend needs numba: pip install 'symbt[fast]'")
     if not _compiled:
