@@ -39,6 +39,8 @@ from __future__ import annotations
 import math
 import tempfile
 from pathlib import Path
+from types import ModuleType
+from typing import cast
 
 import mpmath as mp
 import sympy as sp
@@ -235,7 +237,7 @@ def codegen_check_controls() -> Outcome:
         return v
 
     wrong = SimpleNamespace(invariants=off, invariants_mp=toda2.invariants_mp)
-    res = compare(wrong, 2, "invariants", pts=pts)
+    res = compare(cast(ModuleType, wrong), 2, "invariants", pts=pts)
     bad = res["bad"] or {}
     want = None if not bad else repr(float(off(**_point_of(bad["point"]))[1]))
     if res["ok"] or bad.get("output") != 1 or bad.get("f64") != want:

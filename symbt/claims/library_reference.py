@@ -60,6 +60,8 @@ def inverse_round_trip() -> Outcome:
                 r = solve_parameters(p, q, c, mode=mode)
             except ValueError as exc:
                 return failed("solve_parameters", detail=f"mode {mode}: {exc}")
+            if r is None:
+                return failed("solve_parameters", detail=f"mode {mode}: no solution returned")
             err = max(abs(r["lam0"] - l0) / abs(l0), abs(r["mu"] - m) / m)
             got[mode] = err
             if err > TOL_RECOVER or r["branch"] != 1:
@@ -72,6 +74,8 @@ def inverse_round_trip() -> Outcome:
             r = solve_parameters(p, q, off, mode="lstsq")
         except ValueError as exc:
             return failed("solve_parameters", detail=f"lstsq off the attainable surface: {exc}")
+        if r is None:
+            return failed("solve_parameters", detail="lstsq off the attainable surface: no solution returned")
         sol_l0, sol_m = r["lam0"], r["mu"]
     weights = [1 / abs(v) for v in off[:3]]     # the solver's relative residuals
     with mp.workdps(20):
