@@ -26,6 +26,7 @@ no claim, so a slip there changed no verdict (scene ``library``):
 from __future__ import annotations
 
 import random
+from typing import Any
 
 import mpmath as mp
 
@@ -68,7 +69,7 @@ def inverse_round_trip() -> Outcome:
                 return failed("solve_parameters", residual=float(err),
                               detail=f"mode {mode}: got lam0 = {mp.nstr(r['lam0'], 12)}, mu = {mp.nstr(r['mu'], 12)}, "
                                      f"branch {r['branch']} (want 10, 1, +1)")
-        off = list(c)
+        off: list[Any] = list(c)
         off[1] *= mp.mpf("1.01")
         try:
             r = solve_parameters(p, q, off, mode="lstsq")
