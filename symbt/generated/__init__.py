@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2bafc205db160129b09c792e69acc52ebdbaef6ea84810e1c101a5a6e800f18a
-# symbt-codegen-content-sha256: 9d22f0e25c0f6ef3ca082ca2b06c8f35b6eb41e115ab0eb4046620dae1ad5b62
+# symbt-codegen-derivation-sha256: 09602be99c6ebcaee7cdcc7e7901f431b3a30e7d34683edab3ed8804e0d1a651
+# symbt-codegen-content-sha256: 7d8a6cdbc66b689554f166a7e1f7e53889cb2babdfe5d725c17e6e3bfe8428a3
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2bafc205db160129b09c792e69acc52ebdbaef6ea84810e1c101a5a6e800f18a
-# symbt-codegen-content-sha256: d6497b10c61a59226cf4571d5a988beb42fa2dc4491e6ead5918b623d2f1c4b0
+# symbt-codegen-derivation-sha256: 09602be99c6ebcaee7cdcc7e7901f431b3a30e7d34683edab3ed8804e0d1a651
+# symbt-codegen-content-sha256: a0540f5e5a9e8f393da74d84e8d3a5c6cb62715ce0f59b104a2c4f03d67d727f
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

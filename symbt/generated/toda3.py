@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2bafc205db160129b09c792e69acc52ebdbaef6ea84810e1c101a5a6e800f18a
-# symbt-codegen-content-sha256: bc9d9a64d2be719f7fbf60c6d6dba37d296e970440873ca06b62fe8cf5265ad1
+# symbt-codegen-derivation-sha256: 09602be99c6ebcaee7cdcc7e7901f431b3a30e7d34683edab3ed8804e0d1a651
+# symbt-codegen-content-sha256: 4144f82ec74997108918b75fe7469bde276b7e19533867e9f98c8af32ccbcaf4
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
