@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 09602be99c6ebcaee7cdcc7e7901f431b3a30e7d34683edab3ed8804e0d1a651
-# symbt-codegen-content-sha256: 7d8a6cdbc66b689554f166a7e1f7e53889cb2babdfe5d725c17e6e3bfe8428a3
+# symbt-codegen-derivation-sha256: 7f59d915532817f4f202bb7fa2216f5d3b2db742d3c440a5095dc8f4bf7b05ac
+# symbt-codegen-content-sha256: ec7a8842f137b2ee626c76751cc20cace0dbc8db1c40f17096f3de09fe9e07e3
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 09602be99c6ebcaee7cdcc7e7901f431b3a30e7d34683edab3ed8804e0d1a651
-# symbt-codegen-content-sha256: a0540f5e5a9e8f393da74d84e8d3a5c6cb62715ce0f59b104a2c4f03d67d727f
+# symbt-codegen-derivation-sha256: 7f59d915532817f4f202bb7fa2216f5d3b2db742d3c440a5095dc8f4bf7b05ac
+# symbt-codegen-content-sha256: c0ee07c54afea75d48d7fe3b4748e186dceb37574353e1dcf41e940a1db2e79b
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 09602be99c6ebcaee7cdcc7e7901f431b3a30e7d34683edab3ed8804e0d1a651
-# symbt-codegen-content-sha256: 4144f82ec74997108918b75fe7469bde276b7e19533867e9f98c8af32ccbcaf4
+# symbt-codegen-derivation-sha256: 7f59d915532817f4f202bb7fa2216f5d3b2db742d3c440a5095dc8f4bf7b05ac
+# symbt-codegen-content-sha256: cdb70dd38cd457e856b8cceb17273a007ac789e3e58f1a7fec5accd09231c7ad
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
