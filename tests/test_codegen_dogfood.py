@@ -9,8 +9,11 @@
 """
 from __future__ import annotations
 
+import ctypes
 import importlib.util
 import re
+import shutil
+import subprocess
 import sys
 from pathlib import Path
 
@@ -116,6 +119,81 @@ def _legacy_module_body(N):
         parts += ["", "", _legacy_mpmath(s, N)]
     parts.append(ORBIT.rstrip("\n"))
     return "\n".join(parts) + "\n"
+
+
+def _legacy_c_function(spec, N):
+    from symbt.codegen.emit_c import _CODES, _OUT_PTRS, _SIGNATURES
+    from symbt.codegen.printer import cse_block
+
+    names = {}
+    checks_ptr, checks_fin = [], []
+    for a in spec.args:
+        if a.kind == "state":
+            checks_ptr.append(a.name)
+            checks_fin.append(f"!toda{N}_finite({a.name}, NS)")
+            for i, s in enumerate(a.symbols):
+                names[s] = f"{a.name}[{i}]"
+        elif a.kind == "branch":
+            names[a.symbols[0]] = "b"
+        else:
+            checks_fin.append(f"!isfinite({a.name})")
+            names[a.symbols[0]] = a.name
+    outs = _OUT_PTRS[spec.name]
+    lines = [_SIGNATURES[spec.name].format(N=N), "{"]
+    lines.append(f"    if ({' || '.join('!' + x for x in checks_ptr + list(outs))})")
+    lines.append("        return SYMBT_TODA_INVALID_INPUT;")
+    if any(a.kind == "branch" for a in spec.args):
+        lines.append("    if (branch != 1 && branch != -1)")
+        lines.append("        return SYMBT_TODA_INVALID_INPUT;")
+    lines.append(f"    if ({' || '.join(checks_fin)})")
+    lines.append("        return SYMBT_TODA_INVALID_INPUT;")
+    if any(a.kind == "branch" for a in spec.args):
+        lines.append("    const double b = (double)branch;")
+    exprs = [g.expr for g in spec.guards] + [e for o in spec.outputs for e in o.exprs]
+    body, printed = cse_block(exprs, names, "c")
+    lines += [f"    const double {ln};" for ln in body]
+    gl, vals = printed[:len(spec.guards)], printed[len(spec.guards):]
+    # in the spec's order, as the Python flavour decides: a non-finite guard is a range problem (and
+    # decides nothing after it), a finite value <= 0 no real map ("range" guards need only be finite)
+    for g, t in zip(spec.guards, gl):
+        lines.append(f"    if (!isfinite({t}))")
+        lines.append("        return SYMBT_TODA_RANGE;")
+        if g.condition != "range":
+            lines.append(f"    if (!({t} > 0.0))")
+            lines.append(f"        return {_CODES[g.condition]};")
+    lines.append(f"    const double out[{len(vals)}] = {{{', '.join(vals)}}};")
+    lines.append(f"    if (!toda{N}_finite(out, {len(vals)}))")
+    lines.append("        return SYMBT_TODA_RANGE;")
+    k = 0
+    for o, ptr in zip(spec.outputs, outs):
+        n = len(o.exprs)
+        lines.append(f"    for (int i = 0; i < {n}; i++)")
+        lines.append(f"        {ptr}[i] = out[{k} + i];")
+        k += n
+    lines += ["    return SYMBT_TODA_OK;", "}"]
+    return "\n".join(lines)
+
+
+def _legacy_c_files(N):
+    """``symbt.codegen.emit_c.c_files(N)`` for the closed form as it was before the emit path."""
+    from symbt.codegen.c_template import COMMON, HEADER
+    from symbt.codegen.derive import specs
+    from symbt.codegen.emit_c import C_FUNCTIONS, _fill
+
+    header, src = _fill(HEADER, N, "closed"), _fill(COMMON, N, "closed")
+    by_name = {s.name: s for s in specs(N)}
+    src += "\n/* ---- closed form: CSE of the SymPy expressions of symbt.codegen.derive ---- */\n"
+    body = "".join("\n" + _legacy_c_function(by_name[name], N) + "\n" for name in C_FUNCTIONS)
+    if "sgn(" in body:
+        src += "\nstatic double sgn(double x) { return (double)((x > 0.0) - (x < 0.0)); }\n"
+    return src + body, header
+
+
+@pytest.mark.parametrize("N", [2, 3])
+def test_the_c_target_through_emit_is_byte_identical(N):
+    from symbt.codegen.emit_c import c_files
+
+    assert c_files(N) == _legacy_c_files(N)
 
 
 @pytest.mark.parametrize("N", [2, 3])
@@ -253,8 +331,37 @@ def test_bad_typed_declarations_are_emit_errors():
     from symbt.codegen.user.render import c_source
 
     e = emit("f", {"a": x}, args=(("v", (x,)),), module="m", register=False)
-    with pytest.raises(EmitError, match="C target"):
-        c_source("m", [e])
+    with pytest.raises(EmitError, match="mixes typed and plain"):
+        c_source("m", [e, emit("g", x, args=(x,), module="m", register=False)])
+
+
+@pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler (cc) on PATH")
+def test_typed_user_function_c_target(tmp_path):
+    x, y, s, b = sp.symbols("x y s b", real=True)
+    e = emit("scale", {"v": [b * x / y, b * s], "n": sp.log(y)}, args=(("z", (x, y)), s, ("b", b, "sign")),
+             module="typedc", guards=[Guard("positive", "y", y, early=True), Guard("range", "x/y", x / y)],
+             register=False)
+    files = user_render([e], tmp_path, tmp_path, "c")
+    for name, text in files.items():
+        (tmp_path / name).write_text(text)
+    h = files["typedc.h"]
+    assert "int typedc_scale(const double *z, double s, int b, double *v, double *n);" in h
+    assert "#define TYPEDC_NO_REAL_POSITIVE 1" in h and "#define TYPEDC_RANGE 2" in h
+    lib = tmp_path / "libtypedc.so"
+    subprocess.run(["cc", "-std=c99", "-O2", "-Wall", "-Wextra", "-pedantic", "-Werror", "-shared", "-fPIC",
+                    "-o", str(lib), str(tmp_path / "typedc.c"), "-lm"], check=True, timeout=120)
+    f = ctypes.CDLL(str(lib)).typedc_scale
+    dp = ctypes.POINTER(ctypes.c_double)
+    f.argtypes = [dp, ctypes.c_double, ctypes.c_int, dp, dp]
+
+    def call(z, s_, b_):
+        zz, v, n = (ctypes.c_double * 2)(*z), (ctypes.c_double * 2)(7.0, 7.0), (ctypes.c_double * 1)(7.0)
+        return f(zz, s_, b_, v, n), list(v), n[0]
+
+    assert call([3.0, 2.0], 0.25, -1) == (0, [-1.5, -0.25], float(np.log(2.0)))
+    assert call([3.0, -2.0], 0.25, 1) == (1, [7.0, 7.0], 7.0)                  # guard: outputs untouched
+    assert call([1e300, 1e-300], 0.25, 1)[0] == 2                              # range guard
+    assert call([1.0, 2.0], 0.25, 0)[0] == 3 and call([np.nan, 2.0], 0.25, 1)[0] == 3
 
 
 def test_generated_zullo_modules_still_import_without_sympy():
@@ -263,7 +370,5 @@ def test_generated_zullo_modules_still_import_without_sympy():
             "import importlib.util as u\n"
             f"s = u.spec_from_file_location('t3', {str(GEN / 'toda3.py')!r}); m = u.module_from_spec(s)\n"
             "s.loader.exec_module(m); print(m.bt_step([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0, 1)[1][0])")
-    import subprocess
-
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert r.returncode == 0 and float(r.stdout) != 1.0, r.stderr

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 7f59d915532817f4f202bb7fa2216f5d3b2db742d3c440a5095dc8f4bf7b05ac
-# symbt-codegen-content-sha256: ec7a8842f137b2ee626c76751cc20cace0dbc8db1c40f17096f3de09fe9e07e3
+# symbt-codegen-derivation-sha256: 5565ad490f4618334f4f8181c409cda1773be554ae08f6378870d44e1547f0af
+# symbt-codegen-content-sha256: 1e7034f67e6882df8976538d90c47f76167f9b0531a01895b72a86f1d641c51d
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

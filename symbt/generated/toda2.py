@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 7f59d915532817f4f202bb7fa2216f5d3b2db742d3c440a5095dc8f4bf7b05ac
-# symbt-codegen-content-sha256: c0ee07c54afea75d48d7fe3b4748e186dceb37574353e1dcf41e940a1db2e79b
+# symbt-codegen-derivation-sha256: 5565ad490f4618334f4f8181c409cda1773be554ae08f6378870d44e1547f0af
+# symbt-codegen-content-sha256: 1646de536bf91d59692b1b4e172e760ff580f9f561b8186d472f52ade646ca08
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 7f59d915532817f4f202bb7fa2216f5d3b2db742d3c440a5095dc8f4bf7b05ac
-# symbt-codegen-content-sha256: cdb70dd38cd457e856b8cceb17273a007ac789e3e58f1a7fec5accd09231c7ad
+# symbt-codegen-derivation-sha256: 5565ad490f4618334f4f8181c409cda1773be554ae08f6378870d44e1547f0af
+# symbt-codegen-content-sha256: f741137d0986b61eb62c2c3d7583d69085eade910eec4b66620ebc70d79bb58a
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -321,17 +321,25 @@ def _nout(e: Emission) -> int:
     return len(e.exprs)
 
 
-def _no_typed(emissions: list[Emission]) -> None:
+def _typed_c(module: str, emissions: list[Emission]):
+    """``(source, header)`` when the module's declarations are typed (:mod:`.render_typed_c`), else None."""
     typed = [e.name for e in emissions if e.typed]
-    if typed:
+    if not typed:
+        return None
+    if len(typed) != len(emissions):
         from .declare import EmitError
 
-        raise EmitError(f"emit({typed[0]!r}): the C target takes scalar arguments and one output "
-                        "(array/sign arguments, named outputs and guards are emitted for Python only)")
+        raise EmitError(f"emit({typed[0]!r}): module {module} mixes typed and plain declarations; the C target "
+                        "takes one kind per module (two ABIs)")
+    from .render_typed_c import c_files, default_template
+
+    return c_files(emissions, default_template(module, emissions))
 
 
 def c_header(module: str, emissions: list[Emission]) -> str:
-    _no_typed(emissions)
+    typed = _typed_c(module, emissions)
+    if typed is not None:
+        return typed[1]
     guard = f"SYMBT_EMITTED_{module.upper()}_H"
     lines = [f"#ifndef {guard}", f"#define {guard}", "",
              "/* ABI: int <module>_<name>(const double *in, double *out);",
@@ -347,7 +355,9 @@ def c_header(module: str, emissions: list[Emission]) -> str:
 
 
 def c_source(module: str, emissions: list[Emission]) -> str:
-    _no_typed(emissions)
+    typed = _typed_c(module, emissions)
+    if typed is not None:
+        return typed[0]
     lines = ["#include <math.h>", f'#include "{module}.h"', "",
              "static double sgn(double x) { return (double)((x > 0.0) - (x < 0.0)); }", ""]
     for e in emissions:
