@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 6376203822071db07e0940ec5f2ee26fe47ec85c09810ae735190abc964f6ddf
-// symbt-codegen-content-sha256: a0eade4d4c526e742987aa2107e58883b9720ac4f7071c1d2452cad56aadc7f1
+// symbt-codegen-derivation-sha256: acbf57af0074730e8ed108d0e158e3337bbca73d89f56e06cdda3c222c403191
+// symbt-codegen-content-sha256: df8f9df37fc12e9abb3f121face6fb94e045b84313d039c44475bc90a494ac77
 #include <math.h>
 #include "drag_numeric.h"
 

@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 6376203822071db07e0940ec5f2ee26fe47ec85c09810ae735190abc964f6ddf
-// symbt-codegen-content-sha256: cf3c40f6b6219bcaf5eee472a9e3ac00baef8085057091c57c43a2c9cb88e817
+// symbt-codegen-derivation-sha256: acbf57af0074730e8ed108d0e158e3337bbca73d89f56e06cdda3c222c403191
+// symbt-codegen-content-sha256: a02f51bd98bd32f58f3217915cdc1f00962c6a08902a2bbdfd32cf7ae41fcfd4
 #ifndef SYMBT_EMITTED_DRAG_NUMERIC_H
 #define SYMBT_EMITTED_DRAG_NUMERIC_H
 

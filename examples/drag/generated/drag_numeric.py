@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: drag_numeric (declared in drag_emit)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 6376203822071db07e0940ec5f2ee26fe47ec85c09810ae735190abc964f6ddf
-# symbt-codegen-content-sha256: 852583007045ed6f1df9af46c0c471eb5a1d429202d2e11915552c5de846569b
+# symbt-codegen-derivation-sha256: acbf57af0074730e8ed108d0e158e3337bbca73d89f56e06cdda3c222c403191
+# symbt-codegen-content-sha256: bc597713fa7766b26459b1817d370565b7d2625dfb3dd30526a3b34b9cf7eb9d
 """drag_numeric: functions emitted by `symbt codegen` from drag_emit.
 
 Each function has a numpy float64 flavour (vectorised over broadcast arguments) and an
