@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 5565ad490f4618334f4f8181c409cda1773be554ae08f6378870d44e1547f0af
-# symbt-codegen-content-sha256: 1e7034f67e6882df8976538d90c47f76167f9b0531a01895b72a86f1d641c51d
+# symbt-codegen-derivation-sha256: 8f53986e3ca38967e9563ab89c54236ad157f6dda9a1d1835e8cd96cec0ced32
+# symbt-codegen-content-sha256: 70c152b2308daedfda69807fa9afb008c4c530e759a2c083a1eaf1d3aad539cb
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 5565ad490f4618334f4f8181c409cda1773be554ae08f6378870d44e1547f0af
-# symbt-codegen-content-sha256: 1646de536bf91d59692b1b4e172e760ff580f9f561b8186d472f52ade646ca08
+# symbt-codegen-derivation-sha256: 8f53986e3ca38967e9563ab89c54236ad157f6dda9a1d1835e8cd96cec0ced32
+# symbt-codegen-content-sha256: 84f45dba912f9fd7231a210a1c07ff46dde8bed0242a64507a0f26df03c29eb6
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

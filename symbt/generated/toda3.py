@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 5565ad490f4618334f4f8181c409cda1773be554ae08f6378870d44e1547f0af
-# symbt-codegen-content-sha256: f741137d0986b61eb62c2c3d7583d69085eade910eec4b66620ebc70d79bb58a
+# symbt-codegen-derivation-sha256: 8f53986e3ca38967e9563ab89c54236ad157f6dda9a1d1835e8cd96cec0ced32
+# symbt-codegen-content-sha256: d27ca5183b4d579998b1225ab59d228a4c165b6b275c19d161d34f66de71da18
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
