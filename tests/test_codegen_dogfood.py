@@ -320,6 +320,8 @@ def test_bad_typed_declarations_are_emit_errors():
         (dict(expr={"1a": x}, args=(("v", (x,)),)), "identifier"),
         (dict(expr={"a": x}, args=(("v", (x,)),), guards=[Guard("pos", "x", sp.oo * x)]), "non-finite"),
         (dict(expr={"a": x}, args=(("b", x, "sign"), ("b2", (y,), "weird"))), "argument"),
+        (dict(expr={"a": x}, args=(("t0", (x,)),)), "reserved"),
+        (dict(expr={"a": x}, args=(("v", (x,)),), guards=[Guard("ok", "x", x)]), "other than ok"),
     ]
     for kw, words in cases:
         with pytest.raises(EmitError, match=words):

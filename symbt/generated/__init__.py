@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 8f53986e3ca38967e9563ab89c54236ad157f6dda9a1d1835e8cd96cec0ced32
-# symbt-codegen-content-sha256: 70c152b2308daedfda69807fa9afb008c4c530e759a2c083a1eaf1d3aad539cb
+# symbt-codegen-derivation-sha256: 04a8bd585a093a38edea9691a2df0de6f744c0d73506306cfe7ffcacb0aa4ce1
+# symbt-codegen-content-sha256: 303ecee3f961555cfd2a6329b58d2c5712a3778b2f5666c29227f31ee4ce5265
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

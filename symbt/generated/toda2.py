@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 8f53986e3ca38967e9563ab89c54236ad157f6dda9a1d1835e8cd96cec0ced32
-# symbt-codegen-content-sha256: 84f45dba912f9fd7231a210a1c07ff46dde8bed0242a64507a0f26df03c29eb6
+# symbt-codegen-derivation-sha256: 04a8bd585a093a38edea9691a2df0de6f744c0d73506306cfe7ffcacb0aa4ce1
+# symbt-codegen-content-sha256: 6e81845cc9945dec8ceefbbd3b96af99e9237422c1eee3f74a74964e4b3804b9
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 8f53986e3ca38967e9563ab89c54236ad157f6dda9a1d1835e8cd96cec0ced32
-# symbt-codegen-content-sha256: d27ca5183b4d579998b1225ab59d228a4c165b6b275c19d161d34f66de71da18
+# symbt-codegen-derivation-sha256: 04a8bd585a093a38edea9691a2df0de6f744c0d73506306cfe7ffcacb0aa4ce1
+# symbt-codegen-content-sha256: b16a5a09735472eed6b0c6f1407cffb5210cadfa5da1fe773ed451fd99cda38f
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

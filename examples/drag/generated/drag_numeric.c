@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: acbf57af0074730e8ed108d0e158e3337bbca73d89f56e06cdda3c222c403191
-// symbt-codegen-content-sha256: df8f9df37fc12e9abb3f121face6fb94e045b84313d039c44475bc90a494ac77
+// symbt-codegen-derivation-sha256: 709542c957940f73964caeb1533a93168447d01ae8fb6fdf6671b3f07c0c5356
+// symbt-codegen-content-sha256: 38b5efd35c4cd2b535f10e98ef92bd03197959e59e7401f4f95a9e036198370f
 #include <math.h>
 #include "drag_numeric.h"
 

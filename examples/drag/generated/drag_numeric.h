@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: acbf57af0074730e8ed108d0e158e3337bbca73d89f56e06cdda3c222c403191
-// symbt-codegen-content-sha256: a02f51bd98bd32f58f3217915cdc1f00962c6a08902a2bbdfd32cf7ae41fcfd4
+// symbt-codegen-derivation-sha256: 709542c957940f73964caeb1533a93168447d01ae8fb6fdf6671b3f07c0c5356
+// symbt-codegen-content-sha256: 0e365392dca436e9102e4d50fbea9e466094911844de035436b2b2e354815e10
 #ifndef SYMBT_EMITTED_DRAG_NUMERIC_H
 #define SYMBT_EMITTED_DRAG_NUMERIC_H
 

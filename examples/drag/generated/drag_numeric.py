@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: drag_numeric (declared in drag_emit)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: acbf57af0074730e8ed108d0e158e3337bbca73d89f56e06cdda3c222c403191
-# symbt-codegen-content-sha256: bc597713fa7766b26459b1817d370565b7d2625dfb3dd30526a3b34b9cf7eb9d
+# symbt-codegen-derivation-sha256: 709542c957940f73964caeb1533a93168447d01ae8fb6fdf6671b3f07c0c5356
+# symbt-codegen-content-sha256: a9e26abcde81b56212ba1a4855134355455ff3b41acf74459bc779c78fdd1d28
 """drag_numeric: functions emitted by `symbt codegen` from drag_emit.
 
 Each function has a numpy float64 flavour (vectorised over broadcast arguments) and an

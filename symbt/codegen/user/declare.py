@@ -58,6 +58,7 @@ SUPPORTED_FUNCTIONS: tuple[type, ...] = (
     sp.sinh, sp.cosh, sp.tanh, sp.asinh, sp.acosh, sp.atanh, sp.Abs, sp.sign, sp.Min, sp.Max, sp.Piecewise)
 
 _IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+_RESERVED = re.compile(r"^([st]\d+|out|i|np|mpmath|errors)$")
 
 
 class EmitError(ValueError):
@@ -217,7 +218,15 @@ def emit(name: str, expr: Any, *, args: Any, module: str, doc: Any = "", domain:
     bad = [n for n in every if not _IDENT.match(n) or keyword.iskeyword(n) or n.startswith("_")]
     if bad or len(set(every)) != len(every):
         raise _fail(name, f"argument names must be distinct identifiers, got {', '.join(every)}")
+    try:
+        guards = tuple(guards or ())
+    except TypeError:
+        raise _fail(name, f"guards={guards!r} must be a sequence of Guard") from None
     typed = isinstance(expr, dict) or bool(guards) or any(a.kind != "scalar" for a in params)
+    taken = [n for n in every if _RESERVED.match(n)] if typed else []
+    if taken:   # the typed renderers' own names: CSE temporaries, the C output buffer and loop index, modules
+        raise _fail(name, f"argument name {taken[0]!r} is reserved in the typed form (t0, s0, ..., out, i, np, "
+                    "mpmath, errors)")
     outputs: tuple[Output, ...] = ()
     if isinstance(expr, dict):
         try:
@@ -234,8 +243,10 @@ def emit(name: str, expr: Any, *, args: Any, module: str, doc: Any = "", domain:
         _check_expr(name, e, flat, typed)
     gs = []
     for g in guards:
-        if not isinstance(g, Guard) or not isinstance(g.condition, str) or not _IDENT.match(g.condition):
-            raise _fail(name, f"a guard must be Guard(condition, label, expr) with an identifier condition, got {g!r}")
+        if (not isinstance(g, Guard) or not isinstance(g.condition, str) or not _IDENT.match(g.condition)
+                or g.condition in ("ok", "invalid")):
+            raise _fail(name, "a guard must be Guard(condition, label, expr) with an identifier condition other "
+                        f"than ok/invalid, got {g!r}")
         gx = sp.sympify(g.expr)
         _check_expr(name, gx, flat, True)
         gs.append(Guard(g.condition, str(g.label), gx, bool(g.early)))
