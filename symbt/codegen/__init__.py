@@ -7,6 +7,8 @@
   (closed form for N < :data:`LOOP_FROM`, loops over sites from there on) and the C99
   ``toda{N}.c``/``.h``; :mod:`.printer` prints expressions, :mod:`.runtime` and
   :mod:`.loop_template` hold the hand-written parts;
+* :mod:`.zullo` -- the closed forms declared with ``symbt.emit`` (typed form) and rendered by the
+  user path :mod:`.user` (dogfooding);
 * :mod:`.files`, :mod:`.provenance` -- which files, written atomically with a provenance
   header; ``--check`` catches a missing, stale or hand-edited file without SymPy;
 * :mod:`.cli`, :mod:`.project` -- the command, acting on the checkout you stand in;

@@ -1,9 +1,9 @@
 """Render ``toda{N}.c`` and ``toda{N}.h`` (C99, libm only): ``bt_step``, ``invariants``, ``spectral_trace``,
 ``flow_field``, with the status codes of :data:`symbt.codegen.c_template.HEADER`.
 
-* closed form (N < ``LOOP_FROM``): the expressions of :func:`symbt.codegen.derive.specs` after CSE,
-  printed by the ``c`` flavour of :class:`~symbt.codegen.printer.ExprPrinter`; the guards become
-  status codes;
+* closed form (N < ``LOOP_FROM``): through ``symbt.emit`` -- the declarations of
+  :mod:`symbt.codegen.zullo` rendered by :mod:`symbt.codegen.user.render_typed_c` under a C template
+  holding Zullo's header, runtime, status codes and prototypes (the guards become status codes);
 * transfer-matrix form: :data:`~symbt.codegen.c_template.LOOP` with the kernels of
   :mod:`symbt.codegen.kernels` printed in.  Updates of polynomials in lambda are printed
   coefficient-wise (``a = lambda + p_j`` substituted, the coefficient of ``lambda`` reads
@@ -20,10 +20,9 @@ import re
 import sympy as sp
 
 from .c_template import COMMON, HEADER, LOOP
-from .derive import FunctionSpec, specs
 from .forms import form_of
 from .kernels import kernels
-from .printer import ExprPrinter, cse_block
+from .printer import ExprPrinter
 
 __all__ = ["c_files", "C_FUNCTIONS"]
 
@@ -33,12 +32,12 @@ _MARK = re.compile(r"@@(?:(coef|cdot):)?(\w+)(?:\[(\d)\])?(?:\{([^}]*)\})?@@")
 _lam, _pj = sp.symbols("lambda pj", real=True)
 
 
-def _kernel(name: str, item: str | None) -> sp.Basic:
+def _kernel(name: str, item: str | None) -> sp.Expr:
     k = kernels()[name]
     return k[int(item)] if item is not None else k
 
 
-def _names(expr: sp.Basic, binding: str | None = None) -> dict[sp.Basic, str]:
+def _names(expr: sp.Expr, binding: str | None = None) -> dict[sp.Symbol, str]:
     names = {s: str(s) for s in expr.free_symbols}
     for pair in filter(None, (binding or "").split(",")):
         sym, _, text = pair.partition(":")
@@ -106,68 +105,31 @@ _OUT_PTRS = {"bt_step": ("pt", "qt"), "invariants": ("H",), "spectral_trace": ("
 _CODES = {"trace": "SYMBT_TODA_NO_REAL_MAP_TRACE", "positivity": "SYMBT_TODA_NO_REAL_MAP_POSITIVITY"}
 
 
-def _closed_function(spec: FunctionSpec, N: int) -> str:
-    names = {}
-    checks_ptr, checks_fin = [], []
-    for a in spec.args:
-        if a.kind == "state":
-            checks_ptr.append(a.name)
-            checks_fin.append(f"!toda{N}_finite({a.name}, NS)")
-            for i, s in enumerate(a.symbols):
-                names[s] = f"{a.name}[{i}]"
-        elif a.kind == "branch":
-            names[a.symbols[0]] = "b"
-        else:
-            checks_fin.append(f"!isfinite({a.name})")
-            names[a.symbols[0]] = a.name
-    outs = _OUT_PTRS[spec.name]
-    lines = [_SIGNATURES[spec.name].format(N=N), "{"]
-    lines.append(f"    if ({' || '.join('!' + x for x in checks_ptr + list(outs))})")
-    lines.append("        return SYMBT_TODA_INVALID_INPUT;")
-    if any(a.kind == "branch" for a in spec.args):
-        lines.append("    if (branch != 1 && branch != -1)")
-        lines.append("        return SYMBT_TODA_INVALID_INPUT;")
-    lines.append(f"    if ({' || '.join(checks_fin)})")
-    lines.append("        return SYMBT_TODA_INVALID_INPUT;")
-    if any(a.kind == "branch" for a in spec.args):
-        lines.append("    const double b = (double)branch;")
-    exprs = [g.expr for g in spec.guards] + [e for o in spec.outputs for e in o.exprs]
-    body, printed = cse_block(exprs, names, "c")
-    lines += [f"    const double {ln};" for ln in body]
-    gl, vals = printed[:len(spec.guards)], printed[len(spec.guards):]
-    # in the spec's order, as the Python flavour decides: a non-finite guard is a range problem (and
-    # decides nothing after it), a finite value <= 0 no real map ("range" guards need only be finite)
-    for g, t in zip(spec.guards, gl):
-        lines.append(f"    if (!isfinite({t}))")
-        lines.append("        return SYMBT_TODA_RANGE;")
-        if g.condition != "range":
-            lines.append(f"    if (!({t} > 0.0))")
-            lines.append(f"        return {_CODES[g.condition]};")
-    lines.append(f"    const double out[{len(vals)}] = {{{', '.join(vals)}}};")
-    lines.append(f"    if (!toda{N}_finite(out, {len(vals)}))")
-    lines.append("        return SYMBT_TODA_RANGE;")
-    k = 0
-    for o, ptr in zip(spec.outputs, outs):
-        n = len(o.exprs)
-        lines.append(f"    for (int i = 0; i < {n}; i++)")
-        lines.append(f"        {ptr}[i] = out[{k} + i];")
-        k += n
-    lines += ["    return SYMBT_TODA_OK;", "}"]
-    return "\n".join(lines)
-
-
 def c_files(N: int) -> tuple[str, str]:
     """``(toda{N}.c, toda{N}.h)`` bodies (without the provenance header)."""
     form = form_of(N)
     header = _fill(HEADER, N, form)
     src = _fill(COMMON, N, form)
     if form == "closed":
-        by_name = {s.name: s for s in specs(N)}
-        src += "\n/* ---- closed form: CSE of the SymPy expressions of symbt.codegen.derive ---- */\n"
-        body = "".join("\n" + _closed_function(by_name[name], N) + "\n" for name in C_FUNCTIONS)
-        if "sgn(" in body:   # the printer's sign (the guards' signs of the traces)
-            src += "\nstatic double sgn(double x) { return (double)((x > 0.0) - (x < 0.0)); }\n"
-        src += body
-    else:
-        src += _fill(LOOP, N, form)
+        return _emit_path_c_files(N, header, src)
+    src += _fill(LOOP, N, form)
     return src, header
+
+
+_SECTION = "\n/* ---- closed form: CSE of the SymPy expressions of symbt.codegen.derive ---- */\n"
+
+
+def _emit_path_c_files(N: int, header: str, common: str) -> tuple[str, str]:
+    """The closed form through ``symbt.emit``: the declarations of :mod:`.zullo` under a C template
+    (Zullo's header, runtime, status codes and prototypes, hand-written once in :mod:`.c_template`)."""
+    from .user.render_typed_c import CTemplate
+    from .user.render_typed_c import c_files as typed_c_files
+    from .zullo import declarations
+
+    ems, _ = declarations(N)
+    status = (("ok", "SYMBT_TODA_OK"), ("range", "SYMBT_TODA_RANGE"), ("invalid", "SYMBT_TODA_INVALID_INPUT"),
+              *_CODES.items())
+    t = CTemplate(f"toda{N}", header, common + _SECTION, status, f"toda{N}_finite", length="NS",
+                  signatures=tuple((n, s.format(N=N)) for n, s in _SIGNATURES.items()), functions=C_FUNCTIONS,
+                  sign_local="b", pointers=tuple(_OUT_PTRS.items()))
+    return typed_c_files(ems, t)

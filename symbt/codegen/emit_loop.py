@@ -19,6 +19,8 @@ from .loop_template import CORE
 from .printer import ExprPrinter
 from .pymodule import function_doc, module_head, numpy_epilogue, numpy_prologue, signature
 from .runtime import ORBIT
+from .user.render import python_module
+from .user.typed import ModuleTemplate
 
 __all__ = ["loop_module_body", "printed_kernels"]
 
@@ -123,5 +125,7 @@ def loop_module_body(N: int) -> str:
         parts += ["", "", _numpy_wrapper(spec[name], N)]
     for name in FUNCTIONS:
         parts += ["", "", _mp_wrapper(spec[name], N)]
-    parts.append(ORBIT.rstrip("\n"))
-    return "\n".join(parts) + "\n"
+    # placed by the user path's renderer as a module template: the wrappers call the hand-written loops,
+    # they are not expressions an emit declaration could hold (no declarations: head + tail only)
+    template = ModuleTemplate(head="\n".join(parts), tail=ORBIT.rstrip("\n"))
+    return python_module(f"toda{N}", [], "symbt.codegen.emit_loop", template)

@@ -9,7 +9,8 @@ Each generated file starts with (``#`` in Python, ``//`` in C)::
     # symbt-codegen-derivation-sha256: <SHA-256 of the derivation sources>
     # symbt-codegen-content-sha256: <SHA-256 of this file without this line>
 
-*Derivation sources* are ``symbt/symbolic/*.py`` and ``symbt/codegen/*.py`` of the package
+*Derivation sources* are ``symbt/symbolic/*.py``, ``symbt/codegen/*.py`` and
+``symbt/codegen/user/*.py`` (the renderer of the closed forms, :mod:`symbt.codegen.zullo`) of the package
 the generator runs from (relative path + bytes, sorted, plus the generator version); the SymPy
 version is recorded for information only.  Checking needs no SymPy: a content mismatch means
 *edited by hand*, a derivation mismatch *stale*.
@@ -42,6 +43,7 @@ def derivation_sources(pkg: Path | None = None) -> list[Path]:
     """The files whose content determines the generated code (sorted)."""
     pkg = PACKAGE if pkg is None else Path(pkg)
     files = sorted((pkg / "symbolic").glob("*.py")) + sorted((pkg / "codegen").glob("*.py"))
+    files += sorted((pkg / "codegen" / "user").glob("*.py"))   # toda{2,3}.py are rendered by the user path
     files.append(pkg / "reference" / "literal.py")   # the real Phi of the traces (derive.phi_of) is its formula
     return [f for f in files if f.is_file()]
 

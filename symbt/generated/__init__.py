@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 3d9bb0e49350aad2f9b6038b092b3997b5c6311f35b09e783961454dcec4ce9e
-# symbt-codegen-content-sha256: 982234d400d54a716a456bc1b105ce223fedbf9cba9ab0ace394578648abb688
+# symbt-codegen-derivation-sha256: 58a28a2d43a69d490204c8e7af282766f1183fd27110a3bcd72be9dc9d167bb2
+# symbt-codegen-content-sha256: cb2eac938e047f8ba3c70be4a01473eeb1d89f3083ac434994261ae26036c77f
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

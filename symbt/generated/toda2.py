@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 3d9bb0e49350aad2f9b6038b092b3997b5c6311f35b09e783961454dcec4ce9e
-# symbt-codegen-content-sha256: e3e9252745f01b71de0efd25849b00f9e88f408e9abbd4abf5f263da2d7118fa
+# symbt-codegen-derivation-sha256: 58a28a2d43a69d490204c8e7af282766f1183fd27110a3bcd72be9dc9d167bb2
+# symbt-codegen-content-sha256: 194ca542b850c84abe5bff51e6fb4e48ebbfed81df873c310a53a4fbc0fded7c
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 3d9bb0e49350aad2f9b6038b092b3997b5c6311f35b09e783961454dcec4ce9e
-# symbt-codegen-content-sha256: eca556e68c2199eaed5487312bb41a57cc94a55f3905196246744fa9d7a7a984
+# symbt-codegen-derivation-sha256: 58a28a2d43a69d490204c8e7af282766f1183fd27110a3bcd72be9dc9d167bb2
+# symbt-codegen-content-sha256: 34779b2c3176467379761818e42b02205e4ce6253e9010d692392865936f7607
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 6376203822071db07e0940ec5f2ee26fe47ec85c09810ae735190abc964f6ddf
-// symbt-codegen-content-sha256: a0eade4d4c526e742987aa2107e58883b9720ac4f7071c1d2452cad56aadc7f1
+// symbt-codegen-derivation-sha256: 68accbef76ffd629c5025903ae4dedf383f91a2e6ef524d44165c6b1e7ac23e6
+// symbt-codegen-content-sha256: b972a532da6717f66b7f25acc6325975af5248458498a698cef8d11bcaad0661
 #include <math.h>
 #include "drag_numeric.h"
 

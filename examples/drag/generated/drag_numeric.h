@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 6376203822071db07e0940ec5f2ee26fe47ec85c09810ae735190abc964f6ddf
-// symbt-codegen-content-sha256: cf3c40f6b6219bcaf5eee472a9e3ac00baef8085057091c57c43a2c9cb88e817
+// symbt-codegen-derivation-sha256: 68accbef76ffd629c5025903ae4dedf383f91a2e6ef524d44165c6b1e7ac23e6
+// symbt-codegen-content-sha256: 52827c18bbf89545f02f939b832ba375bf0397d6d72e621f6cd131aa4f61d3dd
 #ifndef SYMBT_EMITTED_DRAG_NUMERIC_H
 #define SYMBT_EMITTED_DRAG_NUMERIC_H
 

@@ -13,7 +13,12 @@ r"""``symbt.emit``: declare, next to a derivation, a function that ``symbt codeg
   splits of that domain (default: the sign of every ``Piecewise`` condition, so every branch is
   sampled);
 * ``optimize``: apply SymPy's ``expm1``/``log1p`` rewriting (:mod:`sympy.codegen.rewriting`)
-  before common-subexpression elimination (the reference always uses ``expr`` as given).
+  before common-subexpression elimination (the reference always uses ``expr`` as given);
+* the *typed* form (:mod:`symbt.codegen.user.typed`): array arguments ``("p", [p1, ...])``, a sign
+  argument ``("b", b, "sign")``, several named outputs ``expr={"x": ..., "y": ...}`` and ordered
+  ``guards`` -- emitted with typed errors (``InvalidInputError``, ``NoRealMapError``,
+  ``NumericRangeError``) and ``errors="mask"``, as Zullo's modules (which are declared so:
+  :mod:`symbt.codegen.zullo`).
 
 A bad declaration raises :class:`EmitError` at once (a symbol not in ``args``, a non-finite
 constant, a function the C target cannot print, a duplicate name).  Declarations are kept in
@@ -41,7 +46,11 @@ from typing import Any
 import sympy as sp
 from sympy.codegen.cfunctions import expm1, log1p
 
-__all__ = ["emit", "Emission", "EmitError", "EMISSIONS", "SUPPORTED_FUNCTIONS", "emissions_of"]
+from ..printer import Quotient
+from .typed import Arg, Guard, Output, arg_of, outputs_of
+
+__all__ = ["emit", "Emission", "EmitError", "EMISSIONS", "SUPPORTED_FUNCTIONS", "emissions_of", "Arg", "Guard",
+           "Output"]
 
 #: functions every target prints (numpy, mpmath and C99 ``<math.h>``)
 SUPPORTED_FUNCTIONS: tuple[type, ...] = (
@@ -49,6 +58,7 @@ SUPPORTED_FUNCTIONS: tuple[type, ...] = (
     sp.sinh, sp.cosh, sp.tanh, sp.asinh, sp.acosh, sp.atanh, sp.Abs, sp.sign, sp.Min, sp.Max, sp.Piecewise)
 
 _IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+_RESERVED = re.compile(r"^([st]\d+|out|i|np|mpmath|errors)$")
 
 
 class EmitError(ValueError):
@@ -70,6 +80,15 @@ class Emission:
     optimize: bool = True
     equation: str | None = None             # the paper label the expression comes from (coverage)
     declared_in: str = field(default="", compare=False)
+    params: tuple[Arg, ...] = ()            # the arguments as declared (typed form: arrays, signs)
+    outputs: tuple[Output, ...] = ()        # the named outputs (typed form; ``exprs`` is their concatenation)
+    guards: tuple[Guard, ...] = ()          # ordered guards (typed form)
+    docs: tuple[tuple[str, str], ...] = ()  # (flavour, docstring text) given verbatim
+
+    @property
+    def typed(self) -> bool:
+        """Array or sign arguments, named outputs or guards: emitted with typed errors (see :mod:`.typed`)."""
+        return bool(self.outputs)
 
     @property
     def arg_names(self) -> tuple[str, ...]:
@@ -114,19 +133,33 @@ def _elements(name: str, expr: Any) -> tuple[tuple[sp.Expr, ...], tuple[int, ...
         raise _fail(name, f"not a SymPy expression: {expr!r}") from None
 
 
-def _check_expr(name: str, e: sp.Expr, args: tuple[sp.Symbol, ...]) -> None:
+def _nodes(e: sp.Basic):
+    """Every distinct subexpression of ``e`` once (a tree with shared subtrees is not walked repeatedly)."""
+    seen, todo = set(), [e]
+    while todo:
+        node = todo.pop()
+        if node in seen:
+            continue
+        seen.add(node)
+        yield node
+        todo.extend(node.args)
+
+
+def _check_expr(name: str, e: sp.Expr, args: tuple[sp.Symbol, ...], typed: bool = False) -> None:
     if not isinstance(e, sp.Expr) or isinstance(e, sp.Tuple):
         raise _fail(name, f"not a scalar expression: {e!r}")
     extra = sorted(e.free_symbols - set(args), key=lambda s: s.name)
     if extra:
         listed = ", ".join(s.name for s in args) or "none"
         raise _fail(name, f"symbol {', '.join(map(str, extra))} is not among args ({listed})")
-    for node in sp.preorder_traversal(e):
+    # Quotient (IEEE-style division) needs the typed runtime's _div in the mpmath flavour
+    supported = SUPPORTED_FUNCTIONS + ((Quotient,) if typed else ())
+    for node in _nodes(e):
         if node in (sp.nan, sp.oo, -sp.oo, sp.zoo) or (node.is_Float and not node.is_finite):
             raise _fail(name, f"non-finite constant {node} in {e}")
         if node.is_Number and not node.is_real:
             raise _fail(name, f"complex constant {node} (real arithmetic only)")
-        if node.is_Function and not isinstance(node, SUPPORTED_FUNCTIONS):
+        if node.is_Function and not isinstance(node, supported):
             raise _fail(name, f"function {type(node).__name__} is not supported by the C target "
                         f"(supported: {', '.join(f.__name__ for f in SUPPORTED_FUNCTIONS)})")
         if isinstance(node, sp.Piecewise) and node.args[-1][1] is not sp.true:
@@ -135,13 +168,19 @@ def _check_expr(name: str, e: sp.Expr, args: tuple[sp.Symbol, ...]) -> None:
             raise _fail(name, f"{type(node).__name__} cannot be emitted (evaluate it first)")
 
 
-def emit(name: str, expr: Any, *, args: Any, module: str, doc: str = "", domain: Any = None,
-         cells: Any = (), optimize: bool = True, equation: str | None = None, register: bool = True) -> Emission:
+def emit(name: str, expr: Any, *, args: Any, module: str, doc: Any = "", domain: Any = None,
+         cells: Any = (), optimize: bool = True, equation: str | None = None, guards: Any = (),
+         register: bool = True) -> Emission:
     """Declare the function ``name`` of the emitted module ``module`` (see the module docstring).
 
     ``equation``: the paper label (``\\label{}``) of the display the expression comes from; its
     claims are then counted by ``symbt coverage`` as claims of that display (their
     ``source_equation``) instead of as claims on an unknown label.
+
+    Typed form (:mod:`.typed`): ``args`` may hold arrays ``("p", [p1, p2])`` and signs
+    ``("b", b, "sign")``, ``expr`` may be a dict of named outputs, ``guards`` a sequence of
+    :class:`Guard`; ``doc`` may then be ``{"numpy": text, "mpmath": text}``, the two docstrings
+    verbatim.
 
     Returns the :class:`Emission`; raises :class:`EmitError` for a declaration that cannot be
     emitted.  ``register=False`` checks without recording it.
@@ -150,6 +189,11 @@ def emit(name: str, expr: Any, *, args: Any, module: str, doc: str = "", domain:
     >>> p, q = sp.symbols("p q", real=True)
     >>> emit("flow_demo", sp.Matrix([[p, q], [-q, p]]), args=(p, q), module="demo_emit", register=False).shape
     (2, 2)
+    >>> b = sp.Symbol("b")
+    >>> e = emit("step_demo", {"p_new": [p * b, q], "r": p / q}, args=(("s", (p, q)), ("b", b, "sign")),
+    ...          module="demo_emit", guards=[Guard("domain", "q", q)], register=False)
+    >>> e.typed, [o.name for o in e.outputs], [a.kind for a in e.params]
+    (True, ['p_new', 'r'], ['array', 'sign'])
     """
     if not isinstance(name, str) or not _IDENT.match(name) or keyword.iskeyword(name) or name.endswith("_mp"):
         raise EmitError(f"emit({name!r}): the name must be a Python/C identifier not ending in _mp")
@@ -161,18 +205,63 @@ def emit(name: str, expr: Any, *, args: Any, module: str, doc: str = "", domain:
         args = tuple(args)
     except TypeError:
         raise _fail(name, f"args={args!r} must be a tuple of SymPy symbols") from None
-    if not all(isinstance(a, sp.Symbol) for a in args):
+    if not all(isinstance(a, (sp.Symbol, tuple, Arg)) for a in args):
         raise _fail(name, f"args must be SymPy symbols, got {args!r}")
-    names = [a.name for a in args]
-    bad = [n for n in names if not _IDENT.match(n) or keyword.iskeyword(n) or n.startswith("_")]
-    if bad or len(set(names)) != len(names):
-        raise _fail(name, f"argument names must be distinct identifiers, got {', '.join(names)}")
-    exprs, shape = _elements(name, expr)
+    try:
+        params = tuple(arg_of(a) for a in args)
+    except ValueError as exc:
+        raise _fail(name, str(exc)) from None
+    flat = tuple(s for a in params for s in a.symbols)
+    names = [a.name for a in params]
+    elements = [s.name for a in params if a.kind == "array" for s in a.symbols]
+    every = names + elements
+    bad = [n for n in every if not _IDENT.match(n) or keyword.iskeyword(n) or n.startswith("_")]
+    if bad or len(set(every)) != len(every):
+        raise _fail(name, f"argument names must be distinct identifiers, got {', '.join(every)}")
+    try:
+        guards = tuple(guards or ())
+    except TypeError:
+        raise _fail(name, f"guards={guards!r} must be a sequence of Guard") from None
+    typed = isinstance(expr, dict) or bool(guards) or any(a.kind != "scalar" for a in params)
+    taken = [n for n in every if _RESERVED.match(n)] if typed else []
+    if taken:   # the typed renderers' own names: CSE temporaries, the C output buffer and loop index, modules
+        raise _fail(name, f"argument name {taken[0]!r} is reserved in the typed form (t0, s0, ..., out, i, np, "
+                    "mpmath, errors)")
+    outputs: tuple[Output, ...] = ()
+    if isinstance(expr, dict):
+        try:
+            outputs = outputs_of(expr, lambda v: _elements(name, v))
+        except ValueError as exc:
+            raise (exc if isinstance(exc, EmitError) else _fail(name, str(exc))) from None
+        exprs = tuple(x for o in outputs for x in o.exprs)
+        shape: tuple[int, ...] = outputs[0].shape if len(outputs) == 1 else (len(exprs),)
+    else:
+        exprs, shape = _elements(name, expr)
+        if typed:
+            outputs = (Output("result", shape, exprs),)
     for e in exprs:
-        _check_expr(name, e, args)
+        _check_expr(name, e, flat, typed)
+    gs = []
+    for g in guards:
+        if (not isinstance(g, Guard) or not isinstance(g.condition, str) or not _IDENT.match(g.condition)
+                or g.condition in ("ok", "invalid")):
+            raise _fail(name, "a guard must be Guard(condition, label, expr) with an identifier condition other "
+                        f"than ok/invalid, got {g!r}")
+        gx = sp.sympify(g.expr)
+        _check_expr(name, gx, flat, True)
+        gs.append(Guard(g.condition, str(g.label), gx, bool(g.early)))
+    docs: tuple[tuple[str, str], ...] = ()
+    if isinstance(doc, dict):
+        if not typed or set(doc) != {"numpy", "mpmath"}:
+            raise _fail(name, "doc as a dict needs the typed form and exactly the keys 'numpy' and 'mpmath'")
+        docs = (("numpy", str(doc["numpy"])), ("mpmath", str(doc["mpmath"])))
+        doc = ""
     if domain is not None:
         from ...proof import Domain
 
+        if typed:
+            raise _fail(name, "domain= is not sampled for array/sign arguments, named outputs or guards yet "
+                        "(verify such functions with claims of your own)")
         if not isinstance(domain, Domain):
             raise _fail(name, f"domain must be a symbt.Domain, got {type(domain).__name__}")
         missing = [n for n in names if n not in domain.variables]
@@ -180,10 +269,11 @@ def emit(name: str, expr: Any, *, args: Any, module: str, doc: str = "", domain:
             raise _fail(name, f"the domain lacks the argument(s) {', '.join(missing)}")
     if equation is not None and (not isinstance(equation, str) or not equation.strip()):
         raise _fail(name, f"equation={equation!r} must be a paper label (a non-empty string)")
-    cells = tuple(cells) if cells else _branch_splits(exprs)
+    cells = tuple(cells) if cells else (() if typed else _branch_splits(exprs))
     declared_in = sys._getframe(1).f_globals.get("__name__", "")
-    em = Emission(name=name, module=module, args=args, exprs=exprs, shape=shape, doc=str(doc), domain=domain,
-                  cells=cells, optimize=bool(optimize), equation=equation, declared_in=declared_in)
+    em = Emission(name=name, module=module, args=flat, exprs=exprs, shape=shape, doc=str(doc), domain=domain,
+                  cells=cells, optimize=bool(optimize), equation=equation, declared_in=declared_in,
+                  params=params if typed else (), outputs=outputs, guards=tuple(gs), docs=docs)
     if register:
         old = EMISSIONS.get((module, name))
         if old is not None and old.declared_in != declared_in:

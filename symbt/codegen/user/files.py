@@ -7,7 +7,7 @@ r"""A user's emitted files: which, with what provenance, written atomically, and
 
 The provenance header is Zullo's (:mod:`symbt.codegen.provenance`); its *derivation hash*
 covers, in this order: the generator version, symbt's user-codegen sources
-(``symbt/codegen/user/*.py`` and the printer), and the **derivation sources** of the module --
+(``symbt/codegen/user/*.py``, the printer and the typed runtime), and the **derivation sources** of the module --
 the files of the modules that declared its functions and of every module of the user's
 project they import, directly or not (a static scan of their ``import`` statements, so the
 hash does not depend on what else the process imported).  A derivation change anywhere in that
@@ -33,7 +33,8 @@ __all__ = ["LANGUAGES", "file_names", "derivation_sources", "derivation_hash", "
            "by_module"]
 
 LANGUAGES = ("python", "c")
-_GENERATOR = sorted((PACKAGE / "codegen" / "user").glob("*.py")) + [PACKAGE / "codegen" / "printer.py"]
+_GENERATOR = sorted((PACKAGE / "codegen" / "user").glob("*.py")) + [PACKAGE / "codegen" / "printer.py",
+                                                                  PACKAGE / "codegen" / "runtime.py"]
 
 
 def file_names(modules: Iterable[str], target: str = "python") -> list[str]:
@@ -124,6 +125,7 @@ def render(emissions: Iterable[Emission], root: Path, out: Path, target: str = "
     import sympy
 
     from .render import c_header, c_source, python_module
+    from .typed import TEMPLATES
 
     files: dict[str, str] = {}
     for module, ems in by_module(emissions).items():
@@ -131,7 +133,8 @@ def render(emissions: Iterable[Emission], root: Path, out: Path, target: str = "
         srcs = ", ".join(sorted({e.declared_in for e in ems}))
         desc = f"{module} (declared in {srcs})"
         if target == "python":
-            files[f"{module}.py"] = with_header(python_module(module, ems, srcs), desc, dh, sympy.__version__, "#")
+            body = python_module(module, ems, srcs, TEMPLATES.get(module))
+            files[f"{module}.py"] = with_header(body, desc, dh, sympy.__version__, "#")
         elif target == "c":
             files[f"{module}.c"] = with_header(c_source(module, ems), desc + ", C99", dh, sympy.__version__, "//")
             files[f"{module}.h"] = with_header(c_header(module, ems), desc + ", C99", dh, sympy.__version__, "//")

@@ -42,7 +42,7 @@ from sympy.codegen.rewriting import FuncMinusOneOptim, ReplaceOptim, expm1_opt, 
 from ..printer import _ATOM, _FUNCS, _MUL, _POW, ExprPrinter
 from .declare import Emission
 
-__all__ = ["UserPrinter", "optimized", "python_module", "c_source", "c_header", "c_name"]
+__all__ = ["UserPrinter", "optimized", "rewritten", "python_module", "c_source", "c_header", "c_name"]
 
 _TRIG = (sp.sin, sp.cos, sp.tan, sp.asin, sp.acos, sp.atan, sp.sinh, sp.cosh, sp.tanh, sp.asinh, sp.atanh)
 _NP = {"asin": "arcsin", "acos": "arccos", "atan": "arctan", "asinh": "arcsinh", "atanh": "arctanh"}
@@ -137,8 +137,13 @@ FACTOR_MAX_OPS = 400
 LONG_SUM = 100
 
 
-def _rewritten(x: sp.Expr) -> sp.Expr:
-    """SymPy's ``optimize(x, [expm1_opt, log1p_opt])``, each rule only where its function occurs."""
+def rewritten(x: sp.Expr) -> sp.Expr:
+    """SymPy's ``optimize(x, [expm1_opt, log1p_opt])``, each rule only where its function occurs.
+
+    >>> x = sp.Symbol("x")
+    >>> rewritten(sp.log(1 + x) + sp.exp(x) - 1)
+    expm1(x) + log1p(x)
+    """
     for fn, opt in ((sp.exp, expm1_opt), (sp.log, log1p_opt)):
         if not x.has(fn):
             continue
@@ -165,7 +170,7 @@ def optimized(e: Emission) -> list[sp.Expr]:
     """
     if not e.optimize:
         return list(e.exprs)
-    return [_rewritten(x) for x in e.exprs]
+    return [rewritten(x) for x in e.exprs]
 
 
 def _cse(exprs, names, flavour):
@@ -255,15 +260,55 @@ def _pack(items, batch, shape):
 '''
 
 
-def python_module(module: str, emissions: list[Emission], sources: str) -> str:
-    """The body (after the provenance header) of ``<module>.py``."""
+_TYPED_HEAD = '''"""{module}: functions emitted by `symbt codegen` from {sources}.
+
+Each function has a numpy float64 flavour (vectorised over leading batch axes) and an
+mpmath flavour ``<name>_mp`` (the caller's precision).  Typed errors: InvalidInputError
+(malformed input), NoRealMapError (a guard fails; ``errors="mask"``: masked results),
+NumericRangeError (a non-finite value).  See docs/codegen.md, "Your own expressions".
+"""'''
+
+
+def _typed_head(module: str, emissions: list[Emission], sources: str, names: list[str]) -> str:
+    """symbt's typed runtime (:data:`symbt.codegen.runtime.RUNTIME`) with messages for this module's guards."""
+    from ..runtime import RUNTIME
+
+    conds = sorted({g.condition for e in emissions for g in e.guards} - {"range"})
+    why = {c: f"guard {c} fails at %s" for c in conds}
+    return "\n".join([_TYPED_HEAD.format(module=module, sources=sources), "", f"__all__ = {names!r}",
+                      RUNTIME.rstrip("\n"), "", "",
+                      "class DomainError(ArithmeticError):",
+                      '    """An mpmath flavour divided by zero (the point is outside the function\'s domain)."""',
+                      "", "", f"_WHY = {why!r}"])
+
+
+def python_module(module: str, emissions: list[Emission], sources: str, template=None) -> str:
+    """The body (after the provenance header) of ``<module>.py``.
+
+    ``template`` (a :class:`~.typed.ModuleTemplate`): its ``head`` replaces the generated module head
+    and its ``tail`` follows the functions (Zullo's runtime and ``bt_orbit``).  Typed declarations
+    are rendered by :mod:`.render_typed`.
+    """
+    from .render_typed import mpmath_function, numpy_function
+
     names = sorted([e.name for e in emissions] + [e.name + "_mp" for e in emissions] + ["DomainError"])
-    parts = [_PY_HEAD.format(module=module, sources=sources, names=names).rstrip("\n")]
-    opt = [optimized(e) for e in emissions]     # once for both flavours
+    typed = any(e.typed for e in emissions)
+    if template is not None:
+        head = template.head
+    elif typed:
+        names = sorted(names + ["InvalidInputError", "NoRealMapError", "NumericRangeError"])
+        head = _typed_head(module, emissions, sources, names)
+    else:
+        head = _PY_HEAD.format(module=module, sources=sources, names=names)
+    parts = [head.rstrip("\n")]
+    zero = template.zero_division if template is not None else "division by zero"
+    opt = [[] if e.typed else optimized(e) for e in emissions]     # once for both flavours
     for e, x in zip(emissions, opt):
-        parts += ["", "", _py_function(e, x)]
+        parts += ["", "", numpy_function(e) if e.typed else _py_function(e, x)]
     for e, x in zip(emissions, opt):
-        parts += ["", "", _mp_function(e, x)]
+        parts += ["", "", mpmath_function(e, zero) if e.typed else _mp_function(e, x)]
+    if template is not None and template.tail:
+        parts.append(template.tail)
     return "\n".join(parts) + "\n"
 
 
@@ -276,7 +321,25 @@ def _nout(e: Emission) -> int:
     return len(e.exprs)
 
 
+def _typed_c(module: str, emissions: list[Emission]):
+    """``(source, header)`` when the module's declarations are typed (:mod:`.render_typed_c`), else None."""
+    typed = [e.name for e in emissions if e.typed]
+    if not typed:
+        return None
+    if len(typed) != len(emissions):
+        from .declare import EmitError
+
+        raise EmitError(f"emit({typed[0]!r}): module {module} mixes typed and plain declarations; the C target "
+                        "takes one kind per module (two ABIs)")
+    from .render_typed_c import c_files, default_template
+
+    return c_files(emissions, default_template(module, emissions))
+
+
 def c_header(module: str, emissions: list[Emission]) -> str:
+    typed = _typed_c(module, emissions)
+    if typed is not None:
+        return typed[1]
     guard = f"SYMBT_EMITTED_{module.upper()}_H"
     lines = [f"#ifndef {guard}", f"#define {guard}", "",
              "/* ABI: int <module>_<name>(const double *in, double *out);",
@@ -292,6 +355,9 @@ def c_header(module: str, emissions: list[Emission]) -> str:
 
 
 def c_source(module: str, emissions: list[Emission]) -> str:
+    typed = _typed_c(module, emissions)
+    if typed is not None:
+        return typed[0]
     lines = ["#include <math.h>", f'#include "{module}.h"', "",
              "static double sgn(double x) { return (double)((x > 0.0) - (x < 0.0)); }", ""]
     for e in emissions:
