@@ -164,7 +164,10 @@ def test_ctrl_c_stops_promptly_and_keeps_finished_outcomes(tmp_path):
     # two fast claims and two that take many seconds; -j 2
     argv = [sys.executable, "-m", "symbt", "verify", "--no-cache", "-j", "2",
             "--scene", "tn2", "--scene", "tra.n2", "--scene", "inverse.n2", "--scene", "inverse.n3"]
+    # the child starts with SIGINT at its default (as from a terminal): a test earlier in the same pytest worker
+    # may have left it ignored, and a process started with SIGINT ignored rightly keeps ignoring it
     p = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=_env(SYMBT_CACHE_DIR=str(cache)),
+                         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
                          cwd=tmp_path, start_new_session=True)
     deadline = time.monotonic() + 180
     while not (cache / "tn2.json").exists() and time.monotonic() < deadline and p.poll() is None:

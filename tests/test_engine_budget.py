@@ -207,7 +207,9 @@ def _start_sleepers(tmp_path: Path, jobs: int, n: int) -> tuple[subprocess.Popen
             f"sys.exit(main(['verify', '-j', '{jobs}', '--no-cache', '-q', *{scenes!r}]))")
     env = {**os.environ, "ZZ_MARKS": str(marks), "SYMBT_CACHE_DIR": str(tmp_path / "cache"),
            "PYTHONPATH": os.pathsep.join(p for p in (str(ROOT), os.environ.get("PYTHONPATH", "")) if p)}
-    p = subprocess.Popen([sys.executable, "-c", code], env=env, cwd=tmp_path, stderr=subprocess.PIPE)
+    # SIGINT at its default in the child (as from a terminal), whatever an earlier test left in this process
+    p = subprocess.Popen([sys.executable, "-c", code], env=env, cwd=tmp_path, stderr=subprocess.PIPE,
+                         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     workers: list[int] = []
     deadline = time.monotonic() + 120
     while len(workers) < jobs and time.monotonic() < deadline and p.poll() is None:
