@@ -78,6 +78,9 @@ class Outcome:
     >>> o = Outcome("verified", "exact")
     >>> replace(o, n_scope=[3]).n_scope, o.n_scope
     ([3], None)
+    >>> import mpmath
+    >>> type(Outcome("verified", "numeric", residual=mpmath.mpf("2.5e-14")).residual).__name__
+    'float'
     >>> o.status = "failed"
     Traceback (most recent call last):
     ...
@@ -104,6 +107,12 @@ class Outcome:
             raise ValueError(f"unknown status {self.status!r}")
         if self.evidence is not None and self.evidence not in EVIDENCE:
             raise ValueError(f"unknown evidence {self.evidence!r}")
+        # numbers of any kind (an mpf, a numpy scalar) are stored as floats: the report, the cache and the
+        # JSON schema take a residual and digits as numbers, never as an mpf's text
+        for name in ("residual", "digits"):
+            value = getattr(self, name)
+            if value is not None and type(value) is not float:
+                object.__setattr__(self, name, float(value))
 
     def to_dict(self) -> dict[str, Any]:
         return asdict(self)
