@@ -171,7 +171,7 @@ def emitted_user_functions() -> Outcome:
                  "both branches, both trace signs)")
 def guard_sources() -> Outcome:
     from ..codegen import derive
-    from ..codegen.verify import _eval, map_states
+    from ..codegen.verify import evaluate_source, map_states
     from ..reference.literal import literal_step
 
     # derive afresh so the verdict is this claim's own (and symbt mutate --source's line map credits it)
@@ -185,16 +185,8 @@ def guard_sources() -> Outcome:
     with mp.workdps(30):
         for p, q, l0, m in map_states(N):
             for b in (1, -1):
-                env: dict = {}
-                memo: dict = {}
                 pt = {"p": p, "q": q, "lam0": l0, "mu": m, "branch": b}
-                for a in spec.args:
-                    vals = pt[a.name] if a.kind == "state" else [pt[a.name]]
-                    for s, v in zip(a.symbols, vals):
-                        env[s] = int(v) if a.kind == "branch" else mp.mpf(v)
-                for s, c in spec.defs:
-                    env[s] = _eval(c, env, memo)
-                got = [_eval(g.expr, env, memo) for g in spec.guards]
+                got = evaluate_source(N, "bt_step", pt, dps=30, part="guards")
                 P, Q = [mp.mpf(v) for v in p], [mp.mpf(v) for v in q]
                 info = literal_step(P, Q, mp.mpf(l0), mp.mpf(m), b)[2]
                 want = [info["tr1"] ** 2 - 4, info["tr2"] ** 2 - 4] + [e / mp.exp(v) for e, v in zip(info["E_new"], Q)]

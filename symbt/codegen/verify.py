@@ -129,9 +129,12 @@ def _eval(c: Any, env: dict[sp.Basic, Any], memo: dict[Any, Any]) -> Any:
     return _interpret(sp.sympify(c), env, memo)
 
 
-def evaluate_source(N: int, name: str, pt: dict, dps: int = REF_DPS) -> list:
-    """The SymPy source of every output of ``name`` at ``pt`` (inputs taken exactly), at ``dps`` digits."""
+def evaluate_source(N: int, name: str, pt: dict, dps: int = REF_DPS, part: str = "outputs") -> list:
+    """The SymPy source of every output (``part="guards"``: every guard expression) of ``name`` at ``pt``
+    (inputs taken exactly), at ``dps`` digits."""
     spec = next(s for s in sources(N) if s.name == name)
+    if part not in ("outputs", "guards"):
+        raise ValueError(f"part must be 'outputs' or 'guards', got {part!r}")
     with mp.workdps(dps):
         env: dict = {}
         memo: dict = {}
@@ -141,6 +144,8 @@ def evaluate_source(N: int, name: str, pt: dict, dps: int = REF_DPS) -> list:
                 env[s] = int(v) if a.kind == "branch" else mp.mpf(v)
         for s, c in spec.defs:
             env[s] = _eval(c, env, memo)
+        if part == "guards":
+            return [+_eval(g.expr, env, memo) for g in spec.guards]
         return [+_eval(e, env, memo) for o in spec.outputs for e in o.exprs]
 
 

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 58a28a2d43a69d490204c8e7af282766f1183fd27110a3bcd72be9dc9d167bb2
-# symbt-codegen-content-sha256: cb2eac938e047f8ba3c70be4a01473eeb1d89f3083ac434994261ae26036c77f
+# symbt-codegen-derivation-sha256: 9da089f7a085ebbe258f654fd78eac00fa0b1bc0fa438f133a101c468e8af9b0
+# symbt-codegen-content-sha256: 2049a4e514012a99b9f7936ebfa0c9ed3d430fb2642f7009741033e25c3bb86b
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 58a28a2d43a69d490204c8e7af282766f1183fd27110a3bcd72be9dc9d167bb2
-# symbt-codegen-content-sha256: 194ca542b850c84abe5bff51e6fb4e48ebbfed81df873c310a53a4fbc0fded7c
+# symbt-codegen-derivation-sha256: 9da089f7a085ebbe258f654fd78eac00fa0b1bc0fa438f133a101c468e8af9b0
+# symbt-codegen-content-sha256: 6e0bd3978e44514d3da5829c964096430c76ea3803224cdc02a61fcea3c4c203
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

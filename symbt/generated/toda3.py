@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 58a28a2d43a69d490204c8e7af282766f1183fd27110a3bcd72be9dc9d167bb2
-# symbt-codegen-content-sha256: 34779b2c3176467379761818e42b02205e4ce6253e9010d692392865936f7607
+# symbt-codegen-derivation-sha256: 9da089f7a085ebbe258f654fd78eac00fa0b1bc0fa438f133a101c468e8af9b0
+# symbt-codegen-content-sha256: d66bb1e635ae24ac76f7b6cacf3dcc741661568dcbcbf6ec221215cebb1c576a
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
