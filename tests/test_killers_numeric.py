@@ -28,7 +28,8 @@ def status(cid: str) -> str:
 
 
 def test_the_scene_has_the_claims_named_here():
-    assert NUMERIC_PATHS == ["paths.complex.n3", "paths.failing_rows.n3", "paths.growth.n3", "paths.kernels.n3",
+    assert NUMERIC_PATHS == ["paths.complex.n3", "paths.failing_rows.n3", "paths.frame.n13", "paths.growth.n3",
+                             "paths.kernels.n3",
                              "paths.kernels.n5", "paths.qd.n2", "paths.qd.n3", "paths.tiny_mu.n3"]
 
 
@@ -179,3 +180,19 @@ def test_growth_record_without_degree(monkeypatch):
     real = lohner.growth_law
     monkeypatch.setattr(lohner, "growth_law", lambda lograd, first=100: dict(real(lograd, first), degree=None))
     assert status("paths.growth.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.frame (2N > 24)
+
+def test_frame_path_without_rounding_errors(monkeypatch):
+    # the Lohner set of N = 13 without the step's rounding errors and the Jacobian's radius (the documented
+    # unsound variant): the literal orbit leaves the returned balls
+    from symbt.numeric.multiprec import lohner
+    real = lohner.LohnerSet.__init__
+
+    def unsound(self, *args, **kwargs):
+        kwargs["unsound"] = True
+        real(self, *args, **kwargs)
+    monkeypatch.setattr(lohner.LohnerSet, "__init__", unsound)
+    assert status("paths.frame.n13") == "failed"
+

@@ -20,6 +20,9 @@ not take -- or whose choice they cannot see -- are checked here, each against th
 * ``paths.tiny_mu.n3`` -- ``flow_coefficients`` where ``lam0 - mu == lam0 + mu`` in float64 (its
   ``2 mu f(lam0)`` branch), against ``-b 2 mu lam0**k / sqrt(tr**2 - 4)`` with ``tr`` the literal 2x2 product at
   40 digits, at ``lam0 < 0`` (the sign of ``lam0**k`` alternates with k).
+* ``paths.frame.n13`` -- the Lohner path above ``2N = 24`` (float64 frame algebra,
+  :func:`~symbt.numeric.multiprec.lohner.frame_inverse`): a 4-step certified orbit of a binary-exact
+  N = 13 state contains the literal orbit at 160 digits, radii <= 1e-50.
 * ``paths.growth.n3`` -- the ``info=`` record of a certified orbit: ``info["growth"]`` (the radius growth law
   of :func:`~symbt.numeric.multiprec.lohner.growth_law`) against a least-squares fit of the radii the call
   returned, and its ``log2_radius`` against the largest returned radius.
@@ -383,3 +386,57 @@ def growth_record(N: int, parts: Parts) -> Outcome:
                       + detail)
     return Outcome("verified", "numeric: certified_orbit info record vs the returned radii", evidence="sampled",
                    detail=detail, printed="info['growth'] = the growth of the returned radii")
+
+
+# --------------------------------------------------------------------------- the large-frame Lohner path
+
+#: paths.frame: the lattice size (2N > 24: the float64 frame algebra and frame_inverse's one-product bound),
+#: the steps, and the radius target (absolute)
+FRAME_N, FRAME_STEPS, FRAME_TOL, FRAME_DPS = 13, 4, 1e-50, 80
+
+
+def frame_state() -> tuple[list[float], list[float], int, float]:
+    """The binary-exact N = 13 state of ``paths.frame`` (no decimal rounding: the exact input is the same at
+    every precision, so the literal orbit at 60 digits and the certified one start from the same point)."""
+    N = FRAME_N
+    return [((j * 7) % 5 - 2) / 8 for j in range(N)], [((j * 3) % 4) / 16 for j in range(N)], 3, 0.5
+
+
+@claim("paths.frame", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(13,),
+       parts=scale_parts, requires=("flint",),
+       where="symbt/numeric/multiprec/lohner.py: LohnerSet above 2N = 24 (float64 frame, frame_inverse)",
+       statement="certified_orbit(method='lohner') at N={N}, 4 steps, tol 1e-50, 80 digits: every returned ball "
+                 "contains the literal orbit (160 digits, the same binary input) and every radius is <= tol")
+def frame_path(N: int, parts: Parts) -> Outcome:
+    if importlib.util.find_spec("flint") is None:
+        return skipped("python-flint is not installed (.[certified])")
+    from ..numeric import certified_orbit
+    from ..reference.literal import literal_step
+
+    p, q, lam0, mu = frame_state()
+    info: dict[str, Any] = {}
+    with mp.workdps(FRAME_DPS):
+        P, Q, Pr, Qr = certified_orbit(p, q, lam0, mu, FRAME_STEPS, branch=1, every=1, info=info,
+                                       tol=FRAME_TOL, method="lohner")
+    bad, worst, widest = [], 0.0, 0.0
+    with mp.workdps(2 * FRAME_DPS):
+        pp, qq = _mpf_list(p), _mpf_list(q)
+        for k in range(1, FRAME_STEPS + 1):
+            pp, qq, _ = literal_step(pp, qq, mp.mpf(lam0), mp.mpf(mu), 1)
+            for x, c, r in zip(pp + qq, list(P[k]) + list(Q[k]), list(Pr[k]) + list(Qr[k])):
+                # the returned ball, scaled by the printed 1: a ball that misses the literal value fails
+                off = abs(x - mp.mpf(c) * parts.printed["scale"])
+                widest = max(widest, float(r))
+                if not off <= r:
+                    bad.append(f"step {k}: |literal - returned| = {mp.nstr(off, 3)} > radius {mp.nstr(r, 3)}")
+                elif r > 0:
+                    worst = max(worst, float(off / r))
+    if not widest <= FRAME_TOL:
+        bad.append(f"largest radius {widest:.3g} > tol {FRAME_TOL:g}")
+    detail = (f"method {info.get('method')}, prec {info.get('prec')} bits; largest radius {widest:.3g}, "
+              f"largest |literal - returned| / radius {worst:.3g}.")
+    if bad or info.get("method") != "lohner":
+        return failed("numeric: certified Lohner orbit (N=13) vs the literal map", detail="; ".join(bad[:3]) + ". "
+                      + detail)
+    return Outcome("verified", "numeric: certified Lohner orbit (N=13) vs the literal map at 60 digits",
+                   evidence="sampled", detail=detail, printed="the literal orbit lies in every returned ball")
