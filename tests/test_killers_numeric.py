@@ -29,8 +29,8 @@ def status(cid: str) -> str:
 
 def test_the_scene_has_the_claims_named_here():
     assert NUMERIC_PATHS == ["paths.complex.n3", "paths.failing_rows.n3", "paths.frame.n13", "paths.growth.n3",
-                             "paths.kernels.n3",
-                             "paths.kernels.n5", "paths.qd.n2", "paths.qd.n3", "paths.tiny_mu.n3"]
+                             "paths.jacobian.n3", "paths.kernels.n3", "paths.kernels.n5", "paths.lohner_box.n3",
+                             "paths.qd.n2", "paths.qd.n3", "paths.tiny_mu.n3"]
 
 
 @pytest.mark.parametrize("cid", NUMERIC_PATHS)
@@ -196,3 +196,36 @@ def test_frame_path_without_rounding_errors(monkeypatch):
     monkeypatch.setattr(lohner.LohnerSet, "__init__", unsound)
     assert status("paths.frame.n13") == "failed"
 
+
+
+# --------------------------------------------------------------------------- paths.jacobian, paths.lohner_box
+
+def test_jacobian_slopes_shifted(monkeypatch):
+    # the cyclic closure of the slopes' gradients off by one index (mutants lohner:120/170): the enclosure is
+    # still rigorous after the intersection with the ball image, only the Jacobian is wrong
+    from symbt.numeric.multiprec import lohner
+    real = lohner._slope_rows
+    monkeypatch.setattr(lohner, "_slope_rows", lambda *args: (lambda out: out[1:] + out[:1])(real(*args)))
+    assert status("paths.jacobian.n3") == "failed"
+
+
+def test_lohner_box_without_the_input_radius(monkeypatch):
+    # the C r0 term of the set dropped (mutant lohner:342): the hull is narrower than the box's image
+    from symbt.numeric.multiprec import lohner
+    real = lohner.LohnerSet.__init__
+
+    def no_r0(self, *args, **kwargs):
+        real(self, *args, **kwargs)
+        self.has_r0 = False
+    monkeypatch.setattr(lohner.LohnerSet, "__init__", no_r0)
+    assert status("paths.lohner_box.n3") == "failed"
+
+
+def test_lohner_box_loose(monkeypatch):
+    # the centre step enclosed as at ~116 bits instead of 200 (a too cautious enclosure): rigorous, not sharp
+    from flint import arb
+
+    from symbt.numeric.multiprec import lohner
+    real = lohner.arb_step
+    monkeypatch.setattr(lohner, "arb_step", lambda *a: tuple([x + arb(0, 1e-35) for x in v] for v in real(*a)))
+    assert status("paths.lohner_box.n3") == "failed"

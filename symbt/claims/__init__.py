@@ -40,6 +40,7 @@ CLAIM_MODULES = (
     "shipped_flow",
     "shipped_qd",
     "shipped_paths",
+    "shipped_lohner",
     "shipped_complex",
     "checker",
     "checker_mutation",
