@@ -46,6 +46,7 @@ CLAIM_MODULES = (
     "checker_mutation",
     "library",
     "library_reference",
+    "library_samples",
     "library_codegen",
 )
 

@@ -1,0 +1,74 @@
+"""The claims on :mod:`symbt.reference`'s sampler and Carlson integral kill the bugs they were written for (issue 21).
+
+Each test plants one single-point bug of ``symbt mutate --source``'s kind (the survivors of its run on
+``reference.samples`` and ``reference.elliptic``, docs/mutation.md) with ``monkeypatch`` and requires the claim to
+fail; unpatched, the claims verify.
+"""
+from __future__ import annotations
+
+import mpmath as mp
+
+from symbt.claims import library_samples
+from symbt.reference import elliptic, samples
+
+
+def status(claim) -> str:
+    return claim.run().status
+
+
+def test_unpatched_verified():
+    assert status(library_samples.sampler_contract) == "verified"
+    assert status(library_samples.carlson_against_mpmath) == "verified"
+
+
+def test_sampler_one_state_too_many(monkeypatch):
+    # `while len(out) <= count` (mutant samples:46): one state more than asked for
+    real = samples.admissible_states
+    monkeypatch.setattr(library_samples, "admissible_states", lambda N, s, count, seed=0: real(N, s, count + 1, seed))
+    assert status(library_samples.sampler_contract) == "failed"
+
+
+def test_sampler_values_depend_on_precision(monkeypatch):
+    # lam0 computed at the working precision (off by 10^(5 - dps)) instead of read from an exact decimal string
+    real = samples.admissible_states
+
+    def rounded(N, s, count, seed=0):
+        return [(p, q, l0 + mp.mpf(10) ** (5 - mp.mp.dps), m) for p, q, l0, m in real(N, s, count, seed)]
+    monkeypatch.setattr(library_samples, "admissible_states", rounded)
+    assert status(library_samples.sampler_contract) == "failed"
+
+
+def test_sampler_stream_reseeded(monkeypatch):
+    # a count-dependent seed (a slip in the seed formula): count 3 is no longer the start of count 5
+    real = samples.admissible_states
+    monkeypatch.setattr(library_samples, "admissible_states",
+                        lambda N, s, count, seed=0: real(N, s, count, seed + count))
+    assert status(library_samples.sampler_contract) == "failed"
+
+
+def _rf_loop_wrong_series(x, y, z, sqrt, scale):
+    # elliptic._rf_loop with the order-5 coefficient 3/44 of E2 E3 dropped to 1/44 (mutant elliptic:109)
+    A0 = (x + y + z) / 3
+    Q = max(abs(A0 - x), abs(A0 - y), abs(A0 - z)) * scale
+    xm, ym, zm, A, p4 = x, y, z, A0, 1
+    while p4 * abs(A) <= Q:
+        sx, sy, sz = sqrt(xm), sqrt(ym), sqrt(zm)
+        lam = sx * sy + sx * sz + sy * sz
+        xm, ym, zm, A, p4 = (xm + lam) / 4, (ym + lam) / 4, (zm + lam) / 4, (A + lam) / 4, 4 * p4
+    X, Y = (A0 - x) / (p4 * A), (A0 - y) / (p4 * A)
+    Z = -X - Y
+    E2, E3 = X * Y - Z * Z, X * Y * Z
+    return (1 - E2 / 10 + E3 / 14 + E2 * E2 / 24 - E2 * E3 / 44) / sqrt(A)
+
+
+def test_carlson_series_term(monkeypatch):
+    monkeypatch.setattr(elliptic, "_rf_loop", _rf_loop_wrong_series)
+    assert status(library_samples.carlson_against_mpmath) == "failed"
+
+
+def test_carlson_no_guard_bits(monkeypatch):
+    # the duplication stopped two iterations early (the scale of the stopping rule divided by 16): the series'
+    # truncation error shows at 50 digits
+    real = elliptic._rf_loop
+    monkeypatch.setattr(elliptic, "_rf_loop", lambda x, y, z, sqrt, scale: real(x, y, z, sqrt, scale / 16 ** 2))
+    assert status(library_samples.carlson_against_mpmath) == "failed"
