@@ -72,3 +72,26 @@ def test_carlson_no_guard_bits(monkeypatch):
     real = elliptic._rf_loop
     monkeypatch.setattr(elliptic, "_rf_loop", lambda x, y, z, sqrt, scale: real(x, y, z, sqrt, scale / 16 ** 2))
     assert status(library_samples.carlson_against_mpmath) == "failed"
+
+
+def test_no_trace_at_the_sampler_margin(monkeypatch):
+    # the fact behind the equivalence marks samples:62 (`> 2.2` vs `>= 2.2`, mutants-equivalent.toml): the two
+    # comparisons differ only at a trace equal to the double 2.2; no trace the comparison reads, on the streams
+    # the claims draw from (N = 2..8, both signs, seeds 0-2 and 11, up to 8 states: a stream is read in order, so
+    # fewer states read a prefix), equals it
+    real = samples._real_map
+    read: list = []
+
+    def recording(*args):
+        ok, info = real(*args)
+        if ok and args[-1] == 1:
+            read.extend((info["tr1"], info["tr2"]))
+        return ok, info
+    monkeypatch.setattr(samples, "_real_map", recording)
+    for N in range(2, 9):
+        for s in (1, -1):
+            for seed in (0, 1, 2, 11):
+                with mp.workdps(30):
+                    samples.admissible_states(N, s, 8, seed=seed)
+    assert len(read) > 1000
+    assert not [t for t in read if isinstance(t, mp.mpf) and abs(t) == 2.2]
