@@ -30,7 +30,7 @@ def status(cid: str) -> str:
 def test_the_scene_has_the_claims_named_here():
     assert NUMERIC_PATHS == ["paths.complex.n3", "paths.failing_rows.n3", "paths.frame.n13", "paths.growth.n3",
                              "paths.jacobian.n3", "paths.kernels.n3", "paths.kernels.n5", "paths.lohner_box.n3",
-                             "paths.qd.n2", "paths.qd.n3", "paths.tiny_mu.n3"]
+                             "paths.qd.n2", "paths.qd.n3", "paths.stored.n3", "paths.tiny_mu.n3"]
 
 
 @pytest.mark.parametrize("cid", NUMERIC_PATHS)
@@ -229,3 +229,20 @@ def test_lohner_box_loose(monkeypatch):
     real = lohner.arb_step
     monkeypatch.setattr(lohner, "arb_step", lambda *a: tuple([x + arb(0, 1e-35) for x in v] for v in real(*a)))
     assert status("paths.lohner_box.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.stored
+
+def test_orbit_stores_every_step(monkeypatch):
+    # the storage test `i % every == 0 or i == n` taken at every step (mutant kernels:330): the first rows hold
+    # steps 0, 1, 2, ... instead of 0, 3, 6, ...
+    real = kernels.orbit
+
+    def every_step(p0, q0, lam1, lam2, two_mu, branch, n, every, anchor, outP, outQ):
+        P, Q = np.empty((n + 1, len(p0))), np.empty((n + 1, len(p0)))
+        st = real(p0, q0, lam1, lam2, two_mu, branch, n, 1, anchor, P, Q)
+        outP[:] = P[:len(outP)]
+        outQ[:] = Q[:len(outQ)]
+        return st
+    monkeypatch.setattr(kernels, "orbit", every_step)
+    assert status("paths.stored.n3") == "failed"

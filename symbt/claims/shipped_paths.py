@@ -440,3 +440,45 @@ def frame_path(N: int, parts: Parts) -> Outcome:
                       + detail)
     return Outcome("verified", "numeric: certified Lohner orbit (N=13) vs the literal map at 60 digits",
                    evidence="sampled", detail=detail, printed="the literal orbit lies in every returned ball")
+
+
+# --------------------------------------------------------------------------- stored states of the fused orbit
+
+#: paths.stored: steps and the storage interval (n not a multiple of every: the last state is stored apart)
+STORED_STEPS, STORED_EVERY = 10, 3
+
+
+@claim("paths.stored", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       where="symbt/numeric/float64/kernels.py: orbit, orbit_rows, stored_steps (plain Python)",
+       statement="the fused orbit kernel, N={N}, 10 steps stored every 3rd, one state per cell: status 0, "
+                 "orbit_rows(10, 3) = 5 rows, equal bit for bit to the rows 0, 3, 6, 9, 10 of the same orbit "
+                 "stored at every step (documented: the orbit does not depend on every)")
+def stored_states(N: int) -> Outcome:
+    from ..numeric.float64.kernels import ANCHOR, orbit, orbit_rows, stored_steps
+
+    # a consistency check of a documented invariance (the same kernel twice); the rows' accuracy against the
+    # literal map is shipped.orbit's
+    n, every = STORED_STEPS, STORED_EVERY
+    bad = []
+    cells = ship_cells(N, 1)
+    for cell, st, b in cells:
+        p, q, l0, m = st
+        runs = []
+        for ev in (every, 1):
+            rows = orbit_rows(n, ev)
+            P, Q = np.full((rows + 1, N), np.nan), np.full((rows + 1, N), np.nan)    # one spare row: overruns show
+            status = orbit(np.array(p), np.array(q), l0 + m, l0 - m, 2 * m, b, n, ev, ANCHOR, P, Q)
+            runs.append((status, P, Q, rows))
+        (s3, P3, Q3, r3), (s1, P1, Q1, _) = runs
+        keep = stored_steps(n, every)
+        if s3 != 0 or s1 != 0:
+            bad.append(f"{cell}: status {s3} (every {every}), {s1} (every 1)")
+        elif r3 != len(keep) or not (np.isnan(P3[r3]).all() and np.isnan(Q3[r3]).all()):
+            bad.append(f"{cell}: {r3} rows for steps {keep}, or a row written past them")
+        elif not (np.array_equal(P3[:r3], P1[keep]) and np.array_equal(Q3[:r3], Q1[keep])):
+            bad.append(f"{cell}: the rows stored every {every} differ from the steps {keep} stored every step")
+    detail = f"{len(cells)} cells, steps {stored_steps(n, every)}."
+    if bad:
+        return failed("numeric: fused orbit's stored states", detail="; ".join(bad[:3]) + " " + detail)
+    return Outcome("verified", "numeric: fused orbit's stored states, every 3 vs every step (bit for bit)",
+                   evidence="sampled", detail=detail, printed="the orbit does not depend on every")
