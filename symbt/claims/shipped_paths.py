@@ -27,7 +27,13 @@ not take -- or whose choice they cannot see -- are checked here, each against th
   of :func:`~symbt.numeric.multiprec.lohner.growth_law`) against a least-squares fit of the radii the call
   returned, and its ``log2_radius`` against the largest returned radius.
 
-The quad-double step is ``paths.qd`` (:mod:`symbt.claims.shipped_qd`).  Each claim is shown to fail on a planted
+* ``paths.stored.n3`` -- the fused kernel's orbit (:func:`~symbt.numeric.float64.kernels.orbit`, plain Python)
+  stored every 3rd step equals, bit for bit, the same orbit stored at every step at the steps of
+  :func:`~symbt.numeric.float64.kernels.stored_steps` (documented: the orbit does not depend on ``every``).
+
+The quad-double step is ``paths.qd`` (:mod:`symbt.claims.shipped_qd`); the Lohner method's Jacobian and its
+sharpness on a box are ``paths.jacobian`` and ``paths.lohner_box`` (:mod:`symbt.claims.shipped_lohner`).
+Each claim is shown to fail on a planted
 bug in ``tests/test_killers_numeric.py``.
 """
 from __future__ import annotations
