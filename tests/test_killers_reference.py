@@ -19,6 +19,7 @@ def status(claim) -> str:
 def test_unpatched_verified():
     assert status(library_samples.sampler_contract) == "verified"
     assert status(library_samples.carlson_against_mpmath) == "verified"
+    assert status(library_samples.regime_by_trace) == "verified"
 
 
 def test_sampler_one_state_too_many(monkeypatch):
@@ -95,3 +96,56 @@ def test_no_trace_at_the_sampler_margin(monkeypatch):
                     samples.admissible_states(N, s, 8, seed=seed)
     assert len(read) > 1000
     assert not [t for t in read if isinstance(t, mp.mpf) and abs(t) == 2.2]
+
+
+def test_regime_of_the_lower_parameter(monkeypatch):
+    # regime() classifies lambda_- = lam0 - mu by (lam0 - mu - I1)/r instead of + I1 (mutant elliptic:298)
+    monkeypatch.setattr(elliptic, "regime", _regime_wrong_minus)
+    assert status(library_samples.regime_by_trace) == "failed"
+
+
+def _regime_wrong_minus(I1, I2, lam0, mu):
+    k, _ = elliptic.modulus(I2)
+    r = mp.sqrt(I2 - 2)
+
+    def zone(s):
+        if abs(s) < 1:
+            return "in"
+        if k * abs(s) > 1:
+            return "out+" if s > 0 else "out-"
+        return "gap"
+    zp, zm = zone((lam0 + mu + I1) / r), zone((lam0 - mu - I1) / r)
+    if "gap" in (zp, zm):
+        return "gap"
+    if zp == zm == "in":
+        return "inner"
+    if zp == zm:
+        return "outer-same"
+    return "mixed" if "in" in (zp, zm) else "outer-opposite"
+
+
+def test_regime_outer_zones_swapped_sign(monkeypatch):
+    # the band test `abs(s) < 1` taken as `s < 1` (an abs lost): large negative s is called inner
+    real_modulus = elliptic.modulus
+    monkeypatch.setattr(elliptic, "regime", lambda I1, I2, lam0, mu: _regime_lost_abs(I1, I2, lam0, mu, real_modulus))
+    assert status(library_samples.regime_by_trace) == "failed"
+
+
+def _regime_lost_abs(I1, I2, lam0, mu, modulus):
+    k, _ = modulus(I2)
+    r = mp.sqrt(I2 - 2)
+
+    def zone(s):
+        if s < 1:
+            return "in"
+        if k * abs(s) > 1:
+            return "out+" if s > 0 else "out-"
+        return "gap"
+    zp, zm = zone((lam0 + mu + I1) / r), zone((lam0 - mu + I1) / r)
+    if "gap" in (zp, zm):
+        return "gap"
+    if zp == zm == "in":
+        return "inner"
+    if zp == zm:
+        return "outer-same"
+    return "mixed" if "in" in (zp, zm) else "outer-opposite"

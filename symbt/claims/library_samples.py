@@ -15,6 +15,14 @@ of the paper shows:
   last bits: both within an ulp, so 4 is a margin of 2.  A wrong term of the series (order 5, size
   ``2^-(5/6)(prec+10)``) is 60 ulps off at 50 digits.
 
+* ``library.regime`` -- :func:`symbt.reference.elliptic.regime_of_state` (N = 2) against the zones of
+  ``lambda_+- = lam0 +- mu`` read off the literal trace (:func:`~symbt.reference.literal.literal_trace`, the 2x2
+  product, not the actions): ``tr < -2`` inner gap ``in``, ``|tr| <= 2`` a band (``gap`` in the module's
+  s-coordinate), ``tr > 2`` outside, ``out+`` or ``out-`` by the sign of ``d tr / d lambda`` (central differences);
+  the regime is ``gap`` if a zone is, ``inner`` if both are ``in``, ``outer-same`` for equal outer zones, ``mixed``
+  for ``in`` and an outer zone, else ``outer-opposite`` -- on 4 cases of :func:`~symbt.reference.elliptic.sample_case`
+  per regime and sign of ``q1 - q2`` (which also must be of the regime asked) and 60 uniform random draws.
+
 Shown to fail on planted bugs in ``tests/test_killers_reference.py``.
 
 >>> carlson_against_mpmath.run().status
@@ -26,12 +34,16 @@ import random
 
 import mpmath as mp
 
+from ..reference import elliptic as E
 from ..reference.elliptic import carlson_rf
+from ..reference.literal import literal_trace
 from ..reference.samples import admissible_states
 from .base import Outcome, claim, failed
 
 #: library.carlson: accepted relative difference in units of 2^-prec (module docstring), digits, draws
 RF_ULPS, RF_DPS, RF_DRAWS = 4, 50, 24
+#: library.regime: cases per regime and sign of q1 - q2, uniform draws, the difference step of d tr / d lambda
+REGIME_CASES, REGIME_DRAWS, REGIME_H = 4, 60, "1e-12"
 #: library.samples: sizes and count
 SAMPLE_SIZES, SAMPLE_COUNT = (2, 3), 3
 
@@ -89,3 +101,54 @@ def carlson_against_mpmath() -> Outcome:
                       detail=detail)
     return Outcome("verified", "carlson_rf vs mpmath.elliprf at 50 digits", evidence="sampled", detail=detail,
                    printed="carlson_rf = R_F")
+
+
+def _zone(lam: mp.mpf, p: list, q: list) -> str:
+    """The zone of ``lam`` by the literal trace alone (module docstring)."""
+    t = literal_trace(lam, p, q)
+    if t < -2:
+        return "in"
+    if t <= 2:
+        return "gap"
+    h = mp.mpf(REGIME_H)
+    slope = literal_trace(lam + h, p, q) - literal_trace(lam - h, p, q)
+    return "out+" if slope > 0 else "out-"
+
+
+def _trace_regime(p: list, q: list, lam0: mp.mpf, mu: mp.mpf) -> str:
+    zp, zm = _zone(lam0 + mu, p, q), _zone(lam0 - mu, p, q)
+    if "gap" in (zp, zm):
+        return "gap"
+    if zp == zm:
+        return "inner" if zp == "in" else "outer-same"
+    return "mixed" if "in" in (zp, zm) else "outer-opposite"
+
+
+@claim("library.regime", equation="addform", scene="library", N=2,
+       where="symbt.reference.elliptic.regime_of_state, regime and sample_case",
+       statement="regime_of_state (N = 2) = the regime from the zones of lam0 +- mu by the literal trace "
+                 "(tr < -2, |tr| <= 2, tr > 2 and the sign of d tr/d lambda), on 4 sample_case cases per regime "
+                 "and sign of q1 - q2 (of the regime asked) and 60 uniform draws")
+def regime_by_trace() -> Outcome:
+    rng = random.Random(2026)
+    draws: list[tuple[str | None, tuple]] = []
+    for reg in E.REGIMES:
+        for xs in (1, -1):
+            draws += [(reg, E.sample_case(reg, rng, x_sign=xs)) for _ in range(REGIME_CASES)]
+    for _ in range(REGIME_DRAWS):
+        draws.append((None, ([f"{rng.uniform(-3, 3):.6f}" for _ in range(2)],
+                             [f"{rng.uniform(-1.5, 1.5):.6f}" for _ in range(2)],
+                             f"{rng.uniform(-5, 5):.6f}", f"{rng.uniform(0.05, 3):.6f}")))
+    seen: dict[str, int] = {}
+    with mp.workdps(30):
+        for asked, (p, q, l0, m) in draws:
+            P, Q, L0, M = [mp.mpf(v) for v in p], [mp.mpf(v) for v in q], mp.mpf(l0), mp.mpf(m)
+            got, ref = E.regime_of_state(P, Q, L0, M), _trace_regime(P, Q, L0, M)
+            seen[ref] = seen.get(ref, 0) + 1
+            if got != ref or (asked is not None and asked != ref):
+                return failed("regime_of_state vs the literal trace",
+                              counterexample={"p": p, "q": q, "lam0": l0, "mu": m, "asked": asked},
+                              detail=f"regime_of_state {got!r}, by the literal trace {ref!r}")
+    return Outcome("verified", "regime_of_state vs the zones of the literal trace", evidence="sampled",
+                   detail=f"{len(draws)} states; regimes by the trace: {dict(sorted(seen.items()))}.",
+                   printed="regime_of_state = the regime of the spectral zones")
