@@ -28,8 +28,9 @@ def status(cid: str) -> str:
 
 
 def test_the_scene_has_the_claims_named_here():
-    assert NUMERIC_PATHS == ["paths.complex.n3", "paths.failing_rows.n3", "paths.growth.n3", "paths.kernels.n3",
-                             "paths.kernels.n5", "paths.qd.n2", "paths.qd.n3", "paths.tiny_mu.n3"]
+    assert NUMERIC_PATHS == ["paths.complex.n3", "paths.failing_rows.n3", "paths.frame.n13", "paths.growth.n3",
+                             "paths.jacobian.n3", "paths.kernels.n3", "paths.kernels.n5", "paths.lohner_box.n3",
+                             "paths.qd.n2", "paths.qd.n3", "paths.stored.n3", "paths.tiny_mu.n3"]
 
 
 @pytest.mark.parametrize("cid", NUMERIC_PATHS)
@@ -179,3 +180,69 @@ def test_growth_record_without_degree(monkeypatch):
     real = lohner.growth_law
     monkeypatch.setattr(lohner, "growth_law", lambda lograd, first=100: dict(real(lograd, first), degree=None))
     assert status("paths.growth.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.frame (2N > 24)
+
+def test_frame_path_without_rounding_errors(monkeypatch):
+    # the Lohner set of N = 13 without the step's rounding errors and the Jacobian's radius (the documented
+    # unsound variant): the literal orbit leaves the returned balls
+    from symbt.numeric.multiprec import lohner
+    real = lohner.LohnerSet.__init__
+
+    def unsound(self, *args, **kwargs):
+        kwargs["unsound"] = True
+        real(self, *args, **kwargs)
+    monkeypatch.setattr(lohner.LohnerSet, "__init__", unsound)
+    assert status("paths.frame.n13") == "failed"
+
+
+
+# --------------------------------------------------------------------------- paths.jacobian, paths.lohner_box
+
+def test_jacobian_slopes_shifted(monkeypatch):
+    # the cyclic closure of the slopes' gradients off by one index (mutants lohner:120/170): the enclosure is
+    # still rigorous after the intersection with the ball image, only the Jacobian is wrong
+    from symbt.numeric.multiprec import lohner
+    real = lohner._slope_rows
+    monkeypatch.setattr(lohner, "_slope_rows", lambda *args: (lambda out: out[1:] + out[:1])(real(*args)))
+    assert status("paths.jacobian.n3") == "failed"
+
+
+def test_lohner_box_without_the_input_radius(monkeypatch):
+    # the C r0 term of the set dropped (mutant lohner:342): the hull is narrower than the box's image
+    from symbt.numeric.multiprec import lohner
+    real = lohner.LohnerSet.__init__
+
+    def no_r0(self, *args, **kwargs):
+        real(self, *args, **kwargs)
+        self.has_r0 = False
+    monkeypatch.setattr(lohner.LohnerSet, "__init__", no_r0)
+    assert status("paths.lohner_box.n3") == "failed"
+
+
+def test_lohner_box_loose(monkeypatch):
+    # the centre step enclosed as at ~116 bits instead of 200 (a too cautious enclosure): rigorous, not sharp
+    from flint import arb
+
+    from symbt.numeric.multiprec import lohner
+    real = lohner.arb_step
+    monkeypatch.setattr(lohner, "arb_step", lambda *a: tuple([x + arb(0, 1e-35) for x in v] for v in real(*a)))
+    assert status("paths.lohner_box.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.stored
+
+def test_orbit_stores_every_step(monkeypatch):
+    # the storage test `i % every == 0 or i == n` taken at every step (mutant kernels:330): the first rows hold
+    # steps 0, 1, 2, ... instead of 0, 3, 6, ...
+    real = kernels.orbit
+
+    def every_step(p0, q0, lam1, lam2, two_mu, branch, n, every, anchor, outP, outQ):
+        P, Q = np.empty((n + 1, len(p0))), np.empty((n + 1, len(p0)))
+        st = real(p0, q0, lam1, lam2, two_mu, branch, n, 1, anchor, P, Q)
+        outP[:] = P[:len(outP)]
+        outQ[:] = Q[:len(outQ)]
+        return st
+    monkeypatch.setattr(kernels, "orbit", every_step)
+    assert status("paths.stored.n3") == "failed"

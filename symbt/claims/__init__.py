@@ -40,11 +40,13 @@ CLAIM_MODULES = (
     "shipped_flow",
     "shipped_qd",
     "shipped_paths",
+    "shipped_lohner",
     "shipped_complex",
     "checker",
     "checker_mutation",
     "library",
     "library_reference",
+    "library_samples",
     "library_codegen",
 )
 

@@ -20,11 +20,20 @@ not take -- or whose choice they cannot see -- are checked here, each against th
 * ``paths.tiny_mu.n3`` -- ``flow_coefficients`` where ``lam0 - mu == lam0 + mu`` in float64 (its
   ``2 mu f(lam0)`` branch), against ``-b 2 mu lam0**k / sqrt(tr**2 - 4)`` with ``tr`` the literal 2x2 product at
   40 digits, at ``lam0 < 0`` (the sign of ``lam0**k`` alternates with k).
+* ``paths.frame.n13`` -- the Lohner path above ``2N = 24`` (float64 frame algebra,
+  :func:`~symbt.numeric.multiprec.lohner.frame_inverse`): a 4-step certified orbit of a binary-exact
+  N = 13 state contains the literal orbit at 160 digits, radii <= 1e-50.
 * ``paths.growth.n3`` -- the ``info=`` record of a certified orbit: ``info["growth"]`` (the radius growth law
   of :func:`~symbt.numeric.multiprec.lohner.growth_law`) against a least-squares fit of the radii the call
   returned, and its ``log2_radius`` against the largest returned radius.
 
-The quad-double step is ``paths.qd`` (:mod:`symbt.claims.shipped_qd`).  Each claim is shown to fail on a planted
+* ``paths.stored.n3`` -- the fused kernel's orbit (:func:`~symbt.numeric.float64.kernels.orbit`, plain Python)
+  stored every 3rd step equals, bit for bit, the same orbit stored at every step at the steps of
+  :func:`~symbt.numeric.float64.kernels.stored_steps` (documented: the orbit does not depend on ``every``).
+
+The quad-double step is ``paths.qd`` (:mod:`symbt.claims.shipped_qd`); the Lohner method's Jacobian and its
+sharpness on a box are ``paths.jacobian`` and ``paths.lohner_box`` (:mod:`symbt.claims.shipped_lohner`).
+Each claim is shown to fail on a planted
 bug in ``tests/test_killers_numeric.py``.
 """
 from __future__ import annotations
@@ -383,3 +392,99 @@ def growth_record(N: int, parts: Parts) -> Outcome:
                       + detail)
     return Outcome("verified", "numeric: certified_orbit info record vs the returned radii", evidence="sampled",
                    detail=detail, printed="info['growth'] = the growth of the returned radii")
+
+
+# --------------------------------------------------------------------------- the large-frame Lohner path
+
+#: paths.frame: the lattice size (2N > 24: the float64 frame algebra and frame_inverse's one-product bound),
+#: the steps, and the radius target (absolute)
+FRAME_N, FRAME_STEPS, FRAME_TOL, FRAME_DPS = 13, 4, 1e-50, 80
+
+
+def frame_state() -> tuple[list[float], list[float], int, float]:
+    """The binary-exact N = 13 state of ``paths.frame`` (no decimal rounding: the exact input is the same at
+    every precision, so the literal orbit at 60 digits and the certified one start from the same point)."""
+    N = FRAME_N
+    return [((j * 7) % 5 - 2) / 8 for j in range(N)], [((j * 3) % 4) / 16 for j in range(N)], 3, 0.5
+
+
+@claim("paths.frame", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(13,),
+       parts=scale_parts, requires=("flint",),
+       where="symbt/numeric/multiprec/lohner.py: LohnerSet above 2N = 24 (float64 frame, frame_inverse)",
+       statement="certified_orbit(method='lohner') at N={N}, 4 steps, tol 1e-50, 80 digits: every returned ball "
+                 "contains the literal orbit (160 digits, the same binary input) and every radius is <= tol")
+def frame_path(N: int, parts: Parts) -> Outcome:
+    if importlib.util.find_spec("flint") is None:
+        return skipped("python-flint is not installed (.[certified])")
+    from ..numeric import certified_orbit
+    from ..reference.literal import literal_step
+
+    p, q, lam0, mu = frame_state()
+    info: dict[str, Any] = {}
+    with mp.workdps(FRAME_DPS):
+        P, Q, Pr, Qr = certified_orbit(p, q, lam0, mu, FRAME_STEPS, branch=1, every=1, info=info,
+                                       tol=FRAME_TOL, method="lohner")
+    bad, worst, widest = [], 0.0, 0.0
+    with mp.workdps(2 * FRAME_DPS):
+        pp, qq = _mpf_list(p), _mpf_list(q)
+        for k in range(1, FRAME_STEPS + 1):
+            pp, qq, _ = literal_step(pp, qq, mp.mpf(lam0), mp.mpf(mu), 1)
+            for x, c, r in zip(pp + qq, list(P[k]) + list(Q[k]), list(Pr[k]) + list(Qr[k])):
+                # the returned ball, scaled by the printed 1: a ball that misses the literal value fails
+                off = abs(x - mp.mpf(c) * parts.printed["scale"])
+                widest = max(widest, float(r))
+                if not off <= r:
+                    bad.append(f"step {k}: |literal - returned| = {mp.nstr(off, 3)} > radius {mp.nstr(r, 3)}")
+                elif r > 0:
+                    worst = max(worst, float(off / r))
+    if not widest <= FRAME_TOL:
+        bad.append(f"largest radius {widest:.3g} > tol {FRAME_TOL:g}")
+    detail = (f"method {info.get('method')}, prec {info.get('prec')} bits; largest radius {widest:.3g}, "
+              f"largest |literal - returned| / radius {worst:.3g}.")
+    if bad or info.get("method") != "lohner":
+        return failed("numeric: certified Lohner orbit (N=13) vs the literal map", detail="; ".join(bad[:3]) + ". "
+                      + detail)
+    return Outcome("verified", "numeric: certified Lohner orbit (N=13) vs the literal map at 60 digits",
+                   evidence="sampled", detail=detail, printed="the literal orbit lies in every returned ball")
+
+
+# --------------------------------------------------------------------------- stored states of the fused orbit
+
+#: paths.stored: steps and the storage interval (n not a multiple of every: the last state is stored apart)
+STORED_STEPS, STORED_EVERY = 10, 3
+
+
+@claim("paths.stored", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       where="symbt/numeric/float64/kernels.py: orbit, orbit_rows, stored_steps (plain Python)",
+       statement="the fused orbit kernel, N={N}, 10 steps stored every 3rd, one state per cell: status 0, "
+                 "orbit_rows(10, 3) = 5 rows, equal bit for bit to the rows 0, 3, 6, 9, 10 of the same orbit "
+                 "stored at every step (documented: the orbit does not depend on every)")
+def stored_states(N: int) -> Outcome:
+    from ..numeric.float64.kernels import ANCHOR, orbit, orbit_rows, stored_steps
+
+    # a consistency check of a documented invariance (the same kernel twice); the rows' accuracy against the
+    # literal map is shipped.orbit's
+    n, every = STORED_STEPS, STORED_EVERY
+    bad = []
+    cells = ship_cells(N, 1)
+    for cell, st, b in cells:
+        p, q, l0, m = st
+        runs = []
+        for ev in (every, 1):
+            rows = orbit_rows(n, ev)
+            P, Q = np.full((rows + 1, N), np.nan), np.full((rows + 1, N), np.nan)    # one spare row: overruns show
+            status = orbit(np.array(p), np.array(q), l0 + m, l0 - m, 2 * m, b, n, ev, ANCHOR, P, Q)
+            runs.append((status, P, Q, rows))
+        (s3, P3, Q3, r3), (s1, P1, Q1, _) = runs
+        keep = stored_steps(n, every)
+        if s3 != 0 or s1 != 0:
+            bad.append(f"{cell}: status {s3} (every {every}), {s1} (every 1)")
+        elif r3 != len(keep) or not (np.isnan(P3[r3]).all() and np.isnan(Q3[r3]).all()):
+            bad.append(f"{cell}: {r3} rows for steps {keep}, or a row written past them")
+        elif not (np.array_equal(P3[:r3], P1[keep]) and np.array_equal(Q3[:r3], Q1[keep])):
+            bad.append(f"{cell}: the rows stored every {every} differ from the steps {keep} stored every step")
+    detail = f"{len(cells)} cells, steps {stored_steps(n, every)}."
+    if bad:
+        return failed("numeric: fused orbit's stored states", detail="; ".join(bad[:3]) + " " + detail)
+    return Outcome("verified", "numeric: fused orbit's stored states, every 3 vs every step (bit for bit)",
+                   evidence="sampled", detail=detail, printed="the orbit does not depend on every")

@@ -1,0 +1,160 @@
+r"""What ships, 4c: the Lohner method's Jacobian and its sharpness on a box (scene ``numeric-paths``, issue 21).
+
+The certified orbit's stored enclosure is the Lohner set intersected with the plain ball image of the step
+(:mod:`symbt.numeric.multiprec.lohner`, step 4): a wrong Jacobian or a lost term of the set stays rigorous
+through that intersection, and only loses the sharpness the method exists for.  These claims look at the two
+things the intersection hides, each against central differences of the literal map of
+:mod:`symbt.reference.literal` (which shares nothing with the slopes' implicit relations):
+
+* ``paths.jacobian.n3`` -- :func:`~symbt.numeric.multiprec.lohner.step_jacobian` at a point (exact balls, 200
+  bits), one state per cell ``{branch, sign_mu, sign_tr}``: every entry of the enclosure is within its radius
+  plus the central differences' error of ``(f(x + h e_k) - f(x - h e_k)) / 2h`` (literal map at 60 digits,
+  ``h = 1e-20``: truncation ``h**2 |f'''| / 6`` and rounding ``10**-60 |f| / h``, both ~1e-40; accepted below
+  :data:`FD_TOL` = 1e-36, a margin of 1e4 for ``|f'''|``, ``|f|`` up to 1e3), and its radius is below
+  ``2**-150`` (an enclosure at 200 bits that lost more than 50 bits is not the sharp one documented).
+* ``paths.lohner_box.n3`` -- a :class:`~symbt.numeric.multiprec.lohner.LohnerSet` started from the box of
+  radius ``rho = 1e-30`` around a state, 20 steps: the true image of the box has half-width
+  ``W_i = rho sum_k |D_ik|`` to first order (``D`` the Jacobian of the 20-step literal map, central differences
+  as above; the second-order terms are ``O(rho)`` relative, 1e-30), so an enclosure has ``rad_i >= W_i`` (less
+  the differences' relative error, below 1e-15: :data:`BOX_LOW`), and the method is sharp to first order:
+  ``rad_i <= (1 + 1e-6) W_i`` (:data:`BOX_HIGH`; measured 1 + 7e-9 -- the wrapping of the 200-bit rounding
+  and of the Jacobian's width over the box; the plain ball path, which the intersection falls back to, is
+  wider by about 2 bits per step, ``2**40`` here).  The centre is within ``rad_i`` of the literal orbit of the
+  box's centre.
+
+Shown to fail on planted bugs in ``tests/test_killers_numeric.py``.
+"""
+from __future__ import annotations
+
+import importlib.util
+from typing import Any
+
+import mpmath as mp
+
+from ._shipped import scale_parts, ship_cells
+from .base import Outcome, Parts, claim, failed, skipped
+
+#: central differences: step, digits, and the accepted difference to the enclosure (module docstring)
+FD_H, FD_DPS, FD_TOL = "1e-20", 60, 1e-36
+#: paths.jacobian: the working precision (bits) and the largest radius accepted (log2)
+JAC_PREC, JAC_LOG2_RAD = 200, -150
+#: paths.lohner_box: the box radius, the steps, and the accepted band of rad_i / W_i
+BOX_RHO, BOX_STEPS, BOX_LOW, BOX_HIGH = "1e-30", 20, 1 - 1e-15, 1 + 1e-6
+
+
+def _flat(P: Any, Q: Any) -> list:
+    return list(P) + list(Q)
+
+
+def _mid(x: Any) -> mp.mpf:
+    """The midpoint of an Arb ball as an mpf at the current precision (exact to 70 digits)."""
+    return mp.mpf(x.mid().str(70, radius=False))
+
+
+def _fd_jacobian(f: Any, x0: list, h: mp.mpf) -> list[list[mp.mpf]]:
+    """``D[i][k] = (f(x0 + h e_k) - f(x0 - h e_k)) / 2h`` (at the caller's precision)."""
+    cols = []
+    for k in range(len(x0)):
+        xp, xm = list(x0), list(x0)
+        xp[k] += h
+        xm[k] -= h
+        fp, fm = f(xp), f(xm)
+        cols.append([(a - b) / (2 * h) for a, b in zip(fp, fm)])
+    return [[cols[k][i] for k in range(len(x0))] for i in range(len(x0))]
+
+
+def _literal_orbit(N: int, lam0: Any, mu: Any, b: int, n: int) -> Any:
+    from ..reference.literal import literal_step
+
+    def f(x: list) -> list:
+        P, Q = x[:N], x[N:]
+        for _ in range(n):
+            P, Q, _ = literal_step(P, Q, mp.mpf(lam0), mp.mpf(mu), b)
+        return _flat(P, Q)
+    return f
+
+
+@claim("paths.jacobian", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       parts=scale_parts, requires=("flint",),
+       where="symbt/numeric/multiprec/lohner.py: step_jacobian (the slopes' implicit relations, the read-out)",
+       statement="step_jacobian at a point (200 bits), N={N}, one state per branch x sign_mu x sign_tr cell, "
+                 "encloses the central differences (h = 1e-20) of the literal map at 60 digits within 1e-36, "
+                 "with radii below 2^-150")
+def jacobian_enclosure(N: int, parts: Parts) -> Outcome:
+    if importlib.util.find_spec("flint") is None:
+        return skipped("python-flint is not installed (.[certified])")
+    import flint
+    from flint import arb
+
+    from ..numeric.multiprec.arb import flint_prec
+    from ..numeric.multiprec.lohner import step_jacobian
+
+    worst, widest, bad = mp.mpf(0), 0.0, []
+    for cell, st, b in ship_cells(N, 1):
+        p, q, l0, m = st
+        with flint_prec(JAC_PREC):
+            _, J = step_jacobian([arb(v) for v in _flat(p, q)], arb(l0), arb(m), b)
+        with mp.workdps(FD_DPS):
+            D = _fd_jacobian(_literal_orbit(N, l0, m, b, 1), [mp.mpf(v) for v in _flat(p, q)], mp.mpf(FD_H))
+            for i in range(2 * N):
+                for k in range(2 * N):
+                    off = abs(_mid(J[i, k]) * parts.printed["scale"] - D[i][k]) - mp.mpf(J[i, k].rad())
+                    widest = max(widest, float(J[i, k].rad()))
+                    worst = max(worst, off)
+                    if not off <= FD_TOL * max(1, abs(D[i][k])):
+                        bad.append(f"{cell}: J[{i},{k}] = {_mid(J[i, k])!s:.12} vs differences {mp.nstr(D[i][k], 12)}")
+    if not widest <= 2.0 ** JAC_LOG2_RAD:
+        bad.append(f"largest radius {widest:.3g} > 2^{JAC_LOG2_RAD}")
+    detail = (f"{len(ship_cells(N, 1))} cells; largest |mid J - differences| beyond the radius "
+              f"{mp.nstr(worst, 3)}, largest radius {widest:.3g} (flint {flint.__version__}).")
+    if bad:
+        return failed("numeric: step_jacobian vs central differences of the literal map",
+                      detail="; ".join(bad[:3]) + ". " + detail)
+    return Outcome("verified", "numeric: step_jacobian vs central differences of the literal map at 60 digits",
+                   evidence="sampled", detail=detail, printed="step_jacobian encloses the Jacobian of the step")
+
+
+@claim("paths.lohner_box", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       parts=scale_parts, requires=("flint",),
+       where="symbt/numeric/multiprec/lohner.py: LohnerSet (the set xh + C r0 + B r of a box input)",
+       statement="LohnerSet from the box of radius 1e-30 around a state (N={N}, 200 bits), 20 steps: every "
+                 "radius is within [1 - 1e-15, 1 + 1e-6] of the first-order half-width rho sum_k |D_ik| of the "
+                 "box's image (D: central differences of the 20-step literal map), and the centre within it "
+                 "of the literal orbit")
+def lohner_box(N: int, parts: Parts) -> Outcome:
+    if importlib.util.find_spec("flint") is None:
+        return skipped("python-flint is not installed (.[certified])")
+    from flint import arb
+
+    from ..numeric.multiprec.arb import flint_prec
+    from ..numeric.multiprec.lohner import LohnerSet
+
+    cell, st, b = ship_cells(N, 1)[0]
+    p, q, l0, m = st
+    with flint_prec(JAC_PREC):
+        S = LohnerSet([arb(v, BOX_RHO) for v in _flat(p, q)])
+        for _ in range(BOX_STEPS):
+            S.step(arb(l0), arb(m), b)
+        hull = list(S.hull)
+    bad, lo, hi = [], mp.inf, mp.mpf(0)
+    with mp.workdps(FD_DPS):
+        f = _literal_orbit(N, l0, m, b, BOX_STEPS)
+        x0 = [mp.mpf(v) for v in _flat(p, q)]
+        D = _fd_jacobian(f, x0, mp.mpf(FD_H))
+        f0 = f(x0)
+        for i in range(2 * N):
+            W = mp.mpf(BOX_RHO) * mp.fsum(abs(d) for d in D[i])
+            rad = mp.mpf(hull[i].rad())
+            ratio = rad / W
+            lo, hi = min(lo, ratio), max(hi, ratio)
+            if not BOX_LOW <= ratio <= BOX_HIGH:
+                bad.append(f"coordinate {i}: radius / first-order width = {mp.nstr(ratio, 12)}")
+            if not abs(_mid(hull[i]) * parts.printed["scale"] - f0[i]) <= rad:
+                bad.append(f"coordinate {i}: the centre is farther than the radius from the literal orbit")
+    detail = (f"{cell}, branch {b}: radius / first-order width in [{mp.nstr(lo, 12)}, {mp.nstr(hi, 12)}]; "
+              f"frame re-orthogonalised {S.reorthogonalised} times.")
+    if bad:
+        return failed("numeric: Lohner set of a box vs the literal map's first-order image",
+                      detail="; ".join(bad[:3]) + ". " + detail)
+    return Outcome("verified", "numeric: Lohner set of a box vs the literal map's first-order image",
+                   evidence="sampled", detail=detail, printed="the Lohner enclosure of a box is sharp")

@@ -1,0 +1,151 @@
+"""The claims on :mod:`symbt.reference`'s sampler and Carlson integral kill the bugs they were written for (issue 21).
+
+Each test plants one single-point bug of ``symbt mutate --source``'s kind (the survivors of its run on
+``reference.samples`` and ``reference.elliptic``, docs/mutation.md) with ``monkeypatch`` and requires the claim to
+fail; unpatched, the claims verify.
+"""
+from __future__ import annotations
+
+import mpmath as mp
+
+from symbt.claims import library_samples
+from symbt.reference import elliptic, samples
+
+
+def status(claim) -> str:
+    return claim.run().status
+
+
+def test_unpatched_verified():
+    assert status(library_samples.sampler_contract) == "verified"
+    assert status(library_samples.carlson_against_mpmath) == "verified"
+    assert status(library_samples.regime_by_trace) == "verified"
+
+
+def test_sampler_one_state_too_many(monkeypatch):
+    # `while len(out) <= count` (mutant samples:46): one state more than asked for
+    real = samples.admissible_states
+    monkeypatch.setattr(library_samples, "admissible_states", lambda N, s, count, seed=0: real(N, s, count + 1, seed))
+    assert status(library_samples.sampler_contract) == "failed"
+
+
+def test_sampler_values_depend_on_precision(monkeypatch):
+    # lam0 computed at the working precision (off by 10^(5 - dps)) instead of read from an exact decimal string
+    real = samples.admissible_states
+
+    def rounded(N, s, count, seed=0):
+        return [(p, q, l0 + mp.mpf(10) ** (5 - mp.mp.dps), m) for p, q, l0, m in real(N, s, count, seed)]
+    monkeypatch.setattr(library_samples, "admissible_states", rounded)
+    assert status(library_samples.sampler_contract) == "failed"
+
+
+def test_sampler_stream_reseeded(monkeypatch):
+    # a count-dependent seed (a slip in the seed formula): count 3 is no longer the start of count 5
+    real = samples.admissible_states
+    monkeypatch.setattr(library_samples, "admissible_states",
+                        lambda N, s, count, seed=0: real(N, s, count, seed + count))
+    assert status(library_samples.sampler_contract) == "failed"
+
+
+def _rf_loop_wrong_series(x, y, z, sqrt, scale):
+    # elliptic._rf_loop with the order-5 coefficient 3/44 of E2 E3 dropped to 1/44 (mutant elliptic:109)
+    A0 = (x + y + z) / 3
+    Q = max(abs(A0 - x), abs(A0 - y), abs(A0 - z)) * scale
+    xm, ym, zm, A, p4 = x, y, z, A0, 1
+    while p4 * abs(A) <= Q:
+        sx, sy, sz = sqrt(xm), sqrt(ym), sqrt(zm)
+        lam = sx * sy + sx * sz + sy * sz
+        xm, ym, zm, A, p4 = (xm + lam) / 4, (ym + lam) / 4, (zm + lam) / 4, (A + lam) / 4, 4 * p4
+    X, Y = (A0 - x) / (p4 * A), (A0 - y) / (p4 * A)
+    Z = -X - Y
+    E2, E3 = X * Y - Z * Z, X * Y * Z
+    return (1 - E2 / 10 + E3 / 14 + E2 * E2 / 24 - E2 * E3 / 44) / sqrt(A)
+
+
+def test_carlson_series_term(monkeypatch):
+    monkeypatch.setattr(elliptic, "_rf_loop", _rf_loop_wrong_series)
+    assert status(library_samples.carlson_against_mpmath) == "failed"
+
+
+def test_carlson_no_guard_bits(monkeypatch):
+    # the duplication stopped two iterations early (the scale of the stopping rule divided by 16): the series'
+    # truncation error shows at 50 digits
+    real = elliptic._rf_loop
+    monkeypatch.setattr(elliptic, "_rf_loop", lambda x, y, z, sqrt, scale: real(x, y, z, sqrt, scale / 16 ** 2))
+    assert status(library_samples.carlson_against_mpmath) == "failed"
+
+
+def test_no_trace_at_the_sampler_margin(monkeypatch):
+    # the fact behind the equivalence marks samples:62 (`> 2.2` vs `>= 2.2`, mutants-equivalent.toml): the two
+    # comparisons differ only at a trace equal to the double 2.2; no trace the comparison reads, on the streams
+    # the claims draw from (N = 2..8, both signs, seeds 0-2 and 11, up to 8 states: a stream is read in order, so
+    # fewer states read a prefix), equals it
+    real = samples._real_map
+    read: list = []
+
+    def recording(*args):
+        ok, info = real(*args)
+        if ok and args[-1] == 1:
+            read.extend((info["tr1"], info["tr2"]))
+        return ok, info
+    monkeypatch.setattr(samples, "_real_map", recording)
+    for N in range(2, 9):
+        for s in (1, -1):
+            for seed in (0, 1, 2, 11):
+                with mp.workdps(30):
+                    samples.admissible_states(N, s, 8, seed=seed)
+    assert len(read) > 1000
+    assert not [t for t in read if isinstance(t, mp.mpf) and abs(t) == 2.2]
+
+
+def test_regime_of_the_lower_parameter(monkeypatch):
+    # regime() classifies lambda_- = lam0 - mu by (lam0 - mu - I1)/r instead of + I1 (mutant elliptic:298)
+    monkeypatch.setattr(elliptic, "regime", _regime_wrong_minus)
+    assert status(library_samples.regime_by_trace) == "failed"
+
+
+def _regime_wrong_minus(I1, I2, lam0, mu):
+    k, _ = elliptic.modulus(I2)
+    r = mp.sqrt(I2 - 2)
+
+    def zone(s):
+        if abs(s) < 1:
+            return "in"
+        if k * abs(s) > 1:
+            return "out+" if s > 0 else "out-"
+        return "gap"
+    zp, zm = zone((lam0 + mu + I1) / r), zone((lam0 - mu - I1) / r)
+    if "gap" in (zp, zm):
+        return "gap"
+    if zp == zm == "in":
+        return "inner"
+    if zp == zm:
+        return "outer-same"
+    return "mixed" if "in" in (zp, zm) else "outer-opposite"
+
+
+def test_regime_outer_zones_swapped_sign(monkeypatch):
+    # the band test `abs(s) < 1` taken as `s < 1` (an abs lost): large negative s is called inner
+    real_modulus = elliptic.modulus
+    monkeypatch.setattr(elliptic, "regime", lambda I1, I2, lam0, mu: _regime_lost_abs(I1, I2, lam0, mu, real_modulus))
+    assert status(library_samples.regime_by_trace) == "failed"
+
+
+def _regime_lost_abs(I1, I2, lam0, mu, modulus):
+    k, _ = modulus(I2)
+    r = mp.sqrt(I2 - 2)
+
+    def zone(s):
+        if s < 1:
+            return "in"
+        if k * abs(s) > 1:
+            return "out+" if s > 0 else "out-"
+        return "gap"
+    zp, zm = zone((lam0 + mu + I1) / r), zone((lam0 - mu + I1) / r)
+    if "gap" in (zp, zm):
+        return "gap"
+    if zp == zm == "in":
+        return "inner"
+    if zp == zm:
+        return "outer-same"
+    return "mixed" if "in" in (zp, zm) else "outer-opposite"
