@@ -246,8 +246,6 @@ ILLCOND3 = [([0.4385582671715961, 1.88679362543912, -4.372305086454735],
              [5.429660216961235, 30.9895385043942, -36.419198721355436], 1222824902.492144, -1.5497207641601562e-06, 1)]
 
 
-@pytest.mark.xfail(strict=True, reason="known defect (deep fuzz, issue 21): the emitted forms have no "
-                                       "ill-conditioning guard (symbt.numeric's ILLCOND); see ILLCOND3")
 @pytest.mark.parametrize("case", range(len(ILLCOND3)))
 def test_emitted_refuses_or_is_right_at_ill_conditioned_traces(case):
     p, q, lam0, mu, b = ILLCOND3[case]

@@ -28,6 +28,9 @@ HEADER = '''/* C99 code for the N=@@N@@ periodic Toda lattice, emitted by symbt 
  *   SYMBT_TODA_RANGE                   3  a value leaves the float64 range (overflow, |q_{j+1} - q_j| > 700,
  *                                         or a degenerate eigenvector)
  *   SYMBT_TODA_INVALID_INPUT           4  NULL pointer, non-finite input, or branch not +1/-1
+ *   SYMBT_TODA_ILL_CONDITIONED         5  bt_step: the condition estimate exceeds KAPPA_MAX = @@KAPPA@@,
+ *                                         float64 cannot decide or compute the step here (symbt.numeric
+ *                                         recomputes such states at higher precision)
  */
 #ifndef SYMBT_TODA@@N@@_H
 #define SYMBT_TODA@@N@@_H
@@ -39,6 +42,7 @@ HEADER = '''/* C99 code for the N=@@N@@ periodic Toda lattice, emitted by symbt 
 #define SYMBT_TODA_NO_REAL_MAP_POSITIVITY 2
 #define SYMBT_TODA_RANGE 3
 #define SYMBT_TODA_INVALID_INPUT 4
+#define SYMBT_TODA_ILL_CONDITIONED 5
 #endif
 
 #define TODA@@N@@_N @@N@@

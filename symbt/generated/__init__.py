@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 58a28a2d43a69d490204c8e7af282766f1183fd27110a3bcd72be9dc9d167bb2
-# symbt-codegen-content-sha256: cb2eac938e047f8ba3c70be4a01473eeb1d89f3083ac434994261ae26036c77f
+# symbt-codegen-derivation-sha256: c439cebc5303373505619ce7a4cc4b935a694d93aa1a61001c25e8883b2720e6
+# symbt-codegen-content-sha256: 4c52626378153eaa3e86f9d2eb51d4fa3275a845838d7a03c10010aa66ef4188
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from
