@@ -114,7 +114,7 @@ def c_files(N: int) -> tuple[str, str]:
     src = _fill(COMMON, N, form)
     if form == "closed":
         return _emit_path_c_files(N, header, src)
-    src += _fill(LOOP, N, form)
+    src += _fill(LOOP.replace("@@KAPPA@@", str(int(KAPPA_MAX))), N, form)
     return src, header
 
 

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: c439cebc5303373505619ce7a4cc4b935a694d93aa1a61001c25e8883b2720e6
-# symbt-codegen-content-sha256: 4c52626378153eaa3e86f9d2eb51d4fa3275a845838d7a03c10010aa66ef4188
+# symbt-codegen-derivation-sha256: 84c30f04bb2c17201506bc11bcb26deee8ea5c3af7b3445d88b47e71346cca32
+# symbt-codegen-content-sha256: a9186ae71210929165ba087856e5f25d815dd4b2999807b7d63c033150450b94
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

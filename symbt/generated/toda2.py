@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: c439cebc5303373505619ce7a4cc4b935a694d93aa1a61001c25e8883b2720e6
-# symbt-codegen-content-sha256: 32a4d61c13634959943707bb9a7174135302c4c1b4009abc4ea8d31e2bd49e3a
+# symbt-codegen-derivation-sha256: 84c30f04bb2c17201506bc11bcb26deee8ea5c3af7b3445d88b47e71346cca32
+# symbt-codegen-content-sha256: 248656eb64265c1e06cfbc175997bd0dd0e6bd4f407ee6adf7a15ffb62a40c40
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: c439cebc5303373505619ce7a4cc4b935a694d93aa1a61001c25e8883b2720e6
-# symbt-codegen-content-sha256: ffb824843769db26dd7d34847797e0e3d315aa5613c39fc55c4cd5f735032ffd
+# symbt-codegen-derivation-sha256: 84c30f04bb2c17201506bc11bcb26deee8ea5c3af7b3445d88b47e71346cca32
+# symbt-codegen-content-sha256: 117dc49bafaa74b00b212ce68d4c39c261299864914297dd25dc4d7f54e1d072
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
