@@ -13,13 +13,12 @@ import importlib.util
 
 import numpy as np
 import pytest
+from test_codegen_edges import CC, CStep, _compile
 
 import symbt.codegen as cg
 from symbt.generated import toda2, toda3
 from symbt.numeric.core.limits import ILLCOND, KAPPA_MAX, OK
 from symbt.numeric.float64.kernels import python_kernels
-
-from test_codegen_edges import CC, CStep, _compile
 
 MU = 0.5
 ILL_C = 5          # SYMBT_TODA_ILL_CONDITIONED

@@ -7,9 +7,7 @@ divisions are :class:`~.printer.Quotient` (IEEE-style in every flavour: both bra
 are evaluated).
 
 >>> from symbt.symbolic.toda import toda_model
->>> from typing import Any
-
-import sympy as sp
+>>> import sympy as sp
 >>> m = toda_model(2)
 >>> M = scaled_monodromy(m, sp.Symbol("lam"))
 >>> sp.expand(M.det())      # det m_j = r_j, and r_1 r_2 = 1
@@ -18,6 +16,8 @@ import sympy as sp
 2
 """
 from __future__ import annotations
+
+from typing import Any
 
 import sympy as sp
 
@@ -55,26 +55,28 @@ def scaled_monodromy(m: TodaModel, lam_: sp.Expr) -> sp.Matrix:
 
 
 def illcond_guards(m: TodaModel, guard: Any, traces: tuple, u: list, w: list, d: list, disc: Any) -> tuple:
-    """The float64 conditioning guards (``guard(condition, label, expr, stage)``; ``traces`` the step's
-    traces at ``lam1``, ``lam2``, ``disc(t) = (t - 2)(t + 2)``) of the step (condition ``illcond``: ``expr > 0`` where the float64
-    result is trusted), the test of ``symbt.numeric``'s kernels (:func:`symbt.numeric.core.step.trace_kappa`,
-    ``symbt.numeric.float64.kernels``) with its one limit :data:`~symbt.numeric.core.limits.KAPPA_MAX`
-    printed in: per spectral parameter ``T |t| / |t^2 - 4| <= KAPPA_MAX`` (``T`` the trace of
-    ``|m_N| ... |m_1|``, the rounding scale of ``t``); per site ``kt (|u_j| + |w_j|)(|1 + xr_j| + |xr_j|)
-    <= KAPPA_MAX |d_j| |1 + xr_j|`` with ``xr_j = -2 mu / d_j`` and ``kt`` the larger trace condition times
-    the cancellation ``max_j (|lam| + |p_j|) / |lam + p_j|``.  The traces' guards are ``+-1`` valued (a ``Piecewise``): a
-    non-finite trace estimate (an overflowed trace) leaves the decision to the range and sign guards after it;
-    the slopes' guard is the margin ``KAPPA_MAX |d_j| |1 + xr_j| - kt (...)``."""
+    """The float64 conditioning guards of the step (condition ``illcond``: ``expr > 0`` where the float64
+    result is trusted; ``guard(condition, label, expr, stage)``, ``traces`` the step's traces at ``lam1``,
+    ``lam2``, ``disc(t) = (t - 2)(t + 2)``): the test of ``symbt.numeric``'s kernels
+    (:func:`symbt.numeric.core.step.trace_kappa`, ``symbt.numeric.float64.kernels``) with its one limit
+    :data:`~symbt.numeric.core.limits.KAPPA_MAX` printed in.  Per spectral parameter
+    ``T |t| / |t^2 - 4| <= KAPPA_MAX`` (``T`` the trace of ``|m_N| ... |m_1|``, the rounding scale of ``t``):
+    ``+-1`` valued (a ``Piecewise``), so a non-finite estimate (an overflowed trace) leaves the decision to
+    the range and sign guards after it.  Per site the margin ``KAPPA_MAX |d_j| |1 + xr_j| - kt (|u_j| +
+    |w_j|)(|1 + xr_j| + |xr_j|)``, ``xr_j = -2 mu / d_j``, ``kt`` the larger trace condition times the
+    cancellation ``max_j (|lam| + |p_j|) / |lam + p_j|``."""
     from ..numeric.core.limits import KAPPA_MAX
 
     K = sp.Integer(int(KAPPA_MAX))
     N, p = m.N, m.p
 
-    def A(x):       # unevaluated: SymPy's sign analysis of the large slopes takes minutes
+    def A(x: sp.Expr) -> sp.Expr:       # unevaluated: SymPy's sign analysis of the large slopes takes minutes
         return sp.Abs(x, evaluate=False)
 
-    def ill(big, small):    # -1 where ``big > small`` (ill-conditioned), else +1 (also where a side is NaN)
-        return sp.Piecewise((-1, sp.StrictGreaterThan(big, small, evaluate=False)), (1, True), evaluate=False)
+    # -1 where ``big > small`` (ill-conditioned), else +1 (also where a side is NaN)
+    def ill(big: sp.Expr, small: sp.Expr) -> sp.Expr:
+        return sp.Piecewise((-1, sp.StrictGreaterThan(big, small, evaluate=False)), (1, True),
+                            evaluate=False)
 
     kt0, kta = [], []
     for t, lam_ in zip(traces, (lam0 + mu, lam0 - mu)):

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 84c30f04bb2c17201506bc11bcb26deee8ea5c3af7b3445d88b47e71346cca32
-# symbt-codegen-content-sha256: 248656eb64265c1e06cfbc175997bd0dd0e6bd4f407ee6adf7a15ffb62a40c40
+# symbt-codegen-derivation-sha256: def4b6aa69b9f8db0aa03324171b78bf26ee816f56b07501b34fccef7b272ab9
+# symbt-codegen-content-sha256: 61e8e8194a7b7add8fd2d63c65b1dc018f2cd397b0e78c47b0beb48589461e26
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 84c30f04bb2c17201506bc11bcb26deee8ea5c3af7b3445d88b47e71346cca32
-# symbt-codegen-content-sha256: 117dc49bafaa74b00b212ce68d4c39c261299864914297dd25dc4d7f54e1d072
+# symbt-codegen-derivation-sha256: def4b6aa69b9f8db0aa03324171b78bf26ee816f56b07501b34fccef7b272ab9
+# symbt-codegen-content-sha256: 26c4312786434f7c09ddde3cc18271e8364ac6ef76597f638aa42e135010edcc
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
