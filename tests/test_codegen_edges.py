@@ -48,7 +48,7 @@ BOUNDARY = 1e-6
 BEYOND_S: list[float] = []
 MODULES = {2: toda2, 3: toda3}
 CC = shutil.which("cc") or shutil.which("gcc") or shutil.which("clang")
-OK, TRACE, POSITIVITY, RANGE, INVALID = 0, 1, 2, 3, 4
+OK, TRACE, POSITIVITY, RANGE, INVALID, ILL_CONDITIONED = 0, 1, 2, 3, 4, 5
 
 #: issue 21: the emitted closed form lost p~_2, p~_3 (relative error 0.31) at large |q_i - q_j|
 FAR = ([-6.670844734995089, 6.749416383837502, 9.945390979638757],
@@ -346,7 +346,8 @@ def fuzz(N, n, seed, c_step=None, mod=None):
             why = why or (f"batch: {bwhy}" if bwhy else None)
         if c_step is not None:
             rc, cgot = c_step(p, q, lam0, mu, b)
-            ckind = {OK: "state", TRACE: "no-map", POSITIVITY: "no-map", RANGE: "range"}.get(rc, f"status {rc}")
+            ckind = {OK: "state", TRACE: "no-map", POSITIVITY: "no-map", RANGE: "range", ILL_CONDITIONED: "range"}.get(
+                rc, f"status {rc}")
             cwhy = (judge_state(cgot, p, q, lam0, mu, b, exists, ref) if ckind == "state"
                     else judge_error(ckind, exists, margin))
             why = why or (f"C: {cwhy}" if cwhy else None)

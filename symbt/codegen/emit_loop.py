@@ -79,7 +79,7 @@ def printed_kernels() -> dict:
 
 def _core() -> str:
     ks = printed_kernels()
-    text = CORE.replace("@@KAPPA_MAX@@", repr(KAPPA_MAX))      # the one limit, printed in
+    text = CORE.replace("@@KAPPA_MAX@@", str(int(KAPPA_MAX)))      # the one limit, printed in
     for name in sorted(set(re.findall(r"@@(\w+)@@", text))):
         text = text.replace(f"@@{name}@@", ks[name])
     return text

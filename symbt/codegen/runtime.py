@@ -224,7 +224,7 @@ def _mp_guard(condition, label, value):
             raise NumericRangeError("non-finite intermediate " + label)
     elif not value > 0:   # mpmath values are finite
         raise NoRealMapError("no real map: " + _WHY[condition] % label, condition)
-'''.replace("@@KAPPA@@", repr(KAPPA_MAX))
+'''.replace("@@KAPPA@@", str(int(KAPPA_MAX)))
 
 ORBIT = '''
 

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: def4b6aa69b9f8db0aa03324171b78bf26ee816f56b07501b34fccef7b272ab9
-# symbt-codegen-content-sha256: 9ceceb033da0fc92970307e1fbcdd8d7964e5d002b42b8b96b474903a39da196
+# symbt-codegen-derivation-sha256: 35f7cc0c710f39aba1f2e08d45e6f12248ad8206402daa73daa7a4de659ea247
+# symbt-codegen-content-sha256: 08345c7eec45e58d9e69ef9781dd2cd56b3c7ea6ea6cb722c01b88a4555ccd14
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: def4b6aa69b9f8db0aa03324171b78bf26ee816f56b07501b34fccef7b272ab9
-# symbt-codegen-content-sha256: 61e8e8194a7b7add8fd2d63c65b1dc018f2cd397b0e78c47b0beb48589461e26
+# symbt-codegen-derivation-sha256: 35f7cc0c710f39aba1f2e08d45e6f12248ad8206402daa73daa7a4de659ea247
+# symbt-codegen-content-sha256: 7c1a94ec4a5e9a922b8f8c11d4a370ec37fce3424375580b1d71be97809bbd91
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -51,7 +51,7 @@ class NumericRangeError(OverflowError):
 
 class IllConditionedError(NumericRangeError):
     """float64 cannot decide or compute the result here: a guard ``"illcond"`` failed (for the step, its
-    condition estimate exceeds KAPPA_MAX = 16777216.0).  ``symbt.numeric`` recomputes such states at higher
+    condition estimate exceeds KAPPA_MAX = 16777216).  ``symbt.numeric`` recomputes such states at higher
     precision; the ``_mp`` flavour at more digits does too.  ``where`` as for NoRealMapError."""
 
     def __init__(self, message, where=()):
@@ -61,7 +61,7 @@ class IllConditionedError(NumericRangeError):
 
 _WHY = {"trace": "|tr L(%s)| <= 2, the spectral parameter lies in a band",
         "positivity": "%s = E - x <= 0 (lam1 and lam2 lie in different spectral gaps)"}
-_ILLCOND = ("ill-conditioned: %s beyond the float64 condition limit KAPPA_MAX = 16777216.0 (the result would "
+_ILLCOND = ("ill-conditioned: %s beyond the float64 condition limit KAPPA_MAX = 16777216 (the result would "
             "not be trusted); symbt.numeric recomputes such states at higher precision, or call the _mp "
             "flavour at more digits")
 

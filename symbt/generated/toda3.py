@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: def4b6aa69b9f8db0aa03324171b78bf26ee816f56b07501b34fccef7b272ab9
-# symbt-codegen-content-sha256: 26c4312786434f7c09ddde3cc18271e8364ac6ef76597f638aa42e135010edcc
+# symbt-codegen-derivation-sha256: 35f7cc0c710f39aba1f2e08d45e6f12248ad8206402daa73daa7a4de659ea247
+# symbt-codegen-content-sha256: f1efa03d02f6ffca78dedd736131a7544937da825bb076c1761d72d595397907
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -51,7 +51,7 @@ class NumericRangeError(OverflowError):
 
 class IllConditionedError(NumericRangeError):
     """float64 cannot decide or compute the result here: a guard ``"illcond"`` failed (for the step, its
-    condition estimate exceeds KAPPA_MAX = 16777216.0).  ``symbt.numeric`` recomputes such states at higher
+    condition estimate exceeds KAPPA_MAX = 16777216).  ``symbt.numeric`` recomputes such states at higher
     precision; the ``_mp`` flavour at more digits does too.  ``where`` as for NoRealMapError."""
 
     def __init__(self, message, where=()):
@@ -61,7 +61,7 @@ class IllConditionedError(NumericRangeError):
 
 _WHY = {"trace": "|tr L(%s)| <= 2, the spectral parameter lies in a band",
         "positivity": "%s = E - x <= 0 (lam1 and lam2 lie in different spectral gaps)"}
-_ILLCOND = ("ill-conditioned: %s beyond the float64 condition limit KAPPA_MAX = 16777216.0 (the result would "
+_ILLCOND = ("ill-conditioned: %s beyond the float64 condition limit KAPPA_MAX = 16777216 (the result would "
             "not be trusted); symbt.numeric recomputes such states at higher precision, or call the _mp "
             "flavour at more digits")
 
