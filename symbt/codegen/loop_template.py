@@ -330,7 +330,7 @@ def _traces(_X, P, R, lam0, mu, guards, kappa=None):
         if kappa is not None and _X.conditioned:
             k = _trace_kappa(_X, av, R, M, t, disc)
             # +-1: a non-finite estimate (an overflowed trace) leaves the decision to the guards after it
-            _X.guard(guards, "illcond", f"tr L(lam{i + 1})", np.where(k > _KAPPA_MAX, -1.0, 1.0))
+            _X.guard(guards, "illcond", f"tr L(lam{i + 1})", np.where(k > _KAPPA_MAX, -1, 1))
             kappa.append(k * _cancellation(lam, P, av))
         _X.guard(guards, "trace", label, disc)
     return a1, a2, M1, M2, t1, t2

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 35f7cc0c710f39aba1f2e08d45e6f12248ad8206402daa73daa7a4de659ea247
-# symbt-codegen-content-sha256: 08345c7eec45e58d9e69ef9781dd2cd56b3c7ea6ea6cb722c01b88a4555ccd14
+# symbt-codegen-derivation-sha256: 8a382ca6a50517bff4492116b3debdf1bc6b4da1d5d773267ce4ac444b59a670
+# symbt-codegen-content-sha256: 22e1fd05cb7f8104a5004b34b6dcd2da1a9a50aef5bd353df4d72edeadc3e530
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

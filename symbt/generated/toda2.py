@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 35f7cc0c710f39aba1f2e08d45e6f12248ad8206402daa73daa7a4de659ea247
-# symbt-codegen-content-sha256: 7c1a94ec4a5e9a922b8f8c11d4a370ec37fce3424375580b1d71be97809bbd91
+# symbt-codegen-derivation-sha256: 8a382ca6a50517bff4492116b3debdf1bc6b4da1d5d773267ce4ac444b59a670
+# symbt-codegen-content-sha256: 2a1d7e58eda1faf5d03ab214eff44a9551044982be673bfe5852f0b93720001b
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 35f7cc0c710f39aba1f2e08d45e6f12248ad8206402daa73daa7a4de659ea247
-# symbt-codegen-content-sha256: f1efa03d02f6ffca78dedd736131a7544937da825bb076c1761d72d595397907
+# symbt-codegen-derivation-sha256: 8a382ca6a50517bff4492116b3debdf1bc6b4da1d5d773267ce4ac444b59a670
+# symbt-codegen-content-sha256: e24009a4ccb25c77e5451d9f76d123f9e15b039384f4334f96d671ef4e5f98cb
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
