@@ -28,6 +28,9 @@ HEADER = '''/* C99 code for the N=@@N@@ periodic Toda lattice, emitted by symbt 
  *   SYMBT_TODA_RANGE                   3  a value leaves the float64 range (overflow, |q_{j+1} - q_j| > 700,
  *                                         or a degenerate eigenvector)
  *   SYMBT_TODA_INVALID_INPUT           4  NULL pointer, non-finite input, or branch not +1/-1
+ *   SYMBT_TODA_ILL_CONDITIONED         5  bt_step: the condition estimate exceeds KAPPA_MAX = @@KAPPA@@,
+ *                                         float64 cannot decide or compute the step here (symbt.numeric
+ *                                         recomputes such states at higher precision)
  */
 #ifndef SYMBT_TODA@@N@@_H
 #define SYMBT_TODA@@N@@_H
@@ -39,6 +42,7 @@ HEADER = '''/* C99 code for the N=@@N@@ periodic Toda lattice, emitted by symbt 
 #define SYMBT_TODA_NO_REAL_MAP_POSITIVITY 2
 #define SYMBT_TODA_RANGE 3
 #define SYMBT_TODA_INVALID_INPUT 4
+#define SYMBT_TODA_ILL_CONDITIONED 5
 #endif
 
 #define TODA@@N@@_N @@N@@
@@ -186,6 +190,33 @@ static int toda@@N@@_slopes(const double *av, const double *rv, const double *M,
     return 1;
 }
 
+/* symbt.numeric's float64 condition estimate of the trace decision, T |t| / |t^2 - 4| (T the trace of
+   |m_N| ... |m_1|: the monodromy of |a_j| and -r_j, no cancellation, rescaled to M's power of two) */
+static double toda@@N@@_trace_kappa(const double *av, const double *rv, int e, double t, double disc)
+{
+    double aa[NS], rr[NS], Ma[4];
+    for (int j = 0; j < NS; j++) {
+        aa[j] = fabs(av[j]);
+        rr[j] = -rv[j];
+    }
+    const int ea = toda@@N@@_monodromy(aa, rr, Ma);
+    return ldexp(Ma[0] + Ma[3], ea - e) * (fabs(t) / fabs(disc));
+}
+
+/* max_j (|lam| + |p_j|) / |lam + p_j|: the cancellation in a_j */
+static double toda@@N@@_cancellation(double lam, const double *p, const double *av)
+{
+    double k = 0.0;
+    for (int j = 0; j < NS; j++) {
+        const double c = (fabs(lam) + fabs(p[j])) / fabs(av[j]);
+        if (!(c <= k))
+            k = c;
+    }
+    return k;
+}
+
+#define TODA@@N@@_KAPPA_MAX @@KAPPA@@.0   /* symbt.numeric.core.limits.KAPPA_MAX */
+
 int toda@@N@@_bt_step(const double *p, const double *q, double lam0, double mu, int branch,
                       double *pt, double *qt)
 {
@@ -207,6 +238,10 @@ int toda@@N@@_bt_step(const double *p, const double *q, double lam0, double mu, 
     const double d1 = @@disc_scaled{t:t1,two:two1}@@, d2 = @@disc_scaled{t:t2,two:two2}@@;
     if (!(isfinite(d1) && isfinite(d2)))
         return SYMBT_TODA_RANGE;
+    /* float64 decides only where the condition estimate is at most KAPPA_MAX (as symbt.numeric) */
+    const double k1 = toda@@N@@_trace_kappa(a1, rv, e1, t1, d1), k2 = toda@@N@@_trace_kappa(a2, rv, e2, t2, d2);
+    if (k1 > TODA@@N@@_KAPPA_MAX || k2 > TODA@@N@@_KAPPA_MAX)
+        return SYMBT_TODA_ILL_CONDITIONED;
     if (!(d1 > 0.0) || !(d2 > 0.0))
         return SYMBT_TODA_NO_REAL_MAP_TRACE;
     if ((t1 > 0.0) != (t2 > 0.0))           /* lambda_1, lambda_2 in different gaps: some Etilde_j <= 0 */
@@ -217,6 +252,17 @@ int toda@@N@@_bt_step(const double *p, const double *q, double lam0, double mu, 
     for (int j = 0; j < NS; j++)
         if (!isfinite(w[j] - u[j]))
             return SYMBT_TODA_RANGE;
+    const double c1 = k1 * toda@@N@@_cancellation(lam0 + mu, p, a1), c2 = k2 * toda@@N@@_cancellation(lam0 - mu, p, a2);
+    const double kt = c1 > c2 ? c1 : c2;
+    for (int j = 0; j < NS; j++) {       /* the slopes' conditioning: the margin of the numpy module */
+        const double dj = w[j] - u[j], x = -2.0 * mu / dj;
+        const double margin = TODA@@N@@_KAPPA_MAX * fabs(dj) * fabs(1.0 + x)
+                              - kt * (fabs(u[j]) + fabs(w[j])) * (fabs(1.0 + x) + fabs(x));
+        if (!isfinite(margin))
+            return SYMBT_TODA_RANGE;
+        if (!(margin > 0.0))
+            return SYMBT_TODA_ILL_CONDITIONED;
+    }
     for (int j = 0; j < NS; j++) {
         const int k = (j + 1) % NS;
         const double uj = u[j], dj = w[j] - u[j], un1 = u[k], dn1 = w[k] - u[k];

@@ -45,7 +45,7 @@ from sympy.codegen.cfunctions import log1p
 from ..reference.literal import phi_from_traces
 from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import local_lax, toda_model
-from .transport import scaled_monodromy, transported
+from .transport import illcond_guards, scaled_monodromy, transported
 
 __all__ = ["ArgSpec", "Output", "Guard", "FunctionSpec", "specs", "sources", "interface", "branch", "tr1", "tr2", "lam",
            "lam0", "mu", "coefficient_symbols", "disc", "phi_of", "FUNCTIONS"]
@@ -281,12 +281,15 @@ def _slope(M, g, sign):
     return (dl + sign * g) / (2 * B), -2 * C / (dl - sign * g), sp.GreaterThan(sign * dl * g, 0)
 
 
-def _with_guards(spec, extra):
+def _with_guards(spec, extra, ill_t=(), ill_s=()):
     """``spec`` with the guards ``extra`` after its trace guards (decided in order: an overflowed slope is a
-    range error, not a positivity decided from a wrong value)."""
+    range error, not a positivity decided from a wrong value), each trace guard after its conditioning
+    guard ``ill_t`` and the slopes' conditioning ``ill_s`` before the positivity guards: the order of
+    ``symbt.numeric``'s fused kernel (:mod:`symbt.numeric.core.fused`)."""
     k = sum(g.condition == "trace" for g in spec.guards)
+    traces = tuple(g for pair in zip(ill_t, spec.guards[:k]) for g in pair) if ill_t else spec.guards[:k]
     return FunctionSpec(spec.name, spec.equation, spec.summary, spec.args, spec.outputs, spec.kind,
-                        spec.guards[:k] + tuple(extra) + spec.guards[k:], spec.defs)
+                        traces + tuple(extra) + tuple(ill_s) + spec.guards[k:], spec.defs)
 
 
 def _check_dacosh():
@@ -460,6 +463,7 @@ def _build(N: int, rewrite: bool) -> tuple:
         extra: tuple[Guard, ...] = (Guard("positivity", gap, sp.sign(t_1) * sp.sign(t_2), 0),)
         extra += tuple(Guard("range", f"{name}_{j + 1}", v, 1)
                        for name, vs in (("u", u), ("w", w), ("d", d)) for j, v in enumerate(vs))
+        ill_t, ill_s = illcond_guards(m, Guard, (t_1, t_2), u, w, d, disc)
         sdefs: tuple = ()
     else:         # the paper's route: eq. xy as printed, x_j = 2 mu/(z_j - y_j), E~ = E - x, eta = x y + mu
         g1, g2 = sp.symbols("G1 G2", real=True)
@@ -484,6 +488,6 @@ def _build(N: int, rewrite: bool) -> tuple:
     out["dapp_xy"] = _fill(I["dapp_xy"], [[x_], [y_]], tg, sdefs)
     out["bt_step"] = _fill(I["bt_step"], [pt, qt], tg + pos, sdefs)
     if rewrite:
-        out["dapp_xy"] = _with_guards(out["dapp_xy"], extra)
-        out["bt_step"] = _with_guards(out["bt_step"], extra)
+        out["dapp_xy"] = _with_guards(out["dapp_xy"], extra, ill_t, ill_s)
+        out["bt_step"] = _with_guards(out["bt_step"], extra, ill_t, ill_s)
     return tuple(out[name] for name in FUNCTIONS)

@@ -19,6 +19,7 @@ import re
 
 import sympy as sp
 
+from ..numeric.core.limits import KAPPA_MAX
 from .c_template import COMMON, HEADER, LOOP
 from .forms import form_of
 from .kernels import kernels
@@ -102,17 +103,18 @@ _SIGNATURES = {
                   "double *pdot)",
 }
 _OUT_PTRS = {"bt_step": ("pt", "qt"), "invariants": ("H",), "spectral_trace": ("tr",), "flow_field": ("qdot", "pdot")}
-_CODES = {"trace": "SYMBT_TODA_NO_REAL_MAP_TRACE", "positivity": "SYMBT_TODA_NO_REAL_MAP_POSITIVITY"}
+_CODES = {"trace": "SYMBT_TODA_NO_REAL_MAP_TRACE", "positivity": "SYMBT_TODA_NO_REAL_MAP_POSITIVITY",
+          "illcond": "SYMBT_TODA_ILL_CONDITIONED"}
 
 
 def c_files(N: int) -> tuple[str, str]:
     """``(toda{N}.c, toda{N}.h)`` bodies (without the provenance header)."""
     form = form_of(N)
-    header = _fill(HEADER, N, form)
+    header = _fill(HEADER.replace("@@KAPPA@@", str(int(KAPPA_MAX))), N, form)   # the one limit, printed in
     src = _fill(COMMON, N, form)
     if form == "closed":
         return _emit_path_c_files(N, header, src)
-    src += _fill(LOOP, N, form)
+    src += _fill(LOOP.replace("@@KAPPA@@", str(int(KAPPA_MAX))), N, form)
     return src, header
 
 

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import re
 
+from ..numeric.core.limits import KAPPA_MAX
 from .derive import FUNCTIONS, FunctionSpec, interface
 from .kernels import kernels
 from .loop_template import CORE
@@ -78,8 +79,8 @@ def printed_kernels() -> dict:
 
 def _core() -> str:
     ks = printed_kernels()
-    text = CORE
-    for name in sorted(set(re.findall(r"@@(\w+)@@", CORE))):
+    text = CORE.replace("@@KAPPA_MAX@@", str(int(KAPPA_MAX)))      # the one limit, printed in
+    for name in sorted(set(re.findall(r"@@(\w+)@@", text))):
         text = text.replace(f"@@{name}@@", ks[name])
     return text
 

@@ -79,6 +79,8 @@ class _NumpyOps:
     def guard(guards, condition, label, value):
         guards.append((condition, label, value))
 
+    conditioned = True      # float64 decides only where its condition estimate is at most _KAPPA_MAX
+
 
 class _MpOps:
     """mpmath arithmetic on one state at the current precision; a failed guard raises at once."""
@@ -123,7 +125,11 @@ class _MpOps:
     def guard(guards, condition, label, value):
         _mp_guard(condition, label, value)
 
+    conditioned = False     # the recomputation route: no float64 conditioning guard
 
+
+# symbt.numeric's limit of the float64 condition estimate (symbt.numeric.core.limits.KAPPA_MAX)
+_KAPPA_MAX = @@KAPPA_MAX@@
 _NP, _MP = _NumpyOps(), _MpOps()
 
 
@@ -305,9 +311,11 @@ def _turn_backward(av, R, u1):
     return @@backward@@
 
 
-def _traces(_X, P, R, lam0, mu, guards):
+def _traces(_X, P, R, lam0, mu, guards, kappa=None):
     """Rescaled monodromies M_i = 2**e_i (A, B; C, D) at lambda_1 = lambda_0 + mu, lambda_2 = lambda_0 - mu,
-    their rescaled traces t_i = tr L(lambda_i) / 2**e_i, and the trace guards (kernel 'disc_scaled')."""
+    their rescaled traces t_i = tr L(lambda_i) / 2**e_i, and the trace guards (kernel 'disc_scaled'); with
+    a list ``kappa`` (float64 step), each trace guard after its conditioning guard (:func:`_trace_kappa`),
+    and ``kappa`` receives the two traces' condition estimates."""
     a1 = [lam0 + mu + p for p in P]
     a2 = [lam0 - mu + p for p in P]
     M1, M2 = _scaled_monodromy(_X, a1, R), _scaled_monodromy(_X, a2, R)
@@ -315,11 +323,33 @@ def _traces(_X, P, R, lam0, mu, guards):
     t1 = @@trace@@
     A, B, C, D = M2[:4]
     t2 = @@trace@@
-    t, two = t1, _X.ldexp(2 * _X.one, -M1[4])
-    _X.guard(guards, "trace", "lam1 = lam0 + mu", @@disc_scaled@@)
-    t, two = t2, _X.ldexp(2 * _X.one, -M2[4])
-    _X.guard(guards, "trace", "lam2 = lam0 - mu", @@disc_scaled@@)
+    for i, (lam, av, M, t, label) in enumerate(((lam0 + mu, a1, M1, t1, "lam1 = lam0 + mu"),
+                                                (lam0 - mu, a2, M2, t2, "lam2 = lam0 - mu"))):
+        two = _X.ldexp(2 * _X.one, -M[4])
+        disc = @@disc_scaled@@
+        if kappa is not None and _X.conditioned:
+            k = _trace_kappa(_X, av, R, M, t, disc)
+            # +-1: a non-finite estimate (an overflowed trace) leaves the decision to the guards after it
+            _X.guard(guards, "illcond", f"tr L(lam{i + 1})", np.where(k > _KAPPA_MAX, -1, 1))
+            kappa.append(k * _cancellation(lam, P, av))
+        _X.guard(guards, "trace", label, disc)
     return a1, a2, M1, M2, t1, t2
+
+
+def _trace_kappa(_X, av, R, M, t, disc):
+    """float64 condition estimate of the trace decision T |t| / |t**2 - 4| (as symbt.numeric's
+    trace_kappa): T the trace of |m_N| ... |m_1| (the monodromy of |a_j| and -r_j, no cancellation), the
+    rounding scale of t, rescaled to M's power of two."""
+    A, B, C, D, e = _scaled_monodromy(_X, [np.abs(a) for a in av], [-r for r in R])
+    return np.ldexp(A + D, e - M[4]) * (np.abs(t) / np.abs(disc))
+
+
+def _cancellation(lam, P, av):
+    """max_j (|lam| + |p_j|) / |lam + p_j|: the cancellation in a_j (symbt.numeric's kernels)."""
+    k = (np.abs(lam) + np.abs(P[0])) / np.abs(av[0])
+    for p, a in zip(P[1:], av[1:]):
+        k = np.maximum(k, (np.abs(lam) + np.abs(p)) / np.abs(a))
+    return k
 
 
 def _traces_unscaled(_X, P, R, lam0, mu, guards):
@@ -337,7 +367,8 @@ def _step_slopes(_X, P, Q, lam0, mu, b, guards):
     slope finite with its transport denominator a_j + u_j (an infinite slope, or one whose transport
     overflowed, would read out as 2 mu/d = 0: a finite wrong state; here a range error)."""
     R = _ratios(_X, Q)
-    a1, a2, M1, M2, t1, t2 = _traces(_X, P, R, lam0, mu, guards)
+    kappa = []
+    a1, a2, M1, M2, t1, t2 = _traces(_X, P, R, lam0, mu, guards, kappa)
     _X.guard(guards, "positivity", _GAP, _X.sign(t1) * _X.sign(t2))
     u = _slopes(_X, a1, R, M1, t1, b)           # y: eigenvalue (t1 - b g1)/2 at lambda_1
     w = _slopes(_X, a2, R, M2, t2, -b)          # z: eigenvalue (t2 + b g2)/2 at lambda_2
@@ -345,6 +376,12 @@ def _step_slopes(_X, P, Q, lam0, mu, b, guards):
     for name, vs in (("u", [a + x for a, x in zip(a1, u)]), ("w", [a + x for a, x in zip(a2, w)]), ("d", d)):
         for j, v in enumerate(vs):
             _X.guard(guards, "range", f"{name}_{j + 1}", v)
+    if kappa:   # the slopes' conditioning, as symbt.numeric's kernels: the margin KAPPA_MAX |d| |1 + x| - kappa ...
+        kt = np.maximum(kappa[0], kappa[1])
+        for j in range(N):
+            x = -2 * mu / d[j]
+            _X.guard(guards, "illcond", f"the slopes at site {j + 1}", _KAPPA_MAX * np.abs(d[j]) * np.abs(1 + x)
+                     - kt * (np.abs(u[j]) + np.abs(w[j])) * (np.abs(1 + x) + np.abs(x)))
     return u, w, d
 
 

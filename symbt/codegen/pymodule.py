@@ -64,7 +64,11 @@ def function_doc(spec: FunctionSpec, N: int, flavour: str, form: str) -> str:
             args += ("\n        errors: 'raise' (default): NoRealMapError where the real function does not exist, "
                      "NumericRangeError on a non-finite value; 'mask': numpy.ma.MaskedArray results, masked "
                      "at those batch elements")
-            conds = sorted({g.condition for g in spec.guards} - {"range"})
+            if spec.name in ("bt_step", "dapp_xy"):
+                args = args.replace("NumericRangeError on a non-finite value", "NumericRangeError on a non-finite "
+                                    "value, IllConditionedError (a NumericRangeError) where the condition "
+                                    "estimate exceeds KAPPA_MAX (float64 cannot decide)")
+            conds = sorted({g.condition for g in spec.guards} - {"range", "illcond"})
             kind += "; real domain: " + " and ".join(
                 {"trace": "|tr L| > 2 at each spectral parameter", "positivity": "every Etilde_j > 0"}[c]
                 for c in conds)
@@ -98,7 +102,7 @@ def _module_doc(N: int, form: str) -> str:
 
 def module_head(N: int, form: str) -> list[str]:
     all_names = ([n for f in FUNCTIONS for n in (f, f + "_mp")] + ["bt_orbit", "bt_orbit_mp", "N", "FORM",
-                 "InvalidInputError", "NoRealMapError", "NumericRangeError"])
+                 "IllConditionedError", "InvalidInputError", "NoRealMapError", "NumericRangeError"])
     return [_module_doc(N, form), "", f"N = {N}", f"FORM = {form!r}", f"__all__ = {all_names!r}",
             RUNTIME.rstrip("\n")]
 

@@ -19,6 +19,8 @@ True
 """
 from __future__ import annotations
 
+from ..numeric.core.limits import KAPPA_MAX
+
 __all__ = ["RUNTIME", "ORBIT"]
 
 RUNTIME = '''
@@ -48,8 +50,21 @@ class NumericRangeError(OverflowError):
     """A value (intermediate or result) is outside the float64 range, or a division by zero."""
 
 
+class IllConditionedError(NumericRangeError):
+    """float64 cannot decide or compute the result here: a guard ``"illcond"`` failed (for the step, its
+    condition estimate exceeds KAPPA_MAX = @@KAPPA@@).  ``symbt.numeric`` recomputes such states at higher
+    precision; the ``_mp`` flavour at more digits does too.  ``where`` as for NoRealMapError."""
+
+    def __init__(self, message, where=()):
+        super().__init__(message)
+        self.where = tuple(where)
+
+
 _WHY = {"trace": "|tr L(%s)| <= 2, the spectral parameter lies in a band",
         "positivity": "%s = E - x <= 0 (lam1 and lam2 lie in different spectral gaps)"}
+_ILLCOND = ("ill-conditioned: %s beyond the float64 condition limit KAPPA_MAX = @@KAPPA@@ (the result would "
+            "not be trusted); symbt.numeric recomputes such states at higher precision, or call the _mp "
+            "flavour at more digits")
 
 
 def _Q(p, q):
@@ -131,6 +146,8 @@ def _guard(errors, batch, guards):
         nok = fin & ~(v > 0) & ~bad if condition != "range" else np.zeros(batch, dtype=bool)
         if nok.any() and errors == "raise":
             where, txt = _where(nok, batch)
+            if condition == "illcond":      # float64 cannot decide here (a guard "illcond": IllConditionedError)
+                raise IllConditionedError(_ILLCOND % label + txt, where)
             raise NoRealMapError("no real map: " + _WHY[condition] % label + txt, condition, where)
         bad = bad | nok | ~fin
     return bad
@@ -207,7 +224,7 @@ def _mp_guard(condition, label, value):
             raise NumericRangeError("non-finite intermediate " + label)
     elif not value > 0:   # mpmath values are finite
         raise NoRealMapError("no real map: " + _WHY[condition] % label, condition)
-'''
+'''.replace("@@KAPPA@@", str(int(KAPPA_MAX)))
 
 ORBIT = '''
 

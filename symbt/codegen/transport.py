@@ -17,12 +17,15 @@ are evaluated).
 """
 from __future__ import annotations
 
+from typing import Any
+
 import sympy as sp
 
+from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import TodaModel
 from .printer import Quotient
 
-__all__ = ["scaled_monodromy", "transported"]
+__all__ = ["scaled_monodromy", "transported", "illcond_guards"]
 
 
 def transported(m: TodaModel, lam_: sp.Expr, u0: sp.Expr, forward: sp.Basic) -> list[sp.Expr]:
@@ -49,3 +52,47 @@ def scaled_monodromy(m: TodaModel, lam_: sp.Expr) -> sp.Matrix:
     for j in range(m.N):
         M = sp.Matrix([[lam_ + m.p[j], -1], [sp.exp(m.q[(j + 1) % m.N] - m.q[j]), 0]]) * M
     return M
+
+
+def illcond_guards(m: TodaModel, guard: Any, traces: tuple, u: list, w: list, d: list, disc: Any) -> tuple:
+    """The float64 conditioning guards of the step (condition ``illcond``: ``expr > 0`` where the float64
+    result is trusted; ``guard(condition, label, expr, stage)``, ``traces`` the step's traces at ``lam1``,
+    ``lam2``, ``disc(t) = (t - 2)(t + 2)``): the test of ``symbt.numeric``'s kernels
+    (:func:`symbt.numeric.core.step.trace_kappa`, ``symbt.numeric.float64.kernels``) with its one limit
+    :data:`~symbt.numeric.core.limits.KAPPA_MAX` printed in.  Per spectral parameter
+    ``T |t| / |t^2 - 4| <= KAPPA_MAX`` (``T`` the trace of ``|m_N| ... |m_1|``, the rounding scale of ``t``):
+    ``+-1`` valued (a ``Piecewise``), so a non-finite estimate (an overflowed trace) leaves the decision to
+    the range and sign guards after it.  Per site the margin ``KAPPA_MAX |d_j| |1 + xr_j| - kt (|u_j| +
+    |w_j|)(|1 + xr_j| + |xr_j|)``, ``xr_j = -2 mu / d_j``, ``kt`` the larger trace condition times the
+    cancellation ``max_j (|lam| + |p_j|) / |lam + p_j|``."""
+    from ..numeric.core.limits import KAPPA_MAX
+
+    K = sp.Integer(int(KAPPA_MAX))
+    N, p = m.N, m.p
+
+    def A(x: sp.Expr) -> sp.Expr:       # unevaluated: SymPy's sign analysis of the large slopes takes minutes
+        return sp.Abs(x, evaluate=False)
+
+    # -1 where ``big > small`` (ill-conditioned), else +1 (also where a side is NaN)
+    def ill(big: sp.Expr, small: sp.Expr) -> sp.Expr:
+        return sp.Piecewise((-1, sp.StrictGreaterThan(big, small, evaluate=False)), (1, True),
+                            evaluate=False)
+
+    kt0, kta = [], []
+    for t, lam_ in zip(traces, (lam0 + mu, lam0 - mu)):
+        Ma = sp.eye(2)
+        for j in range(N):
+            Ma = sp.Matrix([[A(lam_ + p[j]), 1], [sp.exp(m.q[(j + 1) % N] - m.q[j]), 0]]) * Ma
+        k = Quotient(Ma[0, 0] + Ma[1, 1], A(disc(t))) * A(t)
+        kt0.append(k)
+        kta.append(k * sp.Max(*(Quotient(A(lam_) + A(p[j]), A(lam_ + p[j])) for j in range(N)), evaluate=False))
+    ill_t = tuple(guard("illcond", f"tr L(lam{i + 1})", ill(kt0[i], K), 0) for i in range(2))
+    kt = sp.Max(kta[0], kta[1], evaluate=False)
+    ill_s = []
+    for j in range(N):
+        x = -2 * mu / d[j]
+        big = kt * (A(u[j]) + A(w[j])) * (A(1 + x) + A(x))
+        # a difference, not a Piecewise: a relation on the Piecewise slopes would print as ITE; the range
+        # guards before it made u, w, d finite, and a non-finite margin is a range error (a refusal too)
+        ill_s.append(guard("illcond", f"the slopes at site {j + 1}", K * A(d[j]) * A(1 + x) - big, 1))
+    return ill_t, tuple(ill_s)

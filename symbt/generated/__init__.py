@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 9da089f7a085ebbe258f654fd78eac00fa0b1bc0fa438f133a101c468e8af9b0
-# symbt-codegen-content-sha256: 2049a4e514012a99b9f7936ebfa0c9ed3d430fb2642f7009741033e25c3bb86b
+# symbt-codegen-derivation-sha256: 1a2959d16a49d2f7205000d704285fa2c4a6643783d447d89b999f1e7ea10607
+# symbt-codegen-content-sha256: b8a5bad28135b2b2dd6525ff12ecd947144b3005c5f37db14cf084972ba1a0dd
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

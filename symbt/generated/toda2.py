@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 9da089f7a085ebbe258f654fd78eac00fa0b1bc0fa438f133a101c468e8af9b0
-# symbt-codegen-content-sha256: 6e0bd3978e44514d3da5829c964096430c76ea3803224cdc02a61fcea3c4c203
+# symbt-codegen-derivation-sha256: 1a2959d16a49d2f7205000d704285fa2c4a6643783d447d89b999f1e7ea10607
+# symbt-codegen-content-sha256: 0a3cc53f8e8670b5457782c2ab27a7124804be1b19aaa2753a174f6a0bc0cb0a
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -21,7 +21,7 @@ Functions: invariants, spectral_trace, hamiltonian_fields, flow_field, phi_tr, p
 
 N = 2
 FORM = 'closed'
-__all__ = ['invariants', 'invariants_mp', 'spectral_trace', 'spectral_trace_mp', 'hamiltonian_fields', 'hamiltonian_fields_mp', 'flow_field', 'flow_field_mp', 'phi_tr', 'phi_tr_mp', 'phi', 'phi_mp', 'phi_grad', 'phi_grad_mp', 'ck_integrand', 'ck_integrand_mp', 'dapp_xy', 'dapp_xy_mp', 'bt_step', 'bt_step_mp', 'bt_orbit', 'bt_orbit_mp', 'N', 'FORM', 'InvalidInputError', 'NoRealMapError', 'NumericRangeError']
+__all__ = ['invariants', 'invariants_mp', 'spectral_trace', 'spectral_trace_mp', 'hamiltonian_fields', 'hamiltonian_fields_mp', 'flow_field', 'flow_field_mp', 'phi_tr', 'phi_tr_mp', 'phi', 'phi_mp', 'phi_grad', 'phi_grad_mp', 'ck_integrand', 'ck_integrand_mp', 'dapp_xy', 'dapp_xy_mp', 'bt_step', 'bt_step_mp', 'bt_orbit', 'bt_orbit_mp', 'N', 'FORM', 'IllConditionedError', 'InvalidInputError', 'NoRealMapError', 'NumericRangeError']
 
 import mpmath
 import numpy as np
@@ -49,8 +49,21 @@ class NumericRangeError(OverflowError):
     """A value (intermediate or result) is outside the float64 range, or a division by zero."""
 
 
+class IllConditionedError(NumericRangeError):
+    """float64 cannot decide or compute the result here: a guard ``"illcond"`` failed (for the step, its
+    condition estimate exceeds KAPPA_MAX = 16777216).  ``symbt.numeric`` recomputes such states at higher
+    precision; the ``_mp`` flavour at more digits does too.  ``where`` as for NoRealMapError."""
+
+    def __init__(self, message, where=()):
+        super().__init__(message)
+        self.where = tuple(where)
+
+
 _WHY = {"trace": "|tr L(%s)| <= 2, the spectral parameter lies in a band",
         "positivity": "%s = E - x <= 0 (lam1 and lam2 lie in different spectral gaps)"}
+_ILLCOND = ("ill-conditioned: %s beyond the float64 condition limit KAPPA_MAX = 16777216 (the result would "
+            "not be trusted); symbt.numeric recomputes such states at higher precision, or call the _mp "
+            "flavour at more digits")
 
 
 def _Q(p, q):
@@ -132,6 +145,8 @@ def _guard(errors, batch, guards):
         nok = fin & ~(v > 0) & ~bad if condition != "range" else np.zeros(batch, dtype=bool)
         if nok.any() and errors == "raise":
             where, txt = _where(nok, batch)
+            if condition == "illcond":      # float64 cannot decide here (a guard "illcond": IllConditionedError)
+                raise IllConditionedError(_ILLCOND % label + txt, where)
             raise NoRealMapError("no real map: " + _WHY[condition] % label + txt, condition, where)
         bad = bad | nok | ~fin
     return bad
@@ -489,7 +504,7 @@ def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
         lam0: lambda_0 (eq. lam0mu)
         mu: mu (eq. lam0mu)
         branch: b = +1 or -1
-        errors: 'raise' (default): NoRealMapError where the real function does not exist, NumericRangeError on a non-finite value; 'mask': numpy.ma.MaskedArray results, masked at those batch elements
+        errors: 'raise' (default): NoRealMapError where the real function does not exist, NumericRangeError on a non-finite value, IllConditionedError (a NumericRangeError) where the condition estimate exceeds KAPPA_MAX (float64 cannot decide); 'mask': numpy.ma.MaskedArray results, masked at those batch elements
 
     Returns:
         x (batch): x
@@ -516,37 +531,55 @@ def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
         t6 = np.exp(-t4)
         t7 = t5 + t6
         t8 = t3 + t7
-        t9 = t1*t2
-        t10 = -t6
-        t11 = -t5
-        t12 = t10 + t11 + 2
-        t13 = (-t8 - 2)*(t12 + t9)
-        t14 = lam0 - mu
-        t15 = p1 + t14
-        t16 = p2 + t14
-        t17 = t15*t16
-        t18 = -t17
-        t19 = t18 + t7
-        t20 = (-t19 - 2)*(t12 + t17)
-        t21 = -np.sign(t8)
-        t22 = -np.sign(t19)
-        t23 = 2*mu
-        t24 = 2*lam0 + 2*p2
-        t25 = branch*np.sqrt(t13)
-        t26 = t10 + t5
-        t27 = t26 + t9
-        t28 = t11 + t6
-        t29 = 2*t5
-        t30 = np.where(t25*t27 >= 0, (t25 + t27)/(-t23 - t24), -(t1*t29/(-t25 - t28 - t3)))
-        t31 = np.where(t21*branch <= 0, -(t6/(t1 + t30)), -t2 - t5/t30)
-        t32 = branch*np.sqrt(t20)
-        t33 = t17 + t26
-        t34 = np.where(t32*t33 <= 0, (-t18 - t28 - t32)/(t23 - t24), -(t15*t29/(t32 + t33)))
-        t35 = np.where(t22*branch >= 0, -(t6/(t15 + t34)), -t16 - t5/t34)
-        t36 = -t30 + t34
-        x = _pack([t23*np.exp(q1)/t36], _batch, ())
-        y = _pack([t30*np.exp(-q1)], _batch, ())
-        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t13), ('trace', 'lam2 = lam0 - mu', t20), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t21*t22), ('range', 'u_1', t30), ('range', 'u_2', t31), ('range', 'w_1', t34), ('range', 'w_2', t35), ('range', 'd_1', t36), ('range', 'd_2', -t31 + t35)])
+        t9 = -t8
+        t10 = np.abs(t1)
+        t11 = np.abs(t2)
+        t12 = t1*t2
+        t13 = -t6
+        t14 = -t5
+        t15 = t13 + t14 + 2
+        t16 = (-t8 - 2)*(t12 + t15)
+        t17 = np.abs(t9)*((t10*t11 + t7)/np.abs(t16))
+        t18 = lam0 - mu
+        t19 = p1 + t18
+        t20 = p2 + t18
+        t21 = t19*t20
+        t22 = -t21
+        t23 = t22 + t7
+        t24 = -t23
+        t25 = np.abs(t19)
+        t26 = np.abs(t20)
+        t27 = (-t23 - 2)*(t15 + t21)
+        t28 = np.abs(t24)*((t25*t26 + t7)/np.abs(t27))
+        t29 = np.sign(t9)
+        t30 = np.sign(t24)
+        t31 = 2*mu
+        t32 = 2*lam0 + 2*p2
+        t33 = branch*np.sqrt(t16)
+        t34 = t13 + t5
+        t35 = t12 + t34
+        t36 = t14 + t6
+        t37 = 2*t5
+        t38 = np.where(t33*t35 >= 0, (t33 + t35)/(-t31 - t32), -(t1*t37/(-t3 - t33 - t36)))
+        t39 = np.where(t29*branch <= 0, -(t6/(t1 + t38)), -t2 - t5/t38)
+        t40 = branch*np.sqrt(t27)
+        t41 = t21 + t34
+        t42 = np.where(t40*t41 <= 0, (-t22 - t36 - t40)/(t31 - t32), -(t19*t37/(t40 + t41)))
+        t43 = np.where(t30*branch >= 0, -(t6/(t19 + t42)), -t20 - t5/t42)
+        t44 = -t38 + t42
+        t45 = -t39 + t43
+        t46 = t31/t44
+        t47 = np.abs(t46 - 1)
+        t48 = np.abs(p1)
+        t49 = np.abs(t0)
+        t50 = np.abs(p2)
+        t51 = np.abs(t18)
+        t52 = np.maximum(t17*np.maximum((t48 + t49)/t10, (t49 + t50)/t11), t28*np.maximum((t48 + t51)/t25, (t50 + t51)/t26))
+        t53 = t31/t45
+        t54 = np.abs(t53 - 1)
+        x = _pack([t46*np.exp(q1)], _batch, ())
+        y = _pack([t38*np.exp(-q1)], _batch, ())
+        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t17 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', t16), ('illcond', 'tr L(lam2)', np.where(t28 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', t27), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t29*t30), ('range', 'u_1', t38), ('range', 'u_2', t39), ('range', 'w_1', t42), ('range', 'w_2', t43), ('range', 'd_1', t44), ('range', 'd_2', t45), ('illcond', 'the slopes at site 1', 16777216*t47*np.abs(t44) - t52*(t47 + np.abs(t46))*(np.abs(t38) + np.abs(t42))), ('illcond', 'the slopes at site 2', -t52*(t54 + np.abs(t53))*(np.abs(t39) + np.abs(t43)) + 16777216*t54*np.abs(t45))])
     x, y, = _finish(errors, _bad, _batch, [x, y])
     return x, y
 
@@ -562,7 +595,7 @@ def bt_step(p, q, lam0, mu, branch, errors="raise"):
         lam0: lambda_0 (eq. lam0mu)
         mu: mu (eq. lam0mu)
         branch: b = +1 or -1
-        errors: 'raise' (default): NoRealMapError where the real function does not exist, NumericRangeError on a non-finite value; 'mask': numpy.ma.MaskedArray results, masked at those batch elements
+        errors: 'raise' (default): NoRealMapError where the real function does not exist, NumericRangeError on a non-finite value, IllConditionedError (a NumericRangeError) where the condition estimate exceeds KAPPA_MAX (float64 cannot decide); 'mask': numpy.ma.MaskedArray results, masked at those batch elements
 
     Returns:
         p_new (batch + (2,)): p~
@@ -589,43 +622,62 @@ def bt_step(p, q, lam0, mu, branch, errors="raise"):
         t6 = np.exp(-t4)
         t7 = t5 + t6
         t8 = t3 + t7
-        t9 = t1*t2
-        t10 = -t6
-        t11 = -t5
-        t12 = t10 + t11 + 2
-        t13 = (-t8 - 2)*(t12 + t9)
-        t14 = lam0 - mu
-        t15 = p1 + t14
-        t16 = p2 + t14
-        t17 = t15*t16
-        t18 = -t17
-        t19 = t18 + t7
-        t20 = (-t19 - 2)*(t12 + t17)
-        t21 = -np.sign(t8)
-        t22 = -np.sign(t19)
-        t23 = 2*mu
-        t24 = 2*lam0 + 2*p2
-        t25 = branch*np.sqrt(t13)
-        t26 = t10 + t5
-        t27 = t26 + t9
-        t28 = t11 + t6
-        t29 = 2*t5
-        t30 = np.where(t25*t27 >= 0, (t25 + t27)/(-t23 - t24), -(t1*t29/(-t25 - t28 - t3)))
-        t31 = np.where(t21*branch <= 0, -(t6/(t1 + t30)), -t2 - t5/t30)
-        t32 = branch*np.sqrt(t20)
-        t33 = t17 + t26
-        t34 = np.where(t32*t33 <= 0, (-t18 - t28 - t32)/(t23 - t24), -(t15*t29/(t32 + t33)))
-        t35 = np.where(t22*branch >= 0, -(t6/(t15 + t34)), -t16 - t5/t34)
-        t36 = -t30 + t34
-        t37 = -t31 + t35
-        t38 = 1/t36
-        t39 = t23*t38
-        t40 = 1/t37
-        t41 = t23*t40
-        t42 = -t30*t38 + t31*t40
-        p_new = _pack([p1 - t23*t42, p2 + t23*t42], _batch, (2,))
-        q_new = _pack([q1 + np.log1p(-t39), q2 + np.log1p(-t41)], _batch, (2,))
-        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t13), ('trace', 'lam2 = lam0 - mu', t20), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t21*t22), ('range', 'u_1', t30), ('range', 'u_2', t31), ('range', 'w_1', t34), ('range', 'w_2', t35), ('range', 'd_1', t36), ('range', 'd_2', t37), ('positivity', 'Etilde_1', 1 - t39), ('positivity', 'Etilde_2', 1 - t41)])
+        t9 = -t8
+        t10 = np.abs(t1)
+        t11 = np.abs(t2)
+        t12 = t1*t2
+        t13 = -t6
+        t14 = -t5
+        t15 = t13 + t14 + 2
+        t16 = (-t8 - 2)*(t12 + t15)
+        t17 = np.abs(t9)*((t10*t11 + t7)/np.abs(t16))
+        t18 = lam0 - mu
+        t19 = p1 + t18
+        t20 = p2 + t18
+        t21 = t19*t20
+        t22 = -t21
+        t23 = t22 + t7
+        t24 = -t23
+        t25 = np.abs(t19)
+        t26 = np.abs(t20)
+        t27 = (-t23 - 2)*(t15 + t21)
+        t28 = np.abs(t24)*((t25*t26 + t7)/np.abs(t27))
+        t29 = np.sign(t9)
+        t30 = np.sign(t24)
+        t31 = 2*mu
+        t32 = 2*lam0 + 2*p2
+        t33 = branch*np.sqrt(t16)
+        t34 = t13 + t5
+        t35 = t12 + t34
+        t36 = t14 + t6
+        t37 = 2*t5
+        t38 = np.where(t33*t35 >= 0, (t33 + t35)/(-t31 - t32), -(t1*t37/(-t3 - t33 - t36)))
+        t39 = np.where(t29*branch <= 0, -(t6/(t1 + t38)), -t2 - t5/t38)
+        t40 = branch*np.sqrt(t27)
+        t41 = t21 + t34
+        t42 = np.where(t40*t41 <= 0, (-t22 - t36 - t40)/(t31 - t32), -(t19*t37/(t40 + t41)))
+        t43 = np.where(t30*branch >= 0, -(t6/(t19 + t42)), -t20 - t5/t42)
+        t44 = -t38 + t42
+        t45 = -t39 + t43
+        t46 = 1/t44
+        t47 = t31*t46
+        t48 = 1 - t47
+        t49 = np.abs(t48)
+        t50 = np.abs(p1)
+        t51 = np.abs(t0)
+        t52 = np.abs(p2)
+        t53 = np.abs(t18)
+        t54 = np.maximum(t17*np.maximum((t50 + t51)/t10, (t51 + t52)/t11), t28*np.maximum((t50 + t53)/t25, (t52 + t53)/t26))
+        t55 = -t47
+        t56 = 1/t45
+        t57 = t31*t56
+        t58 = 1 - t57
+        t59 = np.abs(t58)
+        t60 = -t57
+        t61 = -t38*t46 + t39*t56
+        p_new = _pack([p1 - t31*t61, p2 + t31*t61], _batch, (2,))
+        q_new = _pack([q1 + np.log1p(t55), q2 + np.log1p(t60)], _batch, (2,))
+        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t17 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', t16), ('illcond', 'tr L(lam2)', np.where(t28 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', t27), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t29*t30), ('range', 'u_1', t38), ('range', 'u_2', t39), ('range', 'w_1', t42), ('range', 'w_2', t43), ('range', 'd_1', t44), ('range', 'd_2', t45), ('illcond', 'the slopes at site 1', 16777216*t49*np.abs(t44) - t54*(t49 + np.abs(t55))*(np.abs(t38) + np.abs(t42))), ('illcond', 'the slopes at site 2', -t54*(t59 + np.abs(t60))*(np.abs(t39) + np.abs(t43)) + 16777216*t59*np.abs(t45)), ('positivity', 'Etilde_1', t48), ('positivity', 'Etilde_2', t58)])
     p_new, q_new, = _finish(errors, _bad, _batch, [p_new, q_new])
     return p_new, q_new
 

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 9da089f7a085ebbe258f654fd78eac00fa0b1bc0fa438f133a101c468e8af9b0
-# symbt-codegen-content-sha256: d66bb1e635ae24ac76f7b6cacf3dcc741661568dcbcbf6ec221215cebb1c576a
+# symbt-codegen-derivation-sha256: 1a2959d16a49d2f7205000d704285fa2c4a6643783d447d89b999f1e7ea10607
+# symbt-codegen-content-sha256: 80c75ad9b2a79e756739c15506b053b4041af6c6065b34145da036f8e071ea13
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -21,7 +21,7 @@ Functions: invariants, spectral_trace, hamiltonian_fields, flow_field, phi_tr, p
 
 N = 3
 FORM = 'closed'
-__all__ = ['invariants', 'invariants_mp', 'spectral_trace', 'spectral_trace_mp', 'hamiltonian_fields', 'hamiltonian_fields_mp', 'flow_field', 'flow_field_mp', 'phi_tr', 'phi_tr_mp', 'phi', 'phi_mp', 'phi_grad', 'phi_grad_mp', 'ck_integrand', 'ck_integrand_mp', 'dapp_xy', 'dapp_xy_mp', 'bt_step', 'bt_step_mp', 'bt_orbit', 'bt_orbit_mp', 'N', 'FORM', 'InvalidInputError', 'NoRealMapError', 'NumericRangeError']
+__all__ = ['invariants', 'invariants_mp', 'spectral_trace', 'spectral_trace_mp', 'hamiltonian_fields', 'hamiltonian_fields_mp', 'flow_field', 'flow_field_mp', 'phi_tr', 'phi_tr_mp', 'phi', 'phi_mp', 'phi_grad', 'phi_grad_mp', 'ck_integrand', 'ck_integrand_mp', 'dapp_xy', 'dapp_xy_mp', 'bt_step', 'bt_step_mp', 'bt_orbit', 'bt_orbit_mp', 'N', 'FORM', 'IllConditionedError', 'InvalidInputError', 'NoRealMapError', 'NumericRangeError']
 
 import mpmath
 import numpy as np
@@ -49,8 +49,21 @@ class NumericRangeError(OverflowError):
     """A value (intermediate or result) is outside the float64 range, or a division by zero."""
 
 
+class IllConditionedError(NumericRangeError):
+    """float64 cannot decide or compute the result here: a guard ``"illcond"`` failed (for the step, its
+    condition estimate exceeds KAPPA_MAX = 16777216).  ``symbt.numeric`` recomputes such states at higher
+    precision; the ``_mp`` flavour at more digits does too.  ``where`` as for NoRealMapError."""
+
+    def __init__(self, message, where=()):
+        super().__init__(message)
+        self.where = tuple(where)
+
+
 _WHY = {"trace": "|tr L(%s)| <= 2, the spectral parameter lies in a band",
         "positivity": "%s = E - x <= 0 (lam1 and lam2 lie in different spectral gaps)"}
+_ILLCOND = ("ill-conditioned: %s beyond the float64 condition limit KAPPA_MAX = 16777216 (the result would "
+            "not be trusted); symbt.numeric recomputes such states at higher precision, or call the _mp "
+            "flavour at more digits")
 
 
 def _Q(p, q):
@@ -132,6 +145,8 @@ def _guard(errors, batch, guards):
         nok = fin & ~(v > 0) & ~bad if condition != "range" else np.zeros(batch, dtype=bool)
         if nok.any() and errors == "raise":
             where, txt = _where(nok, batch)
+            if condition == "illcond":      # float64 cannot decide here (a guard "illcond": IllConditionedError)
+                raise IllConditionedError(_ILLCOND % label + txt, where)
             raise NoRealMapError("no real map: " + _WHY[condition] % label + txt, condition, where)
         bad = bad | nok | ~fin
     return bad
@@ -591,7 +606,7 @@ def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
         lam0: lambda_0 (eq. lam0mu)
         mu: mu (eq. lam0mu)
         branch: b = +1 or -1
-        errors: 'raise' (default): NoRealMapError where the real function does not exist, NumericRangeError on a non-finite value; 'mask': numpy.ma.MaskedArray results, masked at those batch elements
+        errors: 'raise' (default): NoRealMapError where the real function does not exist, NumericRangeError on a non-finite value, IllConditionedError (a NumericRangeError) where the condition estimate exceeds KAPPA_MAX (float64 cannot decide); 'mask': numpy.ma.MaskedArray results, masked at those batch elements
 
     Returns:
         x (batch): x
@@ -626,43 +641,66 @@ def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
         t12 = t11*t9
         t13 = t10*t6 - t12
         t14 = t13 + t5
-        t15 = (t14 - 2)*(t14 + 2)
-        t16 = lam0 - mu
-        t17 = p2 + t16
-        t18 = -t17
-        t19 = t1*t18
-        t20 = p3 + t16
-        t21 = p1 + t16
-        t22 = t17*t21 + t8
-        t23 = t20*t22
-        t24 = t11*t21
-        t25 = t23 - t24
-        t26 = t19 + t25
-        t27 = (t26 - 2)*(t26 + 2)
-        t28 = np.sign(t14)
-        t29 = np.sign(t26)
-        t30 = 2*t11
-        t31 = branch*np.sqrt(t15)
-        t32 = -t10*t6 + t12 + t5
-        t33 = 2*t1
-        t34 = np.where(t31*t32 <= 0, (t13 + t31 - t5)/(t30 + 2*t4*t6), -(t10*t33/(-t31 - t32)))
-        t35 = -(t7/(t34 + t9))
-        t36 = t28*branch <= 0
-        t37 = -t6 - t1/t34
-        t38 = np.where(t36, t35, -t3 - t11/t37)
-        t39 = np.where(t36, -(t11/(t3 + t35)), t37)
-        t40 = branch*np.sqrt(t27)
-        t41 = t19 - t23 + t24
-        t42 = np.where(t40*t41 >= 0, (-t40 - t41)/(2*t18*t20 + t30), -(t22*t33/(-t19 + t25 + t40)))
-        t43 = -(t7/(t21 + t42))
-        t44 = t29*branch >= 0
-        t45 = -t20 - t1/t42
-        t46 = np.where(t44, t43, -t17 - t11/t45)
-        t47 = np.where(t44, -(t11/(t17 + t43)), t45)
-        t48 = -t34 + t42
-        x = _pack([2*mu*np.exp(q1)/t48], _batch, ())
-        y = _pack([t34*np.exp(-q1)], _batch, ())
-        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t15), ('trace', 'lam2 = lam0 - mu', t27), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t28*t29), ('range', 'u_1', t34), ('range', 'u_2', t38), ('range', 'u_3', t39), ('range', 'w_1', t42), ('range', 'w_2', t46), ('range', 'w_3', t47), ('range', 'd_1', t48), ('range', 'd_2', -t38 + t46), ('range', 'd_3', -t39 + t47)])
+        t15 = np.abs(t3)
+        t16 = np.abs(t9)
+        t17 = np.abs(t6)
+        t18 = (t14 - 2)*(t14 + 2)
+        t19 = np.abs(t14)*((t1*t15 + t11*t16 + t17*(t15*t16 + t7))/np.abs(t18))
+        t20 = lam0 - mu
+        t21 = p2 + t20
+        t22 = -t21
+        t23 = t1*t22
+        t24 = p3 + t20
+        t25 = p1 + t20
+        t26 = t21*t25 + t8
+        t27 = t24*t26
+        t28 = t11*t25
+        t29 = t27 - t28
+        t30 = t23 + t29
+        t31 = np.abs(t21)
+        t32 = np.abs(t25)
+        t33 = np.abs(t24)
+        t34 = (t30 - 2)*(t30 + 2)
+        t35 = np.abs(t30)*((t1*t31 + t11*t32 + t33*(t31*t32 + t7))/np.abs(t34))
+        t36 = np.sign(t14)
+        t37 = np.sign(t30)
+        t38 = 2*t11
+        t39 = branch*np.sqrt(t18)
+        t40 = -t10*t6 + t12 + t5
+        t41 = 2*t1
+        t42 = np.where(t39*t40 <= 0, (t13 + t39 - t5)/(t38 + 2*t4*t6), -(t10*t41/(-t39 - t40)))
+        t43 = -(t7/(t42 + t9))
+        t44 = t36*branch <= 0
+        t45 = -t6 - t1/t42
+        t46 = np.where(t44, t43, -t3 - t11/t45)
+        t47 = np.where(t44, -(t11/(t3 + t43)), t45)
+        t48 = branch*np.sqrt(t34)
+        t49 = t23 - t27 + t28
+        t50 = np.where(t48*t49 >= 0, (-t48 - t49)/(2*t22*t24 + t38), -(t26*t41/(-t23 + t29 + t48)))
+        t51 = -(t7/(t25 + t50))
+        t52 = t37*branch >= 0
+        t53 = -t24 - t1/t50
+        t54 = np.where(t52, t51, -t21 - t11/t53)
+        t55 = np.where(t52, -(t11/(t21 + t51)), t53)
+        t56 = -t42 + t50
+        t57 = -t46 + t54
+        t58 = -t47 + t55
+        t59 = 2*mu
+        t60 = t59/t56
+        t61 = np.abs(t60 - 1)
+        t62 = np.abs(p1)
+        t63 = np.abs(t2)
+        t64 = np.abs(p2)
+        t65 = np.abs(p3)
+        t66 = np.abs(t20)
+        t67 = np.maximum(t19*np.maximum(np.maximum((t62 + t63)/t16, (t63 + t64)/t15), (t63 + t65)/t17), t35*np.maximum(np.maximum((t62 + t66)/t32, (t64 + t66)/t31), (t65 + t66)/t33))
+        t68 = t59/t57
+        t69 = np.abs(t68 - 1)
+        t70 = t59/t58
+        t71 = np.abs(t70 - 1)
+        x = _pack([t60*np.exp(q1)], _batch, ())
+        y = _pack([t42*np.exp(-q1)], _batch, ())
+        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t19 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', t18), ('illcond', 'tr L(lam2)', np.where(t35 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', t34), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t36*t37), ('range', 'u_1', t42), ('range', 'u_2', t46), ('range', 'u_3', t47), ('range', 'w_1', t50), ('range', 'w_2', t54), ('range', 'w_3', t55), ('range', 'd_1', t56), ('range', 'd_2', t57), ('range', 'd_3', t58), ('illcond', 'the slopes at site 1', 16777216*t61*np.abs(t56) - t67*(t61 + np.abs(t60))*(np.abs(t42) + np.abs(t50))), ('illcond', 'the slopes at site 2', -t67*(t69 + np.abs(t68))*(np.abs(t46) + np.abs(t54)) + 16777216*t69*np.abs(t57)), ('illcond', 'the slopes at site 3', -t67*(t71 + np.abs(t70))*(np.abs(t47) + np.abs(t55)) + 16777216*t71*np.abs(t58))])
     x, y, = _finish(errors, _bad, _batch, [x, y])
     return x, y
 
@@ -678,7 +716,7 @@ def bt_step(p, q, lam0, mu, branch, errors="raise"):
         lam0: lambda_0 (eq. lam0mu)
         mu: mu (eq. lam0mu)
         branch: b = +1 or -1
-        errors: 'raise' (default): NoRealMapError where the real function does not exist, NumericRangeError on a non-finite value; 'mask': numpy.ma.MaskedArray results, masked at those batch elements
+        errors: 'raise' (default): NoRealMapError where the real function does not exist, NumericRangeError on a non-finite value, IllConditionedError (a NumericRangeError) where the condition estimate exceeds KAPPA_MAX (float64 cannot decide); 'mask': numpy.ma.MaskedArray results, masked at those batch elements
 
     Returns:
         p_new (batch + (3,)): p~
@@ -713,55 +751,78 @@ def bt_step(p, q, lam0, mu, branch, errors="raise"):
         t12 = t11*t9
         t13 = t10*t6 - t12
         t14 = t13 + t5
-        t15 = (t14 - 2)*(t14 + 2)
-        t16 = lam0 - mu
-        t17 = p2 + t16
-        t18 = -t17
-        t19 = t1*t18
-        t20 = p3 + t16
-        t21 = p1 + t16
-        t22 = t17*t21 + t8
-        t23 = t20*t22
-        t24 = t11*t21
-        t25 = t23 - t24
-        t26 = t19 + t25
-        t27 = (t26 - 2)*(t26 + 2)
-        t28 = np.sign(t14)
-        t29 = np.sign(t26)
-        t30 = 2*t11
-        t31 = branch*np.sqrt(t15)
-        t32 = -t10*t6 + t12 + t5
-        t33 = 2*t1
-        t34 = np.where(t31*t32 <= 0, (t13 + t31 - t5)/(t30 + 2*t4*t6), -(t10*t33/(-t31 - t32)))
-        t35 = -(t7/(t34 + t9))
-        t36 = t28*branch <= 0
-        t37 = -t6 - t1/t34
-        t38 = np.where(t36, t35, -t3 - t11/t37)
-        t39 = np.where(t36, -(t11/(t3 + t35)), t37)
-        t40 = branch*np.sqrt(t27)
-        t41 = t19 - t23 + t24
-        t42 = np.where(t40*t41 >= 0, (-t40 - t41)/(2*t18*t20 + t30), -(t22*t33/(-t19 + t25 + t40)))
-        t43 = -(t7/(t21 + t42))
-        t44 = t29*branch >= 0
-        t45 = -t20 - t1/t42
-        t46 = np.where(t44, t43, -t17 - t11/t45)
-        t47 = np.where(t44, -(t11/(t17 + t43)), t45)
-        t48 = -t34 + t42
-        t49 = -t38 + t46
-        t50 = -t39 + t47
-        t51 = 1/t48
-        t52 = 2*mu
-        t53 = t51*t52
-        t54 = 1/t49
-        t55 = t52*t54
-        t56 = 1/t50
-        t57 = t52*t56
-        t58 = -(t34*t51)
-        t59 = t38*t54
-        t60 = t39*t56
-        p_new = _pack([p1 + t52*(-t58 - t59), p2 + t52*(t59 - t60), p3 + t52*(t58 + t60)], _batch, (3,))
-        q_new = _pack([q1 + np.log1p(-t53), q2 + np.log1p(-t55), q3 + np.log1p(-t57)], _batch, (3,))
-        _bad = _guard(errors, _batch, [('trace', 'lam1 = lam0 + mu', t15), ('trace', 'lam2 = lam0 - mu', t27), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t28*t29), ('range', 'u_1', t34), ('range', 'u_2', t38), ('range', 'u_3', t39), ('range', 'w_1', t42), ('range', 'w_2', t46), ('range', 'w_3', t47), ('range', 'd_1', t48), ('range', 'd_2', t49), ('range', 'd_3', t50), ('positivity', 'Etilde_1', 1 - t53), ('positivity', 'Etilde_2', 1 - t55), ('positivity', 'Etilde_3', 1 - t57)])
+        t15 = np.abs(t3)
+        t16 = np.abs(t9)
+        t17 = np.abs(t6)
+        t18 = (t14 - 2)*(t14 + 2)
+        t19 = np.abs(t14)*((t1*t15 + t11*t16 + t17*(t15*t16 + t7))/np.abs(t18))
+        t20 = lam0 - mu
+        t21 = p2 + t20
+        t22 = -t21
+        t23 = t1*t22
+        t24 = p3 + t20
+        t25 = p1 + t20
+        t26 = t21*t25 + t8
+        t27 = t24*t26
+        t28 = t11*t25
+        t29 = t27 - t28
+        t30 = t23 + t29
+        t31 = np.abs(t21)
+        t32 = np.abs(t25)
+        t33 = np.abs(t24)
+        t34 = (t30 - 2)*(t30 + 2)
+        t35 = np.abs(t30)*((t1*t31 + t11*t32 + t33*(t31*t32 + t7))/np.abs(t34))
+        t36 = np.sign(t14)
+        t37 = np.sign(t30)
+        t38 = 2*t11
+        t39 = branch*np.sqrt(t18)
+        t40 = -t10*t6 + t12 + t5
+        t41 = 2*t1
+        t42 = np.where(t39*t40 <= 0, (t13 + t39 - t5)/(t38 + 2*t4*t6), -(t10*t41/(-t39 - t40)))
+        t43 = -(t7/(t42 + t9))
+        t44 = t36*branch <= 0
+        t45 = -t6 - t1/t42
+        t46 = np.where(t44, t43, -t3 - t11/t45)
+        t47 = np.where(t44, -(t11/(t3 + t43)), t45)
+        t48 = branch*np.sqrt(t34)
+        t49 = t23 - t27 + t28
+        t50 = np.where(t48*t49 >= 0, (-t48 - t49)/(2*t22*t24 + t38), -(t26*t41/(-t23 + t29 + t48)))
+        t51 = -(t7/(t25 + t50))
+        t52 = t37*branch >= 0
+        t53 = -t24 - t1/t50
+        t54 = np.where(t52, t51, -t21 - t11/t53)
+        t55 = np.where(t52, -(t11/(t21 + t51)), t53)
+        t56 = -t42 + t50
+        t57 = -t46 + t54
+        t58 = -t47 + t55
+        t59 = 1/t56
+        t60 = 2*mu
+        t61 = t59*t60
+        t62 = 1 - t61
+        t63 = np.abs(t62)
+        t64 = np.abs(p1)
+        t65 = np.abs(t2)
+        t66 = np.abs(p2)
+        t67 = np.abs(p3)
+        t68 = np.abs(t20)
+        t69 = np.maximum(t19*np.maximum(np.maximum((t64 + t65)/t16, (t65 + t66)/t15), (t65 + t67)/t17), t35*np.maximum(np.maximum((t64 + t68)/t32, (t66 + t68)/t31), (t67 + t68)/t33))
+        t70 = -t61
+        t71 = 1/t57
+        t72 = t60*t71
+        t73 = 1 - t72
+        t74 = np.abs(t73)
+        t75 = -t72
+        t76 = 1/t58
+        t77 = t60*t76
+        t78 = 1 - t77
+        t79 = np.abs(t78)
+        t80 = -t77
+        t81 = -(t42*t59)
+        t82 = t46*t71
+        t83 = t47*t76
+        p_new = _pack([p1 + t60*(-t81 - t82), p2 + t60*(t82 - t83), p3 + t60*(t81 + t83)], _batch, (3,))
+        q_new = _pack([q1 + np.log1p(t70), q2 + np.log1p(t75), q3 + np.log1p(t80)], _batch, (3,))
+        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t19 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', t18), ('illcond', 'tr L(lam2)', np.where(t35 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', t34), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t36*t37), ('range', 'u_1', t42), ('range', 'u_2', t46), ('range', 'u_3', t47), ('range', 'w_1', t50), ('range', 'w_2', t54), ('range', 'w_3', t55), ('range', 'd_1', t56), ('range', 'd_2', t57), ('range', 'd_3', t58), ('illcond', 'the slopes at site 1', 16777216*t63*np.abs(t56) - t69*(t63 + np.abs(t70))*(np.abs(t42) + np.abs(t50))), ('illcond', 'the slopes at site 2', -t69*(t74 + np.abs(t75))*(np.abs(t46) + np.abs(t54)) + 16777216*t74*np.abs(t57)), ('illcond', 'the slopes at site 3', -t69*(t79 + np.abs(t80))*(np.abs(t47) + np.abs(t55)) + 16777216*t79*np.abs(t58)), ('positivity', 'Etilde_1', t62), ('positivity', 'Etilde_2', t73), ('positivity', 'Etilde_3', t78)])
     p_new, q_new, = _finish(errors, _bad, _batch, [p_new, q_new])
     return p_new, q_new
 

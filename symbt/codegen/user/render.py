@@ -296,7 +296,7 @@ def python_module(module: str, emissions: list[Emission], sources: str, template
     if template is not None:
         head = template.head
     elif typed:
-        names = sorted(names + ["InvalidInputError", "NoRealMapError", "NumericRangeError"])
+        names = sorted(names + ["IllConditionedError", "InvalidInputError", "NoRealMapError", "NumericRangeError"])
         head = _typed_head(module, emissions, sources, names)
     else:
         head = _PY_HEAD.format(module=module, sources=sources, names=names)

@@ -156,9 +156,10 @@ def mpmath_function(e: Emission, zero_division: str = "division by zero") -> str
     outs: list[str] = []
     gs: list = []
     gx, ox = _prepared(e)
-    for early in (True, False):
-        gs = [g for g in e.guards if g.early == early]
-        exprs = [x for g, x in zip(e.guards, gx) if g.early == early] + ([] if early else ox)
+    for early in (True, False):     # "illcond" guards are float64's: the mpmath flavour is the recomputation
+        gs = [g for g in e.guards if g.early == early and g.condition != "illcond"]
+        exprs = [x for g, x in zip(e.guards, gx) if g.early == early and g.condition != "illcond"] + (
+            [] if early else ox)
         if not exprs:
             continue
         body, outs = _cse(exprs, _names(e), "mpmath", prefix="s" if early else "t")
