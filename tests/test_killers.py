@@ -240,12 +240,12 @@ def test_angle_quadrant(monkeypatch):
 
 @pytest.mark.parametrize("bug", ["stale_kept", "minmax"])
 def test_emit_user_path(monkeypatch, bug):
-    from symbt.codegen.user import files, render
+    from symbt.codegen.user import files, printing
     if bug == "stale_kept":   # a file that exists is never rewritten
         real = files.atomic_write
         monkeypatch.setattr(files, "atomic_write", lambda path, text: None if path.exists() else real(path, text))
     else:                     # numpy's Min and Max printed the other way round
-        monkeypatch.setitem(render._MINMAX, "numpy", ("np.maximum", "np.minimum"))
+        monkeypatch.setitem(printing._MINMAX, "numpy", ("np.maximum", "np.minimum"))
     assert _status(library_codegen.emitted_user_functions) == "failed"
 
 

@@ -197,15 +197,16 @@ class ExprPrinter:
 
 
 def cse_block(exprs: Sequence[sp.Basic], names: dict[sp.Basic, str], flavour: str,
-              prefix: str = "t") -> tuple[list[str], list[str]]:
+              prefix: str = "t", printer: type[ExprPrinter] | None = None) -> tuple[list[str], list[str]]:
     """Common subexpressions of ``exprs`` (fixed names ``t0, t1, ...``, canonical order).
 
-    Returns ``(lines, outs)``: assignment lines and the printed reduced outputs.
+    Returns ``(lines, outs)``: assignment lines and the printed reduced outputs; ``printer`` (a subclass
+    of :class:`ExprPrinter`, default :class:`ExprPrinter`) prints them.
     """
     syms = sp.numbered_symbols(prefix)
     repl, reduced = sp.cse(list(exprs), symbols=syms, order="canonical")
     names = dict(names)
-    pr = ExprPrinter(flavour, names)
+    pr = (printer or ExprPrinter)(flavour, names)
     lines = []
     for s, v in repl:
         lines.append(f"{s} = {pr.text(v)}")

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 1a2959d16a49d2f7205000d704285fa2c4a6643783d447d89b999f1e7ea10607
-# symbt-codegen-content-sha256: b8a5bad28135b2b2dd6525ff12ecd947144b3005c5f37db14cf084972ba1a0dd
+# symbt-codegen-derivation-sha256: b4714478bacb4c4ebdc74ec07fe2d43c98421175c6683a7c8ee81e5d321bfa27
+# symbt-codegen-content-sha256: facd7bfe75b09eb7050cd9ddfd30004736a6a74883f82382f55f384e678c3b03
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 1a2959d16a49d2f7205000d704285fa2c4a6643783d447d89b999f1e7ea10607
-# symbt-codegen-content-sha256: 80c75ad9b2a79e756739c15506b053b4041af6c6065b34145da036f8e071ea13
+# symbt-codegen-derivation-sha256: b4714478bacb4c4ebdc74ec07fe2d43c98421175c6683a7c8ee81e5d321bfa27
+# symbt-codegen-content-sha256: 07b1752825e071db9104c0988fe36355028cbfba1c76cb6b52cc3386ea8b8693
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 68accbef76ffd629c5025903ae4dedf383f91a2e6ef524d44165c6b1e7ac23e6
-// symbt-codegen-content-sha256: b972a532da6717f66b7f25acc6325975af5248458498a698cef8d11bcaad0661
+// symbt-codegen-derivation-sha256: a5c98552aad56f265af462acb592833a25311c5f959a1c5e157f2e5a8199e6fc
+// symbt-codegen-content-sha256: 157bfa76606cf9197cae3fff42aa7f0ab02986507d777d83ac1f0d060d3f19d3
 #include <math.h>
 #include "drag_numeric.h"
 

@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 68accbef76ffd629c5025903ae4dedf383f91a2e6ef524d44165c6b1e7ac23e6
-// symbt-codegen-content-sha256: 52827c18bbf89545f02f939b832ba375bf0397d6d72e621f6cd131aa4f61d3dd
+// symbt-codegen-derivation-sha256: a5c98552aad56f265af462acb592833a25311c5f959a1c5e157f2e5a8199e6fc
+// symbt-codegen-content-sha256: d6b9d989d9cf2503289fb88e1654997ed3d792f898c37a7e021a93c924a7fe4b
 #ifndef SYMBT_EMITTED_DRAG_NUMERIC_H
 #define SYMBT_EMITTED_DRAG_NUMERIC_H
 

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: drag_numeric (declared in drag_emit)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 68accbef76ffd629c5025903ae4dedf383f91a2e6ef524d44165c6b1e7ac23e6
-# symbt-codegen-content-sha256: 479896bc8139cfc83c1a69312965286f8e88434e572f160aa87b4de865388b21
+# symbt-codegen-derivation-sha256: a5c98552aad56f265af462acb592833a25311c5f959a1c5e157f2e5a8199e6fc
+# symbt-codegen-content-sha256: 77d48e2ee5468a38419239b0bb6f418b13dd9935cd873b06a1f081e6dc98988c
 """drag_numeric: functions emitted by `symbt codegen` from drag_emit.
 
 Each function has a numpy float64 flavour (vectorised over broadcast arguments) and an

@@ -35,153 +35,11 @@ True
 """
 from __future__ import annotations
 
-import sympy as sp
-from sympy.codegen.cfunctions import expm1
-from sympy.codegen.rewriting import FuncMinusOneOptim, ReplaceOptim, expm1_opt, log1p_opt
-
-from ..printer import _ATOM, _FUNCS, _MUL, _POW, ExprPrinter
 from .declare import Emission
+from .printing import FACTOR_MAX_OPS, LONG_SUM, UserPrinter, cse, optimized, rewritten
 
-__all__ = ["UserPrinter", "optimized", "rewritten", "python_module", "c_source", "c_header", "c_name"]
-
-_TRIG = (sp.sin, sp.cos, sp.tan, sp.asin, sp.acos, sp.atan, sp.sinh, sp.cosh, sp.tanh, sp.asinh, sp.atanh)
-_NP = {"asin": "arcsin", "acos": "arccos", "atan": "arctan", "asinh": "arcsinh", "atanh": "arctanh"}
-_EXTRA = {
-    "numpy": {**{f: "np." + _NP.get(f.__name__, f.__name__) for f in _TRIG}, expm1: "np.expm1"},
-    "mpmath": {**{f: "mpmath." + f.__name__ for f in _TRIG}, expm1: "mpmath.expm1"},
-    "c": {**{f: f.__name__ for f in _TRIG}, expm1: "expm1"},
-}
-_CONST = {"numpy": {"pi": "np.pi", "E": "np.e"}, "mpmath": {"pi": "mpmath.pi", "E": "mpmath.e"},
-          "c": {"pi": "3.141592653589793", "E": "2.718281828459045"}}
-_MINMAX = {"numpy": ("np.minimum", "np.maximum"), "mpmath": ("min", "max"), "c": ("fmin", "fmax")}
-_BOOL = {"numpy": (" & ", " | ", "~"), "mpmath": (" and ", " or ", "not "), "c": (" && ", " || ", "!")}
-
-
-class UserPrinter(ExprPrinter):
-    """:class:`~symbt.codegen.printer.ExprPrinter` for users' expressions (flavours numpy, mpmath, c).
-
-    >>> import sympy as sp
-    >>> x = sp.Symbol("x")
-    >>> UserPrinter("c", {x: "x"}).text(sp.Piecewise((sp.sin(x), x < 0), (x**sp.Rational(1, 3), True)))
-    '((x < 0.0) ? sin(x) : pow(x, (1.0/3.0)))'
-    """
-
-    def __init__(self, flavour: str, names: dict):
-        super().__init__(flavour, names)
-        self.funcs = {**_FUNCS[flavour], **_EXTRA[flavour]}
-
-    def _p(self, e):
-        fl = self.flavour
-        if e.is_Float:
-            v = float(e)
-            txt = repr(v) if fl != "mpmath" else f"mpmath.mpf({repr(v)!r})"
-            return (txt, _ATOM) if v >= 0 else (f"({txt})", _ATOM)
-        if e is sp.pi or e is sp.E:
-            return _CONST[fl][str(e)], _ATOM
-        if isinstance(e, sp.atan2):
-            f = {"numpy": "np.arctan2", "mpmath": "mpmath.atan2", "c": "atan2"}[fl]
-            return f"{f}({self.text(e.args[0])}, {self.text(e.args[1])})", _ATOM
-        if isinstance(e, (sp.Min, sp.Max)):
-            f = _MINMAX[fl][isinstance(e, sp.Max)]
-            out = self.text(e.args[0])
-            for a in e.args[1:]:
-                out = f"{f}({out}, {self.text(a)})"
-            return out, _ATOM
-        if isinstance(e, (sp.And, sp.Or)):
-            op = _BOOL[fl][isinstance(e, sp.Or)]
-            return "(" + op.join(f"({self.text(a)})" for a in e.args) + ")", _ATOM
-        if isinstance(e, sp.Not):
-            return f"({_BOOL[fl][2]}({self.text(e.args[0])}))", _ATOM
-        if isinstance(e, (sp.Eq, sp.Ne)):
-            op = "==" if isinstance(e, sp.Eq) else "!="
-            return f"({self._wrap(e.lhs, 1)} {op} {self._wrap(e.rhs, 1)})", _ATOM
-        if e is sp.true or e is sp.false:
-            v = bool(e)
-            return {"numpy": str(v), "mpmath": str(v), "c": str(int(v))}[fl], _ATOM
-        return super()._p(e)
-
-    def _add(self, e):
-        terms = e.as_ordered_terms()
-        if self.flavour == "c" or len(terms) <= LONG_SUM:
-            return super()._add(e)
-        chunks = [super(UserPrinter, self)._add(sp.Add(*terms[k:k + LONG_SUM], evaluate=False))
-                  for k in range(0, len(terms), LONG_SUM)]
-
-        def tree(parts):   # balanced: nesting depth log2(chunks), few temporaries alive at once
-            if len(parts) == 1:
-                return parts[0]
-            mid = len(parts) // 2
-            return f"({tree(parts[:mid])}) + ({tree(parts[mid:])})"
-        return tree(chunks)
-
-    def _pow(self, e):
-        b, x = e.base, e.exp
-        if b is sp.E or (x.is_Rational and (x.is_Integer or x.q == 2)):
-            return super()._pow(e)
-        if x.is_Rational and x.is_negative:
-            one = "1.0" if self.flavour == "c" else "1"
-            return f"{one}/{self._wrap(sp.Pow(b, -x), _MUL)}", _MUL
-        if self.flavour == "c":
-            return f"pow({self.text(b)}, {self.text(x)})", _ATOM
-        if self.flavour == "mpmath":
-            return f"mpmath.power({self.text(b)}, {self.text(x)})", _ATOM
-        return f"{self._wrap(b, _POW)}**{self._wrap(x, _POW)}", _POW
-
-
-#: above this many operations the expm1 rule is applied term by term only: SymPy's rule also tries
-#: ``factor()`` of the whole expression, which took 93 % of the emission time of a large polynomial
-FACTOR_MAX_OPS = 400
-#: a sum of more terms is printed in Python as a balanced sum of partial sums of at most this many terms,
-#: ``(a + ... ) + (...)``: a chain ``a + b + ...`` of thousands of terms makes Python's compiler raise
-#: RecursionError
-LONG_SUM = 100
-
-
-def rewritten(x: sp.Expr) -> sp.Expr:
-    """SymPy's ``optimize(x, [expm1_opt, log1p_opt])``, each rule only where its function occurs.
-
-    >>> x = sp.Symbol("x")
-    >>> rewritten(sp.log(1 + x) + sp.exp(x) - 1)
-    expm1(x) + log1p(x)
-    """
-    for fn, opt in ((sp.exp, expm1_opt), (sp.log, log1p_opt)):
-        if not x.has(fn):
-            continue
-        if isinstance(opt, FuncMinusOneOptim) and sp.count_ops(x) > FACTOR_MAX_OPS:
-            new = ReplaceOptim.__call__(opt, x)
-        else:
-            new = opt(x)
-        x = opt.cheapest(x, new) if opt.cost_function is not None else new
-    return x
-
-
-def optimized(e: Emission) -> list[sp.Expr]:
-    """The elements to print: ``expm1``/``log1p`` rewriting when the declaration asks for it.
-
-    Each rule of :mod:`sympy.codegen.rewriting` is applied only to an expression containing its
-    function (``exp``, ``log``), and on an expression of more than :data:`FACTOR_MAX_OPS` operations
-    without the rule's whole-expression ``factor()`` attempt.
-
-    >>> import sympy as sp
-    >>> from .declare import emit
-    >>> x = sp.Symbol("x")
-    >>> optimized(emit("g", [sp.exp(x) - 1, sp.log(1 + x), x**2 - 1], args=(x,), module="m", register=False))
-    [expm1(x), log1p(x), x**2 - 1]
-    """
-    if not e.optimize:
-        return list(e.exprs)
-    return [rewritten(x) for x in e.exprs]
-
-
-def _cse(exprs, names, flavour):
-    repl, reduced = sp.cse(list(exprs), symbols=sp.numbered_symbols("t"), order="canonical")
-    names = dict(names)
-    pr = UserPrinter(flavour, names)
-    lines = []
-    for s, v in repl:
-        lines.append((str(s), pr.text(v)))
-        names[s] = str(s)
-    return lines, [pr.text(r) for r in reduced]
+__all__ = ["UserPrinter", "optimized", "rewritten", "python_module", "c_source", "c_header", "c_name",
+           "FACTOR_MAX_OPS", "LONG_SUM"]
 
 
 def _names(e: Emission) -> dict:
@@ -205,9 +63,9 @@ def _py_function(e: Emission, exprs) -> str:
     for a in e.arg_names:
         lines.append(f"    {a} = np.asarray({a}, dtype=np.float64)")
     lines.append(f"    _batch = np.broadcast_shapes({', '.join(a + '.shape' for a in e.arg_names)})")
-    body, outs = _cse(exprs, _names(e), "numpy")
+    body, outs = cse(list(exprs), _names(e), "numpy")
     lines.append('    with np.errstate(all="ignore"):')
-    lines += [f"        {s} = {v}" for s, v in body]
+    lines += [f"        {line}" for line in body]
     lines.append(f"        return _pack([{', '.join(outs)}], _batch, {e.shape!r})")
     return "\n".join(lines)
 
@@ -217,9 +75,9 @@ def _mp_function(e: Emission, exprs) -> str:
     lines = [f"def {e.name}_mp({args}):", _doc(e, "mpmath")]
     for a in e.arg_names:
         lines.append(f"    {a} = mpmath.mpf({a})")
-    body, outs = _cse(exprs, _names(e), "mpmath")
+    body, outs = cse(list(exprs), _names(e), "mpmath")
     lines.append("    try:")
-    lines += [f"        {s} = {v}" for s, v in body]
+    lines += [f"        {line}" for line in body]
     items = [f"mpmath.mpf({t})" for t in outs]
     if e.shape == ():
         val = items[0]
@@ -361,11 +219,11 @@ def c_source(module: str, emissions: list[Emission]) -> str:
     lines = ["#include <math.h>", f'#include "{module}.h"', "",
              "static double sgn(double x) { return (double)((x > 0.0) - (x < 0.0)); }", ""]
     for e in emissions:
-        body, outs = _cse(optimized(e), _names(e), "c")
+        body, outs = cse(optimized(e), _names(e), "c")
         lines.append(f"int {c_name(module, e)}(const double *in, double *out)")
         lines.append("{")
         lines += [f"    const double {a} = in[{i}];" for i, a in enumerate(e.arg_names)]
-        lines += [f"    const double {s} = {v};" for s, v in body]
+        lines += [f"    const double {line};" for line in body]
         lines += [f"    out[{k}] = {v};" for k, v in enumerate(outs)]
         lines += [f"    for (int k = 0; k < {_nout(e)}; ++k) {{", "        if (!isfinite(out[k])) return 1;",
                   "    }", "    return 0;", "}", ""]

@@ -30,32 +30,16 @@ from __future__ import annotations
 
 import re
 
-import sympy as sp
-
 from .declare import Emission
+from .printing import cse, rewritten
 
 __all__ = ["numpy_function", "mpmath_function", "typed_doc"]
 
 _INT = re.compile(r"^\(?-?\d+\)?$")
 
 
-def _cse(exprs, names, flavour, prefix="t"):
-    from .render import UserPrinter
-
-    repl, reduced = sp.cse(list(exprs), symbols=sp.numbered_symbols(prefix), order="canonical")
-    names = dict(names)
-    pr = UserPrinter(flavour, names)
-    lines = []
-    for s, v in repl:
-        lines.append(f"{s} = {pr.text(v)}")
-        names[s] = str(s)
-    return lines, [pr.text(r) for r in reduced]
-
-
 def _prepared(e: Emission) -> tuple[list, list]:
     """(guard expressions, output expressions), with ``expm1``/``log1p`` rewriting if ``e.optimize``."""
-    from .render import rewritten
-
     gx = [g.expr for g in e.guards]
     ox = [x for o in e.outputs for x in o.exprs]
     if e.optimize:
@@ -120,7 +104,7 @@ def numpy_function(e: Emission) -> str:
         if a.kind == "array":
             lines += [f"    {s} = {a.name}[..., {i}]" for i, s in enumerate(a.symbols)]
     gx, ox = _prepared(e)
-    body, outs = _cse(gx + ox, _names(e), "numpy")
+    body, outs = cse(gx + ox, _names(e), "numpy")
     lines.append("    with np.errstate(all=\"ignore\"):")
     lines += [f"        {ln}" for ln in body]
     k = len(e.guards)
@@ -162,7 +146,7 @@ def mpmath_function(e: Emission, zero_division: str = "division by zero") -> str
             [] if early else ox)
         if not exprs:
             continue
-        body, outs = _cse(exprs, _names(e), "mpmath", prefix="s" if early else "t")
+        body, outs = cse(exprs, _names(e), "mpmath", prefix="s" if early else "t")
         lines += [f"        {ln}" for ln in body]
         lines += [f"        _mp_guard({g.condition!r}, {g.label!r}, {t})" for g, t in zip(gs, outs)]
     outs = outs[len(gs):]

@@ -32,7 +32,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .declare import Emission
-from .render_typed import _cse
+from .printing import cse
 
 __all__ = ["CTemplate", "c_function", "c_files", "default_template", "SGN"]
 
@@ -96,7 +96,7 @@ def c_function(e: Emission, t: CTemplate) -> str:
         lines += [f"    if ({' || '.join(finite)})", f"        return {st['invalid']};"]
     lines += [f"    const double {t.sign_local.format(name=a.name)} = (double){a.name};" for a in signs]
     exprs = [g.expr for g in e.guards] + [x for o in e.outputs for x in o.exprs]
-    body, printed = _cse(exprs, names, "c")
+    body, printed = cse(exprs, names, "c")
     lines += [f"    const double {ln};" for ln in body]
     gl, vals = printed[:len(e.guards)], printed[len(e.guards):]
     for g, v in zip(e.guards, gl):
