@@ -15,16 +15,17 @@ from symbt.claims import REGISTRY, load_all
 from symbt.engine.mutate import mutate_claim, summary
 from symbt.proof.mutation import OPERATORS, mutants, mutate_value
 
-#: scenes whose claims check symbt's own checker and library against statements of known truth: there is no
-#: printed statement to perturb; each claim is shown to fail on a planted bug in tests/test_killers.py instead
-PLANTED_BUG_SCENES = ("checker", "library")
+#: scenes whose claims check symbt's own checker, library and numeric paths against statements of known truth:
+#: a claim there may have no printed statement to perturb; it is then shown to fail on a planted bug in one of
+#: tests/test_killers*.py instead
+PLANTED_BUG_SCENES = ("checker", "library", "numeric-paths")
 
 
 def test_every_claim_exposes_statement_parts():
     load_all()
     missing = [c.id for c in REGISTRY.values() if c.parts is None and c.scene not in PLANTED_BUG_SCENES]
     assert not missing, f"claims whose statement cannot be mutated: {missing}"
-    killers = (Path(__file__).parent / "test_killers.py").read_text(encoding="utf-8")
+    killers = "".join(p.read_text(encoding="utf-8") for p in sorted(Path(__file__).parent.glob("test_killers*.py")))
     untested = sorted({c.id for c in REGISTRY.values() if c.parts is None and c.scene in PLANTED_BUG_SCENES
                        and c.func.__name__ not in killers})
     assert not untested, f"claims without parts and without a planted-bug test: {untested}"
