@@ -3,23 +3,24 @@ r"""Zullo's closed-form modules ``toda{N}.py`` as ``symbt.emit`` declarations (d
 Every function of :func:`symbt.codegen.derive.specs` is declared with the typed form of
 :func:`symbt.emit` (:mod:`symbt.codegen.user.typed`): the states ``p``, ``q`` (and the
 coefficients ``c``) are array arguments of length N, ``branch`` a sign argument, the outputs
-named (``p_new``, ``q_new``, ...), the guards ordered as derived (trace, gap sign, range,
-positivity); the docstrings are given verbatim.  The hand-written parts -- module docstring,
+named (``p_new``, ``q_new``, ...), the guards ordered as derived (conditioning, trace, gap sign,
+range, positivity); the docstrings are given verbatim.  The hand-written parts -- module docstring,
 ``N``/``FORM``/``__all__``, the typed runtime (:data:`~symbt.codegen.runtime.RUNTIME`) and
 ``bt_orbit`` (:data:`~symbt.codegen.runtime.ORBIT`) -- are the module template.
 :func:`module_text` renders them with the user path's
 :func:`~symbt.codegen.user.render.python_module`; ``symbt codegen`` writes
 ``symbt/generated/toda{2,3}.py`` so (:func:`symbt.codegen.emit.module_body`).
 
-Not through this path yet: the transfer-matrix form (N >= :data:`~symbt.codegen.forms.LOOP_FROM`,
-:mod:`symbt.codegen.emit_loop`: per-function wrappers of hand-written loop code, not expressions)
-and the C target (:mod:`symbt.codegen.emit_c`: Zullo's ABI with status codes 0-4).
+The closed-form C target goes through the same declarations (:mod:`symbt.codegen.emit_c`, Zullo's
+ABI and status codes as a C template).  Not through declarations: the transfer-matrix form
+(N >= :data:`~symbt.codegen.forms.LOOP_FROM`, :mod:`symbt.codegen.emit_loop`: per-function wrappers of
+hand-written loop code, not expressions).
 
 >>> ems, template = declarations(2)
 >>> [e.name for e in ems][-2:], [a.kind for a in ems[-1].params], [o.name for o in ems[-1].outputs]
 (['dapp_xy', 'bt_step'], ['array', 'array', 'scalar', 'scalar', 'sign'], ['p_new', 'q_new'])
->>> [g.condition for g in ems[-1].guards][:3], template.tail.lstrip().startswith("def bt_orbit(")
-(['trace', 'trace', 'positivity'], True)
+>>> [g.condition for g in ems[-1].guards][:4], template.tail.lstrip().startswith("def bt_orbit(")
+(['illcond', 'trace', 'illcond', 'trace'], True)
 """
 from __future__ import annotations
 

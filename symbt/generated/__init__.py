@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b4714478bacb4c4ebdc74ec07fe2d43c98421175c6683a7c8ee81e5d321bfa27
-# symbt-codegen-content-sha256: facd7bfe75b09eb7050cd9ddfd30004736a6a74883f82382f55f384e678c3b03
+# symbt-codegen-derivation-sha256: 9881886522f629f9b8ed240752a93899fa74076f3e8f3098bc674c0099bc5a5f
+# symbt-codegen-content-sha256: a612329b4d240e13917ba04229d7e8b1a56f363f64bafe94964ef48b349d2480
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b4714478bacb4c4ebdc74ec07fe2d43c98421175c6683a7c8ee81e5d321bfa27
-# symbt-codegen-content-sha256: b53c436b633a5d6684330eba7c348d85701e4c518579eae9ea136bd5f93b6340
+# symbt-codegen-derivation-sha256: 9881886522f629f9b8ed240752a93899fa74076f3e8f3098bc674c0099bc5a5f
+# symbt-codegen-content-sha256: 6cbc3a097bed391e47554a83dba022eee1d5c1459dfa838f023fc2d0aed90f89
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b4714478bacb4c4ebdc74ec07fe2d43c98421175c6683a7c8ee81e5d321bfa27
-# symbt-codegen-content-sha256: 07b1752825e071db9104c0988fe36355028cbfba1c76cb6b52cc3386ea8b8693
+# symbt-codegen-derivation-sha256: 9881886522f629f9b8ed240752a93899fa74076f3e8f3098bc674c0099bc5a5f
+# symbt-codegen-content-sha256: 2ce34fddb79524657eeee404211b7bad1ec2c9d0ff361343c37be563f9d3f636
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
