@@ -56,6 +56,9 @@ from symbt.reference.literal import literal_step, literal_trace
 #: the deep run: every input through the fast routes; 1 in SUB also through the slow float64 routes, 1 in
 #: MP_SUB through the multiprecision backends at 30 digits (mpmath, Arb, quad-double where installed)
 SUB, MP_SUB = 20, 200
+#: the C step's documented refusals (c_template): no real map (trace 1, positivity 2), range 3, ill-conditioned 5;
+#: 4 (invalid input) cannot occur for the fuzz's finite inputs
+C_REFUSALS = (1, 2, 3, 5)
 DEEP_SINGLE = ("kernel",)
 DEEP_BATCH = ("block",)
 ENSEMBLE_SUB = 4             # the ensemble orbit (bt_orbit on a batch) on 1 in 4
@@ -124,7 +127,7 @@ def _emitted_results(inputs, mods, csteps):
         for i in idx if N in csteps else ():
             _, p, q, lam0, mu, b = inputs[i]
             rc, got = csteps[N](p, q, lam0, mu, b)
-            out["C"][i] = np.array(got) if rc == 0 else ("status %d" % rc if rc in (1, 2, 3) else "UNTYPED %d" % rc)
+            out["C"][i] = np.array(got) if rc == 0 else ("status %d" % rc if rc in C_REFUSALS else "UNTYPED %d" % rc)
     return out
 
 
@@ -279,8 +282,8 @@ def test_fuzz_deep_run(tmp_path):
     numeric = [f for f in failures if f[0] not in ("emitted", "C")]
     assert not numeric, numeric[:5]
     if failures:
-        pytest.xfail("%d emitted wrong results (known defect: no ill-conditioning guard in the emitted forms)"
-                     % len(failures))
+        pytest.xfail("%d emitted wrong results (the deep run of docs/fuzz.md predates the emitted forms' "
+                     "ill-conditioning guard and has not been repeated)" % len(failures))
 
 
 @pytest.mark.slow
@@ -288,7 +291,9 @@ def test_deep_chunk_small(tmp_path):
     """The deep run's machinery on 64 inputs (every route, the emitted modules and C): 0 failures."""
     total, failures, _ = deep_run(64, 600, seed=5, chunk=64, tmp=tmp_path, log=lambda m: None)
     assert not failures, failures[:3]
-    assert total["inputs"] == 64 and total["route_states"] > 100 and total["states"] + total["no_map"] >= 60
+    # a reach floor, not an accuracy bound: the 64 near-edge inputs give ~100 returned states over the routes
+    # (fewer since the emitted forms refuse ill-conditioned states, as symbt.numeric's float64 kernels do)
+    assert total["inputs"] == 64 and total["route_states"] >= 90 and total["states"] + total["no_map"] >= 60
 
 
 
