@@ -26,22 +26,12 @@ def numpy_prologue(spec: FunctionSpec, N: int, form: str, n_text: str | None = N
     ``"N"`` in the transfer-matrix module, where N is a module constant).  Both forms share it.
     """
     n_size = str(N) if n_text is None else n_text
+    from .user.render_typed import validation_lines
+
+    kind = {"state": "array", "branch": "sign"}
     lines = [f"def {spec.name}({signature(spec, 'numpy')}):", function_doc(spec, N, "numpy", form)]
-    if spec.guards:
-        lines.append("    errors = _mode(errors)")
-    batch = []
-    for a in spec.args:
-        if a.kind == "state":
-            lines.append(f"    {a.name} = _state({a.name}, {n_size}, {a.name!r})")
-            batch.append(f"{a.name}.shape[:-1]")
-        elif a.kind == "branch":
-            lines.append(f"    {a.name} = _branch({a.name})")
-            batch.append(f"{a.name}.shape")
-        else:
-            lines.append(f"    {a.name} = _scalar({a.name}, {a.name!r})")
-            batch.append(f"{a.name}.shape")
-    lines.append(f"    _batch = _batch_of([{', '.join(batch)}])")
-    return lines
+    return lines + validation_lines([(a.name, kind.get(a.kind, "scalar"), n_size) for a in spec.args],
+                                    bool(spec.guards))
 
 
 def numpy_epilogue(spec: FunctionSpec, res: Sequence[str], guard_list: str) -> list[str]:

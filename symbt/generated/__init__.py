@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 9881886522f629f9b8ed240752a93899fa74076f3e8f3098bc674c0099bc5a5f
-# symbt-codegen-content-sha256: a612329b4d240e13917ba04229d7e8b1a56f363f64bafe94964ef48b349d2480
+# symbt-codegen-derivation-sha256: 65acc240a47fdd59b3e727d0648ae3c1f09d5407977f17fb6c122a987b4c711d
+# symbt-codegen-content-sha256: f22a425a8f62a4e5a0de9534f8d47400512b8c5d039f5bdb1d3824806a0c2a73
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

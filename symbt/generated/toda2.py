@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 9881886522f629f9b8ed240752a93899fa74076f3e8f3098bc674c0099bc5a5f
-# symbt-codegen-content-sha256: 6cbc3a097bed391e47554a83dba022eee1d5c1459dfa838f023fc2d0aed90f89
+# symbt-codegen-derivation-sha256: 65acc240a47fdd59b3e727d0648ae3c1f09d5407977f17fb6c122a987b4c711d
+# symbt-codegen-content-sha256: 534dbae464efc80ad6d6f8f12ebb83d50aab772a22d428319bebdb2ef31f0ce4
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

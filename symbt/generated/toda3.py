@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 9881886522f629f9b8ed240752a93899fa74076f3e8f3098bc674c0099bc5a5f
-# symbt-codegen-content-sha256: 2ce34fddb79524657eeee404211b7bad1ec2c9d0ff361343c37be563f9d3f636
+# symbt-codegen-derivation-sha256: 65acc240a47fdd59b3e727d0648ae3c1f09d5407977f17fb6c122a987b4c711d
+# symbt-codegen-content-sha256: 9f4f99151734d061bfbf0081ce423e13adcd0d097e41d60b2283af80f5a42527
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: a5c98552aad56f265af462acb592833a25311c5f959a1c5e157f2e5a8199e6fc
-// symbt-codegen-content-sha256: 157bfa76606cf9197cae3fff42aa7f0ab02986507d777d83ac1f0d060d3f19d3
+// symbt-codegen-derivation-sha256: d0f12cf710f7e58787151312a775aa9f65d798422e47b0d98f468b642fdb0a11
+// symbt-codegen-content-sha256: e0fb1ae36c4feab308d8714990bca44ab39024d024ad5d89e94067a17db164f3
 #include <math.h>
 #include "drag_numeric.h"
 

@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: a5c98552aad56f265af462acb592833a25311c5f959a1c5e157f2e5a8199e6fc
-// symbt-codegen-content-sha256: d6b9d989d9cf2503289fb88e1654997ed3d792f898c37a7e021a93c924a7fe4b
+// symbt-codegen-derivation-sha256: d0f12cf710f7e58787151312a775aa9f65d798422e47b0d98f468b642fdb0a11
+// symbt-codegen-content-sha256: 95453e8855ac1a967ef58dee6038d020af2270bc791d388b0582593d9f2e962a
 #ifndef SYMBT_EMITTED_DRAG_NUMERIC_H
 #define SYMBT_EMITTED_DRAG_NUMERIC_H
 

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: drag_numeric (declared in drag_emit)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: a5c98552aad56f265af462acb592833a25311c5f959a1c5e157f2e5a8199e6fc
-# symbt-codegen-content-sha256: 77d48e2ee5468a38419239b0bb6f418b13dd9935cd873b06a1f081e6dc98988c
+# symbt-codegen-derivation-sha256: d0f12cf710f7e58787151312a775aa9f65d798422e47b0d98f468b642fdb0a11
+# symbt-codegen-content-sha256: 6d02771ee0a6fa6bd791e13c80629bb1661210938c8e934890191f374645da2b
 """drag_numeric: functions emitted by `symbt codegen` from drag_emit.
 
 Each function has a numpy float64 flavour (vectorised over broadcast arguments) and an

@@ -83,23 +83,34 @@ def typed_doc(e: Emission, flavour: str) -> str:
     return f"{head}\n\n    {tail}.\n    "
 
 
+def validation_lines(params: list[tuple[str, str, str]], guarded: bool) -> list[str]:
+    """The numpy flavour's input checks with the typed runtime, up to ``_batch``: one ``(name, kind,
+    size)`` per argument (kind ``"array"`` of ``size`` entries -- the source text of the length --,
+    ``"sign"`` or ``"scalar"``); ``guarded`` adds the ``errors`` mode.  Zullo's loop form uses it too.
+
+    >>> validation_lines([("p", "array", "3"), ("b", "sign", "")], False)[-1]
+    '    _batch = _batch_of([p.shape[:-1], b.shape])'
+    """
+    lines = ["    errors = _mode(errors)"] if guarded else []
+    batch = []
+    for name, kind, size in params:
+        if kind == "array":
+            lines.append(f"    {name} = _state({name}, {size}, {name!r})")
+            batch.append(f"{name}.shape[:-1]")
+        elif kind == "sign":
+            lines.append(f"    {name} = _branch({name})")
+            batch.append(f"{name}.shape")
+        else:
+            lines.append(f"    {name} = _scalar({name}, {name!r})")
+            batch.append(f"{name}.shape")
+    lines.append(f"    _batch = _batch_of([{', '.join(batch)}])")
+    return lines
+
+
 def numpy_function(e: Emission) -> str:
     """The numpy flavour of the typed declaration ``e``."""
     lines = [f"def {e.name}({_signature(e, 'numpy')}):", f'    """{typed_doc(e, "numpy")}"""']
-    if e.guards:
-        lines.append("    errors = _mode(errors)")
-    batch = []
-    for a in e.params:
-        if a.kind == "array":
-            lines.append(f"    {a.name} = _state({a.name}, {len(a.symbols)}, {a.name!r})")
-            batch.append(f"{a.name}.shape[:-1]")
-        elif a.kind == "sign":
-            lines.append(f"    {a.name} = _branch({a.name})")
-            batch.append(f"{a.name}.shape")
-        else:
-            lines.append(f"    {a.name} = _scalar({a.name}, {a.name!r})")
-            batch.append(f"{a.name}.shape")
-    lines.append(f"    _batch = _batch_of([{', '.join(batch)}])")
+    lines += validation_lines([(a.name, a.kind, str(len(a.symbols))) for a in e.params], bool(e.guards))
     for a in e.params:
         if a.kind == "array":
             lines += [f"    {s} = {a.name}[..., {i}]" for i, s in enumerate(a.symbols)]
