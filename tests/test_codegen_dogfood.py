@@ -332,8 +332,11 @@ def test_bad_typed_declarations_are_emit_errors():
             emit("f", kw.pop("expr"), module="m", register=False, **kw)
     from symbt import Domain
 
-    with pytest.raises(EmitError, match="not sampled"):
-        emit("f", {"a": x}, args=(("v", (x,)),), module="m", domain=Domain({"v": (0, 1)}), register=False)
+    # domain= is sampled over the array's elements now (tests/test_codegen_user_typed.py); a bad one is refused
+    assert set(emit("f", {"a": x}, args=(("v", (x,)),), module="m", domain=Domain({"v": (0, 1)}),
+                    register=False).domain.variables) == {"x"}
+    with pytest.raises(EmitError, match="lacks the array v"):
+        emit("f", {"a": x}, args=(("v", (x,)),), module="m", domain=Domain({"w": (0, 1)}), register=False)
     from symbt.codegen.user.render import c_source
 
     e = emit("f", {"a": x}, args=(("v", (x,)),), module="m", register=False)

@@ -31,7 +31,7 @@ def _statement(e: Emission, flavour: str) -> str:
 
 
 def _check(key: tuple[str, str], flavour: str, root: Path, out: Path, *, deep: bool = False) -> Outcome:
-    from ..codegen.user.check import compare, compiler, method_text
+    from ..codegen.user.check import Comparison, compare, compiler, method_text
 
     e = EMISSIONS.get(key)
     if e is None:
@@ -49,10 +49,16 @@ def _check(key: tuple[str, str], flavour: str, root: Path, out: Path, *, deep: b
     problems = [p for p in (file_problem(out / n, dh) for n in names) if p]
     if problems:
         return failed("provenance", detail="; ".join(problems))
-    table = compare(e, out / names[0], flavour, deep=deep)
-    res = judge_cells(table, printed=_statement(e, flavour), method=method_text(flavour),
-                      detail="residual: the worst |emitted - reference| in units of the error bound "
-                             "(a point holds at <= 1)")
+    seen = Comparison()
+    table = compare(e, out / names[0], flavour, deep=deep, seen=seen)
+    detail = "residual: the worst |emitted - reference| in units of the error bound (a point holds at <= 1)"
+    if e.guards:        # points a guard refused on both sides are counted, not compared
+        why = ", ".join(f"{c} {n}" for c, n in sorted(seen.conditions.items()))
+        detail += f"; {seen.compared} points compared, {seen.refused} refused by a guard on both sides" + (
+            f" ({why})" if why else "")
+        if seen.compared == 0:
+            return failed("domain", detail=f"every sampled point was refused by a guard: nothing compared; {detail}")
+    res = judge_cells(table, printed=_statement(e, flavour), method=method_text(flavour), detail=detail)
     res = replace(res, digits=None)   # the residual is in units of the bound, not a relative error: no digits to count
     return res
 

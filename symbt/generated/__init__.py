@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 65acc240a47fdd59b3e727d0648ae3c1f09d5407977f17fb6c122a987b4c711d
-# symbt-codegen-content-sha256: f22a425a8f62a4e5a0de9534f8d47400512b8c5d039f5bdb1d3824806a0c2a73
+# symbt-codegen-derivation-sha256: 98ad4c6865e641863b64585bc2bfcdfec6cef2e13de3a9f05d592457dae38355
+# symbt-codegen-content-sha256: b39638f7154c0590ac0fcf8d9ea5b80497056fc08ad53687ca0cdde4d05bdcbb
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

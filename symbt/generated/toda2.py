@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 65acc240a47fdd59b3e727d0648ae3c1f09d5407977f17fb6c122a987b4c711d
-# symbt-codegen-content-sha256: 534dbae464efc80ad6d6f8f12ebb83d50aab772a22d428319bebdb2ef31f0ce4
+# symbt-codegen-derivation-sha256: 98ad4c6865e641863b64585bc2bfcdfec6cef2e13de3a9f05d592457dae38355
+# symbt-codegen-content-sha256: e5c804a2fcad7d750d4515ed345dc454b92f77632d63c10f95e1b67ff8ff53de
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

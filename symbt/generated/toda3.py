@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 65acc240a47fdd59b3e727d0648ae3c1f09d5407977f17fb6c122a987b4c711d
-# symbt-codegen-content-sha256: 9f4f99151734d061bfbf0081ce423e13adcd0d097e41d60b2283af80f5a42527
+# symbt-codegen-derivation-sha256: 98ad4c6865e641863b64585bc2bfcdfec6cef2e13de3a9f05d592457dae38355
+# symbt-codegen-content-sha256: eded7f76ed962cdffe34adc69cb398060287bf74f1a798cc922b2f578d54fb9f
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

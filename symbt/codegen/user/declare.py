@@ -47,7 +47,7 @@ import sympy as sp
 from sympy.codegen.cfunctions import expm1, log1p
 
 from ..printer import Quotient
-from .typed import Arg, Guard, Output, arg_of, outputs_of
+from .typed import Arg, Guard, Output, arg_of, outputs_of, sign_cells, typed_domain
 
 __all__ = ["emit", "Emission", "EmitError", "EMISSIONS", "SUPPORTED_FUNCTIONS", "emissions_of", "Arg", "Guard",
            "Output"]
@@ -259,17 +259,22 @@ def emit(name: str, expr: Any, *, args: Any, module: str, doc: Any = "", domain:
     if domain is not None:
         from ...proof import Domain
 
-        if typed:
-            raise _fail(name, "domain= is not sampled for array/sign arguments, named outputs or guards yet "
-                        "(verify such functions with claims of your own)")
         if not isinstance(domain, Domain):
             raise _fail(name, f"domain must be a symbt.Domain, got {type(domain).__name__}")
-        missing = [n for n in names if n not in domain.variables]
+        if typed:       # arrays by component (or one interval per array), signs as cells: over the elements
+            try:
+                domain = typed_domain(params, domain)
+            except ValueError as exc:
+                raise _fail(name, str(exc)) from None
+        missing = [n for n in names if n not in domain.variables] if not typed else []
         if missing:
             raise _fail(name, f"the domain lacks the argument(s) {', '.join(missing)}")
     if equation is not None and (not isinstance(equation, str) or not equation.strip()):
         raise _fail(name, f"equation={equation!r} must be a paper label (a non-empty string)")
-    cells = tuple(cells) if cells else (() if typed else _branch_splits(exprs))
+    signs = {a.symbols[0] for a in params if a.kind == "sign"}
+    cells = tuple(cells) if cells else _branch_splits(exprs + tuple(g.expr for g in gs), signs)
+    if typed and domain is not None:
+        cells += sign_cells(params, cells)
     declared_in = sys._getframe(1).f_globals.get("__name__", "")
     em = Emission(name=name, module=module, args=flat, exprs=exprs, shape=shape, doc=str(doc), domain=domain,
                   cells=cells, optimize=bool(optimize), equation=equation, declared_in=declared_in,
@@ -282,8 +287,9 @@ def emit(name: str, expr: Any, *, args: Any, module: str, doc: Any = "", domain:
     return em
 
 
-def _branch_splits(exprs: tuple[sp.Expr, ...]) -> tuple[Any, ...]:
-    """The sign of every relational condition of a ``Piecewise`` (``a < b`` -> ``sign(a - b)``)."""
+def _branch_splits(exprs: tuple[sp.Expr, ...], exact: set[sp.Symbol] | None = None) -> tuple[Any, ...]:
+    """The sign of every relational condition of a ``Piecewise`` (``a < b`` -> ``sign(a - b)``); a
+    condition on a sign argument (``exact``) is no split: every sign is a cell already."""
     from ...proof import sign
 
     seen: dict[str, Any] = {}
@@ -292,7 +298,7 @@ def _branch_splits(exprs: tuple[sp.Expr, ...]) -> tuple[Any, ...]:
             for _, cond in pw.args:
                 for rel in (cond.atoms(sp.core.relational.Relational) if cond not in (sp.true, sp.false) else ()):
                     d = rel.lhs - rel.rhs
-                    if d.free_symbols and str(d) not in seen:
+                    if d.free_symbols and not d.free_symbols & (exact or set()) and str(d) not in seen:
                         seen[str(d)] = sign(d)
     return tuple(seen.values())
 

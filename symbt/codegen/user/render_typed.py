@@ -33,12 +33,12 @@ import re
 from .declare import Emission
 from .printing import cse, rewritten
 
-__all__ = ["numpy_function", "mpmath_function", "typed_doc"]
+__all__ = ["numpy_function", "mpmath_function", "typed_doc", "prepared"]
 
 _INT = re.compile(r"^\(?-?\d+\)?$")
 
 
-def _prepared(e: Emission) -> tuple[list, list]:
+def prepared(e: Emission) -> tuple[list, list]:
     """(guard expressions, output expressions), with ``expm1``/``log1p`` rewriting if ``e.optimize``."""
     gx = [g.expr for g in e.guards]
     ox = [x for o in e.outputs for x in o.exprs]
@@ -114,7 +114,7 @@ def numpy_function(e: Emission) -> str:
     for a in e.params:
         if a.kind == "array":
             lines += [f"    {s} = {a.name}[..., {i}]" for i, s in enumerate(a.symbols)]
-    gx, ox = _prepared(e)
+    gx, ox = prepared(e)
     body, outs = cse(gx + ox, _names(e), "numpy")
     lines.append("    with np.errstate(all=\"ignore\"):")
     lines += [f"        {ln}" for ln in body]
@@ -150,7 +150,7 @@ def mpmath_function(e: Emission, zero_division: str = "division by zero") -> str
     lines.append("    try:")
     outs: list[str] = []
     gs: list = []
-    gx, ox = _prepared(e)
+    gx, ox = prepared(e)
     for early in (True, False):     # "illcond" guards are float64's: the mpmath flavour is the recomputation
         gs = [g for g in e.guards if g.early == early and g.condition != "illcond"]
         exprs = [x for g, x in zip(e.guards, gx) if g.early == early and g.condition != "illcond"] + (

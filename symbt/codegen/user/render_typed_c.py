@@ -33,6 +33,7 @@ from dataclasses import dataclass
 
 from .declare import Emission
 from .printing import cse
+from .render_typed import prepared
 
 __all__ = ["CTemplate", "c_function", "c_files", "default_template", "SGN"]
 
@@ -95,8 +96,8 @@ def c_function(e: Emission, t: CTemplate) -> str:
     if finite:
         lines += [f"    if ({' || '.join(finite)})", f"        return {st['invalid']};"]
     lines += [f"    const double {t.sign_local.format(name=a.name)} = (double){a.name};" for a in signs]
-    exprs = [g.expr for g in e.guards] + [x for o in e.outputs for x in o.exprs]
-    body, printed = cse(exprs, names, "c")
+    gx, ox = prepared(e)        # the expm1/log1p rewriting of the Python flavours (``optimize``)
+    body, printed = cse(gx + ox, names, "c")
     lines += [f"    const double {ln};" for ln in body]
     gl, vals = printed[:len(e.guards)], printed[len(e.guards):]
     for g, v in zip(e.guards, gl):

@@ -148,3 +148,55 @@ def outputs_of(expr: dict, elements) -> tuple[Output, ...]:
         exprs, shape = elements(value)
         outs.append(Output(key, shape, exprs))
     return tuple(outs)
+
+
+def typed_domain(params: tuple[Arg, ...], domain: Any) -> Any:
+    """The :class:`symbt.Domain` of a typed declaration over its elements: ``domain`` names a scalar by its
+    argument (or symbol) name, an array by its name (every component drawn from that range) or by each of
+    its element names (a box); a sign argument is not sampled (every sign is a cell, :func:`sign_cells`).
+    ``ValueError`` saying what is wrong otherwise.
+
+    >>> from symbt import Domain
+    >>> x, y, b = sp.symbols("x y b")
+    >>> typed_domain((Arg("z", (x, y), "array"), Arg("b", (b,), "sign")), Domain({"z": (0, 1)}, seed=2))
+    Domain({x: uniform(0, 1), y: uniform(0, 1)}, seed=2)
+    """
+    from ...proof import Domain
+
+    given = dict(domain.variables)
+    variables: dict[str, Any] = {}
+    for a in params:
+        if a.kind == "sign":
+            if a.name in given or a.symbols[0].name in given:
+                raise ValueError(f"the domain names the sign argument {a.name!r}: every sign is a cell, "
+                                 "not a sampled variable")
+            continue
+        elements = [s.name for s in a.symbols]
+        whole = given.pop(a.name, None)
+        if a.kind == "scalar" and whole is None:
+            whole = given.pop(elements[0], None)
+        parts = {n: given.pop(n) for n in elements if n in given}
+        if whole is not None and parts:
+            raise ValueError(f"the domain gives the array {a.name!r} both one range and ranges of its elements "
+                             f"({', '.join(parts)})")
+        if whole is None and len(parts) < len(elements):
+            missing = [n for n in elements if n not in parts]
+            what = (f"argument {a.name}" if a.kind == "scalar" else
+                    f"array {a.name} (one range for it, or one for each of {', '.join(missing)})")
+            raise ValueError(f"the domain lacks the {what}")
+        variables.update({n: whole for n in elements} if whole is not None else parts)
+    if given:
+        raise ValueError(f"the domain names {', '.join(given)}, which is no argument or array element")
+    return Domain(variables, where=domain.where, seed=domain.seed, draws_per_point=domain.draws_per_point)
+
+
+def sign_cells(params: tuple[Arg, ...], cells: tuple[Any, ...]) -> tuple[Any, ...]:
+    """One ``choice(name, (1, -1))`` per sign argument that ``cells`` does not split already.
+
+    >>> [s.values for s in sign_cells((Arg("b", (sp.Symbol("b"),), "sign"),), ())]
+    [(1, -1)]
+    """
+    from ...proof import choice
+
+    have = {getattr(c, "name", None) for c in cells}
+    return tuple(choice(a.name, (1, -1)) for a in params if a.kind == "sign" and a.name not in have)
