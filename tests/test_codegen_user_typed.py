@@ -6,6 +6,7 @@ compared).  Two-sided: planted bugs in the emitted file and a wrong derivation m
 """
 from __future__ import annotations
 
+import ctypes
 import json
 import os
 import subprocess
@@ -33,6 +34,8 @@ emit("scale", {"v": [b * x / y, b * s], "n": sp.log(y)}, args=(("z", (x, y)), s,
      domain=Domain({"z": (-2, 2), "s": (-1, 1)}, seed=3))
 emit("shift", {"w": [sp.Piecewise((x - y, x > y), (sp.exp(y) - 1, True))]}, args=(("z", (x, y)),),
      module="tmodel", domain=Domain({"x": (-1, 1), "y": (-1e-3, 1e-3)}, seed=4))
+emit("energy", sp.log(1 + x**2) / 2 + sp.sign(y) * (sp.exp(y) - 1), args=(x, y), module="tmodel",
+     domain=Domain({"x": (-2, 2), "y": (-1, 1)}, seed=5))       # a plain declaration in the same module
 '''
 
 
@@ -102,7 +105,7 @@ def test_a_typed_project_gets_its_claims_through_verify(tmp_path: Path) -> None:
     if compiler() is not None:
         assert run(tmp_path, "codegen", "--target", "c").returncode == 0
     res = verify(tmp_path)
-    for name in ("scale", "shift"):
+    for name in ("scale", "shift", "energy"):
         for fl in _flavours():
             c = res[f"emit.tmodel.{name}.{fl}"]
             assert c["status"] == "verified", c
@@ -160,3 +163,29 @@ def test_a_wrong_derivation_fails_the_comparison(tmp_path: Path) -> None:
     assert seen.refused > 0 and seen.conditions.keys() == {"positive"}
     generate([right], tmp_path, tmp_path)
     assert compare(right, tmp_path / "wd.py", "numpy", per_cell=8).printed_holds_everywhere()
+
+
+@pytest.mark.skipif(compiler() is None, reason="no C compiler (cc, gcc or clang) on PATH")
+def test_a_module_mixing_typed_and_plain_declarations_is_one_c_source(tmp_path: Path) -> None:
+    """Both ABIs in one .c/.h: compiled with -Wall -Wextra -pedantic -Werror, each called by its own ABI."""
+    x, y = sp.symbols("x y", real=True)
+    typed = _scale("mixed")
+    plain = emit("energy", sp.log(1 + x**2) / 2 + sp.sign(y) * (sp.exp(y) - 1), args=(x, y), module="mixed",
+                 domain=Domain({"x": (-2, 2), "y": (-1, 1)}, seed=5), register=False)
+    generate([typed, plain], tmp_path, tmp_path, "c")
+    h = (tmp_path / "mixed.h").read_text()
+    assert h.count("#ifndef SYMBT_EMITTED_MIXED_H") == 1 and "#define MIXED_NO_REAL_POSITIVE 1" in h
+    assert "int mixed_scale(const double *z, double s, int b, double *v, double *n);" in h
+    assert "int mixed_energy(const double *in, double *out);" in h and "#define MIXED_ENERGY_NIN 2" in h
+    src = (tmp_path / "mixed.c").read_text()
+    assert src.count("static double sgn(") == 1
+    lib = tmp_path / "libmixed.so"
+    r = subprocess.run([compiler(), "-std=c99", "-O2", "-Wall", "-Wextra", "-pedantic", "-Werror", "-shared", "-fPIC",
+                        "-o", str(lib), str(tmp_path / "mixed.c"), "-lm"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    energy = ctypes.CDLL(str(lib)).mixed_energy
+    energy.argtypes = [ctypes.POINTER(ctypes.c_double)] * 2
+    out = (ctypes.c_double * 1)()
+    assert energy((ctypes.c_double * 2)(0.0, 0.0), out) == 0 and out[0] == 0.0
+    for e in (typed, plain):                 # the claims' comparison through the compiled module
+        assert compare(e, tmp_path / "mixed.c", "c", per_cell=8).printed_holds_everywhere(), e.name

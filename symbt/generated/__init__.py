@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 98ad4c6865e641863b64585bc2bfcdfec6cef2e13de3a9f05d592457dae38355
-# symbt-codegen-content-sha256: b39638f7154c0590ac0fcf8d9ea5b80497056fc08ad53687ca0cdde4d05bdcbb
+# symbt-codegen-derivation-sha256: a0b144b8a364ac7758c4235fece28cb858cbf813c17e7797437f611b7f3b8941
+# symbt-codegen-content-sha256: d033be58811b806517666bfd38af0866b9307abda94f326f39d1c68b2b18c161
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

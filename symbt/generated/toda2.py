@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 98ad4c6865e641863b64585bc2bfcdfec6cef2e13de3a9f05d592457dae38355
-# symbt-codegen-content-sha256: e5c804a2fcad7d750d4515ed345dc454b92f77632d63c10f95e1b67ff8ff53de
+# symbt-codegen-derivation-sha256: a0b144b8a364ac7758c4235fece28cb858cbf813c17e7797437f611b7f3b8941
+# symbt-codegen-content-sha256: 73478e46f001feac584383de1224a4020d2e9ae7da7630ba6eb6ca245ed93cd6
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

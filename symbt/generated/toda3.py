@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 98ad4c6865e641863b64585bc2bfcdfec6cef2e13de3a9f05d592457dae38355
-# symbt-codegen-content-sha256: eded7f76ed962cdffe34adc69cb398060287bf74f1a798cc922b2f578d54fb9f
+# symbt-codegen-derivation-sha256: a0b144b8a364ac7758c4235fece28cb858cbf813c17e7797437f611b7f3b8941
+# symbt-codegen-content-sha256: fedd3971a857e76ddf9b849472a9659754f81895b8b81b6243dd7bcd658efc5e
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

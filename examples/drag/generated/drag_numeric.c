@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: d0f12cf710f7e58787151312a775aa9f65d798422e47b0d98f468b642fdb0a11
-// symbt-codegen-content-sha256: e0fb1ae36c4feab308d8714990bca44ab39024d024ad5d89e94067a17db164f3
+// symbt-codegen-derivation-sha256: 4f5be2f9dcf021eed87068afe0fe6b070e0820ada4ca532a35bd771df02f80f8
+// symbt-codegen-content-sha256: fd7a2eb6807aa09e71e114e1f2e470658a6bca4d306d02ffd4737d9564c93cbb
 #include <math.h>
 #include "drag_numeric.h"
 

@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: d0f12cf710f7e58787151312a775aa9f65d798422e47b0d98f468b642fdb0a11
-// symbt-codegen-content-sha256: 95453e8855ac1a967ef58dee6038d020af2270bc791d388b0582593d9f2e962a
+// symbt-codegen-derivation-sha256: 4f5be2f9dcf021eed87068afe0fe6b070e0820ada4ca532a35bd771df02f80f8
+// symbt-codegen-content-sha256: 65c984ca4b196eacc4b1525ba15fd1faed9b0dc2b9ad41643340e1922d83dc9c
 #ifndef SYMBT_EMITTED_DRAG_NUMERIC_H
 #define SYMBT_EMITTED_DRAG_NUMERIC_H
 

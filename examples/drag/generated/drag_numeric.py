@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: drag_numeric (declared in drag_emit)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: d0f12cf710f7e58787151312a775aa9f65d798422e47b0d98f468b642fdb0a11
-# symbt-codegen-content-sha256: 6d02771ee0a6fa6bd791e13c80629bb1661210938c8e934890191f374645da2b
+# symbt-codegen-derivation-sha256: 4f5be2f9dcf021eed87068afe0fe6b070e0820ada4ca532a35bd771df02f80f8
+# symbt-codegen-content-sha256: 065b63481b7db947a0813e2bdd20af1eaf143849d7dd33f9d4f2ee881aa20718
 """drag_numeric: functions emitted by `symbt codegen` from drag_emit.
 
 Each function has a numpy float64 flavour (vectorised over broadcast arguments) and an

@@ -18,7 +18,9 @@ C99 (``<module>.c`` / ``<module>.h``), the ABI, fixed::
 
 ``in`` holds the arguments in declaration order, ``out`` receives the outputs (row-major for a
 matrix); the return value is ``0`` when every output is finite, ``1`` otherwise (the outputs are
-written either way).  Only ``<math.h>`` is used; no global state; link with ``-lm``.
+written either way).  Only ``<math.h>`` is used; no global state; link with ``-lm``.  Typed
+declarations keep their own ABI (:mod:`.render_typed_c`); a module with both kinds gets one
+source and header, the typed part first.
 
 Both are printed by :class:`UserPrinter` (Zullo's :class:`~symbt.codegen.printer.ExprPrinter`
 plus floats, ``pi``/``E``, trigonometric and hyperbolic functions, ``expm1``, ``atan2``, ``Min``/
@@ -179,45 +181,50 @@ def _nout(e: Emission) -> int:
     return len(e.exprs)
 
 
-def _typed_c(module: str, emissions: list[Emission]):
-    """``(source, header)`` when the module's declarations are typed (:mod:`.render_typed_c`), else None."""
-    typed = [e.name for e in emissions if e.typed]
+def _typed_c(module: str, emissions: list[Emission]) -> tuple[str, str] | None:
+    """``(source, header)`` of the module's typed declarations (:mod:`.render_typed_c`), or None without any."""
+    typed = [e for e in emissions if e.typed]
     if not typed:
         return None
-    if len(typed) != len(emissions):
-        from .declare import EmitError
-
-        raise EmitError(f"emit({typed[0]!r}): module {module} mixes typed and plain declarations; the C target "
-                        "takes one kind per module (two ABIs)")
     from .render_typed_c import c_files, default_template
 
-    return c_files(emissions, default_template(module, emissions))
+    return c_files(typed, default_template(module, typed))
 
 
-def c_header(module: str, emissions: list[Emission]) -> str:
-    typed = _typed_c(module, emissions)
-    if typed is not None:
-        return typed[1]
-    guard = f"SYMBT_EMITTED_{module.upper()}_H"
-    lines = [f"#ifndef {guard}", f"#define {guard}", "",
-             "/* ABI: int <module>_<name>(const double *in, double *out);",
-             " * in: the NIN arguments in declaration order; out: the NOUT outputs (row-major);",
-             " * returns 0 if every output is finite, 1 otherwise (outputs written either way). */", ""]
+_PLAIN_ABI = ["/* ABI: int <module>_<name>(const double *in, double *out);",
+              " * in: the NIN arguments in declaration order; out: the NOUT outputs (row-major);",
+              " * returns 0 if every output is finite, 1 otherwise (outputs written either way). */", ""]
+
+
+def _plain_prototypes(module: str, emissions: list[Emission]) -> list[str]:
+    lines = []
     for e in emissions:
         up = c_name(module, e).upper()
         lines += [f"/* {e.name}({', '.join(e.arg_names)}) -> {list(e.shape) or 'scalar'} */",
                   f"#define {up}_NIN {len(e.args)}", f"#define {up}_NOUT {_nout(e)}",
                   f"int {c_name(module, e)}(const double *in, double *out);", ""]
+    return lines
+
+
+def c_header(module: str, emissions: list[Emission]) -> str:
+    """``<module>.h``: the typed declarations' status codes and prototypes (:mod:`.render_typed_c`), then the
+    plain declarations' (the ABI in the module docstring) -- one header when a module has both kinds."""
+    guard = f"SYMBT_EMITTED_{module.upper()}_H"
+    plain = [e for e in emissions if not e.typed]
+    typed = _typed_c(module, emissions)
+    if typed is not None:
+        if not plain:
+            return typed[1]
+        end = f"#endif /* {guard} */\n"
+        assert typed[1].endswith(end)
+        return typed[1][:-len(end)] + "\n".join(_PLAIN_ABI + _plain_prototypes(module, plain)) + end
+    lines = [f"#ifndef {guard}", f"#define {guard}", "", *_PLAIN_ABI, *_plain_prototypes(module, plain)]
     lines.append(f"#endif /* {guard} */")
     return "\n".join(lines) + "\n"
 
 
-def c_source(module: str, emissions: list[Emission]) -> str:
-    typed = _typed_c(module, emissions)
-    if typed is not None:
-        return typed[0]
-    lines = ["#include <math.h>", f'#include "{module}.h"', "",
-             "static double sgn(double x) { return (double)((x > 0.0) - (x < 0.0)); }", ""]
+def _plain_functions(module: str, emissions: list[Emission]) -> list[str]:
+    lines = []
     for e in emissions:
         body, outs = cse(optimized(e), _names(e), "c")
         lines.append(f"int {c_name(module, e)}(const double *in, double *out)")
@@ -227,6 +234,22 @@ def c_source(module: str, emissions: list[Emission]) -> str:
         lines += [f"    out[{k}] = {v};" for k, v in enumerate(outs)]
         lines += [f"    for (int k = 0; k < {_nout(e)}; ++k) {{", "        if (!isfinite(out[k])) return 1;",
                   "    }", "    return 0;", "}", ""]
+    return lines
+
+
+def c_source(module: str, emissions: list[Emission]) -> str:
+    """``<module>.c``: the typed functions (:mod:`.render_typed_c`), then the plain ones."""
+    from .render_typed_c import SGN
+
+    plain = [e for e in emissions if not e.typed]
+    typed = _typed_c(module, emissions)
+    if typed is not None:
+        if not plain:
+            return typed[0]
+        body = _plain_functions(module, plain)
+        sgn = [SGN, ""] if SGN not in typed[0] and "sgn(" in "\n".join(body) else []
+        return (typed[0] + "\n" + "\n".join(sgn + body)).rstrip("\n") + "\n"
+    lines = ["#include <math.h>", f'#include "{module}.h"', "", SGN, ""] + _plain_functions(module, plain)
     if "sgn(" not in "\n".join(lines[5:]):
         lines = lines[:3] + lines[5:]
     return "\n".join(lines).rstrip("\n") + "\n"
