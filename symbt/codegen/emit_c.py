@@ -16,6 +16,7 @@ True
 from __future__ import annotations
 
 import re
+from typing import TYPE_CHECKING
 
 import sympy as sp
 
@@ -25,7 +26,10 @@ from .forms import form_of
 from .kernels import kernels
 from .printer import ExprPrinter
 
-__all__ = ["c_files", "C_FUNCTIONS"]
+if TYPE_CHECKING:
+    from .user.declare import Emission
+
+__all__ = ["c_files", "C_FUNCTIONS", "loop_c_parts"]
 
 #: the emitted C functions (same meaning as the Python functions of the same name)
 C_FUNCTIONS = ("bt_step", "invariants", "spectral_trace", "flow_field")
@@ -114,24 +118,58 @@ def c_files(N: int) -> tuple[str, str]:
     src = _fill(COMMON, N, form)
     if form == "closed":
         return _emit_path_c_files(N, header, src)
-    src += _fill(LOOP.replace("@@KAPPA@@", str(int(KAPPA_MAX))), N, form)
-    return src, header
+    return _loop_c_files(N, header, src)
+
+
+_PUBLIC = re.compile(r"^int toda\d+_(\w+)\(", re.M)
+
+
+def loop_c_parts(N: int) -> tuple[str, dict[str, str]]:
+    """The transfer-matrix C of ``toda{N}`` (:data:`~symbt.codegen.c_template.LOOP`, kernels printed in) as
+    ``(helpers, {function: text})``: the static helpers every function uses, then per public function its
+    text verbatim, preceded by the helpers only it (and those after it) use -- the C of the ``Loop``
+    declarations of :mod:`.zullo`."""
+    text = _fill(LOOP.replace("@@KAPPA@@", str(int(KAPPA_MAX))), N, "transfer-matrix")
+    found = list(_PUBLIC.finditer(text))
+    parts: dict[str, str] = {}
+    start = found[0].start()
+    for m in found:
+        end = text.index("\n}\n", m.start()) + 2
+        parts[m.group(1)] = text[start:end].strip("\n")
+        start = end
+    if text[start:].strip():
+        raise AssertionError(f"text after the last public function of the C template: {text[start:][:60]!r}")
+    return text[:found[0].start()].rstrip("\n") + "\n", parts
 
 
 _SECTION = "\n/* ---- closed form: CSE of the SymPy expressions of symbt.codegen.derive ---- */\n"
 
 
-def _emit_path_c_files(N: int, header: str, common: str) -> tuple[str, str]:
-    """The closed form through ``symbt.emit``: the declarations of :mod:`.zullo` under a C template
+def _emit_path_c_files(N: int, header: str, common: str, ems: list[Emission] | None = None) -> tuple[str, str]:
+    """The closed form through ``symbt.emit``: the declarations of :mod:`.zullo` (or ``ems``) under a C template
     (Zullo's header, runtime, status codes and prototypes, hand-written once in :mod:`.c_template`)."""
     from .user.render_typed_c import CTemplate
     from .user.render_typed_c import c_files as typed_c_files
     from .zullo import declarations
 
-    ems, _ = declarations(N)
+    ems = declarations(N)[0] if ems is None else ems
     status = (("ok", "SYMBT_TODA_OK"), ("range", "SYMBT_TODA_RANGE"), ("invalid", "SYMBT_TODA_INVALID_INPUT"),
               *_CODES.items())
     t = CTemplate(f"toda{N}", header, common + _SECTION, status, f"toda{N}_finite", length="NS",
                   signatures=tuple((n, s.format(N=N)) for n, s in _SIGNATURES.items()), functions=C_FUNCTIONS,
                   sign_local="b", pointers=tuple(_OUT_PTRS.items()))
+    return typed_c_files(ems, t)
+
+
+def _loop_c_files(N: int, header: str, common: str) -> tuple[str, str]:
+    """The transfer-matrix form through ``symbt.emit`` too: the ``Loop`` declarations of :mod:`.zullo` (their
+    C text verbatim, :func:`loop_c_parts`) placed by the same renderer under the same kind of C template."""
+    from .user.render_typed_c import CTemplate
+    from .user.render_typed_c import c_files as typed_c_files
+    from .zullo import declarations
+
+    ems, _ = declarations(N, "transfer-matrix")
+    helpers, parts = loop_c_parts(N)
+    status = (("ok", "SYMBT_TODA_OK"), ("range", "SYMBT_TODA_RANGE"), ("invalid", "SYMBT_TODA_INVALID_INPUT"))
+    t = CTemplate(f"toda{N}", header, common + helpers, status, f"toda{N}_finite", functions=tuple(parts))
     return typed_c_files(ems, t)

@@ -1,6 +1,8 @@
-"""Render the transfer-matrix (O(N)) form of ``toda{N}.py``: :data:`~.loop_template.CORE` with the
-kernels of :mod:`.kernels` printed in, plus numpy and mpmath wrappers with the same signatures,
-guards and errors as the closed form.
+"""The transfer-matrix (O(N)) form of ``toda{N}.py``: :data:`~.loop_template.CORE` with the kernels of
+:mod:`.kernels` printed in (:func:`core`, the module template's head), and per function the calls into
+it (:data:`NUMPY_CALL`, :data:`MP_CALL`) that :func:`symbt.codegen.zullo.loop_declarations` declares as
+``Loop`` bodies; the user path's renderers wrap them with the same signatures, guards and errors as
+the closed form.
 
 Cost per state: O(N) for the trace, Phi and its gradient, the step and Dapp's x, y; O(N^2) for
 the invariants; O(N^3) for the Hamiltonian fields and the flow field (products of polynomials in
@@ -14,19 +16,14 @@ from __future__ import annotations
 import re
 
 from ..numeric.core.limits import KAPPA_MAX
-from .derive import FUNCTIONS, FunctionSpec, interface
 from .kernels import kernels
 from .loop_template import CORE
 from .printer import ExprPrinter
-from .pymodule import function_doc, module_head, numpy_epilogue, numpy_prologue, signature
-from .runtime import ORBIT
-from .user.render import python_module
-from .user.typed import ModuleTemplate
 
-__all__ = ["loop_module_body", "printed_kernels"]
+__all__ = ["loop_module_body", "printed_kernels", "core", "NUMPY_CALL", "MP_CALL"]
 
-# numpy: (statements computing the outputs as lists/scalars, output item expressions)
-_NUMPY_CALL = {
+#: numpy: (statements computing the outputs as lists/scalars, output item expressions)
+NUMPY_CALL = {
     "invariants": ("_H = _invariants(_NP, _cols(p), _cols(q))", {"H": "_H"}),
     "spectral_trace": ("_t = _spectral_trace(_NP, lam, _cols(p), _cols(q))", {"tr": "[_t]"}),
     "hamiltonian_fields": ("_dp, _dq = _fields(_NP, _cols(p), _cols(q))",
@@ -45,8 +42,8 @@ _NUMPY_CALL = {
                 {"p_new": "_pn", "q_new": "_qn"}),
 }
 
-# mpmath: (statements, returned expression)
-_MP_CALL = {
+#: mpmath: (statements assigning the outputs, the outputs returned)
+MP_CALL = {
     "invariants": ("H = [mpmath.mpf(h) for h in _invariants(_MP, p, q)]", "H"),
     "spectral_trace": ("tr = _spectral_trace(_MP, lam, p, q)", "tr"),
     "hamiltonian_fields": ("_dp, _dq = _fields(_MP, p, q)\n"
@@ -77,7 +74,8 @@ def printed_kernels() -> dict:
     return out
 
 
-def _core() -> str:
+def core() -> str:
+    """:data:`~.loop_template.CORE` with the printed kernels and ``KAPPA_MAX`` filled in."""
     ks = printed_kernels()
     text = CORE.replace("@@KAPPA_MAX@@", str(int(KAPPA_MAX)))      # the one limit, printed in
     for name in sorted(set(re.findall(r"@@(\w+)@@", text))):
@@ -85,48 +83,10 @@ def _core() -> str:
     return text
 
 
-def _numpy_wrapper(spec: FunctionSpec, N: int) -> str:
-    lines = numpy_prologue(spec, N, "transfer-matrix", "N")
-    lines.append("    _g = []")
-    call, items = _NUMPY_CALL[spec.name]
-    lines.append("    with np.errstate(all=\"ignore\"):")
-    lines += [f"        {ln}" for ln in call.split("\n")]
-    res = [o.name for o in spec.outputs]
-    for o in spec.outputs:
-        lines.append(f"        {o.name} = _pack({items[o.name]}, _batch, {o.shape!r})")
-    lines += numpy_epilogue(spec, res, "_g")
-    return "\n".join(lines)
-
-
-def _mp_wrapper(spec: FunctionSpec, N: int) -> str:
-    lines = [f"def {spec.name}_mp({signature(spec, 'mpmath')}):",
-             function_doc(spec, N, "mpmath", "transfer-matrix")]
-    for a in spec.args:
-        if a.kind == "state":
-            lines.append(f"    {a.name} = _mp_state({a.name}, N, {a.name!r})")
-        elif a.kind == "branch":
-            lines.append(f"    {a.name} = _mp_branch({a.name})")
-        else:
-            lines.append(f"    {a.name} = _mp_value({a.name}, {a.name!r})")
-    call, ret = _MP_CALL[spec.name]
-    lines.append("    try:")
-    lines += [f"        {ln}" for ln in call.split("\n")]
-    lines.append("    except ZeroDivisionError as exc:")
-    lines.append("        raise NumericRangeError('division by zero (degenerate eigenvector)') from exc")
-    lines.append(f"    return {ret}")
-    return "\n".join(lines)
-
-
 def loop_module_body(N: int) -> str:
-    """Everything after the provenance header of ``toda{N}.py`` in the transfer-matrix form."""
-    spec = interface(N)
-    parts = module_head(N, "transfer-matrix")
-    parts.append(_core().rstrip("\n"))
-    for name in FUNCTIONS:
-        parts += ["", "", _numpy_wrapper(spec[name], N)]
-    for name in FUNCTIONS:
-        parts += ["", "", _mp_wrapper(spec[name], N)]
-    # placed by the user path's renderer as a module template: the wrappers call the hand-written loops,
-    # they are not expressions an emit declaration could hold (no declarations: head + tail only)
-    template = ModuleTemplate(head="\n".join(parts), tail=ORBIT.rstrip("\n"))
-    return python_module(f"toda{N}", [], "symbt.codegen.emit_loop", template)
+    """Everything after the provenance header of ``toda{N}.py`` in the transfer-matrix form: the ``Loop``
+    declarations of :func:`symbt.codegen.zullo.loop_declarations` (calls of :data:`NUMPY_CALL` /
+    :data:`MP_CALL` into :func:`core`), rendered by the user path's ``python_module``."""
+    from .zullo import module_text
+
+    return module_text(N, "transfer-matrix")

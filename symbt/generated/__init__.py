@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: a0b144b8a364ac7758c4235fece28cb858cbf813c17e7797437f611b7f3b8941
-# symbt-codegen-content-sha256: d033be58811b806517666bfd38af0866b9307abda94f326f39d1c68b2b18c161
+# symbt-codegen-derivation-sha256: 9ca4dbfb2fb5570b247f83f5fdcbc630421621ff411c510b108511af7e994f61
+# symbt-codegen-content-sha256: 277f8cfa974b55ebd0423ada040f6bf5c4ded79d86816be2335e617d3ab55089
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: a0b144b8a364ac7758c4235fece28cb858cbf813c17e7797437f611b7f3b8941
-# symbt-codegen-content-sha256: 73478e46f001feac584383de1224a4020d2e9ae7da7630ba6eb6ca245ed93cd6
+# symbt-codegen-derivation-sha256: 9ca4dbfb2fb5570b247f83f5fdcbc630421621ff411c510b108511af7e994f61
+# symbt-codegen-content-sha256: 03f0118d5e648945b60cce2c346a4fce04c28bfdbcd1edc3ba291e2ff715ad8e
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

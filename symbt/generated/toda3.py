@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: a0b144b8a364ac7758c4235fece28cb858cbf813c17e7797437f611b7f3b8941
-# symbt-codegen-content-sha256: fedd3971a857e76ddf9b849472a9659754f81895b8b81b6243dd7bcd658efc5e
+# symbt-codegen-derivation-sha256: 9ca4dbfb2fb5570b247f83f5fdcbc630421621ff411c510b108511af7e994f61
+# symbt-codegen-content-sha256: 410c338cbdaa084cce5943a94b86d9d37e9f4ab2e269dcae04af0695ab4304c8
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

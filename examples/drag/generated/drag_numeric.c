@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 4f5be2f9dcf021eed87068afe0fe6b070e0820ada4ca532a35bd771df02f80f8
-// symbt-codegen-content-sha256: fd7a2eb6807aa09e71e114e1f2e470658a6bca4d306d02ffd4737d9564c93cbb
+// symbt-codegen-derivation-sha256: c01f0e6a8d2f71a481983e52759eb9dfcfc158a74ed24e358fa8c46d521eb129
+// symbt-codegen-content-sha256: 3a46ceb89f2b472aa4bf344a807287742e95bfcf1a0eac167b90060c52c8d24f
 #include <math.h>
 #include "drag_numeric.h"
 

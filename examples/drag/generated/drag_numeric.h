@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 4f5be2f9dcf021eed87068afe0fe6b070e0820ada4ca532a35bd771df02f80f8
-// symbt-codegen-content-sha256: 65c984ca4b196eacc4b1525ba15fd1faed9b0dc2b9ad41643340e1922d83dc9c
+// symbt-codegen-derivation-sha256: c01f0e6a8d2f71a481983e52759eb9dfcfc158a74ed24e358fa8c46d521eb129
+// symbt-codegen-content-sha256: 996c3c94c56da2a876ac5c3ef8d11fe477e37366185a521ba21aeb7891c0db94
 #ifndef SYMBT_EMITTED_DRAG_NUMERIC_H
 #define SYMBT_EMITTED_DRAG_NUMERIC_H
 

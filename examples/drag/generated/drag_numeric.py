@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: drag_numeric (declared in drag_emit)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 4f5be2f9dcf021eed87068afe0fe6b070e0820ada4ca532a35bd771df02f80f8
-# symbt-codegen-content-sha256: 065b63481b7db947a0813e2bdd20af1eaf143849d7dd33f9d4f2ee881aa20718
+# symbt-codegen-derivation-sha256: c01f0e6a8d2f71a481983e52759eb9dfcfc158a74ed24e358fa8c46d521eb129
+# symbt-codegen-content-sha256: 6aef897c41e9853ba6882b0c8df69711eaae93c3fcfd6781c61c9a3707cd97da
 """drag_numeric: functions emitted by `symbt codegen` from drag_emit.
 
 Each function has a numpy float64 flavour (vectorised over broadcast arguments) and an

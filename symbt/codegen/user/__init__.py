@@ -2,7 +2,8 @@
 
 * :mod:`.declare` -- :func:`emit` and the declaration registry;
 * :mod:`.typed` -- the typed form: array/sign arguments (:class:`Arg`), named outputs, ordered
-  :class:`Guard` s, :func:`module_template` (hand-written module parts);
+  :class:`Guard` s, :class:`Loop` bodies (fixed template code), :func:`module_template` (hand-written
+  module parts);
 * :mod:`.render` -- the emitted numpy/mpmath module and the C99 source and header;
   :mod:`.render_typed` -- the Python flavours of a typed declaration;
 * :mod:`.files` -- provenance (the declaring modules' sources), writing and ``--check``;
@@ -21,7 +22,7 @@ True
 from __future__ import annotations
 
 from .declare import EMISSIONS, Emission, EmitError, emit
-from .typed import TEMPLATES, Arg, Guard, ModuleTemplate, module_template
+from .typed import TEMPLATES, Arg, Guard, Loop, ModuleTemplate, module_template
 
-__all__ = ["emit", "Emission", "EmitError", "EMISSIONS", "Arg", "Guard", "ModuleTemplate", "module_template",
+__all__ = ["emit", "Emission", "EmitError", "EMISSIONS", "Arg", "Guard", "Loop", "ModuleTemplate", "module_template",
            "TEMPLATES"]

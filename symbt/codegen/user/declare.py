@@ -47,7 +47,7 @@ import sympy as sp
 from sympy.codegen.cfunctions import expm1, log1p
 
 from ..printer import Quotient
-from .typed import Arg, Guard, Output, arg_of, outputs_of, sign_cells, typed_domain
+from .typed import Arg, Guard, Loop, Output, arg_of, outputs_of, sign_cells, typed_domain
 
 __all__ = ["emit", "Emission", "EmitError", "EMISSIONS", "SUPPORTED_FUNCTIONS", "emissions_of", "Arg", "Guard",
            "Output"]
@@ -84,6 +84,7 @@ class Emission:
     outputs: tuple[Output, ...] = ()        # the named outputs (typed form; ``exprs`` is their concatenation)
     guards: tuple[Guard, ...] = ()          # ordered guards (typed form)
     docs: tuple[tuple[str, str], ...] = ()  # (flavour, docstring text) given verbatim
+    loop: Loop | None = None                # a fixed template body instead of expressions (typed form)
 
     @property
     def typed(self) -> bool:
@@ -222,19 +223,30 @@ def emit(name: str, expr: Any, *, args: Any, module: str, doc: Any = "", domain:
         guards = tuple(guards or ())
     except TypeError:
         raise _fail(name, f"guards={guards!r} must be a sequence of Guard") from None
-    typed = isinstance(expr, dict) or bool(guards) or any(a.kind != "scalar" for a in params)
+    loop = expr if isinstance(expr, Loop) else None
+    typed = isinstance(expr, (dict, Loop)) or bool(guards) or any(a.kind != "scalar" for a in params)
     taken = [n for n in every if _RESERVED.match(n)] if typed else []
     if taken:   # the typed renderers' own names: CSE temporaries, the C output buffer and loop index, modules
         raise _fail(name, f"argument name {taken[0]!r} is reserved in the typed form (t0, s0, ..., out, i, np, "
                     "mpmath, errors)")
     outputs: tuple[Output, ...] = ()
-    if isinstance(expr, dict):
+    exprs: tuple[sp.Expr, ...]
+    shape: tuple[int, ...]
+    if loop is not None:
+        if guards or domain is not None:
+            raise _fail(name, "a Loop body decides its own guards (Loop.guards) and has no SymPy source to "
+                        "sample: no guards= or domain=")
+        outputs = tuple(Output(o, tuple(shape), ()) for o, shape in loop.outputs)
+        if not outputs or dict(loop.items).keys() != {o.name for o in outputs}:
+            raise _fail(name, "a Loop needs outputs and one items text per output")
+        exprs, shape = (), (outputs[0].shape if len(outputs) == 1 else (len(outputs),))
+    elif isinstance(expr, dict):
         try:
             outputs = outputs_of(expr, lambda v: _elements(name, v))
         except ValueError as exc:
             raise (exc if isinstance(exc, EmitError) else _fail(name, str(exc))) from None
         exprs = tuple(x for o in outputs for x in o.exprs)
-        shape: tuple[int, ...] = outputs[0].shape if len(outputs) == 1 else (len(exprs),)
+        shape = outputs[0].shape if len(outputs) == 1 else (len(exprs),)
     else:
         exprs, shape = _elements(name, expr)
         if typed:
@@ -278,7 +290,7 @@ def emit(name: str, expr: Any, *, args: Any, module: str, doc: Any = "", domain:
     declared_in = sys._getframe(1).f_globals.get("__name__", "")
     em = Emission(name=name, module=module, args=flat, exprs=exprs, shape=shape, doc=str(doc), domain=domain,
                   cells=cells, optimize=bool(optimize), equation=equation, declared_in=declared_in,
-                  params=params if typed else (), outputs=outputs, guards=tuple(gs), docs=docs)
+                  params=params if typed else (), outputs=outputs, guards=tuple(gs), docs=docs, loop=loop)
     if register:
         old = EMISSIONS.get((module, name))
         if old is not None and old.declared_in != declared_in:

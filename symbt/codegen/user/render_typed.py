@@ -58,9 +58,17 @@ def _names(e: Emission) -> dict:
     return names
 
 
+def _guarded(e: Emission) -> bool:
+    return bool(e.guards) or (e.loop is not None and bool(e.loop.guards))
+
+
 def _signature(e: Emission, flavour: str) -> str:
     sig = ", ".join(a.name for a in e.params)
-    return sig + (', errors="raise"' if e.guards and flavour == "numpy" else "")
+    return sig + (', errors="raise"' if _guarded(e) and flavour == "numpy" else "")
+
+
+def _size(e: Emission, symbols: tuple[object, ...]) -> str:
+    return e.loop.size if e.loop is not None and e.loop.size is not None else str(len(symbols))
 
 
 def typed_doc(e: Emission, flavour: str) -> str:
@@ -73,7 +81,7 @@ def typed_doc(e: Emission, flavour: str) -> str:
     if flavour == "numpy":
         tail = ("numpy float64, vectorised: array arguments have shape (..., n), the others broadcast against "
                 "the batch shape; returns " + outs + ".  InvalidInputError on malformed input")
-        if e.guards:
+        if _guarded(e):
             tail += ("; errors='raise' (default): NoRealMapError where a guard fails, NumericRangeError on a "
                      "non-finite value; errors='mask': masked arrays at those batch elements")
         else:
@@ -110,7 +118,9 @@ def validation_lines(params: list[tuple[str, str, str]], guarded: bool) -> list[
 def numpy_function(e: Emission) -> str:
     """The numpy flavour of the typed declaration ``e``."""
     lines = [f"def {e.name}({_signature(e, 'numpy')}):", f'    """{typed_doc(e, "numpy")}"""']
-    lines += validation_lines([(a.name, a.kind, str(len(a.symbols))) for a in e.params], bool(e.guards))
+    lines += validation_lines([(a.name, a.kind, _size(e, a.symbols)) for a in e.params], _guarded(e))
+    if e.loop is not None:
+        return "\n".join(lines + _loop_numpy(e))
     for a in e.params:
         if a.kind == "array":
             lines += [f"    {s} = {a.name}[..., {i}]" for i, s in enumerate(a.symbols)]
@@ -136,11 +146,30 @@ def numpy_function(e: Emission) -> str:
     return "\n".join(lines)
 
 
+def _loop_numpy(e: Emission) -> list[str]:
+    """After the validation: the :class:`~.typed.Loop`'s statements, ``_pack``, guards and ``_finish``."""
+    assert e.loop is not None
+    lp, items = e.loop, dict(e.loop.items)
+    lines = [f"    {ln}" for ln in lp.setup.splitlines()]
+    lines.append("    with np.errstate(all=\"ignore\"):")
+    lines += [f"        {ln}" for ln in lp.numpy.splitlines()]
+    lines += [f"        {o.name} = _pack({items[o.name]}, _batch, {o.shape!r})" for o in e.outputs]
+    names = ", ".join(o.name for o in e.outputs)
+    if lp.guards:
+        lines += [f"        _bad = _guard(errors, _batch, {lp.guards})",
+                  f"    {names}, = _finish(errors, _bad, _batch, [{names}])"]
+    else:
+        lines.append(f"    {names}, = _finish('raise', None, _batch, [{names}])")
+    return lines + [f"    return {names}"]
+
+
 def mpmath_function(e: Emission, zero_division: str = "division by zero") -> str:
     """The mpmath flavour of the typed declaration ``e``."""
     lines = [f"def {e.name}_mp({_signature(e, 'mpmath')}):", f'    """{typed_doc(e, "mpmath")}"""']
     for a in e.params:
-        if a.kind == "array":
+        if a.kind == "array" and e.loop is not None:    # kept whole: the loop indexes it
+            lines.append(f"    {a.name} = _mp_state({a.name}, {_size(e, a.symbols)}, {a.name!r})")
+        elif a.kind == "array":
             syms = ", ".join(str(s) for s in a.symbols) + ("," if len(a.symbols) == 1 else "")
             lines.append(f"    {syms} = _mp_state({a.name}, {len(a.symbols)}, {a.name!r})")
         elif a.kind == "sign":
@@ -148,6 +177,11 @@ def mpmath_function(e: Emission, zero_division: str = "division by zero") -> str
         else:
             lines.append(f"    {a.name} = _mp_value({a.name}, {a.name!r})")
     lines.append("    try:")
+    if e.loop is not None:
+        lines += [f"        {ln}" for ln in e.loop.mpmath.splitlines()]
+        return "\n".join(lines + ["    except ZeroDivisionError as exc:",
+                                   f"        raise NumericRangeError({zero_division!r}) from exc",
+                                   f"    return {', '.join(o.name for o in e.outputs)}"])
     outs: list[str] = []
     gs: list = []
     gx, ox = prepared(e)

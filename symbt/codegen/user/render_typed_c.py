@@ -74,7 +74,12 @@ def _signature(e: Emission, t: CTemplate) -> str:
 
 
 def c_function(e: Emission, t: CTemplate) -> str:
-    """The C function of the typed declaration ``e`` under the template ``t``."""
+    """The C function of the typed declaration ``e`` under the template ``t`` (a :class:`~.typed.Loop`'s
+    C text verbatim)."""
+    if e.loop is not None:
+        if not e.loop.c:
+            raise ValueError(f"{e.name}: the Loop has no C text")
+        return e.loop.c
     st = dict(t.status)
     names, ptrs, finite = {}, [], []
     signs = [a for a in e.params if a.kind == "sign"]

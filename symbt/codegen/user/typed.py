@@ -34,7 +34,7 @@ from typing import Any
 
 import sympy as sp
 
-__all__ = ["Arg", "Output", "Guard", "ModuleTemplate", "KINDS", "arg_of", "outputs_of", "module_template",
+__all__ = ["Arg", "Output", "Guard", "Loop", "ModuleTemplate", "KINDS", "arg_of", "outputs_of", "module_template",
            "TEMPLATES"]
 
 #: argument kinds: a float, an array of shape ``(..., n)``, a sign ``+-1``
@@ -72,6 +72,32 @@ class Guard:
     label: str
     expr: Any
     early: bool = False
+
+
+@dataclass(frozen=True)
+class Loop:
+    """The body of a typed function written once as fixed template code (loops over sites, not
+    expressions): ``emit(name, Loop(...), args=...)`` -- Zullo's transfer-matrix form.
+
+    The renderers place it where a typed declaration's expressions would go, with the same signature,
+    argument validation, ``_pack``/``_guard``/``_finish`` and error conventions: ``outputs`` the
+    ``(name, shape)`` pairs returned; ``numpy`` the statements (under ``np.errstate``) computing them,
+    ``items`` per output the source text of its ``_pack`` items; ``guards`` the source text of the
+    guard list the statements fill (``""``: unguarded, no ``errors`` argument); ``setup`` statements
+    before ``np.errstate``; ``mpmath`` the statements assigning the outputs (one state); ``size`` the
+    source text of an array's length (default: its number of symbols), for arrays kept whole; ``c``
+    the C function verbatim (:mod:`.render_typed_c`; the generated prologue defines
+    ``static int <module>_finite(const double *x, int n)`` and the status macros).  A loop has no SymPy source: no ``domain=``
+    claims (verify it with claims of your own, as Zullo's ``codegen`` scene does)."""
+
+    outputs: tuple[tuple[str, tuple[Any, ...]], ...]
+    numpy: str
+    items: tuple[tuple[str, str], ...]
+    mpmath: str
+    guards: str = ""
+    setup: str = ""
+    size: str | None = None
+    c: str = ""
 
 
 @dataclass(frozen=True)
