@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 9ca4dbfb2fb5570b247f83f5fdcbc630421621ff411c510b108511af7e994f61
-# symbt-codegen-content-sha256: 277f8cfa974b55ebd0423ada040f6bf5c4ded79d86816be2335e617d3ab55089
+# symbt-codegen-derivation-sha256: 5d684810b95cef01d1b07045880bcd03e0ffb690ae1d08c52b213a062c903258
+# symbt-codegen-content-sha256: a821a0e04954637345087364fec1e55cdb58274c6a574ce39df601ee4d7ee9e0
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

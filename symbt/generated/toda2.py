@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 9ca4dbfb2fb5570b247f83f5fdcbc630421621ff411c510b108511af7e994f61
-# symbt-codegen-content-sha256: 03f0118d5e648945b60cce2c346a4fce04c28bfdbcd1edc3ba291e2ff715ad8e
+# symbt-codegen-derivation-sha256: 5d684810b95cef01d1b07045880bcd03e0ffb690ae1d08c52b213a062c903258
+# symbt-codegen-content-sha256: 77556a69f221c7ab7b8bca48d25bd5893b3f9d4b8def1f6d26255f43b32a6f0f
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

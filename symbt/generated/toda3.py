@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 9ca4dbfb2fb5570b247f83f5fdcbc630421621ff411c510b108511af7e994f61
-# symbt-codegen-content-sha256: 410c338cbdaa084cce5943a94b86d9d37e9f4ab2e269dcae04af0695ab4304c8
+# symbt-codegen-derivation-sha256: 5d684810b95cef01d1b07045880bcd03e0ffb690ae1d08c52b213a062c903258
+# symbt-codegen-content-sha256: d879338d776da9e6ccf8c83aeeebf93a91ce263ea1a82db2771350ca29bd781c
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: c01f0e6a8d2f71a481983e52759eb9dfcfc158a74ed24e358fa8c46d521eb129
-// symbt-codegen-content-sha256: 3a46ceb89f2b472aa4bf344a807287742e95bfcf1a0eac167b90060c52c8d24f
+// symbt-codegen-derivation-sha256: 078ec581ee7a0d66db12dd0d553bbe93757bd0ab79c238e82bd18e4dcccfb286
+// symbt-codegen-content-sha256: ac4021ba0ee754bb6da8540e7b1ff2737f6c745f6430c2fbceeee64f8b1ba4ee
 #include <math.h>
 #include "drag_numeric.h"
 

@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: c01f0e6a8d2f71a481983e52759eb9dfcfc158a74ed24e358fa8c46d521eb129
-// symbt-codegen-content-sha256: 996c3c94c56da2a876ac5c3ef8d11fe477e37366185a521ba21aeb7891c0db94
+// symbt-codegen-derivation-sha256: 078ec581ee7a0d66db12dd0d553bbe93757bd0ab79c238e82bd18e4dcccfb286
+// symbt-codegen-content-sha256: a6c2d3e5914fb168a208ec261548e1b9d004722ab5f1b8098e42bf75c7bdc73a
 #ifndef SYMBT_EMITTED_DRAG_NUMERIC_H
 #define SYMBT_EMITTED_DRAG_NUMERIC_H
 

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: drag_numeric (declared in drag_emit)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: c01f0e6a8d2f71a481983e52759eb9dfcfc158a74ed24e358fa8c46d521eb129
-# symbt-codegen-content-sha256: 6aef897c41e9853ba6882b0c8df69711eaae93c3fcfd6781c61c9a3707cd97da
+# symbt-codegen-derivation-sha256: 078ec581ee7a0d66db12dd0d553bbe93757bd0ab79c238e82bd18e4dcccfb286
+# symbt-codegen-content-sha256: 583ae259e80d191693d69e3d65dd4b9006c97baf9dd274f9114a7e59a0af3865
 """drag_numeric: functions emitted by `symbt codegen` from drag_emit.
 
 Each function has a numpy float64 flavour (vectorised over broadcast arguments) and an

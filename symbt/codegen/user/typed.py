@@ -87,8 +87,9 @@ class Loop:
     before ``np.errstate``; ``mpmath`` the statements assigning the outputs (one state); ``size`` the
     source text of an array's length (default: its number of symbols), for arrays kept whole; ``c``
     the C function verbatim (:mod:`.render_typed_c`; the generated prologue defines
-    ``static int <module>_finite(const double *x, int n)`` and the status macros).  A loop has no SymPy source: no ``domain=``
-    claims (verify it with claims of your own, as Zullo's ``codegen`` scene does)."""
+    ``static int <module>_finite(const double *x, int n)`` and the status macros).  A loop has no
+    SymPy source: no ``domain=`` claims (verify it with claims of your own, as Zullo's ``codegen``
+    scene does)."""
 
     outputs: tuple[tuple[str, tuple[Any, ...]], ...]
     numpy: str
