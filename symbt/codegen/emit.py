@@ -2,16 +2,16 @@
 
 Every module has the same surface: ``N``, ``FORM``, the typed errors, and for each
 function of :data:`~symbt.codegen.derive.FUNCTIONS` a numpy flavour ``name(...)``
-and an mpmath flavour ``name_mp(...)``, plus ``bt_orbit``/``bt_orbit_mp``.  The closed form
-goes through ``symbt.emit``: the functions of :mod:`.derive` are declared in :mod:`.zullo`
-and rendered by the user path (:func:`symbt.codegen.user.render.python_module`).
+and an mpmath flavour ``name_mp(...)``, plus ``bt_orbit``/``bt_orbit_mp``.  Both forms go
+through ``symbt.emit``: the functions are declared in :mod:`.zullo` (closed form: expressions of
+:mod:`.derive`; transfer-matrix form: ``Loop`` bodies calling :mod:`.emit_loop`'s core) and
+rendered by the user path (:func:`symbt.codegen.user.render.python_module`).
 
 >>> "def bt_step_mp(" in module_body(2)
 True
 """
 from __future__ import annotations
 
-from .emit_loop import loop_module_body
 from .forms import FORMS, form_of
 from .pymodule import package_init_body
 
@@ -23,8 +23,6 @@ def module_body(N: int, form: str | None = None) -> str:
     form = form_of(N) if form is None else form
     if form not in FORMS:
         raise ValueError(f"unknown form {form!r}")
-    if form != "closed":
-        return loop_module_body(N)
     from .zullo import module_text
 
-    return module_text(N)
+    return module_text(N, form)

@@ -8,7 +8,7 @@ Cost per state: O(N) for the trace, Phi and its gradient, the step and Dapp's x,
 the invariants; O(N^3) for the Hamiltonian fields and the flow field (products of polynomials in
 lambda).  Emission itself is independent of N up to the constant ``N = ...``.
 
->>> "def _monodromy(av, R):" in loop_module_body(5)
+>>> "def _monodromy(av, R):" in core()
 True
 """
 from __future__ import annotations
@@ -20,7 +20,7 @@ from .kernels import kernels
 from .loop_template import CORE
 from .printer import ExprPrinter
 
-__all__ = ["loop_module_body", "printed_kernels", "core", "NUMPY_CALL", "MP_CALL"]
+__all__ = ["printed_kernels", "core", "NUMPY_CALL", "MP_CALL"]
 
 #: numpy: (statements computing the outputs as lists/scalars, output item expressions)
 NUMPY_CALL = {
@@ -81,12 +81,3 @@ def core() -> str:
     for name in sorted(set(re.findall(r"@@(\w+)@@", text))):
         text = text.replace(f"@@{name}@@", ks[name])
     return text
-
-
-def loop_module_body(N: int) -> str:
-    """Everything after the provenance header of ``toda{N}.py`` in the transfer-matrix form: the ``Loop``
-    declarations of :func:`symbt.codegen.zullo.loop_declarations` (calls of :data:`NUMPY_CALL` /
-    :data:`MP_CALL` into :func:`core`), rendered by the user path's ``python_module``."""
-    from .zullo import module_text
-
-    return module_text(N, "transfer-matrix")

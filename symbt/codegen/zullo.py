@@ -86,9 +86,9 @@ def declarations(N: int, form: str = "closed") -> tuple[list[Emission], ModuleTe
 def loop_declarations(N: int) -> tuple[list[Emission], ModuleTemplate]:
     """The transfer-matrix ``toda{N}`` as typed ``emit`` declarations with a :class:`~.user.typed.Loop` body
     each (the calls into the hand-written loops of :mod:`.loop_template`, the C of
-    :func:`~.emit_c.loop_c_parts`) and its module template (head, printed loop core, ``bt_orbit``)."""
+    :func:`~.emit_c_fill.loop_c_parts`) and its module template (head, printed loop core, ``bt_orbit``)."""
     from .derive import FUNCTIONS, interface
-    from .emit_c import loop_c_parts
+    from .emit_c_fill import loop_c_parts
     from .emit_loop import MP_CALL, NUMPY_CALL, core
 
     module, spec = f"toda{N}", interface(N)

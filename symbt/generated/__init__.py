@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 5d684810b95cef01d1b07045880bcd03e0ffb690ae1d08c52b213a062c903258
-# symbt-codegen-content-sha256: a821a0e04954637345087364fec1e55cdb58274c6a574ce39df601ee4d7ee9e0
+# symbt-codegen-derivation-sha256: e13e0a57a62fa0093e6bdc7cdb7c06c0e0938122de6c89f3c71f6c2a5a6c683d
+# symbt-codegen-content-sha256: bd16b8ea0f7939bf73305d516d125859f8b8aee5af6f631140f120ab118715fe
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 5d684810b95cef01d1b07045880bcd03e0ffb690ae1d08c52b213a062c903258
-# symbt-codegen-content-sha256: 77556a69f221c7ab7b8bca48d25bd5893b3f9d4b8def1f6d26255f43b32a6f0f
+# symbt-codegen-derivation-sha256: e13e0a57a62fa0093e6bdc7cdb7c06c0e0938122de6c89f3c71f6c2a5a6c683d
+# symbt-codegen-content-sha256: c0214bc811b6f3bfbda613e46b1fde094ed6c9268d63b11a2314cb9994e2f84c
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
