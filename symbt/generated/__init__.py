@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: e13e0a57a62fa0093e6bdc7cdb7c06c0e0938122de6c89f3c71f6c2a5a6c683d
-# symbt-codegen-content-sha256: bd16b8ea0f7939bf73305d516d125859f8b8aee5af6f631140f120ab118715fe
+# symbt-codegen-derivation-sha256: 7c65852dc967e37d94945d75c666142e0917e7245bb607ff0590725034a76d4d
+# symbt-codegen-content-sha256: 2c38667d44f47e6eea6fe2ff4a88cafcb99694eef69d023bc12e1695dba90959
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: e13e0a57a62fa0093e6bdc7cdb7c06c0e0938122de6c89f3c71f6c2a5a6c683d
-# symbt-codegen-content-sha256: c0214bc811b6f3bfbda613e46b1fde094ed6c9268d63b11a2314cb9994e2f84c
+# symbt-codegen-derivation-sha256: 7c65852dc967e37d94945d75c666142e0917e7245bb607ff0590725034a76d4d
+# symbt-codegen-content-sha256: 444df0d481d85a231712509f8da3c1570cb47038aed033a6dd2f3b6aafcedc3d
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

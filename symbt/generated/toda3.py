@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: e13e0a57a62fa0093e6bdc7cdb7c06c0e0938122de6c89f3c71f6c2a5a6c683d
-# symbt-codegen-content-sha256: 02634d3fa821500a905929a0ff208a34f93e476caf4268b7c5a3b3602baba1ee
+# symbt-codegen-derivation-sha256: 7c65852dc967e37d94945d75c666142e0917e7245bb607ff0590725034a76d4d
+# symbt-codegen-content-sha256: 2724b0ade8bb2254415181a3e8991c0662d6b4111029b591a6c77992528c220c
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 078ec581ee7a0d66db12dd0d553bbe93757bd0ab79c238e82bd18e4dcccfb286
-// symbt-codegen-content-sha256: ac4021ba0ee754bb6da8540e7b1ff2737f6c745f6430c2fbceeee64f8b1ba4ee
+// symbt-codegen-derivation-sha256: 950b73c4dfc58f449717d22fb4ec0525dab9cb8b15a04ee69646d9c0ff084e26
+// symbt-codegen-content-sha256: b28f05a3ba7b259480f68cb0e2debdec48d443a52f27b26e68e3c9043ff50d6d
 #include <math.h>
 #include "drag_numeric.h"
 

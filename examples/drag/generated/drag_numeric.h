@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 078ec581ee7a0d66db12dd0d553bbe93757bd0ab79c238e82bd18e4dcccfb286
-// symbt-codegen-content-sha256: a6c2d3e5914fb168a208ec261548e1b9d004722ab5f1b8098e42bf75c7bdc73a
+// symbt-codegen-derivation-sha256: 950b73c4dfc58f449717d22fb4ec0525dab9cb8b15a04ee69646d9c0ff084e26
+// symbt-codegen-content-sha256: 7c23bcb9cdc46de6dc0b77e40bcdd7d8497571297064adeecd65abfaca5c732e
 #ifndef SYMBT_EMITTED_DRAG_NUMERIC_H
 #define SYMBT_EMITTED_DRAG_NUMERIC_H
 

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: drag_numeric (declared in drag_emit)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 078ec581ee7a0d66db12dd0d553bbe93757bd0ab79c238e82bd18e4dcccfb286
-# symbt-codegen-content-sha256: 583ae259e80d191693d69e3d65dd4b9006c97baf9dd274f9114a7e59a0af3865
+# symbt-codegen-derivation-sha256: 950b73c4dfc58f449717d22fb4ec0525dab9cb8b15a04ee69646d9c0ff084e26
+# symbt-codegen-content-sha256: 17339b03ee13ce0ff2ec3a766b93c8fd3e5b1ed2dd01a49b0751d7c0d4ebdc01
 """drag_numeric: functions emitted by `symbt codegen` from drag_emit.
 
 Each function has a numpy float64 flavour (vectorised over broadcast arguments) and an

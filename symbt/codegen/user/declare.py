@@ -11,7 +11,8 @@ r"""``symbt.emit``: declare, next to a derivation, a function that ``symbt codeg
 * ``domain``: a :class:`symbt.Domain` over the arguments (by name) where the emitted code is
   verified against ``expr`` (a claim per flavour, see :mod:`symbt.codegen.user.check`); ``cells``:
   splits of that domain (default: the sign of every ``Piecewise`` condition, so every branch is
-  sampled);
+  sampled); in the typed form over the elements (:func:`~.typed.typed_domain`: an array by one
+  range or one per element, every sign argument a cell);
 * ``optimize``: apply SymPy's ``expm1``/``log1p`` rewriting (:mod:`sympy.codegen.rewriting`)
   before common-subexpression elimination (the reference always uses ``expr`` as given);
 * the *typed* form (:mod:`symbt.codegen.user.typed`): array arguments ``("p", [p1, ...])``, a sign
