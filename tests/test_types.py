@@ -87,6 +87,13 @@ def test_strict_packages_are_configured():
         assert _strict_setting(probe), f"{pattern} is not under disallow_untyped_defs in pyproject.toml"
 
 
+def test_no_module_of_a_strict_package_is_exempted():
+    # the codegen rewrite has landed: no override may switch ``disallow_untyped_defs`` off again
+    exempt = [m for o in _overrides() if o.get("disallow_untyped_defs") is False for m in o["module"]
+              if any(_matches(m.replace("*", "anything"), [p]) for p in STRICT)]
+    assert not exempt, f"strict modules excepted from disallow_untyped_defs: {exempt}"
+
+
 def test_a_function_without_annotations_is_found():
     tree = ast.parse("def f(x):\n    return x\nclass C:\n    def m(self, y: int) -> int:\n        return y\n"
                      "    def n(self, z):\n        pass\n")

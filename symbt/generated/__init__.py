@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 65acc240a47fdd59b3e727d0648ae3c1f09d5407977f17fb6c122a987b4c711d
-# symbt-codegen-content-sha256: f22a425a8f62a4e5a0de9534f8d47400512b8c5d039f5bdb1d3824806a0c2a73
+# symbt-codegen-derivation-sha256: 57c296c1df33a67b4fce36cb44017b1412140374af560dea1d6649d004e3576e
+# symbt-codegen-content-sha256: e0a7c90baa596938d71ce91f59f27c141b56a6b2242d47c74081a24e26917c9c
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 65acc240a47fdd59b3e727d0648ae3c1f09d5407977f17fb6c122a987b4c711d
-# symbt-codegen-content-sha256: 534dbae464efc80ad6d6f8f12ebb83d50aab772a22d428319bebdb2ef31f0ce4
+# symbt-codegen-derivation-sha256: 57c296c1df33a67b4fce36cb44017b1412140374af560dea1d6649d004e3576e
+# symbt-codegen-content-sha256: 8a5e61a0b7dbb7ec6fecd40773eb8ab8147aa0c9e651207153faa8bc5cda2c60
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 65acc240a47fdd59b3e727d0648ae3c1f09d5407977f17fb6c122a987b4c711d
-# symbt-codegen-content-sha256: 9f4f99151734d061bfbf0081ce423e13adcd0d097e41d60b2283af80f5a42527
+# symbt-codegen-derivation-sha256: 57c296c1df33a67b4fce36cb44017b1412140374af560dea1d6649d004e3576e
+# symbt-codegen-content-sha256: d4009a211368316c7188f0abf4ed7da7daec0ab54bb9e493161eb7454d610de1
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

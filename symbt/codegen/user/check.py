@@ -33,8 +33,9 @@ import importlib.util
 import shutil
 import subprocess
 import tempfile
+from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import mpmath as mp
 import numpy as np
@@ -42,6 +43,9 @@ import numpy as np
 from ...proof.lambdify import plain_lambdify
 from .declare import Emission
 from .render import c_name
+
+if TYPE_CHECKING:
+    from ...proof.cells import CellTable
 
 __all__ = ["compare", "load_python", "load_c", "compiler", "F64_TOL_ULPS", "MP_TOL", "REF_DPS", "CHECK_DPS",
            "MP_DPS", "EPS", "method_text"]
@@ -96,7 +100,7 @@ def load_c(source: Path, keep: list[Any]) -> ctypes.CDLL:
     return ctypes.CDLL(str(lib))
 
 
-def _evaluator(e: Emission, flavour: str, path: Path, keep: list[Any]):
+def _evaluator(e: Emission, flavour: str, path: Path, keep: list[Any]) -> Callable[[list[float]], list[Any]]:
     """``floats -> list of output values`` for the emitted flavour."""
     if flavour == "c":
         lib = load_c(path, keep)
@@ -105,7 +109,7 @@ def _evaluator(e: Emission, flavour: str, path: Path, keep: list[Any]):
         fn.argtypes = [ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double)]
         n_in, n_out = len(e.args), len(e.exprs)
 
-        def run_c(xs):
+        def run_c(xs: list[float]) -> list[float]:
             inp = (ctypes.c_double * max(n_in, 1))(*xs)
             out = (ctypes.c_double * n_out)()
             fn(inp, out)
@@ -117,24 +121,25 @@ def _evaluator(e: Emission, flavour: str, path: Path, keep: list[Any]):
         return lambda xs: [float(v) for v in np.asarray(f(*xs), dtype=np.float64).reshape(-1)]
     fm = getattr(mod, e.name + "_mp")
 
-    def run_mp(xs):
+    def run_mp(xs: list[float]) -> list[Any]:
         with mp.workdps(MP_DPS):
             v = fm(*xs)
         return list(np.asarray(v, dtype=object).reshape(-1)) if e.shape else [v]
     return run_mp
 
 
-def compare(e: Emission, path: Path, flavour: str, *, per_cell: int | None = None, deep: bool = False):
+def compare(e: Emission, path: Path, flavour: str, *, per_cell: int | None = None,
+            deep: bool = False) -> CellTable:
     """The :class:`~symbt.proof.cells.CellTable` of normalised residuals (a point holds at <= 1)."""
     keep: list[Any] = []
     run = _evaluator(e, flavour, path, keep)
     ref = plain_lambdify(list(e.args), list(e.exprs), "mpmath")
     names = e.arg_names
 
-    def values(xs):
+    def values(xs: Sequence[Any]) -> list[Any]:
         return [mp.mpmathify(v) for v in ref(*[mp.mpf(x) for x in xs])]
 
-    def residual(**point):
+    def residual(**point: Any) -> Any:
         xs = [float(point[n]) for n in names]
         with mp.workdps(REF_DPS):
             f0 = values(xs)

@@ -47,7 +47,7 @@ class UserPrinter(ExprPrinter):
         super().__init__(flavour, names)
         self.funcs = {**_FUNCS[flavour], **_EXTRA[flavour]}
 
-    def _p(self, e):
+    def _p(self, e: sp.Basic) -> tuple[str, int]:
         fl = self.flavour
         if e.is_Float:
             v = float(e)
@@ -77,21 +77,21 @@ class UserPrinter(ExprPrinter):
             return {"numpy": str(v), "mpmath": str(v), "c": str(int(v))}[fl], _ATOM
         return super()._p(e)
 
-    def _add(self, e):
+    def _add(self, e: sp.Add) -> str:
         terms = e.as_ordered_terms()
         if self.flavour == "c" or len(terms) <= LONG_SUM:
             return super()._add(e)
         chunks = [super(UserPrinter, self)._add(sp.Add(*terms[k:k + LONG_SUM], evaluate=False))
                   for k in range(0, len(terms), LONG_SUM)]
 
-        def tree(parts):   # balanced: nesting depth log2(chunks), few temporaries alive at once
+        def tree(parts: list[str]) -> str:   # balanced: nesting depth log2(chunks), few temporaries alive at once
             if len(parts) == 1:
                 return parts[0]
             mid = len(parts) // 2
             return f"({tree(parts[:mid])}) + ({tree(parts[mid:])})"
         return tree(chunks)
 
-    def _pow(self, e):
+    def _pow(self, e: sp.Pow) -> tuple[str, int]:
         b, x = e.base, e.exp
         if b is sp.E or (x.is_Rational and (x.is_Integer or x.q == 2)):
             return super()._pow(e)

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import keyword
 import re
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -137,7 +138,8 @@ def arg_of(item: Any) -> Arg:
     return a
 
 
-def outputs_of(expr: dict, elements) -> tuple[Output, ...]:
+def outputs_of(expr: dict[Any, Any],
+               elements: Callable[[Any], tuple[tuple[sp.Expr, ...], tuple[int, ...]]]) -> tuple[Output, ...]:
     """The named outputs of a dict ``expr`` (``elements(value) -> (exprs, shape)`` splits each value)."""
     if not expr:
         raise ValueError("no outputs (an empty dict)")
