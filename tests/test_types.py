@@ -29,12 +29,12 @@ def _overrides() -> list[dict]:
     return config["tool"]["mypy"]["overrides"]
 
 
-def _strict_setting(module: str) -> bool:
-    """``disallow_untyped_defs`` for ``module`` as mypy resolves it: an exact name beats a pattern, and
+def _strict_setting(module: str, key: str = "disallow_untyped_defs") -> bool:
+    """``key`` (a mypy flag) for ``module`` as mypy resolves it: an exact name beats a pattern, and
     of two patterns the longer (more specific) one wins."""
     best: tuple[int, bool] | None = None
     for o in _overrides():
-        if "disallow_untyped_defs" not in o:
+        if key not in o:
             continue
         for m in o["module"]:
             if m == module:
@@ -44,7 +44,7 @@ def _strict_setting(module: str) -> bool:
             else:
                 continue
             if best is None or rank >= best[0]:
-                best = (rank, bool(o["disallow_untyped_defs"]))
+                best = (rank, bool(o[key]))
     return bool(best and best[1])
 
 
@@ -81,10 +81,11 @@ def _untyped(tree: ast.AST) -> list[tuple[int, str]]:
     return out
 
 
-def test_strict_packages_are_configured():
+@pytest.mark.parametrize("key", ["disallow_untyped_defs", "disallow_any_generics"])
+def test_strict_packages_are_configured(key):
     for pattern in STRICT:
         probe = pattern.replace("*", "anything")
-        assert _strict_setting(probe), f"{pattern} is not under disallow_untyped_defs in pyproject.toml"
+        assert _strict_setting(probe, key), f"{pattern} is not under {key} in pyproject.toml"
 
 
 def test_no_module_of_a_strict_package_is_exempted():

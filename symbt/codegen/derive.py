@@ -70,7 +70,7 @@ class ArgSpec:
 
     name: str
     kind: str
-    symbols: tuple
+    symbols: tuple[sp.Symbol, ...]
     doc: str
 
 
@@ -79,8 +79,8 @@ class Output:
     """One returned array: ``shape`` () / (N,) / (N, N); ``exprs`` flattened row-major."""
 
     name: str
-    shape: tuple
-    exprs: tuple
+    shape: tuple[int, ...]
+    exprs: tuple[Any, ...]
     doc: str
 
 
@@ -102,11 +102,12 @@ class FunctionSpec:
     name: str
     equation: str
     summary: str
-    args: tuple
-    outputs: tuple
+    args: tuple[ArgSpec, ...]
+    outputs: tuple[Output, ...]
     kind: str  # "polynomial" (defined everywhere) or "general" (guarded real domain)
-    guards: tuple = ()
-    defs: tuple = ()  # (Symbol, expr) pairs evaluated in order before the outputs (sources only)
+    guards: tuple[Guard, ...] = ()
+    # (Symbol, expr) pairs evaluated in order before the outputs (sources only)
+    defs: tuple[tuple[sp.Symbol, Any], ...] = ()
 
 
 def coefficient_symbols(N: int) -> tuple[sp.Symbol, ...]:
@@ -184,7 +185,7 @@ class _TraceRing:
             L = [[R.from_expr(x) if x != 0 else R.zero for x in l[i, :]] for i in range(2)]
             M = [[L[i][0] * M[0][k] + L[i][1] * M[1][k] for k in range(2)] for i in range(2)]
         self.tr = M[0][0] + M[1][1]
-        parts: list[dict] = [{} for _ in range(N + 1)]
+        parts: list[dict[tuple[int, ...], Any]] = [{} for _ in range(N + 1)]
         for mon, coeff in self.tr.terms():
             parts[mon[0]][(0,) + mon[1:]] = coeff
         self.H = [R.from_dict(h) if h else R.zero for h in parts]
@@ -249,7 +250,7 @@ class RingValue:
         return cached[1]
 
 
-_TERMS: dict = {}
+_TERMS: dict[int, tuple[PolyElement, list[tuple[int, tuple[tuple[int, int], ...]]]]] = {}
 
 
 def _value(e: sp.Expr, env: dict[Any, Any]) -> Any:
@@ -307,7 +308,7 @@ def _check_dacosh() -> None:
 
 
 @cache
-def interface(N: int) -> dict:
+def interface(N: int) -> dict[str, FunctionSpec]:
     """Name -> :class:`FunctionSpec` without expressions (``exprs = ()``, guard ``expr = None``): what every
     emitted ``toda{N}`` offers, whatever its form.  Cheap (no derivation)."""
     m = toda_model(N)
@@ -363,18 +364,18 @@ def _fill(spec: FunctionSpec, exprs: Sequence[Sequence[Any]], guard_exprs: Seque
 
 
 @cache
-def specs(N: int) -> tuple:
+def specs(N: int) -> tuple[FunctionSpec, ...]:
     """All emitted functions for the N-site lattice in closed form, rewritten for float64 (file order)."""
     return _build(N, rewrite=True)
 
 
 @cache
-def sources(N: int) -> tuple:
+def sources(N: int) -> tuple[FunctionSpec, ...]:
     """The same functions as the model states them (``E_j = exp(q_j)``; no rewriting, no guards)."""
     return _build(N, rewrite=False)
 
 
-def _build(N: int, rewrite: bool) -> tuple:
+def _build(N: int, rewrite: bool) -> tuple[FunctionSpec, ...]:
     m = toda_model(N)
     p, q, E = m.p, m.q, m.E
     T = _trace_ring(N)
@@ -413,7 +414,7 @@ def _build(N: int, rewrite: bool) -> tuple:
     # assumptions on sqrt(huge polynomial) would take minutes for N = 8.
     out["phi_tr"] = _fill(I["phi_tr"], [[phi_of(tr1, tr2)]], [disc(tr1), disc(tr2)])
     l1, l2 = lam0 + mu, lam0 - mu
-    defs: tuple = ()
+    defs: tuple[tuple[sp.Symbol, Any], ...] = ()
     if rewrite:
         t_1, t_2, tl = S(X(T.tr, l1)), S(X(T.tr, l2)), S(X(T.tr, lam))
     else:
@@ -473,7 +474,7 @@ def _build(N: int, rewrite: bool) -> tuple:
         extra += tuple(Guard("range", f"{name}_{j + 1}", v, 1)
                        for name, vs in (("u", u), ("w", w), ("d", d)) for j, v in enumerate(vs))
         ill_t, ill_s = illcond_guards(m, Guard, (t_1, t_2), u, w, d, disc)
-        sdefs: tuple = ()
+        sdefs: tuple[tuple[sp.Symbol, Any], ...] = ()
     else:         # the paper's route: eq. xy as printed, x_j = 2 mu/(z_j - y_j), E~ = E - x, eta = x y + mu
         g1, g2 = sp.symbols("G1 G2", real=True)
         sdefs = defs + ((g1, G1), (g2, G2))

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 57c296c1df33a67b4fce36cb44017b1412140374af560dea1d6649d004e3576e
-# symbt-codegen-content-sha256: e0a7c90baa596938d71ce91f59f27c141b56a6b2242d47c74081a24e26917c9c
+# symbt-codegen-derivation-sha256: 366a1c580ea80a79c3630ed69c203e3cbada4d309e36c6d59f6b784736259bb5
+# symbt-codegen-content-sha256: 9c725bc8d6dded9ba542a5f4d925eaad916a99dc8fd94bc5b645d5f0cbe9f838
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

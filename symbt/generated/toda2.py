@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 57c296c1df33a67b4fce36cb44017b1412140374af560dea1d6649d004e3576e
-# symbt-codegen-content-sha256: 8a5e61a0b7dbb7ec6fecd40773eb8ab8147aa0c9e651207153faa8bc5cda2c60
+# symbt-codegen-derivation-sha256: 366a1c580ea80a79c3630ed69c203e3cbada4d309e36c6d59f6b784736259bb5
+# symbt-codegen-content-sha256: 8a88ea091f98487a4637bdd8b5130ade3d5b4a53b7ea5d192ecdd7ecf0031523
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 57c296c1df33a67b4fce36cb44017b1412140374af560dea1d6649d004e3576e
-# symbt-codegen-content-sha256: d4009a211368316c7188f0abf4ed7da7daec0ab54bb9e493161eb7454d610de1
+# symbt-codegen-derivation-sha256: 366a1c580ea80a79c3630ed69c203e3cbada4d309e36c6d59f6b784736259bb5
+# symbt-codegen-content-sha256: cf6c3c5c42e4956191360861ec2f4db6f5e27f49e36666d24d526188f4b7be98
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

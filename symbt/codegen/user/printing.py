@@ -12,6 +12,8 @@ powers), the ``expm1``/``log1p`` rules (:func:`rewritten`, :func:`optimized`) an
 """
 from __future__ import annotations
 
+from typing import Any
+
 import sympy as sp
 from sympy.codegen.cfunctions import expm1
 from sympy.codegen.rewriting import FuncMinusOneOptim, ReplaceOptim, expm1_opt, log1p_opt
@@ -43,7 +45,7 @@ class UserPrinter(ExprPrinter):
     '((x < 0.0) ? sin(x) : pow(x, (1.0/3.0)))'
     """
 
-    def __init__(self, flavour: str, names: dict):
+    def __init__(self, flavour: str, names: dict[Any, str]):
         super().__init__(flavour, names)
         self.funcs = {**_FUNCS[flavour], **_EXTRA[flavour]}
 
@@ -150,7 +152,7 @@ def optimized(e: Emission) -> list[sp.Expr]:
     return [rewritten(x) for x in e.exprs]
 
 
-def cse(exprs: list[sp.Expr], names: dict, flavour: str, prefix: str = "t") -> tuple[list[str], list[str]]:
+def cse(exprs: list[sp.Expr], names: dict[Any, str], flavour: str, prefix: str = "t") -> tuple[list[str], list[str]]:
     """:func:`~symbt.codegen.printer.cse_block` printed by :class:`UserPrinter`: assignment lines
     ``t0 = ...`` (names ``prefix`` + k, canonical order) and the printed reduced expressions."""
     return cse_block(exprs, names, flavour, prefix, printer=UserPrinter)

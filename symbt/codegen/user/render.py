@@ -36,7 +36,7 @@ True
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from .declare import Emission
 from .printing import FACTOR_MAX_OPS, LONG_SUM, UserPrinter, cse, optimized, rewritten
@@ -50,7 +50,7 @@ __all__ = ["UserPrinter", "optimized", "rewritten", "python_module", "c_source",
            "FACTOR_MAX_OPS", "LONG_SUM"]
 
 
-def _names(e: Emission) -> dict:
+def _names(e: Emission) -> dict[Any, str]:
     return {a: a.name for a in e.args}
 
 

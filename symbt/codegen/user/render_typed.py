@@ -29,16 +29,20 @@ def r(v, errors="raise"):
 from __future__ import annotations
 
 import re
+from typing import TYPE_CHECKING, Any
 
 from .declare import Emission
 from .printing import cse, rewritten
+
+if TYPE_CHECKING:
+    from .typed import Guard
 
 __all__ = ["numpy_function", "mpmath_function", "typed_doc"]
 
 _INT = re.compile(r"^\(?-?\d+\)?$")
 
 
-def _prepared(e: Emission) -> tuple[list, list]:
+def _prepared(e: Emission) -> tuple[list[Any], list[Any]]:
     """(guard expressions, output expressions), with ``expm1``/``log1p`` rewriting if ``e.optimize``."""
     gx = [g.expr for g in e.guards]
     ox = [x for o in e.outputs for x in o.exprs]
@@ -47,7 +51,7 @@ def _prepared(e: Emission) -> tuple[list, list]:
     return gx, ox
 
 
-def _names(e: Emission) -> dict:
+def _names(e: Emission) -> dict[Any, str]:
     names = {}
     for a in e.params:
         if a.kind == "array":
@@ -149,7 +153,7 @@ def mpmath_function(e: Emission, zero_division: str = "division by zero") -> str
             lines.append(f"    {a.name} = _mp_value({a.name}, {a.name!r})")
     lines.append("    try:")
     outs: list[str] = []
-    gs: list = []
+    gs: list[Guard] = []
     gx, ox = _prepared(e)
     for early in (True, False):     # "illcond" guards are float64's: the mpmath flavour is the recomputation
         gs = [g for g in e.guards if g.early == early and g.condition != "illcond"]

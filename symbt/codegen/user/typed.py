@@ -49,7 +49,7 @@ class Arg:
     elements in order (one symbol for ``scalar`` and ``sign``)."""
 
     name: str
-    symbols: tuple
+    symbols: tuple[sp.Symbol, ...]
     kind: str = "scalar"
 
 
@@ -58,8 +58,8 @@ class Output:
     """One named output: ``shape`` () / (n,) / (r, c), ``exprs`` row-major."""
 
     name: str
-    shape: tuple
-    exprs: tuple
+    shape: tuple[int, ...]
+    exprs: tuple[sp.Expr, ...]
 
 
 @dataclass(frozen=True)
