@@ -134,3 +134,53 @@ def _any_count(path: Path) -> int:
 def test_numeric_signatures_say_what_they_take():
     counts = {f: _any_count(PKG / "numeric" / f) for f in TYPED_NUMERIC if (PKG / "numeric" / f).is_file()}
     assert sum(counts.values()) <= ANY_BUDGET, {f: c for f, c in counts.items() if c}
+
+
+# --- vocabularies: one Literal each, the runtime tuple read off it, a bad value refused once with a typed error ---
+
+def test_vocabulary_literals_are_the_checked_tuples():
+    import inspect
+    from typing import get_args
+
+    from symbt.codegen import LANGUAGES, Language, generate
+    from symbt.numeric import BackendName, CertifiedMethod, Float64Backend, certified_orbit, dask_orbit
+    from symbt.numeric.backends import check_name
+    from symbt.numeric.float64.orbit import ORBIT_BACKENDS
+    from symbt.numeric.multiprec.certified import CERTIFIED_METHODS
+
+    assert ORBIT_BACKENDS == get_args(Float64Backend) == ("auto", "numba", "python", "numpy")
+    # BackendName is built from Float64Backend: the float64 names are not written twice
+    assert get_args(BackendName) == ORBIT_BACKENDS + ("qd", "flint", "mpmath")
+    assert CERTIFIED_METHODS == get_args(CertifiedMethod) == ("auto", "lohner", "ball")
+    assert LANGUAGES == get_args(Language) == ("python", "c")
+    for fn, param, alias in ((certified_orbit, "method", "CertifiedMethod"), (dask_orbit, "backend", "Float64Backend"),
+                             (generate, "target", "Language")):
+        assert inspect.signature(fn).parameters[param].annotation == alias, (fn.__name__, param)
+    for name in get_args(BackendName):
+        check_name(name, "float64" if name in ORBIT_BACKENDS else "mpmath")
+
+
+def test_dask_orbit_refuses_an_unknown_backend_at_the_call():
+    # checked when the graph is built (before: only when a chunk was computed), and before dask is imported
+    from symbt.numeric import InvalidInputError, dask_orbit
+
+    with pytest.raises(InvalidInputError, match="backend must be one of"):
+        dask_orbit([[-20.0, 10.0, 1.0]], [[1.0, 0.0, 0.9]], 10.0, 5.0, 2, backend="qd")
+
+
+def test_certified_orbit_refuses_an_unknown_method():
+    pytest.importorskip("flint")
+    from symbt.numeric import InvalidInputError, certified_orbit
+
+    with pytest.raises(InvalidInputError, match="method must be one of"):
+        certified_orbit([-20, 10, 1], [1, 0, 0.9], 10, 5, 1, method="taylor")
+
+
+def test_codegen_refuses_an_unknown_target():
+    from symbt.codegen import file_names
+    from symbt.codegen.user.files import file_names as user_file_names
+
+    with pytest.raises(ValueError, match="unknown target 'java'"):
+        file_names((2,), target="java")
+    with pytest.raises(ValueError, match="unknown target 'java'"):
+        user_file_names(["m"], target="java")

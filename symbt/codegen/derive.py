@@ -39,18 +39,16 @@ import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import cache
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import sympy as sp
 from sympy.codegen.cfunctions import log1p
+from sympy.polys.rings import PolyElement
 
 from ..reference.literal import phi_from_traces
 from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import TodaModel, local_lax, toda_model
 from .transport import illcond_guards, scaled_monodromy, transported
-
-if TYPE_CHECKING:
-    from sympy.polys.rings import PolyElement
 
 __all__ = ["ArgSpec", "Output", "Guard", "FunctionSpec", "specs", "sources", "interface", "branch", "tr1", "tr2", "lam",
            "lam0", "mu", "coefficient_symbols", "disc", "phi_of", "FUNCTIONS"]
@@ -106,8 +104,7 @@ class FunctionSpec:
     outputs: tuple[Output, ...]
     kind: str  # "polynomial" (defined everywhere) or "general" (guarded real domain)
     guards: tuple[Guard, ...] = ()
-    # (Symbol, expr) pairs evaluated in order before the outputs (sources only)
-    defs: tuple[tuple[sp.Symbol, Any], ...] = ()
+    defs: tuple[tuple[sp.Symbol, Any], ...] = ()  # (Symbol, expr) pairs evaluated first (sources only)
 
 
 def coefficient_symbols(N: int) -> tuple[sp.Symbol, ...]:
@@ -427,8 +424,7 @@ def _build(N: int, rewrite: bool) -> tuple[FunctionSpec, ...]:
     w2 = 1 / sp.sqrt(disc(t_2))
     gdefs = list(defs)
 
-    # sources: a named definition (evaluated first); closed form: the expression
-    def named(name: str, value: Any) -> Any:
+    def named(name: str, value: Any) -> Any:   # sources: a named definition; closed form: the expression
         if rewrite:
             return P(value)
         sym = sp.Symbol(name, real=True)

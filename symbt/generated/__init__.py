@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 366a1c580ea80a79c3630ed69c203e3cbada4d309e36c6d59f6b784736259bb5
-# symbt-codegen-content-sha256: 9c725bc8d6dded9ba542a5f4d925eaad916a99dc8fd94bc5b645d5f0cbe9f838
+# symbt-codegen-derivation-sha256: 1a94a7d448174c085b30a87220f4c68ec87fa10933089bad22d4cde4432e510c
+# symbt-codegen-content-sha256: b1784bd441d63681cdc4148242ebf11640c6aa3d6b5fb5729acfbb2e3660426e
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

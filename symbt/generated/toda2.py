@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 366a1c580ea80a79c3630ed69c203e3cbada4d309e36c6d59f6b784736259bb5
-# symbt-codegen-content-sha256: 8a88ea091f98487a4637bdd8b5130ade3d5b4a53b7ea5d192ecdd7ecf0031523
+# symbt-codegen-derivation-sha256: 1a94a7d448174c085b30a87220f4c68ec87fa10933089bad22d4cde4432e510c
+# symbt-codegen-content-sha256: c17c2b87bf99f752ec17c4a5651e870ebc2512c2f589981659755dc228496a0d
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

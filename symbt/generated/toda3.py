@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 366a1c580ea80a79c3630ed69c203e3cbada4d309e36c6d59f6b784736259bb5
-# symbt-codegen-content-sha256: cf6c3c5c42e4956191360861ec2f4db6f5e27f49e36666d24d526188f4b7be98
+# symbt-codegen-derivation-sha256: 1a94a7d448174c085b30a87220f4c68ec87fa10933089bad22d4cde4432e510c
+# symbt-codegen-content-sha256: d1e4805723bd3a027f376ae12c66a42a9874cef93953a373c2d186586c4b895a
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: d0f12cf710f7e58787151312a775aa9f65d798422e47b0d98f468b642fdb0a11
-// symbt-codegen-content-sha256: e0fb1ae36c4feab308d8714990bca44ab39024d024ad5d89e94067a17db164f3
+// symbt-codegen-derivation-sha256: d8bc34de140a44823ca3105aaf8542fa49688eb66d805a740b10c61dae389384
+// symbt-codegen-content-sha256: decc665e4523122597dfd606acec2ec506d344966ee5e7561e5548113ec46c48
 #include <math.h>
 #include "drag_numeric.h"
 

@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: d0f12cf710f7e58787151312a775aa9f65d798422e47b0d98f468b642fdb0a11
-// symbt-codegen-content-sha256: 95453e8855ac1a967ef58dee6038d020af2270bc791d388b0582593d9f2e962a
+// symbt-codegen-derivation-sha256: d8bc34de140a44823ca3105aaf8542fa49688eb66d805a740b10c61dae389384
+// symbt-codegen-content-sha256: 88e22e78bd5220ab3aa9872f10ef63b33afd68e01f95ac3e1de1539d47f012fe
 #ifndef SYMBT_EMITTED_DRAG_NUMERIC_H
 #define SYMBT_EMITTED_DRAG_NUMERIC_H
 

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: drag_numeric (declared in drag_emit)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: d0f12cf710f7e58787151312a775aa9f65d798422e47b0d98f468b642fdb0a11
-# symbt-codegen-content-sha256: 6d02771ee0a6fa6bd791e13c80629bb1661210938c8e934890191f374645da2b
+# symbt-codegen-derivation-sha256: d8bc34de140a44823ca3105aaf8542fa49688eb66d805a740b10c61dae389384
+# symbt-codegen-content-sha256: 9cf3d5a7f4e178c658ffb1958edc90b3316d4945eb4a6cfe1ce7e9e3507b1344
 """drag_numeric: functions emitted by `symbt codegen` from drag_emit.
 
 Each function has a numpy float64 flavour (vectorised over broadcast arguments) and an
