@@ -119,7 +119,7 @@ def _best(fn: Callable[[], Any], min_time: float, repeats: int = 5) -> float:
     return best
 
 
-def _worker(tree: str, spec_path: str, min_time: float) -> None:
+def _worker(tree: str, spec_path: str, min_time: float, only: str = "") -> None:
     import symbt
 
     got = Path(symbt.__file__).resolve()
@@ -127,7 +127,10 @@ def _worker(tree: str, spec_path: str, min_time: float) -> None:
         raise SystemExit(f"redesign_ab: imported {got}, not from {tree}")
     spec = json.loads(Path(spec_path).read_text())
     times: dict[str, Any] = {}
+    keep = [s for s in only.split(",") if s]
     for name, fn in rows(spec).items():
+        if keep and not any(s in name for s in keep):
+            continue
         try:
             times[name] = _best(fn, min_time)
         except Exception as exc:           # a row one tree refuses is reported, not fatal
@@ -135,9 +138,9 @@ def _worker(tree: str, spec_path: str, min_time: float) -> None:
     print(json.dumps(times))
 
 
-def _run(tree: Path, spec_path: Path, min_time: float) -> dict[str, Any]:
+def _run(tree: Path, spec_path: Path, min_time: float, only: str = "") -> dict[str, Any]:
     env = {**os.environ, "PYTHONPATH": str(tree)}
-    r = subprocess.run([sys.executable, __file__, "--worker", str(tree), str(spec_path), str(min_time)],
+    r = subprocess.run([sys.executable, __file__, "--worker", str(tree), str(spec_path), str(min_time), only],
                        cwd=tree, env=env, capture_output=True, text=True, timeout=900)
     if r.returncode != 0:
         raise RuntimeError(f"worker in {tree} failed: {r.stderr.strip().splitlines()[-1:]}")
@@ -167,6 +170,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("after", type=Path, help="checkout timed as 'after'")
     ap.add_argument("--rounds", type=int, default=3, help="worker pairs, alternating order (default 3)")
     ap.add_argument("--min-time", type=float, default=0.1, help="seconds of calls per row and worker (default 0.1)")
+    ap.add_argument("--only", default="", help="comma-separated substrings: time only the rows whose name has one")
     ap.add_argument("--json", type=Path, help="write the times and ratios here")
     args = ap.parse_args(argv)
     for t in (args.before, args.after):
@@ -182,7 +186,7 @@ def main(argv: list[str] | None = None) -> int:
             order = ("before", "after") if k % 2 == 0 else ("after", "before")
             for which in order:
                 t0 = time.perf_counter()
-                res = _run(getattr(args, which).resolve(), spec_path, args.min_time)
+                res = _run(getattr(args, which).resolve(), spec_path, args.min_time, args.only)
                 for name, v in res.items():
                     times[which].setdefault(name, []).append(v)
                 print(f"round {k + 1} {which}: {time.perf_counter() - t0:.0f} s", file=sys.stderr, flush=True)
@@ -205,6 +209,6 @@ if __name__ == "__main__":
     if len(sys.argv) > 1 and sys.argv[1] == "--worker":
         here = Path(__file__).resolve().parent     # the script's folder is no package root: symbt comes from PYTHONPATH
         sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != here]
-        _worker(sys.argv[2], sys.argv[3], float(sys.argv[4]))
+        _worker(sys.argv[2], sys.argv[3], float(sys.argv[4]), sys.argv[5] if len(sys.argv) > 5 else "")
     else:
         sys.exit(main())
