@@ -115,6 +115,50 @@ def test_every_function_of_a_strict_package_is_annotated(pattern):
     assert not found, "functions without annotations under disallow_untyped_defs:\n" + "\n".join(found)
 
 
+#: (a bare ``type`` is ``type[object]`` to mypy, not refused)
+_GENERICS = {"dict", "list", "tuple", "set", "frozenset", "Callable", "OrderedDict", "Sequence", "Mapping", "Iterable",
+             "Iterator"}
+
+
+def _bare_generics(tree: ast.AST) -> list[tuple[int, str]]:
+    """``(line, name)`` of every generic named without parameters in an annotation or a base class (what
+    ``disallow_any_generics`` refuses; ``np.ndarray`` has default parameters in numpy 2 and is not one)."""
+    roots: list[ast.AST] = []
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            a = node.args
+            params = a.posonlyargs + a.args + a.kwonlyargs + [x for x in (a.vararg, a.kwarg) if x]
+            roots += [p.annotation for p in params if p.annotation is not None]
+            roots += [node.returns] if node.returns is not None else []
+        elif isinstance(node, ast.AnnAssign):
+            roots.append(node.annotation)
+        elif isinstance(node, ast.ClassDef):
+            roots += node.bases
+    out = []
+    for root in roots:
+        subscripted = {id(n.value) for n in ast.walk(root) if isinstance(n, ast.Subscript)}
+        for n in ast.walk(root):
+            name = n.id if isinstance(n, ast.Name) else n.attr if isinstance(n, ast.Attribute) else None
+            if name in _GENERICS and id(n) not in subscripted:
+                out.append((n.lineno, name))
+    return out
+
+
+def test_a_bare_generic_is_found():
+    tree = ast.parse("def f(x: dict, y: list[int]) -> tuple:\n    z: Callable[..., int]\n    w: OrderedDict = 0\n"
+                     "class C(tuple):\n    pass\nclass D(tuple[int, ...]):\n    pass\n")
+    assert sorted(_bare_generics(tree)) == [(1, "dict"), (1, "tuple"), (3, "OrderedDict"), (4, "tuple")]
+
+
+@pytest.mark.parametrize("pattern", STRICT)
+def test_no_bare_generic_in_a_strict_package(pattern):
+    top = PKG / pattern.split(".")[1]
+    found = [f"{path.relative_to(PKG.parent)}:{line} {name}" for path in sorted(top.rglob("*.py"))
+             if "__pycache__" not in path.parts
+             for line, name in _bare_generics(ast.parse(path.read_text(encoding="utf-8")))]
+    assert not found, "generics without parameters under disallow_any_generics:\n" + "\n".join(found)
+
+
 #: the numeric files of the typing pass and their literal ``Any`` (names in the syntax tree); 555 before
 TYPED_NUMERIC = (
     "core/inputs.py", "core/step.py", "core/context.py", "core/monodromy.py", "core/problem.py",
