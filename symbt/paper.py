@@ -28,12 +28,13 @@ labels but not displays.  Note the LaTeX label ``sec1`` is Section 2 in print, `
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 __all__ = ["EXAMPLE", "P_EXAMPLE", "Q_EXAMPLE", "LAM0_EXAMPLE", "MU_EXAMPLE", "CAPTIONS", "Label", "LABELS",
            "LABEL", "DISPLAYS", "DISPLAY_KINDS", "SECTIONS"]
 
 #: The paper's Numerics example: p, q, lambda0, and the two values of mu of Figs. 1-2 (decimal strings).
-EXAMPLE: dict = dict(p=("-20", "10", "1"), q=("1", "0", "0.9"), lam0="10", mu=("5", "2"))
+EXAMPLE: dict[str, Any] = dict(p=("-20", "10", "1"), q=("1", "0", "0.9"), lam0="10", mu=("5", "2"))
 
 P_EXAMPLE: tuple[float, ...] = tuple(float(v) for v in EXAMPLE["p"])
 Q_EXAMPLE: tuple[float, ...] = tuple(float(v) for v in EXAMPLE["q"])

@@ -31,7 +31,7 @@ from typing import Any
 
 import mpmath
 
-from ..numeric import bt_orbit, certified_orbit
+from ..numeric import CertifiedMethod, bt_orbit, certified_orbit
 from ..paper import LAM0_EXAMPLE, MU_EXAMPLE, P_EXAMPLE, Q_EXAMPLE
 from .cases import chain
 from .timing import machine_info
@@ -44,7 +44,7 @@ TOL, DPS = 1e-30, 40
 LARGE = {8: (8, 8, 5.0, 1.5), 64: (64, 64, 5.0, 1.5)}
 
 
-def _run(p: Any, q: Any, lam0: float, mu: float, n: int, method: str, every: int) -> dict[str, Any]:
+def _run(p: Any, q: Any, lam0: float, mu: float, n: int, method: CertifiedMethod, every: int) -> dict[str, Any]:
     info: dict[str, Any] = {}
     t0, c0 = time.perf_counter(), time.process_time()
     with mpmath.workdps(DPS):

@@ -180,7 +180,8 @@ def field_sources(N: int) -> Outcome:
     # verdict is then this claim's own, whatever ran before, and symbt mutate --source's line map credits it
     derive.sources.cache_clear()
     derive._trace_ring.cache_clear()
-    worst, where = mp.mpf(0), None
+    worst = mp.mpf(0)
+    where: dict[str, object] | None = None
     states = map_states(N)[:2] + map_states(N)[-1:]
     with mp.workdps(DPS):
         for p, q, l0, m in states:

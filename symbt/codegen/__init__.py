@@ -26,9 +26,10 @@ from __future__ import annotations
 
 from .cli import main
 from .files import DEFAULT_OUT, LANGUAGES, LOOP_FROM, TARGETS, check, file_names, form_of, generate, render
+from .forms import Language
 from .project import find_project
 from .provenance import GENERATOR_VERSION, content_hash, derivation_hash, derivation_sources, read_header
 
 __all__ = ["main", "generate", "check", "render", "file_names", "derivation_hash", "derivation_sources",
            "content_hash", "read_header", "find_project", "form_of", "TARGETS", "LANGUAGES", "LOOP_FROM",
-           "GENERATOR_VERSION", "DEFAULT_OUT"]
+           "GENERATOR_VERSION", "DEFAULT_OUT", "Language"]

@@ -36,15 +36,18 @@ Branch ``b = +-1``: ``gamma_i = b sqrt(tr L(lambda_i)^2 - 4)`` (positive root) a
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import cache
+from typing import Any
 
 import sympy as sp
 from sympy.codegen.cfunctions import log1p
+from sympy.polys.rings import PolyElement
 
 from ..reference.literal import phi_from_traces
 from ..symbolic.darboux import lam0, mu
-from ..symbolic.toda import local_lax, toda_model
+from ..symbolic.toda import TodaModel, local_lax, toda_model
 from .transport import illcond_guards, scaled_monodromy, transported
 
 __all__ = ["ArgSpec", "Output", "Guard", "FunctionSpec", "specs", "sources", "interface", "branch", "tr1", "tr2", "lam",
@@ -65,7 +68,7 @@ class ArgSpec:
 
     name: str
     kind: str
-    symbols: tuple
+    symbols: tuple[sp.Symbol, ...]
     doc: str
 
 
@@ -74,8 +77,8 @@ class Output:
     """One returned array: ``shape`` () / (N,) / (N, N); ``exprs`` flattened row-major."""
 
     name: str
-    shape: tuple
-    exprs: tuple
+    shape: tuple[int, ...]
+    exprs: tuple[Any, ...]
     doc: str
 
 
@@ -97,28 +100,28 @@ class FunctionSpec:
     name: str
     equation: str
     summary: str
-    args: tuple
-    outputs: tuple
+    args: tuple[ArgSpec, ...]
+    outputs: tuple[Output, ...]
     kind: str  # "polynomial" (defined everywhere) or "general" (guarded real domain)
-    guards: tuple = ()
-    defs: tuple = ()  # (Symbol, expr) pairs evaluated in order before the outputs (sources only)
+    guards: tuple[Guard, ...] = ()
+    defs: tuple[tuple[sp.Symbol, Any], ...] = ()  # (Symbol, expr) pairs evaluated first (sources only)
 
 
-def coefficient_symbols(N):
+def coefficient_symbols(N: int) -> tuple[sp.Symbol, ...]:
     return sp.symbols(f"c0:{N}", real=True)
 
 
-def disc(t):
+def disc(t: sp.Expr) -> sp.Expr:
     """``tr^2 - 4`` as ``(tr - 2)(tr + 2)`` (kept unexpanded)."""
     return sp.Mul(t - 2, t + 2, evaluate=False)
 
 
-def phi_of(t1, t2):
+def phi_of(t1: sp.Expr, t2: sp.Expr) -> sp.Expr:
     """Real Phi from the two traces (corrects eq. ``newkmu``): the one formula, ``symbt.reference.literal``'s."""
     return phi_from_traces(t1, t2, branch, ns=sp)
 
 
-def _shift(m, expr, expand=False):
+def _shift(m: TodaModel, expr: Any, expand: bool = False) -> sp.Basic:
     """``E_1 -> 1, E_j -> exp(q_j - q_1)``, the powers of ``E`` in every product combined into one
     exponential (valid for degree-0 expressions).
 
@@ -130,17 +133,18 @@ def _shift(m, expr, expand=False):
         expr = sp.expand(expr)
     index = {E: j for j, E in enumerate(m.E)}
 
-    def exp_of(powers):
+    def exp_of(powers: dict[int, int]) -> sp.Expr:
         arg = sp.Add(*[k * (m.q[j] - m.q[0]) for j, k in sorted(powers.items()) if j > 0 and k])
         return sp.exp(sp.expand(arg)) if arg != 0 else sp.Integer(1)
 
-    def rec(e):
+    def rec(e: sp.Basic) -> sp.Basic:
         if e in index:
             return exp_of({index[e]: 1})
         if e.is_Atom:
             return e
         if e.is_Mul or (e.is_Pow and e.base in index):
-            powers, rest = {}, []
+            powers: dict[int, int] = {}
+            rest: list[sp.Basic] = []
             for f in sp.Mul.make_args(e):
                 b, x = f.as_base_exp()
                 if b in index and x.is_Integer:
@@ -163,7 +167,7 @@ class _TraceRing:
     ``Q_N = (1 + sqrt 2)^N + (1 - sqrt 2)^N`` monomials (14, 82, 1154, 39202 for N = 3, 5, 8, 12).
     """
 
-    def __init__(self, N):
+    def __init__(self, N: int) -> None:
         m = self.m = toda_model(N)
         self.N = N
         self.inv = sp.symbols(f"Einv1:{N + 1}", positive=True)
@@ -178,19 +182,19 @@ class _TraceRing:
             L = [[R.from_expr(x) if x != 0 else R.zero for x in l[i, :]] for i in range(2)]
             M = [[L[i][0] * M[0][k] + L[i][1] * M[1][k] for k in range(2)] for i in range(2)]
         self.tr = M[0][0] + M[1][1]
-        parts: list[dict] = [{} for _ in range(N + 1)]
+        parts: list[dict[tuple[int, ...], Any]] = [{} for _ in range(N + 1)]
         for mon, coeff in self.tr.terms():
             parts[mon[0]][(0,) + mon[1:]] = coeff
         self.H = [R.from_dict(h) if h else R.zero for h in parts]
 
-    def d_p(self, f, i):
+    def d_p(self, f: PolyElement, i: int) -> PolyElement:
         return f.diff(self.p[i])
 
-    def d_q(self, f, i):
+    def d_q(self, f: PolyElement, i: int) -> PolyElement:
         """``d/dq_i = E_i d/dE_i - E_i^{-1} d/dE_i^{-1}``."""
         return self.E[i] * f.diff(self.E[i]) - self.Einv[i] * f.diff(self.Einv[i])
 
-    def expr(self, f, lam_=None, q_exp=False):
+    def expr(self, f: PolyElement, lam_: sp.Expr | None = None, q_exp: bool = False) -> sp.Expr:
         """As a SymPy expression: ``lambda -> lam_``; ``E_j -> exp(q_j)`` if ``q_exp`` (else E_j)."""
         m = self.m
         E = [sp.exp(x) for x in m.q] if q_exp else list(m.E)
@@ -199,7 +203,7 @@ class _TraceRing:
 
 
 @cache
-def _trace_ring(N):
+def _trace_ring(N: int) -> _TraceRing:
     return _TraceRing(N)
 
 
@@ -210,10 +214,10 @@ class RingValue:
     expression of the ~10^4 monomials of the N = 8 fields would take longer than the check."""
 
     ring: _TraceRing
-    poly: object
+    poly: PolyElement
     lam: object = None
 
-    def evaluate(self, env: dict, exp, memo: dict | None = None):
+    def evaluate(self, env: dict[Any, Any], exp: Callable[[Any], Any], memo: dict[Any, Any] | None = None) -> Any:
         """Value at ``env`` (Symbol -> number; ``E_j = exp(q_j)`` via ``exp``); ``memo`` shares the
         powers of the generators between values at the same point."""
         T, m = self.ring, self.ring.m
@@ -235,7 +239,7 @@ class RingValue:
             total += t
         return total
 
-    def _terms(self):
+    def _terms(self) -> list[tuple[int, tuple[tuple[int, int], ...]]]:
         cached = _TERMS.get(id(self.poly))
         if cached is None or cached[0] is not self.poly:
             terms = [(int(c), tuple((i, e) for i, e in enumerate(mon) if e)) for mon, c in self.poly.terms()]
@@ -243,15 +247,15 @@ class RingValue:
         return cached[1]
 
 
-_TERMS: dict = {}
+_TERMS: dict[int, tuple[PolyElement, list[tuple[int, tuple[tuple[int, int], ...]]]]] = {}
 
 
-def _value(e, env):
+def _value(e: sp.Expr, env: dict[Any, Any]) -> Any:
     """Value of an integer combination of symbols (``lambda0 +- mu``)."""
     return sum(int(c) * env[x] for x, c in e.as_coefficients_dict().items())
 
 
-def _cyclic_monodromy(m, lam_, j, expand=True):
+def _cyclic_monodromy(m: TodaModel, lam_: sp.Expr, j: int, expand: bool = True) -> sp.Matrix:
     """``l_{j-1} ... l_1 l_N ... l_j`` (0-based j; j = 0 is L); with ``expand`` expanded in lambda
     and then ``lambda -> lam_`` (so ``lambda_0 + mu`` stays one quantity: no binomial cancellation)."""
     M = sp.eye(2)
@@ -262,18 +266,18 @@ def _cyclic_monodromy(m, lam_, j, expand=True):
     return M.xreplace({m.lam: lam_})
 
 
-def _state_args(m):
+def _state_args(m: TodaModel) -> tuple[ArgSpec, ...]:
     return (ArgSpec("p", "state", tuple(m.p), f"momenta p_1..p_{m.N}"),
             ArgSpec("q", "state", tuple(m.q), f"positions q_1..q_{m.N}"))
 
 
-def _map_args(m):
+def _map_args(m: TodaModel) -> tuple[ArgSpec, ...]:
     return _state_args(m) + (ArgSpec("lam0", "scalar", (lam0,), "lambda_0 (eq. lam0mu)"),
                              ArgSpec("mu", "scalar", (mu,), "mu (eq. lam0mu)"),
                              ArgSpec("branch", "branch", (branch,), "b = +1 or -1"))
 
 
-def _slope(M, g, sign):
+def _slope(M: sp.Matrix, g: sp.Expr, sign: int) -> tuple[sp.Expr, sp.Expr, sp.Basic]:
     """Eigenvector slope ``s`` of ``(1, -s)``: ``(A - D + sign g)/(2B) = -2C/(A - D - sign g)``,
     the form without cancellation selected by the sign of ``(A - D) * sign * g``."""
     A, B, C, D = M[0, 0], M[0, 1], M[1, 0], M[1, 1]
@@ -281,7 +285,8 @@ def _slope(M, g, sign):
     return (dl + sign * g) / (2 * B), -2 * C / (dl - sign * g), sp.GreaterThan(sign * dl * g, 0)
 
 
-def _with_guards(spec, extra, ill_t=(), ill_s=()):
+def _with_guards(spec: FunctionSpec, extra: tuple[Guard, ...], ill_t: tuple[Guard, ...] = (),
+                 ill_s: tuple[Guard, ...] = ()) -> FunctionSpec:
     """``spec`` with the guards ``extra`` after its trace guards (decided in order: an overflowed slope is a
     range error, not a positivity decided from a wrong value), each trace guard after its conditioning
     guard ``ill_t`` and the slopes' conditioning ``ill_s`` before the positivity guards: the order of
@@ -292,7 +297,7 @@ def _with_guards(spec, extra, ill_t=(), ill_s=()):
                         traces + tuple(extra) + tuple(ill_s) + spec.guards[k:], spec.defs)
 
 
-def _check_dacosh():
+def _check_dacosh() -> None:
     # d/dT arccosh(T/2) = 1/sqrt(T^2 - 4) for T > 2 (both sides positive: compare squares exactly)
     T = sp.Symbol("T", positive=True)
     if sp.cancel(sp.diff(sp.acosh(T / 2), T) ** 2 - 1 / (T ** 2 - 4)) != 0:
@@ -300,7 +305,7 @@ def _check_dacosh():
 
 
 @cache
-def interface(N: int) -> dict:
+def interface(N: int) -> dict[str, FunctionSpec]:
     """Name -> :class:`FunctionSpec` without expressions (``exprs = ()``, guard ``expr = None``): what every
     emitted ``toda{N}`` offers, whatever its form.  Cheap (no derivation)."""
     m = toda_model(N)
@@ -345,7 +350,8 @@ def interface(N: int) -> dict:
     return {s.name: s for s in specs_}
 
 
-def _fill(spec, exprs, guard_exprs=(), defs=()):
+def _fill(spec: FunctionSpec, exprs: Sequence[Sequence[Any]], guard_exprs: Sequence[Any] = (),
+          defs: Sequence[tuple[sp.Symbol, Any]] = ()) -> FunctionSpec:
     """``spec`` with the output expressions (one tuple per output), guard expressions and definitions."""
     outs = tuple(Output(o.name, o.shape, tuple(e), o.doc) for o, e in zip(spec.outputs, exprs))
     if any(len(o.exprs) != math.prod(o.shape) for o in outs):
@@ -355,18 +361,18 @@ def _fill(spec, exprs, guard_exprs=(), defs=()):
 
 
 @cache
-def specs(N: int) -> tuple:
+def specs(N: int) -> tuple[FunctionSpec, ...]:
     """All emitted functions for the N-site lattice in closed form, rewritten for float64 (file order)."""
     return _build(N, rewrite=True)
 
 
 @cache
-def sources(N: int) -> tuple:
+def sources(N: int) -> tuple[FunctionSpec, ...]:
     """The same functions as the model states them (``E_j = exp(q_j)``; no rewriting, no guards)."""
     return _build(N, rewrite=False)
 
 
-def _build(N: int, rewrite: bool) -> tuple:
+def _build(N: int, rewrite: bool) -> tuple[FunctionSpec, ...]:
     m = toda_model(N)
     p, q, E = m.p, m.q, m.E
     T = _trace_ring(N)
@@ -405,7 +411,7 @@ def _build(N: int, rewrite: bool) -> tuple:
     # assumptions on sqrt(huge polynomial) would take minutes for N = 8.
     out["phi_tr"] = _fill(I["phi_tr"], [[phi_of(tr1, tr2)]], [disc(tr1), disc(tr2)])
     l1, l2 = lam0 + mu, lam0 - mu
-    defs: tuple = ()
+    defs: tuple[tuple[sp.Symbol, Any], ...] = ()
     if rewrite:
         t_1, t_2, tl = S(X(T.tr, l1)), S(X(T.tr, l2)), S(X(T.tr, lam))
     else:
@@ -418,7 +424,7 @@ def _build(N: int, rewrite: bool) -> tuple:
     w2 = 1 / sp.sqrt(disc(t_2))
     gdefs = list(defs)
 
-    def named(name, value):   # sources: a named definition (evaluated first); closed form: the expression
+    def named(name: str, value: Any) -> Any:   # sources: a named definition; closed form: the expression
         if rewrite:
             return P(value)
         sym = sp.Symbol(name, real=True)
@@ -464,7 +470,7 @@ def _build(N: int, rewrite: bool) -> tuple:
         extra += tuple(Guard("range", f"{name}_{j + 1}", v, 1)
                        for name, vs in (("u", u), ("w", w), ("d", d)) for j, v in enumerate(vs))
         ill_t, ill_s = illcond_guards(m, Guard, (t_1, t_2), u, w, d, disc)
-        sdefs: tuple = ()
+        sdefs: tuple[tuple[sp.Symbol, Any], ...] = ()
     else:         # the paper's route: eq. xy as printed, x_j = 2 mu/(z_j - y_j), E~ = E - x, eta = x y + mu
         g1, g2 = sp.symbols("G1 G2", real=True)
         sdefs = defs + ((g1, G1), (g2, G2))

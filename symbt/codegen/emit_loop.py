@@ -63,7 +63,7 @@ MP_CALL = {
 }
 
 
-def printed_kernels() -> dict:
+def printed_kernels() -> dict[str, str]:
     """Kernel name -> printed flavour-neutral Python (``_X.`` functions, symbol names as variables)."""
     out = {}
     for name, k in kernels().items():

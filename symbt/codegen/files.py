@@ -19,7 +19,7 @@ from collections.abc import Iterable
 from pathlib import Path
 
 from .._files import atomic_write, directory_problem
-from .forms import LOOP_FROM, form_of
+from .forms import LANGUAGES, LOOP_FROM, Language, form_of
 from .provenance import PACKAGE, derivation_hash, file_problem, with_header
 
 __all__ = ["TARGETS", "LANGUAGES", "DEFAULT_OUT", "LOOP_FROM", "form_of", "file_names", "render", "generate",
@@ -28,11 +28,10 @@ __all__ = ["TARGETS", "LANGUAGES", "DEFAULT_OUT", "LOOP_FROM", "form_of", "file_
 #: the lattice sizes emitted by default (the committed ``symbt/generated/toda{2,3}.py``)
 TARGETS = (2, 3)
 
-LANGUAGES = ("python", "c")
 DEFAULT_OUT = PACKAGE / "generated"
 
 
-def _check_args(ns: Iterable[int], target: str) -> tuple[int, ...]:
+def _check_args(ns: Iterable[int], target: Language) -> tuple[int, ...]:
     ns = tuple(ns)
     if target not in LANGUAGES:
         raise ValueError(f"unknown target {target!r} (choose from {', '.join(LANGUAGES)})")
@@ -41,14 +40,14 @@ def _check_args(ns: Iterable[int], target: str) -> tuple[int, ...]:
     return tuple(sorted(set(ns)))
 
 
-def file_names(ns: Iterable[int] = TARGETS, target: str = "python") -> list[str]:
+def file_names(ns: Iterable[int] = TARGETS, target: Language = "python") -> list[str]:
     ns = _check_args(ns, target)
     if target == "c":
         return [f"toda{N}.{ext}" for N in ns for ext in ("c", "h")]
     return ["__init__.py"] + [f"toda{N}.py" for N in ns]
 
 
-def render(ns: Iterable[int] = TARGETS, target: str = "python") -> dict[str, str]:
+def render(ns: Iterable[int] = TARGETS, target: Language = "python") -> dict[str, str]:
     """File name -> full text of every generated file (runs the derivations)."""
     import sympy
 
@@ -73,7 +72,7 @@ def render(ns: Iterable[int] = TARGETS, target: str = "python") -> dict[str, str
     return files
 
 
-def generate(out: str | Path | None = None, ns: Iterable[int] = TARGETS, target: str = "python") -> list[Path]:
+def generate(out: str | Path | None = None, ns: Iterable[int] = TARGETS, target: Language = "python") -> list[Path]:
     """Render the files and write those that differ into ``out`` (default ``symbt/generated``; required for C).
 
     Returns the paths actually written (files whose bytes are already right are left alone and
@@ -94,7 +93,7 @@ def generate(out: str | Path | None = None, ns: Iterable[int] = TARGETS, target:
     return list(todo)
 
 
-def check(out: str | Path | None = None, ns: Iterable[int] = TARGETS, target: str = "python",
+def check(out: str | Path | None = None, ns: Iterable[int] = TARGETS, target: Language = "python",
           dhash: str | None = None) -> list[str]:
     """Problems with the generated files in ``out`` (empty list = up to date).  SymPy-free."""
     if out is None and target == "c":

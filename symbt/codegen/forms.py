@@ -12,7 +12,13 @@ generation for any N", has the measurements behind the choice).
 """
 from __future__ import annotations
 
-__all__ = ["LOOP_FROM", "FORMS", "form_of"]
+from typing import Literal, get_args
+
+__all__ = ["LOOP_FROM", "FORMS", "form_of", "Language", "LANGUAGES"]
+
+#: ``target=`` of the generators (``symbt codegen --target``): Python (numpy + mpmath) or C99
+Language = Literal["python", "c"]
+LANGUAGES: tuple[Language, ...] = get_args(Language)
 
 #: the first N emitted in the transfer-matrix form
 LOOP_FROM = 4

@@ -68,7 +68,7 @@ def _zero(expr: sp.Expr, what: str) -> None:
 
 
 @cache
-def kernels() -> dict:
+def kernels() -> dict[str, Any]:
     """Name -> SymPy expression (or tuple of them) for every one-site kernel (see the module doc)."""
     out: dict[str, Any] = {}
     # scaled transfer matrix from the local Lax matrix of the model

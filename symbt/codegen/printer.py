@@ -26,6 +26,7 @@ unprintable -- or a floating-point -- literal into the generated files.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any
 
 import sympy as sp
 from sympy.codegen.cfunctions import log1p
@@ -64,7 +65,7 @@ _ATOM, _POW, _MUL, _ADD, _REL_P = 4, 3, 2, 1, 0
 
 
 class ExprPrinter:
-    def __init__(self, flavour: str, names: dict):
+    def __init__(self, flavour: str, names: dict[Any, str]):
         if flavour not in _FUNCS:
             raise ValueError(flavour)
         self.flavour = flavour

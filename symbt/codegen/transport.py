@@ -38,7 +38,7 @@ def transported(m: TodaModel, lam_: sp.Expr, u0: sp.Expr, forward: sp.Basic) -> 
     fwd = [u0]
     for j in range(N - 1):
         fwd.append(-Quotient(r[j], a[j] + fwd[j]))
-    bwd: list = [None] * N
+    bwd: list[Any] = [None] * N
     bwd[0] = nxt = u0
     for j in range(N - 1, 0, -1):
         nxt = bwd[j] = -a[j] - Quotient(r[j], nxt)
@@ -54,7 +54,8 @@ def scaled_monodromy(m: TodaModel, lam_: sp.Expr) -> sp.Matrix:
     return M
 
 
-def illcond_guards(m: TodaModel, guard: Any, traces: tuple, u: list, w: list, d: list, disc: Any) -> tuple:
+def illcond_guards(m: TodaModel, guard: Any, traces: tuple[sp.Expr, sp.Expr], u: list[sp.Expr], w: list[sp.Expr],
+                   d: list[sp.Expr], disc: Any) -> tuple[tuple[Any, ...], tuple[Any, ...]]:
     """The float64 conditioning guards of the step (condition ``illcond``: ``expr > 0`` where the float64
     result is trusted; ``guard(condition, label, expr, stage)``, ``traces`` the step's traces at ``lam1``,
     ``lam2``, ``disc(t) = (t - 2)(t + 2)``): the test of ``symbt.numeric``'s kernels

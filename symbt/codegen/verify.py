@@ -49,7 +49,7 @@ EPS = float(np.finfo(np.float64).eps)
 
 
 @cache
-def map_states(N: int, per_sign: int = 2) -> list:
+def map_states(N: int, per_sign: int = 2) -> list[tuple[list[float], list[float], float, float]]:
     """``(p, q, lam0, mu)`` as floats: ``per_sign`` per sign of tr L (+ the paper's example for N = 3)."""
     with mp.workdps(30):
         st = admissible_states(N, 1, per_sign) + admissible_states(N, -1, per_sign)
@@ -62,7 +62,7 @@ def points(spec: FunctionSpec, N: int) -> list[dict[str, Any]]:
     """Argument dicts (python floats / lists of floats / branch ints) for one function."""
     rng = random.Random(7919 * N + len(spec.name))
     kinds = {a.name for a in spec.args}
-    pts = []
+    pts: list[dict[str, Any]] = []
     if "lam0" in kinds:
         for p, q, l0, m in map_states(N):
             for b in (1, -1):
@@ -129,15 +129,15 @@ def _eval(c: Any, env: dict[sp.Basic, Any], memo: dict[Any, Any]) -> Any:
     return _interpret(sp.sympify(c), env, memo)
 
 
-def evaluate_source(N: int, name: str, pt: dict, dps: int = REF_DPS, part: str = "outputs") -> list:
+def evaluate_source(N: int, name: str, pt: dict[str, Any], dps: int = REF_DPS, part: str = "outputs") -> list[Any]:
     """The SymPy source of every output (``part="guards"``: every guard expression) of ``name`` at ``pt``
     (inputs taken exactly), at ``dps`` digits."""
     spec = next(s for s in sources(N) if s.name == name)
     if part not in ("outputs", "guards"):
         raise ValueError(f"part must be 'outputs' or 'guards', got {part!r}")
     with mp.workdps(dps):
-        env: dict = {}
-        memo: dict = {}
+        env: dict[sp.Basic, Any] = {}
+        memo: dict[Any, Any] = {}
         for a in spec.args:
             vals = pt[a.name] if a.kind == "state" else [pt[a.name]]
             for s, v in zip(a.symbols, vals):

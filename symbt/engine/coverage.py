@@ -39,14 +39,17 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any, NoReturn
+from typing import TYPE_CHECKING, Any, NoReturn
 
 from ..paper import LABELS, SECTIONS, Label
 from ..report.json import emit_document, output_refused
 from .labels import LatexError, scan, scan_file
 from .project import ConfigError, Project, active, discover, load
+
+if TYPE_CHECKING:
+    from ..claims.base import Claim, ClaimResult
 
 __all__ = ["OneLineParser", "coverage_map", "coverage_of", "paper_labels", "reasons_of", "scan_labels", "compare",
            "find_paper", "unlabelled_claims", "unknown_labels", "main"]
@@ -128,7 +131,7 @@ def _covers(c: Any, label: str) -> bool:
     return label in (c.equation, c.source_equation)
 
 
-def _statuses_from_cache(claims: list) -> dict[str, str]:
+def _statuses_from_cache(claims: list[Claim]) -> dict[str, str]:
     from .cache import load_cached
 
     out: dict[str, str] = {}
@@ -139,7 +142,7 @@ def _statuses_from_cache(claims: list) -> dict[str, str]:
     return out
 
 
-def _statuses_by_running(claims: list, known: dict[str, str]) -> dict[str, str]:
+def _statuses_by_running(claims: list[Claim], known: dict[str, str]) -> dict[str, str]:
     """Run the claims without a known status (stubs are never cached); deep claims stay unknown."""
     from .runner import run
 
@@ -147,7 +150,7 @@ def _statuses_by_running(claims: list, known: dict[str, str]) -> dict[str, str]:
     return {r.claim.id: r.outcome.status for r in run(todo, use_cache=False, manifest=False)} if todo else {}
 
 
-def _join(displays: Sequence[Label], claims: Sequence[Any], statuses: dict[str, str | None],
+def _join(displays: Sequence[Label], claims: Sequence[Any], statuses: Mapping[str, str | None],
           reasons: dict[str, dict[str, Any]], *, empty_if_unclaimed: bool) -> dict[str, dict[str, Any]]:
     out: dict[str, dict[str, Any]] = {}
     for lab in displays:
@@ -180,7 +183,7 @@ def coverage_map(statuses: dict[str, str] | None = None, *, use_cache: bool = Tr
     return _join(displays, claims, known, reasons_of(project), empty_if_unclaimed=False)
 
 
-def coverage_of(results: list, project: Project | None = None) -> dict[str, dict[str, Any]]:
+def coverage_of(results: list[ClaimResult], project: Project | None = None) -> dict[str, dict[str, Any]]:
     """The coverage of a verify run: every display with the claims *of this run* that check it, or its reason.
 
     Reads only the results' claim metadata (no claim module is imported), so it also serves

@@ -47,7 +47,10 @@ import sysconfig
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from ..claims.base import Claim
 
 __all__ = ["Project", "ConfigError", "PACKAGE_CLAIMS", "discover", "find_config", "read_config", "load",
            "owned", "claim_module", "project_digest", "emitted_digest", "active", "CONFIG_KEYS", "DEFAULT_CODEGEN_OUT"]
@@ -307,7 +310,7 @@ def owned(module: str, owners: Sequence[str]) -> bool:
 _OWNERS: dict[tuple[str, ...], tuple[str, ...]] = {}
 
 
-def load(project: Project | None = None) -> list:
+def load(project: Project | None = None) -> list[Claim]:
     """Import the project's claims sources; its claims, in registration order.
 
     A source that registers no claim is a :class:`ConfigError` (a typo, or a module that is

@@ -5,6 +5,7 @@ from __future__ import annotations
 import signal
 import threading
 from dataclasses import replace
+from typing import Any
 
 from ..claims.base import Outcome, failed
 
@@ -69,7 +70,7 @@ def lasting(out: Outcome) -> bool:
     return out.method not in (TIMED_OUT, WORKER_DIED)
 
 
-def run_claim(claim_id: str, deep: bool = False, budget: float | None = None) -> dict:
+def run_claim(claim_id: str, deep: bool = False, budget: float | None = None) -> dict[str, Any]:
     """Run one registered claim (loading the claim modules once per worker); its outcome as a dict.
 
     Plain data in and out, so it pickles to any worker.  With a ``budget`` the

@@ -98,7 +98,8 @@ def _not_loaded() -> Any:  # pragma: no cover - a warm claim is never run
     raise RuntimeError("claim metadata from the manifest; load the claims to run it")
 
 
-def read_manifest(project: Project | None = None) -> tuple[list[Claim], dict[str, dict], dict[str, str]] | None:
+def read_manifest(project: Project | None = None
+                  ) -> tuple[list[Claim], dict[str, dict[str, Any]], dict[str, str]] | None:
     """``(claims, scenes, keys)`` from ``project``'s manifest if it matches the current sources, else ``None``.
 
     The current sources: symbt's, and every file under the roots the user's claims may depend on.
@@ -156,7 +157,7 @@ def cached_results(names: Sequence[str] | None = None, *, deep: bool = False, pr
     return out
 
 
-def scene_listing(project: Project | None = None) -> tuple[list[Claim], dict[str, dict]]:
+def scene_listing(project: Project | None = None) -> tuple[list[Claim], dict[str, dict[str, Any]]]:
     """The project's claims and scenes from the manifest if current, else by loading the claims."""
     project = project or discover()
     m = read_manifest(project)

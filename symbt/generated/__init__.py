@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 7c65852dc967e37d94945d75c666142e0917e7245bb607ff0590725034a76d4d
-# symbt-codegen-content-sha256: 2c38667d44f47e6eea6fe2ff4a88cafcb99694eef69d023bc12e1695dba90959
+# symbt-codegen-derivation-sha256: 167fc3e9e41998f94657ca992c8e7fb8db95cf51586db1c421a1b7e704b2a0a4
+# symbt-codegen-content-sha256: 57ec7874289fbb42a30d2cc284087868641aed5f02c3a98e68dbc6eb743ab24a
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

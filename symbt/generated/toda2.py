@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 7c65852dc967e37d94945d75c666142e0917e7245bb607ff0590725034a76d4d
-# symbt-codegen-content-sha256: 444df0d481d85a231712509f8da3c1570cb47038aed033a6dd2f3b6aafcedc3d
+# symbt-codegen-derivation-sha256: 167fc3e9e41998f94657ca992c8e7fb8db95cf51586db1c421a1b7e704b2a0a4
+# symbt-codegen-content-sha256: 627c57188fb8a19652b83951293212cccdc2e00e9ca2f760cbac62eec23c8d7f
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 7c65852dc967e37d94945d75c666142e0917e7245bb607ff0590725034a76d4d
-# symbt-codegen-content-sha256: 2724b0ade8bb2254415181a3e8991c0662d6b4111029b591a6c77992528c220c
+# symbt-codegen-derivation-sha256: 167fc3e9e41998f94657ca992c8e7fb8db95cf51586db1c421a1b7e704b2a0a4
+# symbt-codegen-content-sha256: 4d9b55ac0866bff4b41a843796f1c197e3d88cfe11ca1c6d5d8a23617638eb30
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

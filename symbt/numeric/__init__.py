@@ -68,6 +68,7 @@ True
 
 from .backends import BackendName
 from .core.errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError, QuadratureError
+from .core.problem import CertifiedMethod, Float64Backend
 from .dispatch import bt_orbit, bt_step
 from .float64.dask_orbit import dask_orbit
 from .flow.coefficients import flow_coefficients
@@ -92,4 +93,6 @@ __all__ = [
     "QuadratureError",
     "MissingDependencyError",
     "BackendName",
+    "Float64Backend",
+    "CertifiedMethod",
 ]

@@ -46,7 +46,7 @@ from typing import Literal, get_args
 import mpmath
 
 from .core.errors import InvalidInputError, MissingDependencyError, NoRealMapError, NumericRangeError
-from .core.problem import Arithmetic, OrbitOut, Problem, StateOut
+from .core.problem import Arithmetic, Float64Backend, OrbitOut, Problem, StateOut
 from .float64.jit import numba_available
 from .float64.orbit import prepared_float_orbit
 from .float64.step import float_step
@@ -56,7 +56,7 @@ from .multiprec.qd import qd_available, qd_fits, qd_need, qd_ready
 __all__ = ["Backend", "BackendName", "BACKENDS", "FLOAT_AUTO", "check_name", "pick", "run_step", "run_orbit"]
 
 #: the ``backend=`` values of :func:`~symbt.numeric.bt_step` and :func:`~symbt.numeric.bt_orbit`
-BackendName = Literal["auto", "numba", "python", "numpy", "qd", "flint", "mpmath"]
+BackendName = Literal[Float64Backend, "qd", "flint", "mpmath"]
 
 
 def _always(*_: object) -> bool:

@@ -44,6 +44,7 @@ Example
 from __future__ import annotations
 
 from math import lcm
+from typing import Any
 
 import sympy as sp
 
@@ -79,7 +80,7 @@ class _Walk:
     def __init__(self) -> None:
         self.forms: dict[sp.Expr, dict[sp.Expr, sp.Rational] | None] = {}     # exponent -> its form
         self.variables: dict[sp.Expr, tuple[sp.Dummy, int]] | None = None
-        self.monomials: dict[tuple, sp.Expr] = {}
+        self.monomials: dict[tuple[Any, ...], sp.Expr] = {}
         self.memo: dict[sp.Expr, sp.Expr] = {}
 
     def __call__(self, e: sp.Expr) -> sp.Expr:

@@ -241,7 +241,7 @@ def apply_assumptions(assumptions: Mapping[Any, Mapping[str, bool]] | None,
         repl[old] = new
         if lookup.get(name) is not None and lookup[name] != old:
             repl[lookup[name]] = new
-    out: list = []
+    out: list[Any] = []
     for e in exprs:
         if e is None:
             out.append(e)

@@ -17,7 +17,7 @@ import sympy as sp
 __all__ = ["plain_lambdify", "MAX_ENTRIES"]
 
 MAX_ENTRIES = 512
-_MEMO: OrderedDict = OrderedDict()
+_MEMO: OrderedDict[Any, Callable[..., Any]] = OrderedDict()
 
 
 def _frozen(e: Any) -> Any:
@@ -35,7 +35,7 @@ def _modules_key(modules: Any) -> Any:
     return modules
 
 
-def _plain(args: list, e: Any, sub: dict) -> Any:
+def _plain(args: list[Any], e: Any, sub: dict[Any, Any]) -> Any:
     if isinstance(e, (list, tuple)):
         return type(e)(_plain(args, x, sub) for x in e)
     if isinstance(e, sp.MatrixBase):

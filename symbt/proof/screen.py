@@ -81,7 +81,7 @@ MAX_RELATION_DEGREE = 4
 
 
 @cache
-def _generic_roots(degree: int) -> tuple[tuple, list]:
+def _generic_roots(degree: int) -> tuple[tuple[sp.Symbol, ...], list[sp.Expr]]:
     """The roots of ``c0 x^d + c1 x^(d-1) + ... + cd`` in closed form, as ``sympy.solve`` writes them (tested).
 
     The quadratic is written out and the rest come from ``sympy.roots`` (Cardano, Ferrari):
@@ -201,7 +201,7 @@ class PointCheck:
     residual: Any
     error: Any
     point: dict[str, str]
-    values: list = field(repr=False, default_factory=list)
+    values: list[Any] = field(repr=False, default_factory=list)
     roots: list[int] = field(repr=False, default_factory=list)
     diff: Any = field(repr=False, default=0)
     rechecked: bool = False

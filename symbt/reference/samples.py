@@ -40,7 +40,7 @@ def admissible_states(N: int, trace_sign: int, count: int,
                       seed: int = 0) -> list[tuple[list[mp.mpf], list[mp.mpf], mp.mpf, mp.mpf]]:
     """``count`` tuples ``(p, q, lam0, mu)`` (lists of mpf) with sign(tr L(lambda_i)) = ``trace_sign``."""
     rng = random.Random(1000 * N + 10 * seed + (trace_sign > 0))
-    out: list = []
+    out: list[tuple[list[mp.mpf], list[mp.mpf], mp.mpf, mp.mpf]] = []
     tries = 0
     with mp.workdps(max(mp.mp.dps, 30)):
         while len(out) < count:

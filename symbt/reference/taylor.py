@@ -18,7 +18,7 @@ products alone (no numerical differentiation).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TypeAlias
+from typing import Any, TypeAlias
 
 import mpmath as mp
 
@@ -126,7 +126,7 @@ class _TaylorSystem:
         return X
 
 
-class FlowResult(tuple):
+class FlowResult(tuple[Any, ...]):
     """``(p, q)`` with attributes ``steps`` and ``order``."""
     steps: int = 0
     order: int = 0

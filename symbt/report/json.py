@@ -55,7 +55,7 @@ LIBRARIES = ("sympy", "mpmath", "numpy", "scipy", "python-flint", "gmpy2", "numb
 SCHEMA_PATH = Path(__file__).with_name("verify.schema.json")
 
 
-def schema() -> dict:
+def schema() -> dict[str, Any]:
     """The JSON Schema (draft 2020-12) of the report."""
     return json.loads(SCHEMA_PATH.read_text(encoding="utf-8"))
 
@@ -128,7 +128,7 @@ def output_refused(path: str | None, command: str, flag: str = "--json") -> bool
     return bool(problem)
 
 
-def emit_document(doc: dict, path: str | None, *, command: str, text: str | None = None) -> int:
+def emit_document(doc: dict[str, Any], path: str | None, *, command: str, text: str | None = None) -> int:
     """Deliver a command's JSON document; the exit status (0, or 2 when ``path`` cannot be written).
 
     ``path == "-"`` (or a path that is stdout, see :func:`symbt._files.is_stdout`): the document

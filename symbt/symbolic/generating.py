@@ -84,7 +84,7 @@ class GeneratingFunction:
         return (self.E[j] - self.Et[j]) * (1 / self.Et[k] - 1 / self.E[k])
 
     @cached_property
-    def relations(self) -> dict:
+    def relations(self) -> dict[sp.Expr, sp.Expr]:
         return {self.eta[j]: sp.expand(self.eta[j] ** 2 - self.mu ** 2 - self.w(j)) for j in range(self.N)}
 
     @cached_property

@@ -16,7 +16,7 @@ import sympy as sp
 __all__ = ["solve_linear"]
 
 
-def solve_linear(eq: Any, x: sp.Symbol) -> list:
+def solve_linear(eq: Any, x: sp.Symbol) -> list[sp.Expr]:
     """The solutions of ``eq = 0`` (or of an ``Eq``) for ``x``.
 
     >>> a, b, x = sp.symbols("a b x")

@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 950b73c4dfc58f449717d22fb4ec0525dab9cb8b15a04ee69646d9c0ff084e26
-// symbt-codegen-content-sha256: b28f05a3ba7b259480f68cb0e2debdec48d443a52f27b26e68e3c9043ff50d6d
+// symbt-codegen-derivation-sha256: e7dc5563254ce74f482d7582503863d57841e3834e8bd10022c5bfe271a17e38
+// symbt-codegen-content-sha256: 0ef474c36c87873a40b4dd6a869dae94bde51bbba773c277c0448a876d667313
 #include <math.h>
 #include "drag_numeric.h"
 

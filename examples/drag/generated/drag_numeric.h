@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 950b73c4dfc58f449717d22fb4ec0525dab9cb8b15a04ee69646d9c0ff084e26
-// symbt-codegen-content-sha256: 7c23bcb9cdc46de6dc0b77e40bcdd7d8497571297064adeecd65abfaca5c732e
+// symbt-codegen-derivation-sha256: e7dc5563254ce74f482d7582503863d57841e3834e8bd10022c5bfe271a17e38
+// symbt-codegen-content-sha256: 2b2abc78b77509bd0100718069fea1676d8f765419b96460f7c0bf44150ae57a
 #ifndef SYMBT_EMITTED_DRAG_NUMERIC_H
 #define SYMBT_EMITTED_DRAG_NUMERIC_H
 

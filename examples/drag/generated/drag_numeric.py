@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: drag_numeric (declared in drag_emit)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 950b73c4dfc58f449717d22fb4ec0525dab9cb8b15a04ee69646d9c0ff084e26
-# symbt-codegen-content-sha256: 17339b03ee13ce0ff2ec3a766b93c8fd3e5b1ed2dd01a49b0751d7c0d4ebdc01
+# symbt-codegen-derivation-sha256: e7dc5563254ce74f482d7582503863d57841e3834e8bd10022c5bfe271a17e38
+# symbt-codegen-content-sha256: 8e083c5aafecf050be3955ab85c813a78c6c10620141c56813121adbfc960c75
 """drag_numeric: functions emitted by `symbt codegen` from drag_emit.
 
 Each function has a numpy float64 flavour (vectorised over broadcast arguments) and an

@@ -41,6 +41,7 @@ from __future__ import annotations
 import keyword
 import re
 import sys
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -135,7 +136,7 @@ def _elements(name: str, expr: Any) -> tuple[tuple[sp.Expr, ...], tuple[int, ...
         raise _fail(name, f"not a SymPy expression: {expr!r}") from None
 
 
-def _nodes(e: sp.Basic):
+def _nodes(e: sp.Basic) -> Iterator[sp.Basic]:
     """Every distinct subexpression of ``e`` once (a tree with shared subtrees is not walked repeatedly)."""
     seen, todo = set(), [e]
     while todo:

@@ -26,18 +26,18 @@ from collections.abc import Iterable
 from pathlib import Path
 
 from ..._files import atomic_write
+from ..forms import LANGUAGES, Language
 from ..provenance import GENERATOR_VERSION, PACKAGE, file_problem, with_header
 from .declare import Emission
 
 __all__ = ["LANGUAGES", "file_names", "derivation_sources", "derivation_hash", "render", "generate", "check",
            "by_module"]
 
-LANGUAGES = ("python", "c")
 _GENERATOR = sorted((PACKAGE / "codegen" / "user").glob("*.py")) + [PACKAGE / "codegen" / "printer.py",
                                                                   PACKAGE / "codegen" / "runtime.py"]
 
 
-def file_names(modules: Iterable[str], target: str = "python") -> list[str]:
+def file_names(modules: Iterable[str], target: Language = "python") -> list[str]:
     if target not in LANGUAGES:
         raise ValueError(f"unknown target {target!r} (choose from {', '.join(LANGUAGES)})")
     mods = sorted(set(modules))
@@ -120,7 +120,7 @@ def module_hash(module: str, emissions: list[Emission], root: Path, out: Path) -
     return derivation_hash(derivation_sources(declaring, root, exclude=out), root)
 
 
-def render(emissions: Iterable[Emission], root: Path, out: Path, target: str = "python") -> dict[str, str]:
+def render(emissions: Iterable[Emission], root: Path, out: Path, target: Language = "python") -> dict[str, str]:
     """File name -> full text (provenance header + body) for every emitted module."""
     import sympy
 
@@ -143,7 +143,7 @@ def render(emissions: Iterable[Emission], root: Path, out: Path, target: str = "
     return files
 
 
-def generate(emissions: Iterable[Emission], root: Path, out: Path, target: str = "python") -> list[Path]:
+def generate(emissions: Iterable[Emission], root: Path, out: Path, target: Language = "python") -> list[Path]:
     """Render and write (atomically; files already right are not touched) into ``out``."""
     written = []
     for name, text in render(list(emissions), root, out, target).items():
@@ -154,7 +154,7 @@ def generate(emissions: Iterable[Emission], root: Path, out: Path, target: str =
     return written
 
 
-def check(emissions: Iterable[Emission], root: Path, out: Path, target: str = "python") -> list[str]:
+def check(emissions: Iterable[Emission], root: Path, out: Path, target: Language = "python") -> list[str]:
     """One line per missing, stale or hand-edited file in ``out`` (empty: up to date)."""
     problems = []
     for module, ems in by_module(emissions).items():

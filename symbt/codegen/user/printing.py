@@ -12,6 +12,8 @@ powers), the ``expm1``/``log1p`` rules (:func:`rewritten`, :func:`optimized`) an
 """
 from __future__ import annotations
 
+from typing import Any
+
 import sympy as sp
 from sympy.codegen.cfunctions import expm1
 from sympy.codegen.rewriting import FuncMinusOneOptim, ReplaceOptim, expm1_opt, log1p_opt
@@ -43,11 +45,11 @@ class UserPrinter(ExprPrinter):
     '((x < 0.0) ? sin(x) : pow(x, (1.0/3.0)))'
     """
 
-    def __init__(self, flavour: str, names: dict):
+    def __init__(self, flavour: str, names: dict[Any, str]):
         super().__init__(flavour, names)
         self.funcs = {**_FUNCS[flavour], **_EXTRA[flavour]}
 
-    def _p(self, e):
+    def _p(self, e: sp.Basic) -> tuple[str, int]:
         fl = self.flavour
         if e.is_Float:
             v = float(e)
@@ -77,21 +79,21 @@ class UserPrinter(ExprPrinter):
             return {"numpy": str(v), "mpmath": str(v), "c": str(int(v))}[fl], _ATOM
         return super()._p(e)
 
-    def _add(self, e):
+    def _add(self, e: sp.Add) -> str:
         terms = e.as_ordered_terms()
         if self.flavour == "c" or len(terms) <= LONG_SUM:
             return super()._add(e)
         chunks = [super(UserPrinter, self)._add(sp.Add(*terms[k:k + LONG_SUM], evaluate=False))
                   for k in range(0, len(terms), LONG_SUM)]
 
-        def tree(parts):   # balanced: nesting depth log2(chunks), few temporaries alive at once
+        def tree(parts: list[str]) -> str:   # balanced: nesting depth log2(chunks), few temporaries alive at once
             if len(parts) == 1:
                 return parts[0]
             mid = len(parts) // 2
             return f"({tree(parts[:mid])}) + ({tree(parts[mid:])})"
         return tree(chunks)
 
-    def _pow(self, e):
+    def _pow(self, e: sp.Pow) -> tuple[str, int]:
         b, x = e.base, e.exp
         if b is sp.E or (x.is_Rational and (x.is_Integer or x.q == 2)):
             return super()._pow(e)
@@ -150,7 +152,7 @@ def optimized(e: Emission) -> list[sp.Expr]:
     return [rewritten(x) for x in e.exprs]
 
 
-def cse(exprs: list[sp.Expr], names: dict, flavour: str, prefix: str = "t") -> tuple[list[str], list[str]]:
+def cse(exprs: list[sp.Expr], names: dict[Any, str], flavour: str, prefix: str = "t") -> tuple[list[str], list[str]]:
     """:func:`~symbt.codegen.printer.cse_block` printed by :class:`UserPrinter`: assignment lines
     ``t0 = ...`` (names ``prefix`` + k, canonical order) and the printed reduced expressions."""
     return cse_block(exprs, names, flavour, prefix, printer=UserPrinter)

@@ -37,14 +37,22 @@ True
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
 from .declare import Emission
 from .printing import FACTOR_MAX_OPS, LONG_SUM, UserPrinter, cse, optimized, rewritten
+
+if TYPE_CHECKING:
+    import sympy as sp
+
+    from .typed import ModuleTemplate
 
 __all__ = ["UserPrinter", "optimized", "rewritten", "python_module", "c_source", "c_header", "c_name",
            "FACTOR_MAX_OPS", "LONG_SUM"]
 
 
-def _names(e: Emission) -> dict:
+def _names(e: Emission) -> dict[Any, str]:
     return {a: a.name for a in e.args}
 
 
@@ -59,7 +67,7 @@ def _doc(e: Emission, flavour: str) -> str:
     return f'    """{head}\n\n    {tail}\n    """'
 
 
-def _py_function(e: Emission, exprs) -> str:
+def _py_function(e: Emission, exprs: Sequence[sp.Expr]) -> str:
     args = ", ".join(e.arg_names)
     lines = [f"def {e.name}({args}):", _doc(e, "numpy")]
     for a in e.arg_names:
@@ -72,7 +80,7 @@ def _py_function(e: Emission, exprs) -> str:
     return "\n".join(lines)
 
 
-def _mp_function(e: Emission, exprs) -> str:
+def _mp_function(e: Emission, exprs: Sequence[sp.Expr]) -> str:
     args = ", ".join(e.arg_names)
     lines = [f"def {e.name}_mp({args}):", _doc(e, "mpmath")]
     for a in e.arg_names:
@@ -142,7 +150,8 @@ def _typed_head(module: str, emissions: list[Emission], sources: str, names: lis
                       "", "", f"_WHY = {why!r}"])
 
 
-def python_module(module: str, emissions: list[Emission], sources: str, template=None) -> str:
+def python_module(module: str, emissions: list[Emission], sources: str,
+                  template: ModuleTemplate | None = None) -> str:
     """The body (after the provenance header) of ``<module>.py``.
 
     ``template`` (a :class:`~.typed.ModuleTemplate`): its ``head`` replaces the generated module head

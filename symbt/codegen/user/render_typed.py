@@ -29,6 +29,7 @@ def r(v, errors="raise"):
 from __future__ import annotations
 
 import re
+from typing import Any
 
 from .declare import Emission
 from .printing import cse, rewritten
@@ -38,7 +39,7 @@ __all__ = ["numpy_function", "mpmath_function", "typed_doc", "prepared"]
 _INT = re.compile(r"^\(?-?\d+\)?$")
 
 
-def prepared(e: Emission) -> tuple[list, list]:
+def prepared(e: Emission) -> tuple[list[Any], list[Any]]:
     """(guard expressions, output expressions), with ``expm1``/``log1p`` rewriting if ``e.optimize``."""
     gx = [g.expr for g in e.guards]
     ox = [x for o in e.outputs for x in o.exprs]
@@ -47,7 +48,7 @@ def prepared(e: Emission) -> tuple[list, list]:
     return gx, ox
 
 
-def _names(e: Emission) -> dict:
+def _names(e: Emission) -> dict[Any, str]:
     names = {}
     for a in e.params:
         if a.kind == "array":
@@ -183,7 +184,7 @@ def mpmath_function(e: Emission, zero_division: str = "division by zero") -> str
                                    f"        raise NumericRangeError({zero_division!r}) from exc",
                                    f"    return {', '.join(o.name for o in e.outputs)}"])
     outs: list[str] = []
-    gs: list = []
+    gs: list[Any] = []
     gx, ox = prepared(e)
     for early in (True, False):     # "illcond" guards are float64's: the mpmath flavour is the recomputation
         gs = [g for g in e.guards if g.early == early and g.condition != "illcond"]

@@ -54,13 +54,13 @@ class CTemplate:
     module: str
     header: str
     head: str
-    status: tuple
+    status: tuple[tuple[str, str], ...]
     finite: str
     length: str | None = None
-    signatures: tuple = ()
-    functions: tuple = ()
+    signatures: tuple[tuple[str, str], ...] = ()
+    functions: tuple[str, ...] = ()
     sign_local: str = "{name}_value"
-    pointers: tuple = ()
+    pointers: tuple[tuple[str, tuple[str, ...]], ...] = ()
 
 
 def _signature(e: Emission, t: CTemplate) -> str:

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import keyword
 import re
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -48,7 +49,7 @@ class Arg:
     elements in order (one symbol for ``scalar`` and ``sign``)."""
 
     name: str
-    symbols: tuple
+    symbols: tuple[sp.Symbol, ...]
     kind: str = "scalar"
 
 
@@ -57,8 +58,8 @@ class Output:
     """One named output: ``shape`` () / (n,) / (r, c), ``exprs`` row-major."""
 
     name: str
-    shape: tuple
-    exprs: tuple
+    shape: tuple[int, ...]
+    exprs: tuple[sp.Expr, ...]
 
 
 @dataclass(frozen=True)
@@ -164,7 +165,8 @@ def arg_of(item: Any) -> Arg:
     return a
 
 
-def outputs_of(expr: dict, elements) -> tuple[Output, ...]:
+def outputs_of(expr: dict[Any, Any],
+               elements: Callable[[Any], tuple[tuple[sp.Expr, ...], tuple[int, ...]]]) -> tuple[Output, ...]:
     """The named outputs of a dict ``expr`` (``elements(value) -> (exprs, shape)`` splits each value)."""
     if not expr:
         raise ValueError("no outputs (an empty dict)")

@@ -31,7 +31,8 @@ from .inputs import (
     validate_float_pair,
 )
 
-__all__ = ["Problem", "prepare", "Arithmetic", "StateLike", "ParamLike", "FloatArray", "StateOut", "OrbitOut"]
+__all__ = ["Problem", "prepare", "Arithmetic", "Float64Backend", "CertifiedMethod", "StateLike", "ParamLike",
+           "FloatArray", "StateOut", "OrbitOut"]
 
 #: a validated float64 array
 FloatArray = npt.NDArray[np.float64]
@@ -46,6 +47,11 @@ OrbitOut: TypeAlias = Any
 
 #: what a backend computes in: float64 arrays, or mpmath numbers (intervals included)
 Arithmetic = Literal["float64", "mpmath"]
+#: the ``backend=`` values for float64 input (the float64 rows of :data:`~symbt.numeric.BackendName`, which is
+#: built from it): ``backend=`` of :func:`~symbt.numeric.dask_orbit` and of the float64 orbits
+Float64Backend = Literal["auto", "numba", "python", "numpy"]
+#: ``method=`` of :func:`~symbt.numeric.certified_orbit`
+CertifiedMethod = Literal["auto", "lohner", "ball"]
 
 
 @dataclass(frozen=True)

@@ -35,6 +35,7 @@ import numpy as np
 
 from ..core.errors import InvalidInputError, MissingDependencyError, NoRealMapError
 from ..core.inputs import check_steps
+from ..core.problem import Float64Backend
 from .kernels import orbit_rows
 
 if TYPE_CHECKING:
@@ -52,7 +53,7 @@ def _import_dask() -> ModuleType:
     return da
 
 
-def _chunk(block: npt.NDArray[np.float64], N: int, n: int, branch: int, every: int, backend: str,
+def _chunk(block: npt.NDArray[np.float64], N: int, n: int, branch: int, every: int, backend: Float64Backend,
            block_info: dict[Any, Any] | None = None) -> npt.NDArray[np.float64]:
     from .orbit import float_orbit
 
@@ -69,13 +70,15 @@ def _chunk(block: npt.NDArray[np.float64], N: int, n: int, branch: int, every: i
 
 # p, q, lam0, mu: numpy array-likes or dask arrays (rebound to dask arrays below, hence Any)
 def dask_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, chunks: int | tuple[int, ...] | str = "auto",
-               branch: int = 1, every: int = 1, backend: str = "auto") -> tuple[da.Array, da.Array]:
+               branch: int = 1, every: int = 1, backend: Float64Backend = "auto") -> tuple[da.Array, da.Array]:
     """Lazy ``bt_orbit`` of an ensemble: dask arrays ``P, Q`` of shape ``(rows, M, N)``.
 
     ``p, q``: ``(M, N)`` numpy or dask arrays; ``lam0, mu``: scalars or
     length-``M`` arrays; ``chunks``: states per chunk (an int, a tuple of
     chunk sizes or ``"auto"``; ignored for dask input, whose row chunks are
-    used).  ``every``, ``branch``, ``backend`` as for :func:`~symbt.numeric.bt_orbit`.
+    used).  ``every``, ``branch`` as for :func:`~symbt.numeric.bt_orbit`; ``backend`` one of its float64
+    names (:data:`~symbt.numeric.Float64Backend`), checked here (:class:`InvalidInputError`), not when a
+    chunk is computed.
 
     >>> P, Q = dask_orbit(np.tile([-20.0, 10, 1], (3, 1)), np.tile([1.0, 0, 0.9], (3, 1)), 10.0, 5.0, 4,
     ...                   chunks=2, every=4)
@@ -83,7 +86,9 @@ def dask_orbit(p: Any, q: Any, lam0: Any, mu: Any, n: int, *, chunks: int | tupl
     ((2, 3, 3), True)
     """
     from ..core.inputs import check_branch
+    from .orbit import check_orbit_backend
 
+    check_orbit_backend(backend)
     da = _import_dask()
     branch = check_branch(branch)
     n, every = check_steps(n, every)

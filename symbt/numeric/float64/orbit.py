@@ -32,7 +32,7 @@ Example
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, get_args
 
 import numpy as np
 
@@ -40,7 +40,7 @@ from ..core.context import FLOAT, FloatParam, FloatValue
 from ..core.errors import InvalidInputError, NoRealMapError, NumericRangeError
 from ..core.inputs import prepare_spectral_pair, validate_float_pair
 from ..core.limits import ILLCOND, MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
-from ..core.problem import Problem
+from ..core.problem import Float64Backend, Problem
 from ..core.step import BLOCK_ELEMENTS, float_status, step_core
 from .jit import kernel, numba_available
 from .kernels import ANCHOR, orbit_rows
@@ -52,10 +52,23 @@ if TYPE_CHECKING:
     F64 = npt.NDArray[np.float64]
     I64 = npt.NDArray[np.int64]
 
-__all__ = ["float_orbit", "kernel_step", "kernel_batch_step", "general_orbit", "raise_for_status", "ORBIT_BACKENDS"]
+__all__ = ["float_orbit", "kernel_step", "kernel_batch_step", "general_orbit", "raise_for_status", "ORBIT_BACKENDS",
+           "check_orbit_backend"]
 
 #: accepted ``backend`` values for float64 orbits
-ORBIT_BACKENDS = ("auto", "numba", "python", "numpy")
+ORBIT_BACKENDS: tuple[Float64Backend, ...] = get_args(Float64Backend)
+
+
+def check_orbit_backend(backend: str) -> None:
+    """:class:`InvalidInputError` unless ``backend`` is one of :data:`ORBIT_BACKENDS`.
+
+    >>> check_orbit_backend("qd")
+    Traceback (most recent call last):
+    ...
+    symbt.numeric.core.errors.InvalidInputError: backend must be one of ('auto', 'numba', 'python', 'numpy'), got 'qd'
+    """
+    if backend not in ORBIT_BACKENDS:
+        raise InvalidInputError("backend must be one of %s, got %r" % (ORBIT_BACKENDS, backend))
 _PY_ERRORS = (FloatingPointError, ZeroDivisionError, OverflowError, ValueError)
 
 
@@ -283,7 +296,7 @@ def raise_for_status(status: I64, step: I64, shape: tuple[int, ...]) -> None:
 
 
 def float_orbit(p: npt.ArrayLike, q: npt.ArrayLike, lam0: npt.ArrayLike, mu: npt.ArrayLike, n: int, *,
-                branch: int = 1, every: int = 1, backend: str = "auto") -> tuple[F64, F64]:
+                branch: int = 1, every: int = 1, backend: Float64Backend = "auto") -> tuple[F64, F64]:
     """``n`` steps of the float64 map from one state or an ensemble (see module docstring).
 
     ``backend``: ``"auto"``, ``"numba"``, ``"python"`` (plain-Python kernel;
@@ -294,8 +307,7 @@ def float_orbit(p: npt.ArrayLike, q: npt.ArrayLike, lam0: npt.ArrayLike, mu: npt
     >>> P.shape, bool(np.array_equal(P[3, 1], P[0, 1]))       # mu = 0: the identity
     ((4, 2, 3), True)
     """
-    if backend not in ORBIT_BACKENDS:
-        raise InvalidInputError("backend must be one of %s, got %r" % (ORBIT_BACKENDS, backend))
+    check_orbit_backend(backend)
     pa, qa, shape = validate_float_pair(p, q)
     l0, m = prepare_spectral_pair(FLOAT, lam0, mu, shape)
     return validated_float_orbit(pa, qa, shape, l0, m, n, branch, every, backend)

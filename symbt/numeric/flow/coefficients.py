@@ -425,7 +425,7 @@ def _coefficients_mp(P: list[MPValue], Q: list[MPValue], lam0: MPValue, mu: MPVa
                      ks: list[int]) -> list[MPValue]:
     """mpmath path: tanh-sinh per k on the scaled integrand, ``tr`` values shared between the k."""
     r = neighbour_ratios_of(Q)
-    memo: dict = {}
+    memo: dict[MPValue, MPValue] = {}
 
     def inv(lam: MPValue) -> MPValue:
         v = memo.get(lam)

@@ -62,15 +62,15 @@ def transfer_gradient(a: Sequence[Value], r: Sequence[Value], inv_s: Value) -> t
     ([3.0, 2.0], [-1.0, -1.0])
     """
     N = len(a)
-    F00: list = [1.0] * N
-    F01: list = [0.0] * N
+    F00: list[Value] = [1.0] * N
+    F01: list[Value] = [0.0] * N
     f00, f01, f10, f11 = a[0], -inv_s, r[0], 0.0        # F_2 = m_1
     for j in range(1, N):
         F00[j], F01[j] = f00, f01
         if j < N - 1:
             f00, f01, f10, f11 = a[j] * f00 - inv_s * f10, a[j] * f01 - inv_s * f11, r[j] * f00, r[j] * f01
-    da: list = [None] * N
-    dr: list = [None] * N
+    da: list[Value] = [None] * N
+    dr: list[Value] = [None] * N
     b00, b01, b10, b11 = 1.0, 0.0, 0.0, 1.0               # B_N = I
     for j in range(N - 1, -1, -1):
         if j == N - 1:
@@ -89,13 +89,13 @@ def transfer_gradient(a: Sequence[Value], r: Sequence[Value], inv_s: Value) -> t
     return da, dr
 
 
-def _gradient_renormalised(a: list, r: list, inv_s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _gradient_renormalised(a: list[Value], r: list[Value], inv_s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """As :func:`transfer_gradient` on arrays, with a power-of-two renormalisation at every site."""
     N = len(a)
     shape = np.shape(a[0])
     one, zero = np.ones(shape), np.zeros(shape)
 
-    def renorm(*xs: np.ndarray) -> tuple:
+    def renorm(*xs: np.ndarray) -> tuple[np.ndarray, ...]:
         m = np.abs(xs[0])
         for x in xs[1:]:
             m = np.maximum(m, np.abs(x))

@@ -47,13 +47,14 @@ from __future__ import annotations
 
 import math
 import numbers
-from typing import TYPE_CHECKING, Literal, get_args
+from typing import TYPE_CHECKING, get_args
 
 import mpmath
 import numpy as np
 
 from ..core.context import MPValue
 from ..core.errors import InvalidInputError, MissingDependencyError, NumericRangeError
+from ..core.problem import CertifiedMethod
 from ..core.step import step_core
 from ..float64.kernels import stored_steps
 from .runners import MPOrbit, flint_available
@@ -67,8 +68,6 @@ __all__ = ["certified_orbit", "DEFAULT_MAX_PREC", "CERTIFIED_METHODS", "Certifie
 
 #: precision cap (bits) of the automatic precision increase
 DEFAULT_MAX_PREC = 1 << 16
-#: ``method=`` of :func:`certified_orbit`
-CertifiedMethod = Literal["auto", "lohner", "ball"]
 #: ``method=`` values of :func:`certified_orbit`
 CERTIFIED_METHODS: tuple[CertifiedMethod, ...] = get_args(CertifiedMethod)
 _MARGIN = 24          # extra bits beyond the estimate
@@ -212,7 +211,7 @@ def _outputs(stored: list[tuple[list[arb], list[arb]]]) -> tuple[MPOrbit, MPOrbi
 def certified_orbit(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, n: int, *, branch: int = 1,
                     every: int = 1, tol: float | MPValue | None = None, prec: int | None = None,
                     max_prec: int = DEFAULT_MAX_PREC, info: dict[str, object] | None = None,
-                    method: str = "auto") -> tuple[MPOrbit, MPOrbit, MPOrbit, MPOrbit]:
+                    method: CertifiedMethod = "auto") -> tuple[MPOrbit, MPOrbit, MPOrbit, MPOrbit]:
     """Certified ``n``-step orbit: ``(P, Q, P_rad, Q_rad)``, lists over the stored states.
 
     ``P[i][j]`` is an mpf at the current ``mp.prec`` and
