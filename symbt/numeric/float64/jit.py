@@ -81,10 +81,11 @@ def _compile_all() -> None:
     from . import kernels_block as KB
 
     small = _small()
-    block = {"_slopes": njit(clone(KB._slopes, _shrink=njit(KB._shrink, inline="always")))}
+    la = {name: njit(getattr(KB, name), inline="always") for name in ("lam_add", "lam_split")}
+    block = {"_slopes": njit(clone(KB._slopes, _shrink=njit(KB._shrink, inline="always"), lam_add=la["lam_add"]))}
     block["_anchor"] = njit(clone(KB._anchor, **small))
-    run_block = instantiate({"run_block": KB.run_block}, {**block, **small}, tag="f64", jit=True,
-                            extra=K._EXTRA)["run_block"]
+    run_block = instantiate({"run_block": KB.run_block}, {**block, **small, "lam_split": la["lam_split"]},
+                            tag="f64", jit=True, extra=K._EXTRA)["run_block"]
     ens = njit(clone(KB.ensemble, run_block=run_block, prange=numba.prange), parallel=True)
     _compiled.update(orbit=_orbit(small), run_block=run_block, ensemble=ens)
 

@@ -9,7 +9,8 @@ plain-Python and numba versions are identical bit for bit too (IEEE doubles,
 libm ``sqrt/exp/log/log1p``, no ``fastmath``; ``tests/test_numeric_fast.py``).
 
 The step is that of :mod:`symbt.numeric.core.step` (scaled eigenvector slopes,
-each transported in its contracting direction, cancellation-free read-out),
+each transported in its contracting direction, cancellation-free read-out; ``lam + p_j`` formed at
+the spectral parameters made consistent with ``two_mu`` by :mod:`symbt.numeric.core.spectral_sum`),
 in the scalar form written once in :mod:`symbt.numeric.core.fused`: this module
 holds its float64 arithmetic (:data:`OPERATIONS`: the operators themselves) and
 hooks (:data:`HOOKS`: the condition estimate, the power-of-two rescaling, the
@@ -70,6 +71,7 @@ from ..core import limits
 from ..core.compile import instantiate
 from ..core.fused import SOURCE
 from ..core.limits import KAPPA_MAX, MAX_DQ_FLOAT64, OK, RANGE
+from ..core.spectral_sum import lam_add, lam_split
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -251,7 +253,7 @@ HOOKS: dict[str, Callable[..., Any]] = {
     "hi": _hi, "track_init": _track_init, "track": _track, "rescale": _rescale, "rescale_last": _rescale_last,
          "in_range": _in_range, "two_of": _two_of, "decided": _decided, "disc_fits": _disc_fits,
          "step_kappa": _step_kappa, "bounded": _bounded, "trusted": _trusted, "advance": _advance,
-    "ld": _ld, "st": _st}
+    "ld": _ld, "st": _st, "lam_add": lam_add, "lam_split": lam_split}
 #: the operations of the float64 arithmetic (the same in plain Python and under numba)
 OPERATIONS = {"add": operator.add, "sub": operator.sub, "mul": operator.mul, "div": operator.truediv,
               "neg": operator.neg, "sqrt": math.sqrt, "add_d": operator.add, "mul2": operator.mul}
