@@ -40,6 +40,7 @@ def _small() -> dict[str, Callable[..., Any]]:
 
     small = {name: njit(getattr(K, name), inline="always") for name in ("_logf", "_dd_add")}
     small["_dd_position"] = njit(clone(K._dd_position, **small), inline="always")
+    small["_dd_low"] = njit(clone(K._dd_low, **small), inline="always")
     return small
 
 

@@ -146,6 +146,16 @@ def _dd_position(qh: float, ql: float, fh: float, fl: float) -> float:
     return h + lo
 
 
+def _dd_low(qh: float, ql: float, fh: float, fl: float, y: float) -> float:
+    """``qh + ql + log F - y`` for the stored ``y`` (its rounding error: the low part of the position).
+
+    >>> _dd_low(1.0, 2.0 ** -60, 1.0, 0.0, 1.0)
+    8.673617379884035e-19
+    """
+    h, lo = _dd_add(qh, ql, _logf(fh, fl))
+    return (h - y) + lo
+
+
 # the float64 arithmetic of the fused step (core/fused.py): the operators themselves (numba compiles
 # operator.add as ``+``), and the hooks of what float64 needs beyond the operations
 def _hi(x: float) -> float:
@@ -293,7 +303,9 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
     """``n`` steps of one state; stores the states of :func:`stored_steps` in ``outP, outQ`` (rows, N).
 
     ``lam1 = lam0 + mu``, ``lam2 = lam0 - mu``, ``two_mu = 2 mu``.  Returns
-    the status (0 ok, else the first failure, see the module docstring).
+    the status (0 ok, else the first failure, see the module docstring).  An ``outQ`` of
+    ``2 N`` columns also receives the low parts of the positions in its columns ``N ... 2N - 1``
+    (:func:`_dd_low`; the first ``N`` columns are the same either way).
 
     >>> P, Q = np.empty((2, 3)), np.empty((2, 3))
     >>> orbit(np.array([-20.0, 10, 1]), np.array([1.0, 0, 0.9]), 15.0, 5.0, 10.0, 1, 1, 1, ANCHOR, P, Q)
@@ -320,6 +332,10 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
     if st != OK:
         return st
     pos = (fh, fl)
+    wide = outQ.shape[1] > N
+    if wide:
+        for j in range(N):
+            outQ[0, N + j] = 0.0
     row = 1
     for i in range(1, n + 1):
         st = step(p, r, pos, lam1, lam2, two_mu, branch, u, w, xr, gq, tt)
@@ -336,6 +352,8 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
                     return RANGE
                 outP[row, j] = p[j]
                 outQ[row, j] = y
+                if wide:
+                    outQ[row, N + j] = _dd_low(qh[j], ql[j], fh[j], fl[j], y)
             row += 1
     return OK
 

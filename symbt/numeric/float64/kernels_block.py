@@ -29,7 +29,7 @@ import numpy as np
 
 from ..core.limits import ILLCOND, KAPPA_MAX, MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 from ..core.spectral_sum import lam_add, lam_split
-from .kernels import _BIG, _SHRINK, _dd_add, _dd_position, _logf
+from .kernels import _BIG, _SHRINK, _dd_add, _dd_low, _dd_position, _logf
 
 if TYPE_CHECKING:
     from .kernels import F64, I64
@@ -180,7 +180,8 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
 
     ``lam1 = lam0 + mu``, ``lam2 = lam0 - mu``, ``two_mu = 2 mu`` per state;
     stored states (see :func:`~symbt.numeric.float64.kernels.orbit_rows`) go to
-    ``outP, outQ`` (rows, M, N); ``status[i]`` is set (0 ok, else the first failure).
+    ``outP, outQ`` (rows, M, N); ``status[i]`` is set (0 ok, else the first failure).  An ``outQ`` of
+    ``2 N`` columns also receives the positions' low parts (as :func:`~symbt.numeric.float64.kernels.orbit`).
 
     >>> from symbt.numeric.float64.kernels import ANCHOR
     >>> st = np.zeros(1, np.int64)
@@ -231,6 +232,11 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
             qh[j, k] = Q0[i0 + k, j]
             outP[0, i0 + k, j] = P0[i0 + k, j]
             outQ[0, i0 + k, j] = Q0[i0 + k, j]
+    wide = outQ.shape[2] > N
+    if wide:
+        for k in range(B):
+            for j in range(N):
+                outQ[0, i0 + k, N + j] = 0.0
     _anchor(qh, ql, fh, fl, r, p, st)
     row = 1
     for i in range(1, n + 1):
@@ -276,6 +282,8 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
                         st[k] = st[k] if st[k] != OK else RANGE
                     outP[row, i0 + k, j] = p[j, k]
                     outQ[row, i0 + k, j] = y
+                    if wide:
+                        outQ[row, i0 + k, N + j] = _dd_low(qh[j, k], ql[j, k], fh[j, k], fl[j, k], y)
             row += 1
         nbad = 0
         for k in range(B):
