@@ -291,7 +291,8 @@ def kernel_drift(N: int = 3, n: int = 10**6, members: int = 4, store: str = "abs
             Q, Qlo = Q[:, :N], Q[:, N:]
         rel[:, m] = _relative_drift(P, Q, rows, _invariants_50(p, q, lams), lams, Qlo)
     edges, rms, slope = windowed_rms(steps[rows], rel, nwin)
-    return {"N": N, "n": n, "members": members, "store": store, "guarded": guarded, "n_k": edges.tolist(), "rms": rms.tolist(),
+    return {"N": N, "n": n, "members": members, "store": store, "guarded": guarded,
+            "n_k": edges.tolist(), "rms": rms.tolist(),
             "exponent": slope, "final": rel[-1].tolist(), "seconds_per_step": t_kernel / (members * n)}
 
 
