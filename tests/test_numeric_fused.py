@@ -70,7 +70,7 @@ def test_each_arithmetic_keeps_its_own_decisions_near_a_band_edge():
     p, q, lam1 = _near_edge_state()
     r = np.exp(np.diff(np.r_[q, q[0]]))
     tt = np.zeros(4)
-    assert kernels.python_kernels()["slopes"](p, r, lam1, 1, np.empty(3), 1, tt, 0) == ILLCOND
+    assert kernels.python_kernels()["slopes"](p, r, lam1, 0.0, 1, np.empty(3), 1, tt, 0) == ILLCOND
     assert abs(tt[0] - 2) < 1e-6
     mu = 0.5
     lam0 = lam1 - mu

@@ -40,7 +40,7 @@ from ..numeric import bt_step, invariants, spectral_trace
 from ..numeric.float64.kernels import _dd_add, _logf
 from ..paper import P_EXAMPLE, Q_EXAMPLE
 
-__all__ = ["invariant_drift_curve", "windowed_rms", "drift_case", "modular_orbit", "kernel_drift",
+__all__ = ["invariant_drift_curve", "windowed_rms", "drift_case", "modular_orbit", "unguarded_orbit", "kernel_drift",
            "heyoka_drift", "plot_drift"]
 
 P_PAPER, Q_PAPER = P_EXAMPLE, Q_EXAMPLE
@@ -134,7 +134,8 @@ def windowed_rms(steps: Any, rel: Any, nwin: int = 12, first: int | None = None)
 
 def drift_case(N: int) -> tuple[Any, Any, float, float]:
     """``(p, q, lam0, mu)`` of the drift runs: N = 3 the paper's example (mu = 5), N = 64 / 256 the
-    benchmark chains ``n64-chain`` / ``n256-chain`` (:mod:`symbt.benchmarks.cases`).
+    benchmark chains ``n64-chain`` / ``n256-chain`` (:mod:`symbt.benchmarks.cases`), the latter at
+    ``lam0 = 8.3`` (the kernel refuses its ``lam0 = 3.4`` as ill-conditioned).
 
     >>> drift_case(3)[2:]
     (10.0, 5.0)
@@ -144,6 +145,10 @@ def drift_case(N: int) -> tuple[Any, Any, float, float]:
     if N == 3:
         return np.array(P_PAPER), np.array(Q_PAPER), 10.0, 5.0
     c = {64: cases()[3], 256: cases()[4]}[N]
+    if N == 256:
+        # n256-chain's own lam0 = 3.4 is refused by the kernel's conditioning guard (trace decision, KAPPA_MAX);
+        # at 8.3 it is decided, and fl(lam0 + mu) - fl(lam0 - mu) != 2 mu as at 3.4 (the inconsistent case)
+        return np.array(c.p), np.array(c.q), 8.3, c.mu
     return np.array(c.p), np.array(c.q), c.lam0, c.mu
 
 
@@ -155,6 +160,35 @@ def _modular_position(qh: float, ql: float, fh: float, fl: float) -> float:
 
 
 _MODULAR: dict[str, Any] = {}
+
+
+def _decided_unguarded(aux: Any, t: float, disc: float, tt: Any, i: int) -> bool:
+    """The float64 hook ``decided`` recording the condition but never refusing (a measuring device)."""
+    tt[i + 2] = (aux[0] + aux[3]) * abs(t) / abs(disc) * (aux[4] / aux[5])
+    return True
+
+
+def _trusted_unguarded(kt: float, u: float, w: float, dn: float, x: float) -> bool:
+    return True
+
+
+def unguarded_orbit(store: str = "absolute") -> Any:
+    """:func:`symbt.numeric.float64.kernels.orbit` (numba) with its two conditioning refusals (status 5,
+    ``KAPPA_MAX``) switched off; ``store="modular"`` also reads out as :func:`modular_orbit`.
+
+    A measuring device: since the conditioning guard, the shipped kernel refuses the drift cases' long
+    orbits somewhere (``n64-chain`` within 10 steps, one perturbed orbit of the paper's example between
+    1e4 and 1e5 steps) and ``bt_orbit`` recomputes them on the general path; this runs the kernel's
+    arithmetic through those states (every other operation unchanged).
+    """
+    key = "unguarded-" + store
+    if key not in _MODULAR:
+        from ..numeric.float64.jit import orbit_with
+
+        hooks = {"decided": _decided_unguarded, "trusted": _trusted_unguarded}
+        extra = {"_dd_position": _modular_position} if store == "modular" else {}
+        _MODULAR[key] = orbit_with(hooks, **extra)
+    return _MODULAR[key]
 
 
 def modular_orbit() -> Any:
@@ -183,20 +217,22 @@ def unwrap(Q: Any) -> Any:
     return np.concatenate([Q[..., :1], Q[..., :1] + np.cumsum(d, axis=-1)], axis=-1)
 
 
-def _invariants_50(p: Any, q: Any, lams: tuple) -> list:
+def _invariants_50(p: Any, q: Any, lams: tuple, qlo: Any = None) -> list:
     with mpmath.workdps(50):
         P = [mpmath.mpf(float(a)) for a in p]
         Q = [mpmath.mpf(float(b)) for b in q]
+        if qlo is not None:                 # the low parts of q_low rows, added exactly
+            Q = [b + mpmath.mpf(float(c)) for b, c in zip(Q, qlo)]
         if len(P) <= 8:
             return list(invariants(P, Q))
         return [spectral_trace(mpmath.mpf(lam), P, Q) for lam in lams]
 
 
-def _relative_drift(P: Any, Q: Any, rows: Any, H0: list, lams: tuple) -> Any:
+def _relative_drift(P: Any, Q: Any, rows: Any, H0: list, lams: tuple, Qlo: Any = None) -> Any:
     out = np.empty((len(rows), len(H0)))
     with mpmath.workdps(50):
         for i, r in enumerate(rows):
-            H = _invariants_50(P[r], Q[r], lams)
+            H = _invariants_50(P[r], Q[r], lams, None if Qlo is None else Qlo[r])
             out[i] = [float((a - b) / abs(b)) for a, b in zip(H, H0)]
     return out
 
@@ -213,8 +249,12 @@ def _sample_rows(steps: Any, n: int, nwin: int, per_window: int) -> Any:
 
 
 def kernel_drift(N: int = 3, n: int = 10**6, members: int = 4, store: str = "absolute", seed: int = 0,
-                 spread: float = 1e-9, nwin: int = 12, per_window: int = 8) -> dict:
+                 spread: float = 1e-9, nwin: int = 12, per_window: int = 8, guarded: bool = True) -> dict:
     """Windowed RMS drift of ``members`` kernel orbits (member 0 the case's state, the others perturbed).
+
+    ``store``: ``"absolute"`` (the positions ``bt_orbit`` returns), ``"low"`` (the same with their low
+    parts, ``bt_orbit(..., q_low=True)``) or ``"modular"`` (:func:`modular_orbit`); ``guarded=False``
+    runs :func:`unguarded_orbit` (the kernel's arithmetic without its conditioning refusals).
 
     Returns a dict with ``n_k``, ``rms``, ``exponent``, ``final`` (relative drift of each member and
     invariant at step n), ``seconds_per_step`` (the kernel alone) and the settings.
@@ -224,7 +264,10 @@ def kernel_drift(N: int = 3, n: int = 10**6, members: int = 4, store: str = "abs
 
     p0, q0, lam0, mu = drift_case(N)
     lams = (lam0 - mu, lam0, lam0 + mu)
-    fn = kernel("orbit", "numba")[0] if store == "absolute" else modular_orbit()
+    if guarded:
+        fn = modular_orbit() if store == "modular" else kernel("orbit", "numba")[0]
+    else:
+        fn = unguarded_orbit(store)
     every = max(1, n // 20000)
     steps = np.array(stored_steps(n, every))
     rows = _sample_rows(steps, n, nwin, per_window)
@@ -235,17 +278,21 @@ def kernel_drift(N: int = 3, n: int = 10**6, members: int = 4, store: str = "abs
         p = p0 + (spread * rng.normal(size=N) if m else 0.0)
         q = q0 + (spread * rng.normal(size=N) if m else 0.0)
         P = np.empty((orbit_rows(n, every), N))
-        Q = np.empty((orbit_rows(n, every), N))
+        Q = np.empty((orbit_rows(n, every), 2 * N if store == "low" else N))
         t0 = time.perf_counter()
         st = fn(p, q, lam0 + mu, lam0 - mu, 2.0 * mu, 1, n, every, ANCHOR, P, Q)
         t_kernel += time.perf_counter() - t0
         if st != 0:
             raise RuntimeError("kernel status %d" % st)
-        if store != "absolute":
+        Qlo = None
+        if store == "modular":
             Q = unwrap(Q)
-        rel[:, m] = _relative_drift(P, Q, rows, _invariants_50(p, q, lams), lams)
+        elif store == "low":
+            Q, Qlo = Q[:, :N], Q[:, N:]
+        rel[:, m] = _relative_drift(P, Q, rows, _invariants_50(p, q, lams), lams, Qlo)
     edges, rms, slope = windowed_rms(steps[rows], rel, nwin)
-    return {"N": N, "n": n, "members": members, "store": store, "n_k": edges.tolist(), "rms": rms.tolist(),
+    return {"N": N, "n": n, "members": members, "store": store, "guarded": guarded,
+            "n_k": edges.tolist(), "rms": rms.tolist(),
             "exponent": slope, "final": rel[-1].tolist(), "seconds_per_step": t_kernel / (members * n)}
 
 
@@ -303,7 +350,7 @@ def plot_drift(results: dict, path: str) -> None:
                 label, style = "heyoka tol %g, N=3 (exp. %.2f)" % (r["tol"], r["exponent"]), "s-"
             else:
                 label = "BT kernel N=%d, %s rows (exp. %.2f)" % (r["N"], r["store"], r["exponent"])
-                style = "o-" if r["store"] == "modular" else "o--"
+                style = {"modular": "o-", "low": "^-"}.get(r["store"], "o--")
             ax.loglog(r["n_k"], r["rms"], style, ms=3, label=label)
         n = np.array([1e3, 1e7])
         ax.loglog(n, 1e-14 * np.sqrt(n / n[0]), "k:", lw=0.8, label="sqrt(n) guide")
@@ -323,23 +370,36 @@ def main(argv: list | None = None) -> int:
     """Command line: the drift runs, a JSON record and the figure."""
     ap = argparse.ArgumentParser(prog="python -m symbt.benchmarks.drift", description=__doc__.split("\n")[0])
     ap.add_argument("--n", type=float, default=1e7, help="steps for N = 3 (default 1e7)")
-    ap.add_argument("--n64", type=float, default=1e6, help="steps for N = 64 (default 1e6)")
+    ap.add_argument("--n64", type=float, default=1e7, help="steps for N = 64 (default 1e7)")
     ap.add_argument("--n256", type=float, default=1e6, help="steps for N = 256 (default 1e6)")
     ap.add_argument("--members", type=int, default=4, help="orbits per N = 3 run (default 4)")
     ap.add_argument("--members-large", type=int, default=2, help="orbits per N = 64 / 256 run (default 2)")
     ap.add_argument("--heyoka-tol", type=float, default=1e-16)
     ap.add_argument("--no-heyoka", action="store_true")
+    ap.add_argument("--reuse-heyoka", action="store_true",
+                    help="copy the heyoka run from the existing --json record (its inputs unchanged) instead of "
+                    "rerunning it (~840 s)")
+    ap.add_argument("--stores", default="absolute,low,modular", help="row read-outs to measure")
+    ap.add_argument("--guarded", action="store_true",
+                    help="the shipped kernel with its conditioning refusals (default: unguarded_orbit, which "
+                    "runs through the states the guard refuses)")
     ap.add_argument("--json", default="benchmarks/results/drift.json")
     ap.add_argument("--figure", default="docs/figures/drift_roundoff.png")
     a = ap.parse_args(argv)
     runs = []
+    old_runs = []
+    if a.reuse_heyoka:
+        with open(a.json) as fh:
+            old_runs = [r for r in json.load(fh)["runs"] if "tol" in r]
     for N, n in ((3, a.n), (64, a.n64), (256, a.n256)):
-        for store in ("absolute", "modular"):
-            r = kernel_drift(N, int(n), a.members if N == 3 else a.members_large, store)
+        for store in a.stores.split(","):
+            r = kernel_drift(N, int(n), a.members if N == 3 else a.members_large, store, guarded=a.guarded)
             print("kernel N=%d n=%.0e %-8s exponent %.2f, rms at n %.2e, %.3g us/step" % (
                 N, n, store, r["exponent"], r["rms"][-1], 1e6 * r["seconds_per_step"]), flush=True)
             runs.append(r)
-    if not a.no_heyoka:
+    if old_runs:
+        runs += [dict(r, reused=True) for r in old_runs]
+    elif not a.no_heyoka:
         r = heyoka_drift(int(a.n), a.heyoka_tol, a.members)
         if "rms" in r:
             print("heyoka tol %g n=%.0e exponent %.2f, rms at n %.2e, %.1f s" % (

@@ -99,18 +99,25 @@ def bt_step(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, *, branc
 @overload
 def bt_orbit(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, n: int, *, branch: int = ...,
              every: int = ..., backend: BackendName = ..., certified: Literal[False] = ...,
-             tol: None = ...) -> tuple[OrbitOut, OrbitOut]: ...
+             tol: None = ..., q_low: Literal[False] = ...) -> tuple[OrbitOut, OrbitOut]: ...
+
+
+@overload
+def bt_orbit(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, n: int, *, branch: int = ...,
+             every: int = ..., backend: BackendName = ..., certified: Literal[False] = ...,
+             tol: None = ..., q_low: Literal[True]) -> tuple[OrbitOut, OrbitOut, OrbitOut]: ...
 
 
 @overload
 def bt_orbit(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, n: int, *, branch: int = ...,
              every: int = ..., backend: BackendName = ..., certified: Literal[True],
-             tol: float | MPValue | None = ...) -> tuple[MPOrbit, MPOrbit, MPOrbit, MPOrbit]: ...
+             tol: float | MPValue | None = ..., q_low: Literal[False] = ...
+             ) -> tuple[MPOrbit, MPOrbit, MPOrbit, MPOrbit]: ...
 
 
 def bt_orbit(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, n: int, *, branch: int = 1, every: int = 1,
              backend: BackendName = "auto", certified: bool = False,
-             tol: float | MPValue | None = None) -> tuple[OrbitOut, ...]:
+             tol: float | MPValue | None = None, q_low: bool = False) -> tuple[OrbitOut, ...]:
     """``n`` Bäcklund steps from ``(p, q)``; returns the stored states.
 
     Parameters
@@ -129,6 +136,10 @@ def bt_orbit(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, n: int,
         ``"flint"`` or ``"mpmath"``.
     certified, tol : see :func:`symbt.numeric.multiprec.certified.certified_orbit`;
         returns ``(P, Q, P_rad, Q_rad)``.
+    q_low : float64 only: also return the low parts of the stored positions, ``(P, Q, Q_low)``;
+        ``Q`` is the same as without it (bit for bit) and ``Q + Q_low`` each carried position to
+        about ``2**-104`` relative, so ``q_{j+1} - q_j`` is free of the rounding at ``ulp(|q|)``
+        that grows with the centre of mass (docs/numeric.md, "Long orbits").
 
     Returns
     -------
@@ -149,9 +160,15 @@ def bt_orbit(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, n: int,
     >>> P, Q = bt_orbit(np.tile([-20.0, 10, 1], (4, 1)), np.tile([1.0, 0, 0.9], (4, 1)), 10.0, 5.0, 100, every=50)
     >>> P.shape                                      # (stored states, ensemble, sites)
     (3, 4, 3)
+    >>> P, Q, Qlo = bt_orbit([-20.0, 10, 1], [1.0, 0, 0.9], 10.0, 5.0, 1000, every=1000, q_low=True)
+    >>> dq = (Q[-1, 1:] - Q[-1, :-1]) + (Qlo[-1, 1:] - Qlo[-1, :-1])     # differences, not rounded at |q|
+    >>> bool(abs(Q[-1, 0]) > 100), bool(np.all(np.abs(Qlo) <= np.spacing(np.abs(Q)) / 2))
+    (True, True)
     """
     branch = check_branch(branch)
     n, every = check_steps(n, every)
+    if certified and q_low:
+        raise InvalidInputError("q_low applies to float64 orbits, not to certified ones")
     if certified:
         from .multiprec.certified import certified_orbit
 
@@ -162,6 +179,12 @@ def bt_orbit(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, n: int,
         raise InvalidInputError("tol is only used with certified=True")
     pr = prepare(p, q, lam0, mu, branch=branch, n=n, every=every)
     b = pick(backend, pr.arithmetic, pr.n, interval=pr.interval)
+    if q_low:
+        if pr.arithmetic != "float64":
+            raise InvalidInputError("q_low applies to float64 orbits (mpmath positions carry their own precision)")
+        from .float64.orbit import float_orbit_low
+
+        return float_orbit_low(pr, b.name)
     if pr.arithmetic == "mpmath" and (pr.mu == 0 or pr.n == 0):
         rows = len(stored_steps(pr.n, pr.every))
         return [to_output(pr.ctx, pr.p, ())] * rows, [to_output(pr.ctx, pr.q, ())] * rows

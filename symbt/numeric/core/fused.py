@@ -14,7 +14,10 @@ The arithmetic (module globals replaced per instantiation; here they are unbound
 * numbers: ``add, sub, mul, div, neg, sqrt``; ``add_d(x, c)`` adds a double, ``mul2(x, c)`` multiplies by
   a power of two (exact); ``hi(x)`` the double nearest ``x``, whose sign every decision reads;
   ``ld(a, j)`` / ``st(a, j, x)`` read and write site ``j`` of a state array;
-* hooks, where one arithmetic needs what the other does not -- float64 tracks the product of the
+* hooks, where one arithmetic needs what the other does not -- float64 forms ``lam + p_j`` from a
+  double-double spectral parameter rounded once (``lam_add(lam, lo, p_j)``, two-sum) with the low parts
+  ``lam_split(lam1, lam2, two_mu)`` that make ``lam1 - lam2`` equal ``two_mu`` exactly (else every step
+  would be the map of parameters an ulp inconsistent with its read-out: a bias, linear drift), tracks the product of the
   entrywise absolute values (the trace's rounding scale) and the cancellation in ``lam + p_j``
   (``track_init``, ``track``), rescales the monodromy by powers of two (``rescale``, ``rescale_last``,
   ``two_of``), tests its range (``in_range``, ``disc_fits``, ``bounded``) and its condition
@@ -31,7 +34,7 @@ Example (the float64 instantiation, plain Python):
 >>> K = python_kernels()
 >>> p, r = np.array([-20.0, 10.0, 1.0]), np.exp(np.diff([1.0, 0.0, 0.9, 1.0]))
 >>> u, tt = np.empty(3), np.zeros(4)
->>> K["slopes"](p, r, 15.0, 1, u, 1, tt, 0), round(float(tt[0]), 4)     # lam1 = 15: the paper's example
+>>> K["slopes"](p, r, 15.0, 0.0, 1, u, 1, tt, 0), round(float(tt[0]), 4)     # lam1 = 15: the paper's example
 (0, -2021.2173)
 """
 
@@ -53,19 +56,21 @@ def _unbound(*args: Any) -> Any:
 # the arithmetic (see the module docstring), bound by instantiate()
 add = sub = mul = div = neg = sqrt = add_d = mul2 = hi = ld = st = _unbound
 track_init = track = rescale = rescale_last = in_range = two_of = decided = disc_fits = _unbound
-step_kappa = bounded = trusted = advance = _unbound
+step_kappa = bounded = trusted = advance = lam_add = lam_split = _unbound
 
 
-def slopes(p: Any, r: Any, lam: Any, s: int, u: Any, code: int, tt: Any, i: int) -> int:
-    """Scaled eigenvector slopes at ``lam`` (sign ``s``) into ``u``; ``tt[i]`` the trace's leading double.
+def slopes(p: Any, r: Any, lam: Any, lo: Any, s: int, u: Any, code: int, tt: Any, i: int) -> int:
+    """Scaled eigenvector slopes at ``lam + lo`` (sign ``s``) into ``u``; ``tt[i]`` the trace's leading double.
+
+    Every ``a_j = lam + lo + p_j`` (monodromy and transport alike) is ``lam_add(lam, lo, p_j)``.
 
     The eigenvector of the eigenvalue ``(tr - s sqrt(tr**2 - 4)) / 2`` of the scaled monodromy of
     ``m_j = [[lam + p_j, -1], [r_j, 0]]``; returns ``OK``, ``code`` (``|tr| <= 2``), ``RANGE`` or
     ``ILLCOND``.
     """
     N = p.shape[0]
-    a0 = add(lam, ld(p, 0))
-    a1 = add(lam, ld(p, 1))
+    a0 = lam_add(lam, lo, ld(p, 0))
+    a1 = lam_add(lam, lo, ld(p, 1))
     r0 = ld(r, 0)
     r1 = ld(r, 1)
     A = sub(mul(a1, a0), r0)            # m_2 m_1, written out: m_1's zero and -1 cost nothing
@@ -75,7 +80,7 @@ def slopes(p: Any, r: Any, lam: Any, s: int, u: Any, code: int, tt: Any, i: int)
     aux = track(track_init(lam, ld(p, 0), a0, r0), lam, ld(p, 1), a1, r1)
     A, B, C, D, aux = rescale(A, B, C, D, aux)
     for j in range(2, N):
-        aj = add(lam, ld(p, j))
+        aj = lam_add(lam, lo, ld(p, j))
         rj = ld(r, j)
         A, B, C, D = sub(mul(aj, A), C), sub(mul(aj, B), D), mul(rj, A), mul(rj, B)
         aux = track(aux, lam, ld(p, j), aj, rj)
@@ -105,11 +110,11 @@ def slopes(p: Any, r: Any, lam: Any, s: int, u: Any, code: int, tt: Any, i: int)
     st(u, 0, u1)
     if (hi(t) < 0.0) if s > 0 else (hi(t) >= 0.0):      # dominant eigenvalue: transport forward
         for j in range(N - 1):
-            st(u, j + 1, div(neg(ld(r, j)), add(add(lam, ld(p, j)), ld(u, j))))
+            st(u, j + 1, div(neg(ld(r, j)), add(lam_add(lam, lo, ld(p, j)), ld(u, j))))
     else:
         nxt = u1
         for j in range(N - 1, 0, -1):
-            nxt = sub(neg(add(lam, ld(p, j))), div(ld(r, j), nxt))
+            nxt = sub(neg(lam_add(lam, lo, ld(p, j))), div(ld(r, j), nxt))
             st(u, j, nxt)
     return OK
 
@@ -119,13 +124,15 @@ def step(p: Any, r: Any, pos: Any, lam1: Any, lam2: Any, two_mu: Any, branch: in
     """One step in place: ``p`` and the positions ``pos`` (with the ratios ``r``) advance; the status.
 
     ``lam1 = lam0 + mu``, ``lam2 = lam0 - mu``, ``two_mu = 2 mu``; ``u, w, xr, gq`` are work arrays of
-    the state's shape, ``tt`` four doubles (the traces and, in float64, their condition).
+    the state's shape, ``tt`` four doubles (the traces and, in float64, their condition).  The slopes
+    are taken at ``lam1 + lo1`` and ``lam2 + lo2`` (``lam_split``), whose difference is ``two_mu``.
     """
     N = p.shape[0]
-    s = slopes(p, r, lam1, branch, u, TRACE1, tt, 0)
+    lo1, lo2 = lam_split(lam1, lam2, two_mu)
+    s = slopes(p, r, lam1, lo1, branch, u, TRACE1, tt, 0)
     if s != OK:
         return s
-    s = slopes(p, r, lam2, -branch, w, TRACE2, tt, 1)
+    s = slopes(p, r, lam2, lo2, -branch, w, TRACE2, tt, 1)
     if s != OK:
         return s
     if (tt[0] < 0.0) != (tt[1] < 0.0):

@@ -40,6 +40,11 @@ Stable formulation (what is actually computed)
    both increments are ``mu`` times O(1) quantities computed to full relative
    accuracy, so small ``mu`` costs nothing (the literal ``E - x`` and
    ``eta_j - eta_{j+1}`` lose ``log10(1/mu)`` digits).
+5. *Parameters consistent with the read-out.*  In float64 the slopes are taken at
+   ``fl(lam0 +- mu)`` plus low parts that make their difference exactly the
+   read-out's ``2 mu``, each ``lam + p_j`` rounded once
+   (:mod:`symbt.numeric.core.spectral_sum`); an ulp of inconsistency would
+   repeat in every step and make the invariants drift linearly.
 
 Existence: the real map needs ``|tr L(lam_i)| > 2``, traces of the same sign
 (``lam1``, ``lam2`` in one gap; opposite signs mean different gaps) and
@@ -104,6 +109,7 @@ from .context import FLOAT, IV, Cond, Context, Exponent, FloatValue, MPValue, Va
 from .errors import NoRealMapError, NumericRangeError
 from .inputs import to_output
 from .monodromy import monodromy, neighbour_ratios
+from .spectral_sum import lam_add, lam_split
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -311,8 +317,13 @@ def step_core(ctx: Context, P: Sequence[Value], Q: Sequence[Value], lam0: Value,
     N = len(P)
     r = neighbour_ratios(ctx, Q)
     lam1, lam2 = lam0 + mu, lam0 - mu
-    a1 = [lam1 + pj for pj in P]
-    a2 = [lam2 + pj for pj in P]
+    if ctx is FLOAT:        # the parameters made consistent with the read-out's 2 mu, as in the kernels
+        lo1, lo2 = lam_split(lam1, lam2, 2 * mu)
+        a1 = [lam_add(lam1, lo1, pj) for pj in P]
+        a2 = [lam_add(lam2, lo2, pj) for pj in P]
+    else:
+        a1 = [lam1 + pj for pj in P]
+        a2 = [lam2 + pj for pj in P]
     S1 = eigen_slopes(ctx, a1, r, branch, spec=(lam1, P))
     S2 = eigen_slopes(ctx, a2, r, -branch, spec=(lam2, P))
     if check_real:

@@ -40,38 +40,43 @@ def _small() -> dict[str, Callable[..., Any]]:
 
     small = {name: njit(getattr(K, name), inline="always") for name in ("_logf", "_dd_add")}
     small["_dd_position"] = njit(clone(K._dd_position, **small), inline="always")
+    small["_dd_low"] = njit(clone(K._dd_low, **small), inline="always")
     return small
 
 
-def _fused_step() -> Callable[..., Any]:
+def _fused_step(replaced: dict[str, Callable[..., Any]] | None = None) -> Callable[..., Any]:
     """The fused step of :mod:`symbt.numeric.core.fused` in float64: the operators and the hooks of
-    :mod:`.kernels` (hooks inlined)."""
+    :mod:`.kernels` (hooks inlined; ``replaced`` hooks instead of some)."""
     from . import kernels as K
 
     shrunk = njit(K._shrunk, inline="always")
-    hooks = {name: njit(clone(fn, _shrunk=shrunk), inline="always") for name, fn in K.HOOKS.items()}
+    hooks = {name: njit(clone(fn, _shrunk=shrunk), inline="always")
+             for name, fn in {**K.HOOKS, **(replaced or {})}.items()}
     return instantiate(SOURCE, {**K.OPERATIONS, **hooks}, tag="f64", jit=True, inline=("slopes", "step"),
                        extra=K._EXTRA)["step"]
 
 
-def _orbit(small: dict[str, Callable[..., Any]]) -> Callable[..., Any]:
+def _orbit(small: dict[str, Callable[..., Any]], hooks: dict[str, Callable[..., Any]] | None = None
+           ) -> Callable[..., Any]:
     """The single-state driver :func:`.kernels.orbit` around the compiled fused step (named after what it
     inlines, so that numba's cache never serves a driver built on other helpers)."""
     from . import kernels as K
 
-    env = {"step": _fused_step(), **small}
+    env = {"step": _fused_step(hooks), **small}
     env["_anchor1"] = instantiate({"_anchor1": K._anchor1}, small, tag="f64", jit=True, extra=K._EXTRA)["_anchor1"]
     return instantiate({"orbit": K.orbit}, env, tag="f64", jit=True, extra=K._EXTRA)["orbit"]
 
 
-def orbit_with(**overrides: Callable[..., Any]) -> Callable[..., Any]:
+def orbit_with(hooks: dict[str, Callable[..., Any]] | None = None, **overrides: Callable[..., Any]
+               ) -> Callable[..., Any]:
     """The single-state kernel :func:`~symbt.numeric.float64.kernels.orbit` compiled with some of its
     helpers replaced (plain-Python functions, compiled here to be inlined; they may call ``_logf`` and
-    ``_dd_add``), e.g. ``_dd_position``, the read-out of a stored position.  Needs numba."""
+    ``_dd_add``), e.g. ``_dd_position``, the read-out of a stored position, and ``hooks`` replacing some of
+    :data:`~symbt.numeric.float64.kernels.HOOKS` (measuring devices of the benchmarks).  Needs numba."""
     small = _small()
     for name, fn in overrides.items():
         small[name] = njit(clone(fn, **small), inline="always")
-    return _orbit(small)
+    return _orbit(small, hooks)
 
 
 def _compile_all() -> None:
@@ -81,10 +86,11 @@ def _compile_all() -> None:
     from . import kernels_block as KB
 
     small = _small()
-    block = {"_slopes": njit(clone(KB._slopes, _shrink=njit(KB._shrink, inline="always")))}
+    la = {name: njit(getattr(KB, name), inline="always") for name in ("lam_add", "lam_split")}
+    block = {"_slopes": njit(clone(KB._slopes, _shrink=njit(KB._shrink, inline="always"), lam_add=la["lam_add"]))}
     block["_anchor"] = njit(clone(KB._anchor, **small))
-    run_block = instantiate({"run_block": KB.run_block}, {**block, **small}, tag="f64", jit=True,
-                            extra=K._EXTRA)["run_block"]
+    run_block = instantiate({"run_block": KB.run_block}, {**block, **small, "lam_split": la["lam_split"]},
+                            tag="f64", jit=True, extra=K._EXTRA)["run_block"]
     ens = njit(clone(KB.ensemble, run_block=run_block, prange=numba.prange), parallel=True)
     _compiled.update(orbit=_orbit(small), run_block=run_block, ensemble=ens)
 

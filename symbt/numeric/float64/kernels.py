@@ -9,7 +9,8 @@ plain-Python and numba versions are identical bit for bit too (IEEE doubles,
 libm ``sqrt/exp/log/log1p``, no ``fastmath``; ``tests/test_numeric_fast.py``).
 
 The step is that of :mod:`symbt.numeric.core.step` (scaled eigenvector slopes,
-each transported in its contracting direction, cancellation-free read-out),
+each transported in its contracting direction, cancellation-free read-out; ``lam + p_j`` formed at
+the spectral parameters made consistent with ``two_mu`` by :mod:`symbt.numeric.core.spectral_sum`),
 in the scalar form written once in :mod:`symbt.numeric.core.fused`: this module
 holds its float64 arithmetic (:data:`OPERATIONS`: the operators themselves) and
 hooks (:data:`HOOKS`: the condition estimate, the power-of-two rescaling, the
@@ -70,6 +71,7 @@ from ..core import limits
 from ..core.compile import instantiate
 from ..core.fused import SOURCE
 from ..core.limits import KAPPA_MAX, MAX_DQ_FLOAT64, OK, RANGE
+from ..core.spectral_sum import lam_add, lam_split
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -142,6 +144,16 @@ def _dd_position(qh: float, ql: float, fh: float, fl: float) -> float:
     """The position ``qh + ql + log F`` rounded once (the state is not changed)."""
     h, lo = _dd_add(qh, ql, _logf(fh, fl))
     return h + lo
+
+
+def _dd_low(qh: float, ql: float, fh: float, fl: float, y: float) -> float:
+    """``qh + ql + log F - y`` for the stored ``y`` (its rounding error: the low part of the position).
+
+    >>> _dd_low(1.0, 2.0 ** -60, 1.0, 0.0, 1.0)
+    8.673617379884035e-19
+    """
+    h, lo = _dd_add(qh, ql, _logf(fh, fl))
+    return (h - y) + lo
 
 
 # the float64 arithmetic of the fused step (core/fused.py): the operators themselves (numba compiles
@@ -251,7 +263,7 @@ HOOKS: dict[str, Callable[..., Any]] = {
     "hi": _hi, "track_init": _track_init, "track": _track, "rescale": _rescale, "rescale_last": _rescale_last,
          "in_range": _in_range, "two_of": _two_of, "decided": _decided, "disc_fits": _disc_fits,
          "step_kappa": _step_kappa, "bounded": _bounded, "trusted": _trusted, "advance": _advance,
-    "ld": _ld, "st": _st}
+    "ld": _ld, "st": _st, "lam_add": lam_add, "lam_split": lam_split}
 #: the operations of the float64 arithmetic (the same in plain Python and under numba)
 OPERATIONS = {"add": operator.add, "sub": operator.sub, "mul": operator.mul, "div": operator.truediv,
               "neg": operator.neg, "sqrt": math.sqrt, "add_d": operator.add, "mul2": operator.mul}
@@ -291,7 +303,9 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
     """``n`` steps of one state; stores the states of :func:`stored_steps` in ``outP, outQ`` (rows, N).
 
     ``lam1 = lam0 + mu``, ``lam2 = lam0 - mu``, ``two_mu = 2 mu``.  Returns
-    the status (0 ok, else the first failure, see the module docstring).
+    the status (0 ok, else the first failure, see the module docstring).  An ``outQ`` of
+    ``2 N`` columns also receives the low parts of the positions in its columns ``N ... 2N - 1``
+    (:func:`_dd_low`; the first ``N`` columns are the same either way).
 
     >>> P, Q = np.empty((2, 3)), np.empty((2, 3))
     >>> orbit(np.array([-20.0, 10, 1]), np.array([1.0, 0, 0.9]), 15.0, 5.0, 10.0, 1, 1, 1, ANCHOR, P, Q)
@@ -318,6 +332,10 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
     if st != OK:
         return st
     pos = (fh, fl)
+    wide = outQ.shape[1] > N
+    if wide:
+        for j in range(N):
+            outQ[0, N + j] = 0.0
     row = 1
     for i in range(1, n + 1):
         st = step(p, r, pos, lam1, lam2, two_mu, branch, u, w, xr, gq, tt)
@@ -334,6 +352,8 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
                     return RANGE
                 outP[row, j] = p[j]
                 outQ[row, j] = y
+                if wide:
+                    outQ[row, N + j] = _dd_low(qh[j], ql[j], fh[j], fl[j], y)
             row += 1
     return OK
 

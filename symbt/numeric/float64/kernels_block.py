@@ -28,7 +28,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..core.limits import ILLCOND, KAPPA_MAX, MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
-from .kernels import _BIG, _SHRINK, _dd_add, _dd_position, _logf
+from ..core.spectral_sum import lam_add, lam_split
+from .kernels import _BIG, _SHRINK, _dd_add, _dd_low, _dd_position, _logf
 
 if TYPE_CHECKING:
     from .kernels import F64, I64
@@ -49,17 +50,18 @@ def _shrink(A: F64, Bm: F64, C: F64, D: F64, Ab: F64, sc: F64, k: int) -> None:
     sc[k] = sc[k] * _SHRINK
 
 
-def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64, C: F64, D: F64,
+def _slopes(p: F64, r: F64, lam: F64, lo: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64, C: F64, D: F64,
             u1: F64, fw: I64, status: I64, code: int, Ab: F64, tt: F64, kt: F64, Kn: F64, Kd: F64,
             sc: F64) -> None:
-    """Scaled eigenvector slopes ``u[j, k]`` at ``lam[k]`` for sign ``s`` (see :mod:`symbt.numeric.core.step`).
+    """Scaled eigenvector slopes ``u[j, k]`` at ``lam[k] + lo[k]`` for sign ``s`` (see :mod:`symbt.numeric.core.step`;
+    every ``lam + lo + p_j`` by :func:`~symbt.numeric.core.spectral_sum.lam_add`, as in the fused step).
 
     ``tt[k]`` receives the trace, ``kt[k]`` the maximum of itself and the trace's condition; ``Ab`` (4, B)
     is scratch for the product of the absolute values (the trace's rounding scale, the float64 hooks of
     :mod:`symbt.numeric.core.fused` in :mod:`.kernels`); ``sc[k]`` the power of two the monodromy is scaled by."""
     N, B = p.shape
     for k in range(B):
-        A[k] = lam[k] + p[0, k]
+        A[k] = lam_add(lam[k], lo[k], p[0, k])
         Bm[k] = -1.0
         C[k] = r[0, k]
         D[k] = 0.0
@@ -73,7 +75,7 @@ def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64,
     for j in range(1, N):
         big = 0
         for k in range(B):
-            a = lam[k] + p[j, k]
+            a = lam_add(lam[k], lo[k], p[j, k])
             cn = abs(lam[k]) + abs(p[j, k])
             if cn * Kd[k] > Kn[k] * abs(a):
                 Kn[k] = cn
@@ -135,7 +137,7 @@ def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64,
     if nf > 0:
         for j in range(N - 1):
             for k in range(B):
-                u[j + 1, k] = -r[j, k] / (lam[k] + p[j, k] + u[j, k])
+                u[j + 1, k] = -r[j, k] / (lam_add(lam[k], lo[k], p[j, k]) + u[j, k])
     if nf < B:
         dst = tmp if nf > 0 else u
         for k in range(B):
@@ -143,7 +145,7 @@ def _slopes(p: F64, r: F64, lam: F64, s: int, u: F64, tmp: F64, A: F64, Bm: F64,
         for j in range(N - 1, 0, -1):
             jn = j + 1 if j + 1 < N else 0
             for k in range(B):
-                dst[j, k] = -(lam[k] + p[j, k]) - r[j, k] / dst[jn, k]
+                dst[j, k] = -lam_add(lam[k], lo[k], p[j, k]) - r[j, k] / dst[jn, k]
         if nf > 0:
             for j in range(1, N):
                 for k in range(B):
@@ -178,7 +180,8 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
 
     ``lam1 = lam0 + mu``, ``lam2 = lam0 - mu``, ``two_mu = 2 mu`` per state;
     stored states (see :func:`~symbt.numeric.float64.kernels.orbit_rows`) go to
-    ``outP, outQ`` (rows, M, N); ``status[i]`` is set (0 ok, else the first failure).
+    ``outP, outQ`` (rows, M, N); ``status[i]`` is set (0 ok, else the first failure).  An ``outQ`` of
+    ``2 N`` columns also receives the positions' low parts (as :func:`~symbt.numeric.float64.kernels.orbit`).
 
     >>> from symbt.numeric.float64.kernels import ANCHOR
     >>> st = np.zeros(1, np.int64)
@@ -210,6 +213,8 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
     l1 = np.empty(B)
     l2 = np.empty(B)
     tm = np.empty(B)
+    o1 = np.empty(B)
+    o2 = np.empty(B)
     Ab = np.empty((4, B))
     kt = np.empty(B)
     Kn = np.empty(B)
@@ -221,18 +226,24 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
         l1[k] = lam1[i0 + k]
         l2[k] = lam2[i0 + k]
         tm[k] = two_mu[i0 + k]
+        o1[k], o2[k] = lam_split(l1[k], l2[k], tm[k])
         for j in range(N):
             p[j, k] = P0[i0 + k, j]
             qh[j, k] = Q0[i0 + k, j]
             outP[0, i0 + k, j] = P0[i0 + k, j]
             outQ[0, i0 + k, j] = Q0[i0 + k, j]
+    wide = outQ.shape[2] > N
+    if wide:
+        for k in range(B):
+            for j in range(N):
+                outQ[0, i0 + k, N + j] = 0.0
     _anchor(qh, ql, fh, fl, r, p, st)
     row = 1
     for i in range(1, n + 1):
         for k in range(B):
             kt[k] = 1.0
-        _slopes(p, r, l1, branch, u, tmp, A, Bm, C, D, u1, fw, st, TRACE1, Ab, t1, kt, Kn, Kd, sc)
-        _slopes(p, r, l2, -branch, w, tmp, A, Bm, C, D, u1, fw, st, TRACE2, Ab, t2, kt, Kn, Kd, sc)
+        _slopes(p, r, l1, o1, branch, u, tmp, A, Bm, C, D, u1, fw, st, TRACE1, Ab, t1, kt, Kn, Kd, sc)
+        _slopes(p, r, l2, o2, -branch, w, tmp, A, Bm, C, D, u1, fw, st, TRACE2, Ab, t2, kt, Kn, Kd, sc)
         for k in range(B):
             if st[k] == OK and (t1[k] < 0.0) != (t2[k] < 0.0):
                 st[k] = POSITIVITY          # lam1, lam2 in different gaps (kernels.orbit)
@@ -271,6 +282,8 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
                         st[k] = st[k] if st[k] != OK else RANGE
                     outP[row, i0 + k, j] = p[j, k]
                     outQ[row, i0 + k, j] = y
+                    if wide:
+                        outQ[row, i0 + k, N + j] = _dd_low(qh[j, k], ql[j, k], fh[j, k], fl[j, k], y)
             row += 1
         nbad = 0
         for k in range(B):

@@ -52,8 +52,8 @@ if TYPE_CHECKING:
     F64 = npt.NDArray[np.float64]
     I64 = npt.NDArray[np.int64]
 
-__all__ = ["float_orbit", "kernel_step", "kernel_batch_step", "general_orbit", "raise_for_status", "ORBIT_BACKENDS",
-           "check_orbit_backend"]
+__all__ = ["float_orbit", "kernel_step", "kernel_batch_step", "general_orbit", "float_orbit_low", "raise_for_status",
+           "ORBIT_BACKENDS", "check_orbit_backend"]
 
 #: accepted ``backend`` values for float64 orbits
 ORBIT_BACKENDS: tuple[Float64Backend, ...] = get_args(Float64Backend)
@@ -78,11 +78,11 @@ def _block_rows(N: int) -> int:
 
 
 def _single(p: F64, q: F64, lam0: float, mu: float, branch: int, n: int, every: int,
-            backend: str) -> tuple[F64, F64, int]:
+            backend: str, low: bool = False) -> tuple[F64, F64, int]:
     fn, be = kernel("orbit", backend)
     rows = orbit_rows(n, every)
     P = np.empty((rows, p.size))
-    Q = np.empty((rows, p.size))
+    Q = np.empty((rows, 2 * p.size if low else p.size))     # low: the positions' low parts beside them
     args = (p, q, lam0 + mu, lam0 - mu, 2.0 * mu, branch, n, every, ANCHOR, P, Q)
     if be == "numba":
         return P, Q, int(fn(*args))
@@ -180,7 +180,9 @@ def _general_block(p0: F64, q0: F64, lam0: FloatParam, mu: FloatParam, branch: i
     status = np.zeros(m, np.int64)
     fail = np.zeros(m, np.int64)
     P[0, idx] = p0
-    Q[0, idx] = q0
+    Q[0, idx, :N] = q0
+    if Q.shape[-1] > N:
+        Q[0, idx, N:] = 0.0
     # site lists (what step_core takes); the centre of mass is carried separately (compensated
     # two-sum): the rounding of q at |q| ~ 500 would otherwise perturb the relative coordinates
     c_hi = np.mean(q0, axis=-1)
@@ -245,7 +247,10 @@ def _general_block(p0: F64, q0: F64, lam0: FloatParam, mu: FloatParam, branch: i
             c_hi[alive], c_lo[alive] = t, lo
         if i % every == 0 or i == n:
             P[row, idx] = np.stack(pc, axis=-1)
-            Q[row, idx] = np.stack([c_hi + (c_lo + x) for x in qr], axis=-1)
+            rel = [c_lo + x for x in qr]
+            Q[row, idx, :N] = np.stack([c_hi + x for x in rel], axis=-1)
+            if Q.shape[-1] > N:      # the low parts: (c_hi - y) is exact, y = fl(c_hi + rel)
+                Q[row, idx, N:] = np.stack([(c_hi - y) + x for x, y in zip(rel, Q[row, idx, :N].T)], axis=-1)
             row += 1
         if alive.size == 0:
             break
@@ -318,28 +323,51 @@ def prepared_float_orbit(pr: Problem, backend: str) -> tuple[F64, F64]:
     return validated_float_orbit(pr.p, pr.q, pr.shape, pr.lam0, pr.mu, pr.n, pr.branch, pr.every, backend)
 
 
+def float_orbit_low(pr: Problem, backend: str) -> tuple[F64, F64, F64]:
+    """:func:`prepared_float_orbit` with the low parts of the stored positions: ``(P, Q, Q_low)``.
+
+    ``Q`` is bit for bit the ``Q`` of :func:`prepared_float_orbit`; ``Q_low`` is what rounding the
+    carried position (double-double: kernels and general path alike) to ``Q`` dropped, so ``Q + Q_low``
+    is each position to about ``2**-104`` relative and the differences ``q_{j+1} - q_j`` are free of
+    the rounding at ``ulp(|q|)`` (docs/numeric.md, "Long orbits").
+
+    >>> from symbt.numeric.core.problem import prepare
+    >>> P, Q, L = float_orbit_low(prepare([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0, n=2), "auto")
+    >>> Q.shape == L.shape == (3, 3), bool(np.all(np.abs(L) <= np.spacing(np.abs(Q)) / 2))
+    (True, True)
+    """
+    P, Q = validated_float_orbit(pr.p, pr.q, pr.shape, pr.lam0, pr.mu, pr.n, pr.branch, pr.every, backend,
+                                 low=True)
+    N = pr.p.shape[-1]
+    return P, np.ascontiguousarray(Q[..., :N]), np.ascontiguousarray(Q[..., N:])
+
+
 def validated_float_orbit(pa: F64, qa: F64, shape: tuple[int, ...], lam0: FloatParam, mu: FloatParam, n: int,
-                          branch: int, every: int, backend: str) -> tuple[F64, F64]:
+                          branch: int, every: int, backend: str, low: bool = False) -> tuple[F64, F64]:
     """:func:`float_orbit` on inputs already checked (``validate_float_pair``, ``prepare_spectral_pair``):
-    ``pa, qa`` of shape ``(M, N)``, ``shape`` the batch shape; for callers that validated them already."""
+    ``pa, qa`` of shape ``(M, N)``, ``shape`` the batch shape; for callers that validated them already.
+    ``low``: ``Q`` has ``2 N`` columns, the positions and their low parts (:func:`float_orbit_low`)."""
     M, N = pa.shape
     rows = orbit_rows(n, every)
+    W = 2 * N if low else N
     if shape == () and backend != "numpy":
         if mu == 0 or n == 0:
-            return np.repeat(pa, rows, axis=0), np.repeat(qa, rows, axis=0)
+            q0 = np.concatenate([qa, np.zeros_like(qa)], axis=-1) if low else qa
+            return np.repeat(pa, rows, axis=0), np.repeat(q0, rows, axis=0)
         P1, Q1, st1 = _single(np.ascontiguousarray(pa[0]), np.ascontiguousarray(qa[0]), float(lam0),
-                              float(mu), branch, n, every, backend)
+                              float(mu), branch, n, every, backend, low)
         if st1 == OK:
             return P1, Q1
     P = np.empty((rows, M, N))
-    Q = np.empty((rows, M, N))
+    Q = np.empty((rows, M, W))
     status = np.zeros(M, np.int64)
     step = np.zeros(M, np.int64)
     muv = np.broadcast_to(mu, (M,))
     act = np.flatnonzero(muv != 0) if n else np.arange(0)
     idle = np.flatnonzero(muv == 0) if n else np.arange(M)
     P[:, idle] = pa[idle]
-    Q[:, idle] = qa[idle]
+    Q[:, idle, :N] = qa[idle]
+    Q[:, idle, N:] = 0.0
     todo = act
     use_kernel = shape != () and (backend in ("numba", "python") or (backend == "auto" and numba_available()))
     if use_kernel and act.size:
@@ -349,7 +377,7 @@ def validated_float_orbit(pa: F64, qa: F64, shape: tuple[int, ...], lam0: FloatP
         st, fs = general_orbit(pa, qa, lam0, mu, branch, n, every, P, Q, todo)
         status[todo], step[todo] = st, fs
     raise_for_status(status, step, shape)
-    return P.reshape((rows,) + shape + (N,)), Q.reshape((rows,) + shape + (N,))
+    return P.reshape((rows,) + shape + (N,)), Q.reshape((rows,) + shape + (W,))
 
 
 def _ensemble(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: int, n: int, every: int, backend: str,
@@ -363,7 +391,7 @@ def _ensemble(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: int, n
     q0 = np.ascontiguousarray(qa if full else qa[act])
     rows = P.shape[0]
     outP = P if full else np.empty((rows, act.size, N))
-    outQ = Q if full else np.empty((rows, act.size, N))
+    outQ = Q if full else np.empty((rows, act.size, Q.shape[-1]))
     st = np.zeros(act.size, np.int64)
     args = (p0, q0, l0 + m, l0 - m, 2.0 * m, branch, n, every, ANCHOR, _block_rows(N), outP, outQ, st)
     if be == "numba":

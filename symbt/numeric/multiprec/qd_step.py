@@ -121,6 +121,16 @@ def _trusted(kt: float, u: QD, w: QD, dn: QD, x: QD) -> bool:
     return True
 
 
+def _lam_add(lam: QD, lo: float, pj: QD) -> QD:
+    # lam1 = lam0 + mu and lam2 = lam0 - mu are quad-double sums of the given numbers: consistent with
+    # two_mu already (the float64 low parts of core/spectral_sum.py are not needed)
+    return add(lam, pj)
+
+
+def _lam_split(lam1: QD, lam2: QD, two_mu: QD) -> tuple[float, float]:
+    return 0.0, 0.0
+
+
 def _advance(r: F64, Q: F64, j: int, x: QD, xn: QD, pj: QD) -> bool:
     """``q_j <- q_j + log1p(xr_j)``; False if it or ``p_j`` is not finite."""
     q = add(_row(Q, j), log1p(x))
@@ -133,7 +143,7 @@ HOOKS: dict[str, Callable[..., Any]] = {
     "hi": _hi, "track_init": _track_init, "track": _track, "rescale": _rescale, "rescale_last": _rescale,
          "in_range": _in_range, "two_of": _two_of, "decided": _decided, "disc_fits": _disc_fits,
          "step_kappa": _step_kappa, "bounded": _finite, "trusted": _trusted, "advance": _advance,
-         "ld": _row, "st": _put}
+         "ld": _row, "st": _put, "lam_add": _lam_add, "lam_split": _lam_split}
 #: the operations: names of :mod:`.qd_arith` (``add_d`` adds a double, ``mul2`` is ``mul_pwr2``)
 OPERATIONS = {"add": "add", "sub": "sub", "mul": "mul", "div": "div", "neg": "neg", "sqrt": "sqrt",
               "add_d": "add_d", "mul2": "mul_pwr2"}
