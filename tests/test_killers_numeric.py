@@ -231,6 +231,21 @@ def test_lohner_box_loose(monkeypatch):
     assert status("paths.lohner_box.n3") == "failed"
 
 
+def test_lohner_box_wider_by_a_tenth_of_a_micro(monkeypatch):
+    # every radius of the set widened by 1e-7 relative -- 100 radius roundings of Arb (2^-30 each) more than the
+    # read-out makes: within the old bound (1 + 1e-6, a measured value x 100), outside the derived one
+    from flint import arb
+
+    from symbt.numeric.multiprec import lohner
+    real = lohner.LohnerSet.step
+
+    def wider(self, *args):
+        real(self, *args)
+        self.hull = [h + arb(0, float(h.rad()) * 1e-7) for h in self.hull]
+    monkeypatch.setattr(lohner.LohnerSet, "step", wider)
+    assert status("paths.lohner_box.n3") == "failed"
+
+
 # --------------------------------------------------------------------------- paths.stored
 
 def test_orbit_stores_every_step(monkeypatch):
