@@ -41,6 +41,7 @@ CLAIM_MODULES = (
     "shipped_qd",
     "shipped_paths",
     "shipped_lohner",
+    "shipped_routes",
     "shipped_complex",
     "checker",
     "checker_mutation",
