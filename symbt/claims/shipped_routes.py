@@ -114,8 +114,9 @@ def threshold(N: int, parts: Parts) -> Outcome:
         crosses = kernel_step(np.array(rows[0][0]), np.array(rows[0][1]), rows[0][2], rows[0][3], b,
                               "python") is not None and int(status[-1]) == ILLCOND
         if differ:
+            first = THRESHOLD_KS[differ[0]] / THRESHOLD_DIV
             tally.notes.append(f"{label}, branch {b}: fused and block kernel decide differently at "
-                               f"{len(differ)} of {len(rows)} states (first: delta = 1e-{(THRESHOLD_KS[differ[0]]) / THRESHOLD_DIV:.4g}).")
+                               f"{len(differ)} of {len(rows)} states (first: delta = 1e-{first:.4g}).")
         if not crosses:
             tally.notes.append(f"{label}, branch {b}: the scan does not cross the threshold (widest state handed "
                                "back, or narrowest finished).")
