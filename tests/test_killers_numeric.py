@@ -320,3 +320,19 @@ def test_edges_out_of_range_on_the_real_part(monkeypatch):
     real = FloatContext.out_of_range
     monkeypatch.setattr(FloatContext, "out_of_range", lambda self, *xs: real(self, *[np.real(x) for x in xs]))
     assert status("paths.edges.n3") == "failed"
+
+
+def test_edges_range_check_lost(monkeypatch):
+    # neighbour_ratios without its range test on float64 (as mutant monodromy:59, which tests the smallest
+    # |q_{j+1} - q_j|): a distance of 700.1 next to small ones goes through, and invariants and phi return finite
+    # numbers past the documented limit
+    from symbt.numeric.core import monodromy
+    real = monodromy.neighbour_ratios
+
+    def unchecked(ctx, q):
+        if ctx.is_exact_scale:
+            return real(ctx, q)
+        return [ctx.exp(q[(j + 1) % len(q)] - q[j]) for j in range(len(q))]
+    for mod in ("symbt.numeric.flow.invariants", "symbt.numeric.flow.phi"):
+        monkeypatch.setattr(mod + ".neighbour_ratios", unchecked)
+    assert status("paths.edges.n3") == "failed"

@@ -25,7 +25,10 @@ general path, which is right for every state, so accuracy claims cannot see a sl
 * ``paths.edges.n3`` -- :func:`~symbt.numeric.multiprec.lohner.growth_law` without two usable points
   (one recorded step, or every radius zero) returns ``degree = None`` as documented, and the float64
   context's ``out_of_range`` (the monodromy's rescaling trigger) on complex rows against its documented
-  per-entry rule ``|x| > 2**500 or nan`` (the large side), evaluated entry by entry with Python's ``abs``.
+  per-entry rule ``|x| > 2**500 or nan`` (the large side), evaluated entry by entry with Python's ``abs``;
+  and the float64 range limit ``MAX_DQ_FLOAT64`` (700, the largest neighbour distance ``|q_{j+1} - q_j|``,
+  docs/numeric.md) on both sides, where one distance is large and the others are not: ``invariants`` and
+  ``phi`` at ``q = (0, 700, 0)`` return finite values, at ``(0, 700.1, 0)`` raise ``NumericRangeError``.
 
 Shown to fail on planted bugs in ``tests/test_killers_numeric.py``.
 """
@@ -197,10 +200,11 @@ EDGE_BATCHES = (((-2.0 ** 600, 1.0), (1.0 + 0j, 3j), (0.5, -(2.0 ** 501) * 1j), 
 
 
 @claim("paths.edges", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
-       where="symbt/numeric/multiprec/lohner.py: growth_law; symbt/numeric/core/context.py: out_of_range",
+       where="symbt/numeric/multiprec/lohner.py: growth_law; symbt/numeric/core/context.py: out_of_range; "
+             "core/monodromy.py: neighbour_ratios' range check",
        statement="growth_law without two usable points (one recorded step; radii all zero) gives degree None; the "
                  "float64 context's out_of_range on complex rows = the documented per-entry rule (|x| > 2^500 or "
-                 "nan)")
+                 "nan); invariants and phi finite at |q2 - q1| = 700, NumericRangeError at 700.1")
 def edges(N: int) -> Outcome:
     from ..numeric.core.context import FloatContext
     from ..numeric.multiprec.lohner import growth_law
@@ -222,7 +226,22 @@ def edges(N: int) -> Outcome:
             got = [bool(x) for x in np.broadcast_to(ctx.out_of_range(*cols), (len(rows),))]
         if got != want:
             bad.append(f"out_of_range on complex rows {got}, the documented rule {want}")
-    detail = f"growth_law on 2 short histories; out_of_range on {sum(map(len, EDGE_BATCHES))} complex rows."
+    from ..numeric import invariants, phi
+    from ..numeric.core.errors import NumericRangeError
+    from ..numeric.core.limits import MAX_DQ_FLOAT64
+
+    for d, beyond in ((MAX_DQ_FLOAT64, False), (MAX_DQ_FLOAT64 + 0.1, True)):
+        q = [0.0, d, 0.0]
+        for name, f in (("invariants", lambda: invariants([0.0] * 3, q)), ("phi", lambda: phi([0.0] * 3, q, 3.0, 1.0))):
+            try:
+                finite = bool(np.all(np.isfinite(f())))
+            except NumericRangeError:
+                finite = None
+            if finite is not (None if beyond else True):
+                got = "refused" if finite is None else "finite" if finite else "not finite"
+                bad.append(f"{name} at |q2 - q1| = {d:g}: {got}")
+    detail = (f"growth_law on 2 short histories; out_of_range on {sum(map(len, EDGE_BATCHES))} complex rows; "
+              f"invariants and phi on both sides of |dq| = {MAX_DQ_FLOAT64:g}.")
     if bad:
         return failed("numeric: documented edges of growth_law and out_of_range", detail="; ".join(bad) + ". "
                       + detail)
