@@ -22,6 +22,12 @@ general path, which is right for every state, so accuracy claims cannot see a sl
   re-anchoring (the double-double flush of ``F`` into ``q`` and ``r = exp(dq)``) twice, and must agree bit
   for bit at every step (documented; a consistency check -- the orbits' accuracy against the literal map is
   ``shipped.orbit``'s) with status 0.
+* ``paths.ill_member.n3`` -- ``bt_orbit(backend="numpy")`` (the general path, :func:`~symbt.numeric.float64.orbit.
+  general_orbit`) on two-member ensembles, a moderate state and one of ``paths.kernels``' band-edge states
+  (``lam1`` or ``lam2`` 1e-9 of the gap inside an edge: status ``ILLCOND`` at every step, escalated to higher
+  precision), 3 steps: each member is the literal orbit within ``16 N n eps S_i`` (the orbit bound of
+  ``shipped.orbit``) and equals its single-state call bit for bit (documented) -- the escalated member's place
+  in the batch (the second) is where an index slip in the escalation shows.
 * ``paths.edges.n3`` -- :func:`~symbt.numeric.multiprec.lohner.growth_law` without two usable points
   (one recorded step, or every radius zero) returns ``degree = None`` as documented, and the float64
   context's ``out_of_range`` (the monodromy's rescaling trigger) on complex rows against its documented
@@ -42,9 +48,20 @@ import mpmath as mp
 import numpy as np
 
 from ..reference.literal import literal_trace
-from ._shipped import EPS, Tally, ratios, scale_parts, scaled, ship_cells, step_constant, step_ref
+from ._shipped import (
+    EPS,
+    Tally,
+    orbit_ref,
+    ratios,
+    scale_parts,
+    scaled,
+    ship_cells,
+    step_constant,
+    step_ref,
+    without_numba,
+)
 from .base import Outcome, Parts, claim, failed
-from .shipped_paths import _block_kernel
+from .shipped_paths import _block_kernel, edge_states
 
 #: paths.threshold: delta = 10**(-k / THRESHOLD_DIV) of the gap's width, k in THRESHOLD_KS
 THRESHOLD_DIV, THRESHOLD_KS = 16, range(64, 128)
@@ -133,6 +150,50 @@ def threshold(N: int, parts: Parts) -> Outcome:
                                 "nearest kept state vs the literal map",
                          printed=f"the kernels decide alike; kept states within {C} eps S_i",
                          detail=f"{len(scans)} scans of {len(THRESHOLD_KS)} states.")
+
+
+#: paths.ill_member: the steps
+ILL_STEPS = 3
+
+
+@claim("paths.ill_member", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       parts=scale_parts,
+       where="symbt/numeric/float64/orbit.py: general_orbit (the escalation of ILLCOND members)",
+       statement="bt_orbit(backend='numpy'), N={N}, 3 steps, ensembles [moderate state, state 1e-9 of the gap "
+                 "inside a band edge] per edge and branch: every member = the literal orbit within 16 N n eps S_i "
+                 "and = its single-state call bit for bit")
+def ill_member(N: int, parts: Parts) -> Outcome:
+    from ..numeric import bt_orbit
+
+    tally, C, s, n = Tally(), step_constant(N), parts.printed["scale"], ILL_STEPS
+    for cell, st, b in edge_states():
+        mod = next(x for c, x, bb in ship_cells(N, 1) if bb == b and c["sign_mu"] == 1)
+        members = (mod, st)
+        with without_numba():
+            try:
+                P, Q = bt_orbit(np.array([m[0] for m in members]), np.array([m[1] for m in members]),
+                                np.array([m[2] for m in members]), np.array([m[3] for m in members]), n,
+                                branch=b, backend="numpy")
+            except (ArithmeticError, ValueError) as exc:      # NoRealMapError, NumericRangeError
+                tally.notes.append(f"{cell}: the ensemble raised {type(exc).__name__}: {str(exc)[:120]}")
+                tally.add("ensemble member", cell, st, b, math.inf)
+                continue
+            for k, m in enumerate(members):
+                try:
+                    sp, sq = bt_orbit(np.array(m[0]), np.array(m[1]), m[2], m[3], n, branch=b, backend="numpy")
+                except (ArithmeticError, ValueError) as exc:
+                    tally.notes.append(f"{cell}: member {k} alone raised {type(exc).__name__}.")
+                    sp = sq = None
+                ref = orbit_ref(m, b, n)
+                r, allowed = ratios(scaled(list(P[n][k]) + list(Q[n][k]), s), ref.xs[n], ref.S, EPS, C * n)
+                if sp is None or not (np.array_equal(P[:, k], sp) and np.array_equal(Q[:, k], sq)):
+                    tally.notes.append(f"{cell}: member {k} differs from its single-state orbit.")
+                    r = math.inf
+                tally.add("ensemble member" if k else "moderate member", dict(cell, member=k), m, b, r, allowed,
+                          ref.agree)
+    return tally.outcome(method="numeric: general-path ensembles with an escalated member vs the literal orbit "
+                                "and the single-state calls",
+                         printed=f"|member - literal| <= {C} n eps S_i, = the single-state orbit")
 
 
 #: paths.anchored: the steps (two re-anchorings at ANCHOR and 2 ANCHOR)
