@@ -299,8 +299,8 @@ def edges(N: int) -> Outcome:
             except NumericRangeError:
                 finite = None
             if finite is not (None if beyond else True):
-                got = "refused" if finite is None else "finite" if finite else "not finite"
-                bad.append(f"{name} at |q2 - q1| = {d:g}: {got}")
+                seen = "refused" if finite is None else "finite" if finite else "not finite"
+                bad.append(f"{name} at |q2 - q1| = {d:g}: {seen}")
     detail = (f"growth_law on 2 short histories; out_of_range on {sum(map(len, EDGE_BATCHES))} complex rows; "
               f"invariants and phi on both sides of |dq| = {MAX_DQ_FLOAT64:g}.")
     if bad:
