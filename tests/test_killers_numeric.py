@@ -29,7 +29,8 @@ def status(cid: str) -> str:
 
 def test_the_scene_has_the_claims_named_here():
     assert NUMERIC_PATHS == ["paths.anchored.n3", "paths.complex.n3", "paths.edges.n3", "paths.failing_rows.n3",
-                             "paths.frame.n13", "paths.growth.n3", "paths.jacobian.n3", "paths.kernels.n3",
+                             "paths.frame.n13", "paths.growth.n3", "paths.ill_member.n3", "paths.jacobian.n3",
+                             "paths.kernels.n3",
                              "paths.kernels.n5", "paths.lohner_box.n3", "paths.qd.n2", "paths.qd.n3",
                              "paths.stored.n3", "paths.threshold.n3", "paths.tiny_mu.n3"]
 
@@ -336,3 +337,12 @@ def test_edges_range_check_lost(monkeypatch):
     for mod in ("symbt.numeric.flow.invariants", "symbt.numeric.flow.phi"):
         monkeypatch.setattr(mod + ".neighbour_ratios", unchecked)
     assert status("paths.edges.n3") == "failed"
+
+
+def test_ill_member_escalated_one_site_off(monkeypatch):
+    # the escalated momenta written one site off (as mutant orbit:212, Pn[j - 1][ill]): the band-edge member's
+    # orbit is no longer the literal one
+    real = orbit_module.escalate_rows
+    monkeypatch.setattr(orbit_module, "escalate_rows",
+                        lambda *a, **k: (lambda r: (np.roll(r[0], 1, axis=1), r[1], r[2]))(real(*a, **k)))
+    assert status("paths.ill_member.n3") == "failed"
