@@ -48,6 +48,7 @@ CLAIM_MODULES = (
     "library",
     "library_reference",
     "library_samples",
+    "library_moments",
     "library_codegen",
 )
 
