@@ -144,9 +144,9 @@ def jacobian_enclosure(N: int, parts: Parts) -> Outcome:
        parts=scale_parts, requires=("flint",),
        where="symbt/numeric/multiprec/lohner.py: LohnerSet (the set xh + C r0 + B r of a box input)",
        statement="LohnerSet from the box of radius 1e-30 around a state (N={N}, 200 bits), 20 steps: every "
-                 "radius is within [1 - 1e-15, (1 + 2^-30)^(4N + 20) + 1e-15] of the first-order half-width rho sum_k |D_ik| of the "
-                 "box's image (D: central differences of the 20-step literal map), and the centre within it "
-                 "of the literal orbit")
+                 "radius is within [1 - 1e-15, (1 + 2^-30)^(4N + 20) + 1e-15] of the first-order half-width "
+                 "rho sum_k |D_ik| of the box's image (D: central differences of the 20-step literal map), and "
+                 "the centre within it of the literal orbit")
 def lohner_box(N: int, parts: Parts) -> Outcome:
     if importlib.util.find_spec("flint") is None:
         return skipped("python-flint is not installed (.[certified])")
