@@ -28,9 +28,11 @@ def status(cid: str) -> str:
 
 
 def test_the_scene_has_the_claims_named_here():
-    assert NUMERIC_PATHS == ["paths.complex.n3", "paths.failing_rows.n3", "paths.frame.n13", "paths.growth.n3",
-                             "paths.jacobian.n3", "paths.kernels.n3", "paths.kernels.n5", "paths.lohner_box.n3",
-                             "paths.qd.n2", "paths.qd.n3", "paths.stored.n3", "paths.tiny_mu.n3"]
+    assert NUMERIC_PATHS == ["paths.anchored.n3", "paths.complex.n3", "paths.edges.n3", "paths.failing_rows.n3",
+                             "paths.frame.n13", "paths.growth.n3", "paths.ill_member.n3", "paths.jacobian.n3",
+                             "paths.kernels.n3",
+                             "paths.kernels.n5", "paths.lohner_box.n3", "paths.qd.n2", "paths.qd.n3",
+                             "paths.stored.n3", "paths.threshold.n3", "paths.tiny_mu.n3"]
 
 
 @pytest.mark.parametrize("cid", NUMERIC_PATHS)
@@ -231,6 +233,21 @@ def test_lohner_box_loose(monkeypatch):
     assert status("paths.lohner_box.n3") == "failed"
 
 
+def test_lohner_box_wider_by_a_tenth_of_a_micro(monkeypatch):
+    # every radius of the set widened by 1e-7 relative -- 100 radius roundings of Arb (2^-30 each) more than the
+    # read-out makes: within the old bound (1 + 1e-6, a measured value x 100), outside the derived one
+    from flint import arb
+
+    from symbt.numeric.multiprec import lohner
+    real = lohner.LohnerSet.step
+
+    def wider(self, *args):
+        real(self, *args)
+        self.hull = [h + arb(0, float(h.rad()) * 1e-7) for h in self.hull]
+    monkeypatch.setattr(lohner.LohnerSet, "step", wider)
+    assert status("paths.lohner_box.n3") == "failed"
+
+
 # --------------------------------------------------------------------------- paths.stored
 
 def test_orbit_stores_every_step(monkeypatch):
@@ -246,3 +263,86 @@ def test_orbit_stores_every_step(monkeypatch):
         return st
     monkeypatch.setattr(kernels, "orbit", every_step)
     assert status("paths.stored.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.threshold, anchored, edges
+
+def test_threshold_fused_estimate_without_the_read_out_term(monkeypatch):
+    # the fused kernel's read-out factor (|1 + x| + |x|) taken as (|1 + x| - |x|) (mutant kernels:232): it keeps
+    # states the block kernel hands back; the results of either are right, only the decision differs
+    def trusted(kt, u, w, dn, x):
+        return kt * (abs(u) + abs(w)) * (abs(x + 1.0) - abs(x)) <= kernels.KAPPA_MAX * abs(dn) * abs(x + 1.0)
+    hooks = {**kernels.OPERATIONS, **kernels.HOOKS, "trusted": trusted}
+    bad = kernels.instantiate(kernels.SOURCE, hooks, tag="f64_planted", jit=False, extra=kernels._EXTRA)
+    monkeypatch.setattr(kernels, "step", bad["step"])
+    assert status("paths.threshold.n3") == "failed"
+
+
+def test_threshold_block_estimate_signed(monkeypatch):
+    # the block kernel's cancellation estimate with p_j's sign kept (mutant kernels_block:77): seen only where the
+    # cancellation in lam + p_j falls on a negative p_j -- the mirrored state of the scan
+    import inspect
+    import textwrap
+
+    src = textwrap.dedent(inspect.getsource(kernels_block._slopes))
+    assert src.count("cn = abs(lam[k]) + abs(p[j, k])") == 1
+    ns = dict(vars(kernels_block))
+    exec(compile(src.replace("cn = abs(lam[k]) + abs(p[j, k])", "cn = abs(lam[k]) + p[j, k]"), "planted", "exec"),
+         ns)
+    monkeypatch.setattr(kernels_block, "_slopes", ns["_slopes"])
+    assert status("paths.threshold.n3") == "failed"
+
+
+def test_anchored_flush_off_by_an_ulp(monkeypatch):
+    # the fused kernel's re-anchoring r = exp(dq) one ulp off (as mutant kernels:282, a low part of the wrong
+    # neighbour): within every accuracy bound, but the two kernels no longer give the same bits
+    real = kernels._anchor1
+
+    def anchor(qh, ql, fh, fl, r, p):
+        st = real(qh, ql, fh, fl, r, p)
+        r[0] = np.nextafter(r[0], np.inf)
+        return st
+    monkeypatch.setattr(kernels, "_anchor1", anchor)
+    assert status("paths.anchored.n3") == "failed"
+
+
+def test_edges_growth_law_from_one_point(monkeypatch):
+    # a degree made up from a single usable point (the documented answer is None)
+    from symbt.numeric.multiprec import lohner
+    real = lohner.growth_law
+    monkeypatch.setattr(lohner, "growth_law", lambda *a, **k: {**real(*a, **k), "degree": real(*a, **k)["degree"]
+                                                              or 0.0})
+    assert status("paths.edges.n3") == "failed"
+
+
+def test_edges_out_of_range_on_the_real_part(monkeypatch):
+    # out_of_range judging a complex entry by its real part (as mutant context:215): -2^501 i passes unseen
+    from symbt.numeric.core.context import FloatContext
+    real = FloatContext.out_of_range
+    monkeypatch.setattr(FloatContext, "out_of_range", lambda self, *xs: real(self, *[np.real(x) for x in xs]))
+    assert status("paths.edges.n3") == "failed"
+
+
+def test_edges_range_check_lost(monkeypatch):
+    # neighbour_ratios without its range test on float64 (as mutant monodromy:59, which tests the smallest
+    # |q_{j+1} - q_j|): a distance of 700.1 next to small ones goes through, and invariants and phi return finite
+    # numbers past the documented limit
+    from symbt.numeric.core import monodromy
+    real = monodromy.neighbour_ratios
+
+    def unchecked(ctx, q):
+        if ctx.is_exact_scale:
+            return real(ctx, q)
+        return [ctx.exp(q[(j + 1) % len(q)] - q[j]) for j in range(len(q))]
+    for mod in ("symbt.numeric.flow.invariants", "symbt.numeric.flow.phi"):
+        monkeypatch.setattr(mod + ".neighbour_ratios", unchecked)
+    assert status("paths.edges.n3") == "failed"
+
+
+def test_ill_member_escalated_one_site_off(monkeypatch):
+    # the escalated momenta written one site off (as mutant orbit:212, Pn[j - 1][ill]): the band-edge member's
+    # orbit is no longer the literal one
+    real = orbit_module.escalate_rows
+    monkeypatch.setattr(orbit_module, "escalate_rows",
+                        lambda *a, **k: (lambda r: (np.roll(r[0], 1, axis=1), r[1], r[2]))(real(*a, **k)))
+    assert status("paths.ill_member.n3") == "failed"

@@ -149,3 +149,18 @@ def _regime_lost_abs(I1, I2, lam0, mu, modulus):
     if zp == zm:
         return "outer-same"
     return "mixed" if "in" in (zp, zm) else "outer-opposite"
+
+
+def test_moments_boundary_not_refused(monkeypatch):
+    # the refusal of c_0 c_2 <= c_1^2 made strict (as mutant inverse:155 `<`): here the target is nudged off the
+    # boundary by 1e-12 before the test, and the direction mode "solves" (1, 2, 4) with a vanishing mu
+    from symbt.claims import library_moments
+
+    real = library_moments.solve_parameters
+
+    def nudged(p, q, c, **kw):
+        c = list(c)
+        return real(p, q, [c[0], c[1], c[2] * (1 + mp.mpf(10) ** -12)] + c[3:], **kw)
+    assert status(library_moments.moment_condition) == "verified"
+    monkeypatch.setattr(library_moments, "solve_parameters", nudged)
+    assert status(library_moments.moment_condition) == "failed"

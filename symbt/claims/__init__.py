@@ -41,12 +41,14 @@ CLAIM_MODULES = (
     "shipped_qd",
     "shipped_paths",
     "shipped_lohner",
+    "shipped_routes",
     "shipped_complex",
     "checker",
     "checker_mutation",
     "library",
     "library_reference",
     "library_samples",
+    "library_moments",
     "library_codegen",
 )
 

@@ -16,11 +16,22 @@ things the intersection hides, each against central differences of the literal m
   radius ``rho = 1e-30`` around a state, 20 steps: the true image of the box has half-width
   ``W_i = rho sum_k |D_ik|`` to first order (``D`` the Jacobian of the 20-step literal map, central differences
   as above; the second-order terms are ``O(rho)`` relative, 1e-30), so an enclosure has ``rad_i >= W_i`` (less
-  the differences' relative error, below 1e-15: :data:`BOX_LOW`), and the method is sharp to first order:
-  ``rad_i <= (1 + 1e-6) W_i`` (:data:`BOX_HIGH`; measured 1 + 7e-9 -- the wrapping of the 200-bit rounding
-  and of the Jacobian's width over the box; the plain ball path, which the intersection falls back to, is
-  wider by about 2 bits per step, ``2**40`` here).  The centre is within ``rad_i`` of the literal orbit of the
-  box's centre.
+  the differences' relative error, below 1e-15: :data:`BOX_LOW`).  The upper bound is the method's own
+  conditioning (:func:`box_high`).  The set is ``xh + C r0 + B r``: ``C`` the exact product of the steps'
+  midpoint Jacobians (rounded at ``jac_prec`` = 96 bits, relative ``2**-96`` per step), ``r0`` the input box,
+  ``r`` the 200-bit roundings of the centre steps (``n 2**-200 |x|``, 1e-29 of ``W`` here) and the wrapping of
+  the Jacobian's width over the box (second order: ``O(rho)`` relative).  The Lohner update does not grow the
+  width beyond first order -- ``C r0`` is recomputed from exact matrices at every step, only ``r`` is carried
+  -- so what remains is the radius arithmetic of the read-out: Arb keeps radii as 30-bit ``mag_t`` rounded
+  upward, each operation at most ``2**-30`` relative.  A coordinate's radius goes through the box's
+  conversion from decimal (3 roundings: measured ``2.2 * 2**-30`` for ``1e-30``), ``|C_ik|`` as a ``mag`` and
+  its product with ``rho`` (2), the ``2N - 1`` additions of the row, ``B r`` added (1), the centre added
+  (1), the intersection's re-centring (2) and the dot product's final bound (1): ``2N + 10`` roundings,
+  doubled for the operations whose internal rounding count was not audited (``arb_dot``, the intersection):
+  ``rad_i / W_i <= (1 + 2**-30) ** (4N + 20) + 1e-15`` = 1 + 3.0e-8 at N = 3 (:data:`BOX_HIGH`; measured
+  1 + 6.2e-9 to 1 + 1.4e-8 for 1 to 80 steps and ``rho`` from 1e-35 to 1e-25, independent of both, as
+  derived).  The plain ball path, which the intersection falls back to, is wider by about 2 bits per step,
+  ``2**40`` here.  The centre is within ``rad_i`` of the literal orbit of the box's centre.
 
 Shown to fail on planted bugs in ``tests/test_killers_numeric.py``.
 """
@@ -38,8 +49,23 @@ from .base import Outcome, Parts, claim, failed, skipped
 FD_H, FD_DPS, FD_TOL = "1e-20", 60, 1e-36
 #: paths.jacobian: the working precision (bits) and the largest radius accepted (log2)
 JAC_PREC, JAC_LOG2_RAD = 200, -150
-#: paths.lohner_box: the box radius, the steps, and the accepted band of rad_i / W_i
-BOX_RHO, BOX_STEPS, BOX_LOW, BOX_HIGH = "1e-30", 20, 1 - 1e-15, 1 + 1e-6
+#: paths.lohner_box: the box radius, the steps, and the lower end of the accepted band of rad_i / W_i
+BOX_RHO, BOX_STEPS, BOX_LOW = "1e-30", 20, 1 - 1e-15
+#: one rounding of Arb's radius arithmetic (``mag_t``: 30 bits, rounded upward)
+MAG_U = 2.0 ** -30
+
+
+def box_high(N: int) -> float:
+    """The upper end of the accepted band of ``rad_i / W_i`` (module docstring: ``4N + 20`` radius roundings).
+
+    >>> round((box_high(3) - 1) / MAG_U)
+    32
+    """
+    return (1 + MAG_U) ** (4 * N + 20) + 1e-15
+
+
+#: the upper end at the claim's size N = 3
+BOX_HIGH = box_high(3)
 
 
 def _flat(P: Any, Q: Any) -> list:
@@ -118,9 +144,9 @@ def jacobian_enclosure(N: int, parts: Parts) -> Outcome:
        parts=scale_parts, requires=("flint",),
        where="symbt/numeric/multiprec/lohner.py: LohnerSet (the set xh + C r0 + B r of a box input)",
        statement="LohnerSet from the box of radius 1e-30 around a state (N={N}, 200 bits), 20 steps: every "
-                 "radius is within [1 - 1e-15, 1 + 1e-6] of the first-order half-width rho sum_k |D_ik| of the "
-                 "box's image (D: central differences of the 20-step literal map), and the centre within it "
-                 "of the literal orbit")
+                 "radius is within [1 - 1e-15, (1 + 2^-30)^(4N + 20) + 1e-15] of the first-order half-width "
+                 "rho sum_k |D_ik| of the box's image (D: central differences of the 20-step literal map), and "
+                 "the centre within it of the literal orbit")
 def lohner_box(N: int, parts: Parts) -> Outcome:
     if importlib.util.find_spec("flint") is None:
         return skipped("python-flint is not installed (.[certified])")
@@ -147,7 +173,7 @@ def lohner_box(N: int, parts: Parts) -> Outcome:
             rad = mp.mpf(hull[i].rad())
             ratio = rad / W
             lo, hi = min(lo, ratio), max(hi, ratio)
-            if not BOX_LOW <= ratio <= BOX_HIGH:
+            if not BOX_LOW <= ratio <= box_high(N):
                 bad.append(f"coordinate {i}: radius / first-order width = {mp.nstr(ratio, 12)}")
             if not abs(_mid(hull[i]) * parts.printed["scale"] - f0[i]) <= rad:
                 bad.append(f"coordinate {i}: the centre is farther than the radius from the literal orbit")
