@@ -13,6 +13,7 @@ import io
 import re
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -82,7 +83,7 @@ def test_every_page_is_in_a_toctree():
 def test_readme_examples_print_what_it_says():
     pytest.importorskip("flint")                   # the first line names FLINT's exact reduction
     text = README.read_text(encoding="utf-8")
-    identity, orbit = _blocks(text, "python")
+    identity, orbit, _ = _blocks(text, "python")
     after = text.split(identity, 1)[1].split("```", 1)[1]               # past the python block's fence
     shown = re.search(r"^```\n(.*?)^```", after, flags=re.S | re.M).group(1)   # the block after "prints ..."
     out = io.StringIO()
@@ -95,6 +96,28 @@ def test_readme_examples_print_what_it_says():
     drift = [float(x) for x in re.findall(r"[0-9.]+e[-+][0-9]+", out.getvalue())]
     assert len(drift) == 3 and max(drift) < 1e-12, out.getvalue()       # "relative drift ~1e-13"
 
+
+
+def test_readme_emit_example_emits_the_field(tmp_path):
+    """The README's ``symbt.emit`` block declares a function whose emitted numpy file computes (p, -e^q)."""
+    from symbt.codegen.user import EMISSIONS
+    from symbt.codegen.user.files import generate
+
+    block = _blocks(README.read_text(encoding="utf-8"), "python")[2]
+    before = dict(EMISSIONS)
+    try:
+        exec(compile(block, "README.md", "exec"), {})
+        new = [e for k, e in EMISSIONS.items() if k not in before]
+        assert [(e.module, e.name) for e in new] == [("mymodel", "flow_field")]
+        (path,) = generate(new, tmp_path, tmp_path)
+        spec = importlib.util.spec_from_file_location("mymodel", path)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        got = np.asarray(module.flow_field(0.5, 1.0), dtype=float).ravel()
+        assert np.allclose(got, [0.5, -np.e], rtol=1e-15, atol=0), got
+    finally:
+        EMISSIONS.clear()
+        EMISSIONS.update(before)
 
 def _pages_module():
     spec = importlib.util.spec_from_file_location("symbt_pages", DOCS / "_ext" / "symbt_pages.py")
