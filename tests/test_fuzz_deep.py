@@ -26,6 +26,7 @@ seconds (default 36000; checked between chunks of 500); docs/fuzz.md records a r
 """
 from __future__ import annotations
 
+import contextlib
 import importlib.util
 import os
 import time
@@ -45,13 +46,15 @@ from test_fuzz_numeric import (
     generate,
     kappa_hp,
     literal,
+    literal_guard,
+    literal_traces,
     run_batch,
     trace_kappa_hp,
 )
 
 from symbt.numeric import bt_step
 from symbt.numeric.backends import qd_available
-from symbt.reference.literal import literal_step, literal_trace
+from symbt.reference.literal import literal_step
 
 #: the deep run: every input through the fast routes; 1 in SUB also through the slow float64 routes, 1 in
 #: MP_SUB through the multiprecision backends at 30 digits (mpmath, Arb, quad-double where installed)
@@ -146,32 +149,81 @@ def _emitted_ok(v, ref, p, q, lam0, mu, b, kappa, full):
     return "S", judge_state([float(x) for x in v], list(p), list(q), lam0, mu, b, True, ref)
 
 
-def _near_boundary(p, q, lam0, mu, b, within=1e-6):
+def _near_boundary(p, q, lam0, mu, b, traces, info=None, within=1e-6):
     """True within ``within`` of the boundary of existence: ``(|t_i| - 2) / |t_i|`` or ``Etilde_j / E_j`` (the
-    literal map at 40 + guard digits; real parts) in ``(-within, within)``."""
+    literal map at 40 + guard digits, ``info`` of its step where already computed; real parts) in
+    ``(-within, within)``; ``traces``: the 40-digit literal traces."""
     with mp.workdps(40):
-        t = [literal_trace(mp.mpf(lam0) + s * mp.mpf(mu), _mpv(p), _mpv(q)) for s in (1, -1)]
-        guard = 20 + 2 * int(mp.log10(max(abs(t[0]), abs(t[1]), 10))) + 2 * len(p)
-        if min(abs((abs(x) - 2) / x) for x in t) < within:
+        if min(abs((abs(x) - 2) / x) for x in traces) < within:
             return True
-    with mp.workdps(40 + guard):
-        info = literal_step(_mpv(p), _mpv(q), mp.mpf(lam0), mp.mpf(mu), b)[2]
+    with mp.workdps(40 + literal_guard(p, traces)):
+        if info is None:
+            info = literal_step(_mpv(p), _mpv(q), mp.mpf(lam0), mp.mpf(mu), b)[2]
         return min(abs(mp.re(et / e)) for et, e in zip(info["E_new"], info["E"])) < within
 
 
-def _no_map_by_traces(p, q, lam0, mu):
+def _no_map_by_traces(traces):
     """True where the literal traces at 40 digits decide that no real map exists (``|t| <= 2`` or opposite
     signs); False where ``Etilde_j`` must decide."""
-    with mp.workdps(40):
-        t = [literal_trace(mp.mpf(lam0) + s * mp.mpf(mu), _mpv(p), _mpv(q)) for s in (1, -1)]
-    return min(abs(x) for x in t) <= 2 or t[0] * t[1] < 0
+    return min(abs(x) for x in traces) <= 2 or traces[0] * traces[1] < 0
+
+
+def _freeze(x):
+    """A dictionary key for an argument of the escalation, exact to the bit; ``None`` if there is none."""
+    if isinstance(x, np.ndarray):
+        return ("a", x.dtype.str, x.shape, x.tobytes())
+    if isinstance(x, float):
+        return ("f", x.hex())
+    if isinstance(x, (tuple, list)):
+        items = tuple(_freeze(v) for v in x)
+        return None if None in items else ("t", items)
+    if isinstance(x, (int, str, np.integer, np.floating)):
+        return (type(x).__name__, repr(x))
+    return None
+
+
+@contextlib.contextmanager
+def shared_escalations():
+    """Within the block, ``symbt.numeric``'s escalation of one ill-conditioned state (``rows._mp_verdict``: the
+    mpmath step at a given precision of the exact binary input) is computed once per distinct argument list
+    and its result handed to every route that asks again -- the fused kernel, the block kernel, the numpy
+    route, the orbits and ``run_batch``'s reruns each escalate the same states.  The escalation is a pure
+    function of its arguments (the key holds every one of them, bit for bit: a route that passes a different
+    shift, precision or state gets its own computation), so every route returns what it would without the
+    memo; it only saves the repeats.  Yields the memo (for counting); a no-op if the function is gone."""
+    try:
+        from symbt.numeric.float64 import rows
+        orig = rows._mp_verdict
+    except (ImportError, AttributeError):
+        yield None
+        return
+    memo = {}
+
+    def verdict(*args, **kw):
+        key = _freeze((args, sorted(kw.items())))
+        if key is None:
+            return orig(*args, **kw)
+        if key not in memo:
+            memo[key] = orig(*args, **kw)
+        st, vals = memo[key]
+        return st, list(vals)
+
+    rows._mp_verdict = verdict
+    try:
+        yield memo
+    finally:
+        rows._mp_verdict = orig
 
 
 def deep_chunk(seed, count, mods, csteps):
     """One chunk of the deep run: ``(stats, failures)``, every route of the module docstring sampled as said
     at :data:`SUB`, :data:`MP_SUB`; the reference (literal map, 40 + guard digits; 60 where ``kappa > 1e10``)
     is computed once per input and judges every route."""
-    inputs = generate(seed, count)
+    with shared_escalations():
+        return _deep_chunk(generate(seed, count), mods, csteps)
+
+
+def _deep_chunk(inputs, mods, csteps):
     res = {n: {} for n in (*SINGLE_ROUTES, *BATCH_ROUTES, *MP_BACKENDS)}
     for i, (_k, p, q, lam0, mu, b) in enumerate(inputs):
         names = list(SINGLE_ROUTES) if i % SUB == 0 else list(DEEP_SINGLE)
@@ -211,12 +263,13 @@ def deep_chunk(seed, count, mods, csteps):
         states = {n: v for n, v in got.items() if not isinstance(v, str)}
         stats["route_states"] += len(states)
         stats["route_typed"] += len(got) - len(states)
-        if not states and _no_map_by_traces(p, q, lam0, mu):
+        traces = literal_traces(p, q, lam0, mu)       # 40 digits, shared by every judge below
+        if not states and _no_map_by_traces(traces):
             stats["no_map"] += 1              # every route refused, and the traces alone say no map exists
             continue
-        kt = trace_kappa_hp(p, q, lam0, mu)
-        kappa = kappa_hp(p, q, lam0, mu, b, kt, values=True) if states else None
-        ref = kappa[1] if kappa and kappa[0] <= 1e10 and i % 50 else literal(p, q, lam0, mu, b)
+        kt = trace_kappa_hp(p, q, lam0, mu, traces)
+        kappa = kappa_hp(p, q, lam0, mu, b, kt, values=True, traces=traces) if states else None
+        ref = kappa[1] if kappa and kappa[0] <= 1e10 and i % 50 else literal(p, q, lam0, mu, b, traces)
         if ref == "undecided":
             stats["undecided"] += 1
             continue
@@ -228,8 +281,11 @@ def deep_chunk(seed, count, mods, csteps):
                 key = "refused %s %s" % (n, v.split(":")[0])
                 stats[key] = stats.get(key, 0) + 1
         k = kt if kappa is None else kappa[0]
+        near = None                           # _near_boundary, computed once per input where asked
         for n, v in states.items():
-            if not exists and n in ("emitted", "C") and _near_boundary(p, q, lam0, mu, b):
+            if not exists and n in ("emitted", "C") and near is None:
+                near = _near_boundary(p, q, lam0, mu, b, traces, kappa[2] if kappa else None)
+            if not exists and n in ("emitted", "C") and near:
                 stats["emitted_boundary"] += 1   # docs/codegen.md: within 1e-6 of the boundary either answer
             elif not exists:
                 failures.append((n, "finite state without a real map", None, case))

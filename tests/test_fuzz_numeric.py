@@ -133,39 +133,51 @@ def _abs_trace(lam, P, Q):
     return A + D
 
 
-def trace_kappa_hp(p, q, lam0, mu):
-    """The trace part of kappa, ``max_i T_i |t_i| / |t_i**2 - 4|``, at 40 digits (literal traces)."""
+def literal_traces(p, q, lam0, mu):
+    """``(tr L(lam1), tr L(lam2))`` of the literal 2x2 product at 40 digits (mpf); the judges share them."""
+    with mp.workdps(40):
+        P, Q, L, M = _mpv(p), _mpv(q), mp.mpf(lam0), mp.mpf(mu)
+        return tuple(literal_trace(lam, P, Q) for lam in (L + M, L - M))
+
+
+def trace_kappa_hp(p, q, lam0, mu, traces=None):
+    """The trace part of kappa, ``max_i T_i |t_i| / |t_i**2 - 4|``, at 40 digits (literal traces; ``traces``:
+    those of :func:`literal_traces`, computed once per input by the deep run)."""
+    traces = literal_traces(p, q, lam0, mu) if traces is None else traces
     with mp.workdps(40):
         P, Q, L, M = _mpv(p), _mpv(q), mp.mpf(lam0), mp.mpf(mu)
         k = mp.mpf(1)
         ka = mp.mpf(1)
-        for lam in (L + M, L - M):
-            t = literal_trace(lam, P, Q)
+        for lam, t in zip((L + M, L - M), traces):
             d = abs(t * t - 4)
             k = max(k, _abs_trace(lam, P, Q) * abs(t) / d if d else mp.inf)
             ka = max([ka] + [(abs(lam) + abs(x)) / abs(lam + x) if lam + x else mp.inf for x in P])
         return float(k * ka)
 
 
-def kappa_hp(p, q, lam0, mu, branch, kt, values=False):
+def literal_guard(p, traces):
+    """The literal route's guard digits (:func:`symbt.reference.literal.reference_step`'s rule) from the traces."""
+    big = max(abs(t) for t in traces)
+    return 20 + 2 * int(mp.log10(max(big, 10))) + 2 * len(p)
+
+
+def kappa_hp(p, q, lam0, mu, branch, kt, values=False, traces=None):
     """kappa of docs/numeric.md on the literal map's slopes ``y_j, z_j`` (``u_j / w_j = y_j / z_j``) and
     ``Etilde_j / E_j`` at 40 digits plus the literal route's guard; ``None`` without a real map.  With
-    ``values``: ``(kappa, the literal step p~ + q~)``."""
-    with mp.workdps(40):
-        big = max(abs(literal_trace(mp.mpf(lam0) + s * mp.mpf(mu), _mpv(p), _mpv(q))) for s in (1, -1))
-    guard = 20 + 2 * int(mp.log10(max(big, 10))) + 2 * p.size
+    ``values``: ``(kappa, the literal step p~ + q~, info)``; ``traces`` as in :func:`trace_kappa_hp`."""
+    guard = literal_guard(p, literal_traces(p, q, lam0, mu) if traces is None else traces)
     with mp.workdps(40 + guard):
         try:
             pt, qt, info = literal_step(_mpv(p), _mpv(q), mp.mpf(lam0), mp.mpf(mu), branch)
         except ZeroDivisionError:
-            return (float("inf"), "undecided") if values else float("inf")
+            return (float("inf"), "undecided", None) if values else float("inf")
         if not all(isinstance(v, mp.mpf) for v in list(pt) + list(qt)):
             return None
         k = mp.mpf(1)
         for y, z, e, et in zip(info["y"], info["z"], info["E"], info["E_new"]):
             x = et / e - 1
             k = max(k, kt * (abs(y) + abs(z)) / abs(y - z) * (1 + abs(x) / abs(1 + x)))
-        return (float(k), list(pt) + list(qt)) if values else float(k)
+        return (float(k), list(pt) + list(qt), info) if values else float(k)
 
 
 def screen(p, q, lam0, mu, branch):
@@ -180,11 +192,14 @@ def screen(p, q, lam0, mu, branch):
         return list(pt) + list(qt)
 
 
-def literal(p, q, lam0, mu, branch):
-    """The literal map at 60 digits: ``None`` (no real map: a complex result) or the state as mpf."""
+def literal(p, q, lam0, mu, branch, traces=None):
+    """The literal map at 60 digits: ``None`` (no real map: a complex result) or the state as mpf.  With the
+    40-digit ``traces`` of :func:`literal_traces` the guard digits come from them (reference_step's rule)
+    instead of a second evaluation of the traces."""
+    guard = None if traces is None else literal_guard(p, traces)
     with mp.workdps(60):
         try:
-            pt, qt = reference_step(_mpv(p), _mpv(q), mp.mpf(lam0), mp.mpf(mu), branch=branch)
+            pt, qt = reference_step(_mpv(p), _mpv(q), mp.mpf(lam0), mp.mpf(mu), branch=branch, guard=guard)
         except ZeroDivisionError:          # an exactly degenerate eigenvector on the literal route
             return "undecided"
         vals = list(pt) + list(qt)
