@@ -26,7 +26,6 @@ seconds (default 36000; checked between chunks of 500); docs/fuzz.md records a r
 """
 from __future__ import annotations
 
-import contextlib
 import importlib.util
 import os
 import time
@@ -49,6 +48,7 @@ from test_fuzz_numeric import (
     literal_guard,
     literal_traces,
     run_batch,
+    shared_escalations,
     trace_kappa_hp,
 )
 
@@ -205,53 +205,6 @@ def _no_map_by_traces(traces):
     """True where the literal traces at 40 digits decide that no real map exists (``|t| <= 2`` or opposite
     signs); False where ``Etilde_j`` must decide."""
     return min(abs(x) for x in traces) <= 2 or traces[0] * traces[1] < 0
-
-
-def _freeze(x):
-    """A dictionary key for an argument of the escalation, exact to the bit; ``None`` if there is none."""
-    if isinstance(x, np.ndarray):
-        return ("a", x.dtype.str, x.shape, x.tobytes())
-    if isinstance(x, float):
-        return ("f", x.hex())
-    if isinstance(x, (tuple, list)):
-        items = tuple(_freeze(v) for v in x)
-        return None if None in items else ("t", items)
-    if isinstance(x, (int, str, np.integer, np.floating)):
-        return (type(x).__name__, repr(x))
-    return None
-
-
-@contextlib.contextmanager
-def shared_escalations():
-    """Within the block, ``symbt.numeric``'s escalation of one ill-conditioned state (``rows._mp_verdict``: the
-    mpmath step at a given precision of the exact binary input) is computed once per distinct argument list
-    and its result handed to every route that asks again -- the fused kernel, the block kernel, the numpy
-    route, the orbits and ``run_batch``'s reruns each escalate the same states.  The escalation is a pure
-    function of its arguments (the key holds every one of them, bit for bit: a route that passes a different
-    shift, precision or state gets its own computation), so every route returns what it would without the
-    memo; it only saves the repeats.  Yields the memo (for counting); a no-op if the function is gone."""
-    try:
-        from symbt.numeric.float64 import rows
-        orig = rows._mp_verdict
-    except (ImportError, AttributeError):
-        yield None
-        return
-    memo = {}
-
-    def verdict(*args, **kw):
-        key = _freeze((args, sorted(kw.items())))
-        if key is None:
-            return orig(*args, **kw)
-        if key not in memo:
-            memo[key] = orig(*args, **kw)
-        st, vals = memo[key]
-        return st, list(vals)
-
-    rows._mp_verdict = verdict
-    try:
-        yield memo
-    finally:
-        rows._mp_verdict = orig
 
 
 def deep_chunk(seed, count, mods, csteps):

@@ -1,0 +1,99 @@
+"""The deep fuzz's own machinery (tests/test_fuzz_deep.py), checked: what makes it cheaper changes no result, and
+its judge of the emitted code is not vacuous.
+
+* :func:`test_fuzz_numeric.shared_escalations` hands one route's escalation of an ill-conditioned state to the
+  next route that asks for the same one: every route must return, bit for bit, what it returns without it;
+* :func:`test_fuzz_deep.literal_scale` (``S`` of docs/codegen.md from the literal map's differences at high
+  precision) must agree with ``S`` from float64 differences of ``symbt.numeric``
+  (test_codegen_edges.condition_scale) -- two computations that share no code;
+* the emitted judge passes a state ``4 eps S`` off and refuses one ``64 eps S`` off.
+"""
+from __future__ import annotations
+
+import mpmath as mp
+import numpy as np
+from test_codegen_edges import condition_scale
+from test_fuzz_deep import _emitted_ok, literal_scale
+from test_fuzz_numeric import (
+    BATCH_ROUTES,
+    EPS,
+    SINGLE_ROUTES,
+    _freeze,
+    generate,
+    literal,
+    literal_traces,
+    run_batch,
+    shared_escalations,
+)
+
+#: a moderate N = 3 state with a real map (branch +1): the judge's planted-error test
+STATE = (np.array([-1.0, 0.5, 0.3]), np.array([0.1, -0.2, 0.4]), 4.0, 0.5, 1)
+
+
+def _every_route(inputs):
+    out = []
+    for _k, p, q, lam0, mu, b in inputs:
+        out += [fn(p, q, lam0, mu, b) for fn in SINGLE_ROUTES.values()]
+    for N in sorted({x[1].size for x in inputs}):
+        for b in (1, -1):
+            sel = [x for x in inputs if x[1].size == N and x[5] == b]
+            if sel:
+                P, Q, L, M = (np.array([x[k] for x in sel]) for k in (1, 2, 3, 4))
+                out += [v for fn in BATCH_ROUTES.values() for v in run_batch(fn, P, Q, L, M, b)]
+    return out
+
+
+def _same(a, b):
+    return a == b if isinstance(a, str) or isinstance(b, str) else np.array_equal(a, b)
+
+
+def test_shared_escalations_change_nothing():
+    """Every route returns the same bits with and without the shared escalation, on inputs that escalate."""
+    inputs = [x for x in generate(11, 96) if x[1].size <= 6][:32]
+    plain = _every_route(inputs)
+    with shared_escalations() as memo:
+        shared = _every_route(inputs)
+        assert memo, "no input escalated: the test proves nothing"
+    assert len(plain) == len(shared) and all(_same(a, b) for a, b in zip(plain, shared))
+    assert sum(isinstance(v, np.ndarray) for v in plain) >= 20        # states returned, not only refusals
+
+
+def test_shared_escalation_keys_are_exact():
+    """The memo's key tells apart what a dictionary would confuse: -0.0 and 0.0, arrays of other shapes."""
+    assert _freeze(0.0) != _freeze(-0.0)
+    assert _freeze(np.array([0.0, 1.0])) != _freeze(np.array([-0.0, 1.0]))
+    assert _freeze(np.zeros((1, 2))) != _freeze(np.zeros(2))
+    assert _freeze((1.0, 2)) != _freeze((1, 2.0))
+    assert _freeze(object()) is None
+
+
+def _ref(state):
+    p, q, lam0, mu, b = state
+    ref = literal(p, q, lam0, mu, b)
+    assert isinstance(ref, list)                                     # the premise: a real map
+    return ref, literal_traces(p, q, lam0, mu)
+
+
+def test_literal_scale_agrees_with_float_differences():
+    """``S`` from the literal map at high precision and from float64 forward differences of symbt.numeric agree
+    to the differences' own accuracy (step 1e-9: ~1e-7 relative), not more loosely."""
+    p, q, lam0, mu, b = STATE
+    ref, traces = _ref(STATE)
+    S = literal_scale(p, q, lam0, mu, b, traces)
+    S_fd = condition_scale(list(p), list(q), lam0, mu, b, ref)
+    assert all(abs(a - c) <= 1e-5 * c for a, c in zip(S, S_fd)), (S, S_fd)
+    assert all(a > abs(float(r)) for a, r in zip(S, ref))             # S > |f|: the derivatives count
+
+
+def test_emitted_judge_catches_planted_errors():
+    """A state 4 eps S off in q~_2 passes the emitted judge; 64 eps S off is refused (the documented 16)."""
+    p, q, lam0, mu, b = STATE
+    ref, traces = _ref(STATE)
+    S = literal_scale(p, q, lam0, mu, b, traces)
+    k = len(p) + 1                                                   # q~_2: the read-out's scale is not involved
+    for ulps, wrong in ((4, False), (64, True)):
+        with mp.workdps(40):
+            v = [float(r) for r in ref]
+            v[k] = float(ref[k] + ulps * EPS * S[k])
+        how, why = _emitted_ok(np.array(v), ref, p, q, lam0, mu, b, lambda: S)
+        assert (why is not None) == wrong, (ulps, how, why)
