@@ -273,12 +273,22 @@ def _deep_chunk(inputs, mods, csteps):
         exists = isinstance(ref, list)
         stats["states" if exists else "no_map"] += 1
         stats["refused_existing"] += exists and len(states) < len(got)
+        near = None                           # _near_boundary, computed once per input where asked
         for n, v in got.items() if exists else ():
             if isinstance(v, str):        # a typed refusal where the map exists, by route and error
                 key = "refused %s %s" % (n, v.split(":")[0])
                 stats[key] = stats.get(key, 0) + 1
+            # existence decided alike: "no real map" where the literal map is real is wrong -- for symbt.numeric
+            # anywhere (it escalates; docs/numeric.md), for the C step outside the 1e-6 boundary margin
+            # (docs/codegen.md; the emitted numpy mask does not say why it masked, so it is only counted)
+            wrong_nomap = isinstance(v, str) and (v == "NoRealMapError" or (n == "C" and v in ("status 1", "status 2")))
+            if wrong_nomap and n in ("emitted", "C"):
+                wrong_nomap = not (near if near is not None else _near_boundary(
+                    p, q, lam0, mu, b, traces, kappa[2] if kappa else None))
+                near = not wrong_nomap
+            if wrong_nomap:
+                failures.append((n, "no real map reported, but it exists", v, case))
         k = kt if kappa is None else kappa[0]
-        near = None                           # _near_boundary, computed once per input where asked
         scale = _once(lambda: literal_scale(p, q, lam0, mu, b, traces))   # S, shared by the numpy module and C
         for n, v in states.items():
             if not exists and n in ("emitted", "C") and near is None:

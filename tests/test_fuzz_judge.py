@@ -27,6 +27,8 @@ from test_fuzz_numeric import (
     shared_escalations,
 )
 
+from symbt.numeric import NoRealMapError
+
 #: a moderate N = 3 state with a real map (branch +1): the judge's planted-error test
 STATE = (np.array([-1.0, 0.5, 0.3]), np.array([0.1, -0.2, 0.4]), 4.0, 0.5, 1)
 
@@ -147,3 +149,39 @@ def test_emitted_toda3_readout_as_accurate_as_numeric():
         got = float(abs(mp.mpf(float(toda3.bt_step(p, q, lam0, mu, b)[0][0])) - ref[0]) / (EPS * S[0]))
     assert lib <= 16                                                  # the premise: float64 can do it
     assert got <= 16, got
+
+
+def test_deep_judge_flags_no_map_where_it_exists(monkeypatch):
+    """A symbt.numeric route that says "no real map" where the literal map is real is a failure (existence
+    decided alike); a route that refuses with NumericRangeError is not (a documented refusal)."""
+    import test_fuzz_deep as deep
+
+    for verdict, flagged in (("NoRealMapError", True), ("NumericRangeError", False)):
+        monkeypatch.setitem(SINGLE_ROUTES, "kernel", lambda *a, v=verdict: v)
+        stats, failures = deep.deep_chunk(7, 32, {}, {})
+        assert stats["states"] > 0                                   # the premise: some maps exist
+        whys = {why for route, why, _, _ in failures if route == "kernel"}
+        assert whys == ({"no real map reported, but it exists"} if flagged else set()), (verdict, whys)
+
+
+#: found by the deep run (seed 26, chunk 108, N = 2, branch -1, |lam| ~ 1e84, q far apart): every float64 route
+#: of symbt.numeric raises NoRealMapError ("|tr L(lam1)| <= 2"), yet tr L(lam1) = 1.47e155, tr L(lam2) = 1.52e168
+#: and Etilde_2 / E_2 = +2.06e-13 (the literal map at 760-1300 digits); symbt.numeric's own mpmath backend at
+#: 40-400 digits returns the state
+FOUND_NOMAP = (np.array([-3.1638448685852483, -2.919129004010822]), np.array([-194.23829279766574, 194.2382927976657]),
+               -2.4297043779481497e+84, 1.5660336063884298e+83, -1)
+
+
+@pytest.mark.xfail(strict=True, raises=NoRealMapError, reason="symbt.numeric float64 bt_step says no real map where it exists "
+                   "(docs/fuzz.md, 'Found by the rerun'): a numeric defect, not fixed here")
+def test_float_step_finds_the_existing_map_far_apart():
+    """The float64 step returns the state the literal map gives (existence decided alike on every route)."""
+    from symbt.numeric import bt_step
+
+    p, q, lam0, mu, b = FOUND_NOMAP
+    ref, _ = _ref(FOUND_NOMAP)
+    with mp.workdps(40):                                             # the premise: mpmath agrees with the literal map
+        a, c = bt_step(list(map(mp.mpf, p)), list(map(mp.mpf, q)), mp.mpf(lam0), mp.mpf(mu), branch=b)
+        assert max(abs(x - r) / max(abs(r), 1) for x, r in zip(a + c, ref)) < mp.mpf(10) ** -30
+    pt, qt = bt_step(p, q, lam0, mu, branch=b)
+    assert np.allclose(np.concatenate([pt, qt]), [float(r) for r in ref], rtol=1e-12, atol=0)
