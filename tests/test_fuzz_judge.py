@@ -173,7 +173,8 @@ FOUND_NOMAP = (np.array([-3.1638448685852483, -2.919129004010822]), np.array([-1
 
 
 @pytest.mark.xfail(strict=True, raises=NoRealMapError,
-                   reason="symbt.numeric float64 bt_step says no real map where it exists (docs/fuzz.md, 'Found by the rerun'): a numeric defect, not fixed here")
+                   reason="symbt.numeric float64 bt_step says no real map where it exists "
+                          "(docs/fuzz.md, 'Found by the rerun'): a numeric defect, not fixed here")
 def test_float_step_finds_the_existing_map_far_apart():
     """The float64 step returns the state the literal map gives (existence decided alike on every route)."""
     from symbt.numeric import bt_step
