@@ -164,25 +164,54 @@ def test_deep_judge_flags_no_map_where_it_exists(monkeypatch):
         assert whys == ({"no real map reported, but it exists"} if flagged else set()), (verdict, whys)
 
 
-#: found by the deep run (seed 26, chunk 108, N = 2, branch -1, |lam| ~ 1e84, q far apart): every float64 route
-#: of symbt.numeric raises NoRealMapError ("|tr L(lam1)| <= 2"), yet tr L(lam1) = 1.47e155, tr L(lam2) = 1.52e168
-#: and Etilde_2 / E_2 = +2.06e-13 (the literal map at 760-1300 digits); symbt.numeric's own mpmath backend at
-#: 40-400 digits returns the state
-FOUND_NOMAP = (np.array([-3.1638448685852483, -2.919129004010822]), np.array([-194.23829279766574, 194.2382927976657]),
-               -2.4297043779481497e+84, 1.5660336063884298e+83, -1)
+#: found by the deep run (seed 26, N = 2, q far apart, |lam| >> |p|): every float64 route of symbt.numeric raises
+#: NoRealMapError ("|tr L(lam1)| <= 2") where the literal map (60-1300 digits) and symbt.numeric's own mpmath
+#: backend (40-400 digits) give a real state.  Chunk 108: tr L(lam_i) = 1.47e155, 1.52e168, min Etilde_j / E_j
+#: = +2.06e-13; chunk 114: tr L(lam_i) = 1.62e18, 7.21e27, min Etilde_j / E_j = 2.0 (far from any boundary)
+FOUND_NOMAP = {
+    108: (np.array([-3.1638448685852483, -2.919129004010822]), np.array([-194.23829279766574, 194.2382927976657]),
+          -2.4297043779481497e+84, 1.5660336063884298e+83, -1),
+    114: (np.array([-0.42181568736841957, -0.6372169219073047]), np.array([-39.321234636330715, 39.321234636330715]),
+          1.1939751255891675e+17, -15101584160.0, 1),
+}
 
 
-@pytest.mark.xfail(strict=True, raises=NoRealMapError,
-                   reason="symbt.numeric float64 bt_step says no real map where it exists "
-                          "(docs/fuzz.md, 'Found by the rerun'): a numeric defect, not fixed here")
-def test_float_step_finds_the_existing_map_far_apart():
-    """The float64 step returns the state the literal map gives (existence decided alike on every route)."""
+def _mp_state(case):
     from symbt.numeric import bt_step
 
-    p, q, lam0, mu, b = FOUND_NOMAP
-    ref, _ = _ref(FOUND_NOMAP)
+    p, q, lam0, mu, b = case
+    ref, _ = _ref(case)
     with mp.workdps(40):                                             # the premise: mpmath agrees with the literal map
         a, c = bt_step(list(map(mp.mpf, p)), list(map(mp.mpf, q)), mp.mpf(lam0), mp.mpf(mu), branch=b)
         assert max(abs(x - r) / max(abs(r), 1) for x, r in zip(a + c, ref)) < mp.mpf(10) ** -30
+    return [float(r) for r in ref]
+
+
+@pytest.mark.parametrize("chunk", sorted(FOUND_NOMAP))
+@pytest.mark.xfail(strict=True, raises=NoRealMapError,
+                   reason="symbt.numeric float64 bt_step says no real map where it exists "
+                          "(docs/fuzz.md, 'Found by the rerun'): a numeric defect, not fixed here")
+def test_float_step_finds_the_existing_map_far_apart(chunk):
+    """The float64 step returns the state the literal map gives (existence decided alike on every route)."""
+    from symbt.numeric import bt_step
+
+    p, q, lam0, mu, b = FOUND_NOMAP[chunk]
+    ref = _mp_state(FOUND_NOMAP[chunk])
     pt, qt = bt_step(p, q, lam0, mu, branch=b)
-    assert np.allclose(np.concatenate([pt, qt]), [float(r) for r in ref], rtol=1e-12, atol=0)
+    assert np.allclose(np.concatenate([pt, qt]), ref, rtol=1e-12, atol=0)
+
+
+@pytest.mark.xfail(strict=True, reason="emitted toda2 says no real map where it exists "
+                   "(docs/fuzz.md, 'Found by the rerun'): a codegen defect, not fixed here")
+def test_emitted_toda2_finds_the_existing_map_far_apart():
+    """The emitted closed form decides existence as the literal map does (chunk 114's state, far from the
+    boundary of existence: min Etilde_j / E_j = 2.0)."""
+    from symbt.generated import toda2
+
+    p, q, lam0, mu, b = FOUND_NOMAP[114]
+    ref = _mp_state(FOUND_NOMAP[114])
+    try:
+        pt, qt = toda2.bt_step(p, q, lam0, mu, b)
+    except toda2.NoRealMapError as err:
+        raise AssertionError("emitted toda2: %s" % err) from None
+    assert np.allclose(np.concatenate([pt, qt]), ref, rtol=1e-12, atol=0)
