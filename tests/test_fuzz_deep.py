@@ -11,18 +11,23 @@ literal traces alone decide (``|t| <= 2`` or opposite signs), no step is compute
   ``toda16`` emitted at the start) and its C step (compiled where a C compiler is present);
 * 1 in :data:`ENSEMBLE_SUB`: the ensemble orbit (``bt_orbit`` on a batch, one step);
 * 1 in :data:`SUB`: the plain-Python kernel, the numpy route (single and batch), the single-state orbit;
-  for the emitted states ``S`` by forward differences (their documented ``16 eps S``);
 * 1 in :data:`MP_SUB`: the multiprecision backends at 30 digits (mpmath, Arb, quad-double where
   installed), bound ``32 N 2**-103 kappa rho s``.
 
 float64 routes of symbt.numeric: the documented bound of test_fuzz_numeric (``32 N eps kappa rho s``).
-Emitted states off the 1-in-SUB subsample: within ``16 eps |f|`` per component, else within the
-conditioning bound ``32 N eps kappa rho s``, else ``S`` decides (so a state can pass that ``16 eps S``
-would refuse: docs/fuzz.md says how often ``S`` was the judge).  Within 1e-6 of the boundary of
-existence an emitted state where no real map exists is accepted (docs/codegen.md).
+Every emitted state: its documented ``16 eps S`` (:func:`_emitted_ok`; ``S`` from the literal map's
+differences, :func:`literal_scale`).  Existence: a state where no real map exists fails, except an emitted
+one within 1e-6 of the boundary of existence (docs/codegen.md); "no real map" where the literal map is
+real fails for symbt.numeric, and for the C step outside that margin.  Refusals are counted by class.
 
-``SYMBT_FUZZ_DEEP=1`` runs ``SYMBT_FUZZ_COUNT`` inputs (default 1e5) or until ``SYMBT_FUZZ_BUDGET``
-seconds (default 36000; checked between chunks of 500); docs/fuzz.md records a run.
+:func:`test_fuzz_numeric.shared_escalations` computes symbt.numeric's escalation of a state once per chunk
+for all the routes that ask (bit-identical results, tests/test_fuzz_judge.py); the 40-digit literal traces
+are computed once per input.
+
+``SYMBT_FUZZ_DEEP=1`` runs ``SYMBT_FUZZ_COUNT`` inputs (default 1e5) of seed ``SYMBT_FUZZ_SEED`` in chunks of
+500 (chunk ``k`` = ``generate(seed * 100003 + k, 500)``) until ``SYMBT_FUZZ_BUDGET`` seconds; with
+``SYMBT_FUZZ_RECORD`` the finished chunks are recorded and skipped on the next run (resume), and
+``SYMBT_FUZZ_CHUNKS=a:b`` runs a part; docs/fuzz.md records a run.
 """
 from __future__ import annotations
 
