@@ -17,7 +17,7 @@ is judged by an independent route:
   ``Etilde_j / E_j``).
 
 0 silent wrong results (a finite state where no real map exists, or a state beyond its bound) and 0 untyped
-errors.  The default run takes 400 inputs (~1 min); the deep run (1e5 inputs, every route and the emitted
+errors.  The default run takes 400 inputs (~9 s of CPU); the deep run (1e5 inputs, every route and the emitted
 modules) is tests/test_fuzz_deep.py.
 """
 from __future__ import annotations
@@ -412,12 +412,13 @@ def test_generators_cover_the_edges():
 
 
 def test_fuzz_default_run():
-    """A seeded run in the default suite: 0 silent wrong results, 0 untyped errors."""
-    t0 = time.perf_counter()
+    """A seeded run in the default suite (CI): 0 silent wrong results, 0 untyped errors, within 60 s of CPU
+    (~9 s measured; CPU, not wall time, which a shared machine stretches several-fold)."""
+    t0 = time.process_time()
     stats, failures = fuzz(seed=20261126, count=400)
     assert not failures, failures[:5]
     assert stats["states"] > 80 and stats["no_map"] > 80, stats            # both verdicts exercised
-    assert time.perf_counter() - t0 < 600
+    assert time.process_time() - t0 < 60
 
 
 EMITTED_ACROSS_GAPS = [((0.0, 0.0), (0.0, 19.0), float(np.exp(9.5)), 0.3 * float(np.exp(9.5))),
