@@ -99,6 +99,7 @@ True
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, TypedDict
 
@@ -115,7 +116,8 @@ if TYPE_CHECKING:
     import numpy.typing as npt
 
 
-__all__ = ["step_core", "eigen_slopes", "SlopeData", "StepAux", "mp_step", "BLOCK_ELEMENTS"]
+__all__ = ["step_core", "eigen_slopes", "SlopeData", "StepAux", "mp_step", "BLOCK_ELEMENTS", "trace_kappa",
+           "sharp_trace_kappa", "sharpened", "float_status", "SHARP_UNIT"]
 
 _GUARD_DIGITS = 12
 #: accepted values of ``backend`` (float64: auto/numba/python/numpy; mpmath: auto/qd/flint/mpmath)
@@ -132,11 +134,13 @@ class SlopeData:
     3.0
     """
 
-    __slots__ = ("u", "trace_ok", "forward", "t", "g", "e", "kappa")
+    __slots__ = ("u", "trace_ok", "forward", "t", "g", "e", "kappa", "inputs")
 
     def __init__(self, *, trace_ok: Value = None, t: Value = None, g: Value = None, e: Exponent = 0,
                  u: list[Value] | None = None, forward: Cond | None = None) -> None:
         self.kappa: FloatValue | None = None
+        #: float64: ``(p, r, lam, lo)``, what the sharp tier of the condition estimate recomputes from
+        self.inputs: tuple[Sequence[FloatValue], Sequence[FloatValue], FloatValue, FloatValue] | None = None
         self.trace_ok = trace_ok
         self.t = t
         self.g = g
@@ -177,7 +181,7 @@ def _backward(ctx: Context, a: Sequence[Value], r: Sequence[Value], u1: Value) -
 
 
 def eigen_slopes(ctx: Context, a: Sequence[Value], r: Sequence[Value], s: int, need_slopes: bool = True,
-                 spec: tuple[Value, Sequence[Value]] | None = None) -> SlopeData:
+                 spec: tuple[Value, Sequence[Value], Value] | None = None) -> SlopeData:
     """Slopes of the eigenvector with eigenvalue ``(tr - s*sqrt(tr^2-4))/2`` at every site.
 
     ``a_j = lam + p_j``; ``s = +1`` gives the paper's ``y`` (for ``branch=+1``),
@@ -203,8 +207,9 @@ def eigen_slopes(ctx: Context, a: Sequence[Value], r: Sequence[Value], s: int, n
     data.forward = fwd
     if not need_slopes:
         return data
-    if ctx is FLOAT and spec is not None:        # float64 conditioning (``spec = (lam, p)``, a_j = lam + p_j)
-        lam, P = spec
+    if ctx is FLOAT and spec is not None:   # float64 conditioning (``spec = (lam, p, lo)``, a_j = lam + lo + p_j)
+        lam, P, lo = spec
+        data.inputs = (P, r, lam, lo)
         with np.errstate(all="ignore"):
             ka = np.maximum.reduce([(np.abs(lam) + np.abs(P[j])) / np.abs(a[j]) for j in range(len(a))])
         data.kappa = trace_kappa(a, r, t, disc, e, ka)
@@ -227,12 +232,14 @@ def eigen_slopes(ctx: Context, a: Sequence[Value], r: Sequence[Value], s: int, n
 
 def trace_kappa(a: Sequence[FloatValue], r: Sequence[FloatValue], t: FloatValue, disc: FloatValue, e: Exponent,
                 ka: FloatValue | float = 1.0) -> FloatValue:
-    """float64 condition estimate of the trace decision: ``T |t| / |t**2 - 4|`` per row.
+    """float64 condition estimate of the trace decision: ``T |t| / |t**2 - 4|`` per row (the cheap tier).
 
     ``T`` is the trace of ``|m_N| ... |m_1|`` (entrywise absolute values, computed as the monodromy of
     ``|a_j|`` and ``-r_j``, which has no cancellation), the scale of the rounding error of ``t``; ``t``,
     ``disc`` are the scaled trace and ``t**2 - 4`` of :func:`eigen_slopes` (exponent ``e``), ``ka`` the
-    cancellation factor ``max_j (|lam| + |p_j|) / |lam + p_j|`` it is multiplied by.  Beyond
+    cancellation factor ``max_j (|lam| + |p_j|) / |lam + p_j|`` it is multiplied by.  Where the state would
+    be escalated with it, :func:`float_status` takes the sharp estimate of :func:`sharp_trace_kappa` (the
+    second tier, as the fused and block kernels do).  Beyond
     :data:`~symbt.numeric.core.limits.KAPPA_MAX` the float64 decision ``|t| > 2`` and the slopes are not
     trusted (the state is recomputed at higher precision, see :func:`float_status`).
 
@@ -244,12 +251,147 @@ def trace_kappa(a: Sequence[FloatValue], r: Sequence[FloatValue], t: FloatValue,
         Aa, _, _, Da, ea = monodromy(FLOAT, [np.abs(x) for x in a], [-x for x in r])
         return np.ldexp(Aa + Da, ea - e) * (np.abs(t) / np.abs(disc)) * ka
 
+#: the relative allowance per site for the rounding of the sum of :func:`sharp_trace_kappa` and products
+#: (``16 u``, ``u = 2**-53``)``
+SHARP_UNIT = 16.0 * 2.0 ** -53
+
+_FAR = 2.0 ** 200
+_NEAR = 2.0 ** -200
+
+
+def sharp_trace_kappa(p: npt.NDArray[np.float64], r: npt.NDArray[np.float64], lam: float, lo: float) -> float:
+    r"""The sharp condition ``k_t`` of one trace decision (one state, scalar code): ``Ts |t| / |t**2 - 4|``
+    times ``max_j (|lam| + |p_j|) / |lam + p_j|``, with the rounding scale ``Ts`` below in place of the cheap
+    ``T`` of :func:`trace_kappa`.
+
+    Derivation.  The float64 routes form ``M = m_N ... m_1`` by ``A' = a_j A - C``, ``B' = a_j B - D``,
+    ``C' = r_j A``, ``D' = r_j B`` (``a_j = lam_add(lam, lo, p_j)``, one rounding) with exact
+    power-of-two rescalings, and ``t = A + D``.  Each site's computed product is
+    ``(m_j + Delta_j) M_{j-1}`` with ``|Delta_j| <= gamma_3 |m_j|`` entrywise (first row: ``a_j``'s own
+    rounding, the product, the difference; second row: one product; the rescalings are exact), so to
+    first order, with the prefix ``P_{j-1} = m_{j-1} ... m_1`` and the suffix ``S_{j+1} = m_N ... m_{j+1}``,
+
+        t_computed - t = sum_j tr(S_{j+1} Delta_j P_{j-1}) + delta (A + D),
+        |t_computed - t| <= gamma_3 sum_j tr(|S_{j+1}| |m_j| |P_{j-1}|) + u |t|.
+
+    The cheap bound is ``gamma_{3N} T``, ``T = tr(|m_N| ... |m_1|)``; since
+    ``|S_{j+1}| |m_j| |P_{j-1}| <= |m_N| ... |m_1|`` entrywise, each term is at most ``T``, so the mean
+    ``Ts = (1/N) sum_j tr(|S_{j+1}| |m_j| |P_{j-1}|)`` takes ``T``'s place in the same form
+    ``N gamma_3 Ts`` -- hence in ``kappa`` and in the bound ``32 N eps kappa rho s`` with its constant
+    unchanged.  The sum is formed from the prefix products' first rows, stored (the second row of ``P_j``
+    is ``r_j`` times the first row of ``P_{j-1}``), and a backward pass for ``S``, both renormalised by
+    exact powers of two; its own rounding and the use of the computed rather than the exact ``P``, ``S``
+    change it by a relative ``O(N u)``, for which ``Ts`` is multiplied by ``1 + SHARP_UNIT N``.
+
+    *First order only*: the terms with two or more ``Delta`` (and the deviation of the computed ``P``,
+    ``S`` from the exact ones, bounded a priori only by ``gamma_{3N}`` times the absolute products) are
+    not bounded here -- the a priori bound ``(3 N u)**2 T`` would bring back the pessimism this estimate
+    removes.  ``tests/test_numeric_kappa.py`` measures the accuracy bound against the 50-digit literal
+    step where this estimate decides.
+
+    The result does not depend on the routes' scaling (``t``, ``t**2 - 4`` and ``Ts`` are formed here,
+    in this function's own power-of-two scale); ``inf`` or NaN (not trusted) where ``t = +-2`` or a
+    product leaves the range.  Plain scalar code: the compiled kernels run it as it is.
+
+    >>> p, r = np.array([-20.0, 10.0, 1.0]), np.exp(np.diff([1.0, 0.0, 0.9, 1.0]))
+    >>> k = sharp_trace_kappa(p, r, 15.0, 0.0)        # the paper's example at lam1 = 15: far from +-2
+    >>> 1.0 <= k < 20.0
+    True
+    """
+    N = p.shape[0]
+    pa = np.empty(N)
+    pb = np.empty(N)
+    pe = np.empty(N, dtype=np.int64)
+    A = lam_add(lam, lo, p[0])
+    B = -1.0
+    C = r[0]
+    D = 0.0
+    e = 0
+    kn = abs(lam) + abs(p[0])           # max_j (|lam| + |p_j|) / |a_j| as kn / kd (as the kernels' track)
+    kd = abs(A)
+    pa[0] = A
+    pb[0] = B
+    pe[0] = 0
+    for j in range(1, N):
+        a = lam_add(lam, lo, p[j])
+        cn = abs(lam) + abs(p[j])
+        if cn * kd > kn * abs(a):
+            kn = cn
+            kd = abs(a)
+        rj = r[j]
+        A, B, C, D = a * A - C, a * B - D, rj * A, rj * B
+        m = max(abs(A), abs(B), abs(C), abs(D))
+        if (m > _FAR or m < _NEAR) and m > 0.0 and m < math.inf:      # exact power-of-two rescaling
+            f = math.frexp(m)[1]
+            A, B, C, D, e = math.ldexp(A, -f), math.ldexp(B, -f), math.ldexp(C, -f), math.ldexp(D, -f), e + f
+        pa[j] = A
+        pb[j] = B
+        pe[j] = e
+    t = A + D
+    two = math.ldexp(2.0, -e)
+    disc = (t - two) * (t + two)        # 2**(-2e) (tr**2 - 4), no cancellation
+    S11, S12, S21, S22 = 1.0, 0.0, 0.0, 1.0
+    es = 0
+    total = 0.0
+    for j in range(N - 1, -1, -1):
+        sa = lam_add(lam, lo, p[j])
+        a = abs(sa)
+        rj = r[j]
+        if j == 0:                      # P_0 = identity
+            P11, P12, P21, P22, ep = 1.0, 0.0, 0.0, 1.0, 0
+        else:
+            ep = int(pe[j - 1])
+            P11, P12 = abs(pa[j - 1]), abs(pb[j - 1])
+            if j == 1:                  # P_1 = m_1: second row (r_1, 0)
+                P21, P22 = math.ldexp(r[0], -ep), 0.0
+            else:
+                fr = math.ldexp(r[j - 1], int(pe[j - 2]) - ep)
+                P21, P22 = fr * abs(pa[j - 2]), fr * abs(pb[j - 2])
+        X11, X12 = a * P11 + P21, a * P12 + P22
+        X21, X22 = rj * P11, rj * P12
+        term = abs(S11) * X11 + abs(S12) * X21 + abs(S21) * X12 + abs(S22) * X22
+        total += math.ldexp(term, es + ep - e)
+        S11, S12, S21, S22 = S11 * sa + S12 * rj, -S11, S21 * sa + S22 * rj, -S21    # S_j = S_{j+1} m_j
+        m = max(abs(S11), abs(S12), abs(S21), abs(S22))
+        if (m > _FAR or m < _NEAR) and m > 0.0 and m < math.inf:
+            f = math.frexp(m)[1]
+            S11, S12 = math.ldexp(S11, -f), math.ldexp(S12, -f)
+            S21, S22, es = math.ldexp(S21, -f), math.ldexp(S22, -f), es + f
+    Ts = total / N * (1.0 + SHARP_UNIT * N)
+    return Ts * abs(t) / abs(disc) * (kn / kd)
+
+
+def sharpened(S: SlopeData, rows: npt.NDArray[np.bool_]) -> npt.NDArray[np.float64]:
+    """:func:`sharp_trace_kappa` of the float64 rows ``rows`` of :func:`eigen_slopes`' data ``S`` (``inf``
+    elsewhere): the second tier of :func:`trace_kappa` and :func:`float_status`.
+
+    >>> from symbt.numeric.core.context import FLOAT
+    >>> S = eigen_slopes(FLOAT, [np.array([15.0 + x]) for x in (-20.0, 10.0, 1.0)],
+    ...                  [np.array([x]) for x in np.exp(np.diff([1.0, 0.0, 0.9, 1.0]))], 1,
+    ...                  spec=(15.0, [np.array([x]) for x in (-20.0, 10.0, 1.0)], 0.0))
+    >>> 1.0 <= float(sharpened(S, np.array([True]))[0]) < 20.0
+    True
+    """
+    assert S.inputs is not None                 # set by eigen_slopes for the float context
+    P, r, lam, lo = S.inputs
+    shape = np.shape(rows)
+    out = np.full(shape, np.inf)
+    with np.errstate(all="ignore"):
+        pv = np.stack([np.broadcast_to(x, shape) for x in P], axis=-1).astype(float)
+        rv = np.stack([np.broadcast_to(x, shape) for x in r], axis=-1).astype(float)
+        lv, ov = np.broadcast_to(lam, shape), np.broadcast_to(lo, shape)
+        for k in zip(*np.nonzero(rows)):
+            out[k] = sharp_trace_kappa(pv[k], rv[k], float(lv[k]), float(ov[k]))
+    return out
+
 
 def float_status(aux: StepAux, Pn: Sequence[FloatValue], Qn: Sequence[FloatValue]) -> npt.NDArray[np.int64]:
     """Per-row status codes (:mod:`symbt.numeric.core.limits`) of a float64 :func:`step_core` with ``check_real=False``.
 
     In the order of the fused kernels: ``ILLCOND`` where a trace is within ``KAPPA_MAX`` times its rounding
-    scale of ``+-2`` (:func:`trace_kappa`), ``TRACE1``/``TRACE2`` where ``|tr| <= 2``, ``POSITIVITY`` where
+    scale of ``+-2`` (:func:`trace_kappa`; two-tier: where the cheap estimate would give ``ILLCOND``, the
+    sharp one of :func:`sharp_trace_kappa`, see :func:`sharpened`), ``TRACE1``/``TRACE2`` where
+    ``|tr| <= 2``, ``POSITIVITY`` where
     the traces have opposite signs (``lam1``, ``lam2`` in different gaps: no real map) or some
     ``Etilde_j / E_j = 1 + xr_j <= 0``, ``ILLCOND`` where the state's ``kappa`` (module docstring) exceeds
     ``KAPPA_MAX`` (that sign or the result not trusted), ``RANGE`` where the result is not finite.
@@ -258,15 +400,23 @@ def float_status(aux: StepAux, Pn: Sequence[FloatValue], Qn: Sequence[FloatValue
 
     S1, S2 = aux["S1"], aux["S2"]
     assert S1.kappa is not None and S2.kappa is not None      # set by eigen_slopes for the float context
+    k1, k2 = S1.kappa, S2.kappa
     with np.errstate(all="ignore"):
-        ill_t = ~(S1.kappa <= KAPPA_MAX) | ~(S2.kappa <= KAPPA_MAX)
         t1, t2 = S1.trace_ok > 0, S2.trace_ok > 0
         opp = (S1.t < 0) != (S2.t < 0)
         xr, u, w = aux["xr"], aux["u"], aux["w"]
-        kt = np.maximum(S1.kappa, S2.kappa)
-        ill_p = np.logical_or.reduce([
-            ~(kt * (np.abs(u[j]) + np.abs(w[j])) * (np.abs(x + 1) + np.abs(x))
-              <= KAPPA_MAX * np.abs(u[j] - w[j]) * np.abs(x + 1)) for j, x in enumerate(xr)])
+
+        def ill(k1: FloatValue, k2: FloatValue) -> tuple[FloatValue, FloatValue]:
+            kt = np.maximum(k1, k2)
+            return ~(k1 <= KAPPA_MAX) | ~(k2 <= KAPPA_MAX), np.logical_or.reduce([
+                ~(kt * (np.abs(u[j]) + np.abs(w[j])) * (np.abs(x + 1) + np.abs(x))
+                  <= KAPPA_MAX * np.abs(u[j] - w[j]) * np.abs(x + 1)) for j, x in enumerate(xr)])
+
+        ill_t, ill_p = ill(k1, k2)
+        rows = np.broadcast_to(ill_t | ill_p, np.shape(k1))
+        if np.any(rows):        # the second tier where the cheap estimate escalates (as the kernels do)
+            k1, k2 = np.fmin(k1, sharpened(S1, rows)), np.fmin(k2, sharpened(S2, rows))
+            ill_t, ill_p = ill(k1, k2)
         pos = np.logical_and.reduce([x + 1 > 0 for x in xr])
         fin = np.isfinite(np.add.reduce(Pn) + np.add.reduce(Qn))
     conds = [np.broadcast_to(c, np.shape(fin)) for c in (ill_t, ~t1, ~t2, opp, ill_p, ~pos, ~fin)]
@@ -324,8 +474,12 @@ def step_core(ctx: Context, P: Sequence[Value], Q: Sequence[Value], lam0: Value,
     else:
         a1 = [lam1 + pj for pj in P]
         a2 = [lam2 + pj for pj in P]
-    S1 = eigen_slopes(ctx, a1, r, branch, spec=(lam1, P))
-    S2 = eigen_slopes(ctx, a2, r, -branch, spec=(lam2, P))
+    if ctx is FLOAT:
+        S1 = eigen_slopes(ctx, a1, r, branch, spec=(lam1, P, lo1))
+        S2 = eigen_slopes(ctx, a2, r, -branch, spec=(lam2, P, lo2))
+    else:
+        S1 = eigen_slopes(ctx, a1, r, branch)
+        S2 = eigen_slopes(ctx, a2, r, -branch)
     if check_real:
         for name, S in (("lam1 = lam0 + mu", S1), ("lam2 = lam0 - mu", S2)):
             if not ctx.all_positive(S.trace_ok):

@@ -72,6 +72,7 @@ from ..core.compile import instantiate
 from ..core.fused import SOURCE
 from ..core.limits import KAPPA_MAX, MAX_DQ_FLOAT64, OK, RANGE
 from ..core.spectral_sum import lam_add, lam_split
+from ..core.step import sharp_trace_kappa
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -81,15 +82,16 @@ if TYPE_CHECKING:
 
 Track = tuple[float, float, float, float, float, float, float]
 
-__all__ = ["orbit", "orbit_rows", "stored_steps", "python_kernels", "ANCHOR", "HOOKS", "OPERATIONS"]
+__all__ = ["orbit", "orbit_rows", "stored_steps", "python_kernels", "sharp_compiled", "ANCHOR", "HOOKS", "OPERATIONS"]
 # monodromy entries past _BIG are multiplied by _SHRINK (powers of two: exact, the slopes only need ratios),
 # so that |tr L| ~ 1e300 and beyond (N = 256 far from the spectrum) stays in the kernel; the product of the
 # absolute values (>= the monodromy entrywise) decides when, and is scaled alike
 _BIG = 2.0 ** 400
 _SHRINK = 2.0 ** -400
 
-# the limits are frozen into the compiled step: their file belongs to its cache key (core/compile.py)
-_EXTRA = (Path(limits.__file__),)
+# the limits and the sharp condition (core/step.py) are compiled into the step: their files belong to its
+# cache key (core/compile.py)
+_EXTRA = (Path(limits.__file__), Path(limits.__file__).with_name("step.py"))   # step.py: sharp_trace_kappa
 
 #: steps between re-anchoring ``r`` to ``exp`` of the accumulated positions
 ANCHOR = 16
@@ -214,14 +216,20 @@ def _two_of(aux: Track) -> float:
     return 2.0 * aux[6]
 
 
-def _decided(aux: Track, t: float, disc: float, tt: F64, i: int) -> bool:
+def _decided(aux: Track, t: float, disc: float, tt: F64, i: int, p: F64, r: F64, lam: float, lo: float) -> bool:
     """The trace is decided only where it is far from ``+-2`` against its rounding error:
     ``T |t| <= KAPPA_MAX |t**2 - 4|`` with ``T`` the trace of the product of the entrywise absolute
-    values; ``tt[i + 2]`` receives the trace's condition times ``a_j``'s (>= 1)."""
+    values; ``tt[i + 2]`` receives the trace's condition times ``a_j``'s (>= 1), ``k_t``.  Two-tier:
+    where that cheap test fails, the sharp ``k_t`` of :func:`~symbt.numeric.core.step.sharp_trace_kappa`
+    (prefix and suffix products, computed only then) decides, ``k_t <= KAPPA_MAX``."""
     T = aux[0] + aux[3]
+    k = T * abs(t) / abs(disc) * (aux[4] / aux[5])
     if not T * abs(t) <= KAPPA_MAX * abs(disc):
-        return False
-    tt[i + 2] = T * abs(t) / abs(disc) * (aux[4] / aux[5])
+        ks = sharp_trace_kappa(p, r, lam, lo)
+        k = ks if ks < k else k
+        if not k <= KAPPA_MAX:
+            return False
+    tt[i + 2] = k
     return True
 
 
@@ -230,6 +238,17 @@ def _disc_fits(disc: float) -> bool:
 
 
 def _step_kappa(tt: F64) -> float:
+    return max(tt[2], tt[3])
+
+
+def _sharpen(tt: F64, p: F64, r: F64, lam1: float, lo1: float, lam2: float, lo2: float) -> float:
+    """The second tier of the state's ``k_t`` (where the cheap one fails a site's read-out test): each
+    trace's condition lowered to the sharp :func:`~symbt.numeric.core.step.sharp_trace_kappa` if that is
+    smaller; returns the new ``k_t``."""
+    for i, lam, lo in ((2, lam1, lo1), (3, lam2, lo2)):
+        ks = sharp_trace_kappa(p, r, lam, lo)
+        if ks < tt[i]:
+            tt[i] = ks
     return max(tt[2], tt[3])
 
 
@@ -262,11 +281,24 @@ def _advance(r: F64, pos: tuple[F64, F64], j: int, x: float, xn: float, pj: floa
 HOOKS: dict[str, Callable[..., Any]] = {
     "hi": _hi, "track_init": _track_init, "track": _track, "rescale": _rescale, "rescale_last": _rescale_last,
          "in_range": _in_range, "two_of": _two_of, "decided": _decided, "disc_fits": _disc_fits,
-         "step_kappa": _step_kappa, "bounded": _bounded, "trusted": _trusted, "advance": _advance,
+         "step_kappa": _step_kappa, "sharpen": _sharpen, "bounded": _bounded, "trusted": _trusted, "advance": _advance,
     "ld": _ld, "st": _st, "lam_add": lam_add, "lam_split": lam_split}
 #: the operations of the float64 arithmetic (the same in plain Python and under numba)
 OPERATIONS = {"add": operator.add, "sub": operator.sub, "mul": operator.mul, "div": operator.truediv,
               "neg": operator.neg, "sqrt": math.sqrt, "add_d": operator.add, "mul2": operator.mul}
+
+
+@cache
+def sharp_compiled() -> Callable[..., Any]:
+    """:func:`~symbt.numeric.core.step.sharp_trace_kappa` compiled by numba (the global the compiled hooks
+    and the block kernel call; needs numba).
+
+    >>> callable(sharp_compiled) and sharp_compiled.__name__
+    'sharp_compiled'
+    """
+    from ..core.compile import clone, njit
+
+    return njit(clone(sharp_trace_kappa, lam_add=njit(lam_add, inline="always")))
 
 
 @cache
