@@ -406,7 +406,7 @@ def float_status(aux: StepAux, Pn: Sequence[FloatValue], Qn: Sequence[FloatValue
         opp = (S1.t < 0) != (S2.t < 0)
         xr, u, w = aux["xr"], aux["u"], aux["w"]
 
-        def ill(k1: FloatValue, k2: FloatValue) -> tuple[FloatValue, FloatValue]:
+        def ill(k1: FloatValue, k2: FloatValue) -> tuple[npt.NDArray[np.bool_], npt.NDArray[np.bool_]]:
             kt = np.maximum(k1, k2)
             return ~(k1 <= KAPPA_MAX) | ~(k2 <= KAPPA_MAX), np.logical_or.reduce([
                 ~(kt * (np.abs(u[j]) + np.abs(w[j])) * (np.abs(x + 1) + np.abs(x))
