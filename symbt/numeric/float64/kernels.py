@@ -82,7 +82,7 @@ if TYPE_CHECKING:
 
 Track = tuple[float, float, float, float, float, float, float]
 
-__all__ = ["orbit", "orbit_rows", "stored_steps", "python_kernels", "sharp_compiled", "ANCHOR", "HOOKS", "OPERATIONS"]
+__all__ = ["orbit", "orbit_rows", "stored_steps", "python_kernels", "cheap_kernels", "sharp_compiled", "ANCHOR", "HOOKS", "OPERATIONS"]
 # monodromy entries past _BIG are multiplied by _SHRINK (powers of two: exact, the slopes only need ratios),
 # so that |tr L| ~ 1e300 and beyond (N = 256 far from the spectrum) stays in the kernel; the product of the
 # absolute values (>= the monodromy entrywise) decides when, and is scaled alike
@@ -299,6 +299,37 @@ def sharp_compiled() -> Callable[..., Any]:
     from ..core.compile import clone, njit
 
     return njit(clone(sharp_trace_kappa, lam_add=njit(lam_add, inline="always")))
+
+
+def _decided_cheap(aux: Track, t: float, disc: float, tt: F64, i: int, p: F64, r: F64, lam: float,
+                   lo: float) -> bool:
+    T = aux[0] + aux[3]
+    if not T * abs(t) <= KAPPA_MAX * abs(disc):
+        return False
+    tt[i + 2] = T * abs(t) / abs(disc) * (aux[4] / aux[5])
+    return True
+
+
+def _sharpen_off(tt: F64, p: F64, r: F64, lam1: float, lo1: float, lam2: float, lo2: float) -> float:
+    return max(tt[2], tt[3])
+
+
+@cache
+def cheap_kernels() -> dict[str, Callable[..., Any]]:
+    """The float64 fused step with the cheap condition estimate only (no sharp tier), plain Python: the
+    boundary of what the emitted code (:mod:`symbt.codegen`, whose guard is the cheap estimate) decides,
+    and the "before" of the two-tier estimate in tests and benchmarks.
+
+    >>> import numpy as np
+    >>> def status(kernels, N=8, delta=1e-6):          # the free chain, lam2 = 2 + delta near a band edge
+    ...     w = [np.empty(N) for _ in range(4)]
+    ...     return kernels["step"](np.zeros(N), np.ones(N), (np.ones(N), np.zeros(N)), 3.0 + delta, 2.0 + delta,
+    ...                            1.0, 1, *w, np.zeros(4))
+    >>> status(cheap_kernels()), status(python_kernels())     # ILLCOND with the cheap estimate only
+    (5, 0)
+    """
+    return instantiate(SOURCE, {**OPERATIONS, **HOOKS, "decided": _decided_cheap, "sharpen": _sharpen_off},
+                       tag="f64cheap", jit=False, extra=_EXTRA)
 
 
 @cache
