@@ -2,7 +2,7 @@
 
 The cheap trace condition ``T |t| / |t**2 - 4|`` (``T`` = trace of the product of the entrywise absolute
 values) stays where it passes; where it would escalate, the sharp first-order scale of
-:func:`symbt.numeric.core.step.sharp_trace_kappa` decides.  Judged here against routes that do not share its
+:func:`symbt.numeric.core.condition.sharp_trace_kappa` decides.  Judged here against routes that do not share its
 derivation: finite differences of the literal trace (:mod:`symbt.reference`) at 60 digits for the trace's
 actual sensitivity, and the 50-digit literal step for the documented accuracy bound ``32 N eps kappa rho s``.
 """
@@ -14,11 +14,12 @@ import pytest
 
 from symbt.benchmarks.cases import cases
 from symbt.numeric import bt_orbit, bt_step
+from symbt.numeric.core.condition import sharp_trace_kappa
 from symbt.numeric.core.context import FLOAT
 from symbt.numeric.core.limits import KAPPA_MAX, OK
 from symbt.numeric.core.monodromy import neighbour_ratios
 from symbt.numeric.core.spectral_sum import lam_add, lam_split
-from symbt.numeric.core.step import float_status, sharp_trace_kappa, sharpened, step_core
+from symbt.numeric.core.step import float_status, sharpened, step_core
 from symbt.reference.literal import reference_step
 
 EPS = 2.0 ** -52

@@ -22,7 +22,7 @@ The arithmetic (module globals replaced per instantiation; here they are unbound
   (``track_init``, ``track``), rescales the monodromy by powers of two (``rescale``, ``rescale_last``,
   ``two_of``), tests its range (``in_range``, ``disc_fits``, ``bounded``) and its condition
   (``decided``, two-tier: the cheap bound, and where it fails the sharp one of
-  :func:`~symbt.numeric.core.step.sharp_trace_kappa` from ``p, r, lam, lo``; ``step_kappa``,
+  :func:`~symbt.numeric.core.condition.sharp_trace_kappa` from ``p, r, lam, lo``; ``step_kappa``,
   ``trusted``, and ``sharpen``, the sharp tier of ``k_t`` where a site fails ``trusted``: status
   ``ILLCOND``), and carries the positions as
   neighbour ratios and double-double factors; quad-double tests finiteness and carries the positions

@@ -58,7 +58,13 @@ where the decision is conditioned: with ``T_i`` the trace of ``|m_N| ... |m_1|``
     kappa = max_j k_t (|u_j| + |w_j|) / |u_j - w_j| (1 + |xr_j| / |1 + xr_j|),
     k_t = max_i T_i |t_i| / |t_i**2 - 4| * max_j (|lam_i| + |p_j|) / |lam_i + p_j|,
 
-a state with ``kappa > KAPPA_MAX = 2**24`` is recomputed by the mpmath step
+two-tier: where this cheap ``k_t`` would make the state ill-conditioned, ``T_i`` is replaced by the
+sharp first-order rounding scale of the computed trace
+(:func:`~symbt.numeric.core.condition.sharp_trace_kappa`: prefix and suffix products,
+``(1/N) sum_j tr(|S_{j+1}| |m_j| |P_{j-1}|) <= T_i``; the cheap ``T_i`` overestimates the
+trace's error by orders of magnitude when the ``a_j`` take both signs, ~1e6 at N = 64 and ~1e27 at
+N = 256 on the benchmark chains).  A state whose ``kappa`` still exceeds ``KAPPA_MAX = 2**24`` is
+recomputed by the mpmath step
 (:func:`symbt.numeric.float64.rows.escalate_rows`) and rounded to float64.  A returned
 state satisfies ``max |x - x_exact| <= 32 N eps kappa rho s`` (``rho = 1 +
 max |q_{j+1} - q_j|``, ``s = max(|p|, |q|, |p~|, |q~|, |lam0| + |mu|)``,
@@ -99,13 +105,13 @@ True
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, TypedDict
 
 import mpmath
 import numpy as np
 
+from .condition import sharp_trace_kappa
 from .context import FLOAT, IV, Cond, Context, Exponent, FloatValue, MPValue, Value
 from .errors import NoRealMapError, NumericRangeError
 from .inputs import to_output
@@ -117,7 +123,7 @@ if TYPE_CHECKING:
 
 
 __all__ = ["step_core", "eigen_slopes", "SlopeData", "StepAux", "mp_step", "BLOCK_ELEMENTS", "trace_kappa",
-           "sharp_trace_kappa", "sharpened", "float_status", "SHARP_UNIT"]
+           "sharpened", "float_status"]
 
 _GUARD_DIGITS = 12
 #: accepted values of ``backend`` (float64: auto/numba/python/numpy; mpmath: auto/qd/flint/mpmath)
@@ -238,7 +244,8 @@ def trace_kappa(a: Sequence[FloatValue], r: Sequence[FloatValue], t: FloatValue,
     ``|a_j|`` and ``-r_j``, which has no cancellation), the scale of the rounding error of ``t``; ``t``,
     ``disc`` are the scaled trace and ``t**2 - 4`` of :func:`eigen_slopes` (exponent ``e``), ``ka`` the
     cancellation factor ``max_j (|lam| + |p_j|) / |lam + p_j|`` it is multiplied by.  Where the state would
-    be escalated with it, :func:`float_status` takes the sharp estimate of :func:`sharp_trace_kappa` (the
+    be escalated with it, :func:`float_status` takes the sharp estimate of
+    :func:`~symbt.numeric.core.condition.sharp_trace_kappa` (the
     second tier, as the fused and block kernels do).  Beyond
     :data:`~symbt.numeric.core.limits.KAPPA_MAX` the float64 decision ``|t| > 2`` and the slopes are not
     trusted (the state is recomputed at higher precision, see :func:`float_status`).
@@ -251,118 +258,9 @@ def trace_kappa(a: Sequence[FloatValue], r: Sequence[FloatValue], t: FloatValue,
         Aa, _, _, Da, ea = monodromy(FLOAT, [np.abs(x) for x in a], [-x for x in r])
         return np.ldexp(Aa + Da, ea - e) * (np.abs(t) / np.abs(disc)) * ka
 
-#: the relative allowance per site for the rounding of the sum of :func:`sharp_trace_kappa` and products
-#: (``16 u``, ``u = 2**-53``)``
-SHARP_UNIT = 16.0 * 2.0 ** -53
-
-_FAR = 2.0 ** 200
-_NEAR = 2.0 ** -200
-
-
-def sharp_trace_kappa(p: npt.NDArray[np.float64], r: npt.NDArray[np.float64], lam: float, lo: float) -> float:
-    r"""The sharp condition ``k_t`` of one trace decision (one state, scalar code): ``Ts |t| / |t**2 - 4|``
-    times ``max_j (|lam| + |p_j|) / |lam + p_j|``, with the rounding scale ``Ts`` below in place of the cheap
-    ``T`` of :func:`trace_kappa`.
-
-    Derivation.  The float64 routes form ``M = m_N ... m_1`` by ``A' = a_j A - C``, ``B' = a_j B - D``,
-    ``C' = r_j A``, ``D' = r_j B`` (``a_j = lam_add(lam, lo, p_j)``, one rounding) with exact
-    power-of-two rescalings, and ``t = A + D``.  Each site's computed product is
-    ``(m_j + Delta_j) M_{j-1}`` with ``|Delta_j| <= gamma_3 |m_j|`` entrywise (first row: ``a_j``'s own
-    rounding, the product, the difference; second row: one product; the rescalings are exact), so to
-    first order, with the prefix ``P_{j-1} = m_{j-1} ... m_1`` and the suffix ``S_{j+1} = m_N ... m_{j+1}``,
-
-        t_computed - t = sum_j tr(S_{j+1} Delta_j P_{j-1}) + delta (A + D),
-        |t_computed - t| <= gamma_3 sum_j tr(|S_{j+1}| |m_j| |P_{j-1}|) + u |t|.
-
-    The cheap bound is ``gamma_{3N} T``, ``T = tr(|m_N| ... |m_1|)``; since
-    ``|S_{j+1}| |m_j| |P_{j-1}| <= |m_N| ... |m_1|`` entrywise, each term is at most ``T``, so the mean
-    ``Ts = (1/N) sum_j tr(|S_{j+1}| |m_j| |P_{j-1}|)`` takes ``T``'s place in the same form
-    ``N gamma_3 Ts`` -- hence in ``kappa`` and in the bound ``32 N eps kappa rho s`` with its constant
-    unchanged.  The sum is formed from the prefix products' first rows, stored (the second row of ``P_j``
-    is ``r_j`` times the first row of ``P_{j-1}``), and a backward pass for ``S``, both renormalised by
-    exact powers of two; its own rounding and the use of the computed rather than the exact ``P``, ``S``
-    change it by a relative ``O(N u)``, for which ``Ts`` is multiplied by ``1 + SHARP_UNIT N``.
-
-    *First order only*: the terms with two or more ``Delta`` (and the deviation of the computed ``P``,
-    ``S`` from the exact ones, bounded a priori only by ``gamma_{3N}`` times the absolute products) are
-    not bounded here -- the a priori bound ``(3 N u)**2 T`` would bring back the pessimism this estimate
-    removes.  ``tests/test_numeric_kappa.py`` measures the accuracy bound against the 50-digit literal
-    step where this estimate decides.
-
-    The result does not depend on the routes' scaling (``t``, ``t**2 - 4`` and ``Ts`` are formed here,
-    in this function's own power-of-two scale); ``inf`` or NaN (not trusted) where ``t = +-2`` or a
-    product leaves the range.  Plain scalar code: the compiled kernels run it as it is.
-
-    >>> p, r = np.array([-20.0, 10.0, 1.0]), np.exp(np.diff([1.0, 0.0, 0.9, 1.0]))
-    >>> k = sharp_trace_kappa(p, r, 15.0, 0.0)        # the paper's example at lam1 = 15: far from +-2
-    >>> 1.0 <= k < 20.0
-    True
-    """
-    N = p.shape[0]
-    pa = np.empty(N)
-    pb = np.empty(N)
-    pe = np.empty(N, dtype=np.int64)
-    A = lam_add(lam, lo, p[0])
-    B = -1.0
-    C = r[0]
-    D = 0.0
-    e = 0
-    kn = abs(lam) + abs(p[0])           # max_j (|lam| + |p_j|) / |a_j| as kn / kd (as the kernels' track)
-    kd = abs(A)
-    pa[0] = A
-    pb[0] = B
-    pe[0] = 0
-    for j in range(1, N):
-        a = lam_add(lam, lo, p[j])
-        cn = abs(lam) + abs(p[j])
-        if cn * kd > kn * abs(a):
-            kn = cn
-            kd = abs(a)
-        rj = r[j]
-        A, B, C, D = a * A - C, a * B - D, rj * A, rj * B
-        m = max(abs(A), abs(B), abs(C), abs(D))
-        if (m > _FAR or m < _NEAR) and m > 0.0 and m < math.inf:      # exact power-of-two rescaling
-            f = math.frexp(m)[1]
-            A, B, C, D, e = math.ldexp(A, -f), math.ldexp(B, -f), math.ldexp(C, -f), math.ldexp(D, -f), e + f
-        pa[j] = A
-        pb[j] = B
-        pe[j] = e
-    t = A + D
-    two = math.ldexp(2.0, -e)
-    disc = (t - two) * (t + two)        # 2**(-2e) (tr**2 - 4), no cancellation
-    S11, S12, S21, S22 = 1.0, 0.0, 0.0, 1.0
-    es = 0
-    total = 0.0
-    for j in range(N - 1, -1, -1):
-        sa = lam_add(lam, lo, p[j])
-        a = abs(sa)
-        rj = r[j]
-        if j == 0:                      # P_0 = identity
-            P11, P12, P21, P22, ep = 1.0, 0.0, 0.0, 1.0, 0
-        else:
-            ep = int(pe[j - 1])
-            P11, P12 = abs(pa[j - 1]), abs(pb[j - 1])
-            if j == 1:                  # P_1 = m_1: second row (r_1, 0)
-                P21, P22 = math.ldexp(r[0], -ep), 0.0
-            else:
-                fr = math.ldexp(r[j - 1], int(pe[j - 2]) - ep)
-                P21, P22 = fr * abs(pa[j - 2]), fr * abs(pb[j - 2])
-        X11, X12 = a * P11 + P21, a * P12 + P22
-        X21, X22 = rj * P11, rj * P12
-        term = abs(S11) * X11 + abs(S12) * X21 + abs(S21) * X12 + abs(S22) * X22
-        total += math.ldexp(term, es + ep - e)
-        S11, S12, S21, S22 = S11 * sa + S12 * rj, -S11, S21 * sa + S22 * rj, -S21    # S_j = S_{j+1} m_j
-        m = max(abs(S11), abs(S12), abs(S21), abs(S22))
-        if (m > _FAR or m < _NEAR) and m > 0.0 and m < math.inf:
-            f = math.frexp(m)[1]
-            S11, S12 = math.ldexp(S11, -f), math.ldexp(S12, -f)
-            S21, S22, es = math.ldexp(S21, -f), math.ldexp(S22, -f), es + f
-    Ts = total / N * (1.0 + SHARP_UNIT * N)
-    return Ts * abs(t) / abs(disc) * (kn / kd)
-
-
 def sharpened(S: SlopeData, rows: npt.NDArray[np.bool_]) -> npt.NDArray[np.float64]:
-    """:func:`sharp_trace_kappa` of the float64 rows ``rows`` of :func:`eigen_slopes`' data ``S`` (``inf``
+    """:func:`~symbt.numeric.core.condition.sharp_trace_kappa` of the float64 rows ``rows`` of
+    :func:`eigen_slopes`' data ``S`` (``inf``
     elsewhere): the second tier of :func:`trace_kappa` and :func:`float_status`.
 
     >>> from symbt.numeric.core.context import FLOAT
@@ -390,7 +288,8 @@ def float_status(aux: StepAux, Pn: Sequence[FloatValue], Qn: Sequence[FloatValue
 
     In the order of the fused kernels: ``ILLCOND`` where a trace is within ``KAPPA_MAX`` times its rounding
     scale of ``+-2`` (:func:`trace_kappa`; two-tier: where the cheap estimate would give ``ILLCOND``, the
-    sharp one of :func:`sharp_trace_kappa`, see :func:`sharpened`), ``TRACE1``/``TRACE2`` where
+    sharp one of :func:`~symbt.numeric.core.condition.sharp_trace_kappa`, see :func:`sharpened`),
+    ``TRACE1``/``TRACE2`` where
     ``|tr| <= 2``, ``POSITIVITY`` where
     the traces have opposite signs (``lam1``, ``lam2`` in different gaps: no real map) or some
     ``Etilde_j / E_j = 1 + xr_j <= 0``, ``ILLCOND`` where the state's ``kappa`` (module docstring) exceeds

@@ -69,10 +69,10 @@ import numpy as np
 
 from ..core import limits
 from ..core.compile import instantiate
+from ..core.condition import sharp_trace_kappa
 from ..core.fused import SOURCE
 from ..core.limits import KAPPA_MAX, MAX_DQ_FLOAT64, OK, RANGE
 from ..core.spectral_sum import lam_add, lam_split
-from ..core.step import sharp_trace_kappa
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -82,16 +82,17 @@ if TYPE_CHECKING:
 
 Track = tuple[float, float, float, float, float, float, float]
 
-__all__ = ["orbit", "orbit_rows", "stored_steps", "python_kernels", "cheap_kernels", "sharp_compiled", "ANCHOR", "HOOKS", "OPERATIONS"]
+__all__ = ["orbit", "orbit_rows", "stored_steps", "python_kernels", "cheap_kernels", "sharp_compiled", "ANCHOR",
+           "HOOKS", "OPERATIONS"]
 # monodromy entries past _BIG are multiplied by _SHRINK (powers of two: exact, the slopes only need ratios),
 # so that |tr L| ~ 1e300 and beyond (N = 256 far from the spectrum) stays in the kernel; the product of the
 # absolute values (>= the monodromy entrywise) decides when, and is scaled alike
 _BIG = 2.0 ** 400
 _SHRINK = 2.0 ** -400
 
-# the limits and the sharp condition (core/step.py) are compiled into the step: their files belong to its
+# the limits and the sharp condition (core/condition.py) are compiled into the step: their files belong to its
 # cache key (core/compile.py)
-_EXTRA = (Path(limits.__file__), Path(limits.__file__).with_name("step.py"))   # step.py: sharp_trace_kappa
+_EXTRA = (Path(limits.__file__), Path(limits.__file__).with_name("condition.py"))
 
 #: steps between re-anchoring ``r`` to ``exp`` of the accumulated positions
 ANCHOR = 16
@@ -220,7 +221,7 @@ def _decided(aux: Track, t: float, disc: float, tt: F64, i: int, p: F64, r: F64,
     """The trace is decided only where it is far from ``+-2`` against its rounding error:
     ``T |t| <= KAPPA_MAX |t**2 - 4|`` with ``T`` the trace of the product of the entrywise absolute
     values; ``tt[i + 2]`` receives the trace's condition times ``a_j``'s (>= 1), ``k_t``.  Two-tier:
-    where that cheap test fails, the sharp ``k_t`` of :func:`~symbt.numeric.core.step.sharp_trace_kappa`
+    where that cheap test fails, the sharp ``k_t`` of :func:`~symbt.numeric.core.condition.sharp_trace_kappa`
     (prefix and suffix products, computed only then) decides, ``k_t <= KAPPA_MAX``."""
     T = aux[0] + aux[3]
     k = T * abs(t) / abs(disc) * (aux[4] / aux[5])
@@ -243,7 +244,7 @@ def _step_kappa(tt: F64) -> float:
 
 def _sharpen(tt: F64, p: F64, r: F64, lam1: float, lo1: float, lam2: float, lo2: float) -> float:
     """The second tier of the state's ``k_t`` (where the cheap one fails a site's read-out test): each
-    trace's condition lowered to the sharp :func:`~symbt.numeric.core.step.sharp_trace_kappa` if that is
+    trace's condition lowered to the sharp :func:`~symbt.numeric.core.condition.sharp_trace_kappa` if that is
     smaller; returns the new ``k_t``."""
     for i, lam, lo in ((2, lam1, lo1), (3, lam2, lo2)):
         ks = sharp_trace_kappa(p, r, lam, lo)
@@ -290,7 +291,7 @@ OPERATIONS = {"add": operator.add, "sub": operator.sub, "mul": operator.mul, "di
 
 @cache
 def sharp_compiled() -> Callable[..., Any]:
-    """:func:`~symbt.numeric.core.step.sharp_trace_kappa` compiled by numba (the global the compiled hooks
+    """:func:`~symbt.numeric.core.condition.sharp_trace_kappa` compiled by numba (the global the compiled hooks
     and the block kernel call; needs numba).
 
     >>> callable(sharp_compiled) and sharp_compiled.__name__

@@ -27,9 +27,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..core.condition import sharp_trace_kappa
 from ..core.limits import ILLCOND, KAPPA_MAX, MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 from ..core.spectral_sum import lam_add, lam_split
-from ..core.step import sharp_trace_kappa
 from .kernels import _BIG, _SHRINK, _dd_add, _dd_low, _dd_position, _logf
 
 if TYPE_CHECKING:
