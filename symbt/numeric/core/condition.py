@@ -138,4 +138,6 @@ def sharp_trace_kappa(p: npt.NDArray[np.float64], r: npt.NDArray[np.float64], la
             S11, S12 = math.ldexp(S11, -f), math.ldexp(S12, -f)
             S21, S22, es = math.ldexp(S21, -f), math.ldexp(S22, -f), es + f
     Ts = total / N * (1.0 + SHARP_UNIT * N)
-    return Ts * abs(t) / abs(disc) * (kn / kd)
+    if disc == 0.0 or kd == 0.0:        # t = +-2, or some a_j = 0 with lam, p_j not both 0: not decided
+        return math.inf
+    return float(Ts * abs(t) / abs(disc) * (kn / kd))
