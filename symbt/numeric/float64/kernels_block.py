@@ -254,9 +254,9 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
         _slopes(p, r, l2, o2, -branch, w, tmp, A, Bm, C, D, u1, fw, st, TRACE2, Ab, t2, k2, Kn, Kd, sc)
         for k in range(B):
             kt[k] = max(k1[k], k2[k])
-            sh[k] = 0
             if st[k] == OK and (t1[k] < 0.0) != (t2[k] < 0.0):
                 st[k] = POSITIVITY          # lam1, lam2 in different gaps (kernels.orbit)
+            sh[k] = st[k]
         for j in range(N):
             for k in range(B):
                 dn = u[j, k] - w[j, k]
@@ -265,20 +265,30 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
                 gq[j, k] = u[j, k] / dn
                 ok = (kt[k] * (abs(u[j, k]) + abs(w[j, k])) * (abs(x + 1.0) + abs(x))
                       <= KAPPA_MAX * abs(dn) * abs(x + 1.0))          # kernels.orbit
-                if not ok and sh[k] == 0 and st[k] == OK and abs(x) < 1e300:
-                    # the sharp tier of k_t, once per state (kernels._sharpen)
-                    sh[k] = 1
-                    ks = sharp_trace_kappa(p[:, k], r[:, k], l1[k], o1[k])
-                    k1[k] = ks if ks < k1[k] else k1[k]
-                    ks = sharp_trace_kappa(p[:, k], r[:, k], l2[k], o2[k])
-                    k2[k] = ks if ks < k2[k] else k2[k]
-                    kt[k] = max(k1[k], k2[k])
-                    ok = (kt[k] * (abs(u[j, k]) + abs(w[j, k])) * (abs(x + 1.0) + abs(x))
-                          <= KAPPA_MAX * abs(dn) * abs(x + 1.0))
                 bad = (RANGE if not abs(x) < 1e300 else ILLCOND if not ok
                        else POSITIVITY if not x + 1.0 > 0.0 else OK)
                 s0 = st[k]
                 st[k] = s0 if s0 != OK else bad
+        for k in range(B):
+            if sh[k] == OK and st[k] == ILLCOND:
+                # a site's read-out test failed with the cheap k_t: the sharp tier (kernels._sharpen), and the
+                # sites decided again in order (those before passed with the larger k_t), off the SIMD loop
+                ks = sharp_trace_kappa(p[:, k], r[:, k], l1[k], o1[k])
+                k1[k] = ks if ks < k1[k] else k1[k]
+                ks = sharp_trace_kappa(p[:, k], r[:, k], l2[k], o2[k])
+                k2[k] = ks if ks < k2[k] else k2[k]
+                kt[k] = max(k1[k], k2[k])
+                st[k] = OK
+                for j in range(N):
+                    x = xr[j, k]
+                    dn = u[j, k] - w[j, k]
+                    ok = (kt[k] * (abs(u[j, k]) + abs(w[j, k])) * (abs(x + 1.0) + abs(x))
+                          <= KAPPA_MAX * abs(dn) * abs(x + 1.0))
+                    bad = (RANGE if not abs(x) < 1e300 else ILLCOND if not ok
+                           else POSITIVITY if not x + 1.0 > 0.0 else OK)
+                    if bad != OK:
+                        st[k] = bad
+                        break
         for j in range(N):
             jn = j + 1 if j + 1 < N else 0
             for k in range(B):
