@@ -21,7 +21,10 @@ The arithmetic (module globals replaced per instantiation; here they are unbound
   entrywise absolute values (the trace's rounding scale) and the cancellation in ``lam + p_j``
   (``track_init``, ``track``), rescales the monodromy by powers of two (``rescale``, ``rescale_last``,
   ``two_of``), tests its range (``in_range``, ``disc_fits``, ``bounded``) and its condition
-  (``decided``, ``step_kappa``, ``trusted``: status ``ILLCOND``), and carries the positions as
+  (``decided``, two-tier: the cheap bound, and where it fails the sharp one of
+  :func:`~symbt.numeric.core.condition.sharp_trace_kappa` from ``p, r, lam, lo``; ``step_kappa``,
+  ``trusted``, and ``sharpen``, the sharp tier of ``k_t`` where a site fails ``trusted``: status
+  ``ILLCOND``), and carries the positions as
   neighbour ratios and double-double factors; quad-double tests finiteness and carries the positions
   themselves (``advance``).
 
@@ -56,7 +59,7 @@ def _unbound(*args: Any) -> Any:
 # the arithmetic (see the module docstring), bound by instantiate()
 add = sub = mul = div = neg = sqrt = add_d = mul2 = hi = ld = st = _unbound
 track_init = track = rescale = rescale_last = in_range = two_of = decided = disc_fits = _unbound
-step_kappa = bounded = trusted = advance = lam_add = lam_split = _unbound
+step_kappa = sharpen = bounded = trusted = advance = lam_add = lam_split = _unbound
 
 
 def slopes(p: Any, r: Any, lam: Any, lo: Any, s: int, u: Any, code: int, tt: Any, i: int) -> int:
@@ -92,7 +95,7 @@ def slopes(p: Any, r: Any, lam: Any, lo: Any, s: int, u: Any, code: int, tt: Any
         return RANGE
     two = two_of(aux)                   # 2 in the monodromy's scale
     disc = mul(add_d(t, -two), add_d(t, two))     # tr**2 - 4 without cancellation
-    if not decided(aux, t, disc, tt, i):
+    if not decided(aux, t, disc, tt, i, p, r, lam, lo):     # cheap bound, else the sharp one
         return ILLCOND
     if not hi(disc) > 0.0:
         return code
@@ -138,6 +141,7 @@ def step(p: Any, r: Any, pos: Any, lam1: Any, lam2: Any, two_mu: Any, branch: in
     if (tt[0] < 0.0) != (tt[1] < 0.0):
         return POSITIVITY        # lam1, lam2 in different gaps (|tr| > 2 decided, so the signs are)
     kt = step_kappa(tt)
+    sharp = False
     for j in range(N):
         uj = ld(u, j)
         wj = ld(w, j)
@@ -148,7 +152,13 @@ def step(p: Any, r: Any, pos: Any, lam1: Any, lam2: Any, two_mu: Any, branch: in
         if not bounded(x):
             return RANGE
         if not trusted(kt, uj, wj, dn, x):
-            return ILLCOND
+            if sharp:
+                return ILLCOND
+            # the cheap condition fails: the sharp one (computed once; the sites before passed a larger kt)
+            kt = sharpen(tt, p, r, lam1, lo1, lam2, lo2)
+            sharp = True
+            if not trusted(kt, uj, wj, dn, x):
+                return ILLCOND
         if not hi(add_d(x, 1.0)) > 0.0:
             return POSITIVITY
     for j in range(N):

@@ -58,7 +58,13 @@ where the decision is conditioned: with ``T_i`` the trace of ``|m_N| ... |m_1|``
     kappa = max_j k_t (|u_j| + |w_j|) / |u_j - w_j| (1 + |xr_j| / |1 + xr_j|),
     k_t = max_i T_i |t_i| / |t_i**2 - 4| * max_j (|lam_i| + |p_j|) / |lam_i + p_j|,
 
-a state with ``kappa > KAPPA_MAX = 2**24`` is recomputed by the mpmath step
+two-tier: where this cheap ``k_t`` would make the state ill-conditioned, ``T_i`` is replaced by the
+sharp first-order rounding scale of the computed trace
+(:func:`~symbt.numeric.core.condition.sharp_trace_kappa`: prefix and suffix products,
+``(1/N) sum_j tr(|S_{j+1}| |m_j| |P_{j-1}|) <= T_i``; the cheap ``T_i`` overestimates the
+trace's error by orders of magnitude when the ``a_j`` take both signs, ~1e6 at N = 64 and ~1e27 at
+N = 256 on the benchmark chains).  A state whose ``kappa`` still exceeds ``KAPPA_MAX = 2**24`` is
+recomputed by the mpmath step
 (:func:`symbt.numeric.float64.rows.escalate_rows`) and rounded to float64.  A returned
 state satisfies ``max |x - x_exact| <= 32 N eps kappa rho s`` (``rho = 1 +
 max |q_{j+1} - q_j|``, ``s = max(|p|, |q|, |p~|, |q~|, |lam0| + |mu|)``,
@@ -105,6 +111,7 @@ from typing import TYPE_CHECKING, TypedDict
 import mpmath
 import numpy as np
 
+from .condition import sharp_trace_kappa
 from .context import FLOAT, IV, Cond, Context, Exponent, FloatValue, MPValue, Value
 from .errors import NoRealMapError, NumericRangeError
 from .inputs import to_output
@@ -115,7 +122,8 @@ if TYPE_CHECKING:
     import numpy.typing as npt
 
 
-__all__ = ["step_core", "eigen_slopes", "SlopeData", "StepAux", "mp_step", "BLOCK_ELEMENTS"]
+__all__ = ["step_core", "eigen_slopes", "SlopeData", "StepAux", "mp_step", "BLOCK_ELEMENTS", "trace_kappa",
+           "sharpened", "float_status"]
 
 _GUARD_DIGITS = 12
 #: accepted values of ``backend`` (float64: auto/numba/python/numpy; mpmath: auto/qd/flint/mpmath)
@@ -132,11 +140,13 @@ class SlopeData:
     3.0
     """
 
-    __slots__ = ("u", "trace_ok", "forward", "t", "g", "e", "kappa")
+    __slots__ = ("u", "trace_ok", "forward", "t", "g", "e", "kappa", "inputs")
 
     def __init__(self, *, trace_ok: Value = None, t: Value = None, g: Value = None, e: Exponent = 0,
                  u: list[Value] | None = None, forward: Cond | None = None) -> None:
         self.kappa: FloatValue | None = None
+        #: float64: ``(p, r, lam, lo)``, what the sharp tier of the condition estimate recomputes from
+        self.inputs: tuple[Sequence[FloatValue], Sequence[FloatValue], FloatValue, FloatValue] | None = None
         self.trace_ok = trace_ok
         self.t = t
         self.g = g
@@ -177,7 +187,7 @@ def _backward(ctx: Context, a: Sequence[Value], r: Sequence[Value], u1: Value) -
 
 
 def eigen_slopes(ctx: Context, a: Sequence[Value], r: Sequence[Value], s: int, need_slopes: bool = True,
-                 spec: tuple[Value, Sequence[Value]] | None = None) -> SlopeData:
+                 spec: tuple[Value, Sequence[Value], Value] | None = None) -> SlopeData:
     """Slopes of the eigenvector with eigenvalue ``(tr - s*sqrt(tr^2-4))/2`` at every site.
 
     ``a_j = lam + p_j``; ``s = +1`` gives the paper's ``y`` (for ``branch=+1``),
@@ -203,8 +213,9 @@ def eigen_slopes(ctx: Context, a: Sequence[Value], r: Sequence[Value], s: int, n
     data.forward = fwd
     if not need_slopes:
         return data
-    if ctx is FLOAT and spec is not None:        # float64 conditioning (``spec = (lam, p)``, a_j = lam + p_j)
-        lam, P = spec
+    if ctx is FLOAT and spec is not None:   # float64 conditioning (``spec = (lam, p, lo)``, a_j = lam + lo + p_j)
+        lam, P, lo = spec
+        data.inputs = (P, r, lam, lo)
         with np.errstate(all="ignore"):
             ka = np.maximum.reduce([(np.abs(lam) + np.abs(P[j])) / np.abs(a[j]) for j in range(len(a))])
         data.kappa = trace_kappa(a, r, t, disc, e, ka)
@@ -227,12 +238,15 @@ def eigen_slopes(ctx: Context, a: Sequence[Value], r: Sequence[Value], s: int, n
 
 def trace_kappa(a: Sequence[FloatValue], r: Sequence[FloatValue], t: FloatValue, disc: FloatValue, e: Exponent,
                 ka: FloatValue | float = 1.0) -> FloatValue:
-    """float64 condition estimate of the trace decision: ``T |t| / |t**2 - 4|`` per row.
+    """float64 condition estimate of the trace decision: ``T |t| / |t**2 - 4|`` per row (the cheap tier).
 
     ``T`` is the trace of ``|m_N| ... |m_1|`` (entrywise absolute values, computed as the monodromy of
     ``|a_j|`` and ``-r_j``, which has no cancellation), the scale of the rounding error of ``t``; ``t``,
     ``disc`` are the scaled trace and ``t**2 - 4`` of :func:`eigen_slopes` (exponent ``e``), ``ka`` the
-    cancellation factor ``max_j (|lam| + |p_j|) / |lam + p_j|`` it is multiplied by.  Beyond
+    cancellation factor ``max_j (|lam| + |p_j|) / |lam + p_j|`` it is multiplied by.  Where the state would
+    be escalated with it, :func:`float_status` takes the sharp estimate of
+    :func:`~symbt.numeric.core.condition.sharp_trace_kappa` (the
+    second tier, as the fused and block kernels do).  Beyond
     :data:`~symbt.numeric.core.limits.KAPPA_MAX` the float64 decision ``|t| > 2`` and the slopes are not
     trusted (the state is recomputed at higher precision, see :func:`float_status`).
 
@@ -244,12 +258,39 @@ def trace_kappa(a: Sequence[FloatValue], r: Sequence[FloatValue], t: FloatValue,
         Aa, _, _, Da, ea = monodromy(FLOAT, [np.abs(x) for x in a], [-x for x in r])
         return np.ldexp(Aa + Da, ea - e) * (np.abs(t) / np.abs(disc)) * ka
 
+def sharpened(S: SlopeData, rows: npt.NDArray[np.bool_]) -> npt.NDArray[np.float64]:
+    """:func:`~symbt.numeric.core.condition.sharp_trace_kappa` of the float64 rows ``rows`` of
+    :func:`eigen_slopes`' data ``S`` (``inf``
+    elsewhere): the second tier of :func:`trace_kappa` and :func:`float_status`.
+
+    >>> from symbt.numeric.core.context import FLOAT
+    >>> S = eigen_slopes(FLOAT, [np.array([15.0 + x]) for x in (-20.0, 10.0, 1.0)],
+    ...                  [np.array([x]) for x in np.exp(np.diff([1.0, 0.0, 0.9, 1.0]))], 1,
+    ...                  spec=(15.0, [np.array([x]) for x in (-20.0, 10.0, 1.0)], 0.0))
+    >>> 1.0 <= float(sharpened(S, np.array([True]))[0]) < 20.0
+    True
+    """
+    assert S.inputs is not None                 # set by eigen_slopes for the float context
+    P, r, lam, lo = S.inputs
+    shape = np.shape(rows)
+    out = np.full(shape, np.inf)
+    with np.errstate(all="ignore"):
+        pv = np.stack([np.broadcast_to(x, shape) for x in P], axis=-1).astype(float)
+        rv = np.stack([np.broadcast_to(x, shape) for x in r], axis=-1).astype(float)
+        lv, ov = np.broadcast_to(lam, shape), np.broadcast_to(lo, shape)
+        for k in zip(*np.nonzero(rows)):
+            out[k] = sharp_trace_kappa(pv[k], rv[k], float(lv[k]), float(ov[k]))
+    return out
+
 
 def float_status(aux: StepAux, Pn: Sequence[FloatValue], Qn: Sequence[FloatValue]) -> npt.NDArray[np.int64]:
     """Per-row status codes (:mod:`symbt.numeric.core.limits`) of a float64 :func:`step_core` with ``check_real=False``.
 
     In the order of the fused kernels: ``ILLCOND`` where a trace is within ``KAPPA_MAX`` times its rounding
-    scale of ``+-2`` (:func:`trace_kappa`), ``TRACE1``/``TRACE2`` where ``|tr| <= 2``, ``POSITIVITY`` where
+    scale of ``+-2`` (:func:`trace_kappa`; two-tier: where the cheap estimate would give ``ILLCOND``, the
+    sharp one of :func:`~symbt.numeric.core.condition.sharp_trace_kappa`, see :func:`sharpened`),
+    ``TRACE1``/``TRACE2`` where
+    ``|tr| <= 2``, ``POSITIVITY`` where
     the traces have opposite signs (``lam1``, ``lam2`` in different gaps: no real map) or some
     ``Etilde_j / E_j = 1 + xr_j <= 0``, ``ILLCOND`` where the state's ``kappa`` (module docstring) exceeds
     ``KAPPA_MAX`` (that sign or the result not trusted), ``RANGE`` where the result is not finite.
@@ -258,15 +299,23 @@ def float_status(aux: StepAux, Pn: Sequence[FloatValue], Qn: Sequence[FloatValue
 
     S1, S2 = aux["S1"], aux["S2"]
     assert S1.kappa is not None and S2.kappa is not None      # set by eigen_slopes for the float context
+    k1, k2 = S1.kappa, S2.kappa
     with np.errstate(all="ignore"):
-        ill_t = ~(S1.kappa <= KAPPA_MAX) | ~(S2.kappa <= KAPPA_MAX)
         t1, t2 = S1.trace_ok > 0, S2.trace_ok > 0
         opp = (S1.t < 0) != (S2.t < 0)
         xr, u, w = aux["xr"], aux["u"], aux["w"]
-        kt = np.maximum(S1.kappa, S2.kappa)
-        ill_p = np.logical_or.reduce([
-            ~(kt * (np.abs(u[j]) + np.abs(w[j])) * (np.abs(x + 1) + np.abs(x))
-              <= KAPPA_MAX * np.abs(u[j] - w[j]) * np.abs(x + 1)) for j, x in enumerate(xr)])
+
+        def ill(k1: FloatValue, k2: FloatValue) -> tuple[npt.NDArray[np.bool_], npt.NDArray[np.bool_]]:
+            kt = np.maximum(k1, k2)
+            return ~(k1 <= KAPPA_MAX) | ~(k2 <= KAPPA_MAX), np.logical_or.reduce([
+                ~(kt * (np.abs(u[j]) + np.abs(w[j])) * (np.abs(x + 1) + np.abs(x))
+                  <= KAPPA_MAX * np.abs(u[j] - w[j]) * np.abs(x + 1)) for j, x in enumerate(xr)])
+
+        ill_t, ill_p = ill(k1, k2)
+        rows = np.broadcast_to(ill_t | ill_p, np.shape(k1))
+        if np.any(rows):        # the second tier where the cheap estimate escalates (as the kernels do)
+            k1, k2 = np.fmin(k1, sharpened(S1, rows)), np.fmin(k2, sharpened(S2, rows))
+            ill_t, ill_p = ill(k1, k2)
         pos = np.logical_and.reduce([x + 1 > 0 for x in xr])
         fin = np.isfinite(np.add.reduce(Pn) + np.add.reduce(Qn))
     conds = [np.broadcast_to(c, np.shape(fin)) for c in (ill_t, ~t1, ~t2, opp, ill_p, ~pos, ~fin)]
@@ -324,8 +373,12 @@ def step_core(ctx: Context, P: Sequence[Value], Q: Sequence[Value], lam0: Value,
     else:
         a1 = [lam1 + pj for pj in P]
         a2 = [lam2 + pj for pj in P]
-    S1 = eigen_slopes(ctx, a1, r, branch, spec=(lam1, P))
-    S2 = eigen_slopes(ctx, a2, r, -branch, spec=(lam2, P))
+    if ctx is FLOAT:
+        S1 = eigen_slopes(ctx, a1, r, branch, spec=(lam1, P, lo1))
+        S2 = eigen_slopes(ctx, a2, r, -branch, spec=(lam2, P, lo2))
+    else:
+        S1 = eigen_slopes(ctx, a1, r, branch)
+        S2 = eigen_slopes(ctx, a2, r, -branch)
     if check_real:
         for name, S in (("lam1 = lam0 + mu", S1), ("lam2 = lam0 - mu", S2)):
             if not ctx.all_positive(S.trace_ok):

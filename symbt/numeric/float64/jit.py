@@ -50,7 +50,7 @@ def _fused_step(replaced: dict[str, Callable[..., Any]] | None = None) -> Callab
     from . import kernels as K
 
     shrunk = njit(K._shrunk, inline="always")
-    hooks = {name: njit(clone(fn, _shrunk=shrunk), inline="always")
+    hooks = {name: njit(clone(fn, _shrunk=shrunk, sharp_trace_kappa=K.sharp_compiled()), inline="always")
              for name, fn in {**K.HOOKS, **(replaced or {})}.items()}
     return instantiate(SOURCE, {**K.OPERATIONS, **hooks}, tag="f64", jit=True, inline=("slopes", "step"),
                        extra=K._EXTRA)["step"]
@@ -87,8 +87,10 @@ def _compile_all() -> None:
 
     small = _small()
     la = {name: njit(getattr(KB, name), inline="always") for name in ("lam_add", "lam_split")}
-    block = {"_slopes": njit(clone(KB._slopes, _shrink=njit(KB._shrink, inline="always"), lam_add=la["lam_add"]))}
+    block = {"_slopes": njit(clone(KB._slopes, _shrink=njit(KB._shrink, inline="always"), lam_add=la["lam_add"],
+                                   sharp_trace_kappa=K.sharp_compiled()))}
     block["_anchor"] = njit(clone(KB._anchor, **small))
+    block["sharp_trace_kappa"] = K.sharp_compiled()      # the sharp tier of the condition (run_block too)
     run_block = instantiate({"run_block": KB.run_block}, {**block, **small, "lam_split": la["lam_split"]},
                             tag="f64", jit=True, extra=K._EXTRA)["run_block"]
     ens = njit(clone(KB.ensemble, run_block=run_block, prange=numba.prange), parallel=True)

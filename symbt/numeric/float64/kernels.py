@@ -69,6 +69,7 @@ import numpy as np
 
 from ..core import limits
 from ..core.compile import instantiate
+from ..core.condition import sharp_trace_kappa
 from ..core.fused import SOURCE
 from ..core.limits import KAPPA_MAX, MAX_DQ_FLOAT64, OK, RANGE
 from ..core.spectral_sum import lam_add, lam_split
@@ -81,15 +82,17 @@ if TYPE_CHECKING:
 
 Track = tuple[float, float, float, float, float, float, float]
 
-__all__ = ["orbit", "orbit_rows", "stored_steps", "python_kernels", "ANCHOR", "HOOKS", "OPERATIONS"]
+__all__ = ["orbit", "orbit_rows", "stored_steps", "python_kernels", "cheap_kernels", "sharp_compiled", "ANCHOR",
+           "HOOKS", "OPERATIONS"]
 # monodromy entries past _BIG are multiplied by _SHRINK (powers of two: exact, the slopes only need ratios),
 # so that |tr L| ~ 1e300 and beyond (N = 256 far from the spectrum) stays in the kernel; the product of the
 # absolute values (>= the monodromy entrywise) decides when, and is scaled alike
 _BIG = 2.0 ** 400
 _SHRINK = 2.0 ** -400
 
-# the limits are frozen into the compiled step: their file belongs to its cache key (core/compile.py)
-_EXTRA = (Path(limits.__file__),)
+# the limits and the sharp condition (core/condition.py) are compiled into the step: their files belong to its
+# cache key (core/compile.py)
+_EXTRA = (Path(limits.__file__), Path(limits.__file__).with_name("condition.py"))
 
 #: steps between re-anchoring ``r`` to ``exp`` of the accumulated positions
 ANCHOR = 16
@@ -214,14 +217,20 @@ def _two_of(aux: Track) -> float:
     return 2.0 * aux[6]
 
 
-def _decided(aux: Track, t: float, disc: float, tt: F64, i: int) -> bool:
+def _decided(aux: Track, t: float, disc: float, tt: F64, i: int, p: F64, r: F64, lam: float, lo: float) -> bool:
     """The trace is decided only where it is far from ``+-2`` against its rounding error:
     ``T |t| <= KAPPA_MAX |t**2 - 4|`` with ``T`` the trace of the product of the entrywise absolute
-    values; ``tt[i + 2]`` receives the trace's condition times ``a_j``'s (>= 1)."""
+    values; ``tt[i + 2]`` receives the trace's condition times ``a_j``'s (>= 1), ``k_t``.  Two-tier:
+    where that cheap test fails, the sharp ``k_t`` of :func:`~symbt.numeric.core.condition.sharp_trace_kappa`
+    (prefix and suffix products, computed only then) decides, ``k_t <= KAPPA_MAX``."""
     T = aux[0] + aux[3]
+    k = T * abs(t) / abs(disc) * (aux[4] / aux[5])
     if not T * abs(t) <= KAPPA_MAX * abs(disc):
-        return False
-    tt[i + 2] = T * abs(t) / abs(disc) * (aux[4] / aux[5])
+        ks = sharp_trace_kappa(p, r, lam, lo)
+        k = ks if ks < k else k
+        if not k <= KAPPA_MAX:
+            return False
+    tt[i + 2] = k
     return True
 
 
@@ -230,6 +239,17 @@ def _disc_fits(disc: float) -> bool:
 
 
 def _step_kappa(tt: F64) -> float:
+    return max(tt[2], tt[3])
+
+
+def _sharpen(tt: F64, p: F64, r: F64, lam1: float, lo1: float, lam2: float, lo2: float) -> float:
+    """The second tier of the state's ``k_t`` (where the cheap one fails a site's read-out test): each
+    trace's condition lowered to the sharp :func:`~symbt.numeric.core.condition.sharp_trace_kappa` if that is
+    smaller; returns the new ``k_t``."""
+    for i, lam, lo in ((2, lam1, lo1), (3, lam2, lo2)):
+        ks = sharp_trace_kappa(p, r, lam, lo)
+        if ks < tt[i]:
+            tt[i] = ks
     return max(tt[2], tt[3])
 
 
@@ -262,11 +282,55 @@ def _advance(r: F64, pos: tuple[F64, F64], j: int, x: float, xn: float, pj: floa
 HOOKS: dict[str, Callable[..., Any]] = {
     "hi": _hi, "track_init": _track_init, "track": _track, "rescale": _rescale, "rescale_last": _rescale_last,
          "in_range": _in_range, "two_of": _two_of, "decided": _decided, "disc_fits": _disc_fits,
-         "step_kappa": _step_kappa, "bounded": _bounded, "trusted": _trusted, "advance": _advance,
+         "step_kappa": _step_kappa, "sharpen": _sharpen, "bounded": _bounded, "trusted": _trusted, "advance": _advance,
     "ld": _ld, "st": _st, "lam_add": lam_add, "lam_split": lam_split}
 #: the operations of the float64 arithmetic (the same in plain Python and under numba)
 OPERATIONS = {"add": operator.add, "sub": operator.sub, "mul": operator.mul, "div": operator.truediv,
               "neg": operator.neg, "sqrt": math.sqrt, "add_d": operator.add, "mul2": operator.mul}
+
+
+@cache
+def sharp_compiled() -> Callable[..., Any]:
+    """:func:`~symbt.numeric.core.condition.sharp_trace_kappa` compiled by numba (the global the compiled hooks
+    and the block kernel call; needs numba).
+
+    >>> callable(sharp_compiled) and sharp_compiled.__name__
+    'sharp_compiled'
+    """
+    from ..core.compile import clone, njit
+
+    return njit(clone(sharp_trace_kappa, lam_add=njit(lam_add, inline="always")))
+
+
+def _decided_cheap(aux: Track, t: float, disc: float, tt: F64, i: int, p: F64, r: F64, lam: float,
+                   lo: float) -> bool:
+    T = aux[0] + aux[3]
+    if not T * abs(t) <= KAPPA_MAX * abs(disc):
+        return False
+    tt[i + 2] = T * abs(t) / abs(disc) * (aux[4] / aux[5])
+    return True
+
+
+def _sharpen_off(tt: F64, p: F64, r: F64, lam1: float, lo1: float, lam2: float, lo2: float) -> float:
+    return max(tt[2], tt[3])
+
+
+@cache
+def cheap_kernels() -> dict[str, Callable[..., Any]]:
+    """The float64 fused step with the cheap condition estimate only (no sharp tier), plain Python: the
+    boundary of what the emitted code (:mod:`symbt.codegen`, whose guard is the cheap estimate) decides,
+    and the "before" of the two-tier estimate in tests and benchmarks.
+
+    >>> import numpy as np
+    >>> def status(kernels, N=8, delta=1e-6):          # the free chain, lam2 = 2 + delta near a band edge
+    ...     w = [np.empty(N) for _ in range(4)]
+    ...     return kernels["step"](np.zeros(N), np.ones(N), (np.ones(N), np.zeros(N)), 3.0 + delta, 2.0 + delta,
+    ...                            1.0, 1, *w, np.zeros(4))
+    >>> status(cheap_kernels()), status(python_kernels())     # ILLCOND with the cheap estimate only
+    (5, 0)
+    """
+    return instantiate(SOURCE, {**OPERATIONS, **HOOKS, "decided": _decided_cheap, "sharpen": _sharpen_off},
+                       tag="f64cheap", jit=False, extra=_EXTRA)
 
 
 @cache

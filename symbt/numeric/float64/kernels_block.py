@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..core.condition import sharp_trace_kappa
 from ..core.limits import ILLCOND, KAPPA_MAX, MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 from ..core.spectral_sum import lam_add, lam_split
 from .kernels import _BIG, _SHRINK, _dd_add, _dd_low, _dd_position, _logf
@@ -56,9 +57,10 @@ def _slopes(p: F64, r: F64, lam: F64, lo: F64, s: int, u: F64, tmp: F64, A: F64,
     """Scaled eigenvector slopes ``u[j, k]`` at ``lam[k] + lo[k]`` for sign ``s`` (see :mod:`symbt.numeric.core.step`;
     every ``lam + lo + p_j`` by :func:`~symbt.numeric.core.spectral_sum.lam_add`, as in the fused step).
 
-    ``tt[k]`` receives the trace, ``kt[k]`` the maximum of itself and the trace's condition; ``Ab`` (4, B)
-    is scratch for the product of the absolute values (the trace's rounding scale, the float64 hooks of
-    :mod:`symbt.numeric.core.fused` in :mod:`.kernels`); ``sc[k]`` the power of two the monodromy is scaled by."""
+    ``tt[k]`` receives the trace, ``kt[k]`` the trace's condition (two-tier, as the fused step's
+    ``decided`` hook); ``Ab`` (4, B) is scratch for the product of the absolute values (the trace's
+    rounding scale, the float64 hooks of :mod:`symbt.numeric.core.fused` in :mod:`.kernels`); ``sc[k]``
+    the power of two the monodromy is scaled by."""
     N, B = p.shape
     for k in range(B):
         A[k] = lam_add(lam[k], lo[k], p[0, k])
@@ -114,11 +116,16 @@ def _slopes(p: F64, r: F64, lam: F64, lo: F64, s: int, u: F64, tmp: F64, A: F64,
         disc = (t - two) * (t + two)    # sc**2 (tr**2 - 4): exact
         inrange = (abs(a_) < 1e290 and abs(b_) < 1e290 and abs(c_) < 1e290 and abs(d_) < 1e290
                    and (abs(a_) > 1e-290 or abs(b_) > 1e-290))
-        decided = (Ab[0, k] + Ab[3, k]) * abs(t) <= KAPPA_MAX * abs(disc)
+        T = Ab[0, k] + Ab[3, k]
+        kap = T * abs(t) / abs(disc) * (Kn[k] / Kd[k])
+        decided = T * abs(t) <= KAPPA_MAX * abs(disc)
+        if inrange and not decided:     # the cheap test fails: the sharp k_t decides (kernels._decided)
+            ks = sharp_trace_kappa(p[:, k], r[:, k], lam[k], lo[k])
+            kap = ks if ks < kap else kap
+            decided = kap <= KAPPA_MAX
         bad = (RANGE if not inrange else ILLCOND if not decided else code if not disc > 0.0
                else RANGE if not disc < 1e300 else OK)   # tr**2 must not overflow
-        kap = (Ab[0, k] + Ab[3, k]) * abs(t) / abs(disc) * (Kn[k] / Kd[k])
-        kt[k] = kap if kap > kt[k] else kt[k]
+        kt[k] = kap
         st = status[k]
         status[k] = st if st != OK else bad
         g = math.sqrt(disc if disc > 0.0 else 0.0)
@@ -217,6 +224,9 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
     o2 = np.empty(B)
     Ab = np.empty((4, B))
     kt = np.empty(B)
+    k1 = np.empty(B)
+    k2 = np.empty(B)
+    sh = np.empty(B, np.int64)
     Kn = np.empty(B)
     Kd = np.empty(B)
     sc = np.empty(B)
@@ -240,13 +250,13 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
     _anchor(qh, ql, fh, fl, r, p, st)
     row = 1
     for i in range(1, n + 1):
+        _slopes(p, r, l1, o1, branch, u, tmp, A, Bm, C, D, u1, fw, st, TRACE1, Ab, t1, k1, Kn, Kd, sc)
+        _slopes(p, r, l2, o2, -branch, w, tmp, A, Bm, C, D, u1, fw, st, TRACE2, Ab, t2, k2, Kn, Kd, sc)
         for k in range(B):
-            kt[k] = 1.0
-        _slopes(p, r, l1, o1, branch, u, tmp, A, Bm, C, D, u1, fw, st, TRACE1, Ab, t1, kt, Kn, Kd, sc)
-        _slopes(p, r, l2, o2, -branch, w, tmp, A, Bm, C, D, u1, fw, st, TRACE2, Ab, t2, kt, Kn, Kd, sc)
-        for k in range(B):
+            kt[k] = max(k1[k], k2[k])
             if st[k] == OK and (t1[k] < 0.0) != (t2[k] < 0.0):
                 st[k] = POSITIVITY          # lam1, lam2 in different gaps (kernels.orbit)
+            sh[k] = st[k]
         for j in range(N):
             for k in range(B):
                 dn = u[j, k] - w[j, k]
@@ -259,6 +269,26 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
                        else POSITIVITY if not x + 1.0 > 0.0 else OK)
                 s0 = st[k]
                 st[k] = s0 if s0 != OK else bad
+        for k in range(B):
+            if sh[k] == OK and st[k] == ILLCOND:
+                # a site's read-out test failed with the cheap k_t: the sharp tier (kernels._sharpen), and the
+                # sites decided again in order (those before passed with the larger k_t), off the SIMD loop
+                ks = sharp_trace_kappa(p[:, k], r[:, k], l1[k], o1[k])
+                k1[k] = ks if ks < k1[k] else k1[k]
+                ks = sharp_trace_kappa(p[:, k], r[:, k], l2[k], o2[k])
+                k2[k] = ks if ks < k2[k] else k2[k]
+                kt[k] = max(k1[k], k2[k])
+                st[k] = OK
+                for j in range(N):
+                    x = xr[j, k]
+                    dn = u[j, k] - w[j, k]
+                    ok = (kt[k] * (abs(u[j, k]) + abs(w[j, k])) * (abs(x + 1.0) + abs(x))
+                          <= KAPPA_MAX * abs(dn) * abs(x + 1.0))
+                    bad = (RANGE if not abs(x) < 1e300 else ILLCOND if not ok
+                           else POSITIVITY if not x + 1.0 > 0.0 else OK)
+                    if bad != OK:
+                        st[k] = bad
+                        break
         for j in range(N):
             jn = j + 1 if j + 1 < N else 0
             for k in range(B):

@@ -105,7 +105,7 @@ def _two_of(aux: float) -> float:
     return 2.0
 
 
-def _decided(aux: float, t: QD, disc: QD, tt: F64, i: int) -> bool:
+def _decided(aux: float, t: QD, disc: QD, tt: F64, i: int, p: F64, r: F64, lam: QD, lo: float) -> bool:
     return True
 
 
@@ -114,6 +114,10 @@ def _disc_fits(disc: QD) -> bool:
 
 
 def _step_kappa(tt: F64) -> float:
+    return 0.0
+
+
+def _sharpen(tt: F64, p: F64, r: F64, lam1: QD, lo1: float, lam2: QD, lo2: float) -> float:
     return 0.0
 
 
@@ -142,7 +146,7 @@ def _advance(r: F64, Q: F64, j: int, x: QD, xn: QD, pj: QD) -> bool:
 HOOKS: dict[str, Callable[..., Any]] = {
     "hi": _hi, "track_init": _track_init, "track": _track, "rescale": _rescale, "rescale_last": _rescale,
          "in_range": _in_range, "two_of": _two_of, "decided": _decided, "disc_fits": _disc_fits,
-         "step_kappa": _step_kappa, "bounded": _finite, "trusted": _trusted, "advance": _advance,
+         "step_kappa": _step_kappa, "sharpen": _sharpen, "bounded": _finite, "trusted": _trusted, "advance": _advance,
          "ld": _row, "st": _put, "lam_add": _lam_add, "lam_split": _lam_split}
 #: the operations: names of :mod:`.qd_arith` (``add_d`` adds a double, ``mul2`` is ``mul_pwr2``)
 OPERATIONS = {"add": "add", "sub": "sub", "mul": "mul", "div": "div", "neg": "neg", "sqrt": "sqrt",
