@@ -216,12 +216,14 @@ def _two_of(aux: Track) -> float:
 
 def _decided(aux: Track, t: float, disc: float, tt: F64, i: int) -> bool:
     """The trace is decided only where it is far from ``+-2`` against its rounding error:
-    ``T |t| <= KAPPA_MAX |t**2 - 4|`` with ``T`` the trace of the product of the entrywise absolute
+    ``T (|t| + 2) <= KAPPA_MAX |t**2 - 4|`` (that is ``T <= KAPPA_MAX ||t| - 2|``: ``t``'s rounding error is a
+    multiple of ``eps T`` however small ``t`` is) with ``T`` the trace of the product of the entrywise absolute
     values; ``tt[i + 2]`` receives the trace's condition times ``a_j``'s (>= 1)."""
     T = aux[0] + aux[3]
-    if not T * abs(t) <= KAPPA_MAX * abs(disc):
+    ta = abs(t) + 2.0 * aux[6]          # |t| + 2 in the monodromy's scale
+    if not T * ta <= KAPPA_MAX * abs(disc):
         return False
-    tt[i + 2] = T * abs(t) / abs(disc) * (aux[4] / aux[5])
+    tt[i + 2] = T * ta / abs(disc) * (aux[4] / aux[5])
     return True
 
 

@@ -114,10 +114,10 @@ def _slopes(p: F64, r: F64, lam: F64, lo: F64, s: int, u: F64, tmp: F64, A: F64,
         disc = (t - two) * (t + two)    # sc**2 (tr**2 - 4): exact
         inrange = (abs(a_) < 1e290 and abs(b_) < 1e290 and abs(c_) < 1e290 and abs(d_) < 1e290
                    and (abs(a_) > 1e-290 or abs(b_) > 1e-290))
-        decided = (Ab[0, k] + Ab[3, k]) * abs(t) <= KAPPA_MAX * abs(disc)
+        decided = (Ab[0, k] + Ab[3, k]) * (abs(t) + two) <= KAPPA_MAX * abs(disc)   # T <= K ||t| - 2|
         bad = (RANGE if not inrange else ILLCOND if not decided else code if not disc > 0.0
                else RANGE if not disc < 1e300 else OK)   # tr**2 must not overflow
-        kap = (Ab[0, k] + Ab[3, k]) * abs(t) / abs(disc) * (Kn[k] / Kd[k])
+        kap = (Ab[0, k] + Ab[3, k]) * (abs(t) + two) / abs(disc) * (Kn[k] / Kd[k])
         kt[k] = kap if kap > kt[k] else kt[k]
         st = status[k]
         status[k] = st if st != OK else bad
