@@ -114,7 +114,11 @@ def test_orbit_transfer_matrix_form(modules, N):
     P, Q = modules[N].bt_orbit(p, q, l0, m, 200)
     assert P.shape == (201, N) and np.array_equal(P[0], p)
     e_gen, e_num = _orbit_error(P, Q, ref), _orbit_error(*bt_orbit(p, q, l0, m, 200), ref)
-    assert e_gen <= 2 * e_num + 1e-14, (e_gen, e_num)
+    # each route against the 50-digit orbit with the per-step bound of the test above (2e-14 per step), not
+    # against the other route: symbt.numeric got more accurate (lam0 +- mu + p_j rounded once) and a bound
+    # relative to its error only measured luck
+    bound = 2e-14 * 200
+    assert e_gen <= bound and e_num <= bound, (e_gen, e_num)
     P2, Q2 = modules[N].bt_orbit_mp(p, q, l0, m, 3)
     assert len(P2) == 4 and abs(float(P2[3][0]) - P[3][0]) < 1e-12
 

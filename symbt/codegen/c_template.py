@@ -190,7 +190,7 @@ static int toda@@N@@_slopes(const double *av, const double *rv, const double *M,
     return 1;
 }
 
-/* symbt.numeric's float64 condition estimate of the trace decision, T |t| / |t^2 - 4| (T the trace of
+/* symbt.numeric's float64 condition estimate of the trace decision, T (|t| + 2) / |t^2 - 4| (T the trace of
    |m_N| ... |m_1|: the monodromy of |a_j| and -r_j, no cancellation, rescaled to M's power of two) */
 static double toda@@N@@_trace_kappa(const double *av, const double *rv, int e, double t, double disc)
 {
@@ -200,7 +200,7 @@ static double toda@@N@@_trace_kappa(const double *av, const double *rv, int e, d
         rr[j] = -rv[j];
     }
     const int ea = toda@@N@@_monodromy(aa, rr, Ma);
-    return ldexp(Ma[0] + Ma[3], ea - e) * (fabs(t) / fabs(disc));
+    return ldexp(Ma[0] + Ma[3], ea - e) * ((fabs(t) + ldexp(2.0, -e)) / fabs(disc));   /* T / ||t| - 2| */
 }
 
 /* max_j (|lam| + |p_j|) / |lam + p_j|: the cancellation in a_j */

@@ -328,7 +328,7 @@ def _traces(_X, P, R, lam0, mu, guards, kappa=None):
         two = _X.ldexp(2 * _X.one, -M[4])
         disc = @@disc_scaled@@
         if kappa is not None and _X.conditioned:
-            k = _trace_kappa(_X, av, R, M, t, disc)
+            k = _trace_kappa(_X, av, R, M, t, disc, two)
             # +-1: a non-finite estimate (an overflowed trace) leaves the decision to the guards after it
             _X.guard(guards, "illcond", f"tr L(lam{i + 1})", np.where(k > _KAPPA_MAX, -1, 1))
             kappa.append(k * _cancellation(lam, P, av))
@@ -336,12 +336,12 @@ def _traces(_X, P, R, lam0, mu, guards, kappa=None):
     return a1, a2, M1, M2, t1, t2
 
 
-def _trace_kappa(_X, av, R, M, t, disc):
-    """float64 condition estimate of the trace decision T |t| / |t**2 - 4| (as symbt.numeric's
+def _trace_kappa(_X, av, R, M, t, disc, two):
+    """float64 condition estimate of the trace decision T (|t| + 2) / |t**2 - 4| (as symbt.numeric's
     trace_kappa): T the trace of |m_N| ... |m_1| (the monodromy of |a_j| and -r_j, no cancellation), the
     rounding scale of t, rescaled to M's power of two."""
     A, B, C, D, e = _scaled_monodromy(_X, [np.abs(a) for a in av], [-r for r in R])
-    return np.ldexp(A + D, e - M[4]) * (np.abs(t) / np.abs(disc))
+    return np.ldexp(A + D, e - M[4]) * ((np.abs(t) + np.abs(two)) / np.abs(disc))
 
 
 def _cancellation(lam, P, av):

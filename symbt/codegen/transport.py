@@ -61,7 +61,8 @@ def illcond_guards(m: TodaModel, guard: Any, traces: tuple[sp.Expr, sp.Expr], u:
     ``lam2``, ``disc(t) = (t - 2)(t + 2)``): the test of ``symbt.numeric``'s kernels
     (:func:`symbt.numeric.core.step.trace_kappa`, ``symbt.numeric.float64.kernels``) with its one limit
     :data:`~symbt.numeric.core.limits.KAPPA_MAX` printed in.  Per spectral parameter
-    ``T |t| / |t^2 - 4| <= KAPPA_MAX`` (``T`` the trace of ``|m_N| ... |m_1|``, the rounding scale of ``t``):
+    ``T (|t| + 2) / |t^2 - 4| <= KAPPA_MAX`` (``T`` the trace of ``|m_N| ... |m_1|``, the rounding scale of ``t``,
+    against the distance ``||t| - 2|`` of the decision):
     ``+-1`` valued (a ``Piecewise``), so a non-finite estimate (an overflowed trace) leaves the decision to
     the range and sign guards after it.  Per site the margin ``KAPPA_MAX |d_j| |1 + xr_j| - kt (|u_j| +
     |w_j|)(|1 + xr_j| + |xr_j|)``, ``xr_j = -2 mu / d_j``, ``kt`` the larger trace condition times the
@@ -84,7 +85,7 @@ def illcond_guards(m: TodaModel, guard: Any, traces: tuple[sp.Expr, sp.Expr], u:
         Ma = sp.eye(2)
         for j in range(N):
             Ma = sp.Matrix([[A(lam_ + p[j]), 1], [sp.exp(m.q[(j + 1) % N] - m.q[j]), 0]]) * Ma
-        k = Quotient(Ma[0, 0] + Ma[1, 1], A(disc(t))) * A(t)
+        k = Quotient(Ma[0, 0] + Ma[1, 1], A(disc(t))) * sp.Add(A(t), 2, evaluate=False)    # T (|t| + 2) / |t^2 - 4|
         kt0.append(k)
         kta.append(k * sp.Max(*(Quotient(A(lam_) + A(p[j]), A(lam_ + p[j])) for j in range(N)), evaluate=False))
     ill_t = tuple(guard("illcond", f"tr L(lam{i + 1})", ill(kt0[i], K), 0) for i in range(2))

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 167fc3e9e41998f94657ca992c8e7fb8db95cf51586db1c421a1b7e704b2a0a4
-# symbt-codegen-content-sha256: 57ec7874289fbb42a30d2cc284087868641aed5f02c3a98e68dbc6eb743ab24a
+# symbt-codegen-derivation-sha256: 2e4c59d33707f5a8f3c82287d8cf0942d8c23856359fdd598731c9c685bd411d
+# symbt-codegen-content-sha256: c20569d739b99137799b9b3ed11c7ce62014a026059954da73c77f71567b8cc3
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 167fc3e9e41998f94657ca992c8e7fb8db95cf51586db1c421a1b7e704b2a0a4
-# symbt-codegen-content-sha256: 627c57188fb8a19652b83951293212cccdc2e00e9ca2f760cbac62eec23c8d7f
+# symbt-codegen-derivation-sha256: 2e4c59d33707f5a8f3c82287d8cf0942d8c23856359fdd598731c9c685bd411d
+# symbt-codegen-content-sha256: 6e6b8eeaa6c2335669391dae83c73cf2dad34c77c0dd8b001e261ef7010f3f46
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -539,7 +539,7 @@ def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
         t14 = -t5
         t15 = t13 + t14 + 2
         t16 = (-t8 - 2)*(t12 + t15)
-        t17 = np.abs(t9)*((t10*t11 + t7)/np.abs(t16))
+        t17 = (np.abs(t9) + 2)*((t10*t11 + t7)/np.abs(t16))
         t18 = lam0 - mu
         t19 = p1 + t18
         t20 = p2 + t18
@@ -550,7 +550,7 @@ def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
         t25 = np.abs(t19)
         t26 = np.abs(t20)
         t27 = (-t23 - 2)*(t15 + t21)
-        t28 = np.abs(t24)*((t25*t26 + t7)/np.abs(t27))
+        t28 = (np.abs(t24) + 2)*((t25*t26 + t7)/np.abs(t27))
         t29 = np.sign(t9)
         t30 = np.sign(t24)
         t31 = 2*mu
@@ -630,7 +630,7 @@ def bt_step(p, q, lam0, mu, branch, errors="raise"):
         t14 = -t5
         t15 = t13 + t14 + 2
         t16 = (-t8 - 2)*(t12 + t15)
-        t17 = np.abs(t9)*((t10*t11 + t7)/np.abs(t16))
+        t17 = (np.abs(t9) + 2)*((t10*t11 + t7)/np.abs(t16))
         t18 = lam0 - mu
         t19 = p1 + t18
         t20 = p2 + t18
@@ -641,7 +641,7 @@ def bt_step(p, q, lam0, mu, branch, errors="raise"):
         t25 = np.abs(t19)
         t26 = np.abs(t20)
         t27 = (-t23 - 2)*(t15 + t21)
-        t28 = np.abs(t24)*((t25*t26 + t7)/np.abs(t27))
+        t28 = (np.abs(t24) + 2)*((t25*t26 + t7)/np.abs(t27))
         t29 = np.sign(t9)
         t30 = np.sign(t24)
         t31 = 2*mu

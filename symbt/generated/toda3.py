@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 167fc3e9e41998f94657ca992c8e7fb8db95cf51586db1c421a1b7e704b2a0a4
-# symbt-codegen-content-sha256: 4d9b55ac0866bff4b41a843796f1c197e3d88cfe11ca1c6d5d8a23617638eb30
+# symbt-codegen-derivation-sha256: 2e4c59d33707f5a8f3c82287d8cf0942d8c23856359fdd598731c9c685bd411d
+# symbt-codegen-content-sha256: 5bb4e8b94503de8ca6996aec451856f0203af688531a5a4c14a484c4d3c8bb2f
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -645,7 +645,7 @@ def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
         t16 = np.abs(t9)
         t17 = np.abs(t6)
         t18 = (t14 - 2)*(t14 + 2)
-        t19 = np.abs(t14)*((t1*t15 + t11*t16 + t17*(t15*t16 + t7))/np.abs(t18))
+        t19 = (np.abs(t14) + 2)*((t1*t15 + t11*t16 + t17*(t15*t16 + t7))/np.abs(t18))
         t20 = lam0 - mu
         t21 = p2 + t20
         t22 = -t21
@@ -661,7 +661,7 @@ def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
         t32 = np.abs(t25)
         t33 = np.abs(t24)
         t34 = (t30 - 2)*(t30 + 2)
-        t35 = np.abs(t30)*((t1*t31 + t11*t32 + t33*(t31*t32 + t7))/np.abs(t34))
+        t35 = (np.abs(t30) + 2)*((t1*t31 + t11*t32 + t33*(t31*t32 + t7))/np.abs(t34))
         t36 = np.sign(t14)
         t37 = np.sign(t30)
         t38 = 2*t11
@@ -755,7 +755,7 @@ def bt_step(p, q, lam0, mu, branch, errors="raise"):
         t16 = np.abs(t9)
         t17 = np.abs(t6)
         t18 = (t14 - 2)*(t14 + 2)
-        t19 = np.abs(t14)*((t1*t15 + t11*t16 + t17*(t15*t16 + t7))/np.abs(t18))
+        t19 = (np.abs(t14) + 2)*((t1*t15 + t11*t16 + t17*(t15*t16 + t7))/np.abs(t18))
         t20 = lam0 - mu
         t21 = p2 + t20
         t22 = -t21
@@ -771,7 +771,7 @@ def bt_step(p, q, lam0, mu, branch, errors="raise"):
         t32 = np.abs(t25)
         t33 = np.abs(t24)
         t34 = (t30 - 2)*(t30 + 2)
-        t35 = np.abs(t30)*((t1*t31 + t11*t32 + t33*(t31*t32 + t7))/np.abs(t34))
+        t35 = (np.abs(t30) + 2)*((t1*t31 + t11*t32 + t33*(t31*t32 + t7))/np.abs(t34))
         t36 = np.sign(t14)
         t37 = np.sign(t30)
         t38 = 2*t11

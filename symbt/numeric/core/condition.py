@@ -40,7 +40,7 @@ _NEAR = 2.0 ** -200
 
 
 def sharp_trace_kappa(p: npt.NDArray[np.float64], r: npt.NDArray[np.float64], lam: float, lo: float) -> float:
-    r"""The sharp condition ``k_t`` of one trace decision (one state, scalar code): ``Ts |t| / |t**2 - 4|``
+    r"""The sharp condition ``k_t`` of one trace decision (one state, scalar code): ``Ts (|t| + 2) / |t**2 - 4|``
     times ``max_j (|lam| + |p_j|) / |lam + p_j|``, with the rounding scale ``Ts`` below in place of the cheap
     ``T`` of :func:`trace_kappa`.
 
@@ -140,4 +140,4 @@ def sharp_trace_kappa(p: npt.NDArray[np.float64], r: npt.NDArray[np.float64], la
     Ts = total / N * (1.0 + SHARP_UNIT * N)
     if disc == 0.0 or kd == 0.0:        # t = +-2, or some a_j = 0 with lam, p_j not both 0: not decided
         return math.inf
-    return float(Ts * abs(t) / abs(disc) * (kn / kd))
+    return float(Ts * (abs(t) + two) / abs(disc) * (kn / kd))     # Ts / ||t| - 2|, as the cheap tier

@@ -56,7 +56,7 @@ Existence and accuracy in float64.  Every float64 route decides a state only
 where the decision is conditioned: with ``T_i`` the trace of ``|m_N| ... |m_1|``,
 
     kappa = max_j k_t (|u_j| + |w_j|) / |u_j - w_j| (1 + |xr_j| / |1 + xr_j|),
-    k_t = max_i T_i |t_i| / |t_i**2 - 4| * max_j (|lam_i| + |p_j|) / |lam_i + p_j|,
+    k_t = max_i T_i (|t_i| + 2) / |t_i**2 - 4| * max_j (|lam_i| + |p_j|) / |lam_i + p_j|,
 
 two-tier: where this cheap ``k_t`` would make the state ill-conditioned, ``T_i`` is replaced by the
 sharp first-order rounding scale of the computed trace
@@ -218,7 +218,7 @@ def eigen_slopes(ctx: Context, a: Sequence[Value], r: Sequence[Value], s: int, n
         data.inputs = (P, r, lam, lo)
         with np.errstate(all="ignore"):
             ka = np.maximum.reduce([(np.abs(lam) + np.abs(P[j])) / np.abs(a[j]) for j in range(len(a))])
-        data.kappa = trace_kappa(a, r, t, disc, e, ka)
+        data.kappa = trace_kappa(a, r, t, disc, e, ka, two)
     dl = A - D
     sg, plus = ctx.align(g, dl)           # k = dl + sign(dl) g has no cancellation
     k = dl + sg
@@ -237,26 +237,30 @@ def eigen_slopes(ctx: Context, a: Sequence[Value], r: Sequence[Value], s: int, n
 
 
 def trace_kappa(a: Sequence[FloatValue], r: Sequence[FloatValue], t: FloatValue, disc: FloatValue, e: Exponent,
-                ka: FloatValue | float = 1.0) -> FloatValue:
-    """float64 condition estimate of the trace decision: ``T |t| / |t**2 - 4|`` per row (the cheap tier).
+                ka: FloatValue | float = 1.0, two: FloatValue | float = 2.0) -> FloatValue:
+    """float64 condition estimate of the trace decision: ``T (|t| + 2) / |t**2 - 4| = T / ||t| - 2|`` per row
+    (the cheap tier).
 
     ``T`` is the trace of ``|m_N| ... |m_1|`` (entrywise absolute values, computed as the monodromy of
     ``|a_j|`` and ``-r_j``, which has no cancellation), the scale of the rounding error of ``t``; ``t``,
-    ``disc`` are the scaled trace and ``t**2 - 4`` of :func:`eigen_slopes` (exponent ``e``), ``ka`` the
-    cancellation factor ``max_j (|lam| + |p_j|) / |lam + p_j|`` it is multiplied by.  Where the state would
-    be escalated with it, :func:`float_status` takes the sharp estimate of
-    :func:`~symbt.numeric.core.condition.sharp_trace_kappa` (the
-    second tier, as the fused and block kernels do).  Beyond
+    ``disc`` are the scaled trace and ``t**2 - 4`` of :func:`eigen_slopes` (exponent ``e``; ``two`` is 2 in that
+    scale), ``ka`` the cancellation factor ``max_j (|lam| + |p_j|) / |lam + p_j|`` it is multiplied by.
+    Where the state would be escalated with it, :func:`float_status` takes the sharp estimate of
+    :func:`~symbt.numeric.core.condition.sharp_trace_kappa` (the second tier, as the fused and block
+    kernels do).  Beyond
     :data:`~symbt.numeric.core.limits.KAPPA_MAX` the float64 decision ``|t| > 2`` and the slopes are not
-    trusted (the state is recomputed at higher precision, see :func:`float_status`).
+    trusted (the state is recomputed at higher precision, see :func:`float_status`).  The rounding error of
+    ``t`` is a multiple of ``eps T`` whatever ``t`` is, so it is compared with the distance ``||t| - 2|`` of
+    the decision; ``T |t| / |t**2 - 4|`` (without the ``+ 2``) vanishes as ``t -> 0`` and passed a trace that
+    cancelled to rounding noise (``|t| ~ 1e-35`` for a true ``1.6e18``, found by the deep fuzz, docs/fuzz.md).
 
     >>> two = [np.array([2.0]), np.array([3.0])]
     >>> float(trace_kappa(two, [np.array([1.0])] * 2, np.array([4.0]), np.array([12.0]), 0)[0])  # T = 8
-    2.6666666666666665
+    4.0
     """
     with np.errstate(all="ignore"):
         Aa, _, _, Da, ea = monodromy(FLOAT, [np.abs(x) for x in a], [-x for x in r])
-        return np.ldexp(Aa + Da, ea - e) * (np.abs(t) / np.abs(disc)) * ka
+        return np.ldexp(Aa + Da, ea - e) * ((np.abs(t) + np.abs(two)) / np.abs(disc)) * ka
 
 def sharpened(S: SlopeData, rows: npt.NDArray[np.bool_]) -> npt.NDArray[np.float64]:
     """:func:`~symbt.numeric.core.condition.sharp_trace_kappa` of the float64 rows ``rows`` of

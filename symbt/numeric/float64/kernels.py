@@ -219,13 +219,15 @@ def _two_of(aux: Track) -> float:
 
 def _decided(aux: Track, t: float, disc: float, tt: F64, i: int, p: F64, r: F64, lam: float, lo: float) -> bool:
     """The trace is decided only where it is far from ``+-2`` against its rounding error:
-    ``T |t| <= KAPPA_MAX |t**2 - 4|`` with ``T`` the trace of the product of the entrywise absolute
+    ``T (|t| + 2) <= KAPPA_MAX |t**2 - 4|`` (that is ``T <= KAPPA_MAX ||t| - 2|``: ``t``'s rounding error is a
+    multiple of ``eps T`` however small ``t`` is) with ``T`` the trace of the product of the entrywise absolute
     values; ``tt[i + 2]`` receives the trace's condition times ``a_j``'s (>= 1), ``k_t``.  Two-tier:
     where that cheap test fails, the sharp ``k_t`` of :func:`~symbt.numeric.core.condition.sharp_trace_kappa`
     (prefix and suffix products, computed only then) decides, ``k_t <= KAPPA_MAX``."""
     T = aux[0] + aux[3]
-    k = T * abs(t) / abs(disc) * (aux[4] / aux[5])
-    if not T * abs(t) <= KAPPA_MAX * abs(disc):
+    ta = abs(t) + 2.0 * aux[6]          # |t| + 2 in the monodromy's scale
+    k = T * ta / abs(disc) * (aux[4] / aux[5])
+    if not T * ta <= KAPPA_MAX * abs(disc):
         ks = sharp_trace_kappa(p, r, lam, lo)
         k = ks if ks < k else k
         if not k <= KAPPA_MAX:
@@ -305,9 +307,10 @@ def sharp_compiled() -> Callable[..., Any]:
 def _decided_cheap(aux: Track, t: float, disc: float, tt: F64, i: int, p: F64, r: F64, lam: float,
                    lo: float) -> bool:
     T = aux[0] + aux[3]
-    if not T * abs(t) <= KAPPA_MAX * abs(disc):
+    ta = abs(t) + 2.0 * aux[6]          # |t| + 2 in the monodromy's scale, as _decided and the emitted guard
+    if not T * ta <= KAPPA_MAX * abs(disc):
         return False
-    tt[i + 2] = T * abs(t) / abs(disc) * (aux[4] / aux[5])
+    tt[i + 2] = T * ta / abs(disc) * (aux[4] / aux[5])
     return True
 
 

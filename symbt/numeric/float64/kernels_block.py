@@ -117,8 +117,9 @@ def _slopes(p: F64, r: F64, lam: F64, lo: F64, s: int, u: F64, tmp: F64, A: F64,
         inrange = (abs(a_) < 1e290 and abs(b_) < 1e290 and abs(c_) < 1e290 and abs(d_) < 1e290
                    and (abs(a_) > 1e-290 or abs(b_) > 1e-290))
         T = Ab[0, k] + Ab[3, k]
-        kap = T * abs(t) / abs(disc) * (Kn[k] / Kd[k])
-        decided = T * abs(t) <= KAPPA_MAX * abs(disc)
+        ta = abs(t) + two               # |t| + 2 in the scale: T <= K ||t| - 2|
+        kap = T * ta / abs(disc) * (Kn[k] / Kd[k])
+        decided = T * ta <= KAPPA_MAX * abs(disc)
         if inrange and not decided:     # the cheap test fails: the sharp k_t decides (kernels._decided)
             ks = sharp_trace_kappa(p[:, k], r[:, k], lam[k], lo[k])
             kap = ks if ks < kap else kap
