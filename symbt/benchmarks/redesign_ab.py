@@ -104,23 +104,9 @@ def rows(spec: dict[str, Any]) -> dict[str, Callable[[], Any]]:
     return out
 
 
-def _best(fn: Callable[[], Any], min_time: float, repeats: int = 5) -> float:
-    fn()                                   # compile / load from the disk cache, untimed
-    best = float("inf")
-    for _ in range(repeats):
-        reps, t0 = 0, time.perf_counter()
-        while True:
-            fn()
-            reps += 1
-            dt = time.perf_counter() - t0
-            if dt >= min_time / repeats:
-                break
-        best = min(best, dt / reps)
-    return best
-
-
 def _worker(tree: str, spec_path: str, min_time: float, only: str = "") -> None:
     import symbt
+    from symbt.benchmarks.timing import best_time  # the tree's own (the same function in both trees)
 
     got = Path(symbt.__file__).resolve()
     if not got.is_relative_to(Path(tree).resolve()):
@@ -132,7 +118,7 @@ def _worker(tree: str, spec_path: str, min_time: float, only: str = "") -> None:
         if keep and not any(s in name for s in keep):
             continue
         try:
-            times[name] = _best(fn, min_time)
+            times[name] = best_time(fn, min_time)
         except Exception as exc:           # a row one tree refuses is reported, not fatal
             times[name] = f"failed: {type(exc).__name__}: {exc}"
     print(json.dumps(times))
