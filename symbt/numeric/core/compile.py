@@ -122,7 +122,8 @@ def _role(v: Any) -> str:
 
 
 def instantiate(source: Mapping[str, Callable[..., Any]], arithmetic: Mapping[str, Any], *, tag: str,
-                jit: bool, inline: Iterable[str] = (), extra: Iterable[Path] = ()) -> dict[str, Callable[..., Any]]:
+                jit: bool, inline: Iterable[str] = (), extra: Iterable[Path] = (),
+                operations: Mapping[str, str] | None = None) -> dict[str, Callable[..., Any]]:
     """Clone the functions of ``source`` (in dependency order: callees first) with ``arithmetic`` as globals.
 
     Each function sees the arithmetic and the functions instantiated before it; with ``jit`` each is
@@ -130,6 +131,9 @@ def instantiate(source: Mapping[str, Callable[..., Any]], arithmetic: Mapping[st
     arithmetic's functions must already be compiled.  Clones are named ``name_tag_digest``
     (:func:`sources_digest` of the source, the arithmetic and ``extra`` files, e.g. the limits the
     source reads), so that no two arithmetics and no two versions share a numba cache entry.
+    ``operations`` (plain Python only, e.g. :data:`~.inline.FLOAT64_INLINE`): the arithmetic's calls that
+    are single operations are written inline (:func:`~.inline.inlined`; bit-identical, without a Python
+    call per operation).
     """
     inline = set(inline)
     digest = sources_digest(list(source.values()) + [v for v in arithmetic.values() if callable(v)], extra)
@@ -140,7 +144,13 @@ def instantiate(source: Mapping[str, Callable[..., Any]], arithmetic: Mapping[st
     env = dict(arithmetic)
     out: dict[str, Callable[..., Any]] = {}
     for name, fn in source.items():
-        f = clone(fn, "%s_%s_%s" % (name, tag, digest), **env)
+        cname = "%s_%s_%s" % (name, tag, digest)
+        if operations is not None and not jit:
+            from .inline import inlined
+
+            f = inlined(fn, cname, operations, env)
+        else:
+            f = clone(fn, cname, **env)
         if jit:
             f = njit(f, inline="always") if name in inline else njit(f)
         env[name] = out[name] = f

@@ -343,7 +343,10 @@ def python_kernels() -> dict[str, Callable[..., Any]]:
     >>> sorted(python_kernels())
     ['slopes', 'step']
     """
-    return instantiate(SOURCE, {**OPERATIONS, **HOOKS}, tag="f64", jit=False, extra=_EXTRA)
+    from ..core.inline import FLOAT64_INLINE
+
+    return instantiate(SOURCE, {**OPERATIONS, **HOOKS}, tag="f64", jit=False, extra=_EXTRA,
+                       operations=FLOAT64_INLINE)
 
 
 def _anchor1(qh: F64, ql: F64, fh: F64, fl: F64, r: F64, p: F64) -> int:
