@@ -299,9 +299,11 @@ def sharp_compiled() -> Callable[..., Any]:
     >>> callable(sharp_compiled) and sharp_compiled.__name__
     'sharp_compiled'
     """
-    from ..core.compile import clone, njit
+    from ..core.compile import clone, njit, sources_digest
 
-    return njit(clone(sharp_trace_kappa, lam_add=njit(lam_add, inline="always")))
+    # named by a digest of both files it compiles in (numba's disk cache only watches condition.py)
+    name = "sharp_trace_kappa_f64_" + sources_digest([sharp_trace_kappa, lam_add])
+    return njit(clone(sharp_trace_kappa, name, lam_add=njit(lam_add, inline="always")))
 
 
 def _decided_cheap(aux: Track, t: float, disc: float, tt: F64, i: int, p: F64, r: F64, lam: float,
