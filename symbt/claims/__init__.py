@@ -50,6 +50,8 @@ CLAIM_MODULES = (
     "library_samples",
     "library_moments",
     "library_codegen",
+    "emitted_user",
+    "emitted_sources",
 )
 
 
