@@ -13,6 +13,7 @@ import types
 from pathlib import Path
 
 import pytest
+import sympy as sp
 
 from symbt.claims import REGISTRY, load_all
 from symbt.codegen.user.check import compiler
@@ -79,7 +80,8 @@ def test_illcond_cancellation_of_the_neighbour(monkeypatch):
     # transport:90 -- the cancellation (|lam| + |p_j|)/|lam + p_{j-1}|
     plant(monkeypatch, "symbt.codegen.transport",
           "kta.append(k * sp.Max(*(Quotient(A(lam_) + A(p[j]), A(lam_ + p[j])) for j in range(N)), evaluate=False))",
-          "kta.append(k * sp.Max(*(Quotient(A(lam_) + A(p[j]), A(lam_ + p[j - 1])) for j in range(N)), evaluate=False))",
+          "kta.append(k * sp.Max(*(Quotient(A(lam_) + A(p[j]), A(lam_ + p[j - 1])) for j in range(N)), "
+          "evaluate=False))",
           "illcond_guards")
     assert status("library.illcond") == "failed"
 
@@ -186,3 +188,17 @@ def test_c_diagnostic_not_captured(monkeypatch):
     plant(monkeypatch, "symbt.codegen.user.check", 'str(source), "-lm"], capture_output=True, text=True, timeout=120)',
           'str(source), "-lm"], capture_output=False, text=True, timeout=120)', "load_c")
     assert status("library.emit_c_errors") == "failed"
+
+
+# --------------------------------------------------------------------------- equivalent (mutants-equivalent.toml)
+
+def test_kernels_chain_rule_symbols_without_assumptions_equivalent():
+    # kernels:143 -- qm, q0, qp declared without real=True: d/dq0 exp(q0 - qm) does not depend on assumptions and
+    # the three symbols are replaced before the result is returned, so every kernel expression is the same
+    from symbt.codegen import kernels
+
+    copy = mutated("symbt.codegen.kernels", 'qm, q0, qp = sp.symbols("qm q0 qp", real=True)',
+                   'qm, q0, qp = sp.symbols("qm q0 qp", real=False)')
+    want, got = kernels.kernels(), copy.kernels()
+    assert want.keys() == got.keys()
+    assert all(got[k] == want[k] and sp.srepr(got[k]) == sp.srepr(want[k]) for k in want)
