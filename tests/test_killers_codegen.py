@@ -30,8 +30,10 @@ def status(cid: str) -> str:
     return REGISTRY[cid].run().status
 
 
-def mutated(module: str, before: str, after: str) -> types.ModuleType:
-    """A copy of ``module`` with the one mutant whose line reads ``before`` and, mutated, ``after``."""
+def mutated(module: str, before: str, after: str, *, same_classes: bool = False) -> types.ModuleType:
+    """A copy of ``module`` with the one mutant whose line reads ``before`` and, mutated, ``after``;
+    ``same_classes``: the copy's classes replaced by the module's own (so that its values pass the
+    ``isinstance`` checks of other modules -- only when the mutant is not inside a class)."""
     mod = importlib.import_module(module)
     data = Path(mod.__file__).read_bytes()
     hits = [m for m in find_mutants(data, module)
@@ -40,6 +42,10 @@ def mutated(module: str, before: str, after: str) -> types.ModuleType:
     copy = types.ModuleType(module + "_mutant")
     copy.__dict__.update(__name__=module, __package__=mod.__package__, __file__=mod.__file__)
     exec(compile(hits[0].apply(data), mod.__file__, "exec"), copy.__dict__)   # noqa: S102 -- symbt's own source
+    if same_classes:
+        for name, value in list(copy.__dict__.items()):
+            if isinstance(value, type) and value.__module__ == module and isinstance(getattr(mod, name, None), type):
+                setattr(copy, name, getattr(mod, name))
     return copy
 
 
@@ -68,7 +74,7 @@ def test_sources_step_eta_of_the_previous_site(monkeypatch):
     from symbt.codegen import derive, verify
 
     copy = mutated("symbt.codegen.derive", "pt = [p[j] + eta[j] - eta[(j + 1) % N] for j in range(N)]",
-                   "pt = [p[j] + eta[j] - eta[(j - 1) % N] for j in range(N)]")
+                   "pt = [p[j] + eta[j] - eta[(j - 1) % N] for j in range(N)]", same_classes=True)
     monkeypatch.setattr(derive, "sources", copy.sources)
     monkeypatch.setattr(verify, "sources", copy.sources)
     assert status("library.sources_step") == "failed"
