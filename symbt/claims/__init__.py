@@ -49,6 +49,7 @@ CLAIM_MODULES = (
     "library_reference",
     "library_samples",
     "library_moments",
+    "library_sampler",
     "library_codegen",
 )
 
