@@ -142,6 +142,24 @@ def test_retry_skipped(monkeypatch):
     assert status("paths.failing_rows.n3") == "failed"
 
 
+def test_complex_member_from_the_neighbours_q(monkeypatch):
+    # float_rows_step continues the member without a real map from the next row's q (mutant rows:213)
+    import inspect
+    import textwrap
+
+    from symbt.numeric.float64 import rows as rows_module
+    from symbt.numeric.float64 import step as step64
+
+    src = textwrap.dedent(inspect.getsource(rows_module.float_rows_step))
+    old = "_complex_rows(pa[nomap], qa[nomap],"
+    assert src.count(old) == 1
+    ns: dict = {}
+    exec(compile(src.replace(old, "_complex_rows(pa[nomap], qa[nomap + 1],"), rows_module.__file__, "exec"),
+         rows_module.float_rows_step.__globals__, ns)
+    monkeypatch.setattr(step64, "float_rows_step", ns["float_rows_step"])
+    assert status("paths.failing_rows.n3") == "failed"
+
+
 # --------------------------------------------------------------------------- paths.tiny_mu
 
 def test_tiny_mu_sign_of_odd_powers(monkeypatch):
