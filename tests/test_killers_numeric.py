@@ -32,6 +32,7 @@ def test_the_scene_has_the_claims_named_here():
                              "paths.frame.n13", "paths.growth.n3", "paths.ill_member.n3", "paths.jacobian.n3",
                              "paths.kernels.n3",
                              "paths.kernels.n5", "paths.lohner_box.n3", "paths.qd.n2", "paths.qd.n3",
+                             "paths.sharp_kappa.n3", "paths.sharp_kappa.n6",
                              "paths.stored.n3", "paths.threshold.n3", "paths.tiny_mu.n3"]
 
 
@@ -364,3 +365,46 @@ def test_ill_member_escalated_one_site_off(monkeypatch):
     monkeypatch.setattr(orbit_module, "escalate_rows",
                         lambda *a, **k: (lambda r: (np.roll(r[0], 1, axis=1), r[1], r[2]))(real(*a, **k)))
     assert status("paths.ill_member.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.sharp_kappa
+
+def _planted(func, old: str, new: str):
+    """``func`` rebuilt from its source with the one edit ``old -> new`` (a mutant of `symbt mutate --source`'s
+    kind), in its module's namespace."""
+    import inspect
+    import textwrap
+
+    src = textwrap.dedent(inspect.getsource(func))
+    assert src.count(old) == 1
+    ns: dict = {}
+    exec(compile(src.replace(old, new), inspect.getsourcefile(func), "exec"), func.__globals__, ns)
+    return ns[func.__name__]
+
+
+def test_sharp_kappa_renormalised_with_the_wrong_sign(monkeypatch):
+    # the prefix's B scaled by 2**+f instead of 2**-f at a renormalisation (mutant condition:106)
+    from symbt.numeric.core import condition
+
+    monkeypatch.setattr(condition, "sharp_trace_kappa", _planted(condition.sharp_trace_kappa, "math.ldexp(B, -f)",
+                                                                 "math.ldexp(B, f)"))
+    assert status("paths.sharp_kappa.n6") == "failed"
+
+
+def test_sharp_kappa_exponent_stored_one_site_early(monkeypatch):
+    # the prefix's exponent stored at the previous site (mutant condition:109)
+    from symbt.numeric.core import condition
+
+    monkeypatch.setattr(condition, "sharp_trace_kappa", _planted(condition.sharp_trace_kappa, "        pe[j] = e",
+                                                                 "        pe[j - 1] = e"))
+    assert status("paths.sharp_kappa.n6") == "failed"
+
+
+def test_sharp_kappa_cancellation_factor_kept_at_the_first_site(monkeypatch):
+    # the max over sites of (|lam| + |p_j|) / |a_j| taken as a min (mutant condition:98's kind)
+    from symbt.numeric.core import condition
+
+    monkeypatch.setattr(condition, "sharp_trace_kappa", _planted(condition.sharp_trace_kappa,
+                                                                 "if cn * kd > kn * abs(a):",
+                                                                 "if cn * kd < kn * abs(a):"))
+    assert status("paths.sharp_kappa.n3") == "failed"

@@ -43,6 +43,7 @@ CLAIM_MODULES = (
     "shipped_lohner",
     "shipped_routes",
     "shipped_complex",
+    "shipped_condition",
     "checker",
     "checker_mutation",
     "library",
