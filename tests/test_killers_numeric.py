@@ -408,3 +408,14 @@ def test_sharp_kappa_cancellation_factor_kept_at_the_first_site(monkeypatch):
                                                                  "if cn * kd > kn * abs(a):",
                                                                  "if cn * kd < kn * abs(a):"))
     assert status("paths.sharp_kappa.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- shipped.coefficients (mpmath route)
+
+def test_coefficients_mp_probes_reflected(monkeypatch):
+    # the scale probes a + (b + a) f instead of a + (b - a) f (mutant coefficients:444): outside the interval, in a
+    # band for [-6.52, -1] of the paper's state
+    monkeypatch.setattr(coefficients, "_coefficients_mp", _planted(coefficients._coefficients_mp,
+                                                                   "a + (b - a) * mpmath.mpf(f)",
+                                                                   "a + (b + a) * mpmath.mpf(f)"))
+    assert status("shipped.coefficients.n3") == "failed"
