@@ -419,3 +419,15 @@ def test_coefficients_mp_probes_reflected(monkeypatch):
                                                                    "a + (b - a) * mpmath.mpf(f)",
                                                                    "a + (b + a) * mpmath.mpf(f)"))
     assert status("shipped.coefficients.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.threshold (numpy rows)
+
+def test_threshold_numpy_rows_positivity_with_the_smaller_condition(monkeypatch):
+    # float_status' positivity test with min(k1, k2) for max (mutant step:313): the numpy rows keep states the
+    # kernels hand back
+    from symbt.numeric.core import step as step_module
+
+    monkeypatch.setattr(step_module, "float_status", _planted(step_module.float_status, "kt = np.maximum(k1, k2)",
+                                                              "kt = np.minimum(k1, k2)"))
+    assert status("paths.threshold.n3") == "failed"
