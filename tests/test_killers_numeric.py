@@ -431,3 +431,10 @@ def test_threshold_numpy_rows_positivity_with_the_smaller_condition(monkeypatch)
     monkeypatch.setattr(step_module, "float_status", _planted(step_module.float_status, "kt = np.maximum(k1, k2)",
                                                               "kt = np.minimum(k1, k2)"))
     assert status("paths.threshold.n3") == "failed"
+
+
+def test_qd_orbit_mp_inputs_joined_wrongly(monkeypatch):
+    # qd_orbit_mp's `list(P) + list(Q) + [lam0, mu]` with a minus (mutant qd:383): a TypeError, not the documented
+    # NumericRangeError for an input beyond 2**600
+    monkeypatch.setattr(qd, "qd_orbit_mp", _planted(qd.qd_orbit_mp, "list(Q) + [lam0, mu]", "list(Q) - [lam0, mu]"))
+    assert status("paths.qd.n2") == "failed"
