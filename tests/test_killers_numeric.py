@@ -438,3 +438,12 @@ def test_qd_orbit_mp_inputs_joined_wrongly(monkeypatch):
     # NumericRangeError for an input beyond 2**600
     monkeypatch.setattr(qd, "qd_orbit_mp", _planted(qd.qd_orbit_mp, "list(Q) + [lam0, mu]", "list(Q) - [lam0, mu]"))
     assert status("paths.qd.n2") == "failed"
+
+
+def test_ill_member_numpy_rows_escalated_from_the_previous_row(monkeypatch):
+    # _float_block escalates the ILLCOND rows with the previous row's momenta (mutant rows:122)
+    from symbt.numeric.float64 import rows as rows_module
+
+    monkeypatch.setattr(rows_module, "_float_block", _planted(rows_module._float_block, "escalate_rows(pa[ill],",
+                                                              "escalate_rows(pa[ill - 1],"))
+    assert status("paths.ill_member.n3") == "failed"

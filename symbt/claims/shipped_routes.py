@@ -30,7 +30,9 @@ general path, which is right for every state, so accuracy claims cannot see a sl
   (``lam1`` or ``lam2`` 1e-9 of the gap inside an edge: status ``ILLCOND`` at every step, escalated to higher
   precision), 3 steps: each member is the literal orbit within ``16 N n eps S_i`` (the orbit bound of
   ``shipped.orbit``) and equals its single-state call bit for bit (documented) -- the escalated member's place
-  in the batch (the second) is where an index slip in the escalation shows.
+  in the batch (the second) is where an index slip in the escalation shows; and ``bt_step(backend="numpy")`` on
+  the same batches (the numpy rows of :mod:`symbt.numeric.float64.rows`, which escalate the ``ILLCOND`` row
+  themselves): each member within ``16 N eps S_i`` of the literal step and equal to its single-state step.
 * ``paths.edges.n3`` -- :func:`~symbt.numeric.multiprec.lohner.growth_law` without two usable points
   (one recorded step, or every radius zero) returns ``degree = None`` as documented, and the float64
   context's ``out_of_range`` (the monodromy's rescaling trigger) on complex rows against its documented
@@ -181,9 +183,10 @@ ILL_STEPS = 3
        where="symbt/numeric/float64/orbit.py: general_orbit (the escalation of ILLCOND members)",
        statement="bt_orbit(backend='numpy'), N={N}, 3 steps, ensembles [moderate state, state 1e-9 of the gap "
                  "inside a band edge] per edge and branch: every member = the literal orbit within 16 N n eps S_i "
-                 "and = its single-state call bit for bit")
+                 "and = its single-state call bit for bit; bt_step(backend='numpy') on the same batches likewise "
+                 "(one step, 16 N eps S_i)")
 def ill_member(N: int, parts: Parts) -> Outcome:
-    from ..numeric import bt_orbit
+    from ..numeric import bt_orbit, bt_step
 
     tally, C, s, n = Tally(), step_constant(N), parts.printed["scale"], ILL_STEPS
     for cell, st, b in edge_states():
@@ -211,6 +214,23 @@ def ill_member(N: int, parts: Parts) -> Outcome:
                     r = math.inf
                 tally.add("ensemble member" if k else "moderate member", dict(cell, member=k), m, b, r, allowed,
                           ref.agree)
+            # bt_step's numpy rows on the same batch (float64.rows escalates the ILLCOND row): one step each
+            try:
+                bp, bq = bt_step(np.array([m[0] for m in members]), np.array([m[1] for m in members]),
+                                 np.array([m[2] for m in members]), np.array([m[3] for m in members]), branch=b,
+                                 backend="numpy")
+            except (ArithmeticError, ValueError) as exc:
+                tally.notes.append(f"{cell}: bt_step on the batch raised {type(exc).__name__}: {str(exc)[:120]}")
+                tally.add("bt_step batch member", cell, st, b, math.inf)
+                continue
+            for k, m in enumerate(members):
+                sp, sq = bt_step(np.array(m[0]), np.array(m[1]), m[2], m[3], branch=b, backend="numpy")
+                sref = step_ref(m, b)
+                r, allowed = ratios(scaled(list(bp[k]) + list(bq[k]), s), sref.x, sref.S, EPS, C)
+                if not (np.array_equal(bp[k], sp) and np.array_equal(bq[k], sq)):
+                    tally.notes.append(f"{cell}: bt_step's batch member {k} differs from its single-state step.")
+                    r = math.inf
+                tally.add("bt_step batch member", dict(cell, member=k), m, b, r, allowed, sref.agree)
     return tally.outcome(method="numeric: general-path ensembles with an escalated member vs the literal orbit "
                                 "and the single-state calls",
                          printed=f"|member - literal| <= {C} n eps S_i, = the single-state orbit")
