@@ -28,7 +28,8 @@ def status(cid: str) -> str:
 
 
 def test_the_scene_has_the_claims_named_here():
-    assert NUMERIC_PATHS == ["paths.anchored.n3", "paths.complex.n3", "paths.edges.n3", "paths.failing_rows.n3",
+    assert NUMERIC_PATHS == ["paths.anchored.n3", "paths.certified_nomap.n3", "paths.complex.n3", "paths.edges.n3",
+                             "paths.failing_rows.n3",
                              "paths.frame.n13", "paths.growth.n3", "paths.ill_member.n3", "paths.jacobian.n3",
                              "paths.kernels.n3",
                              "paths.kernels.n5", "paths.lohner_box.n3", "paths.qd.n2", "paths.qd.n3",
@@ -447,3 +448,15 @@ def test_ill_member_numpy_rows_escalated_from_the_previous_row(monkeypatch):
     monkeypatch.setattr(rows_module, "_float_block", _planted(rows_module._float_block, "escalate_rows(pa[ill],",
                                                               "escalate_rows(pa[ill - 1],"))
     assert status("paths.ill_member.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.certified_nomap
+
+def test_certified_positivity_accepts_a_negative_ball(monkeypatch):
+    # ARB_CERTAIN.positive returns True for a ball certainly <= 0 (mutant arb:109)
+    from symbt.numeric.multiprec import arb
+
+    monkeypatch.setattr(arb.ArbContext, "positive", _planted(arb.ArbContext.positive,
+                                                             "if x <= 0:\n        return False",
+                                                             "if x <= 0:\n        return True"))
+    assert status("paths.certified_nomap.n3") == "failed"

@@ -44,6 +44,7 @@ CLAIM_MODULES = (
     "shipped_routes",
     "shipped_complex",
     "shipped_condition",
+    "shipped_existence",
     "checker",
     "checker_mutation",
     "library",
