@@ -30,7 +30,8 @@ def status(cid: str) -> str:
 def test_the_scene_has_the_claims_named_here():
     assert NUMERIC_PATHS == ["paths.anchored.n3", "paths.certified_nomap.n3", "paths.complex.n3", "paths.edges.n3",
                              "paths.failing_rows.n3",
-                             "paths.frame.n13", "paths.growth.n3", "paths.ill_member.n3", "paths.jacobian.n3",
+                             "paths.frame.n13", "paths.frame_inverse.n13", "paths.growth.n3", "paths.ill_member.n3",
+                             "paths.jacobian.n3",
                              "paths.kernels.n3",
                              "paths.kernels.n5", "paths.lohner_box.n3", "paths.qd.n2", "paths.qd.n3",
                              "paths.sharp_kappa.n3", "paths.sharp_kappa.n6",
@@ -460,3 +461,24 @@ def test_certified_positivity_accepts_a_negative_ball(monkeypatch):
                                                              "if x <= 0:\n        return False",
                                                              "if x <= 0:\n        return True"))
     assert status("paths.certified_nomap.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.frame_inverse
+
+def test_frame_inverse_beta_without_abs(monkeypatch):
+    # beta = max X_ij instead of max |X_ij| (mutant lohner:231): a frame whose large entries are negative gets a
+    # radius below the lemma's
+    from symbt.numeric.multiprec import lohner
+
+    monkeypatch.setattr(lohner, "frame_inverse", _planted(lohner.frame_inverse, "max(abs(x) for x in Xa.entries())",
+                                                          "max(x for x in Xa.entries())"))
+    assert status("paths.frame_inverse.n13") == "failed"
+
+
+def test_frame_inverse_radius_doubled(monkeypatch):
+    # a radius twice the lemma's (the upper side: an enclosure that is rigorous but not the documented one)
+    from symbt.numeric.multiprec import lohner
+
+    monkeypatch.setattr(lohner, "frame_inverse", _planted(lohner.frame_inverse, "(beta * d / (1 - d))",
+                                                          "(2 * beta * d / (1 - d))"))
+    assert status("paths.frame_inverse.n13") == "failed"

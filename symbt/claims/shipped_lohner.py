@@ -32,6 +32,16 @@ things the intersection hides, each against central differences of the literal m
   1 + 6.2e-9 to 1 + 1.4e-8 for 1 to 80 steps and ``rho`` from 1e-35 to 1e-25, independent of both, as
   derived).  The plain ball path, which the intersection falls back to, is wider by about 2 bits per step,
   ``2**40`` here.  The centre is within ``rad_i`` of the literal orbit of the box's centre.
+* ``paths.frame_inverse.n13`` -- :func:`~symbt.numeric.multiprec.lohner.frame_inverse` of an exact frame ``B``
+  of size ``2N = 26`` (above the size where it uses its one-product bound instead of Arb's ``inv``), with its
+  default approximate inverse ``X = B^T``: a random orthogonal frame and one near ``-I`` (every large entry
+  negative), rounded to doubles.  Its docstring's lemma: with ``d = max_i sum_j |(X B - I)_ij| < 1/2`` every
+  entry of ``B^-1 - X`` is at most ``beta d / (1 - d)``, ``beta = max |X_ij|``.  Against ``d`` and ``beta``
+  computed *exactly* (rational arithmetic on the doubles, :mod:`fractions`): the midpoints are ``X`` and every
+  radius is at least ``beta d / (1 - d)`` (less would not be the lemma's enclosure) and at most
+  ``beta (d + e) / (1 - d - e) (1 + 2**-30)**8`` with ``e = 2 n**2 2**-96`` (``X B - I`` evaluated in balls at
+  96 bits: each of the ``n`` products of a row's ``n`` entries rounds by ``2**-96`` of at most 1, mid and
+  radius; the radius' own ``mag_t`` arithmetic rounds upward by ``2**-30`` per operation, a few operations).
 
 Shown to fail on planted bugs in ``tests/test_killers_numeric.py``.
 """
@@ -184,3 +194,71 @@ def lohner_box(N: int, parts: Parts) -> Outcome:
                       detail="; ".join(bad[:3]) + ". " + detail)
     return Outcome("verified", "numeric: Lohner set of a box vs the literal map's first-order image",
                    evidence="sampled", detail=detail, printed="the Lohner enclosure of a box is sharp")
+
+
+#: paths.frame_inverse: the working precision of the frame algebra (LohnerSet's jac_prec) and the seed
+FRAME_INV_PREC, FRAME_INV_SEED = 96, 7
+
+
+def inverse_frames(n: int) -> list[tuple[str, Any]]:
+    """``(name, B)``: a random orthogonal frame and one near ``-I`` (float64 arrays, ``n x n``)."""
+    import numpy as np
+
+    rng = np.random.default_rng(FRAME_INV_SEED)
+    Q = np.linalg.qr(rng.standard_normal((n, n)))[0]
+    Qi, R = np.linalg.qr(np.eye(n) + 0.05 * rng.standard_normal((n, n)))
+    return [("random orthogonal", Q), ("near -I", -Qi * np.sign(np.diag(R)))]
+
+
+def lemma_radius(B: Any) -> tuple[Any, Any]:
+    """``(d, beta)`` of frame_inverse's lemma for ``X = B^T``, exactly: the doubles as integers times ``2**-S``
+    (one common scale), so every product and sum below is an exact integer operation."""
+    from fractions import Fraction
+
+    S = 1100                                        # 2**S x (any double of magnitude <= 1) is an integer
+    Z = [[int(Fraction(float(v)) * 2 ** S) for v in row] for row in B]
+    n = len(Z)
+    cols = [[Z[k][j] for k in range(n)] for j in range(n)]
+    one = 1 << (2 * S)
+    d = max(sum(abs(sum(a * c for a, c in zip(cols[i], cols[j])) - (one if i == j else 0)) for j in range(n))
+            for i in range(n))
+    return Fraction(d, one), Fraction(max(abs(x) for row in Z for x in row), 1 << S)
+
+
+@claim("paths.frame_inverse", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths",
+       sizes=(13,), requires=("flint",),
+       where="symbt/numeric/multiprec/lohner.py: frame_inverse (the one-product bound, X = B^T)",
+       statement="frame_inverse(B) for exact 26 x 26 frames (random orthogonal; near -I), X = B^T, at 96 bits: "
+                 "midpoints X, every radius in [beta d/(1-d), beta (d+e)/(1-d-e) (1+2^-30)^8] with d, beta of "
+                 "the docstring's lemma computed exactly and e = 2 n^2 2^-96 (N={N})")
+def frame_inverse_lemma(N: int) -> Outcome:
+    if importlib.util.find_spec("flint") is None:
+        return skipped("python-flint is not installed (.[certified])")
+    from flint import arb, arb_mat
+
+    from ..numeric.multiprec.arb import flint_prec
+    from ..numeric.multiprec.lohner import frame_inverse
+
+    n, bad, worst = 2 * N, [], (mp.inf, mp.mpf(0))
+    e = mp.mpf(2) * n * n * mp.mpf(2) ** -FRAME_INV_PREC
+    for name, B in inverse_frames(n):
+        d, beta = lemma_radius(B)
+        d, beta = mp.mpf(d.numerator) / d.denominator, mp.mpf(beta.numerator) / beta.denominator
+        low = beta * d / (1 - d)
+        high = beta * (d + e) / (1 - d - e) * (1 + mp.mpf(2) ** -30) ** 8
+        with flint_prec(FRAME_INV_PREC):
+            E = frame_inverse(arb_mat(B.tolist()))
+        for i in range(n):
+            for j in range(n):
+                r = mp.mpf(float(E[i, j].rad()))
+                worst = (min(worst[0], r / low), max(worst[1], r / low))
+                if not E[i, j].mid() == arb(float(B[j, i])):
+                    bad.append(f"{name}: the midpoint ({i}, {j}) is not X = B^T")
+                elif not low <= r <= high:
+                    bad.append(f"{name}: radius ({i}, {j}) = {mp.nstr(r / low, 6)} x the lemma's "
+                               f"beta d / (1 - d) (accepted 1 .. {mp.nstr(high / low, 6)})")
+    detail = f"radius / (beta d / (1 - d)) in [{mp.nstr(worst[0], 8)}, {mp.nstr(worst[1], 8)}]."
+    if bad:
+        return failed("numeric: frame_inverse vs its lemma with exact d", detail="; ".join(bad[:3]) + ". " + detail)
+    return Outcome("verified", "numeric: frame_inverse vs its lemma with d, beta exact (fractions)",
+                   evidence="sampled", detail=detail, printed="radius = beta d / (1 - d), upper rounding only")
