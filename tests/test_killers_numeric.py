@@ -33,7 +33,8 @@ def test_the_scene_has_the_claims_named_here():
                              "paths.frame.n13", "paths.frame_inverse.n13", "paths.growth.n3", "paths.ill_member.n3",
                              "paths.jacobian.n3",
                              "paths.kernels.n3",
-                             "paths.kernels.n5", "paths.lohner_box.n3", "paths.qd.n2", "paths.qd.n3",
+                             "paths.kernels.n5", "paths.lohner_box.n3", "paths.next_prec.n3", "paths.qd.n2",
+                             "paths.qd.n3",
                              "paths.sharp_kappa.n3", "paths.sharp_kappa.n6",
                              "paths.stored.n3", "paths.threshold.n3", "paths.tiny_mu.n3"]
 
@@ -482,3 +483,13 @@ def test_frame_inverse_radius_doubled(monkeypatch):
     monkeypatch.setattr(lohner, "frame_inverse", _planted(lohner.frame_inverse, "(beta * d / (1 - d))",
                                                           "(2 * beta * d / (1 - d))"))
     assert status("paths.frame_inverse.n13") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.next_prec
+
+def test_next_prec_without_extrapolation(monkeypatch):
+    # _next_prec skips the extrapolation to step n (mutant lohner:449 `i1 > n`)
+    from symbt.numeric.multiprec import lohner
+
+    monkeypatch.setattr(lohner, "_next_prec", _planted(lohner._next_prec, "if i1 < n:", "if i1 > n:"))
+    assert status("paths.next_prec.n3") == "failed"

@@ -42,6 +42,15 @@ things the intersection hides, each against central differences of the literal m
   ``beta (d + e) / (1 - d - e) (1 + 2**-30)**8`` with ``e = 2 n**2 2**-96`` (``X B - I`` evaluated in balls at
   96 bits: each of the ``n`` products of a row's ``n`` entries rounds by ``2**-96`` of at most 1, mid and
   radius; the radius' own ``mag_t`` arithmetic rounds upward by ``2**-30`` per operation, a few operations).
+* ``paths.next_prec.n3`` -- the precision schedule of :func:`~symbt.numeric.multiprec.lohner.lohner_certified`:
+  a first pass forced too low (135 bits for a 1e-40 target, 60 steps of the paper's state) fails after ``i``
+  steps, and the second pass must run at the precision its docstring states -- the excess so far ``e`` plus 1.5
+  times the fitted degree ``g`` times ``log2(n / i)`` plus 16 bits, at least 32 bits more:
+  ``max(floor(p + e + 1.5 g log2(n / i) + 16) + 1, p + 32)`` -- with ``e``, ``i`` and the radii read off the
+  same first pass run by :func:`~symbt.numeric.multiprec.lohner.lohner_pass` and ``g`` fitted by
+  :func:`~symbt.numeric.multiprec.lohner.growth_law` over the steps done (a consistency check of the code with
+  its documented rule: the schedule changes only how many passes a certified orbit takes, never its rigour);
+  and the orbit it returns meets the target.
 
 Shown to fail on planted bugs in ``tests/test_killers_numeric.py``.
 """
@@ -262,3 +271,57 @@ def frame_inverse_lemma(N: int) -> Outcome:
         return failed("numeric: frame_inverse vs its lemma with exact d", detail="; ".join(bad[:3]) + ". " + detail)
     return Outcome("verified", "numeric: frame_inverse vs its lemma with d, beta exact (fractions)",
                    evidence="sampled", detail=detail, printed="radius = beta d / (1 - d), upper rounding only")
+
+
+#: paths.next_prec: steps, the target radius and its bits, the forced first precision
+NEXT_STEPS, NEXT_TARGET, NEXT_BITS, NEXT_FIRST = 60, 1e-40, 133, 135
+
+
+@claim("paths.next_prec", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       requires=("flint",),
+       where="symbt/numeric/multiprec/lohner.py: lohner_certified's precision schedule (_next_prec)",
+       statement="lohner_certified on the paper's state (N={N}), 60 steps, target 1e-40, first pass forced to 135 "
+                 "bits: the second pass runs at max(floor(p + e + 1.5 g log2(n/i) + 16) + 1, p + 32) (its "
+                 "docstring's rule, e, i, g from the same first pass by lohner_pass and growth_law) and the "
+                 "returned orbit meets the target")
+def next_precision(N: int) -> Outcome:
+    if importlib.util.find_spec("flint") is None:
+        return skipped("python-flint is not installed (.[certified])")
+    import math
+
+    from flint import arb
+
+    from ..numeric.multiprec.arb import flint_prec
+    from ..numeric.multiprec.lohner import growth_law, lohner_certified, lohner_pass
+
+    def state() -> tuple:
+        return [arb(-20), arb(10), arb(1)], [arb(1), arb(0), arb(0.9)], arb(10), arb(5)
+
+    def excess(xs: list) -> float:
+        return max(math.log2(float(x.rad()) / NEXT_TARGET) if x.rad() > 0 else -math.inf for x in xs)
+
+    n = NEXT_STEPS
+    passes: list[int] = []
+    stored, _, _ = lohner_certified(state, n, 1, {n}, excess, NEXT_BITS, NEXT_FIRST, 4096, passes)
+    with flint_prec(NEXT_FIRST):
+        P, Q, l0, m = state()
+        run = lohner_pass(P, Q, l0, m, n, 1, {n}, excess)
+    done = [i for i in range(1, run.done + 1) if math.isfinite(run.hist[i])]
+    bad = []
+    if run.ok or not done or done[-1] >= n:
+        return failed("numeric: lohner_certified's schedule", detail=f"the forced first pass did not stop early "
+                      f"(ok {run.ok}, {run.done} steps): the claim's premise fails")
+    i, e = done[-1], max(run.hist[k] for k in done)
+    g = growth_law(run.lograd[:i + 1], first=max(1, i // 10))["degree"]
+    want = max(int(NEXT_FIRST + e + 1.5 * max(g or 2.0, 1.0) * math.log2(n / i) + 16) + 1, NEXT_FIRST + 32)
+    if passes[:2] != [NEXT_FIRST, want]:
+        bad.append(f"passes {passes}, the documented rule gives {want} after {NEXT_FIRST} (stopped at step {i}, "
+                   f"excess {e:.3g}, degree {g})")
+    if not excess(stored[-1][0] + stored[-1][1]) <= 0:
+        bad.append("the returned orbit does not meet the target radius")
+    detail = f"first pass {NEXT_FIRST} bits stopped at step {i} (excess {e:.3g} bits, degree {g}); passes {passes}."
+    if bad:
+        return failed("numeric: lohner_certified's schedule vs its documented rule", detail="; ".join(bad) + " "
+                      + detail)
+    return Outcome("verified", "numeric: lohner_certified's schedule vs its documented rule (consistency)",
+                   evidence="sampled", detail=detail, printed="the second pass at the documented precision")
