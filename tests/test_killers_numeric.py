@@ -29,7 +29,7 @@ def status(cid: str) -> str:
 
 def test_the_scene_has_the_claims_named_here():
     assert NUMERIC_PATHS == ["paths.anchored.n3", "paths.certified_nomap.n3", "paths.complex.n3", "paths.edges.n3",
-                             "paths.failing_rows.n3",
+                             "paths.failing_rows.n3", "paths.field_far.n3",
                              "paths.frame.n13", "paths.frame_inverse.n13", "paths.growth.n3", "paths.ill_member.n3",
                              "paths.jacobian.n3",
                              "paths.kernels.n3",
@@ -493,3 +493,15 @@ def test_next_prec_without_extrapolation(monkeypatch):
 
     monkeypatch.setattr(lohner, "_next_prec", _planted(lohner._next_prec, "if i1 < n:", "if i1 > n:"))
     assert status("paths.next_prec.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.field_far
+
+def test_field_renormalised_sweep_with_the_previous_ratio(monkeypatch):
+    # the renormalised forward sweep's C' = r_{j-1} A for r_j A (mutant field:110)
+    from symbt.numeric.flow import field
+
+    monkeypatch.setattr(field, "_gradient_renormalised", _planted(field._gradient_renormalised,
+                                                                  "r[j] * f00, r[j] * f01\n        f00",
+                                                                  "r[j - 1] * f00, r[j] * f01\n        f00"))
+    assert status("paths.field_far.n3") == "failed"
