@@ -28,7 +28,8 @@ def status(cid: str) -> str:
 
 
 def test_the_scene_has_the_claims_named_here():
-    assert NUMERIC_PATHS == ["paths.anchored.n3", "paths.certified_nomap.n3", "paths.complex.n3", "paths.edges.n3",
+    assert NUMERIC_PATHS == ["paths.anchored.n3", "paths.certified_nomap.n3", "paths.coefficients_mp.n3",
+                             "paths.complex.n3", "paths.edges.n3",
                              "paths.failing_rows.n3", "paths.field_far.n3",
                              "paths.frame.n13", "paths.frame_inverse.n13", "paths.growth.n3", "paths.ill_member.n3",
                              "paths.jacobian.n3",
@@ -413,15 +414,15 @@ def test_sharp_kappa_cancellation_factor_kept_at_the_first_site(monkeypatch):
     assert status("paths.sharp_kappa.n3") == "failed"
 
 
-# --------------------------------------------------------------------------- shipped.coefficients (mpmath route)
+# --------------------------------------------------------------------------- paths.coefficients_mp
 
 def test_coefficients_mp_probes_reflected(monkeypatch):
     # the scale probes a + (b + a) f instead of a + (b - a) f (mutant coefficients:444): outside the interval, in a
-    # band for [-6.52, -1] of the paper's state
+    # band for [-5.5, -4.056] of the paper's state
     monkeypatch.setattr(coefficients, "_coefficients_mp", _planted(coefficients._coefficients_mp,
                                                                    "a + (b - a) * mpmath.mpf(f)",
                                                                    "a + (b + a) * mpmath.mpf(f)"))
-    assert status("shipped.coefficients.n3") == "failed"
+    assert status("paths.coefficients_mp.n3") == "failed"
 
 
 # --------------------------------------------------------------------------- paths.threshold (numpy rows)

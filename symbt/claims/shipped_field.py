@@ -1,4 +1,4 @@
-r"""What ships, 4g: ``FlowField`` far from its initial state, where its gradients are renormalised (``numeric-paths``).
+r"""What ships, 4g: ``FlowField`` where its gradients are renormalised; ``flow_coefficients`` on mpmath input.
 
 :class:`symbt.numeric.flow.field.FlowField` evaluates ``grad G = sum_i W_i grad tr L(lambda_i)`` (its module
 docstring: the quadrature rule of the ``c_k``, fixed at the initial state) by forward and backward sweeps of
@@ -16,8 +16,14 @@ claims of ``shipped`` evaluate the field at moderate states only.
   ``i``, the cancellation included), the second term the sum over the ``m`` nodes.  A component whose bound
   admits a relative error above 1e-8 is not informative there (the sweeps cancel in it) and is not counted;
   at least half of the components must be informative.
+* ``paths.coefficients_mp.n3`` -- :func:`~symbt.numeric.flow_coefficients` on mpmath input (30 digits), the
+  paper's state on ``[lam0 - mu, lam0 + mu] = [-5.5, -4.056]`` inside its gap ``(-10.27, -0.80)``, both branches,
+  against the tanh-sinh quadrature of ``shipped.coefficients`` (the polynomial trace, 30 digits, checked at 42)
+  within its bound ``10 * 10**-25 A_k``.  The interval is chosen so that a point outside it at which the route
+  might sample its integrand -- its reflection ``a + (a + b)/2 = -10.278`` -- lies in the narrow band
+  ``[-10.285, -10.271]``: the route must sample only inside the interval (where the integrand is defined).
 
-Shown to fail on a planted bug in ``tests/test_killers_numeric.py``.
+Shown to fail on planted bugs in ``tests/test_killers_numeric.py``.
 """
 from __future__ import annotations
 
@@ -115,3 +121,43 @@ def field_far(N: int) -> Outcome:
                       detail="; ".join(bad[:3]) + ". " + detail)
     return Outcome("verified", "numeric: FlowField at far states vs its quadrature sum (exact products, 350 digits)",
                    evidence="sampled", detail=detail, printed="field = exact quadrature sum within its rounding")
+
+
+#: paths.coefficients_mp: the paper's state on an interval of its gap (exact binary lam0 -+ mu not needed: the
+#: reference integrates over the same double end points)
+GAP_STATE = ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), -4.778, 0.722)
+
+
+@claim("paths.coefficients_mp", equation="eqdisc", source_equation="eqdisc", scene="numeric-paths", sizes=(3,),
+       where="symbt/numeric/flow/coefficients.py: flow_coefficients on mpmath input (_coefficients_mp)",
+       statement="flow_coefficients (mpmath, 30 digits, N={N}) on the paper's state over [-5.5, -4.056] inside its "
+                 "gap, both branches = the tanh-sinh quadrature of -b int lam^k / sqrt(tr^2 - 4) with the "
+                 "polynomial trace (30 digits, checked at 42) within 10 * 10^-25 A_k")
+def coefficients_mp(N: int) -> Outcome:
+    from ..numeric import flow_coefficients
+    from .shipped_spectral import MP_DPS, QUAD_C, _c_ref
+
+    st = GAP_STATE
+    c, A, agree, _ = _c_ref(st)
+    bad, worst = [], 0.0
+    if not agree < 1e-27:
+        bad.append(f"the reference disagrees with itself at 42 digits ({agree:.3g})")
+    for b in (1, -1):
+        with mp.workdps(MP_DPS):
+            try:
+                got = flow_coefficients([mp.mpf(v) for v in st[0]], [mp.mpf(v) for v in st[1]], mp.mpf(st[2]),
+                                        mp.mpf(st[3]), branch=b, check=False)
+            except (ArithmeticError, ValueError) as exc:      # NoRealMapError on a gap interval: wrong
+                bad.append(f"branch {b}: {type(exc).__name__}: {str(exc)[:80]}")
+                continue
+            for k, (v, x, a) in enumerate(zip(got, c, A)):
+                r = float(abs(v - b * x) / (QUAD_C * mp.mpf(10) ** (5 - MP_DPS) * a))
+                worst = max(worst, r)
+                if not r <= 1:
+                    bad.append(f"branch {b}, c_{k}: {r:.3g} x the bound")
+    detail = f"worst error / bound {worst:.3g}."
+    if bad:
+        return failed("numeric: flow_coefficients (mpmath) vs the quadrature", detail="; ".join(bad[:3]) + ". "
+                      + detail)
+    return Outcome("verified", "numeric: flow_coefficients (mpmath) vs mpmath.quad with the polynomial trace",
+                   evidence="sampled", detail=detail, printed="|c_k - quadrature| <= 10 * 10^-25 A_k")

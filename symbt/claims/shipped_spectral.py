@@ -17,10 +17,7 @@ r"""What ships, 2: ``invariants``, ``spectral_trace``, ``phi``, ``flow_coefficie
   ``H_k`` at 40 digits (``c_k`` from the quadrature above); bound ``10 rtol sum_k A_k |grad H_k| + 16 N eps
   sum_k |c_k| |grad H_k|``.
 
-Cells: branch x sign(mu) x sign(tr) (:func:`symbt.claims._shipped.ship_cells`); for ``flow_coefficients`` at
-N = 3 also the paper's state on ``[lam0 - mu, lam0 + mu] = [-6.52, -1]``, most of its gap ``(-10.27, -0.80)``, both
-branches (an interval whose reflection ``a + (a + b)/2`` falls in the narrow band at ``-10.28``: the integrand
-must be sampled inside the interval only).
+Cells: branch x sign(mu) x sign(tr) (:func:`symbt.claims._shipped.ship_cells`).
 """
 from __future__ import annotations
 
@@ -50,8 +47,6 @@ MP_DPS = 30
 RTOL = 1e-13       # flow_coefficients' and FlowField's default rtol
 QUAD_C = 10
 QUAD_DPS = 30      # the quadrature reference (and 42 to check it): far below rtol = 1e-13 and 10**-25
-#: shipped.coefficients (N = 3): the paper's state on [-6.52, -1], most of its gap (-10.27, -0.80)
-WIDE_GAP_STATE = ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), -3.76, 2.76)
 
 
 def _inputs(st: tuple) -> list:
@@ -236,10 +231,7 @@ def coefficients(N: int, parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import flow_coefficients
 
     tally = Tally()
-    samples = list(ship_cells(N, 4 if deep else 1))
-    if N == 3:
-        samples += [({"branch": b, "interval": "most of the paper's gap"}, WIDE_GAP_STATE, b) for b in (1, -1)]
-    for cell, st, b in samples:
+    for cell, st, b in ship_cells(N, 4 if deep else 1):
         c, A, agree, bound = _c_ref(st)
         # check=False: the existence test is bt_step's (claims shipped.step, shipped.nomap), and with numba installed
         # it would load the compiled kernel here
