@@ -230,3 +230,15 @@ def test_proposal_separation_filter(monkeypatch):
     monkeypatch.setattr(elliptic, "sample_case", _planted(elliptic.sample_case, "abs(sa - sb) < 0.05",
                                                           "abs(sa + sb) < 0.05"))
     assert status(library_sampler.proposal_margins) == "failed"
+
+
+# --------------------------------------------------------------------------- library.shift_real
+
+def test_shift_real_part_condition_flipped(monkeypatch):
+    # shift's real dtheta1 computed only when |T1| <= 2 (mutant elliptic:270): None off the bands
+    from symbt.claims import library_sampler
+
+    assert status(library_sampler.shift_real_part) == "verified"
+    monkeypatch.setattr(elliptic, "shift", _planted(elliptic.shift, "and abs(T1) >= 2 and abs(T2) >= 2:",
+                                                    "and abs(T1) <= 2 and abs(T2) >= 2:"))
+    assert status(library_sampler.shift_real_part) == "failed"

@@ -29,6 +29,12 @@ regime asked -- changes where the case lies: a gap zone drawn past ``1/k``, a le
 their zones), an ``x`` range past the turning point (``p_1 = p_2``).  Shown to fail on such bugs in
 ``tests/test_killers_reference.py``.
 
+* ``library.shift_real`` -- :func:`symbt.reference.elliptic.shift` (the translation of one step, N = 2) on 3 cases
+  of every regime, both branches: its ``dtheta1_real = b (g(T2) - g(T1))`` is ``None`` exactly where a spectral
+  parameter lies in a band -- ``|tr L(lambda)| < 2`` by the literal trace, not by the ``T`` that ``shift``
+  returns -- and elsewhere equals the real part of its ``dtheta1 = log(v1 v2)`` (the complex logarithm of the
+  product of the eigenvalues, a different formula) within ``10**(5 - dps)`` of its size.
+
 >>> proposal_margins.run().status
 'verified'
 """
@@ -131,3 +137,42 @@ def proposal_margins() -> Outcome:
                       detail="; ".join(bad[:3]) + f" ({len(bad)} in all). " + detail)
     return Outcome("verified", "sample_case's margins vs the band edges of the literal trace", evidence="sampled",
                    detail=detail, printed="every case inside its zones with the proposal's margins")
+
+
+#: library.shift_real: cases per regime (one rng stream per regime)
+SHIFT_CASES, SHIFT_DPS = 3, 30
+
+
+@claim("library.shift_real", equation="citn", scene="library", N=2,
+       where="symbt.reference.elliptic.shift (dtheta1_real)",
+       statement="shift (N = 2), 3 sample_case cases per regime, both branches: dtheta1_real is None exactly where "
+                 "|tr L(lam0 +- mu)| < 2 by the literal trace, and otherwise = Re dtheta1 (log(v1 v2)) within "
+                 "10^(5 - dps) of its size")
+def shift_real_part() -> Outcome:
+    bad, n = [], 0
+    with mp.workdps(SHIFT_DPS):
+        tol = mp.mpf(10) ** (5 - SHIFT_DPS)
+        for reg in E.REGIMES:
+            rng = random.Random(f"shift {reg}")
+            for _ in range(SHIFT_CASES):
+                p, q, l0, m = E.sample_case(reg, rng)
+                P, Q, L0, M = [mp.mpf(v) for v in p], [mp.mpf(v) for v in q], mp.mpf(l0), mp.mpf(m)
+                I1, I2 = E.actions(P, Q)
+                in_band = any(abs(literal_trace(lam, P, Q)) < 2 for lam in (L0 + M, L0 - M))
+                for b in (1, -1):
+                    n += 1
+                    sh = E.shift(I1, I2, L0, M, b)
+                    re = sh["dtheta1_real"]
+                    if in_band or re is None:
+                        if in_band != (re is None):
+                            bad.append(f"{reg}, b = {b}: dtheta1_real {'None' if re is None else mp.nstr(re, 5)} "
+                                       f"with {'a' if in_band else 'no'} spectral parameter in a band")
+                    elif not abs(re - mp.re(sh["dtheta1"])) <= tol * max(1, abs(re)):
+                        bad.append(f"{reg}, b = {b}: dtheta1_real - Re dtheta1 = "
+                                   f"{mp.nstr(re - mp.re(sh['dtheta1']), 3)}")
+    detail = f"{n} shifts, {len(E.REGIMES)} regimes."
+    if bad:
+        return failed("shift's real dtheta1 vs the literal trace and Re log(v1 v2)", detail="; ".join(bad[:3]) + ". "
+                      + detail)
+    return Outcome("verified", "shift's real dtheta1 vs the literal trace's bands and Re log(v1 v2)",
+                   evidence="sampled", detail=detail, printed="dtheta1_real = Re dtheta1 off the bands, None in them")
