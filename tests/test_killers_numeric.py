@@ -28,10 +28,15 @@ def status(cid: str) -> str:
 
 
 def test_the_scene_has_the_claims_named_here():
-    assert NUMERIC_PATHS == ["paths.anchored.n3", "paths.complex.n3", "paths.edges.n3", "paths.failing_rows.n3",
-                             "paths.frame.n13", "paths.growth.n3", "paths.ill_member.n3", "paths.jacobian.n3",
+    assert NUMERIC_PATHS == ["paths.anchored.n3", "paths.certified_nomap.n3", "paths.coefficients_mp.n3",
+                             "paths.complex.n3", "paths.edges.n3",
+                             "paths.failing_rows.n3", "paths.field_far.n3",
+                             "paths.frame.n13", "paths.frame_inverse.n13", "paths.growth.n3", "paths.ill_member.n3",
+                             "paths.jacobian.n3",
                              "paths.kernels.n3",
-                             "paths.kernels.n5", "paths.lohner_box.n3", "paths.qd.n2", "paths.qd.n3",
+                             "paths.kernels.n5", "paths.lohner_box.n3", "paths.next_prec.n3", "paths.qd.n2",
+                             "paths.qd.n3",
+                             "paths.sharp_kappa.n3", "paths.sharp_kappa.n6",
                              "paths.stored.n3", "paths.threshold.n3", "paths.tiny_mu.n3"]
 
 
@@ -139,6 +144,24 @@ def test_retry_skipped(monkeypatch):
     monkeypatch.setattr(orbit_module, "general_orbit",
                         lambda pa, qa, lam0, mu, branch, n, every, P, Q, rows: (np.zeros(rows.size, np.int64),
                                                                                  np.zeros(rows.size, np.int64)))
+    assert status("paths.failing_rows.n3") == "failed"
+
+
+def test_complex_member_from_the_neighbours_q(monkeypatch):
+    # float_rows_step continues the member without a real map from the next row's q (mutant rows:213)
+    import inspect
+    import textwrap
+
+    from symbt.numeric.float64 import rows as rows_module
+    from symbt.numeric.float64 import step as step64
+
+    src = textwrap.dedent(inspect.getsource(rows_module.float_rows_step))
+    old = "_complex_rows(pa[nomap], qa[nomap],"
+    assert src.count(old) == 1
+    ns: dict = {}
+    exec(compile(src.replace(old, "_complex_rows(pa[nomap], qa[nomap + 1],"), rows_module.__file__, "exec"),
+         rows_module.float_rows_step.__globals__, ns)
+    monkeypatch.setattr(step64, "float_rows_step", ns["float_rows_step"])
     assert status("paths.failing_rows.n3") == "failed"
 
 
@@ -346,3 +369,140 @@ def test_ill_member_escalated_one_site_off(monkeypatch):
     monkeypatch.setattr(orbit_module, "escalate_rows",
                         lambda *a, **k: (lambda r: (np.roll(r[0], 1, axis=1), r[1], r[2]))(real(*a, **k)))
     assert status("paths.ill_member.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.sharp_kappa
+
+def _planted(func, old: str, new: str):
+    """``func`` rebuilt from its source with the one edit ``old -> new`` (a mutant of `symbt mutate --source`'s
+    kind), in its module's namespace."""
+    import inspect
+    import textwrap
+
+    src = textwrap.dedent(inspect.getsource(func))
+    assert src.count(old) == 1
+    ns: dict = {}
+    exec(compile(src.replace(old, new), inspect.getsourcefile(func), "exec"), func.__globals__, ns)
+    return ns[func.__name__]
+
+
+def test_sharp_kappa_renormalised_with_the_wrong_sign(monkeypatch):
+    # the prefix's B scaled by 2**+f instead of 2**-f at a renormalisation (mutant condition:106)
+    from symbt.numeric.core import condition
+
+    monkeypatch.setattr(condition, "sharp_trace_kappa", _planted(condition.sharp_trace_kappa, "math.ldexp(B, -f)",
+                                                                 "math.ldexp(B, f)"))
+    assert status("paths.sharp_kappa.n6") == "failed"
+
+
+def test_sharp_kappa_exponent_stored_one_site_early(monkeypatch):
+    # the prefix's exponent stored at the previous site (mutant condition:109)
+    from symbt.numeric.core import condition
+
+    monkeypatch.setattr(condition, "sharp_trace_kappa", _planted(condition.sharp_trace_kappa, "        pe[j] = e",
+                                                                 "        pe[j - 1] = e"))
+    assert status("paths.sharp_kappa.n6") == "failed"
+
+
+def test_sharp_kappa_cancellation_factor_kept_at_the_first_site(monkeypatch):
+    # the max over sites of (|lam| + |p_j|) / |a_j| taken as a min (mutant condition:98's kind)
+    from symbt.numeric.core import condition
+
+    monkeypatch.setattr(condition, "sharp_trace_kappa", _planted(condition.sharp_trace_kappa,
+                                                                 "if cn * kd > kn * abs(a):",
+                                                                 "if cn * kd < kn * abs(a):"))
+    assert status("paths.sharp_kappa.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.coefficients_mp
+
+def test_coefficients_mp_probes_reflected(monkeypatch):
+    # the scale probes a + (b + a) f instead of a + (b - a) f (mutant coefficients:444): outside the interval, in a
+    # band for [-5.5, -4.056] of the paper's state
+    monkeypatch.setattr(coefficients, "_coefficients_mp", _planted(coefficients._coefficients_mp,
+                                                                   "a + (b - a) * mpmath.mpf(f)",
+                                                                   "a + (b + a) * mpmath.mpf(f)"))
+    assert status("paths.coefficients_mp.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.threshold (numpy rows)
+
+def test_threshold_numpy_rows_positivity_with_the_smaller_condition(monkeypatch):
+    # float_status' positivity test with min(k1, k2) for max (mutant step:313): the numpy rows keep states the
+    # kernels hand back
+    from symbt.numeric.core import step as step_module
+
+    monkeypatch.setattr(step_module, "float_status", _planted(step_module.float_status, "kt = np.maximum(k1, k2)",
+                                                              "kt = np.minimum(k1, k2)"))
+    assert status("paths.threshold.n3") == "failed"
+
+
+def test_qd_orbit_mp_inputs_joined_wrongly(monkeypatch):
+    # qd_orbit_mp's `list(P) + list(Q) + [lam0, mu]` with a minus (mutant qd:383): a TypeError, not the documented
+    # NumericRangeError for an input beyond 2**600
+    monkeypatch.setattr(qd, "qd_orbit_mp", _planted(qd.qd_orbit_mp, "list(Q) + [lam0, mu]", "list(Q) - [lam0, mu]"))
+    assert status("paths.qd.n2") == "failed"
+
+
+def test_ill_member_numpy_rows_escalated_from_the_previous_row(monkeypatch):
+    # _float_block escalates the ILLCOND rows with the previous row's momenta (mutant rows:122)
+    from symbt.numeric.float64 import rows as rows_module
+
+    monkeypatch.setattr(rows_module, "_float_block", _planted(rows_module._float_block, "escalate_rows(pa[ill],",
+                                                              "escalate_rows(pa[ill - 1],"))
+    assert status("paths.ill_member.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.certified_nomap
+
+def test_certified_positivity_accepts_a_negative_ball(monkeypatch):
+    # ARB_CERTAIN.positive returns True for a ball certainly <= 0 (mutant arb:109)
+    from symbt.numeric.multiprec import arb
+
+    monkeypatch.setattr(arb.ArbContext, "positive", _planted(arb.ArbContext.positive,
+                                                             "if x <= 0:\n        return False",
+                                                             "if x <= 0:\n        return True"))
+    assert status("paths.certified_nomap.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.frame_inverse
+
+def test_frame_inverse_beta_without_abs(monkeypatch):
+    # beta = max X_ij instead of max |X_ij| (mutant lohner:231): a frame whose large entries are negative gets a
+    # radius below the lemma's
+    from symbt.numeric.multiprec import lohner
+
+    monkeypatch.setattr(lohner, "frame_inverse", _planted(lohner.frame_inverse, "max(abs(x) for x in Xa.entries())",
+                                                          "max(x for x in Xa.entries())"))
+    assert status("paths.frame_inverse.n13") == "failed"
+
+
+def test_frame_inverse_radius_doubled(monkeypatch):
+    # a radius twice the lemma's (the upper side: an enclosure that is rigorous but not the documented one)
+    from symbt.numeric.multiprec import lohner
+
+    monkeypatch.setattr(lohner, "frame_inverse", _planted(lohner.frame_inverse, "(beta * d / (1 - d))",
+                                                          "(2 * beta * d / (1 - d))"))
+    assert status("paths.frame_inverse.n13") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.next_prec
+
+def test_next_prec_without_extrapolation(monkeypatch):
+    # _next_prec skips the extrapolation to step n (mutant lohner:449 `i1 > n`)
+    from symbt.numeric.multiprec import lohner
+
+    monkeypatch.setattr(lohner, "_next_prec", _planted(lohner._next_prec, "if i1 < n:", "if i1 > n:"))
+    assert status("paths.next_prec.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.field_far
+
+def test_field_renormalised_sweep_with_the_previous_ratio(monkeypatch):
+    # the renormalised forward sweep's C' = r_{j-1} A for r_j A (mutant field:110)
+    from symbt.numeric.flow import field
+
+    monkeypatch.setattr(field, "_gradient_renormalised", _planted(field._gradient_renormalised,
+                                                                  "r[j] * f00, r[j] * f01\n        f00",
+                                                                  "r[j - 1] * f00, r[j] * f01\n        f00"))
+    assert status("paths.field_far.n3") == "failed"

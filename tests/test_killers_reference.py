@@ -164,3 +164,81 @@ def test_moments_boundary_not_refused(monkeypatch):
     assert status(library_moments.moment_condition) == "verified"
     monkeypatch.setattr(library_moments, "solve_parameters", nudged)
     assert status(library_moments.moment_condition) == "failed"
+
+
+# --------------------------------------------------------------------------- library.proposal
+
+def _planted(func, old: str, new: str):
+    """``func`` rebuilt from its source with the one edit ``old -> new`` (a mutant of `symbt mutate --source`'s
+    kind), in its module's namespace."""
+    import inspect
+    import textwrap
+
+    src = textwrap.dedent(inspect.getsource(func))
+    assert src.count(old) == 1
+    ns: dict = {}
+    exec(compile(src.replace(old, new), inspect.getsourcefile(func), "exec"), func.__globals__, ns)
+    return ns[func.__name__]
+
+
+def test_proposal_unpatched_verified():
+    from symbt.claims import library_sampler
+
+    assert status(library_sampler.proposal_margins) == "verified"
+
+
+def test_proposal_gap_zone_past_its_edge(monkeypatch):
+    # _s_in's gap zone 1 + (1/k + 1) u (mutant elliptic:410): drawn past the band edge s = 1/k, cases kept by their
+    # regime lie arbitrarily near it
+    from symbt.claims import library_sampler
+
+    monkeypatch.setattr(elliptic, "_s_in", _planted(elliptic._s_in, "(1 / k - 1)", "(1 / k + 1)"))
+    assert status(library_sampler.proposal_margins) == "failed"
+
+
+def test_proposal_x_past_the_turning_point(monkeypatch):
+    # sample_case's x range acosh(I2) for acosh(I2 / 2) (mutant elliptic:435): p1 = p2 where the root is clamped
+    from symbt.claims import library_sampler
+
+    monkeypatch.setattr(elliptic, "sample_case", _planted(elliptic.sample_case, "math.acosh(I2 / 2) * (x_sign",
+                                                          "math.acosh(I2) * (x_sign"))
+    assert status(library_sampler.proposal_margins) == "failed"
+
+
+def test_proposal_level_set_sign(monkeypatch):
+    # Pr = sqrt(I2 + 2 cosh x) (mutant elliptic:436 sign): the state is not on the proposal's level set
+    from symbt.claims import library_sampler
+
+    monkeypatch.setattr(elliptic, "sample_case", _planted(elliptic.sample_case, "max(I2 - 2 * math.cosh(x)",
+                                                          "max(I2 + 2 * math.cosh(x)"))
+    assert status(library_sampler.proposal_margins) == "failed"
+
+
+def test_proposal_level_set_factor(monkeypatch):
+    # Pr = sqrt(I2 - cosh x) (mutant elliptic:436 drop-factor, marked equivalent before this claim)
+    from symbt.claims import library_sampler
+
+    monkeypatch.setattr(elliptic, "sample_case", _planted(elliptic.sample_case, "max(I2 - 2 * math.cosh(x)",
+                                                          "max(I2 - math.cosh(x)"))
+    assert status(library_sampler.proposal_margins) == "failed"
+
+
+def test_proposal_separation_filter(monkeypatch):
+    # the filter |sa - sb| < 0.05 taken as |sa + sb| (mutant elliptic:431, marked equivalent before this claim)
+    from symbt.claims import library_sampler
+
+    monkeypatch.setattr(elliptic, "sample_case", _planted(elliptic.sample_case, "abs(sa - sb) < 0.05",
+                                                          "abs(sa + sb) < 0.05"))
+    assert status(library_sampler.proposal_margins) == "failed"
+
+
+# --------------------------------------------------------------------------- library.shift_real
+
+def test_shift_real_part_condition_flipped(monkeypatch):
+    # shift's real dtheta1 computed only when |T1| <= 2 (mutant elliptic:270): None off the bands
+    from symbt.claims import library_sampler
+
+    assert status(library_sampler.shift_real_part) == "verified"
+    monkeypatch.setattr(elliptic, "shift", _planted(elliptic.shift, "and abs(T1) >= 2 and abs(T2) >= 2:",
+                                                    "and abs(T1) <= 2 and abs(T2) >= 2:"))
+    assert status(library_sampler.shift_real_part) == "failed"

@@ -32,6 +32,25 @@ things the intersection hides, each against central differences of the literal m
   1 + 6.2e-9 to 1 + 1.4e-8 for 1 to 80 steps and ``rho`` from 1e-35 to 1e-25, independent of both, as
   derived).  The plain ball path, which the intersection falls back to, is wider by about 2 bits per step,
   ``2**40`` here.  The centre is within ``rad_i`` of the literal orbit of the box's centre.
+* ``paths.frame_inverse.n13`` -- :func:`~symbt.numeric.multiprec.lohner.frame_inverse` of an exact frame ``B``
+  of size ``2N = 26`` (above the size where it uses its one-product bound instead of Arb's ``inv``), with its
+  default approximate inverse ``X = B^T``: a random orthogonal frame and one near ``-I`` (every large entry
+  negative), rounded to doubles.  Its docstring's lemma: with ``d = max_i sum_j |(X B - I)_ij| < 1/2`` every
+  entry of ``B^-1 - X`` is at most ``beta d / (1 - d)``, ``beta = max |X_ij|``.  Against ``d`` and ``beta``
+  computed *exactly* (rational arithmetic on the doubles, :mod:`fractions`): the midpoints are ``X`` and every
+  radius is at least ``beta d / (1 - d)`` (less would not be the lemma's enclosure) and at most
+  ``beta (d + e) / (1 - d - e) (1 + 2**-30)**8`` with ``e = 2 n**2 2**-96`` (``X B - I`` evaluated in balls at
+  96 bits: each of the ``n`` products of a row's ``n`` entries rounds by ``2**-96`` of at most 1, mid and
+  radius; the radius' own ``mag_t`` arithmetic rounds upward by ``2**-30`` per operation, a few operations).
+* ``paths.next_prec.n3`` -- the precision schedule of :func:`~symbt.numeric.multiprec.lohner.lohner_certified`:
+  a first pass forced too low (135 bits for a 1e-40 target, 60 steps of the paper's state) fails after ``i``
+  steps, and the second pass must run at the precision its docstring states -- the excess so far ``e`` plus 1.5
+  times the fitted degree ``g`` times ``log2(n / i)`` plus 16 bits, at least 32 bits more:
+  ``max(floor(p + e + 1.5 g log2(n / i) + 16) + 1, p + 32)`` -- with ``e``, ``i`` and the radii read off the
+  same first pass run by :func:`~symbt.numeric.multiprec.lohner.lohner_pass` and ``g`` fitted by
+  :func:`~symbt.numeric.multiprec.lohner.growth_law` over the steps done (a consistency check of the code with
+  its documented rule: the schedule changes only how many passes a certified orbit takes, never its rigour);
+  and the orbit it returns meets the target.
 
 Shown to fail on planted bugs in ``tests/test_killers_numeric.py``.
 """
@@ -184,3 +203,125 @@ def lohner_box(N: int, parts: Parts) -> Outcome:
                       detail="; ".join(bad[:3]) + ". " + detail)
     return Outcome("verified", "numeric: Lohner set of a box vs the literal map's first-order image",
                    evidence="sampled", detail=detail, printed="the Lohner enclosure of a box is sharp")
+
+
+#: paths.frame_inverse: the working precision of the frame algebra (LohnerSet's jac_prec) and the seed
+FRAME_INV_PREC, FRAME_INV_SEED = 96, 7
+
+
+def inverse_frames(n: int) -> list[tuple[str, Any]]:
+    """``(name, B)``: a random orthogonal frame and one near ``-I`` (float64 arrays, ``n x n``)."""
+    import numpy as np
+
+    rng = np.random.default_rng(FRAME_INV_SEED)
+    Q = np.linalg.qr(rng.standard_normal((n, n)))[0]
+    Qi, R = np.linalg.qr(np.eye(n) + 0.05 * rng.standard_normal((n, n)))
+    return [("random orthogonal", Q), ("near -I", -Qi * np.sign(np.diag(R)))]
+
+
+def lemma_radius(B: Any) -> tuple[Any, Any]:
+    """``(d, beta)`` of frame_inverse's lemma for ``X = B^T``, exactly: the doubles as integers times ``2**-S``
+    (one common scale), so every product and sum below is an exact integer operation."""
+    from fractions import Fraction
+
+    S = 1100                                        # 2**S x (any double of magnitude <= 1) is an integer
+    Z = [[int(Fraction(float(v)) * 2 ** S) for v in row] for row in B]
+    n = len(Z)
+    cols = [[Z[k][j] for k in range(n)] for j in range(n)]
+    one = 1 << (2 * S)
+    d = max(sum(abs(sum(a * c for a, c in zip(cols[i], cols[j])) - (one if i == j else 0)) for j in range(n))
+            for i in range(n))
+    return Fraction(d, one), Fraction(max(abs(x) for row in Z for x in row), 1 << S)
+
+
+@claim("paths.frame_inverse", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths",
+       sizes=(13,), requires=("flint",),
+       where="symbt/numeric/multiprec/lohner.py: frame_inverse (the one-product bound, X = B^T)",
+       statement="frame_inverse(B) for exact 26 x 26 frames (random orthogonal; near -I), X = B^T, at 96 bits: "
+                 "midpoints X, every radius in [beta d/(1-d), beta (d+e)/(1-d-e) (1+2^-30)^8] with d, beta of "
+                 "the docstring's lemma computed exactly and e = 2 n^2 2^-96 (N={N})")
+def frame_inverse_lemma(N: int) -> Outcome:
+    if importlib.util.find_spec("flint") is None:
+        return skipped("python-flint is not installed (.[certified])")
+    from flint import arb, arb_mat
+
+    from ..numeric.multiprec.arb import flint_prec
+    from ..numeric.multiprec.lohner import frame_inverse
+
+    n, bad, worst = 2 * N, [], (mp.inf, mp.mpf(0))
+    e = mp.mpf(2) * n * n * mp.mpf(2) ** -FRAME_INV_PREC
+    for name, B in inverse_frames(n):
+        d, beta = lemma_radius(B)
+        d, beta = mp.mpf(d.numerator) / d.denominator, mp.mpf(beta.numerator) / beta.denominator
+        low = beta * d / (1 - d)
+        high = beta * (d + e) / (1 - d - e) * (1 + mp.mpf(2) ** -30) ** 8
+        with flint_prec(FRAME_INV_PREC):
+            E = frame_inverse(arb_mat(B.tolist()))
+        for i in range(n):
+            for j in range(n):
+                r = mp.mpf(float(E[i, j].rad()))
+                worst = (min(worst[0], r / low), max(worst[1], r / low))
+                if not E[i, j].mid() == arb(float(B[j, i])):
+                    bad.append(f"{name}: the midpoint ({i}, {j}) is not X = B^T")
+                elif not low <= r <= high:
+                    bad.append(f"{name}: radius ({i}, {j}) = {mp.nstr(r / low, 6)} x the lemma's "
+                               f"beta d / (1 - d) (accepted 1 .. {mp.nstr(high / low, 6)})")
+    detail = f"radius / (beta d / (1 - d)) in [{mp.nstr(worst[0], 8)}, {mp.nstr(worst[1], 8)}]."
+    if bad:
+        return failed("numeric: frame_inverse vs its lemma with exact d", detail="; ".join(bad[:3]) + ". " + detail)
+    return Outcome("verified", "numeric: frame_inverse vs its lemma with d, beta exact (fractions)",
+                   evidence="sampled", detail=detail, printed="radius = beta d / (1 - d), upper rounding only")
+
+
+#: paths.next_prec: steps, the target radius and its bits, the forced first precision
+NEXT_STEPS, NEXT_TARGET, NEXT_BITS, NEXT_FIRST = 60, 1e-40, 133, 135
+
+
+@claim("paths.next_prec", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       requires=("flint",),
+       where="symbt/numeric/multiprec/lohner.py: lohner_certified's precision schedule (_next_prec)",
+       statement="lohner_certified on the paper's state (N={N}), 60 steps, target 1e-40, first pass forced to 135 "
+                 "bits: the second pass runs at max(floor(p + e + 1.5 g log2(n/i) + 16) + 1, p + 32) (its "
+                 "docstring's rule, e, i, g from the same first pass by lohner_pass and growth_law) and the "
+                 "returned orbit meets the target")
+def next_precision(N: int) -> Outcome:
+    if importlib.util.find_spec("flint") is None:
+        return skipped("python-flint is not installed (.[certified])")
+    import math
+
+    from flint import arb
+
+    from ..numeric.multiprec.arb import flint_prec
+    from ..numeric.multiprec.lohner import growth_law, lohner_certified, lohner_pass
+
+    def state() -> tuple:
+        return [arb(-20), arb(10), arb(1)], [arb(1), arb(0), arb(0.9)], arb(10), arb(5)
+
+    def excess(xs: list) -> float:
+        return max(math.log2(float(x.rad()) / NEXT_TARGET) if x.rad() > 0 else -math.inf for x in xs)
+
+    n = NEXT_STEPS
+    passes: list[int] = []
+    stored, _, _ = lohner_certified(state, n, 1, {n}, excess, NEXT_BITS, NEXT_FIRST, 4096, passes)
+    with flint_prec(NEXT_FIRST):
+        P, Q, l0, m = state()
+        run = lohner_pass(P, Q, l0, m, n, 1, {n}, excess)
+    done = [i for i in range(1, run.done + 1) if math.isfinite(run.hist[i])]
+    bad = []
+    if run.ok or not done or done[-1] >= n:
+        return failed("numeric: lohner_certified's schedule", detail=f"the forced first pass did not stop early "
+                      f"(ok {run.ok}, {run.done} steps): the claim's premise fails")
+    i, e = done[-1], max(run.hist[k] for k in done)
+    g = growth_law(run.lograd[:i + 1], first=max(1, i // 10))["degree"]
+    want = max(int(NEXT_FIRST + e + 1.5 * max(g or 2.0, 1.0) * math.log2(n / i) + 16) + 1, NEXT_FIRST + 32)
+    if passes[:2] != [NEXT_FIRST, want]:
+        bad.append(f"passes {passes}, the documented rule gives {want} after {NEXT_FIRST} (stopped at step {i}, "
+                   f"excess {e:.3g}, degree {g})")
+    if not excess(stored[-1][0] + stored[-1][1]) <= 0:
+        bad.append("the returned orbit does not meet the target radius")
+    detail = f"first pass {NEXT_FIRST} bits stopped at step {i} (excess {e:.3g} bits, degree {g}); passes {passes}."
+    if bad:
+        return failed("numeric: lohner_certified's schedule vs its documented rule", detail="; ".join(bad) + " "
+                      + detail)
+    return Outcome("verified", "numeric: lohner_certified's schedule vs its documented rule (consistency)",
+                   evidence="sampled", detail=detail, printed="the second pass at the documented precision")

@@ -16,7 +16,8 @@ not take -- or whose choice they cannot see -- are checked here, each against th
   among moderate ones: ``bt_step`` (numpy rows) and ``bt_orbit`` ensembles (block kernel with the general
   path's retry of the members it gives back; numpy) raise the single-state call's typed error, with ``where``
   naming exactly that member and the single-state call's ``condition``; with ``allow_complex=True`` the
-  other members equal their single-state steps bit for bit and are real.
+  other members equal their single-state steps bit for bit and are real, and the failing member equals its
+  single-state continuation bit for bit.
 * ``paths.tiny_mu.n3`` -- ``flow_coefficients`` where ``lam0 - mu == lam0 + mu`` in float64 (its
   ``2 mu f(lam0)`` branch), against ``-b 2 mu lam0**k / sqrt(tr**2 - 4)`` with ``tr`` the literal 2x2 product at
   40 digits, at ``lam0 < 0`` (the sign of ``lam0**k`` alternates with k).
@@ -219,8 +220,9 @@ def _single_error(fn: Any) -> BaseException | None:
                  "bt_orbit ensembles (block kernel + the general path's retry; numpy) raise NoRealMapError with "
                  "where = that member and the single-state call's condition; a member beyond the float64 range "
                  "gives NumericRangeError; with allow_complex=True the other members equal their single-state "
-                 "steps bit for bit; where_text names the failing row as documented; under --deep also the numba "
-                 "block kernel's batch step and ensemble (N={N})")
+                 "steps bit for bit and the failing member its single-state continuation; where_text names the "
+                 "failing row as documented; under --deep also the numba block kernel's batch step and ensemble "
+                 "(N={N})")
 def failing_rows(N: int, parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import NumericRangeError, bt_orbit, bt_step
     from .shipped_emitted import nomap_states
@@ -279,6 +281,11 @@ def failing_rows(N: int, parts: Parts, deep: bool = False) -> Outcome:
                     why = "a moderate member came back complex"
                 elif not (np.array_equal(re_p, sp_) and np.array_equal(re_q, sq_)):
                     why = "a moderate member differs from its single-state step"
+            # the member without a real map: its continuation is the single-state call's, bit for bit
+            cp_, cq_ = bt_step(np.array(st_bad[0]), np.array(st_bad[1]), st_bad[2], st_bad[3], branch=b,
+                               backend="numpy", allow_complex=True)
+            if not why and not (np.array_equal(pt[1], cp_) and np.array_equal(qt[1], cq_)):
+                why = "the member without a real map differs from its single-state continuation"
         except Exception as exc:  # allow_complex must not raise on a batch with a real map elsewhere
             why = f"raised {type(exc).__name__}"
         note(cell, st_bad, b, why)

@@ -11,7 +11,9 @@ precision fails.  Also: a state beyond ``MAX_DQ_QD = 300`` is given back with th
 step (where ``backend="auto"`` continues on the Arb path); states without a real map get a no-map status;
 ``to_qd`` splits values exactly (the sum of the limbs is the value, sign included) and refuses what it documents
 it refuses; ``from_qd``'s integer decomposition (``_decompose``, plain Python) is exact;
-:func:`~symbt.numeric.multiprec.qd.qd_fits` admits exactly ``mp.prec + 16 + 2 bitlen(n) <= 209``.
+:func:`~symbt.numeric.multiprec.qd.qd_fits` admits exactly ``mp.prec + 16 + 2 bitlen(n) <= 209``;
+:func:`~symbt.numeric.multiprec.qd.qd_orbit_mp` refuses an input of ``2**601`` with ``NumericRangeError`` before
+any kernel runs (its documented range; run without numba, the refusal does not depend on it).
 
 The compiled route (``backend="qd"``, numba) is checked by ``shipped.mp`` and ``shipped.orbit`` under ``--deep``.
 Shown to fail on planted bugs in ``tests/test_killers_numeric.py``.
@@ -37,6 +39,7 @@ from ._shipped import (
     ship_cells,
     step_constant,
     step_ref,
+    without_numba,
 )
 from .base import Outcome, Parts, claim, failed
 
@@ -191,6 +194,20 @@ def _qd_statuses(N: int, parts: Parts) -> list[str]:
             rule = prec + 16 + 2 * n.bit_length() <= parts.printed["qd_bits"]
             if qd_fits(prec, n) != rule:
                 bad.append(f"qd_fits({prec}, {n}) = {qd_fits(prec, n)}, the documented rule says {rule}")
+    # qd_orbit_mp refuses an input beyond 2**600 with NumericRangeError before any kernel runs (so with and
+    # without numba alike; without_numba: the default verify compiles nothing)
+    from ..numeric import NumericRangeError
+    from ..numeric.multiprec.qd import qd_orbit_mp
+
+    with mp.workprec(150), without_numba():
+        big = [mp.mpf(-20), mp.mpf(2) ** 601] + [mp.mpf(1)] * (N - 2)
+        try:
+            qd_orbit_mp(big, [mp.mpf(0)] * N, mp.mpf(10), mp.mpf(5), 2)
+            bad.append("qd_orbit_mp accepted an input of 2**601")
+        except NumericRangeError:
+            pass
+        except Exception as exc:  # any other error: not the documented refusal
+            bad.append(f"qd_orbit_mp raised {type(exc).__name__} on an input of 2**601, not NumericRangeError")
     if OK != 0:
         bad.append("status OK is not 0")
     return bad
@@ -203,7 +220,8 @@ def _qd_statuses(N: int, parts: Parts) -> list[str]:
                  "(three at the wide state) = the literal orbit (80 digits) within 16 N n 2^-209 S_i in every "
                  "branch x sign(mu) x sign(tr) "
                  "cell and at a neighbour distance in (250, 300]; beyond 300 it gives the state back (RANGE), "
-                 "without a real map it says so; to_qd splits exactly; qd_fits follows its rule (N={N})")
+                 "without a real map it says so; to_qd splits exactly; qd_fits follows its rule; qd_orbit_mp "
+                 "refuses an input of 2^601 (NumericRangeError) (N={N})")
 def qd_paths(N: int, parts: Parts) -> Outcome:
     tally = Tally()
     samples = list(ship_cells(N, 1))

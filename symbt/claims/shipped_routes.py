@@ -13,10 +13,13 @@ general path, which is right for every state, so accuracy claims cannot see a sl
   other at the gap's middle, ``delta = 10**(-k/16)`` for ``k = 64 .. 127`` (1e-4 to 1e-8: across
   ``KAPPA_MAX`` = 2^24, both branches): at every state the fused kernel
   (:func:`~symbt.numeric.float64.orbit.kernel_step`) and the block kernel take the same decision (handed back
-  = status ``ILLCOND``, else status ``OK`` and the same bits) -- a consistency check of two implementations
-  of one documented estimate; the scan must cross the threshold (its widest state finished, its narrowest
-  handed back), and the finished state nearest each edge -- the most ill-conditioned one a kernel keeps -- is
-  the literal map of :mod:`symbt.reference.literal` within ``16 N eps S_i`` (the independent route).
+  = status ``ILLCOND``, else status ``OK`` and the same bits), and so does the numpy route of ``bt_step``'s
+  batches (:func:`~symbt.numeric.core.step.float_status` of one vectorised ``step_core``: "in the order of the
+  fused kernels") -- a consistency check of three implementations of one documented estimate (its positivity
+  term takes the larger of the two traces' conditions); the scan must cross the threshold (its widest state
+  finished, its narrowest handed back), and the finished state nearest each edge -- the most ill-conditioned
+  one a kernel keeps -- is the literal map of :mod:`symbt.reference.literal` within ``16 N eps S_i`` (the
+  independent route).
 * ``paths.anchored.n3`` -- the fused orbit (:func:`~symbt.numeric.float64.kernels.orbit`) and the block
   kernel's ensemble, ``2 ANCHOR + 3`` steps stored at every step, one state per cell: both pass the
   re-anchoring (the double-double flush of ``F`` into ``q`` and ``r = exp(dq)``) twice, and must agree bit
@@ -27,7 +30,9 @@ general path, which is right for every state, so accuracy claims cannot see a sl
   (``lam1`` or ``lam2`` 1e-9 of the gap inside an edge: status ``ILLCOND`` at every step, escalated to higher
   precision), 3 steps: each member is the literal orbit within ``16 N n eps S_i`` (the orbit bound of
   ``shipped.orbit``) and equals its single-state call bit for bit (documented) -- the escalated member's place
-  in the batch (the second) is where an index slip in the escalation shows.
+  in the batch (the second) is where an index slip in the escalation shows; and ``bt_step(backend="numpy")`` on
+  the same batches (the numpy rows of :mod:`symbt.numeric.float64.rows`, which escalate the ``ILLCOND`` row
+  themselves): each member within ``16 N eps S_i`` of the literal step and equal to its single-state step.
 * ``paths.edges.n3`` -- :func:`~symbt.numeric.multiprec.lohner.growth_law` without two usable points
   (one recorded step, or every radius zero) returns ``degree = None`` as documented, and the float64
   context's ``out_of_range`` (the monodromy's rescaling trigger) on complex rows against its documented
@@ -100,13 +105,29 @@ def threshold_states() -> tuple:
     return tuple(out)
 
 
+def _numpy_rows_status(rows: tuple, b: int) -> Any:
+    """The statuses the numpy route of ``bt_step``'s batches gives the states ``rows`` (one vectorised
+    :func:`~symbt.numeric.core.step.step_core` and :func:`~symbt.numeric.core.step.float_status`, as
+    ``float64.rows`` decides a block; no escalation)."""
+    from ..numeric.core.context import FLOAT
+    from ..numeric.core.step import float_status, step_core
+
+    pa, qa = np.array([st[0] for st in rows]), np.array([st[1] for st in rows])
+    l0, m = np.array([st[2] for st in rows]), np.array([st[3] for st in rows])
+    with np.errstate(all="ignore"):
+        Pn, Qn, aux = step_core(FLOAT, list(pa.T.copy()), list(qa.T.copy()), l0, m, b, check_real=False)
+    return float_status(aux, Pn, Qn)
+
+
 @claim("paths.threshold", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
        parts=scale_parts,
-       where="symbt/numeric/float64/kernels.py (the fused hooks' condition estimate), kernels_block.py",
+       where="symbt/numeric/float64/kernels.py (the fused hooks' condition estimate), kernels_block.py, "
+             "core/step.py (float_status: the numpy rows)",
        statement="N={N}: the paper's state and its mirror p -> -p with lam1 (or lam2) at 1e-4 .. 1e-8 of the gap "
                  "inside a band edge, both branches: the fused and the block kernel hand back the same states "
-                 "(ILLCOND) and give the same bits for the others, the scan crosses the threshold, and the "
-                 "finished state nearest each edge = the literal map within 16 N eps S_i")
+                 "(ILLCOND) and give the same bits for the others, the numpy rows' statuses are the same, the "
+                 "scan crosses the threshold, and the finished state nearest each edge = the literal map within "
+                 "16 N eps S_i")
 def threshold(N: int, parts: Parts) -> Outcome:
     from ..numeric.core.limits import ILLCOND, OK
     from ..numeric.float64.orbit import kernel_step
@@ -122,12 +143,13 @@ def threshold(N: int, parts: Parts) -> Outcome:
             tally.add("decisions", cell, rows[0], b, math.inf)
             continue
         differ, kept = [], None
+        rows_status = _numpy_rows_status(rows, b)
         for i, st in enumerate(rows):
             out = kernel_step(np.array(st[0]), np.array(st[1]), st[2], st[3], b, "python")
             code = int(status[i])
             same = (code == ILLCOND if out is None else
                     code == OK and np.array_equal(out[0], BP[i]) and np.array_equal(out[1], BQ[i]))
-            if not same:
+            if not same or int(rows_status[i]) != code:
                 differ.append(i)
             if out is not None:
                 kept = (i, out)
@@ -135,7 +157,7 @@ def threshold(N: int, parts: Parts) -> Outcome:
                               "python") is not None and int(status[-1]) == ILLCOND
         if differ:
             first = THRESHOLD_KS[differ[0]] / THRESHOLD_DIV
-            tally.notes.append(f"{label}, branch {b}: fused and block kernel decide differently at "
+            tally.notes.append(f"{label}, branch {b}: fused kernel, block kernel and numpy rows decide differently at "
                                f"{len(differ)} of {len(rows)} states (first: delta = 1e-{first:.4g}).")
         if not crosses:
             tally.notes.append(f"{label}, branch {b}: the scan does not cross the threshold (widest state handed "
@@ -161,9 +183,10 @@ ILL_STEPS = 3
        where="symbt/numeric/float64/orbit.py: general_orbit (the escalation of ILLCOND members)",
        statement="bt_orbit(backend='numpy'), N={N}, 3 steps, ensembles [moderate state, state 1e-9 of the gap "
                  "inside a band edge] per edge and branch: every member = the literal orbit within 16 N n eps S_i "
-                 "and = its single-state call bit for bit")
+                 "and = its single-state call bit for bit; bt_step(backend='numpy') on the same batches likewise "
+                 "(one step, 16 N eps S_i)")
 def ill_member(N: int, parts: Parts) -> Outcome:
-    from ..numeric import bt_orbit
+    from ..numeric import bt_orbit, bt_step
 
     tally, C, s, n = Tally(), step_constant(N), parts.printed["scale"], ILL_STEPS
     for cell, st, b in edge_states():
@@ -191,6 +214,23 @@ def ill_member(N: int, parts: Parts) -> Outcome:
                     r = math.inf
                 tally.add("ensemble member" if k else "moderate member", dict(cell, member=k), m, b, r, allowed,
                           ref.agree)
+            # bt_step's numpy rows on the same batch (float64.rows escalates the ILLCOND row): one step each
+            try:
+                bp, bq = bt_step(np.array([m[0] for m in members]), np.array([m[1] for m in members]),
+                                 np.array([m[2] for m in members]), np.array([m[3] for m in members]), branch=b,
+                                 backend="numpy")
+            except (ArithmeticError, ValueError) as exc:
+                tally.notes.append(f"{cell}: bt_step on the batch raised {type(exc).__name__}: {str(exc)[:120]}")
+                tally.add("bt_step batch member", cell, st, b, math.inf)
+                continue
+            for k, m in enumerate(members):
+                sp, sq = bt_step(np.array(m[0]), np.array(m[1]), m[2], m[3], branch=b, backend="numpy")
+                sref = step_ref(m, b)
+                r, allowed = ratios(scaled(list(bp[k]) + list(bq[k]), s), sref.x, sref.S, EPS, C)
+                if not (np.array_equal(bp[k], sp) and np.array_equal(bq[k], sq)):
+                    tally.notes.append(f"{cell}: bt_step's batch member {k} differs from its single-state step.")
+                    r = math.inf
+                tally.add("bt_step batch member", dict(cell, member=k), m, b, r, allowed, sref.agree)
     return tally.outcome(method="numeric: general-path ensembles with an escalated member vs the literal orbit "
                                 "and the single-state calls",
                          printed=f"|member - literal| <= {C} n eps S_i, = the single-state orbit")
