@@ -29,7 +29,7 @@ def status(cid: str) -> str:
 
 def test_the_scene_has_the_claims_named_here():
     assert NUMERIC_PATHS == ["paths.anchored.n3", "paths.certified_nomap.n3", "paths.coefficients_mp.n3",
-                             "paths.complex.n3", "paths.edges.n3",
+                             "paths.complex.n3", "paths.dask.n3", "paths.edges.n3",
                              "paths.failing_rows.n3", "paths.field_far.n3",
                              "paths.frame.n13", "paths.frame_inverse.n13", "paths.growth.n3", "paths.ill_member.n3",
                              "paths.jacobian.n3",
@@ -506,3 +506,36 @@ def test_field_renormalised_sweep_with_the_previous_ratio(monkeypatch):
                                                                   "r[j] * f00, r[j] * f01\n        f00",
                                                                   "r[j - 1] * f00, r[j] * f01\n        f00"))
     assert status("paths.field_far.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.dask
+
+def test_dask_chunks_swap_lam0_and_mu(monkeypatch):
+    # the chunk reads mu's column as lam0 and lam0's as mu
+    pytest.importorskip("dask")
+    from symbt.numeric.float64 import dask_orbit as mod
+
+    monkeypatch.setattr(mod, "_chunk", _planted(mod._chunk, "block[:, 2 * N], block[:, 2 * N + 1]",
+                                                "block[:, 2 * N + 1], block[:, 2 * N]"))
+    assert status("paths.dask.n3") == "failed"
+
+
+def test_dask_shape_test_inverted(monkeypatch):
+    # `p.ndim != 2` -> `==` (mutant dask_orbit:97): every well-formed ensemble refused
+    pytest.importorskip("dask")
+    from symbt.numeric.float64 import dask_orbit as mod
+
+    monkeypatch.setattr(mod, "dask_orbit", _planted(mod.dask_orbit, "p.ndim != 2", "p.ndim == 2"))
+    monkeypatch.setattr("symbt.numeric.dask_orbit", mod.dask_orbit)
+    assert status("paths.dask.n3") == "failed"
+
+
+def test_dask_chunks_of_p_from_the_wrong_axis(monkeypatch):
+    # p rechunked with its column chunks as row chunks (mutant dask_orbit:110)
+    pytest.importorskip("dask")
+    from symbt.numeric.float64 import dask_orbit as mod
+
+    monkeypatch.setattr(mod, "dask_orbit", _planted(mod.dask_orbit, "p.rechunk((p.chunks[0], N))",
+                                                    "p.rechunk((p.chunks[1], N))"))
+    monkeypatch.setattr("symbt.numeric.dask_orbit", mod.dask_orbit)
+    assert status("paths.dask.n3") == "failed"

@@ -45,6 +45,7 @@ CLAIM_MODULES = (
     "shipped_complex",
     "shipped_condition",
     "shipped_existence",
+    "shipped_dask",
     "shipped_field",
     "checker",
     "checker_mutation",
