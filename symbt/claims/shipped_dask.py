@@ -49,8 +49,8 @@ def dask_orbit_members(N: int, parts: Parts) -> Outcome:
             # the chunking is under test, not the kernel (its claims run both instances); without numba an
             # ensemble is the single-state call with backend="numpy" bit for bit (docs/numeric.md)
             with without_numba():
-                P, Q = (a.compute(scheduler="synchronous") for a in dask_orbit(*cols, n, chunks=DASK_CHUNK,
-                                                                                branch=b))
+                lazy = dask_orbit(cols[0], cols[1], cols[2], cols[3], n, chunks=DASK_CHUNK, branch=b)
+                P, Q = (a.compute(scheduler="synchronous") for a in lazy)
         except (ArithmeticError, ValueError) as exc:        # NoRealMapError, NumericRangeError, InvalidInputError
             tally.notes.append(f"branch {b}: dask_orbit raised {type(exc).__name__}: {str(exc)[:120]}")
             tally.add("dask member", {"branch": b}, rows[0][1], b, math.inf)
