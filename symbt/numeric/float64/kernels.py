@@ -340,15 +340,16 @@ def cheap_kernels() -> dict[str, Callable[..., Any]]:
 
 @cache
 def python_kernels() -> dict[str, Callable[..., Any]]:
-    """The fused step (:mod:`symbt.numeric.core.fused`) in float64, plain Python (``slopes``, ``step``).
+    """The fused step (:mod:`symbt.numeric.core.fused`) in float64, plain Python (``slopes``, ``step``), with
+    the operations and the hooks written inline (:mod:`symbt.numeric.core.inline`; bit-identical).
 
     >>> sorted(python_kernels())
     ['slopes', 'step']
     """
     from ..core.inline import FLOAT64_INLINE
 
-    return instantiate(SOURCE, {**OPERATIONS, **HOOKS}, tag="f64", jit=False, extra=_EXTRA,
-                       operations=FLOAT64_INLINE)
+    kinds = {**FLOAT64_INLINE, **{name: "body" for name in HOOKS if name not in FLOAT64_INLINE}}
+    return instantiate(SOURCE, {**OPERATIONS, **HOOKS}, tag="f64", jit=False, extra=_EXTRA, operations=kinds)
 
 
 def _anchor1(qh: F64, ql: F64, fh: F64, fl: F64, r: F64, p: F64) -> int:
