@@ -327,6 +327,91 @@ class _Bodies:
         return ast.Name(name, ctx)
 
 
+def _names(node: ast.AST) -> set[str]:
+    return {n.id for n in ast.walk(node) if isinstance(n, ast.Name)}
+
+
+def _pairs(target: ast.expr, value: ast.expr, sizes: Mapping[str, int]) -> list[tuple[ast.expr, ast.expr]]:
+    """``target = value`` as element assignments (``(a, b) = (x, y)``: ``a = x``, ``b = y``), the tuples
+    held by the locals of ``sizes`` spread into one local each."""
+    if isinstance(target, ast.Tuple) and isinstance(value, ast.Tuple) and len(target.elts) == len(value.elts):
+        return [pq for t, v in zip(target.elts, value.elts) for pq in _pairs(t, v, sizes)]
+    if isinstance(target, ast.Name) and target.id in sizes and isinstance(value, ast.Tuple):
+        return [pq for i, v in enumerate(value.elts) for pq in _pairs(ast.Name("%s__%d" % (target.id, i),
+                                                                               ast.Store()), v, sizes)]
+    if isinstance(target, ast.Tuple) and isinstance(value, ast.Name) and value.id in sizes:
+        return [(t, ast.Name("%s__%d" % (value.id, i), ast.Load())) for i, t in enumerate(target.elts)]
+    if isinstance(target, ast.Name) and isinstance(value, ast.Name) and target.id in sizes and value.id in sizes:
+        return [(ast.Name("%s__%d" % (target.id, i), ast.Store()), ast.Name("%s__%d" % (value.id, i), ast.Load()))
+                for i in range(sizes[value.id])]
+    return [(target, value)]
+
+
+def _tuple_locals(func: ast.FunctionDef) -> dict[str, int]:
+    """The locals that only ever hold tuples of one size, written whole and read by unpacking or by a
+    constant index: name -> size."""
+    sizes: dict[str, int] = {}
+    allowed: set[int] = set()
+    bad = {a.arg for a in func.args.args}
+
+    def size(name: str, k: int) -> None:
+        if sizes.setdefault(name, k) != k:
+            bad.add(name)
+
+    def note(target: ast.expr, value: ast.expr) -> None:
+        if isinstance(target, ast.Tuple) and isinstance(value, ast.Tuple) and len(target.elts) == len(value.elts):
+            for t, v in zip(target.elts, value.elts):
+                note(t, v)
+        elif isinstance(target, ast.Name) and isinstance(value, ast.Tuple) and \
+                not any(isinstance(e, ast.Starred) for e in value.elts):
+            allowed.add(id(target))
+            size(target.id, len(value.elts))
+        elif isinstance(target, ast.Tuple) and isinstance(value, ast.Name) and \
+                all(isinstance(e, ast.Name) for e in target.elts):
+            allowed.add(id(value))
+            size(value.id, len(target.elts))
+
+    for n in ast.walk(func):
+        if isinstance(n, ast.Assign) and len(n.targets) == 1:
+            note(n.targets[0], n.value)
+        elif isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name) and isinstance(n.ctx, ast.Load) \
+                and isinstance(n.slice, ast.Constant) and type(n.slice.value) is int and n.slice.value >= 0:
+            allowed.add(id(n.value))
+    for n in ast.walk(func):
+        if isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name) and id(n.value) in allowed and \
+                isinstance(n.slice, ast.Constant) and not n.slice.value < sizes.get(n.value.id, 0):
+            bad.add(n.value.id)                     # an index past the tuple (or never a whole tuple)
+        if isinstance(n, ast.Name) and id(n) not in allowed:
+            bad.add(n.id)
+    return {k: v for k, v in sizes.items() if k not in bad}
+
+
+class _SpreadTuples(ast.NodeTransformer):
+    """Each local of ``sizes`` held as one local per element: no tuple is built or unpacked."""
+
+    def __init__(self, sizes: Mapping[str, int]) -> None:
+        self.sizes = sizes
+
+    def visit_Subscript(self, n: ast.Subscript) -> ast.AST:
+        if isinstance(n.value, ast.Name) and n.value.id in self.sizes and isinstance(n.slice, ast.Constant):
+            return ast.copy_location(ast.Name("%s__%d" % (n.value.id, n.slice.value), ast.Load()), n)
+        return self.generic_visit(n)
+
+    def visit_Assign(self, n: ast.Assign) -> ast.AST | list[ast.stmt]:
+        self.generic_visit(n)
+        if len(n.targets) != 1:
+            return n
+        pairs = _pairs(n.targets[0], n.value, self.sizes)
+        if len(pairs) == 1 and pairs[0][0] is n.targets[0]:
+            return n
+        # one assignment per element where no later element reads an earlier target, else all at once
+        stored = [_names(t) for t, _ in pairs]
+        if all(not (stored[i] & _names(v)) for j, (_, v) in enumerate(pairs) for i in range(j)):
+            return [ast.copy_location(ast.Assign([t], v), n) for t, v in pairs if not _same(t, v)]
+        return ast.copy_location(ast.Assign([ast.Tuple([t for t, _ in pairs], ast.Store())],
+                                            ast.Tuple([v for _, v in pairs], ast.Load())), n)
+
+
 def inlined(fn: Callable[..., Any], name: str, kinds: Mapping[str, str],
             env: Mapping[str, Any]) -> Callable[..., Any]:
     """``fn`` recompiled from its source with the calls named in ``kinds`` written inline, named ``name``,
@@ -344,7 +429,10 @@ def inlined(fn: Callable[..., Any], name: str, kinds: Mapping[str, str],
     bodies = {k: env[k] for k, kind in kinds.items() if kind == "body" and k in env}
     if bodies:
         func.body = _Bodies(bodies, g).block(func.body)
-    tree = ast.fix_missing_locations(_Inline(kinds).visit(tree))
+    tree = _Inline(kinds).visit(tree)
+    if bodies:                  # the hooks' tuples (float64's aux) as one local per element
+        func.body = _SpreadTuples(_tuple_locals(func)).visit(ast.Module(func.body, [])).body
+    tree = ast.fix_missing_locations(tree)
     ns: dict[str, Any] = {}
     exec(compile(tree, inspect.getsourcefile(fn) or "<inlined>", "exec"), g, ns)
     out = ns[name]
