@@ -108,24 +108,43 @@ def test_python_and_numba_orbits_bit_identical_where_the_hooks_work(name, given)
     assert _same_bits(Pp, Pn) and _same_bits(Qp, Qn)
 
 
-@pytest.mark.filterwarnings("ignore:divide by zero:RuntimeWarning")     # numpy scalars at lam + p_j = 0
+def _rows(a):
+    return K._Row(a.tolist())
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")     # numpy scalars divided by zero (lam + p_j = 0)
 def test_failure_statuses_are_those_of_the_called_form():
+    # the called and the inlined step on numpy arrays, and the inlined step on lists of Python floats (what
+    # python_orbit runs: its divisions by zero are IEEE's, not ZeroDivisionError)
     p = np.array([-20.0, 10.0, 1.0])
     r = np.exp(np.diff([1.0, 0.0, 0.9, 1.0]))
     inl, called = K.python_kernels()["step"], _called()["step"]
     statuses = set()
-    for lam1 in np.linspace(-25.0, 25.0, 2001) + 0.01:     # across bands and gaps: every status
+    grid = np.r_[np.linspace(-25.0, 25.0, 2001) + 0.01, 20.0, -10.0, -1.0]     # and lam1 + p_j = 0 exactly
+    for lam1 in grid:
         for lam2 in (lam1 - 0.5, lam1 - 3.0):
             out = []
-            for step in (inl, called):
-                w = [np.empty(3) for _ in range(4)]
-                tt = np.zeros(4)
-                pp, rr, pos = p.copy(), r.copy(), (np.ones(3), np.zeros(3))
-                st = step(pp, rr, pos, lam1, lam2, lam1 - lam2, 1, *w, tt)
-                out.append((st, pp.tobytes(), rr.tobytes(), pos[0].tobytes(), pos[1].tobytes(), tt.tobytes()))
-            assert out[0] == out[1], (lam1, lam2)
+            for step, conv in ((inl, np.copy), (called, np.copy), (inl, _rows)):
+                w = [conv(np.zeros(3)) for _ in range(4)]
+                tt = conv(np.zeros(4))
+                pp, rr, pos = conv(p), conv(r), (conv(np.ones(3)), conv(np.zeros(3)))
+                st = step(pp, rr, pos, float(lam1), float(lam2), float(lam1 - lam2), 1, *w, tt)
+                out.append((st,) + tuple(np.asarray(x, np.float64).tobytes() for x in (pp, rr, *pos, tt)))
+            assert out[0] == out[1] == out[2], (lam1, lam2)
             statuses.add(out[0][0])
     assert statuses >= {0, 1, 2, 3, ILLCOND}
+
+
+@pytest.mark.filterwarnings("ignore::RuntimeWarning")
+@pytest.mark.parametrize("name,given", HOOK_CASES, ids=[n for n, _ in HOOK_CASES])
+def test_python_orbit_on_lists_equals_the_orbit_on_arrays(name, given):
+    p, q, lam0, mu, n, branch = _args(name, given)
+    outs = []
+    for orbit in (K.orbit, K.python_orbit):
+        P, Q = np.empty((n + 1, len(p))), np.empty((n + 1, 2 * len(p)))
+        st = orbit(np.array(p), np.array(q), lam0 + mu, lam0 - mu, 2.0 * mu, branch, n, 1, K.ANCHOR, P, Q)
+        outs.append((st, P.tobytes(), Q.tobytes()))
+    assert outs[0] == outs[1] and outs[0][0] == 0
 
 
 def _trace_minus_two(lam):
@@ -187,6 +206,19 @@ def test_bodies_with_early_returns_and_rebound_parameters():
     for a, b in ((1.0, 3.0), (3.0, 1.0), (0.0, 0.0), (-0.0, 0.0), (math.inf, 1.0), (math.nan, 0.0)):
         assert repr(f(a, b)) == repr(g(a, b))
     assert "_sign_scaled" not in f.__code__.co_names and "add" not in f.__code__.co_names
+
+
+def _ratio(a, b, c):
+    return add(a, div(b, sub(c, a)))  # noqa: F821
+
+
+def test_divisions_are_ieee_on_python_floats():
+    f = inlined(_ratio, "f", FLOAT64_INLINE, K.OPERATIONS)
+    assert f(1.0, 2.0, 3.0) == 2.0
+    assert f(1.0, 2.0, 1.0) == math.inf and f(1.0, -2.0, 1.0) == -math.inf      # no ZeroDivisionError
+    assert math.isnan(f(1.0, 0.0, 1.0))
+    with pytest.raises(ZeroDivisionError):
+        clone(_ratio, **K.OPERATIONS)(1.0, 2.0, 1.0)      # what the called form does on Python floats
 
 
 def test_a_body_that_writes_is_written_inline_only_at_the_root_of_its_statement():

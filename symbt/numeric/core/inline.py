@@ -21,8 +21,16 @@ source's syntax tree so that those calls disappear, in two ways named by the ``k
   nothing, and does not substitute bodies in ``while`` tests, in the branches of ``a if c else b`` or in
   the second operand of ``and``/``or`` (those calls stay calls).
 
-Either way the same IEEE operations run in the same order on the same operands, so the results are bit
-for bit those of the called form (and of the numba instance; ``tests/test_numeric_inline.py``).
+After the substitution, a local that only ever holds a tuple of one size (float64's ``aux``), written
+whole and read by unpacking or by constant index, becomes one local per element (no tuple is built).
+With ``"/": "ieee"`` in ``kinds`` every division divides as IEEE arithmetic (numpy's scalars, numba):
+``a / b if b else ieee_div0(a, b)``, so that the instance runs on Python floats (a third of the time of
+numpy's scalars) where a Python float divided by zero would raise.
+
+Either way the same IEEE operations run on the same operands, so the results are bit for bit those of
+the called form (and of the numba instance; ``tests/test_numeric_inline.py``).  The order of
+independent operations can change (arguments placed before their statement, a denominator before its
+numerator); that never changes a result.
 
 >>> def f(a, b):
 ...     return mul2(add(a, b), 2.0)
@@ -47,18 +55,19 @@ import builtins
 import copy
 import inspect
 import itertools
+import math
 import textwrap
 import types
 from collections.abc import Callable, Mapping
 from typing import Any
 
-__all__ = ["FLOAT64_INLINE", "inlined"]
+__all__ = ["FLOAT64_INLINE", "inlined", "ieee_div0"]
 
 _BINARY = {"add": ast.Add, "add_d": ast.Add, "sub": ast.Sub, "mul": ast.Mult, "mul2": ast.Mult, "div": ast.Div}
 
 #: the float64 arithmetic's calls that are single operations: name -> kind
 FLOAT64_INLINE: Mapping[str, str] = {**{k: "binary" for k in _BINARY}, "neg": "neg", "hi": "identity",
-                                     "ld": "load", "st": "store"}
+                                     "ld": "load", "st": "store", "/": "ieee"}
 
 # functions a body may call at any position of a statement: they read their arguments only
 _PURE_BUILTINS = frozenset({"abs", "max", "min", "float", "int", "bool", "range"})
@@ -347,6 +356,14 @@ def _pairs(target: ast.expr, value: ast.expr, sizes: Mapping[str, int]) -> list[
     return [(target, value)]
 
 
+def _index(n: ast.AST) -> int | None:
+    """``k`` for ``name[k]`` read with a constant ``k >= 0``, else None."""
+    if isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name) and isinstance(n.ctx, ast.Load) and \
+            isinstance(n.slice, ast.Constant) and type(n.slice.value) is int and n.slice.value >= 0:
+        return n.slice.value
+    return None
+
+
 def _tuple_locals(func: ast.FunctionDef) -> dict[str, int]:
     """The locals that only ever hold tuples of one size, written whole and read by unpacking or by a
     constant index: name -> size."""
@@ -374,12 +391,12 @@ def _tuple_locals(func: ast.FunctionDef) -> dict[str, int]:
     for n in ast.walk(func):
         if isinstance(n, ast.Assign) and len(n.targets) == 1:
             note(n.targets[0], n.value)
-        elif isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name) and isinstance(n.ctx, ast.Load) \
-                and isinstance(n.slice, ast.Constant) and type(n.slice.value) is int and n.slice.value >= 0:
-            allowed.add(id(n.value))
+        elif _index(n) is not None:
+            allowed.add(id(n.value))                                       # type: ignore[attr-defined]
     for n in ast.walk(func):
-        if isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name) and id(n.value) in allowed and \
-                isinstance(n.slice, ast.Constant) and not n.slice.value < sizes.get(n.value.id, 0):
+        k = _index(n)
+        if k is not None and isinstance(n, ast.Subscript) and isinstance(n.value, ast.Name) and \
+                not k < sizes.get(n.value.id, 0):
             bad.add(n.value.id)                     # an index past the tuple (or never a whole tuple)
         if isinstance(n, ast.Name) and id(n) not in allowed:
             bad.add(n.id)
@@ -393,8 +410,9 @@ class _SpreadTuples(ast.NodeTransformer):
         self.sizes = sizes
 
     def visit_Subscript(self, n: ast.Subscript) -> ast.AST:
-        if isinstance(n.value, ast.Name) and n.value.id in self.sizes and isinstance(n.slice, ast.Constant):
-            return ast.copy_location(ast.Name("%s__%d" % (n.value.id, n.slice.value), ast.Load()), n)
+        k = _index(n)
+        if k is not None and n.value.id in self.sizes:                 # type: ignore[attr-defined]
+            return ast.copy_location(ast.Name("%s__%d" % (n.value.id, k), ast.Load()), n)  # type: ignore
         return self.generic_visit(n)
 
     def visit_Assign(self, n: ast.Assign) -> ast.AST | list[ast.stmt]:
@@ -410,6 +428,37 @@ class _SpreadTuples(ast.NodeTransformer):
             return [ast.copy_location(ast.Assign([t], v), n) for t, v in pairs if not _same(t, v)]
         return ast.copy_location(ast.Assign([ast.Tuple([t for t, _ in pairs], ast.Store())],
                                             ast.Tuple([v for _, v in pairs], ast.Load())), n)
+
+
+def ieee_div0(a: float, b: float) -> float:
+    """``a / b`` for ``b = +-0`` as IEEE arithmetic (numpy's scalars, numba) gives it: ``+-inf``, or NaN
+    where ``a`` is zero or NaN (the same NaN: ``0 * inf`` is the processor's default NaN, as ``0 / 0``).
+
+    >>> ieee_div0(1.0, -0.0), ieee_div0(-2.0, 0.0), ieee_div0(0.0, 0.0) != ieee_div0(0.0, 0.0)
+    (-inf, -inf, True)
+    """
+    return a * math.inf * math.copysign(1.0, b)
+
+
+class _IeeeDivision(ast.NodeTransformer):
+    """``a / b`` -> ``a / b if b else ieee_div0(a, b)`` (``b`` evaluated once): a Python float divided by
+    zero raises, an IEEE one is ``+-inf`` or NaN."""
+
+    def __init__(self) -> None:
+        self.count = itertools.count()
+
+    def visit_BinOp(self, n: ast.BinOp) -> ast.AST:
+        self.generic_visit(n)
+        if not isinstance(n.op, ast.Div) or isinstance(n.right, ast.Constant) and n.right.value:
+            return n
+        if isinstance(n.right, (ast.Name, ast.Constant)):
+            test: ast.expr = n.right
+            d: ast.expr = n.right
+        else:
+            name = "_div%d" % next(self.count)
+            test, d = ast.NamedExpr(ast.Name(name, ast.Store()), n.right), ast.Name(name, ast.Load())
+        zero = ast.Call(ast.Name("_inline_ieee_div0", ast.Load()), [copy.deepcopy(n.left), copy.deepcopy(d)], [])
+        return ast.copy_location(ast.IfExp(test, ast.BinOp(n.left, ast.Div(), copy.deepcopy(d)), zero), n)
 
 
 def inlined(fn: Callable[..., Any], name: str, kinds: Mapping[str, str],
@@ -432,6 +481,9 @@ def inlined(fn: Callable[..., Any], name: str, kinds: Mapping[str, str],
     tree = _Inline(kinds).visit(tree)
     if bodies:                  # the hooks' tuples (float64's aux) as one local per element
         func.body = _SpreadTuples(_tuple_locals(func)).visit(ast.Module(func.body, [])).body
+    if kinds.get("/") == "ieee":
+        tree = _IeeeDivision().visit(tree)
+        g["_inline_ieee_div0"] = ieee_div0
     tree = ast.fix_missing_locations(tree)
     ns: dict[str, Any] = {}
     exec(compile(tree, inspect.getsourcefile(fn) or "<inlined>", "exec"), g, ns)
