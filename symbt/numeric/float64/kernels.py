@@ -82,8 +82,8 @@ if TYPE_CHECKING:
 
 Track = tuple[float, float, float, float, float, float, float]
 
-__all__ = ["orbit", "python_orbit", "orbit_rows", "stored_steps", "python_kernels", "cheap_kernels",
-           "sharp_compiled", "ANCHOR", "HOOKS", "OPERATIONS"]
+__all__ = ["orbit", "python_orbit", "python_orbit_with", "orbit_rows", "stored_steps", "python_kernels",
+           "cheap_kernels", "sharp_compiled", "ANCHOR", "HOOKS", "OPERATIONS"]
 # monodromy entries past _BIG are multiplied by _SHRINK (powers of two: exact, the slopes only need ratios),
 # so that |tr L| ~ 1e300 and beyond (N = 256 far from the spectrum) stays in the kernel; the product of the
 # absolute values (>= the monodromy entrywise) decides when, and is scaled alike
@@ -436,9 +436,7 @@ step = python_kernels()["step"]
 
 
 class _Row(list):  # type: ignore[type-arg]
-    """A state array of :func:`python_orbit`: a list of Python floats with the ``shape`` and ``copy`` the
-    step and the driver read."""
-
+    """A state array of :func:`python_orbit`: Python floats, with the ``shape`` and ``copy`` the step reads."""
     __slots__ = ()
 
     @property
@@ -456,14 +454,29 @@ class _Rows:
     def empty(n: int) -> _Row:
         return _Row([0.0] * n)
 
-    zeros = empty
-
     @staticmethod
     def ones(n: int) -> _Row:
         return _Row([1.0] * n)
 
+    zeros = empty
+
 
 _orbit_on_rows = clone(orbit, np=_Rows)
+
+
+def python_orbit_with(hooks: dict[str, Callable[..., Any]]) -> Callable[..., int]:
+    """:func:`python_orbit` with some :data:`HOOKS` replaced (a measuring device of the benchmarks, as
+    :func:`~symbt.numeric.float64.jit.orbit_with` is for numba).
+
+    >>> python_orbit_with({})(np.array([-3.0, 0.0]), np.array([0.0, 1.0]), 2.0, 0.0, 2.0, 1, 1, 1, ANCHOR,
+    ...                       np.empty((2, 2)), np.empty((2, 2)))
+    0
+    """
+    from ..core.inline import FLOAT64_INLINE
+
+    kinds = {**FLOAT64_INLINE, **{name: "body" for name in HOOKS if name not in FLOAT64_INLINE}}
+    st = instantiate(SOURCE, {**OPERATIONS, **HOOKS, **hooks}, tag="f64dev", jit=False, operations=kinds)["step"]
+    return clone(python_orbit, _orbit_on_rows=clone(_orbit_on_rows, step=st))
 
 
 def python_orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int, n: int, every: int,
