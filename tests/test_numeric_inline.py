@@ -135,6 +135,12 @@ def test_failure_statuses_are_those_of_the_called_form():
     assert statuses >= {0, 1, 2, 3, ILLCOND}
 
 
+def test_the_python_backend_runs_the_orbit_on_lists():
+    from symbt.numeric.float64.jit import kernel
+
+    assert kernel("orbit", "python")[0] is K.python_orbit
+
+
 @pytest.mark.filterwarnings("ignore::RuntimeWarning")
 @pytest.mark.parametrize("name,given", HOOK_CASES, ids=[n for n, _ in HOOK_CASES])
 def test_python_orbit_on_lists_equals_the_orbit_on_arrays(name, given):
