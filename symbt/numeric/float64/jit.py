@@ -112,7 +112,7 @@ def kernel(name: str, backend: str = "auto") -> tuple[Callable[..., Any], str]:
     if backend == "python" or (backend == "auto" and not numba_available()):
         from . import kernels, kernels_block
 
-        return getattr(kernels if name == "orbit" else kernels_block, name), "python"
+        return (kernels.python_orbit if name == "orbit" else getattr(kernels_block, name)), "python"
     if backend not in BACKENDS:
         from ..core.errors import InvalidInputError
 

@@ -68,7 +68,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..core import limits
-from ..core.compile import instantiate
+from ..core.compile import clone, instantiate
 from ..core.condition import sharp_trace_kappa
 from ..core.fused import SOURCE
 from ..core.limits import KAPPA_MAX, MAX_DQ_FLOAT64, OK, RANGE
@@ -82,8 +82,8 @@ if TYPE_CHECKING:
 
 Track = tuple[float, float, float, float, float, float, float]
 
-__all__ = ["orbit", "orbit_rows", "stored_steps", "python_kernels", "cheap_kernels", "sharp_compiled", "ANCHOR",
-           "HOOKS", "OPERATIONS"]
+__all__ = ["orbit", "python_orbit", "python_orbit_with", "orbit_rows", "stored_steps", "python_kernels",
+           "cheap_kernels", "sharp_compiled", "ANCHOR", "HOOKS", "OPERATIONS"]
 # monodromy entries past _BIG are multiplied by _SHRINK (powers of two: exact, the slopes only need ratios),
 # so that |tr L| ~ 1e300 and beyond (N = 256 far from the spectrum) stays in the kernel; the product of the
 # absolute values (>= the monodromy entrywise) decides when, and is scaled alike
@@ -299,7 +299,7 @@ def sharp_compiled() -> Callable[..., Any]:
     >>> callable(sharp_compiled) and sharp_compiled.__name__
     'sharp_compiled'
     """
-    from ..core.compile import clone, njit, sources_digest
+    from ..core.compile import njit, sources_digest
 
     # named by a digest of both files it compiles in (numba's disk cache only watches condition.py)
     name = "sharp_trace_kappa_f64_" + sources_digest([sharp_trace_kappa, lam_add])
@@ -340,15 +340,16 @@ def cheap_kernels() -> dict[str, Callable[..., Any]]:
 
 @cache
 def python_kernels() -> dict[str, Callable[..., Any]]:
-    """The fused step (:mod:`symbt.numeric.core.fused`) in float64, plain Python (``slopes``, ``step``).
+    """The fused step (:mod:`symbt.numeric.core.fused`) in float64, plain Python (``slopes``, ``step``), with
+    the operations and the hooks written inline (:mod:`symbt.numeric.core.inline`; bit-identical).
 
     >>> sorted(python_kernels())
     ['slopes', 'step']
     """
     from ..core.inline import FLOAT64_INLINE
 
-    return instantiate(SOURCE, {**OPERATIONS, **HOOKS}, tag="f64", jit=False, extra=_EXTRA,
-                       operations=FLOAT64_INLINE)
+    kinds = {**FLOAT64_INLINE, **{name: "body" for name in HOOKS if name not in FLOAT64_INLINE}}
+    return instantiate(SOURCE, {**OPERATIONS, **HOOKS}, tag="f64", jit=False, extra=_EXTRA, operations=kinds)
 
 
 def _anchor1(qh: F64, ql: F64, fh: F64, fl: F64, r: F64, p: F64) -> int:
@@ -432,3 +433,66 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
 
 # the plain-Python step :func:`orbit` calls (jit.py compiles ``orbit`` with the numba instance in its place)
 step = python_kernels()["step"]
+
+
+class _Row(list):  # type: ignore[type-arg]
+    """A state array of :func:`python_orbit`: Python floats, with the ``shape`` and ``copy`` the step reads."""
+    __slots__ = ()
+
+    @property
+    def shape(self) -> tuple[int]:
+        return (len(self),)
+
+    def copy(self) -> _Row:
+        return _Row(self)
+
+
+class _Rows:
+    """The array constructors of :func:`orbit` (``np.empty`` ...) as :func:`python_orbit` sees them."""
+
+    @staticmethod
+    def empty(n: int) -> _Row:
+        return _Row([0.0] * n)
+
+    @staticmethod
+    def ones(n: int) -> _Row:
+        return _Row([1.0] * n)
+
+    zeros = empty
+
+
+_orbit_on_rows = clone(orbit, np=_Rows)
+
+
+def python_orbit_with(hooks: dict[str, Callable[..., Any]]) -> Callable[..., int]:
+    """:func:`python_orbit` with some :data:`HOOKS` replaced (a measuring device of the benchmarks, as
+    :func:`~symbt.numeric.float64.jit.orbit_with` is for numba).
+
+    >>> python_orbit_with({})(np.array([-3.0, 0.0]), np.array([0.0, 1.0]), 2.0, 0.0, 2.0, 1, 1, 1, ANCHOR,
+    ...                       np.empty((2, 2)), np.empty((2, 2)))
+    0
+    """
+    from ..core.inline import FLOAT64_INLINE
+
+    kinds = {**FLOAT64_INLINE, **{name: "body" for name in HOOKS if name not in FLOAT64_INLINE}}
+    st = instantiate(SOURCE, {**OPERATIONS, **HOOKS, **hooks}, tag="f64dev", jit=False, operations=kinds)["step"]
+    return clone(python_orbit, _orbit_on_rows=clone(_orbit_on_rows, step=st))
+
+
+def python_orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int, n: int, every: int,
+                 anchor: int, outP: F64, outQ: F64) -> int:
+    """:func:`orbit` in plain Python with its state in lists of Python floats (what ``backend="python"`` runs).
+
+    The same operations on the same doubles, so the same bits as :func:`orbit` and the numba kernel
+    (``tests/test_numeric_inline.py``); a Python float's arithmetic takes a third of the time of a numpy
+    scalar's.  (The step divides as IEEE arithmetic, ``x / 0`` is ``+-inf`` or NaN:
+    :func:`~symbt.numeric.core.inline.ieee_div0`.)
+
+    >>> P, Q = np.empty((2, 3)), np.empty((2, 3))
+    >>> python_orbit(np.array([-20.0, 10, 1]), np.array([1.0, 0, 0.9]), 15.0, 5.0, 10.0, 1, 1, 1, ANCHOR, P, Q)
+    0
+    >>> round(float(Q[1, 0]), 8)
+    -0.08614224
+    """
+    return int(_orbit_on_rows(_Row(np.asarray(p0, np.float64).tolist()), _Row(np.asarray(q0, np.float64).tolist()),
+                              float(lam1), float(lam2), float(two_mu), int(branch), n, every, anchor, outP, outQ))
