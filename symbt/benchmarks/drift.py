@@ -162,7 +162,8 @@ def _modular_position(qh: float, ql: float, fh: float, fl: float) -> float:
 _MODULAR: dict[str, Any] = {}
 
 
-def _decided_unguarded(aux: Any, t: float, disc: float, tt: Any, i: int) -> bool:
+def _decided_unguarded(aux: Any, t: float, disc: float, tt: Any, i: int, p: Any, r: Any, lam: float,
+                       lo: float) -> bool:
     """The float64 hook ``decided`` recording the condition but never refusing (a measuring device)."""
     tt[i + 2] = (aux[0] + aux[3]) * abs(t) / abs(disc) * (aux[4] / aux[5])
     return True
