@@ -37,7 +37,9 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["lam_add", "lam_split", "root_slope"]
+import numpy as np
+
+__all__ = ["lam_add", "lam_split", "root_slope", "root_slope_rows"]
 
 
 def lam_add(lam: Any, lo: Any, p: Any) -> Any:
@@ -133,3 +135,49 @@ def root_slope(t: float, g: float, dl: float, B: float, C: float, two: float, pl
     else:
         rem = ((num - ph) - pl) - q * kl
     return q + rem / den
+
+
+def _split(x: Any) -> tuple[Any, Any]:
+    c = 134217729.0 * x
+    h = c - (c - x)
+    return h, x - h
+
+
+def root_slope_rows(t: Any, g: Any, dl: Any, B: Any, C: Any, two: Any, plus: Any, wantk: Any) -> Any:
+    """:func:`root_slope` on numpy arrays (the numpy route of :func:`~symbt.numeric.core.step.step_core`):
+    the same operations elementwise, so each element equals the scalar call bit for bit.
+
+    >>> t, dl = np.array([-2021.2173, 7.5]), np.array([-1500.25, 3.0])
+    >>> g = np.sqrt((t - 2.0) * (t + 2.0))
+    >>> args = (t, g, dl, np.array([3.5, -1.25]), np.array([2.0, 0.5]), 2.0, dl >= 0, np.array([True, False]))
+    >>> rows = root_slope_rows(*args)
+    >>> [float(x) for x in rows] == [root_slope(*(a[i] if np.ndim(a) else a for a in args)) for i in range(2)]
+    True
+    """
+    with np.errstate(all="ignore"):
+        sg = np.where(plus, g, -g)
+        k = dl + sg
+        den = np.where(wantk, 2.0 * B, k)
+        num = np.where(wantk, k, -2.0 * C)
+        q = num / den
+        ok = ((g > 0.0) & (np.abs(t) < 2.0 ** 995) & (np.abs(g) < 2.0 ** 995) & (np.abs(q) < 2.0 ** 995)
+              & (np.abs(den) < 2.0 ** 995))
+        t1, t2 = _split(t)
+        th = t * t
+        tl = ((t1 * t1 - th) + 2.0 * t1 * t2) + t2 * t2
+        g1, g2 = _split(g)
+        gh = g * g
+        gl = ((g1 * g1 - gh) + 2.0 * g1 * g2) + g2 * g2
+        t4 = two * two
+        sh = th - t4
+        bp = sh - th
+        e2 = (th - (sh - bp)) + (-t4 - bp)
+        glo = (((sh - gh) + e2) + (tl - gl)) / (2.0 * g)
+        bp = k - dl
+        kl = ((dl - (k - bp)) + (sg - bp)) + np.where(plus, glo, -glo)
+        q1, q2 = _split(q)
+        d1, d2 = _split(den)
+        ph = q * den
+        pl = ((q1 * d1 - ph) + q1 * d2 + q2 * d1) + q2 * d2
+        rem = np.where(wantk, ((k - ph) - pl) + kl, ((num - ph) - pl) - q * kl)
+        return np.where(ok, q + rem / den, q)
