@@ -31,6 +31,7 @@ from __future__ import annotations
 import argparse
 import json
 import time
+from collections.abc import Callable
 from typing import Any
 
 import mpmath
@@ -186,7 +187,7 @@ def unguarded_orbit(store: str = "absolute") -> Any:
     if key not in _MODULAR:
         from ..numeric.float64.jit import orbit_with
 
-        hooks = {"decided": _decided_unguarded, "trusted": _trusted_unguarded}
+        hooks: dict[str, Callable[..., Any]] = {"decided": _decided_unguarded, "trusted": _trusted_unguarded}
         extra = {"_dd_position": _modular_position} if store == "modular" else {}
         _MODULAR[key] = orbit_with(hooks, **extra)
     return _MODULAR[key]
