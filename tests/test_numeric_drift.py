@@ -197,7 +197,7 @@ def _h0_linear_part(orbit, p, q, n=2 * 10**5, rows=50):
     return float((rel * steps).sum() / (steps**2).sum() * n)
 
 
-def _k_rounded(t, g, dl, B, C, two, plus, wantk):
+def _k_rounded(A, D, dl, g, B, C, two, plus, wantk):
     """The slope at site 1 as it was computed before: ``k = dl +- g`` rounded, then divided."""
     k = dl + g if plus else dl - g
     return k / (2.0 * B) if wantk else (-2.0 * C) / k
@@ -224,10 +224,10 @@ def test_no_per_orbit_linear_drift_of_the_papers_example():
 
 
 def test_root_slope_is_rounded_once_and_the_rows_form_equals_it():
-    """:func:`~symbt.numeric.core.spectral_sum.root_slope` against the 60-digit slope of its inputs (``t``,
-    ``dl = A - D`` and ``two`` as given, the root exact) on random monodromies near and far from the band
-    edge: within half an ulp (correctly rounded) where ``k`` rounded and then divided is not always;
-    :func:`~symbt.numeric.core.spectral_sum.root_slope_rows` equals it element for element."""
+    """:func:`~symbt.numeric.core.spectral_sum.root_slope` against the 60-digit slope of its inputs (``A``,
+    ``D``, ``B``, ``C`` as given, ``A + D``, ``A - D`` and the root exact) on random monodromies near and far
+    from the band edge: within half an ulp (correctly rounded) away from it, where ``k`` rounded and then
+    divided is not; :func:`~symbt.numeric.core.spectral_sum.root_slope_rows` equals it element for element."""
     import math
 
     from symbt.numeric.core.spectral_sum import root_slope, root_slope_rows
@@ -237,21 +237,33 @@ def test_root_slope_is_rounded_once_and_the_rows_form_equals_it():
     t = rng.choice([-1.0, 1.0], m) * 10.0 ** rng.uniform(np.log10(2.0) + 1e-9, 6, m)
     t[:100] = rng.choice([-1.0, 1.0], 100) * (2.0 + 10.0 ** rng.uniform(-12, -2, 100))   # near the band edge
     A = rng.uniform(-2, 2, m) * np.abs(t)
-    dl = A - (t - A)
+    D = t - A
+    keep = np.abs(A + D) > 2.0
+    A, D = A[keep], D[keep]
+    m = A.size
+    t, dl = A + D, A - D
     B = rng.uniform(-3, 3, m) * 10.0 ** rng.uniform(-3, 3, m)
     C = rng.uniform(-3, 3, m)
     g = np.sqrt((t - 2.0) * (t + 2.0))
     plus, wantk = dl >= 0, rng.random(m) < 0.5
-    rows = root_slope_rows(t, g, dl, B, C, 2.0, plus, wantk)
-    worst_once = worst_twice = 0.0
+    rows = root_slope_rows(A, D, dl, g, B, C, 2.0, plus, wantk)
+    worst_once = worst_twice = worst_far = 0.0
     with mpmath.workdps(60):
         for i in range(m):
-            u = root_slope(t[i], g[i], dl[i], B[i], C[i], 2.0, bool(plus[i]), bool(wantk[i]))
+            args = (A[i], D[i], dl[i], g[i], B[i], C[i], 2.0, bool(plus[i]), bool(wantk[i]))
+            u = root_slope(*args)
             assert u == rows[i]
-            G = mpmath.sqrt(mpmath.mpf(t[i]) ** 2 - 4)
-            k = mpmath.mpf(dl[i]) + (G if plus[i] else -G)
+            a, d = mpmath.mpf(A[i]), mpmath.mpf(D[i])
+            G = mpmath.sqrt((a + d) ** 2 - 4)
+            k = (a - d) + (G if plus[i] else -G)
             exact = k / (2 * mpmath.mpf(B[i])) if wantk[i] else -2 * mpmath.mpf(C[i]) / k
             worst_once = max(worst_once, float(abs(u - exact)) / math.ulp(u))
-            twice = _k_rounded(t[i], g[i], dl[i], B[i], C[i], 2.0, plus[i], wantk[i])
+            if abs(t[i]) > 3.0:
+                worst_far = max(worst_far, float(abs(u - exact)) / math.ulp(u))
+            twice = _k_rounded(*args)
             worst_twice = max(worst_twice, float(abs(twice - exact)) / math.ulp(twice))
-    assert worst_once <= 0.5 + 1e-9 and worst_twice > 0.6, (worst_once, worst_twice)
+    # correctly rounded away from the band edge; near it (|t| - 2 down to 1e-12, where fl(A + D) moves the
+    # root by a large relative amount) the one Newton correction of the root leaves a few ulps, where the
+    # root of fl(A + D) was off by 1e5 ulps and more
+    assert m > 1400 and worst_far <= 0.5 + 1e-9 and worst_once <= 32 and worst_twice > 1e3, (
+        m, worst_far, worst_once, worst_twice)

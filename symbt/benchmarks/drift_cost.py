@@ -6,7 +6,7 @@ process, best of ``repeat`` per case.
 ``n64-chain`` state at lam0 = 5.1, mu = 1.3 and the ``n256-chain`` state at lam0 = 8.3, mu = 0.3
 (:func:`~symbt.benchmarks.drift.drift_case`); BENCHMARKS.md, "Drift at the round-off limit".
 
->>> k_rounded(-2021.2, 2020.2, -1500.0, 3.5, 2.0, 2.0, False, True) == (-1500.0 - 2020.2) / 7.0
+>>> k_rounded(-1760.7, -260.5, -1500.2, 2020.2, 3.5, 2.0, 2.0, False, True) == (-1500.2 - 2020.2) / 7.0
 True
 """
 from __future__ import annotations
@@ -20,7 +20,8 @@ import numpy as np
 __all__ = ["k_rounded", "compare", "step_accuracy", "main"]
 
 
-def k_rounded(t: float, g: float, dl: float, B: float, C: float, two: float, plus: bool, wantk: bool) -> float:
+def k_rounded(A: float, D: float, dl: float, g: float, B: float, C: float, two: float, plus: bool,
+              wantk: bool) -> float:
     """The slope at site 1 as the kernels computed it before :func:`~symbt.numeric.core.spectral_sum.root_slope`:
     ``k = dl +- g`` rounded, then ``k / (2 B)`` or ``-2 C / k``."""
     k = dl + g if plus else dl - g

@@ -19,8 +19,8 @@ The arithmetic (module globals replaced per instantiation; here they are unbound
   double-double spectral parameter rounded once (``lam_add(lam, lo, p_j)``, two-sum) with the low parts
   ``lam_split(lam1, lam2, two_mu)`` that make ``lam1 - lam2`` equal ``two_mu`` exactly (else every step
   would be the map of parameters an ulp inconsistent with its read-out: a bias, linear drift), rounds the slope
-  at site 1 once (``root_slope(t, g, dl, B, C, two, plus, wantk)``: ``k = dl +- g`` and the root of
-  ``t**2 - two**2`` as double-doubles, else the rounding of the orbit's eigenvalue against ``ulp(A)`` repeats
+  at site 1 once (``root_slope(A, D, dl, g, B, C, two, plus, wantk)``: ``A +- D`` exact, ``k = dl +- g`` and the root
+  of ``(A + D)**2 - two**2`` as double-doubles, else the rounding of the orbit's eigenvalue against ``ulp(A)`` repeats
   in every step: the same kind of bias), tracks the product of the
   entrywise absolute values (the trace's rounding scale) and the cancellation in ``lam + p_j``
   (``track_init``, ``track``), rescales the monodromy by powers of two (``rescale``, ``rescale_last``,
@@ -110,7 +110,7 @@ def slopes(p: Any, r: Any, lam: Any, lo: Any, s: int, u: Any, code: int, tt: Any
     plus = hi(dl) >= 0.0
     # the roots of B u**2 - (A - D) u - C = 0 are k / (2B) and -2C / k, k = dl + sign(dl) g (no cancellation);
     # the wanted one is (dl + s g) / (2B)
-    u1 = root_slope(t, g, dl, B, C, two, plus, plus == (s > 0))
+    u1 = root_slope(A, D, dl, g, B, C, two, plus, plus == (s > 0))
     st(u, 0, u1)
     if (hi(t) < 0.0) if s > 0 else (hi(t) >= 0.0):      # dominant eigenvalue: transport forward
         for j in range(N - 1):

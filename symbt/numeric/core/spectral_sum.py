@@ -21,8 +21,8 @@ an eigenvalue ``v`` -- a constant of the orbit -- and ``A`` is a double: rounded
 ``v``'s bits below ``ulp(A)``, the same bits in every step, and ``sqrt(t**2 - 4)``, a function of
 the few doubles ``t`` takes along an orbit, repeats its rounding too.  Every step was then the map
 of the same slightly wrong eigenvector: a bias of one sign per orbit, linear drift (issue 26, the
-paper's example).  :func:`root_slope` keeps the square root's low part and ``k`` as double-doubles
-and rounds the slope once.
+paper's example).  :func:`root_slope` takes ``A + D`` and ``A - D`` exactly, keeps the square root's
+low part and ``k`` as double-doubles and rounds the slope once.
 
 >>> lam0, mu = 3.4, 0.3
 >>> lam1, lam2 = lam0 + mu, lam0 - mu
@@ -71,11 +71,14 @@ def lam_split(lam1: Any, lam2: Any, two_mu: Any) -> tuple[Any, Any]:
     return 0.5 * defect, -0.5 * defect
 
 
-def root_slope(t: float, g: float, dl: float, B: float, C: float, two: float, plus: bool, wantk: bool) -> float:
+def root_slope(A: float, D: float, dl: float, g: float, B: float, C: float, two: float, plus: bool,
+               wantk: bool) -> float:
     """The slope at site 1 from the monodromy ``(A, B; C, D)``, rounded once: ``k / (2 B)`` if ``wantk``
-    else ``-2 C / k``, ``k = dl + g`` if ``plus`` else ``dl - g``, with ``g`` the exact square root of
-    ``t**2 - two**2`` (``t``, ``dl = A - D`` and ``two`` the doubles the kernel computed, ``g`` their
-    rounded root) and ``k`` a double-double.
+    else ``-2 C / k``, ``k = (A - D) + g`` if ``plus`` else ``(A - D) - g``, with ``g`` the exact square root
+    of ``(A + D)**2 - two**2`` (``dl = fl(A - D)`` and ``g`` the kernel's doubles, ``g`` the rounded root
+    of ``fl(A + D)``) and ``k`` a double-double: ``A + D`` and ``A - D`` are taken exactly (two-sums), so
+    neither the rounded trace -- a constant of the orbit, the same few doubles in every step -- nor the
+    rounded ``k`` repeats its rounding.
 
     Error-free transformations (Dekker's product, Knuth's sum; no FMA, so plain Python and numba give
     the same bits): ``g``'s low part is ``(t**2 - two**2 - g**2) / (2 g)``, ``k``'s is the two-sum's
@@ -83,13 +86,20 @@ def root_slope(t: float, g: float, dl: float, B: float, C: float, two: float, pl
     where a split would overflow (``|x| > 2**995``) or ``g <= 0`` the uncorrected slope is returned.
 
     >>> import math, mpmath
-    >>> t, dl, B = -2021.2173, -1500.25, 3.5
+    >>> A, D, B = -1760.73, -260.4873, 3.5
+    >>> t, dl = A + D, A - D
     >>> g = math.sqrt((t - 2.0) * (t + 2.0))
-    >>> u = root_slope(t, g, dl, B, 2.0, 2.0, False, True)     # (dl - sqrt(t**2 - 4)) / (2 B), rounded once
+    >>> u = root_slope(A, D, dl, g, B, 2.0, 2.0, False, True)    # (A - D - sqrt((A + D)**2 - 4)) / (2 B)
     >>> with mpmath.workdps(60):
-    ...     bool(abs(u - (dl - mpmath.sqrt(mpmath.mpf(t) ** 2 - 4)) / (2 * B)) <= math.ulp(u) / 2)
+    ...     a, d = mpmath.mpf(A), mpmath.mpf(D)
+    ...     bool(abs(u - (a - d - mpmath.sqrt((a + d) ** 2 - 4)) / (2 * B)) <= math.ulp(u) / 2)
     True
     """
+    t = A + D
+    bp = t - A
+    tlo = (A - (t - bp)) + (D - bp)
+    bp = dl - A
+    dlo = (A - (dl - bp)) + (-D - bp)
     sg = g if plus else -g
     k = dl + sg
     den = 2.0 * B if wantk else k
@@ -114,12 +124,12 @@ def root_slope(t: float, g: float, dl: float, B: float, C: float, two: float, pl
     sh = th - t4
     bp = sh - th
     e2 = (th - (sh - bp)) + (-t4 - bp)
-    res = ((sh - gh) + e2) + (tl - gl)
+    res = ((sh - gh) + e2) + ((tl - gl) + 2.0 * t * tlo)     # (t + tlo)**2 - two**2 - g**2
     glo = res / (2.0 * g)
-    # k = dl + sg + sglo as a double-double (kh, kl)
+    # k = dl + dlo + sg + sglo as a double-double (kh, kl)
     sglo = glo if plus else -glo
     bp = k - dl
-    kl = ((dl - (k - bp)) + (sg - bp)) + sglo
+    kl = ((dl - (k - bp)) + (sg - bp)) + (sglo + dlo)
     kh = k
     # the quotient corrected by its remainder: num - q den, exactly (Dekker), over den
     c = 134217729.0 * q
@@ -143,18 +153,24 @@ def _split(x: Any) -> tuple[Any, Any]:
     return h, x - h
 
 
-def root_slope_rows(t: Any, g: Any, dl: Any, B: Any, C: Any, two: Any, plus: Any, wantk: Any) -> Any:
+def root_slope_rows(A: Any, D: Any, dl: Any, g: Any, B: Any, C: Any, two: Any, plus: Any, wantk: Any) -> Any:
     """:func:`root_slope` on numpy arrays (the numpy route of :func:`~symbt.numeric.core.step.step_core`):
     the same operations elementwise, so each element equals the scalar call bit for bit.
 
-    >>> t, dl = np.array([-2021.2173, 7.5]), np.array([-1500.25, 3.0])
+    >>> A, D = np.array([-1760.73, 5.25]), np.array([-260.4873, 2.25])
+    >>> t, dl = A + D, A - D
     >>> g = np.sqrt((t - 2.0) * (t + 2.0))
-    >>> args = (t, g, dl, np.array([3.5, -1.25]), np.array([2.0, 0.5]), 2.0, dl >= 0, np.array([True, False]))
+    >>> args = (A, D, dl, g, np.array([3.5, -1.25]), np.array([2.0, 0.5]), 2.0, dl >= 0, np.array([True, False]))
     >>> rows = root_slope_rows(*args)
     >>> [float(x) for x in rows] == [root_slope(*(a[i] if np.ndim(a) else a for a in args)) for i in range(2)]
     True
     """
     with np.errstate(all="ignore"):
+        t = A + D
+        bp = t - A
+        tlo = (A - (t - bp)) + (D - bp)
+        bp = dl - A
+        dlo = (A - (dl - bp)) + (-D - bp)
         sg = np.where(plus, g, -g)
         k = dl + sg
         den = np.where(wantk, 2.0 * B, k)
@@ -172,9 +188,9 @@ def root_slope_rows(t: Any, g: Any, dl: Any, B: Any, C: Any, two: Any, plus: Any
         sh = th - t4
         bp = sh - th
         e2 = (th - (sh - bp)) + (-t4 - bp)
-        glo = (((sh - gh) + e2) + (tl - gl)) / (2.0 * g)
+        glo = (((sh - gh) + e2) + ((tl - gl) + 2.0 * t * tlo)) / (2.0 * g)
         bp = k - dl
-        kl = ((dl - (k - bp)) + (sg - bp)) + np.where(plus, glo, -glo)
+        kl = ((dl - (k - bp)) + (sg - bp)) + (np.where(plus, glo, -glo) + dlo)
         q1, q2 = _split(q)
         d1, d2 = _split(den)
         ph = q * den

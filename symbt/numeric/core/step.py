@@ -227,7 +227,7 @@ def eigen_slopes(ctx: Context, a: Sequence[Value], r: Sequence[Value], s: int, n
     # roots of B u^2 - (A-D) u - C = 0 are k/(2B) and -2C/k; want (dl + s g)/(2B)
     target_is_k = plus if s > 0 else ctx.neg(plus)
     if ctx is FLOAT:                      # rounded once, as the kernels (spectral_sum.root_slope: no bias)
-        u1 = root_slope_rows(t, g, dl, B, C, two, plus, target_is_k)
+        u1 = root_slope_rows(A, D, dl, g, B, C, two, plus, target_is_k)
     else:
         u1 = ctx.select(target_is_k, lambda: ctx.div(k, 2 * B), lambda: ctx.div(-2 * C, k))
     if ctx.all(fwd):

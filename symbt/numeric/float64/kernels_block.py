@@ -133,7 +133,7 @@ def _slopes(p: F64, r: F64, lam: F64, lo: F64, s: int, u: F64, tmp: F64, A: F64,
         dl = a_ - d_
         plus = dl >= 0.0
         # the wanted root is k / (2B), else -2C / k, k = dl +- g; rounded once, as the fused step
-        u1[k] = root_slope(t, g, dl, b_, c_, two, plus, plus == spos)
+        u1[k] = root_slope(a_, d_, dl, g, b_, c_, two, plus, plus == spos)
         f = (t < 0.0) if spos else (t >= 0.0)  # dominant eigenvalue: transport forward
         fw[k] = 1 if f else 0
         nf += fw[k]

@@ -135,7 +135,7 @@ def _lam_split(lam1: QD, lam2: QD, two_mu: QD) -> tuple[float, float]:
     return 0.0, 0.0
 
 
-def _root_slope(t: QD, g: QD, dl: QD, B: QD, C: QD, two: float, plus: bool, wantk: bool) -> QD:
+def _root_slope(A: QD, D: QD, dl: QD, g: QD, B: QD, C: QD, two: float, plus: bool, wantk: bool) -> QD:
     # k = dl +- g has no cancellation; the wanted root is k / (2B) or -2C / k (float64 rounds it once instead)
     k = add(dl, g) if plus else sub(dl, g)
     return div(k, mul_pwr2(B, 2.0)) if wantk else div(mul_pwr2(C, -2.0), k)
