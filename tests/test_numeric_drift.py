@@ -135,7 +135,9 @@ def test_q_low_leaves_the_positions_bit_identical_and_removes_the_rounding_at_ul
     d_low = np.diff(Q1, axis=1) + np.diff(L1, axis=1)
     d_plain = np.diff(Q1, axis=1)
     assert np.abs(d_low - dm).max() <= 4 * np.spacing(64.0)
-    assert np.abs(d_plain - dm).max() > 100 * np.spacing(64.0)      # what q_low removes
+    # what q_low removes: roundings at ulp(|q|) ~ 1.8e-12 (|q| ~ 1.5e4), of 20 differences the largest is 8.9e-13
+    # here (over 1.4e-12 before the slope was rounded once: the orbit differs in its last bits)
+    assert np.abs(d_plain - dm).max() > 30 * np.spacing(64.0)
 
 
 @needs_numba
