@@ -31,6 +31,7 @@ from __future__ import annotations
 import argparse
 import json
 import time
+from collections.abc import Callable
 from typing import Any
 
 import mpmath
@@ -162,7 +163,8 @@ def _modular_position(qh: float, ql: float, fh: float, fl: float) -> float:
 _MODULAR: dict[str, Any] = {}
 
 
-def _decided_unguarded(aux: Any, t: float, disc: float, tt: Any, i: int) -> bool:
+def _decided_unguarded(aux: Any, t: float, disc: float, tt: Any, i: int, p: Any, r: Any, lam: float,
+                       lo: float) -> bool:
     """The float64 hook ``decided`` recording the condition but never refusing (a measuring device)."""
     tt[i + 2] = (aux[0] + aux[3]) * abs(t) / abs(disc) * (aux[4] / aux[5])
     return True
@@ -185,7 +187,7 @@ def unguarded_orbit(store: str = "absolute") -> Any:
     if key not in _MODULAR:
         from ..numeric.float64.jit import orbit_with
 
-        hooks = {"decided": _decided_unguarded, "trusted": _trusted_unguarded}
+        hooks: dict[str, Callable[..., Any]] = {"decided": _decided_unguarded, "trusted": _trusted_unguarded}
         extra = {"_dd_position": _modular_position} if store == "modular" else {}
         _MODULAR[key] = orbit_with(hooks, **extra)
     return _MODULAR[key]

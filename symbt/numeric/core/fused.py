@@ -14,10 +14,14 @@ The arithmetic (module globals replaced per instantiation; here they are unbound
 * numbers: ``add, sub, mul, div, neg, sqrt``; ``add_d(x, c)`` adds a double, ``mul2(x, c)`` multiplies by
   a power of two (exact); ``hi(x)`` the double nearest ``x``, whose sign every decision reads;
   ``ld(a, j)`` / ``st(a, j, x)`` read and write site ``j`` of a state array;
-* hooks, where one arithmetic needs what the other does not -- float64 forms ``lam + p_j`` from a
+* hooks, where one arithmetic needs what the other does not (quad-double computes ``root_slope`` with its
+  operations, ``k = dl +- g`` divided once) -- float64 forms ``lam + p_j`` from a
   double-double spectral parameter rounded once (``lam_add(lam, lo, p_j)``, two-sum) with the low parts
   ``lam_split(lam1, lam2, two_mu)`` that make ``lam1 - lam2`` equal ``two_mu`` exactly (else every step
-  would be the map of parameters an ulp inconsistent with its read-out: a bias, linear drift), tracks the product of the
+  would be the map of parameters an ulp inconsistent with its read-out: a bias, linear drift), rounds the slope
+  at site 1 once (``root_slope(A, D, dl, g, B, C, two, plus, wantk)``: ``A +- D`` exact, ``k = dl +- g`` and the root
+  of ``(A + D)**2 - two**2`` as double-doubles, else the rounding of the orbit's eigenvalue against ``ulp(A)`` repeats
+  in every step: the same kind of bias), tracks the product of the
   entrywise absolute values (the trace's rounding scale) and the cancellation in ``lam + p_j``
   (``track_init``, ``track``), rescales the monodromy by powers of two (``rescale``, ``rescale_last``,
   ``two_of``), tests its range (``in_range``, ``disc_fits``, ``bounded``) and its condition
@@ -59,7 +63,7 @@ def _unbound(*args: Any) -> Any:
 # the arithmetic (see the module docstring), bound by instantiate()
 add = sub = mul = div = neg = sqrt = add_d = mul2 = hi = ld = st = _unbound
 track_init = track = rescale = rescale_last = in_range = two_of = decided = disc_fits = _unbound
-step_kappa = sharpen = bounded = trusted = advance = lam_add = lam_split = _unbound
+step_kappa = sharpen = bounded = trusted = advance = lam_add = lam_split = root_slope = _unbound
 
 
 def slopes(p: Any, r: Any, lam: Any, lo: Any, s: int, u: Any, code: int, tt: Any, i: int) -> int:
@@ -104,12 +108,9 @@ def slopes(p: Any, r: Any, lam: Any, lo: Any, s: int, u: Any, code: int, tt: Any
     g = sqrt(disc)
     dl = sub(A, D)
     plus = hi(dl) >= 0.0
-    k = add(dl, g) if plus else sub(dl, g)     # no cancellation in k
-    # the roots of B u**2 - (A - D) u - C = 0 are k / (2B) and -2C / k; the wanted one is (dl + s g) / (2B)
-    if plus == (s > 0):
-        u1 = div(k, mul2(B, 2.0))
-    else:
-        u1 = div(mul2(C, -2.0), k)
+    # the roots of B u**2 - (A - D) u - C = 0 are k / (2B) and -2C / k, k = dl + sign(dl) g (no cancellation);
+    # the wanted one is (dl + s g) / (2B)
+    u1 = root_slope(A, D, dl, g, B, C, two, plus, plus == (s > 0))
     st(u, 0, u1)
     if (hi(t) < 0.0) if s > 0 else (hi(t) >= 0.0):      # dominant eigenvalue: transport forward
         for j in range(N - 1):

@@ -44,7 +44,9 @@ Stable formulation (what is actually computed)
    ``fl(lam0 +- mu)`` plus low parts that make their difference exactly the
    read-out's ``2 mu``, each ``lam + p_j`` rounded once
    (:mod:`symbt.numeric.core.spectral_sum`); an ulp of inconsistency would
-   repeat in every step and make the invariants drift linearly.
+   repeat in every step and make the invariants drift linearly.  For the same
+   reason the slope at site 1 is rounded once (``k`` and the root of
+   ``tr**2 - 4`` as double-doubles, :func:`~symbt.numeric.core.spectral_sum.root_slope`).
 
 Existence: the real map needs ``|tr L(lam_i)| > 2``, traces of the same sign
 (``lam1``, ``lam2`` in one gap; opposite signs mean different gaps) and
@@ -116,7 +118,7 @@ from .context import FLOAT, IV, Cond, Context, Exponent, FloatValue, MPValue, Va
 from .errors import NoRealMapError, NumericRangeError
 from .inputs import to_output
 from .monodromy import monodromy, neighbour_ratios
-from .spectral_sum import lam_add, lam_split
+from .spectral_sum import lam_add, lam_split, root_slope_rows
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -224,7 +226,10 @@ def eigen_slopes(ctx: Context, a: Sequence[Value], r: Sequence[Value], s: int, n
     k = dl + sg
     # roots of B u^2 - (A-D) u - C = 0 are k/(2B) and -2C/k; want (dl + s g)/(2B)
     target_is_k = plus if s > 0 else ctx.neg(plus)
-    u1 = ctx.select(target_is_k, lambda: ctx.div(k, 2 * B), lambda: ctx.div(-2 * C, k))
+    if ctx is FLOAT:                      # rounded once, as the kernels (spectral_sum.root_slope: no bias)
+        u1 = root_slope_rows(A, D, dl, g, B, C, two, plus, target_is_k)
+    else:
+        u1 = ctx.select(target_is_k, lambda: ctx.div(k, 2 * B), lambda: ctx.div(-2 * C, k))
     if ctx.all(fwd):
         u = _forward(ctx, a, r, u1)
     elif not ctx.any(fwd):

@@ -87,11 +87,12 @@ def _compile_all() -> None:
     from . import kernels_block as KB
 
     small = _small()
-    la = {name: njit(getattr(KB, name), inline="always") for name in ("lam_add", "lam_split")}
+    la = {name: njit(getattr(KB, name), inline="always") for name in ("lam_add", "lam_split", "root_slope")}
     # named by a digest of every file it compiles in (numba's disk cache only watches kernels_block.py)
     deps = sources_digest([KB._slopes, KB.lam_add, K.sharp_trace_kappa], K._EXTRA)
     block = {"_slopes": njit(clone(KB._slopes, "_slopes_f64_" + deps, _shrink=njit(KB._shrink, inline="always"),
-                                   lam_add=la["lam_add"], sharp_trace_kappa=K.sharp_compiled()))}
+                                   lam_add=la["lam_add"], root_slope=la["root_slope"],
+                                   sharp_trace_kappa=K.sharp_compiled()))}
     block["_anchor"] = njit(clone(KB._anchor, **small))
     block["sharp_trace_kappa"] = K.sharp_compiled()      # the sharp tier of the condition (run_block too)
     run_block = instantiate({"run_block": KB.run_block}, {**block, **small, "lam_split": la["lam_split"]},

@@ -72,7 +72,7 @@ from ..core.compile import clone, instantiate
 from ..core.condition import sharp_trace_kappa
 from ..core.fused import SOURCE
 from ..core.limits import KAPPA_MAX, MAX_DQ_FLOAT64, OK, RANGE
-from ..core.spectral_sum import lam_add, lam_split
+from ..core.spectral_sum import lam_add, lam_split, root_slope
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -285,7 +285,7 @@ HOOKS: dict[str, Callable[..., Any]] = {
     "hi": _hi, "track_init": _track_init, "track": _track, "rescale": _rescale, "rescale_last": _rescale_last,
          "in_range": _in_range, "two_of": _two_of, "decided": _decided, "disc_fits": _disc_fits,
          "step_kappa": _step_kappa, "sharpen": _sharpen, "bounded": _bounded, "trusted": _trusted, "advance": _advance,
-    "ld": _ld, "st": _st, "lam_add": lam_add, "lam_split": lam_split}
+    "ld": _ld, "st": _st, "lam_add": lam_add, "lam_split": lam_split, "root_slope": root_slope}
 #: the operations of the float64 arithmetic (the same in plain Python and under numba)
 OPERATIONS = {"add": operator.add, "sub": operator.sub, "mul": operator.mul, "div": operator.truediv,
               "neg": operator.neg, "sqrt": math.sqrt, "add_d": operator.add, "mul2": operator.mul}

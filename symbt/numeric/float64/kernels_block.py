@@ -29,7 +29,7 @@ import numpy as np
 
 from ..core.condition import sharp_trace_kappa
 from ..core.limits import ILLCOND, KAPPA_MAX, MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
-from ..core.spectral_sum import lam_add, lam_split
+from ..core.spectral_sum import lam_add, lam_split, root_slope
 from .kernels import _BIG, _SHRINK, _dd_add, _dd_low, _dd_position, _logf
 
 if TYPE_CHECKING:
@@ -132,11 +132,8 @@ def _slopes(p: F64, r: F64, lam: F64, lo: F64, s: int, u: F64, tmp: F64, A: F64,
         g = math.sqrt(disc if disc > 0.0 else 0.0)
         dl = a_ - d_
         plus = dl >= 0.0
-        kk = dl + (g if plus else -g)
-        tk = plus == spos                      # the wanted root is k / (2B), else -2C / k
-        num = kk if tk else -2.0 * c_
-        den = 2.0 * b_ if tk else kk
-        u1[k] = num / den
+        # the wanted root is k / (2B), else -2C / k, k = dl +- g; rounded once, as the fused step
+        u1[k] = root_slope(a_, d_, dl, g, b_, c_, two, plus, plus == spos)
         f = (t < 0.0) if spos else (t >= 0.0)  # dominant eigenvalue: transport forward
         fw[k] = 1 if f else 0
         nf += fw[k]

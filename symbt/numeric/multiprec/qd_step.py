@@ -50,7 +50,7 @@ from ..core.compile import instantiate
 from ..core.fused import SOURCE
 from ..core.limits import MAX_DQ_QD, OK, RANGE
 from . import qd_arith
-from .qd_arith import add, exp, log1p, mul_pwr2, renorm4, sub
+from .qd_arith import add, div, exp, log1p, mul_pwr2, renorm4, sub
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -135,6 +135,12 @@ def _lam_split(lam1: QD, lam2: QD, two_mu: QD) -> tuple[float, float]:
     return 0.0, 0.0
 
 
+def _root_slope(A: QD, D: QD, dl: QD, g: QD, B: QD, C: QD, two: float, plus: bool, wantk: bool) -> QD:
+    # k = dl +- g has no cancellation; the wanted root is k / (2B) or -2C / k (float64 rounds it once instead)
+    k = add(dl, g) if plus else sub(dl, g)
+    return div(k, mul_pwr2(B, 2.0)) if wantk else div(mul_pwr2(C, -2.0), k)
+
+
 def _advance(r: F64, Q: F64, j: int, x: QD, xn: QD, pj: QD) -> bool:
     """``q_j <- q_j + log1p(xr_j)``; False if it or ``p_j`` is not finite."""
     q = add(_row(Q, j), log1p(x))
@@ -147,7 +153,7 @@ HOOKS: dict[str, Callable[..., Any]] = {
     "hi": _hi, "track_init": _track_init, "track": _track, "rescale": _rescale, "rescale_last": _rescale,
          "in_range": _in_range, "two_of": _two_of, "decided": _decided, "disc_fits": _disc_fits,
          "step_kappa": _step_kappa, "sharpen": _sharpen, "bounded": _finite, "trusted": _trusted, "advance": _advance,
-         "ld": _row, "st": _put, "lam_add": _lam_add, "lam_split": _lam_split}
+         "ld": _row, "st": _put, "lam_add": _lam_add, "lam_split": _lam_split, "root_slope": _root_slope}
 #: the operations: names of :mod:`.qd_arith` (``add_d`` adds a double, ``mul2`` is ``mul_pwr2``)
 OPERATIONS = {"add": "add", "sub": "sub", "mul": "mul", "div": "div", "neg": "neg", "sqrt": "sqrt",
               "add_d": "add_d", "mul2": "mul_pwr2"}
