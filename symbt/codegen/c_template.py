@@ -265,7 +265,7 @@ int toda@@N@@_bt_step(const double *p, const double *q, double lam0, double mu, 
     }
     for (int j = 0; j < NS; j++) {
         const int k = (j + 1) % NS;
-        const double uj = u[j], dj = w[j] - u[j], un1 = u[k], dn1 = w[k] - u[k];
+        const double uj = u[j], dj = w[j] - u[j], un1 = u[k], dn1 = w[k] - u[k], wj = w[j], wn1 = w[k];
         if (!(@@positivity@@ > 0.0))
             return isfinite(dj) ? SYMBT_TODA_NO_REAL_MAP_POSITIVITY : SYMBT_TODA_RANGE;
         pn[j] = p[j] + @@eta_diff@@;

@@ -48,7 +48,8 @@ from sympy.polys.rings import PolyElement
 from ..reference.literal import phi_from_traces
 from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import TodaModel, local_lax, toda_model
-from .transport import illcond_guards, scaled_monodromy, transported
+from .printer import Quotient
+from .transport import eta_differences, illcond_guards, scaled_monodromy, transported, turned
 
 __all__ = ["ArgSpec", "Output", "Guard", "FunctionSpec", "specs", "sources", "interface", "branch", "tr1", "tr2", "lam",
            "lam0", "mu", "coefficient_symbols", "disc", "phi_of", "FUNCTIONS"]
@@ -455,14 +456,18 @@ def _build(N: int, rewrite: bool) -> tuple[FunctionSpec, ...]:
         u0, w0 = sp.Piecewise((f1, c1), (s1, True)), sp.Piecewise((f2, c2), (s2, True))
         # u's eigenvalue (t1 - g1)/2 has |v| >= 1 iff t1 g1 <= 0, w's (t2 + g2)/2 iff t2 g2 >= 0: there the
         # forward transport contracts, else the backward one (signs only: no product that could overflow)
-        u = transported(m, lam0 + mu, u0, sp.LessThan(branch * sp.sign(t_1), 0))
-        w = transported(m, lam0 - mu, w0, sp.GreaterThan(branch * sp.sign(t_2), 0))
+        # (each root refined by one turn in that direction first: transport.turned)
+        fw1, fw2 = sp.LessThan(branch * sp.sign(t_1), 0), sp.GreaterThan(branch * sp.sign(t_2), 0)
+        u = transported(m, lam0 + mu, turned(m, lam0 + mu, u0, fw1), fw1)
+        w = transported(m, lam0 - mu, turned(m, lam0 - mu, w0, fw2), fw2)
         # y = u_1/E_1; the printed x = 2 B1 B2 (l2 - l1)/(B2 (A1-D1+g1) - B1 (A2-D2-g2)) = 2 mu/(z - y)
         d = [w[j] - u[j] for j in range(N)]
         x_, y_ = sp.exp(q[0]) * 2 * mu / d[0], sp.exp(-q[0]) * u[0]
-        qt = [q[j] + log1p(-2 * mu / d[j]) for j in range(N)]
-        pt = [p[j] + 2 * mu * (u[j] / d[j] - u[(j + 1) % N] / d[(j + 1) % N]) for j in range(N)]
-        pos = [1 - 2 * mu / d[j] for j in range(N)]
+        # 2 mu / d_j divided once (as symbt.numeric); p~ without cancelling fractions (transport.eta_differences)
+        xr = [Quotient(2 * mu, d[j]) for j in range(N)]
+        qt = [q[j] + log1p(-xr[j]) for j in range(N)]
+        pt = [p[j] + e for j, e in enumerate(eta_differences(mu, u, w, d))]
+        pos = [1 - xr[j] for j in range(N)]
         # traces of opposite signs: different gaps (decided on the signs); every slope finite (an inf slope
         # would read out as 2 mu/d = 0, a finite wrong state)
         gap = "Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)"

@@ -390,7 +390,7 @@ def _step(_X, P, Q, lam0, mu, b, guards):
     u, w, dd = _step_slopes(_X, P, Q, lam0, mu, b, guards)
     Pn, Qn = [], []
     for j in range(N):
-        uj, dj, un1, dn1 = u[j], dd[j], u[(j + 1) % N], dd[(j + 1) % N]
+        uj, dj, un1, dn1, wj, wn1 = u[j], dd[j], u[(j + 1) % N], dd[(j + 1) % N], w[j], w[(j + 1) % N]
         _X.guard(guards, "positivity", f"Etilde_{j + 1}", @@positivity@@)
         Pn.append(P[j] + @@eta_diff@@)
         Qn.append(Q[j] + @@dq@@)

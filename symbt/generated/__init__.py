@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2e4c59d33707f5a8f3c82287d8cf0942d8c23856359fdd598731c9c685bd411d
-# symbt-codegen-content-sha256: c20569d739b99137799b9b3ed11c7ce62014a026059954da73c77f71567b8cc3
+# symbt-codegen-derivation-sha256: 38a3cb0292c52a66f6c3b2d9bb320ab3e00b0672071e35201ccc2ff5022b75b7
+# symbt-codegen-content-sha256: 33e1b5fe08bf2e332582fbf5f5f7651a965fd8d3b8a6077251ec817ccc908ac2
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from
