@@ -8,8 +8,9 @@ fuzz's chunks 86, 162 and 188, docs/fuzz.md): "no real map" where the map exists
 
 :func:`decide_existence` decides it by interval arithmetic (``mpmath.iv``; every float64 input is an exact
 binary number, so the intervals enclose the exact quantities): the traces' ``t**2 - 4``, their signs and
-every ``Etilde_j / E_j = 1 + xr_j`` (:func:`~symbt.numeric.core.step.step_core` on intervals).  A verdict is
-returned only when every interval it rests on excludes 0; otherwise the precision doubles, up to
+every ``Etilde_j / E_j = 1 + 2 mu / (u_j - w_j)`` (the slopes of
+:func:`~symbt.numeric.core.step.eigen_slopes` on intervals, as :func:`~symbt.numeric.core.step.step_core`).
+A verdict is returned only when every interval it rests on excludes 0; otherwise the precision doubles, up to
 :data:`MAX_BITS` (and :data:`BUDGET_S` seconds), and the answer is ``None`` -- undecided: the caller refuses
 the state with ``NumericRangeError`` rather than say "no real map".
 
@@ -29,7 +30,7 @@ import mpmath
 from ..core.context import IV
 from ..core.limits import OK, POSITIVITY, TRACE1, TRACE2
 from ..core.monodromy import monodromy, neighbour_ratios
-from ..core.step import step_core
+from ..core.step import eigen_slopes
 
 if TYPE_CHECKING:
     import numpy as np
@@ -74,11 +75,13 @@ def _at(p: npt.NDArray[np.float64], q: npt.NDArray[np.float64], lam0: float, mu:
         signs.append(_sign(t))
     if signs[0] != signs[1]:               # |t_i| > 2 certainly: both signs are decided, and they differ
         return POSITIVITY
-    try:
-        _, _, aux = step_core(IV, P, Q, l0, m, branch, check_real=False)
+    try:                                   # the slopes of step_core; no read-out (log1p of a negative interval raises)
+        u = eigen_slopes(IV, [l0 + m + x for x in P], r, branch).u
+        w = eigen_slopes(IV, [l0 - m + x for x in P], r, -branch).u
+        assert u is not None and w is not None
+        verdicts = [_sign(IV.div(2 * m, a - b) + 1) for a, b in zip(u, w)]
     except (ArithmeticError, ValueError):  # an interval slope through 0 or infinity: not decided here
         return None
-    verdicts = [_sign(x + 1) for x in aux["xr"]]
     if -1 in verdicts:
         return POSITIVITY
     return OK if None not in verdicts else None
