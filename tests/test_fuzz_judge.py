@@ -165,7 +165,7 @@ def test_emitted_toda3_within_16_eps_S_at_large_lambda(route, toda3_routes):
 #: found by the deep run (seed 26, chunk 105, N = 3, branch -1, |lam| ~ 1e19): the emitted closed form returned
 #: p~_1 = -403.957 where the map gives -3.70431495046972 (symbt.numeric: to the last bit): u_2/d_2 as u_2 * (1/d_2)
 #: rounded to -1 + eps, and 2 mu (u_1/d_1 - u_2/d_2) cancelled two fractions near -1 times 2 mu = 3.6e18; fixed
-#: by symbt.codegen.transport.eta_differences (2 mu (f_j g_{j+1} - f_{j+1} g_j), no cancelling fractions)
+#: by symbt.codegen.transport.read_out (2 mu (f_j g_{j+1} - f_{j+1} g_j), no cancelling fractions)
 FOUND_P1 = (np.array([-3.7043149504697173, 0.9562990588216604, 3.32967789560084]),
             np.array([13.268371574482979, -50.489573470667146, 37.22120189618416]),
             9.318636959922506e+18, 1.8025784398195384e+18, -1)

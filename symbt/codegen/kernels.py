@@ -151,7 +151,7 @@ def kernels() -> dict[str, Any]:
     # read-out of the step (scaled slopes u = E y, w = E z; d = w - u; x/E = 2 mu/d)
     out["dq"] = log1p(-2 * mu / dj)
     # 2 mu (f_j g_{j+1} - f_{j+1} g_j), f = u/d, g = w/d = f + 1: no two fractions near -1 cancelled (as the
-    # closed form, symbt.codegen.transport.eta_differences); Quotient keeps each division (no slope products)
+    # closed form, symbt.codegen.transport.read_out); Quotient keeps each division (no slope products)
     out["eta_diff"] = 2 * mu * (Quotient(uj, dj) * Quotient(wn1, dn1) - Quotient(un1, dn1) * Quotient(wj, dj))
     eta = lambda uu, dd: mu + 2 * mu * uu / dd  # noqa: E731
     plain = out["eta_diff"].replace(Quotient, lambda x, y: x / y).xreplace({wj: dj + uj, wn1: dn1 + un1})

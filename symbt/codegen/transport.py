@@ -25,7 +25,7 @@ from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import TodaModel
 from .printer import Quotient
 
-__all__ = ["scaled_monodromy", "transported", "turned", "eta_differences", "illcond_guards"]
+__all__ = ["scaled_monodromy", "transported", "turned", "read_out", "illcond_guards"]
 
 
 def transported(m: TodaModel, lam_: sp.Expr, u0: sp.Expr, forward: sp.Basic) -> list[sp.Expr]:
@@ -66,18 +66,20 @@ def turned(m: TodaModel, lam_: sp.Expr, u0: sp.Expr, forward: sp.Basic) -> sp.Ex
     return sp.Piecewise((fwd, forward), (bwd, True))
 
 
-def eta_differences(mu_: sp.Expr, u: list[sp.Expr], w: list[sp.Expr], d: list[sp.Expr]) -> list[sp.Expr]:
-    """``p~_j - p_j = 2 mu (u_j/d_j - u_{j+1}/d_{j+1})`` (``d_j = w_j - u_j``) as ``2 mu (f_j g_{j+1} - f_{j+1} g_j)``,
+def read_out(mu_: sp.Expr, u: list[sp.Expr], w: list[sp.Expr], d: list[sp.Expr]) -> tuple[list[Any], list[Any]]:
+    """``(xr, eta)``: ``xr_j = 2 mu / d_j`` divided once (as :mod:`symbt.numeric`; ``q~_j = q_j + log1p(-xr_j)``) and
+    ``p~_j - p_j = 2 mu (u_j/d_j - u_{j+1}/d_{j+1})`` (``d_j = w_j - u_j``) as ``2 mu (f_j g_{j+1} - f_{j+1} g_j)``,
     ``f = u/d``, ``g = w/d = f + 1``.
 
     The plain difference cancels two fractions near ``-1`` where ``|w_j| << |u_j|`` (``|lambda| >> |p|``): each
     rounds at ``eps``, times a lambda-sized ``2 mu`` (p~_1 = -404 for -3.70 at the deep fuzz's chunk 105,
     docs/fuzz.md).  In the products the fraction near -1 multiplies the small one, so each term rounds at its
     own scale; the four quotients are bounded where ``d`` is not small (no product of slopes: no overflow)."""
-    f = [Quotient(u[j], d[j]) for j in range(len(u))]
-    g = [Quotient(w[j], d[j]) for j in range(len(u))]
     N = len(u)
-    return [2 * mu_ * (f[j] * g[(j + 1) % N] - f[(j + 1) % N] * g[j]) for j in range(N)]
+    f = [Quotient(u[j], d[j]) for j in range(N)]
+    g = [Quotient(w[j], d[j]) for j in range(N)]
+    xr = [Quotient(2 * mu_, d[j]) for j in range(N)]
+    return xr, [2 * mu_ * (f[j] * g[(j + 1) % N] - f[(j + 1) % N] * g[j]) for j in range(N)]
 
 
 def scaled_monodromy(m: TodaModel, lam_: sp.Expr) -> sp.Matrix:

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 38a3cb0292c52a66f6c3b2d9bb320ab3e00b0672071e35201ccc2ff5022b75b7
-# symbt-codegen-content-sha256: 33e1b5fe08bf2e332582fbf5f5f7651a965fd8d3b8a6077251ec817ccc908ac2
+# symbt-codegen-derivation-sha256: 340398e8cde62cf3476b4b957313d01faa0cc4d29fa7e16a7c74e6ab876fa341
+# symbt-codegen-content-sha256: c95f910e4bc8840a33c8f519611415ad1e32ccd82056d2b62e02106acde61620
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 38a3cb0292c52a66f6c3b2d9bb320ab3e00b0672071e35201ccc2ff5022b75b7
-# symbt-codegen-content-sha256: 8bcd39123e5db60ff7d3aea64caa23e18eef83374db4e4dbb6c87202050c9e07
+# symbt-codegen-derivation-sha256: 340398e8cde62cf3476b4b957313d01faa0cc4d29fa7e16a7c74e6ab876fa341
+# symbt-codegen-content-sha256: 3d4c1017cbb3d696a9829ef65f515d5ae103418cbbe1bcd9a91c78b3718ac57e
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

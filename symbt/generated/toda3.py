@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 38a3cb0292c52a66f6c3b2d9bb320ab3e00b0672071e35201ccc2ff5022b75b7
-# symbt-codegen-content-sha256: 10b1320cfe4f42e543fd275bbe0cc43101d7c97cb601515f744382d35065dc4c
+# symbt-codegen-derivation-sha256: 340398e8cde62cf3476b4b957313d01faa0cc4d29fa7e16a7c74e6ab876fa341
+# symbt-codegen-content-sha256: 687049f77c2fc71da4c318850f5dbec997cebd41405d23c333938a99bb94dda2
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
