@@ -297,14 +297,21 @@ def test_escalation_decides_existence_rigorously_at_lambda_zero(chunk):
         assert np.array_equal(got, ref), (backend, got, ref)
 
 
-def test_existence_is_decided_only_where_the_intervals_exclude_zero():
-    """decide_existence: no real map inside a band (certain), the map where it exists (certain), and None --
-    not a verdict -- where a trace is exactly 2 (N = 2, p = q = 0: tr L(lam) = lam**2 - 2, lam1 = 2)."""
-    from symbt.numeric.core.limits import OK, TRACE1
-    from symbt.numeric.float64.existence import decide_existence
+def test_existence_is_decided_only_where_the_intervals_exclude_zero(monkeypatch):
+    """decide_existence: no real map inside a band and at an exact band edge (a point interval: |t| = 2 is not
+    > 2), the map where it exists -- and None, not a verdict, where the precision budget ends before the
+    intervals exclude 0 (chunk 86's min Etilde_j / E_j = 5.5e-113 needs 512 bits); the escalation then refuses
+    the state with NumericRangeError (status RANGE) instead of saying "no real map"."""
+    import symbt.numeric.float64.existence as ex
+    from symbt.numeric.core.limits import OK, RANGE, TRACE1
+    from symbt.numeric.float64.rows import escalate_rows
 
     z = np.zeros(2)
-    assert decide_existence(z, z, 0.5, 0.25, 1)[0] == TRACE1                     # tr L(0.75) = -1.44: a band
-    assert decide_existence(np.array([-20.0, 10.0, 1.0]), np.array([1.0, 0.0, 0.9]), 10.0, 5.0, 1)[0] == OK
-    verdict, bits = decide_existence(z, z, 1.5, 0.5, 1)                           # tr L(2) = 2 exactly
-    assert verdict is None and bits > 256
+    assert ex.decide_existence(z, z, 0.5, 0.25, 1)[0] == TRACE1                  # tr L(0.75) = -1.44: a band
+    assert ex.decide_existence(z, z, 2.5, -0.5, 1)[0] == TRACE1                  # tr L(2) = 2 exactly
+    assert ex.decide_existence(np.array([-20.0, 10.0, 1.0]), np.array([1.0, 0.0, 0.9]), 10.0, 5.0, 1)[0] == OK
+    p, q, lam0, mu, b = NOMAP_AT_ZERO[86]
+    assert ex.decide_existence(p, q, lam0, mu, b) == (OK, 512)
+    monkeypatch.setattr(ex, "MAX_BITS", 256)
+    assert ex.decide_existence(p, q, lam0, mu, b)[0] is None
+    assert escalate_rows(p[None], q[None], lam0, mu, b)[2].tolist() == [RANGE]

@@ -45,12 +45,13 @@ BUDGET_S = 20.0
 
 
 def _sign(x: mpmath.ctx_iv.ivmpf) -> int | None:
-    """+1 / -1 where the interval excludes 0, else None."""
+    """+1 / -1 where the interval excludes 0, 0 where it is the point 0 (the exact value is 0: every operation
+    was exact, e.g. the free chain's trace -2 at lam = 0), else None."""
     if x.a > 0:
         return 1
     if x.b < 0:
         return -1
-    return None
+    return 0 if x.a == 0 and x.b == 0 else None
 
 
 def _at(p: npt.NDArray[np.float64], q: npt.NDArray[np.float64], lam0: float, mu: float, branch: int,
@@ -62,17 +63,19 @@ def _at(p: npt.NDArray[np.float64], q: npt.NDArray[np.float64], lam0: float, mu:
     Q = [iv.mpf(float(v)) + c for v in q]
     l0, m = iv.mpf(float(lam0)), iv.mpf(float(mu))
     r = neighbour_ratios(IV, Q)
-    signs = []
+    signs, bands = [], []
     for code, lam in ((TRACE1, l0 + m), (TRACE2, l0 - m)):
         A, _, _, D, e = monodromy(IV, [lam + x for x in P], r)
         t = A + D
         two = IV.ldexp(2.0, -e) if e else iv.mpf(2)
         s = _sign((t - two) * (t + two))
-        if s is None:
-            return None
-        if s < 0:
-            return code
+        bands.append(None if s is None else OK if s > 0 else code)      # |t| = 2 exactly: no real map
         signs.append(_sign(t))
+    for verdict in bands:                  # a certain band at either parameter decides, the other undecided or not
+        if verdict not in (OK, None):
+            return verdict
+    if None in bands:
+        return None
     if signs[0] != signs[1]:               # |t_i| > 2 certainly: both signs are decided, and they differ
         return POSITIVITY
     try:                                   # the slopes of step_core; no read-out (log1p of a negative interval raises)
@@ -82,7 +85,7 @@ def _at(p: npt.NDArray[np.float64], q: npt.NDArray[np.float64], lam0: float, mu:
         verdicts = [_sign(IV.div(2 * m, a - b) + 1) for a, b in zip(u, w)]
     except (ArithmeticError, ValueError):  # an interval slope through 0 or infinity: not decided here
         return None
-    if -1 in verdicts:
+    if -1 in verdicts or 0 in verdicts:  # some Etilde_j <= 0 certainly
         return POSITIVITY
     return OK if None not in verdicts else None
 
