@@ -315,3 +315,40 @@ def test_existence_is_decided_only_where_the_intervals_exclude_zero(monkeypatch)
     monkeypatch.setattr(ex, "MAX_BITS", 256)
     assert ex.decide_existence(p, q, lam0, mu, b)[0] is None
     assert escalate_rows(p[None], q[None], lam0, mu, b)[2].tolist() == [RANGE]
+
+
+#: found by the third deep run (seed 26, chunk 133, N = 6, |lam| ~ 3.5e103, branch -1): the transfer-matrix form's
+#: rescaled trace at lam1 underflowed to 0 (2**-2410), so t**2 - 4 = 0 and its condition estimate 0/0 = NaN passed
+#: the conditioning guard; the trace guard then said "no real map" (numpy: NoRealMapError, C: status 1) where the
+#: literal map and symbt.numeric give a state
+FOUND_LOOP_NAN = (np.array([-4.338901404876961, -5.724777799228214, 6.418960636318868, 1.3208372969240691,
+                            0.2417460741724717, 2.132787392610733]),
+                  np.array([-51.04785714923382, 272.30791761423615, 275.46892753823505, -56.394341294473975,
+                            87.81651905356236, -528.1511657623258]), 3.527925499006412e+103, 4.684576053793516e+102, -1)
+
+
+def test_loop_form_refuses_a_trace_it_cannot_represent(tmp_path):
+    """The loop form (numpy and C) refuses that state as ill-conditioned -- a documented refusal -- never with
+    "no real map" where the map exists (the premise: the literal map is real there)."""
+    import shutil
+    import subprocess
+    import types
+
+    from test_codegen_edges import CStep
+
+    import symbt.codegen as cg
+    from symbt.codegen import zullo
+
+    p, q, lam0, mu, b = FOUND_LOOP_NAN
+    assert isinstance(literal(p, q, lam0, mu, b), list)
+    mod = types.ModuleType("toda6_nan")
+    exec(compile(zullo.module_text(6, "transfer-matrix"), "toda6_nan", "exec"), mod.__dict__)
+    with pytest.raises(mod.IllConditionedError):
+        mod.bt_step(p, q, lam0, mu, b)
+    cc = shutil.which("cc") or shutil.which("gcc") or shutil.which("clang")
+    if cc is None:
+        pytest.skip("no C compiler (cc, gcc or clang) on PATH")
+    assert cg.main(["--target", "c", "--n", "6", "--out", str(tmp_path), "-q"]) == 0
+    subprocess.run([cc, "-std=c99", "-O2", "-shared", "-fPIC", "-o", str(tmp_path / "t6.so"),
+                    str(tmp_path / "toda6.c"), "-lm"], check=True, capture_output=True, timeout=300)
+    assert CStep(tmp_path / "t6.so", 6)(p, q, lam0, mu, b)[0] == 5              # SYMBT_TODA_ILL_CONDITIONED

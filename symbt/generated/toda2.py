@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 340398e8cde62cf3476b4b957313d01faa0cc4d29fa7e16a7c74e6ab876fa341
-# symbt-codegen-content-sha256: 3d4c1017cbb3d696a9829ef65f515d5ae103418cbbe1bcd9a91c78b3718ac57e
+# symbt-codegen-derivation-sha256: 4b536d8c683a4ea799271bad6668b34c6c58d33ed19ad43002b1924a06b694c7
+# symbt-codegen-content-sha256: f4e31ec7e165df8e3831e3991f458bed1ebbc14bb22becd18365a39afc1ef187
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

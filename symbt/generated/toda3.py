@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 340398e8cde62cf3476b4b957313d01faa0cc4d29fa7e16a7c74e6ab876fa341
-# symbt-codegen-content-sha256: 687049f77c2fc71da4c318850f5dbec997cebd41405d23c333938a99bb94dda2
+# symbt-codegen-derivation-sha256: 4b536d8c683a4ea799271bad6668b34c6c58d33ed19ad43002b1924a06b694c7
+# symbt-codegen-content-sha256: 50bd11b8ddd1043f92ae1bf3e8450aa9fc5aafb45d913b5f777bf7242a1a84d8
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
