@@ -271,7 +271,8 @@ def _deep_chunk(inputs, mods, csteps):
             continue
         kt = trace_kappa_hp(p, q, lam0, mu, traces)
         kappa = kappa_hp(p, q, lam0, mu, b, kt, values=True, traces=traces) if states else None
-        ref = kappa[1] if kappa and kappa[0] <= 1e10 and i % 50 else literal(p, q, lam0, mu, b, traces)
+        at_zero = lam0 + mu == 0 or lam0 - mu == 0       # the literal route needs more digits there (literal)
+        ref = kappa[1] if kappa and kappa[0] <= 1e10 and i % 50 and not at_zero else literal(p, q, lam0, mu, b, traces)
         if ref == "undecided":
             stats["undecided"] += 1
             continue

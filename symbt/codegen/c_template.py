@@ -240,7 +240,7 @@ int toda@@N@@_bt_step(const double *p, const double *q, double lam0, double mu, 
         return SYMBT_TODA_RANGE;
     /* float64 decides only where the condition estimate is at most KAPPA_MAX (as symbt.numeric) */
     const double k1 = toda@@N@@_trace_kappa(a1, rv, e1, t1, d1), k2 = toda@@N@@_trace_kappa(a2, rv, e2, t2, d2);
-    if (k1 > TODA@@N@@_KAPPA_MAX || k2 > TODA@@N@@_KAPPA_MAX)
+    if (!(k1 <= TODA@@N@@_KAPPA_MAX) || !(k2 <= TODA@@N@@_KAPPA_MAX))   /* NaN too: a trace underflowed */
         return SYMBT_TODA_ILL_CONDITIONED;
     if (!(d1 > 0.0) || !(d2 > 0.0))
         return SYMBT_TODA_NO_REAL_MAP_TRACE;
@@ -265,7 +265,7 @@ int toda@@N@@_bt_step(const double *p, const double *q, double lam0, double mu, 
     }
     for (int j = 0; j < NS; j++) {
         const int k = (j + 1) % NS;
-        const double uj = u[j], dj = w[j] - u[j], un1 = u[k], dn1 = w[k] - u[k];
+        const double uj = u[j], dj = w[j] - u[j], un1 = u[k], dn1 = w[k] - u[k], wj = w[j], wn1 = w[k];
         if (!(@@positivity@@ > 0.0))
             return isfinite(dj) ? SYMBT_TODA_NO_REAL_MAP_POSITIVITY : SYMBT_TODA_RANGE;
         pn[j] = p[j] + @@eta_diff@@;

@@ -20,9 +20,10 @@ rational variables :math:`E_j = e^{q_j}`).  Two builds of the same catalogue:
   - ``tr^2 - 4`` is written ``(tr - 2)(tr + 2)`` (no cancellation in float64).
   - The slope at site 1 is read off the monodromy; of ``(A - D + g)/(2B) = -2C/(A - D - g)`` the
     form without cancellation is selected (``Piecewise`` on the sign of ``(A - D) g``); the other
-    sites by transport in the contracting direction (:func:`.transport.transported`, as ``symbt.numeric``);
-    ``q~_j = q_j + log1p(-x_j/E_j)``, ``p~_j = p_j + 2 mu (u_j/d_j - u_{j+1}/d_{j+1})`` with the
-    scaled slopes ``u_j = E_j y_j``, ``w_j = E_j z_j``, ``d_j = w_j - u_j``.
+    sites by transport in the contracting direction (:func:`.transport.transported`, as ``symbt.numeric``,
+    the root refined by one turn first: :func:`.transport.turned`); ``q~_j = q_j + log1p(-x_j/E_j)``,
+    ``p~_j = p_j + 2 mu (u_j/d_j - u_{j+1}/d_{j+1})`` (:func:`.transport.read_out`), ``u_j = E_j y_j``,
+    ``w_j = E_j z_j``, ``d_j = w_j - u_j`` the scaled slopes.
   - *Guards*: positive exactly where the real function exists (``tr_i^2 - 4``, the sign of
     ``tr_1 tr_2``, ``1 - x_j/E_j = e^{q~_j - q_j}``), or finite (``range``: every slope); the code
     raises ``NoRealMapError`` / ``NumericRangeError`` (or masks) where one is not.
@@ -48,7 +49,7 @@ from sympy.polys.rings import PolyElement
 from ..reference.literal import phi_from_traces
 from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import TodaModel, local_lax, toda_model
-from .transport import illcond_guards, scaled_monodromy, transported
+from .transport import illcond_guards, read_out, scaled_monodromy, transported, turned
 
 __all__ = ["ArgSpec", "Output", "Guard", "FunctionSpec", "specs", "sources", "interface", "branch", "tr1", "tr2", "lam",
            "lam0", "mu", "coefficient_symbols", "disc", "phi_of", "FUNCTIONS"]
@@ -453,18 +454,18 @@ def _build(N: int, rewrite: bool) -> tuple[FunctionSpec, ...]:
         f1, s1, c1 = (x.xreplace({gs: G1}) for x in _slope(M1, gs, +1))
         f2, s2, c2 = (x.xreplace({gs: G2}) for x in _slope(M2, gs, -1))
         u0, w0 = sp.Piecewise((f1, c1), (s1, True)), sp.Piecewise((f2, c2), (s2, True))
-        # u's eigenvalue (t1 - g1)/2 has |v| >= 1 iff t1 g1 <= 0, w's (t2 + g2)/2 iff t2 g2 >= 0: there the
-        # forward transport contracts, else the backward one (signs only: no product that could overflow)
-        u = transported(m, lam0 + mu, u0, sp.LessThan(branch * sp.sign(t_1), 0))
-        w = transported(m, lam0 - mu, w0, sp.GreaterThan(branch * sp.sign(t_2), 0))
+        # u's eigenvalue (t1 - g1)/2 has |v| >= 1 iff t1 g1 <= 0, w's (t2 + g2)/2 iff t2 g2 >= 0: there the forward
+        # transport contracts, else the backward one (signs only); each root refined by one turn first (turned)
+        fw1, fw2 = sp.LessThan(branch * sp.sign(t_1), 0), sp.GreaterThan(branch * sp.sign(t_2), 0)
+        u = transported(m, lam0 + mu, turned(m, lam0 + mu, u0, fw1), fw1)
+        w = transported(m, lam0 - mu, turned(m, lam0 - mu, w0, fw2), fw2)
         # y = u_1/E_1; the printed x = 2 B1 B2 (l2 - l1)/(B2 (A1-D1+g1) - B1 (A2-D2-g2)) = 2 mu/(z - y)
         d = [w[j] - u[j] for j in range(N)]
         x_, y_ = sp.exp(q[0]) * 2 * mu / d[0], sp.exp(-q[0]) * u[0]
-        qt = [q[j] + log1p(-2 * mu / d[j]) for j in range(N)]
-        pt = [p[j] + 2 * mu * (u[j] / d[j] - u[(j + 1) % N] / d[(j + 1) % N]) for j in range(N)]
-        pos = [1 - 2 * mu / d[j] for j in range(N)]
-        # traces of opposite signs: different gaps (decided on the signs); every slope finite (an inf slope
-        # would read out as 2 mu/d = 0, a finite wrong state)
+        xr, eta = read_out(mu, u, w, d)         # 2 mu/d_j divided once; p~ without cancelling fractions
+        qt, pt = [q[j] + log1p(-x) for j, x in enumerate(xr)], [p[j] + e for j, e in enumerate(eta)]
+        pos = [1 - x for x in xr]
+        # opposite traces: different gaps (decided on the signs); slopes finite (inf reads out as 2 mu/d = 0)
         gap = "Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)"
         extra: tuple[Guard, ...] = (Guard("positivity", gap, sp.sign(t_1) * sp.sign(t_2), 0),)
         extra += tuple(Guard("range", f"{name}_{j + 1}", v, 1)

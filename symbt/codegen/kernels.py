@@ -46,20 +46,21 @@ from sympy.codegen.cfunctions import log1p
 from ..symbolic.linear import solve_linear
 from ..symbolic.toda import local_lax
 from .derive import branch, disc, phi_of, tr1, tr2
+from .printer import Quotient
 
 __all__ = ["kernels", "SYMBOLS"]
 
 A, B, C, D, a, r, u, un, g, mu, sd, s = sp.symbols("A B C D a r u un g mu sd s", real=True)
 P00, P01, P10, P11, S00, S01, S10, S11 = sp.symbols("P00 P01 P10 P11 S00 S01 S10 S11", real=True)
 r_prev, dr_prev, dr = sp.symbols("r_prev dr_prev dr", real=True)
-uj, dj, un1, dn1 = sp.symbols("uj dj un1 dn1", real=True)
+uj, dj, un1, dn1, wj, wn1 = sp.symbols("uj dj un1 dn1 wj wn1", real=True)
 t, q, x1, x2, two = sp.symbols("t q x1 x2 two", real=True)
 _lam, _p = sp.symbols("lambda p", real=True)
 _E, _En = sp.symbols("E En", positive=True)
 
 #: every symbol a kernel may contain (the emitters bind them to variables of the same name)
 SYMBOLS = (A, B, C, D, a, r, u, un, g, mu, sd, s, P00, P01, P10, P11, S00, S01, S10, S11,
-           r_prev, dr_prev, dr, uj, dj, un1, dn1, t, q, x1, x2, two, branch, tr1, tr2)
+           r_prev, dr_prev, dr, uj, dj, un1, dn1, wj, wn1, t, q, x1, x2, two, branch, tr1, tr2)
 
 
 def _zero(expr: sp.Expr, what: str) -> None:
@@ -149,9 +150,12 @@ def kernels() -> dict[str, Any]:
 
     # read-out of the step (scaled slopes u = E y, w = E z; d = w - u; x/E = 2 mu/d)
     out["dq"] = log1p(-2 * mu / dj)
-    out["eta_diff"] = 2 * mu * (uj / dj - un1 / dn1)
+    # 2 mu (f_j g_{j+1} - f_{j+1} g_j), f = u/d, g = w/d = f + 1: no two fractions near -1 cancelled (as the
+    # closed form, symbt.codegen.transport.read_out); Quotient keeps each division (no slope products)
+    out["eta_diff"] = 2 * mu * (Quotient(uj, dj) * Quotient(wn1, dn1) - Quotient(un1, dn1) * Quotient(wj, dj))
     eta = lambda uu, dd: mu + 2 * mu * uu / dd  # noqa: E731
-    _zero(eta(uj, dj) - eta(un1, dn1) - out["eta_diff"], "p~ - p = eta_j - eta_{j+1}")
+    plain = out["eta_diff"].replace(Quotient, lambda x, y: x / y).xreplace({wj: dj + uj, wn1: dn1 + un1})
+    _zero(eta(uj, dj) - eta(un1, dn1) - plain, "p~ - p = eta_j - eta_{j+1}")
     out["positivity"] = 1 - 2 * mu / dj                          # Etilde_j/E_j = exp(q~_j - q_j) > 0
     # Dapp's x = E_1 (x_1/E_1) = e^{q_1} 2 mu/d_1 and y = y_1 = u_1/E_1 (eq. xy)
     out["dapp_x"] = sp.exp(q) * 2 * mu / dj

@@ -329,8 +329,10 @@ def _traces(_X, P, R, lam0, mu, guards, kappa=None):
         disc = @@disc_scaled@@
         if kappa is not None and _X.conditioned:
             k = _trace_kappa(_X, av, R, M, t, disc, two)
-            # +-1: a non-finite estimate (an overflowed trace) leaves the decision to the guards after it
-            _X.guard(guards, "illcond", f"tr L(lam{i + 1})", np.where(k > _KAPPA_MAX, -1, 1))
+            # +-1; a NaN estimate refuses too: the rescaled trace can underflow to 0 (2**-e below the float64
+            # range, |lambda| ~ 1e103 at N = 6: tr = 0, t**2 - 4 = 0, kappa = 0/0), and the trace guard after
+            # it would read "no real map" where the map exists (the deep fuzz, docs/fuzz.md)
+            _X.guard(guards, "illcond", f"tr L(lam{i + 1})", np.where(k <= _KAPPA_MAX, 1, -1))
             kappa.append(k * _cancellation(lam, P, av))
         _X.guard(guards, "trace", label, disc)
     return a1, a2, M1, M2, t1, t2
@@ -390,7 +392,7 @@ def _step(_X, P, Q, lam0, mu, b, guards):
     u, w, dd = _step_slopes(_X, P, Q, lam0, mu, b, guards)
     Pn, Qn = [], []
     for j in range(N):
-        uj, dj, un1, dn1 = u[j], dd[j], u[(j + 1) % N], dd[(j + 1) % N]
+        uj, dj, un1, dn1, wj, wn1 = u[j], dd[j], u[(j + 1) % N], dd[(j + 1) % N], w[j], w[(j + 1) % N]
         _X.guard(guards, "positivity", f"Etilde_{j + 1}", @@positivity@@)
         Pn.append(P[j] + @@eta_diff@@)
         Qn.append(Q[j] + @@dq@@)

@@ -25,7 +25,7 @@ from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import TodaModel
 from .printer import Quotient
 
-__all__ = ["scaled_monodromy", "transported", "illcond_guards"]
+__all__ = ["scaled_monodromy", "transported", "turned", "read_out", "illcond_guards"]
 
 
 def transported(m: TodaModel, lam_: sp.Expr, u0: sp.Expr, forward: sp.Basic) -> list[sp.Expr]:
@@ -43,6 +43,43 @@ def transported(m: TodaModel, lam_: sp.Expr, u0: sp.Expr, forward: sp.Basic) -> 
     for j in range(N - 1, 0, -1):
         nxt = bwd[j] = -a[j] - Quotient(r[j], nxt)
     return [u0] + [sp.Piecewise((fwd[j], forward), (bwd[j], True)) for j in range(1, N)]
+
+
+def turned(m: TodaModel, lam_: sp.Expr, u0: sp.Expr, forward: sp.Basic) -> sp.Expr:
+    """The slope at site 1 after one turn of the transport around the ring from ``u0``, forward where ``forward``
+    holds, else backward: the contracting direction of :func:`transported`.
+
+    The root read off the monodromy carries the monodromy's rounding, ``eps`` times the entries of
+    ``|m_N| ... |m_1|``, which at ``|lambda| >> |p|`` exceed those of ``M`` by the trace's cancellation (1e5 at the
+    deep fuzz's chunk 104, docs/fuzz.md); one turn multiplies that error by the ratio of the eigenvalues
+    ``1/|(t -+ g)/2|**2`` and adds only the transport's own rounding (as the transfer-matrix form's
+    ``_turn_forward``/``_turn_backward``)."""
+    N, p, q = m.N, m.p, m.q
+    a = [lam_ + p[j] for j in range(N)]
+    r = [sp.exp(q[(j + 1) % N] - q[j]) for j in range(N)]
+    fwd = u0
+    for j in range(N):
+        fwd = -Quotient(r[j], a[j] + fwd)
+    bwd = u0
+    for j in range(N - 1, -1, -1):
+        bwd = -a[j] - Quotient(r[j], bwd)
+    return sp.Piecewise((fwd, forward), (bwd, True))
+
+
+def read_out(mu_: sp.Expr, u: list[sp.Expr], w: list[sp.Expr], d: list[sp.Expr]) -> tuple[list[Any], list[Any]]:
+    """``(xr, eta)``: ``xr_j = 2 mu / d_j`` divided once (as :mod:`symbt.numeric`; ``q~_j = q_j + log1p(-xr_j)``) and
+    ``p~_j - p_j = 2 mu (u_j/d_j - u_{j+1}/d_{j+1})`` (``d_j = w_j - u_j``) as ``2 mu (f_j g_{j+1} - f_{j+1} g_j)``,
+    ``f = u/d``, ``g = w/d = f + 1``.
+
+    The plain difference cancels two fractions near ``-1`` where ``|w_j| << |u_j|`` (``|lambda| >> |p|``): each
+    rounds at ``eps``, times a lambda-sized ``2 mu`` (p~_1 = -404 for -3.70 at the deep fuzz's chunk 105,
+    docs/fuzz.md).  In the products the fraction near -1 multiplies the small one, so each term rounds at its
+    own scale; the four quotients are bounded where ``d`` is not small (no product of slopes: no overflow)."""
+    N = len(u)
+    f = [Quotient(u[j], d[j]) for j in range(N)]
+    g = [Quotient(w[j], d[j]) for j in range(N)]
+    xr = [Quotient(2 * mu_, d[j]) for j in range(N)]
+    return xr, [2 * mu_ * (f[j] * g[(j + 1) % N] - f[(j + 1) % N] * g[j]) for j in range(N)]
 
 
 def scaled_monodromy(m: TodaModel, lam_: sp.Expr) -> sp.Matrix:

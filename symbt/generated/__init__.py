@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2e4c59d33707f5a8f3c82287d8cf0942d8c23856359fdd598731c9c685bd411d
-# symbt-codegen-content-sha256: c20569d739b99137799b9b3ed11c7ce62014a026059954da73c77f71567b8cc3
+# symbt-codegen-derivation-sha256: 4b536d8c683a4ea799271bad6668b34c6c58d33ed19ad43002b1924a06b694c7
+# symbt-codegen-content-sha256: 23a28a3d54de3a183f270d7994ec974a4ab0d24c4d07e72c9a2ac3cbfa7caa14
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

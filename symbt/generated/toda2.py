@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2e4c59d33707f5a8f3c82287d8cf0942d8c23856359fdd598731c9c685bd411d
-# symbt-codegen-content-sha256: 6e6b8eeaa6c2335669391dae83c73cf2dad34c77c0dd8b001e261ef7010f3f46
+# symbt-codegen-derivation-sha256: 4b536d8c683a4ea799271bad6668b34c6c58d33ed19ad43002b1924a06b694c7
+# symbt-codegen-content-sha256: f4e31ec7e165df8e3831e3991f458bed1ebbc14bb22becd18365a39afc1ef187
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -561,25 +561,29 @@ def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
         t36 = t14 + t6
         t37 = 2*t5
         t38 = np.where(t33*t35 >= 0, (t33 + t35)/(-t31 - t32), -(t1*t37/(-t3 - t33 - t36)))
-        t39 = np.where(t29*branch <= 0, -(t6/(t1 + t38)), -t2 - t5/t38)
-        t40 = branch*np.sqrt(t27)
-        t41 = t21 + t34
-        t42 = np.where(t40*t41 <= 0, (-t22 - t36 - t40)/(t31 - t32), -(t19*t37/(t40 + t41)))
-        t43 = np.where(t30*branch >= 0, -(t6/(t19 + t42)), -t20 - t5/t42)
-        t44 = -t38 + t42
-        t45 = -t39 + t43
-        t46 = t31/t44
-        t47 = np.abs(t46 - 1)
-        t48 = np.abs(p1)
-        t49 = np.abs(t0)
-        t50 = np.abs(p2)
-        t51 = np.abs(t18)
-        t52 = np.maximum(t17*np.maximum((t48 + t49)/t10, (t49 + t50)/t11), t28*np.maximum((t48 + t51)/t25, (t50 + t51)/t26))
-        t53 = t31/t45
-        t54 = np.abs(t53 - 1)
-        x = _pack([t46*np.exp(q1)], _batch, ())
-        y = _pack([t38*np.exp(-q1)], _batch, ())
-        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t17 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', t16), ('illcond', 'tr L(lam2)', np.where(t28 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', t27), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t29*t30), ('range', 'u_1', t38), ('range', 'u_2', t39), ('range', 'w_1', t42), ('range', 'w_2', t43), ('range', 'd_1', t44), ('range', 'd_2', t45), ('illcond', 'the slopes at site 1', 16777216*t47*np.abs(t44) - t52*(t47 + np.abs(t46))*(np.abs(t38) + np.abs(t42))), ('illcond', 'the slopes at site 2', -t52*(t54 + np.abs(t53))*(np.abs(t39) + np.abs(t43)) + 16777216*t54*np.abs(t45))])
+        t39 = t29*branch <= 0
+        t40 = np.where(t39, -(t5/(t2 - t6/(t1 + t38))), -t1 - t6/(-t2 - t5/t38))
+        t41 = np.where(t39, -(t6/(t1 + t40)), -t2 - t5/t40)
+        t42 = branch*np.sqrt(t27)
+        t43 = t21 + t34
+        t44 = np.where(t42*t43 <= 0, (-t22 - t36 - t42)/(t31 - t32), -(t19*t37/(t42 + t43)))
+        t45 = t30*branch >= 0
+        t46 = np.where(t45, -(t5/(t20 - t6/(t19 + t44))), -t19 - t6/(-t20 - t5/t44))
+        t47 = np.where(t45, -(t6/(t19 + t46)), -t20 - t5/t46)
+        t48 = -t40 + t46
+        t49 = -t41 + t47
+        t50 = t31/t48
+        t51 = np.abs(t50 - 1)
+        t52 = np.abs(p1)
+        t53 = np.abs(t0)
+        t54 = np.abs(p2)
+        t55 = np.abs(t18)
+        t56 = np.maximum(t17*np.maximum((t52 + t53)/t10, (t53 + t54)/t11), t28*np.maximum((t52 + t55)/t25, (t54 + t55)/t26))
+        t57 = t31/t49
+        t58 = np.abs(t57 - 1)
+        x = _pack([t50*np.exp(q1)], _batch, ())
+        y = _pack([t40*np.exp(-q1)], _batch, ())
+        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t17 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', t16), ('illcond', 'tr L(lam2)', np.where(t28 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', t27), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t29*t30), ('range', 'u_1', t40), ('range', 'u_2', t41), ('range', 'w_1', t46), ('range', 'w_2', t47), ('range', 'd_1', t48), ('range', 'd_2', t49), ('illcond', 'the slopes at site 1', 16777216*t51*np.abs(t48) - t56*(t51 + np.abs(t50))*(np.abs(t40) + np.abs(t46))), ('illcond', 'the slopes at site 2', -t56*(t58 + np.abs(t57))*(np.abs(t41) + np.abs(t47)) + 16777216*t58*np.abs(t49))])
     x, y, = _finish(errors, _bad, _batch, [x, y])
     return x, y
 
@@ -652,32 +656,32 @@ def bt_step(p, q, lam0, mu, branch, errors="raise"):
         t36 = t14 + t6
         t37 = 2*t5
         t38 = np.where(t33*t35 >= 0, (t33 + t35)/(-t31 - t32), -(t1*t37/(-t3 - t33 - t36)))
-        t39 = np.where(t29*branch <= 0, -(t6/(t1 + t38)), -t2 - t5/t38)
-        t40 = branch*np.sqrt(t27)
-        t41 = t21 + t34
-        t42 = np.where(t40*t41 <= 0, (-t22 - t36 - t40)/(t31 - t32), -(t19*t37/(t40 + t41)))
-        t43 = np.where(t30*branch >= 0, -(t6/(t19 + t42)), -t20 - t5/t42)
-        t44 = -t38 + t42
-        t45 = -t39 + t43
-        t46 = 1/t44
-        t47 = t31*t46
-        t48 = 1 - t47
-        t49 = np.abs(t48)
-        t50 = np.abs(p1)
-        t51 = np.abs(t0)
-        t52 = np.abs(p2)
-        t53 = np.abs(t18)
-        t54 = np.maximum(t17*np.maximum((t50 + t51)/t10, (t51 + t52)/t11), t28*np.maximum((t50 + t53)/t25, (t52 + t53)/t26))
-        t55 = -t47
-        t56 = 1/t45
-        t57 = t31*t56
-        t58 = 1 - t57
-        t59 = np.abs(t58)
-        t60 = -t57
-        t61 = -t38*t46 + t39*t56
-        p_new = _pack([p1 - t31*t61, p2 + t31*t61], _batch, (2,))
-        q_new = _pack([q1 + np.log1p(t55), q2 + np.log1p(t60)], _batch, (2,))
-        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t17 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', t16), ('illcond', 'tr L(lam2)', np.where(t28 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', t27), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t29*t30), ('range', 'u_1', t38), ('range', 'u_2', t39), ('range', 'w_1', t42), ('range', 'w_2', t43), ('range', 'd_1', t44), ('range', 'd_2', t45), ('illcond', 'the slopes at site 1', 16777216*t49*np.abs(t44) - t54*(t49 + np.abs(t55))*(np.abs(t38) + np.abs(t42))), ('illcond', 'the slopes at site 2', -t54*(t59 + np.abs(t60))*(np.abs(t39) + np.abs(t43)) + 16777216*t59*np.abs(t45)), ('positivity', 'Etilde_1', t48), ('positivity', 'Etilde_2', t58)])
+        t39 = t29*branch <= 0
+        t40 = np.where(t39, -(t5/(t2 - t6/(t1 + t38))), -t1 - t6/(-t2 - t5/t38))
+        t41 = np.where(t39, -(t6/(t1 + t40)), -t2 - t5/t40)
+        t42 = branch*np.sqrt(t27)
+        t43 = t21 + t34
+        t44 = np.where(t42*t43 <= 0, (-t22 - t36 - t42)/(t31 - t32), -(t19*t37/(t42 + t43)))
+        t45 = t30*branch >= 0
+        t46 = np.where(t45, -(t5/(t20 - t6/(t19 + t44))), -t19 - t6/(-t20 - t5/t44))
+        t47 = np.where(t45, -(t6/(t19 + t46)), -t20 - t5/t46)
+        t48 = -t40 + t46
+        t49 = -t41 + t47
+        t50 = t31/t48
+        t51 = np.abs(t50 - 1)
+        t52 = np.abs(p1)
+        t53 = np.abs(t0)
+        t54 = np.abs(p2)
+        t55 = np.abs(t18)
+        t56 = np.maximum(t17*np.maximum((t52 + t53)/t10, (t53 + t54)/t11), t28*np.maximum((t52 + t55)/t25, (t54 + t55)/t26))
+        t57 = t31/t49
+        t58 = np.abs(t57 - 1)
+        t59 = t31/t48
+        t60 = t31/t49
+        t61 = (t40/t48)*(t47/t49) - (t41/t49)*(t46/t48)
+        p_new = _pack([p1 + t31*t61, p2 - t31*t61], _batch, (2,))
+        q_new = _pack([q1 + np.log1p(-t59), q2 + np.log1p(-t60)], _batch, (2,))
+        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t17 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', t16), ('illcond', 'tr L(lam2)', np.where(t28 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', t27), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t29*t30), ('range', 'u_1', t40), ('range', 'u_2', t41), ('range', 'w_1', t46), ('range', 'w_2', t47), ('range', 'd_1', t48), ('range', 'd_2', t49), ('illcond', 'the slopes at site 1', 16777216*t51*np.abs(t48) - t56*(t51 + np.abs(t50))*(np.abs(t40) + np.abs(t46))), ('illcond', 'the slopes at site 2', -t56*(t58 + np.abs(t57))*(np.abs(t41) + np.abs(t47)) + 16777216*t58*np.abs(t49)), ('positivity', 'Etilde_1', 1 - t59), ('positivity', 'Etilde_2', 1 - t60)])
     p_new, q_new, = _finish(errors, _bad, _batch, [p_new, q_new])
     return p_new, q_new
 
@@ -968,47 +972,51 @@ def dapp_xy_mp(p, q, lam0, mu, branch):
         _mp_guard('trace', 'lam1 = lam0 + mu', (-s7 - 2)*(s1*s2 + s8))
         _mp_guard('trace', 'lam2 = lam0 - mu', (-s12 - 2)*(s10*s11 + s8))
         _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s12)*mpmath.sign(s7))
-        t0 = 2*mu
-        t1 = 2*lam0 + 2*p2
-        t2 = lam0 + mu
-        t3 = p1 + t2
-        t4 = p2 + t2
-        t5 = -(t3*t4)
-        t6 = q1 - q2
-        t7 = mpmath.exp(t6)
-        t8 = mpmath.exp(-t6)
-        t9 = t7 + t8
-        t10 = t5 + t9
-        t11 = t3*t4
-        t12 = -t8
-        t13 = -t7
+        t0 = q1 - q2
+        t1 = mpmath.exp(t0)
+        t2 = mpmath.exp(-t0)
+        t3 = 2*mu
+        t4 = 2*lam0 + 2*p2
+        t5 = lam0 + mu
+        t6 = p1 + t5
+        t7 = p2 + t5
+        t8 = -(t6*t7)
+        t9 = t1 + t2
+        t10 = t8 + t9
+        t11 = t6*t7
+        t12 = -t2
+        t13 = -t1
         t14 = t12 + t13 + 2
         t15 = branch*mpmath.sqrt((-t10 - 2)*(t11 + t14))
-        t16 = t12 + t7
+        t16 = t1 + t12
         t17 = t11 + t16
-        t18 = t13 + t8
-        t19 = 2*t7
-        t20 = ((t15 + t17)/(-t0 - t1) if t15*t17 >= 0 else -(t19*t3/(-t15 - t18 - t5)))
-        t21 = (-_div(t8, t20 + t3) if branch*mpmath.sign(t10) >= 0 else -t4 - _div(t7, t20))
-        t22 = lam0 - mu
-        t23 = p1 + t22
-        t24 = p2 + t22
-        t25 = t23*t24
-        t26 = -t25
-        t27 = t26 + t9
-        t28 = branch*mpmath.sqrt((-t27 - 2)*(t14 + t25))
-        t29 = t16 + t25
-        t30 = ((-t18 - t26 - t28)/(t0 - t1) if t28*t29 <= 0 else -(t19*t23/(t28 + t29)))
-        t31 = (-_div(t8, t23 + t30) if branch*mpmath.sign(t27) <= 0 else -t24 - _div(t7, t30))
-        t32 = -t20 + t30
-        _mp_guard('range', 'u_1', t20)
-        _mp_guard('range', 'u_2', t21)
-        _mp_guard('range', 'w_1', t30)
-        _mp_guard('range', 'w_2', t31)
-        _mp_guard('range', 'd_1', t32)
-        _mp_guard('range', 'd_2', -t21 + t31)
-        x = t0*mpmath.exp(q1)/t32
-        y = t20*mpmath.exp(-q1)
+        t18 = t13 + t2
+        t19 = 2*t1
+        t20 = ((t15 + t17)/(-t3 - t4) if t15*t17 >= 0 else -(t19*t6/(-t15 - t18 - t8)))
+        t21 = -(branch*mpmath.sign(t10)) <= 0
+        t22 = (-_div(t1, t7 - _div(t2, t20 + t6)) if t21 else -t6 - _div(t2, -t7 - _div(t1, t20)))
+        t23 = (-_div(t2, t22 + t6) if t21 else -t7 - _div(t1, t22))
+        t24 = lam0 - mu
+        t25 = p1 + t24
+        t26 = p2 + t24
+        t27 = t25*t26
+        t28 = -t27
+        t29 = t28 + t9
+        t30 = branch*mpmath.sqrt((-t29 - 2)*(t14 + t27))
+        t31 = t16 + t27
+        t32 = ((-t18 - t28 - t30)/(t3 - t4) if t30*t31 <= 0 else -(t19*t25/(t30 + t31)))
+        t33 = -(branch*mpmath.sign(t29)) >= 0
+        t34 = (-_div(t1, t26 - _div(t2, t25 + t32)) if t33 else -t25 - _div(t2, -t26 - _div(t1, t32)))
+        t35 = (-_div(t2, t25 + t34) if t33 else -t26 - _div(t1, t34))
+        t36 = -t22 + t34
+        _mp_guard('range', 'u_1', t22)
+        _mp_guard('range', 'u_2', t23)
+        _mp_guard('range', 'w_1', t34)
+        _mp_guard('range', 'w_2', t35)
+        _mp_guard('range', 'd_1', t36)
+        _mp_guard('range', 'd_2', -t23 + t35)
+        x = t3*mpmath.exp(q1)/t36
+        y = t22*mpmath.exp(-q1)
     except ZeroDivisionError as exc:
         raise NumericRangeError('division by zero (degenerate eigenvector)') from exc
     return x, y
@@ -1052,55 +1060,57 @@ def bt_step_mp(p, q, lam0, mu, branch):
         _mp_guard('trace', 'lam1 = lam0 + mu', (-s7 - 2)*(s1*s2 + s8))
         _mp_guard('trace', 'lam2 = lam0 - mu', (-s12 - 2)*(s10*s11 + s8))
         _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s12)*mpmath.sign(s7))
-        t0 = 2*mu
-        t1 = 2*lam0 + 2*p2
-        t2 = lam0 + mu
-        t3 = p1 + t2
-        t4 = p2 + t2
-        t5 = -(t3*t4)
-        t6 = q1 - q2
-        t7 = mpmath.exp(t6)
-        t8 = mpmath.exp(-t6)
-        t9 = t7 + t8
-        t10 = t5 + t9
-        t11 = t3*t4
-        t12 = -t8
-        t13 = -t7
+        t0 = q1 - q2
+        t1 = mpmath.exp(t0)
+        t2 = mpmath.exp(-t0)
+        t3 = 2*mu
+        t4 = 2*lam0 + 2*p2
+        t5 = lam0 + mu
+        t6 = p1 + t5
+        t7 = p2 + t5
+        t8 = -(t6*t7)
+        t9 = t1 + t2
+        t10 = t8 + t9
+        t11 = t6*t7
+        t12 = -t2
+        t13 = -t1
         t14 = t12 + t13 + 2
         t15 = branch*mpmath.sqrt((-t10 - 2)*(t11 + t14))
-        t16 = t12 + t7
+        t16 = t1 + t12
         t17 = t11 + t16
-        t18 = t13 + t8
-        t19 = 2*t7
-        t20 = ((t15 + t17)/(-t0 - t1) if t15*t17 >= 0 else -(t19*t3/(-t15 - t18 - t5)))
-        t21 = (-_div(t8, t20 + t3) if branch*mpmath.sign(t10) >= 0 else -t4 - _div(t7, t20))
-        t22 = lam0 - mu
-        t23 = p1 + t22
-        t24 = p2 + t22
-        t25 = t23*t24
-        t26 = -t25
-        t27 = t26 + t9
-        t28 = branch*mpmath.sqrt((-t27 - 2)*(t14 + t25))
-        t29 = t16 + t25
-        t30 = ((-t18 - t26 - t28)/(t0 - t1) if t28*t29 <= 0 else -(t19*t23/(t28 + t29)))
-        t31 = (-_div(t8, t23 + t30) if branch*mpmath.sign(t27) <= 0 else -t24 - _div(t7, t30))
-        t32 = -t20 + t30
-        t33 = -t21 + t31
-        t34 = 1/t32
-        t35 = t0*t34
-        t36 = 1/t33
-        t37 = t0*t36
-        t38 = -t20*t34 + t21*t36
-        _mp_guard('range', 'u_1', t20)
-        _mp_guard('range', 'u_2', t21)
-        _mp_guard('range', 'w_1', t30)
-        _mp_guard('range', 'w_2', t31)
-        _mp_guard('range', 'd_1', t32)
-        _mp_guard('range', 'd_2', t33)
-        _mp_guard('positivity', 'Etilde_1', 1 - t35)
-        _mp_guard('positivity', 'Etilde_2', 1 - t37)
-        p_new = [p1 - t0*t38, p2 + t0*t38]
-        q_new = [q1 + mpmath.log1p(-t35), q2 + mpmath.log1p(-t37)]
+        t18 = t13 + t2
+        t19 = 2*t1
+        t20 = ((t15 + t17)/(-t3 - t4) if t15*t17 >= 0 else -(t19*t6/(-t15 - t18 - t8)))
+        t21 = -(branch*mpmath.sign(t10)) <= 0
+        t22 = (-_div(t1, t7 - _div(t2, t20 + t6)) if t21 else -t6 - _div(t2, -t7 - _div(t1, t20)))
+        t23 = (-_div(t2, t22 + t6) if t21 else -t7 - _div(t1, t22))
+        t24 = lam0 - mu
+        t25 = p1 + t24
+        t26 = p2 + t24
+        t27 = t25*t26
+        t28 = -t27
+        t29 = t28 + t9
+        t30 = branch*mpmath.sqrt((-t29 - 2)*(t14 + t27))
+        t31 = t16 + t27
+        t32 = ((-t18 - t28 - t30)/(t3 - t4) if t30*t31 <= 0 else -(t19*t25/(t30 + t31)))
+        t33 = -(branch*mpmath.sign(t29)) >= 0
+        t34 = (-_div(t1, t26 - _div(t2, t25 + t32)) if t33 else -t25 - _div(t2, -t26 - _div(t1, t32)))
+        t35 = (-_div(t2, t25 + t34) if t33 else -t26 - _div(t1, t34))
+        t36 = -t22 + t34
+        t37 = -t23 + t35
+        t38 = _div(t3, t36)
+        t39 = _div(t3, t37)
+        t40 = _div(t22, t36)*_div(t35, t37) - _div(t23, t37)*_div(t34, t36)
+        _mp_guard('range', 'u_1', t22)
+        _mp_guard('range', 'u_2', t23)
+        _mp_guard('range', 'w_1', t34)
+        _mp_guard('range', 'w_2', t35)
+        _mp_guard('range', 'd_1', t36)
+        _mp_guard('range', 'd_2', t37)
+        _mp_guard('positivity', 'Etilde_1', 1 - t38)
+        _mp_guard('positivity', 'Etilde_2', 1 - t39)
+        p_new = [p1 + t3*t40, p2 - t3*t40]
+        q_new = [q1 + mpmath.log1p(-t38), q2 + mpmath.log1p(-t39)]
     except ZeroDivisionError as exc:
         raise NumericRangeError('division by zero (degenerate eigenvector)') from exc
     return p_new, q_new

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2e4c59d33707f5a8f3c82287d8cf0942d8c23856359fdd598731c9c685bd411d
-# symbt-codegen-content-sha256: 5bb4e8b94503de8ca6996aec451856f0203af688531a5a4c14a484c4d3c8bb2f
+# symbt-codegen-derivation-sha256: 4b536d8c683a4ea799271bad6668b34c6c58d33ed19ad43002b1924a06b694c7
+# symbt-codegen-content-sha256: 50bd11b8ddd1043f92ae1bf3e8450aa9fc5aafb45d913b5f777bf7242a1a84d8
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -669,38 +669,40 @@ def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
         t40 = -t10*t6 + t12 + t5
         t41 = 2*t1
         t42 = np.where(t39*t40 <= 0, (t13 + t39 - t5)/(t38 + 2*t4*t6), -(t10*t41/(-t39 - t40)))
-        t43 = -(t7/(t42 + t9))
-        t44 = t36*branch <= 0
-        t45 = -t6 - t1/t42
-        t46 = np.where(t44, t43, -t3 - t11/t45)
-        t47 = np.where(t44, -(t11/(t3 + t43)), t45)
-        t48 = branch*np.sqrt(t34)
-        t49 = t23 - t27 + t28
-        t50 = np.where(t48*t49 >= 0, (-t48 - t49)/(2*t22*t24 + t38), -(t26*t41/(-t23 + t29 + t48)))
-        t51 = -(t7/(t25 + t50))
+        t43 = t36*branch <= 0
+        t44 = np.where(t43, -(t1/(t6 - t11/(t3 - t7/(t42 + t9)))), -t9 - t7/(-t3 - t11/(-t6 - t1/t42)))
+        t45 = -(t7/(t44 + t9))
+        t46 = -t6 - t1/t44
+        t47 = np.where(t43, t45, -t3 - t11/t46)
+        t48 = np.where(t43, -(t11/(t3 + t45)), t46)
+        t49 = branch*np.sqrt(t34)
+        t50 = t23 - t27 + t28
+        t51 = np.where(t49*t50 >= 0, (-t49 - t50)/(2*t22*t24 + t38), -(t26*t41/(-t23 + t29 + t49)))
         t52 = t37*branch >= 0
-        t53 = -t24 - t1/t50
-        t54 = np.where(t52, t51, -t21 - t11/t53)
-        t55 = np.where(t52, -(t11/(t21 + t51)), t53)
-        t56 = -t42 + t50
-        t57 = -t46 + t54
-        t58 = -t47 + t55
-        t59 = 2*mu
-        t60 = t59/t56
-        t61 = np.abs(t60 - 1)
-        t62 = np.abs(p1)
-        t63 = np.abs(t2)
-        t64 = np.abs(p2)
-        t65 = np.abs(p3)
-        t66 = np.abs(t20)
-        t67 = np.maximum(t19*np.maximum(np.maximum((t62 + t63)/t16, (t63 + t64)/t15), (t63 + t65)/t17), t35*np.maximum(np.maximum((t62 + t66)/t32, (t64 + t66)/t31), (t65 + t66)/t33))
-        t68 = t59/t57
-        t69 = np.abs(t68 - 1)
-        t70 = t59/t58
+        t53 = np.where(t52, -(t1/(t24 - t11/(t21 - t7/(t25 + t51)))), -t25 - t7/(-t21 - t11/(-t24 - t1/t51)))
+        t54 = -(t7/(t25 + t53))
+        t55 = -t24 - t1/t53
+        t56 = np.where(t52, t54, -t21 - t11/t55)
+        t57 = np.where(t52, -(t11/(t21 + t54)), t55)
+        t58 = -t44 + t53
+        t59 = -t47 + t56
+        t60 = -t48 + t57
+        t61 = 2*mu
+        t62 = t61/t58
+        t63 = np.abs(t62 - 1)
+        t64 = np.abs(p1)
+        t65 = np.abs(t2)
+        t66 = np.abs(p2)
+        t67 = np.abs(p3)
+        t68 = np.abs(t20)
+        t69 = np.maximum(t19*np.maximum(np.maximum((t64 + t65)/t16, (t65 + t66)/t15), (t65 + t67)/t17), t35*np.maximum(np.maximum((t64 + t68)/t32, (t66 + t68)/t31), (t67 + t68)/t33))
+        t70 = t61/t59
         t71 = np.abs(t70 - 1)
-        x = _pack([t60*np.exp(q1)], _batch, ())
-        y = _pack([t42*np.exp(-q1)], _batch, ())
-        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t19 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', t18), ('illcond', 'tr L(lam2)', np.where(t35 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', t34), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t36*t37), ('range', 'u_1', t42), ('range', 'u_2', t46), ('range', 'u_3', t47), ('range', 'w_1', t50), ('range', 'w_2', t54), ('range', 'w_3', t55), ('range', 'd_1', t56), ('range', 'd_2', t57), ('range', 'd_3', t58), ('illcond', 'the slopes at site 1', 16777216*t61*np.abs(t56) - t67*(t61 + np.abs(t60))*(np.abs(t42) + np.abs(t50))), ('illcond', 'the slopes at site 2', -t67*(t69 + np.abs(t68))*(np.abs(t46) + np.abs(t54)) + 16777216*t69*np.abs(t57)), ('illcond', 'the slopes at site 3', -t67*(t71 + np.abs(t70))*(np.abs(t47) + np.abs(t55)) + 16777216*t71*np.abs(t58))])
+        t72 = t61/t60
+        t73 = np.abs(t72 - 1)
+        x = _pack([t62*np.exp(q1)], _batch, ())
+        y = _pack([t44*np.exp(-q1)], _batch, ())
+        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t19 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', t18), ('illcond', 'tr L(lam2)', np.where(t35 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', t34), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t36*t37), ('range', 'u_1', t44), ('range', 'u_2', t47), ('range', 'u_3', t48), ('range', 'w_1', t53), ('range', 'w_2', t56), ('range', 'w_3', t57), ('range', 'd_1', t58), ('range', 'd_2', t59), ('range', 'd_3', t60), ('illcond', 'the slopes at site 1', 16777216*t63*np.abs(t58) - t69*(t63 + np.abs(t62))*(np.abs(t44) + np.abs(t53))), ('illcond', 'the slopes at site 2', -t69*(t71 + np.abs(t70))*(np.abs(t47) + np.abs(t56)) + 16777216*t71*np.abs(t59)), ('illcond', 'the slopes at site 3', -t69*(t73 + np.abs(t72))*(np.abs(t48) + np.abs(t57)) + 16777216*t73*np.abs(t60))])
     x, y, = _finish(errors, _bad, _batch, [x, y])
     return x, y
 
@@ -779,50 +781,49 @@ def bt_step(p, q, lam0, mu, branch, errors="raise"):
         t40 = -t10*t6 + t12 + t5
         t41 = 2*t1
         t42 = np.where(t39*t40 <= 0, (t13 + t39 - t5)/(t38 + 2*t4*t6), -(t10*t41/(-t39 - t40)))
-        t43 = -(t7/(t42 + t9))
-        t44 = t36*branch <= 0
-        t45 = -t6 - t1/t42
-        t46 = np.where(t44, t43, -t3 - t11/t45)
-        t47 = np.where(t44, -(t11/(t3 + t43)), t45)
-        t48 = branch*np.sqrt(t34)
-        t49 = t23 - t27 + t28
-        t50 = np.where(t48*t49 >= 0, (-t48 - t49)/(2*t22*t24 + t38), -(t26*t41/(-t23 + t29 + t48)))
-        t51 = -(t7/(t25 + t50))
+        t43 = t36*branch <= 0
+        t44 = np.where(t43, -(t1/(t6 - t11/(t3 - t7/(t42 + t9)))), -t9 - t7/(-t3 - t11/(-t6 - t1/t42)))
+        t45 = -(t7/(t44 + t9))
+        t46 = -t6 - t1/t44
+        t47 = np.where(t43, t45, -t3 - t11/t46)
+        t48 = np.where(t43, -(t11/(t3 + t45)), t46)
+        t49 = branch*np.sqrt(t34)
+        t50 = t23 - t27 + t28
+        t51 = np.where(t49*t50 >= 0, (-t49 - t50)/(2*t22*t24 + t38), -(t26*t41/(-t23 + t29 + t49)))
         t52 = t37*branch >= 0
-        t53 = -t24 - t1/t50
-        t54 = np.where(t52, t51, -t21 - t11/t53)
-        t55 = np.where(t52, -(t11/(t21 + t51)), t53)
-        t56 = -t42 + t50
-        t57 = -t46 + t54
-        t58 = -t47 + t55
-        t59 = 1/t56
-        t60 = 2*mu
-        t61 = t59*t60
-        t62 = 1 - t61
-        t63 = np.abs(t62)
+        t53 = np.where(t52, -(t1/(t24 - t11/(t21 - t7/(t25 + t51)))), -t25 - t7/(-t21 - t11/(-t24 - t1/t51)))
+        t54 = -(t7/(t25 + t53))
+        t55 = -t24 - t1/t53
+        t56 = np.where(t52, t54, -t21 - t11/t55)
+        t57 = np.where(t52, -(t11/(t21 + t54)), t55)
+        t58 = -t44 + t53
+        t59 = -t47 + t56
+        t60 = -t48 + t57
+        t61 = 2*mu
+        t62 = t61/t58
+        t63 = np.abs(t62 - 1)
         t64 = np.abs(p1)
         t65 = np.abs(t2)
         t66 = np.abs(p2)
         t67 = np.abs(p3)
         t68 = np.abs(t20)
         t69 = np.maximum(t19*np.maximum(np.maximum((t64 + t65)/t16, (t65 + t66)/t15), (t65 + t67)/t17), t35*np.maximum(np.maximum((t64 + t68)/t32, (t66 + t68)/t31), (t67 + t68)/t33))
-        t70 = -t61
-        t71 = 1/t57
-        t72 = t60*t71
-        t73 = 1 - t72
-        t74 = np.abs(t73)
-        t75 = -t72
-        t76 = 1/t58
-        t77 = t60*t76
-        t78 = 1 - t77
-        t79 = np.abs(t78)
-        t80 = -t77
-        t81 = -(t42*t59)
-        t82 = t46*t71
-        t83 = t47*t76
-        p_new = _pack([p1 + t60*(-t81 - t82), p2 + t60*(t82 - t83), p3 + t60*(t81 + t83)], _batch, (3,))
-        q_new = _pack([q1 + np.log1p(t70), q2 + np.log1p(t75), q3 + np.log1p(t80)], _batch, (3,))
-        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t19 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', t18), ('illcond', 'tr L(lam2)', np.where(t35 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', t34), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t36*t37), ('range', 'u_1', t42), ('range', 'u_2', t46), ('range', 'u_3', t47), ('range', 'w_1', t50), ('range', 'w_2', t54), ('range', 'w_3', t55), ('range', 'd_1', t56), ('range', 'd_2', t57), ('range', 'd_3', t58), ('illcond', 'the slopes at site 1', 16777216*t63*np.abs(t56) - t69*(t63 + np.abs(t70))*(np.abs(t42) + np.abs(t50))), ('illcond', 'the slopes at site 2', -t69*(t74 + np.abs(t75))*(np.abs(t46) + np.abs(t54)) + 16777216*t74*np.abs(t57)), ('illcond', 'the slopes at site 3', -t69*(t79 + np.abs(t80))*(np.abs(t47) + np.abs(t55)) + 16777216*t79*np.abs(t58)), ('positivity', 'Etilde_1', t62), ('positivity', 'Etilde_2', t73), ('positivity', 'Etilde_3', t78)])
+        t70 = t61/t59
+        t71 = np.abs(t70 - 1)
+        t72 = t61/t60
+        t73 = np.abs(t72 - 1)
+        t74 = t61/t58
+        t75 = t61/t59
+        t76 = t61/t60
+        t77 = t53/t58
+        t78 = t47/t59
+        t79 = t44/t58
+        t80 = t56/t59
+        t81 = t48/t60
+        t82 = t57/t60
+        p_new = _pack([p1 + t61*(-t77*t78 + t79*t80), p2 + t61*(t78*t82 - t80*t81), p3 + t61*(t77*t81 - t79*t82)], _batch, (3,))
+        q_new = _pack([q1 + np.log1p(-t74), q2 + np.log1p(-t75), q3 + np.log1p(-t76)], _batch, (3,))
+        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t19 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', t18), ('illcond', 'tr L(lam2)', np.where(t35 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', t34), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t36*t37), ('range', 'u_1', t44), ('range', 'u_2', t47), ('range', 'u_3', t48), ('range', 'w_1', t53), ('range', 'w_2', t56), ('range', 'w_3', t57), ('range', 'd_1', t58), ('range', 'd_2', t59), ('range', 'd_3', t60), ('illcond', 'the slopes at site 1', 16777216*t63*np.abs(t58) - t69*(t63 + np.abs(t62))*(np.abs(t44) + np.abs(t53))), ('illcond', 'the slopes at site 2', -t69*(t71 + np.abs(t70))*(np.abs(t47) + np.abs(t56)) + 16777216*t71*np.abs(t59)), ('illcond', 'the slopes at site 3', -t69*(t73 + np.abs(t72))*(np.abs(t48) + np.abs(t57)) + 16777216*t73*np.abs(t60)), ('positivity', 'Etilde_1', 1 - t74), ('positivity', 'Etilde_2', 1 - t75), ('positivity', 'Etilde_3', 1 - t76)])
     p_new, q_new, = _finish(errors, _bad, _batch, [p_new, q_new])
     return p_new, q_new
 
@@ -1226,61 +1227,63 @@ def dapp_xy_mp(p, q, lam0, mu, branch):
         _mp_guard('trace', 'lam2 = lam0 - mu', (s11 - 2)*(s11 + 2))
         _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s11)*mpmath.sign(s7))
         t0 = -q3
-        t1 = mpmath.exp(-q2 - t0)
-        t2 = 2*t1
-        t3 = lam0 + mu
-        t4 = p3 + t3
-        t5 = p2 + t3
-        t6 = -t5
-        t7 = mpmath.exp(q1 + t0)
-        t8 = t6*t7
-        t9 = mpmath.exp(-q1 + q2)
-        t10 = -t9
-        t11 = p1 + t3
-        t12 = t10 + t11*t5
-        t13 = t1*t11
-        t14 = t12*t4 - t13
-        t15 = t14 + t8
+        t1 = mpmath.exp(q1 + t0)
+        t2 = mpmath.exp(-q2 - t0)
+        t3 = mpmath.exp(-q1 + q2)
+        t4 = 2*t2
+        t5 = lam0 + mu
+        t6 = p3 + t5
+        t7 = p2 + t5
+        t8 = -t7
+        t9 = t1*t8
+        t10 = -t3
+        t11 = p1 + t5
+        t12 = t10 + t11*t7
+        t13 = t11*t2
+        t14 = t12*t6 - t13
+        t15 = t14 + t9
         t16 = branch*mpmath.sqrt((t15 - 2)*(t15 + 2))
-        t17 = -t12*t4 + t13 + t8
-        t18 = 2*t7
-        t19 = ((t14 + t16 - t8)/(t2 + 2*t4*t6) if t16*t17 <= 0 else -(t12*t18/(-t16 - t17)))
-        t20 = -_div(t9, t11 + t19)
-        t21 = branch*mpmath.sign(t15) <= 0
-        t22 = -t4 - _div(t7, t19)
-        t23 = (t20 if t21 else -t5 - _div(t1, t22))
-        t24 = (-_div(t1, t20 + t5) if t21 else t22)
-        t25 = lam0 - mu
-        t26 = p3 + t25
-        t27 = p2 + t25
-        t28 = -t27
-        t29 = t28*t7
-        t30 = p1 + t25
-        t31 = t10 + t27*t30
-        t32 = t26*t31
-        t33 = t1*t30
-        t34 = t32 - t33
-        t35 = t29 + t34
-        t36 = branch*mpmath.sqrt((t35 - 2)*(t35 + 2))
-        t37 = t29 - t32 + t33
-        t38 = ((-t36 - t37)/(t2 + 2*t26*t28) if t36*t37 >= 0 else -(t18*t31/(-t29 + t34 + t36)))
-        t39 = -_div(t9, t30 + t38)
-        t40 = branch*mpmath.sign(t35) >= 0
-        t41 = -t26 - _div(t7, t38)
-        t42 = (t39 if t40 else -t27 - _div(t1, t41))
-        t43 = (-_div(t1, t27 + t39) if t40 else t41)
-        t44 = -t19 + t38
-        _mp_guard('range', 'u_1', t19)
-        _mp_guard('range', 'u_2', t23)
-        _mp_guard('range', 'u_3', t24)
-        _mp_guard('range', 'w_1', t38)
-        _mp_guard('range', 'w_2', t42)
-        _mp_guard('range', 'w_3', t43)
-        _mp_guard('range', 'd_1', t44)
-        _mp_guard('range', 'd_2', -t23 + t42)
-        _mp_guard('range', 'd_3', -t24 + t43)
-        x = 2*mu*mpmath.exp(q1)/t44
-        y = t19*mpmath.exp(-q1)
+        t17 = -t12*t6 + t13 + t9
+        t18 = 2*t1
+        t19 = ((t14 + t16 - t9)/(t4 + 2*t6*t8) if t16*t17 <= 0 else -(t12*t18/(-t16 - t17)))
+        t20 = branch*mpmath.sign(t15) <= 0
+        t21 = (-_div(t1, t6 - _div(t2, t7 - _div(t3, t11 + t19))) if t20 else -t11 - _div(t3, -t7 - _div(t2, -t6 - _div(t1, t19))))
+        t22 = -_div(t3, t11 + t21)
+        t23 = -t6 - _div(t1, t21)
+        t24 = (t22 if t20 else -t7 - _div(t2, t23))
+        t25 = (-_div(t2, t22 + t7) if t20 else t23)
+        t26 = lam0 - mu
+        t27 = p3 + t26
+        t28 = p2 + t26
+        t29 = -t28
+        t30 = t1*t29
+        t31 = p1 + t26
+        t32 = t10 + t28*t31
+        t33 = t27*t32
+        t34 = t2*t31
+        t35 = t33 - t34
+        t36 = t30 + t35
+        t37 = branch*mpmath.sqrt((t36 - 2)*(t36 + 2))
+        t38 = t30 - t33 + t34
+        t39 = ((-t37 - t38)/(2*t27*t29 + t4) if t37*t38 >= 0 else -(t18*t32/(-t30 + t35 + t37)))
+        t40 = branch*mpmath.sign(t36) >= 0
+        t41 = (-_div(t1, t27 - _div(t2, t28 - _div(t3, t31 + t39))) if t40 else -t31 - _div(t3, -t28 - _div(t2, -t27 - _div(t1, t39))))
+        t42 = -_div(t3, t31 + t41)
+        t43 = -t27 - _div(t1, t41)
+        t44 = (t42 if t40 else -t28 - _div(t2, t43))
+        t45 = (-_div(t2, t28 + t42) if t40 else t43)
+        t46 = -t21 + t41
+        _mp_guard('range', 'u_1', t21)
+        _mp_guard('range', 'u_2', t24)
+        _mp_guard('range', 'u_3', t25)
+        _mp_guard('range', 'w_1', t41)
+        _mp_guard('range', 'w_2', t44)
+        _mp_guard('range', 'w_3', t45)
+        _mp_guard('range', 'd_1', t46)
+        _mp_guard('range', 'd_2', -t24 + t44)
+        _mp_guard('range', 'd_3', -t25 + t45)
+        x = 2*mu*mpmath.exp(q1)/t46
+        y = t21*mpmath.exp(-q1)
     except ZeroDivisionError as exc:
         raise NumericRangeError('division by zero (degenerate eigenvector)') from exc
     return x, y
@@ -1324,76 +1327,78 @@ def bt_step_mp(p, q, lam0, mu, branch):
         _mp_guard('trace', 'lam2 = lam0 - mu', (s11 - 2)*(s11 + 2))
         _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s11)*mpmath.sign(s7))
         t0 = -q3
-        t1 = mpmath.exp(-q2 - t0)
-        t2 = 2*t1
-        t3 = lam0 + mu
-        t4 = p3 + t3
-        t5 = p2 + t3
-        t6 = -t5
-        t7 = mpmath.exp(q1 + t0)
-        t8 = t6*t7
-        t9 = mpmath.exp(-q1 + q2)
-        t10 = -t9
-        t11 = p1 + t3
-        t12 = t10 + t11*t5
-        t13 = t1*t11
-        t14 = t12*t4 - t13
-        t15 = t14 + t8
+        t1 = mpmath.exp(q1 + t0)
+        t2 = mpmath.exp(-q2 - t0)
+        t3 = mpmath.exp(-q1 + q2)
+        t4 = 2*t2
+        t5 = lam0 + mu
+        t6 = p3 + t5
+        t7 = p2 + t5
+        t8 = -t7
+        t9 = t1*t8
+        t10 = -t3
+        t11 = p1 + t5
+        t12 = t10 + t11*t7
+        t13 = t11*t2
+        t14 = t12*t6 - t13
+        t15 = t14 + t9
         t16 = branch*mpmath.sqrt((t15 - 2)*(t15 + 2))
-        t17 = -t12*t4 + t13 + t8
-        t18 = 2*t7
-        t19 = ((t14 + t16 - t8)/(t2 + 2*t4*t6) if t16*t17 <= 0 else -(t12*t18/(-t16 - t17)))
-        t20 = -_div(t9, t11 + t19)
-        t21 = branch*mpmath.sign(t15) <= 0
-        t22 = -t4 - _div(t7, t19)
-        t23 = (t20 if t21 else -t5 - _div(t1, t22))
-        t24 = (-_div(t1, t20 + t5) if t21 else t22)
-        t25 = lam0 - mu
-        t26 = p3 + t25
-        t27 = p2 + t25
-        t28 = -t27
-        t29 = t28*t7
-        t30 = p1 + t25
-        t31 = t10 + t27*t30
-        t32 = t26*t31
-        t33 = t1*t30
-        t34 = t32 - t33
-        t35 = t29 + t34
-        t36 = branch*mpmath.sqrt((t35 - 2)*(t35 + 2))
-        t37 = t29 - t32 + t33
-        t38 = ((-t36 - t37)/(t2 + 2*t26*t28) if t36*t37 >= 0 else -(t18*t31/(-t29 + t34 + t36)))
-        t39 = -_div(t9, t30 + t38)
-        t40 = branch*mpmath.sign(t35) >= 0
-        t41 = -t26 - _div(t7, t38)
-        t42 = (t39 if t40 else -t27 - _div(t1, t41))
-        t43 = (-_div(t1, t27 + t39) if t40 else t41)
-        t44 = -t19 + t38
-        t45 = -t23 + t42
-        t46 = -t24 + t43
-        t47 = 1/t44
-        t48 = 2*mu
-        t49 = t47*t48
-        t50 = 1/t45
-        t51 = t48*t50
-        t52 = 1/t46
-        t53 = t48*t52
-        t54 = -(t19*t47)
-        t55 = t23*t50
-        t56 = t24*t52
-        _mp_guard('range', 'u_1', t19)
-        _mp_guard('range', 'u_2', t23)
-        _mp_guard('range', 'u_3', t24)
-        _mp_guard('range', 'w_1', t38)
-        _mp_guard('range', 'w_2', t42)
-        _mp_guard('range', 'w_3', t43)
-        _mp_guard('range', 'd_1', t44)
-        _mp_guard('range', 'd_2', t45)
-        _mp_guard('range', 'd_3', t46)
-        _mp_guard('positivity', 'Etilde_1', 1 - t49)
+        t17 = -t12*t6 + t13 + t9
+        t18 = 2*t1
+        t19 = ((t14 + t16 - t9)/(t4 + 2*t6*t8) if t16*t17 <= 0 else -(t12*t18/(-t16 - t17)))
+        t20 = branch*mpmath.sign(t15) <= 0
+        t21 = (-_div(t1, t6 - _div(t2, t7 - _div(t3, t11 + t19))) if t20 else -t11 - _div(t3, -t7 - _div(t2, -t6 - _div(t1, t19))))
+        t22 = -_div(t3, t11 + t21)
+        t23 = -t6 - _div(t1, t21)
+        t24 = (t22 if t20 else -t7 - _div(t2, t23))
+        t25 = (-_div(t2, t22 + t7) if t20 else t23)
+        t26 = lam0 - mu
+        t27 = p3 + t26
+        t28 = p2 + t26
+        t29 = -t28
+        t30 = t1*t29
+        t31 = p1 + t26
+        t32 = t10 + t28*t31
+        t33 = t27*t32
+        t34 = t2*t31
+        t35 = t33 - t34
+        t36 = t30 + t35
+        t37 = branch*mpmath.sqrt((t36 - 2)*(t36 + 2))
+        t38 = t30 - t33 + t34
+        t39 = ((-t37 - t38)/(2*t27*t29 + t4) if t37*t38 >= 0 else -(t18*t32/(-t30 + t35 + t37)))
+        t40 = branch*mpmath.sign(t36) >= 0
+        t41 = (-_div(t1, t27 - _div(t2, t28 - _div(t3, t31 + t39))) if t40 else -t31 - _div(t3, -t28 - _div(t2, -t27 - _div(t1, t39))))
+        t42 = -_div(t3, t31 + t41)
+        t43 = -t27 - _div(t1, t41)
+        t44 = (t42 if t40 else -t28 - _div(t2, t43))
+        t45 = (-_div(t2, t28 + t42) if t40 else t43)
+        t46 = -t21 + t41
+        t47 = -t24 + t44
+        t48 = -t25 + t45
+        t49 = 2*mu
+        t50 = _div(t49, t46)
+        t51 = _div(t49, t47)
+        t52 = _div(t49, t48)
+        t53 = _div(t41, t46)
+        t54 = _div(t24, t47)
+        t55 = _div(t21, t46)
+        t56 = _div(t44, t47)
+        t57 = _div(t25, t48)
+        t58 = _div(t45, t48)
+        _mp_guard('range', 'u_1', t21)
+        _mp_guard('range', 'u_2', t24)
+        _mp_guard('range', 'u_3', t25)
+        _mp_guard('range', 'w_1', t41)
+        _mp_guard('range', 'w_2', t44)
+        _mp_guard('range', 'w_3', t45)
+        _mp_guard('range', 'd_1', t46)
+        _mp_guard('range', 'd_2', t47)
+        _mp_guard('range', 'd_3', t48)
+        _mp_guard('positivity', 'Etilde_1', 1 - t50)
         _mp_guard('positivity', 'Etilde_2', 1 - t51)
-        _mp_guard('positivity', 'Etilde_3', 1 - t53)
-        p_new = [p1 + t48*(-t54 - t55), p2 + t48*(t55 - t56), p3 + t48*(t54 + t56)]
-        q_new = [q1 + mpmath.log1p(-t49), q2 + mpmath.log1p(-t51), q3 + mpmath.log1p(-t53)]
+        _mp_guard('positivity', 'Etilde_3', 1 - t52)
+        p_new = [p1 + t49*(-t53*t54 + t55*t56), p2 + t49*(t54*t58 - t56*t57), p3 + t49*(t53*t57 - t55*t58)]
+        q_new = [q1 + mpmath.log1p(-t50), q2 + mpmath.log1p(-t51), q3 + mpmath.log1p(-t52)]
     except ZeroDivisionError as exc:
         raise NumericRangeError('division by zero (degenerate eigenvector)') from exc
     return p_new, q_new

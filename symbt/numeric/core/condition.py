@@ -130,7 +130,10 @@ def sharp_trace_kappa(p: npt.NDArray[np.float64], r: npt.NDArray[np.float64], la
         X11, X12 = a * P11 + P21, a * P12 + P22
         X21, X22 = rj * P11, rj * P12
         term = abs(S11) * X11 + abs(S12) * X21 + abs(S21) * X12 + abs(S22) * X22
-        total += math.ldexp(term, es + ep - e)
+        sh = es + ep - e
+        if term > 0.0 and math.frexp(term)[1] + sh > 1024:     # beyond float64: math.ldexp would raise
+            return math.inf             # the rounding scale of t overflows: not conditioned in float64
+        total += math.ldexp(term, sh)
         S11, S12, S21, S22 = S11 * sa + S12 * rj, -S11, S21 * sa + S22 * rj, -S21    # S_j = S_{j+1} m_j
         m = max(abs(S11), abs(S12), abs(S21), abs(S22))
         if (m > _FAR or m < _NEAR) and m > 0.0 and m < math.inf:

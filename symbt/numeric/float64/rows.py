@@ -26,6 +26,7 @@ from ..core.context import COMPLEX, FLOAT, MP, FloatParam, FloatValue, MPValue
 from ..core.errors import NoRealMapError, NumericRangeError
 from ..core.limits import ILLCOND, MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 from ..core.step import BLOCK_ELEMENTS, float_status, mp_step, step_core
+from .existence import decide_existence
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -67,8 +68,11 @@ def escalate_rows(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: in
     Each row goes through the mpmath step (:func:`~symbt.numeric.core.step.mp_step` on the exact binary values of
     its float64 input) at the digits of :data:`ESCALATION_DIGITS` in turn, each run repeated with 20 more
     digits; the first precision at which both runs agree -- the same verdict, and values equal to
-    ``2**-64`` of the state's scale -- decides the row: the result rounded to float64, or the no-real-map
-    status.  A row not decided at the last precision gets ``RANGE`` (:class:`NumericRangeError`).
+    ``2**-64`` of the state's scale -- decides the row: the result rounded to float64.  A "no real map" the
+    runs agree on is not taken on agreement: :func:`~.existence.decide_existence` decides it by interval
+    arithmetic (the no-real-map status where it certainly holds; where the map certainly exists the higher
+    precisions compute it; undecided: ``RANGE``).  A row not decided at the last precision gets ``RANGE``
+    (:class:`NumericRangeError`).
     ``shift`` (optional, ``(M, 2)``): the state is ``q + shift[:, 0] + shift[:, 1]`` (an orbit's carried
     centre of mass, added exactly) and the returned ``q~`` is relative to it.
 
@@ -84,11 +88,18 @@ def escalate_rows(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: in
     for k in range(M):
         l0, m = float(_take(lam0, k)), float(_take(mu, k))
         sh = (0.0, 0.0) if shift is None else (float(shift[k, 0]), float(shift[k, 1]))
+        exists = None                  # the interval verdict, once a no-real-map verdict asked for it
         for dps in ESCALATION_DIGITS:
             st, vals = _mp_verdict(pa[k], qa[k], l0, m, branch, dps, sh)
             st2, vals2 = _mp_verdict(pa[k], qa[k], l0, m, branch, dps + 20, sh)
             if st != st2:
                 continue
+            if st not in (OK, RANGE):  # agreement is not proof (chunks 86, 162, 188 of docs/fuzz.md)
+                exists = decide_existence(pa[k], qa[k], l0, m, branch, sh)[0] if exists is None else exists
+                if exists == OK:       # the map exists: a higher precision computes it
+                    continue
+                status[k] = RANGE if exists is None else exists
+                break
             if st == OK:
                 with mpmath.workdps(dps):
                     scale = max(max(abs(v) for v in vals2), abs(mpmath.mpf(l0)) + abs(mpmath.mpf(m)))
