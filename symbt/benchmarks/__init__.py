@@ -32,12 +32,22 @@ where they are used, and missing ones skip their rows with a message.
 """
 from __future__ import annotations
 
+from typing import Any
+
 from .band_edge import band_edge_case, map_condition, run_band_edge
 from .cases import Case, cases
 from .cli import main
-from .drift import invariant_drift_curve
 from .integrators import gauss_legendre_orbit, scipy_orbit
 from .throughput import run_throughput
 
 __all__ = ["main", "Case", "cases", "gauss_legendre_orbit", "scipy_orbit", "band_edge_case", "map_condition",
            "run_band_edge", "invariant_drift_curve", "run_throughput"]
+
+
+def __getattr__(name: str) -> Any:
+    # drift is imported on first use, not with the package: `python -m symbt.benchmarks.drift` would
+    # otherwise find its own module already imported (runpy's RuntimeWarning)
+    if name == "invariant_drift_curve":
+        from .drift import invariant_drift_curve
+        return invariant_drift_curve
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
