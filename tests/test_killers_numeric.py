@@ -94,10 +94,18 @@ def test_qd_fits_rule(monkeypatch):
 
 # --------------------------------------------------------------------------- paths.kernels
 
+def _rebuild_python_orbit(monkeypatch, hooks=None):
+    """The plain-Python orbit (what ``backend="python"`` runs) rebuilt after a planted change: its hooks are
+    written inline when it is built, so a patched module global (``KAPPA_MAX``) or hook reaches it only
+    through a rebuild -- as a mutant of the source does, in the fresh process ``symbt mutate`` runs."""
+    monkeypatch.setattr(kernels, "python_orbit", kernels.python_orbit_with(hooks or {}))
+
+
 def test_fused_kernel_gives_moderate_states_back(monkeypatch):
     # the fused kernel's condition test refuses everything: the general path (right too) takes over,
     # which bt_step cannot show (mutant kernels:174/182)
     monkeypatch.setattr(kernels, "KAPPA_MAX", 0.0)
+    _rebuild_python_orbit(monkeypatch)
     assert status("paths.kernels.n3") == "failed"
 
 
@@ -110,6 +118,7 @@ def test_block_kernel_gives_moderate_states_back(monkeypatch):
 def test_kernels_finish_ill_conditioned_states(monkeypatch):
     # no condition test: a state at a band edge stays in the fused kernel (mutant kernels:182)
     monkeypatch.setattr(kernels, "KAPPA_MAX", math.inf)
+    _rebuild_python_orbit(monkeypatch)
     assert status("paths.kernels.n3") == "failed"
 
 
@@ -298,6 +307,7 @@ def test_threshold_fused_estimate_without_the_read_out_term(monkeypatch):
     hooks = {**kernels.OPERATIONS, **kernels.HOOKS, "trusted": trusted}
     bad = kernels.instantiate(kernels.SOURCE, hooks, tag="f64_planted", jit=False, extra=kernels._EXTRA)
     monkeypatch.setattr(kernels, "step", bad["step"])
+    _rebuild_python_orbit(monkeypatch, {"trusted": trusted})
     assert status("paths.threshold.n3") == "failed"
 
 
