@@ -34,7 +34,8 @@ def test_the_scene_has_the_claims_named_here():
                              "paths.frame.n13", "paths.frame_inverse.n13", "paths.growth.n3", "paths.ill_member.n3",
                              "paths.jacobian.n3",
                              "paths.kernels.n3",
-                             "paths.kernels.n5", "paths.lohner_box.n3", "paths.next_prec.n3", "paths.qd.n2",
+                             "paths.kernels.n5", "paths.lohner_box.n3", "paths.members.n3",
+                             "paths.next_prec.n3", "paths.qd.n2",
                              "paths.qd.n3",
                              "paths.sharp_kappa.n3", "paths.sharp_kappa.n6",
                              "paths.stored.n3", "paths.threshold.n3", "paths.tiny_mu.n3"]
@@ -539,3 +540,68 @@ def test_dask_chunks_of_p_from_the_wrong_axis(monkeypatch):
                                                     "p.rechunk((p.chunks[1], N))"))
     monkeypatch.setattr("symbt.numeric.dask_orbit", mod.dask_orbit)
     assert status("paths.dask.n3") == "failed"
+
+
+def test_dask_where_offset_of_the_chunk_lost(monkeypatch):
+    # NoRealMapError.where with the chunk's offset subtracted (a member of the second chunk named by its index
+    # in the chunk's kind): the no-map member 4 of paths.dask is reported elsewhere
+    pytest.importorskip("dask")
+    from symbt.numeric.float64 import dask_orbit as mod
+
+    monkeypatch.setattr(mod, "_chunk", _planted(mod._chunk, "(w[0] + start,)", "(w[0] - start,)"))
+    assert status("paths.dask.n3") == "failed"
+
+
+def test_dask_chunk_offset_default_is_equivalent(monkeypatch):
+    # mutants-equivalent.toml, dask_orbit:60: `... if block_info else 0` -> `else 1`.  dask_orbit calls _chunk only
+    # through map_blocks, which passes a non-empty block_info to every block it computes; the default is read only
+    # in the NoRealMapError branch, which a block without block_info (dask's meta inference on an empty block)
+    # never reaches.  Mechanically: every call that computes members gets a non-empty block_info, and with the
+    # mutant planted paths.dask (member 4 without a real map, named by where) still verifies.
+    pytest.importorskip("dask")
+    from symbt.numeric.float64 import dask_orbit as mod
+
+    mutant = _planted(mod._chunk, 'if block_info else 0', 'if block_info else 1')
+    seen = []
+
+    def spy(block, *args, block_info=None):
+        seen.append((block.shape[0], bool(block_info)))
+        return mutant(block, *args, block_info=block_info)
+    monkeypatch.setattr(mod, "_chunk", spy)
+    assert status("paths.dask.n3") == "verified"
+    assert any(rows > 0 for rows, _ in seen)
+    assert all(info for rows, info in seen if rows > 0)
+
+
+def test_members_compacted_buffer_of_the_wrong_width(monkeypatch):
+    # _ensemble's compacted Q buffer with Q.shape[0] (the rows) for Q.shape[-1] (mutant orbit:394): only an
+    # ensemble with an idle member (mu = 0) compacts
+    monkeypatch.setattr(orbit_module, "_ensemble", _planted(orbit_module._ensemble, "Q.shape[-1]))",
+                                                            "Q.shape[-0]))"))
+    assert status("paths.members.n3") == "failed"
+
+
+def test_invariants_unit_coefficient_sign_of_zero_is_equivalent():
+    # mutants-equivalent.toml, invariants:82: `A = [P[0], 1.0 + zero]` -> `1.0 - zero`.  zero = 0.0 * P[0] is
+    # +0.0 or -0.0 (float64: inputs are validated real and finite), mpf 0 or the interval [0, 0]; 1.0 -+ (+-0.0) is
+    # exactly 1.0 in IEEE 754, and 1 - 0 is 1 in mpmath and in its interval arithmetic.  Checked bit for bit on
+    # states with P[0] negative (zero = -0.0), positive, +0.0 and -0.0, single, batched, mpmath and interval.
+    import mpmath
+
+    from symbt.numeric.flow import invariants as inv_module
+
+    mutant = _planted(inv_module._invariants, "A = [P[0], 1.0 + zero]", "A = [P[0], 1.0 - zero]")
+    states = [([-1.5, 2.0, 0.25], [0.1, -0.3, 0.2]), ([3.0, -2.0, 1.0], [0.0, 1.0, -1.0]),
+              ([0.0, 1.0, -1.0], [0.5, 0.0, 0.0]), ([-0.0, 1.0, -1.0], [0.5, 0.0, 0.0]),
+              ([[-1.5, 2.0, 0.25], [-0.0, 4.0, 1e-300]], [[0.1, -0.3, 0.2], [2.0, 1.0, 0.0]])]
+    for p, q in states:
+        a, b = inv_module._invariants(p, q), mutant(p, q)
+        assert np.asarray(a).dtype == np.asarray(b).dtype
+        assert np.array_equal(np.asarray(a), np.asarray(b))
+        assert np.array_equal(np.signbit(np.asarray(a, dtype=float)), np.signbit(np.asarray(b, dtype=float)))
+    with mpmath.workdps(40):
+        p, q = [mpmath.mpf(-1.5), mpmath.mpf(2), mpmath.mpf("0.25")], [mpmath.mpf("0.1"), 0, mpmath.mpf("0.2")]
+        assert list(inv_module._invariants(p, q)) == list(mutant(p, q))
+        pi, qi = [mpmath.iv.mpf(v) for v in (-1.5, 2, 0.25)], [mpmath.iv.mpf(v) for v in (0.1, 0, 0.2)]
+        ai, bi = inv_module._invariants(pi, qi), mutant(pi, qi)
+        assert [(x.a, x.b) for x in ai] == [(x.a, x.b) for x in bi]

@@ -46,6 +46,7 @@ CLAIM_MODULES = (
     "shipped_condition",
     "shipped_existence",
     "shipped_dask",
+    "shipped_members",
     "shipped_field",
     "checker",
     "checker_mutation",

@@ -1,0 +1,66 @@
+r"""What ships, 4h: ensembles in which not every member is stepped (scene ``numeric-paths``, issue 21).
+
+A member with ``mu = 0`` is the identity (docs/numeric.md): ``float_orbit`` copies it into every stored row and
+hands only the *active* members to the ensemble kernel, through a compacted buffer of shape
+``(rows, active, N)`` scattered back afterwards.  Every other claim steps ensembles whose members are all active,
+where the kernel writes the caller's arrays directly -- the compaction is never run.
+
+* ``paths.members.n3`` -- per branch, the ensemble of the ``ship_cells`` states of that branch (both signs of
+  ``mu`` and of the traces; per-state ``lam0``, ``mu``) with a copy of its first state at ``mu = 0`` inserted as
+  member 1, ``MEMBER_STEPS`` steps stored at every step (so ``n + 1`` rows, not ``N``), through the plain-Python
+  ensemble kernel (``backend="python"``: the same code numba compiles, traced): every active member's last state
+  is the literal orbit of :mod:`symbt.reference.literal` (50 digits with guard digits: the independent route)
+  within ``16 N n eps S_i`` (the orbit bound of ``shipped.orbit``), and the idle member equals its input at every
+  row, bit for bit (documented; ``q`` and ``p`` are copied, not computed).
+
+Shown to fail on a planted bug in ``tests/test_killers_numeric.py``.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ._shipped import EPS, Tally, orbit_ref, ratios, scale_parts, scaled, ship_cells, step_constant
+from .base import Outcome, Parts, claim
+
+#: paths.members: the steps (rows = steps + 1 differs from N = 3, so a buffer of the wrong width cannot fit)
+MEMBER_STEPS = 3
+#: paths.members: where the idle member goes (not first and not last: the compaction must skip it)
+IDLE_AT = 1
+
+
+@claim("paths.members", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       parts=scale_parts,
+       where="symbt/numeric/float64/orbit.py: validated_float_orbit, _ensemble (idle members, compacted buffers)",
+       statement="bt_orbit(backend='python'), N={N}, 3 steps stored at every step, per branch the ensemble of every "
+                 "sign cell's state and one idle member (mu = 0) at index 1: every active member = the literal orbit "
+                 "within 16 N n eps S_i; the idle member = its input at every row, bit for bit")
+def idle_members(N: int, parts: Parts) -> Outcome:
+    from ..numeric import bt_orbit
+
+    tally, C, s, n = Tally(), step_constant(N), parts.printed["scale"], MEMBER_STEPS
+    for b in (1, -1):
+        rows = [(cell, st) for cell, st, bb in ship_cells(N, 1) if bb == b]
+        idle = (rows[0][1][0], rows[0][1][1], rows[0][1][2], 0.0)
+        members = [st for _, st in rows]
+        members.insert(IDLE_AT, idle)
+        cols = [np.array([st[k] for st in members]) for k in range(4)]
+        try:
+            P, Q = bt_orbit(cols[0], cols[1], cols[2], cols[3], n, branch=b, backend="python")
+        except (ArithmeticError, ValueError) as exc:     # NoRealMapError, NumericRangeError, a broadcast error
+            tally.notes.append(f"branch {b}: bt_orbit raised {type(exc).__name__}: {str(exc)[:120]}")
+            tally.add("ensemble member", {"branch": b}, rows[0][1], b, math.inf)
+            continue
+        same = (np.array_equal(P[:, IDLE_AT], np.broadcast_to(cols[0][IDLE_AT], P[:, IDLE_AT].shape))
+                and np.array_equal(Q[:, IDLE_AT], np.broadcast_to(cols[1][IDLE_AT], Q[:, IDLE_AT].shape)))
+        if not same:
+            tally.notes.append(f"branch {b}: the idle member differs from its input.")
+        tally.add("idle member", {"branch": b}, idle, b, 0.0 if same else math.inf)
+        for k, (cell, st) in enumerate(rows):
+            m = k if k < IDLE_AT else k + 1
+            ref = orbit_ref(st, b, n)
+            r, allowed = ratios(scaled(list(P[n][m]) + list(Q[n][m]), s), ref.xs[n], ref.S, EPS, C * n)
+            tally.add("ensemble member", cell, st, b, r, allowed, ref.agree)
+    return tally.outcome(method="numeric: an ensemble with an idle member (python kernel) vs the literal orbit",
+                         printed=f"|member - literal| <= {C} n eps S_i; idle member = its input")
