@@ -605,3 +605,11 @@ def test_invariants_unit_coefficient_sign_of_zero_is_equivalent():
         pi, qi = [mpmath.iv.mpf(v) for v in (-1.5, 2, 0.25)], [mpmath.iv.mpf(v) for v in (0.1, 0, 0.2)]
         ai, bi = inv_module._invariants(pi, qi), mutant(pi, qi)
         assert [(x.a, x.b) for x in ai] == [(x.a, x.b) for x in bi]
+
+
+def test_members_block_with_one_forward_member(monkeypatch):
+    # the block kernel's forward sweep skipped when exactly one member of the block is transported forward
+    # (mutant kernels_block:157 `nf > 0` -> `nf > 1`): a one-member ensemble of a forward state keeps stale slopes
+    monkeypatch.setattr(kernels_block, "_slopes", _planted(kernels_block._slopes, "    if nf > 0:\n        for j",
+                                                           "    if nf > 1:\n        for j"))
+    assert status("paths.members.n3") == "failed"

@@ -11,7 +11,9 @@ where the kernel writes the caller's arrays directly -- the compaction is never 
   ensemble kernel (``backend="python"``: the same code numba compiles, traced): every active member's last state
   is the literal orbit of :mod:`symbt.reference.literal` (50 digits with guard digits: the independent route)
   within ``16 N n eps S_i`` (the orbit bound of ``shipped.orbit``), and the idle member equals its input at every
-  row, bit for bit (documented; ``q`` and ``p`` are copied, not computed).
+  row, bit for bit (documented; ``q`` and ``p`` are copied, not computed).  And each of those states alone, as
+  an ensemble of one member (one block holding one member: exactly one or no member transported forward), within
+  the same bound of the same literal orbit.
 
 Shown to fail on a planted bug in ``tests/test_killers_numeric.py``.
 """
@@ -35,7 +37,8 @@ IDLE_AT = 1
        where="symbt/numeric/float64/orbit.py: validated_float_orbit, _ensemble (idle members, compacted buffers)",
        statement="bt_orbit(backend='python'), N={N}, 3 steps stored at every step, per branch the ensemble of every "
                  "sign cell's state and one idle member (mu = 0) at index 1: every active member = the literal orbit "
-                 "within 16 N n eps S_i; the idle member = its input at every row, bit for bit")
+                 "within 16 N n eps S_i; the idle member = its input at every row, bit for bit; each state as an "
+                 "ensemble of one member within the same bound")
 def idle_members(N: int, parts: Parts) -> Outcome:
     from ..numeric import bt_orbit
 
@@ -62,5 +65,14 @@ def idle_members(N: int, parts: Parts) -> Outcome:
             ref = orbit_ref(st, b, n)
             r, allowed = ratios(scaled(list(P[n][m]) + list(Q[n][m]), s), ref.xs[n], ref.S, EPS, C * n)
             tally.add("ensemble member", cell, st, b, r, allowed, ref.agree)
+            # the same state as an ensemble of one: its block holds one member, so the count of members
+            # transported forward is exactly 0 or 1 (in the ensemble above both directions share one block)
+            try:
+                P1, Q1 = bt_orbit(np.array([st[0]]), np.array([st[1]]), st[2], st[3], n, branch=b, backend="python")
+                r1, _ = ratios(scaled(list(P1[n][0]) + list(Q1[n][0]), s), ref.xs[n], ref.S, EPS, C * n)
+            except (ArithmeticError, ValueError) as exc:
+                tally.notes.append(f"{cell}: the one-member ensemble raised {type(exc).__name__}.")
+                r1 = math.inf
+            tally.add("one-member ensemble", cell, st, b, r1, allowed, ref.agree)
     return tally.outcome(method="numeric: an ensemble with an idle member (python kernel) vs the literal orbit",
                          printed=f"|member - literal| <= {C} n eps S_i; idle member = its input")
