@@ -37,7 +37,7 @@ def test_the_scene_has_the_claims_named_here():
                              "paths.kernels.n5", "paths.lohner_box.n3", "paths.members.n3",
                              "paths.next_prec.n3", "paths.qd.n2",
                              "paths.qd.n3",
-                             "paths.sharp_kappa.n3", "paths.sharp_kappa.n6",
+                             "paths.sharp_kappa.n3", "paths.sharp_kappa.n6", "paths.step_core.n3",
                              "paths.stored.n3", "paths.threshold.n3", "paths.tiny_mu.n3"]
 
 
@@ -613,3 +613,25 @@ def test_members_block_with_one_forward_member(monkeypatch):
     monkeypatch.setattr(kernels_block, "_slopes", _planted(kernels_block._slopes, "    if nf > 0:\n        for j",
                                                            "    if nf > 1:\n        for j"))
     assert status("paths.members.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.step_core
+
+def test_step_core_opposite_traces_test_on_arrays_flipped(monkeypatch):
+    # _opposite on arrays with `real(t1) > 0` for `real(t1) < 0` (mutant step:333): traces of one sign reported
+    # opposite, so step_core(FLOAT) with check_real refuses states that have a real map
+    from symbt.numeric.core import step as step_module
+
+    monkeypatch.setattr(step_module, "_opposite", _planted(step_module._opposite, "np.real(t1) < 0, np.real(t2)",
+                                                           "np.real(t1) > 0, np.real(t2)"))
+    assert status("paths.step_core.n3") == "failed"
+
+
+def test_step_core_where_of_the_opposite_traces(monkeypatch):
+    # the rows named by where taken from `opp` instead of its negation: the rows with a real map are named
+    from symbt.numeric.core import step as step_module
+
+    monkeypatch.setattr(step_module, "step_core", _planted(step_module.step_core,
+                                                           "where_text(np.logical_not(opp), shape",
+                                                           "where_text(opp, shape"))
+    assert status("paths.step_core.n3") == "failed"

@@ -47,6 +47,7 @@ CLAIM_MODULES = (
     "shipped_existence",
     "shipped_dask",
     "shipped_members",
+    "shipped_core",
     "shipped_field",
     "checker",
     "checker_mutation",

@@ -1,0 +1,87 @@
+r"""What ships, 4i: :func:`symbt.numeric.core.step.step_core` in float64 with its existence test on (scene
+``numeric-paths``, issue 21).
+
+Every float64 route calls ``step_core`` with ``check_real=False`` and decides existence per row afterwards
+(``float_status``); the default ``check_real=True`` -- the test a caller of the public ``step_core`` gets, which
+raises :class:`~symbt.numeric.NoRealMapError` from the traces' signs and from ``Etilde_j / E_j``, naming the batch
+rows -- runs on arrays nowhere else.
+
+* ``paths.step_core.n3`` -- per branch, the batch of the ``ship_cells`` states of that branch (both signs of
+  ``mu`` and of the traces; per-state ``lam0``, ``mu``) through ``step_core(FLOAT, ...)`` with ``check_real``: no
+  error, and every row = the literal map of :mod:`symbt.reference.literal` (50 digits with guard digits: the
+  independent route) within ``16 N eps S_i`` (the bound of ``shipped.step``); and each state without a real map
+  of ``shipped.nomap`` (decided by the literal route) as row 1 of a batch of three (the others with a real map):
+  ``NoRealMapError`` with the condition ``"positivity"`` and ``where = ((1,),)``.
+
+Shown to fail on a planted bug in ``tests/test_killers_numeric.py``.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ._shipped import EPS, Tally, ratios, scale_parts, scaled, ship_cells, step_constant, step_ref
+from .base import Outcome, Parts, claim
+from .shipped_emitted import nomap_states
+
+#: paths.step_core: where the state without a real map goes in its batch of three
+NOMAP_ROW = 1
+
+
+def _core(states: list, b: int) -> tuple[np.ndarray, np.ndarray]:
+    """``step_core(FLOAT, ...)`` with ``check_real`` on the batch ``states``: ``(P~, Q~)`` of shape (B, N)."""
+    from ..numeric.core.inputs import FLOAT
+    from ..numeric.core.step import step_core
+
+    P = [np.array([st[0][j] for st in states]) for j in range(len(states[0][0]))]
+    Q = [np.array([st[1][j] for st in states]) for j in range(len(states[0][0]))]
+    l0, m = np.array([st[2] for st in states]), np.array([st[3] for st in states])
+    with np.errstate(all="ignore"):
+        Pn, Qn, _ = step_core(FLOAT, P, Q, l0, m, b, shape=(len(states),))
+    return np.stack(Pn, axis=-1), np.stack(Qn, axis=-1)
+
+
+@claim("paths.step_core", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       parts=scale_parts,
+       where="symbt/numeric/core/step.py: step_core with check_real on float64 arrays (_opposite, the E~ test)",
+       statement="step_core(FLOAT, ...) with check_real, N={N}, per branch a batch of every sign cell's state: "
+                 "every row = the literal map within 16 N eps S_i; a state without a real map as row 1 of a "
+                 "batch of three: NoRealMapError('positivity') with where = ((1,),)")
+def step_core_checked(N: int, parts: Parts) -> Outcome:
+    from ..numeric import NoRealMapError
+
+    tally, C, s = Tally(), step_constant(N), parts.printed["scale"]
+    good: dict[int, list] = {1: [], -1: []}
+    for b in (1, -1):
+        rows = [(cell, st) for cell, st, bb in ship_cells(N, 1) if bb == b]
+        good[b] = [st for _, st in rows]
+        try:
+            Pt, Qt = _core(good[b], b)
+        except (ArithmeticError, ValueError) as exc:     # NoRealMapError on states with a real map
+            tally.notes.append(f"branch {b}: step_core raised {type(exc).__name__}: {str(exc)[:120]}")
+            tally.add("step_core row", {"branch": b}, rows[0][1], b, math.inf)
+            continue
+        for k, (cell, st) in enumerate(rows):
+            ref = step_ref(st, b)
+            r, allowed = ratios(scaled(list(Pt[k]) + list(Qt[k]), s), ref.x, ref.S, EPS, C)
+            tally.add("step_core row", cell, st, b, r, allowed, ref.agree)
+    for st, b, (cond, decided) in nomap_states(N):
+        if not decided:
+            continue
+        batch = list(good[b][:2])
+        batch.insert(NOMAP_ROW, st)
+        try:
+            _core(batch, b)
+            tally.notes.append(f"{cond}, branch {b}: a state, no NoRealMapError.")
+            r = math.inf
+        except NoRealMapError as exc:
+            r = 0.0 if (exc.condition == "positivity" and tuple(exc.where) == ((NOMAP_ROW,),)) else math.inf
+            if r:
+                tally.notes.append(f"{cond}, branch {b}: condition {exc.condition!r}, where {exc.where!r}.")
+        except (ArithmeticError, ValueError) as exc:
+            tally.notes.append(f"{cond}, branch {b}: {type(exc).__name__}: {str(exc)[:100]}")
+            r = math.inf
+        tally.add("no-map row", {"branch": b, "condition": str(cond)}, st, b, r)
+    return tally.outcome(method="numeric: step_core(FLOAT) with check_real vs the literal map and its existence",
+                         printed=f"|row - literal| <= {C} eps S_i; NoRealMapError at the row without a real map")
