@@ -635,3 +635,39 @@ def test_step_core_where_of_the_opposite_traces(monkeypatch):
                                                            "where_text(np.logical_not(opp), shape",
                                                            "where_text(opp, shape"))
     assert status("paths.step_core.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- equivalent: kernels:424
+
+def test_orbit_store_range_test_on_the_previous_site_is_equivalent():
+    # mutants-equivalent.toml, kernels:424: the stored row's test `abs(p[j]) < 1e300` -> `abs(p[j - 1]) < 1e300`.
+    # Over the loop j = 0..N-1, j - 1 runs over the same sites (p[-1] = p[N-1]), so RANGE is returned iff some
+    # |y_j| or some |p_j| fails, as before: the same status for every input, the same rows when it is OK; only the
+    # entries of the failing row written before the return differ, and no caller reads a failed state's rows
+    # (documented: the drivers recompute it with the general path).  Checked on every pattern of sites with a
+    # p~ beyond 1e300 or NaN (a stub step sets p~), positions in and out of range, N = 2, 3.
+    import inspect
+    import itertools
+    import textwrap
+
+    src = textwrap.dedent(inspect.getsource(kernels.orbit))
+    old, new = "abs(p[j]) < 1e300)", "abs(p[j - 1]) < 1e300)"
+    assert src.count(old) == 1
+    for N in (2, 3):
+        for pattern in itertools.product((1.5, 2e300, math.nan, -3e300), repeat=N):
+            for q0 in (np.linspace(0.0, 1.0, N), np.full(N, 2e300)):
+                runs = []
+                for text in (src, src.replace(old, new)):
+                    def stub(p, *args, _pattern=pattern):
+                        p[:] = _pattern
+                        return kernels.OK
+                    ns: dict = {}
+                    exec(compile(text, "orbit", "exec"), {**kernels.__dict__, "step": stub}, ns)
+                    P, Q = np.full((3, N), -1.0), np.full((3, N), -1.0)
+                    st = ns["orbit"](np.ones(N), q0.copy(), 1.0, -1.0, 2.0, 1, 2, 1, kernels.ANCHOR, P, Q)
+                    runs.append((st, P, Q))
+                (s0, P0, Q0), (s1, P1, Q1) = runs
+                assert s0 == s1
+                if s0 == kernels.OK:
+                    assert np.array_equal(P0, P1) and np.array_equal(Q0, Q1)
+    assert s0 == kernels.RANGE     # the last pattern fails the test (the loop did reach it)
