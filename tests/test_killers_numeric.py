@@ -29,7 +29,7 @@ def status(cid: str) -> str:
 
 def test_the_scene_has_the_claims_named_here():
     assert NUMERIC_PATHS == ["paths.anchored.n3", "paths.certified_nomap.n3", "paths.coefficients_mp.n3",
-                             "paths.complex.n3", "paths.dask.n3", "paths.edges.n3",
+                             "paths.complex.n3", "paths.dask.n3", "paths.device.n3", "paths.edges.n3",
                              "paths.failing_rows.n3", "paths.field_far.n3",
                              "paths.frame.n13", "paths.frame_inverse.n13", "paths.growth.n3", "paths.ill_member.n3",
                              "paths.jacobian.n3",
@@ -671,3 +671,15 @@ def test_orbit_store_range_test_on_the_previous_site_is_equivalent():
                 if s0 == kernels.OK:
                     assert np.array_equal(P0, P1) and np.array_equal(Q0, Q1)
     assert s0 == kernels.RANGE     # the last pattern fails the test (the loop did reach it)
+
+
+# --------------------------------------------------------------------------- paths.device
+
+def test_device_inlines_the_helpers_of_other_modules(monkeypatch):
+    # inline._helper takes the functions of *other* modules for the callee's own (mutant inline:154): the rewrite
+    # of python_orbit_with tries to inline condition.sharp_trace_kappa and refuses it
+    from symbt.numeric.core import inline
+
+    monkeypatch.setattr(inline, "_helper", _planted(inline._helper, "v.__module__ == fn.__module__",
+                                                    "v.__module__ != fn.__module__"))
+    assert status("paths.device.n3") == "failed"

@@ -12,6 +12,11 @@ rows -- runs on arrays nowhere else.
   independent route) within ``16 N eps S_i`` (the bound of ``shipped.step``); and each state without a real map
   of ``shipped.nomap`` (decided by the literal route) as row 1 of a batch of three (the others with a real map):
   ``NoRealMapError`` with the condition ``"positivity"`` and ``where = ((1,),)``.
+* ``paths.device.n3`` -- :func:`~symbt.numeric.float64.kernels.python_orbit_with` with no hook replaced (the
+  benchmarks' measuring device, built afresh by the inlining rewrite of :mod:`symbt.numeric.core.inline`), on
+  every ``ship_cells`` state, ``DEVICE_STEPS`` steps: status 0, the last state = the literal orbit within
+  ``16 N n eps S_i``, and every stored row = :func:`~symbt.numeric.float64.kernels.python_orbit`'s bit for bit
+  (documented: the same operations on the same doubles; a consistency check).
 
 Shown to fail on a planted bug in ``tests/test_killers_numeric.py``.
 """
@@ -21,12 +26,14 @@ import math
 
 import numpy as np
 
-from ._shipped import EPS, Tally, ratios, scale_parts, scaled, ship_cells, step_constant, step_ref
-from .base import Outcome, Parts, claim
+from ._shipped import EPS, Tally, orbit_ref, ratios, scale_parts, scaled, ship_cells, step_constant, step_ref
+from .base import Outcome, Parts, claim, failed
 from .shipped_emitted import nomap_states
 
 #: paths.step_core: where the state without a real map goes in its batch of three
 NOMAP_ROW = 1
+#: paths.device: the steps of each orbit
+DEVICE_STEPS = 3
 
 
 def _core(states: list, b: int) -> tuple[np.ndarray, np.ndarray]:
@@ -85,3 +92,36 @@ def step_core_checked(N: int, parts: Parts) -> Outcome:
         tally.add("no-map row", {"branch": b, "condition": str(cond)}, st, b, r)
     return tally.outcome(method="numeric: step_core(FLOAT) with check_real vs the literal map and its existence",
                          printed=f"|row - literal| <= {C} eps S_i; NoRealMapError at the row without a real map")
+
+
+@claim("paths.device", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       parts=scale_parts,
+       where="symbt/numeric/float64/kernels.py: python_orbit_with; symbt/numeric/core/inline.py (the rewrite)",
+       statement="python_orbit_with({}) (no hook replaced), N={N}, 3 steps, every sign cell's state: status 0, "
+                 "the last state = the literal orbit within 16 N n eps S_i, every row = python_orbit's bit for bit")
+def device_orbit(N: int, parts: Parts) -> Outcome:
+    from ..numeric.float64.kernels import ANCHOR, orbit_rows, python_orbit, python_orbit_with
+
+    tally, C, s, n = Tally(), step_constant(N), parts.printed["scale"], DEVICE_STEPS
+    try:
+        device = python_orbit_with({})
+    except (ValueError, NameError) as exc:               # the rewrite refused the source
+        return failed("numeric: python_orbit_with",
+                      detail=f"python_orbit_with({{}}) raised {type(exc).__name__}: {str(exc)[:160]}")
+    for cell, st, b in ship_cells(N, 1):
+        p, q, l0, m = np.array(st[0]), np.array(st[1]), st[2], st[3]
+        runs = []
+        for fn in (device, python_orbit):
+            P, Q = np.empty((orbit_rows(n, 1), N)), np.empty((orbit_rows(n, 1), N))
+            with np.errstate(all="ignore"):
+                runs.append((fn(p, q, l0 + m, l0 - m, 2 * m, b, n, 1, ANCHOR, P, Q), P, Q))
+        (sd, Pd, Qd), (so, Po, Qo) = runs
+        if sd != 0 or so != 0 or not (np.array_equal(Pd, Po) and np.array_equal(Qd, Qo)):
+            tally.notes.append(f"{cell}: status {sd} (device), {so} (python_orbit), or rows that differ.")
+            tally.add("device orbit", cell, st, b, math.inf)
+            continue
+        ref = orbit_ref(st, b, n)
+        r, allowed = ratios(scaled(list(Pd[n]) + list(Qd[n]), s), ref.xs[n], ref.S, EPS, C * n)
+        tally.add("device orbit", cell, st, b, r, allowed, ref.agree)
+    return tally.outcome(method="numeric: python_orbit_with({}) vs the literal orbit and python_orbit",
+                         printed=f"|last - literal| <= {C} n eps S_i; = python_orbit bit for bit")
