@@ -30,6 +30,7 @@ def status(cid: str) -> str:
 def test_the_scene_has_the_claims_named_here():
     assert NUMERIC_PATHS == ["paths.anchored.n3", "paths.certified_nomap.n3", "paths.coefficients_mp.n3",
                              "paths.complex.n3", "paths.dask.n3", "paths.device.n3", "paths.edges.n3",
+                             "paths.enclosures.n3",
                              "paths.failing_rows.n3", "paths.field_far.n3",
                              "paths.frame.n13", "paths.frame_inverse.n13", "paths.growth.n3", "paths.ill_member.n3",
                              "paths.jacobian.n3",
@@ -609,9 +610,18 @@ def test_invariants_unit_coefficient_sign_of_zero_is_equivalent():
 
 def test_members_block_with_one_forward_member(monkeypatch):
     # the block kernel's forward sweep skipped when exactly one member of the block is transported forward
-    # (mutant kernels_block:157 `nf > 0` -> `nf > 1`): a one-member ensemble of a forward state keeps stale slopes
+    # (`nf > 0` -> `nf > 1` at the forward sweep): a one-member ensemble of a forward state keeps stale slopes
     monkeypatch.setattr(kernels_block, "_slopes", _planted(kernels_block._slopes, "    if nf > 0:\n        for j",
                                                            "    if nf > 1:\n        for j"))
+    assert status("paths.members.n3") == "failed"
+
+
+def test_members_backward_slopes_not_copied_with_one_forward_member(monkeypatch):
+    # the backward members' slopes not copied from tmp when exactly one member is transported forward (mutant
+    # kernels_block:157 `nf > 0` -> `nf > 1`): the far member of the two-member block keeps its forward slopes
+    monkeypatch.setattr(kernels_block, "_slopes", _planted(kernels_block._slopes,
+                                                           "        if nf > 0:\n            for j in range(1, N):",
+                                                           "        if nf > 1:\n            for j in range(1, N):"))
     assert status("paths.members.n3") == "failed"
 
 
@@ -683,3 +693,16 @@ def test_device_inlines_the_helpers_of_other_modules(monkeypatch):
     monkeypatch.setattr(inline, "_helper", _planted(inline._helper, "v.__module__ == fn.__module__",
                                                     "v.__module__ != fn.__module__"))
     assert status("paths.device.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.enclosures
+
+def test_enclosures_states_counted_from_zero(monkeypatch):
+    # common_invariants' `enumerate(H[1:], 1)` -> `enumerate(H[1:], 0)` (mutant lohner_checks:236): the message
+    # names the wrong states, or no earlier state is found (StopIteration)
+    pytest.importorskip("flint")
+    from symbt.numeric.multiprec import lohner_checks
+
+    monkeypatch.setattr(lohner_checks, "common_invariants", _planted(lohner_checks.common_invariants,
+                                                                     "enumerate(H[1:], 1)", "enumerate(H[1:], 0)"))
+    assert status("paths.enclosures.n3") == "failed"

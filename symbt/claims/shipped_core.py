@@ -17,17 +17,25 @@ rows -- runs on arrays nowhere else.
   every ``ship_cells`` state, ``DEVICE_STEPS`` steps: status 0, the last state = the literal orbit within
   ``16 N n eps S_i``, and every stored row = :func:`~symbt.numeric.float64.kernels.python_orbit`'s bit for bit
   (documented: the same operations on the same doubles; a consistency check).
+* ``paths.enclosures.n3`` -- :func:`~symbt.numeric.multiprec.lohner_checks.common_invariants` (the check of the
+  certified benchmark that the enclosures of the conserved ``H_k`` along an orbit overlap) on exact balls
+  (dyadic midpoints and radii): the intersection over three stored states equals the one computed with
+  fractions, and where the enclosure at state 1 or at state 2 is disjoint from the one at state 0, the
+  ``InconsistentEnclosure`` names ``H_k`` and the states ``0 and 1``, resp. ``0 and 2`` (its docstring's
+  message).  Skipped without python-flint.
 
 Shown to fail on a planted bug in ``tests/test_killers_numeric.py``.
 """
 from __future__ import annotations
 
+import importlib.util
 import math
+from fractions import Fraction
 
 import numpy as np
 
 from ._shipped import EPS, Tally, orbit_ref, ratios, scale_parts, scaled, ship_cells, step_constant, step_ref
-from .base import Outcome, Parts, claim, failed
+from .base import Outcome, Parts, claim, failed, skipped
 from .shipped_emitted import nomap_states
 
 #: paths.step_core: where the state without a real map goes in its batch of three
@@ -125,3 +133,62 @@ def device_orbit(N: int, parts: Parts) -> Outcome:
         tally.add("device orbit", cell, st, b, r, allowed, ref.agree)
     return tally.outcome(method="numeric: python_orbit_with({}) vs the literal orbit and python_orbit",
                          printed=f"|last - literal| <= {C} n eps S_i; = python_orbit bit for bit")
+
+
+#: paths.enclosures: (midpoint, radius) of H_0, H_1 at three stored states (dyadic: exact balls); the
+#: disjoint third state of each inconsistent case, and the states the message must name
+ENCLOSURES = (((1, "0.5"), (-3, "0.25")), (("1.25", "0.5"), ("-3.125", "0.25")), (("1.125", "0.25"), (-3, "0.5")))
+#: paths.enclosures: the radius roundings allowed in the intersection's width
+ENCL_ROUNDINGS = 16
+DISJOINT = ((1, ("1.75", "0.125"), "H_0 at stored states 0 and 1"),
+            (2, ("1.875", "0.0625"), "H_0 at stored states 0 and 2"))
+
+
+@claim("paths.enclosures", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       requires=("flint",),
+       where="symbt/numeric/multiprec/lohner_checks.py: common_invariants",
+       statement="common_invariants on exact balls of H_0, H_1 at three stored states: the intersection = the "
+                 "one computed with fractions (wider by 16 radius roundings at most); an enclosure of H_0 at "
+                 "state 1 (or 2) disjoint from state 0's: InconsistentEnclosure naming H_0 and the states 0 and 1 "
+                 "(0 and 2)")
+def enclosures(N: int) -> Outcome:
+    if importlib.util.find_spec("flint") is None:
+        return skipped("python-flint is not installed (.[certified])")
+    from flint import arb
+
+    from ..numeric.multiprec.lohner_checks import InconsistentEnclosure, common_invariants
+
+    def ball(mr: tuple) -> arb:
+        return arb(str(mr[0]), str(mr[1]))
+
+    def exact(x: arb) -> Fraction:
+        man, exp = x.man_exp()
+        return Fraction(int(man)) * Fraction(2) ** int(exp)
+
+    bad = []
+    got = common_invariants([[ball(mr) for mr in st] for st in ENCLOSURES])
+    for k in range(2):
+        lo = max(Fraction(str(st[k][0])) - Fraction(str(st[k][1])) for st in ENCLOSURES)
+        hi = min(Fraction(str(st[k][0])) + Fraction(str(st[k][1])) for st in ENCLOSURES)
+        mid, rad = exact(got[k].mid()), exact(arb(got[k].rad()))
+        # an enclosure of [lo, hi], wider by at most Arb's upward roundings of the radius (30-bit mag_t: ENCL_ROUNDINGS
+        # of them, relative 2**-30 each; measured 2**-27.6)
+        if not (mid - rad <= lo and hi <= mid + rad
+                and 2 * rad <= (hi - lo) * (1 + Fraction(ENCL_ROUNDINGS, 2 ** 30))):
+            bad.append(f"H_{k}: [{float(mid - rad)}, {float(mid + rad)}], the fractions give [{lo}, {hi}]")
+    for at, mr, want in DISJOINT:
+        states = [list(st) for st in ENCLOSURES]
+        states[at][0] = mr
+        try:
+            common_invariants([[ball(x) for x in st] for st in states])
+            bad.append(f"H_0 disjoint at state {at}: no InconsistentEnclosure")
+        except InconsistentEnclosure as exc:
+            if want not in str(exc):
+                bad.append(f"H_0 disjoint at state {at}: {exc}")
+        except Exception as exc:  # any other error fails the claim
+            bad.append(f"H_0 disjoint at state {at}: {type(exc).__name__} {exc}")
+    if bad:
+        return failed("exact: common_invariants vs intervals of fractions", detail="; ".join(bad))
+    return Outcome("verified", "exact: common_invariants vs intervals of fractions, and its refusals",
+                   evidence="sampled", detail="2 invariants x 3 stored states; 2 inconsistent cases.",
+                   printed="the intersection; InconsistentEnclosure naming the states")

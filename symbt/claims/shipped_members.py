@@ -13,7 +13,9 @@ where the kernel writes the caller's arrays directly -- the compaction is never 
   within ``16 N n eps S_i`` (the orbit bound of ``shipped.orbit``), and the idle member equals its input at every
   row, bit for bit (documented; ``q`` and ``p`` are copied, not computed).  And each of those states alone, as
   an ensemble of one member (one block holding one member: exactly one or no member transported forward), within
-  the same bound of the same literal orbit.
+  the same bound of the same literal orbit.  And a block of two: the branch's fourth state and its second moved
+  to ``lam0 = FAR_LAM0`` (one member transported forward, the other backward: each must get the slopes of its
+  own direction), within the same bound of their literal orbits.
 
 Shown to fail on a planted bug in ``tests/test_killers_numeric.py``.
 """
@@ -30,6 +32,9 @@ from .base import Outcome, Parts, claim
 MEMBER_STEPS = 3
 #: paths.members: where the idle member goes (not first and not last: the compaction must skip it)
 IDLE_AT = 1
+#: paths.members: lam0 of the far member of the two-member block (|tr L| ~ lam0**N: transported in the wrong
+#: direction, its slopes lose ~ 2 log10(lam0) digits per period -- measured 1e-10 relative at one step)
+FAR_LAM0 = 200.0
 
 
 @claim("paths.members", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
@@ -38,7 +43,7 @@ IDLE_AT = 1
        statement="bt_orbit(backend='python'), N={N}, 3 steps stored at every step, per branch the ensemble of every "
                  "sign cell's state and one idle member (mu = 0) at index 1: every active member = the literal orbit "
                  "within 16 N n eps S_i; the idle member = its input at every row, bit for bit; each state as an "
-                 "ensemble of one member within the same bound")
+                 "ensemble of one member, and a block of two (one far member at lam0 = 200), within the same bound")
 def idle_members(N: int, parts: Parts) -> Outcome:
     from ..numeric import bt_orbit
 
@@ -74,5 +79,25 @@ def idle_members(N: int, parts: Parts) -> Outcome:
                 tally.notes.append(f"{cell}: the one-member ensemble raised {type(exc).__name__}.")
                 r1 = math.inf
             tally.add("one-member ensemble", cell, st, b, r1, allowed, ref.agree)
+        _mixed_block(N, b, [st for _, st in rows], n, s, C, tally)
     return tally.outcome(method="numeric: an ensemble with an idle member (python kernel) vs the literal orbit",
                          printed=f"|member - literal| <= {C} n eps S_i; idle member = its input")
+
+
+def _mixed_block(N: int, b: int, states: list, n: int, s: float, C: int, tally: Tally) -> None:
+    """The branch's fourth state and its second at ``lam0 = FAR_LAM0`` as one block of the python kernel."""
+    from ..numeric import bt_orbit
+
+    far = (states[1][0], states[1][1], FAR_LAM0, states[1][3])
+    members = [states[3], far]
+    cols = [np.array([st[k] for st in members]) for k in range(4)]
+    try:
+        P, Q = bt_orbit(cols[0], cols[1], cols[2], cols[3], n, branch=b, backend="python")
+    except (ArithmeticError, ValueError) as exc:
+        tally.notes.append(f"branch {b}: the two-member block raised {type(exc).__name__}.")
+        tally.add("two-member block", {"branch": b}, far, b, math.inf)
+        return
+    for k, st in enumerate(members):
+        ref = orbit_ref(st, b, n)
+        r, allowed = ratios(scaled(list(P[n][k]) + list(Q[n][k]), s), ref.xs[n], ref.S, EPS, C * n)
+        tally.add("two-member block", {"branch": b, "member": k}, st, b, r, allowed, ref.agree)
