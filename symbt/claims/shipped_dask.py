@@ -11,10 +11,11 @@ shape, a lost offset) gives states of *other* parameters or a crash, which the k
   (the orbit bound of ``shipped.orbit``), and the whole stored orbit equals the member's single-state
   ``bt_orbit(backend="numpy")`` bit for bit (documented for ensembles without numba, docs/numeric.md; a consistency
   check).  Run without numba: the chunking is under test here, the kernels' two instances are other claims'.
-  And for each state without a real map of ``shipped.nomap`` (decided by the literal route), the ensemble of the
-  four ``ship_cells`` states of its branch with it as member 4 -- in the second chunk, at offset 1 there: the
-  computation raises ``NoRealMapError`` whose ``where`` is ``((4,),)`` (the batch index in the ensemble, not in
-  the chunk) with the condition ``bt_step(backend='numpy')`` gives on the state alone.  Skipped without dask.
+  And for the first state without a real map of ``shipped.nomap`` of each branch (decided by the literal
+  route), the ensemble of the four ``ship_cells`` states of its branch with it as member 4 -- in the second chunk,
+  at offset 1 there: the computation raises ``NoRealMapError`` whose ``where`` is ``((4,),)`` (the batch index in
+  the ensemble, not in the chunk) with the condition ``bt_step(backend='numpy')`` gives on the state alone.
+  Skipped without dask.
 
 Shown to fail on a planted bug in ``tests/test_killers_numeric.py``.
 """
@@ -69,8 +70,10 @@ def dask_orbit_members(N: int, parts: Parts) -> Outcome:
                 tally.notes.append(f"{cell}: member {k} differs from its single-state orbit.")
                 r = math.inf
             tally.add("dask member", cell, st, b, r, allowed, ref.agree)
+    seen: set = set()
     for st, b, (_cond, decided) in nomap_states(N):
-        if decided:
+        if decided and b not in seen:       # one per branch (each is a dask graph: ~0.2 s)
+            seen.add(b)
             tally.add("dask no-map member", {"branch": b}, st, b, _nomap_where(N, st, b, tally.notes))
     return tally.outcome(method="numeric: dask_orbit's members vs the literal orbit and the single-state calls",
                          printed=f"|member - literal| <= {C} n eps S_i, = the single-state orbit")
