@@ -29,14 +29,16 @@ def status(cid: str) -> str:
 
 def test_the_scene_has_the_claims_named_here():
     assert NUMERIC_PATHS == ["paths.anchored.n3", "paths.certified_nomap.n3", "paths.coefficients_mp.n3",
-                             "paths.complex.n3", "paths.dask.n3", "paths.edges.n3",
+                             "paths.complex.n3", "paths.dask.n3", "paths.device.n3", "paths.edges.n3",
+                             "paths.enclosures.n3",
                              "paths.failing_rows.n3", "paths.field_far.n3",
                              "paths.frame.n13", "paths.frame_inverse.n13", "paths.growth.n3", "paths.ill_member.n3",
                              "paths.jacobian.n3",
                              "paths.kernels.n3",
-                             "paths.kernels.n5", "paths.lohner_box.n3", "paths.next_prec.n3", "paths.qd.n2",
+                             "paths.kernels.n5", "paths.lohner_box.n3", "paths.members.n3",
+                             "paths.next_prec.n3", "paths.qd.n2",
                              "paths.qd.n3",
-                             "paths.sharp_kappa.n3", "paths.sharp_kappa.n6",
+                             "paths.sharp_kappa.n3", "paths.sharp_kappa.n6", "paths.step_core.n3",
                              "paths.stored.n3", "paths.threshold.n3", "paths.tiny_mu.n3"]
 
 
@@ -549,3 +551,168 @@ def test_dask_chunks_of_p_from_the_wrong_axis(monkeypatch):
                                                     "p.rechunk((p.chunks[1], N))"))
     monkeypatch.setattr("symbt.numeric.dask_orbit", mod.dask_orbit)
     assert status("paths.dask.n3") == "failed"
+
+
+def test_dask_where_offset_of_the_chunk_lost(monkeypatch):
+    # NoRealMapError.where with the chunk's offset subtracted (a member of the second chunk named by its index
+    # in the chunk's kind): the no-map member 4 of paths.dask is reported elsewhere
+    pytest.importorskip("dask")
+    from symbt.numeric.float64 import dask_orbit as mod
+
+    monkeypatch.setattr(mod, "_chunk", _planted(mod._chunk, "(w[0] + start,)", "(w[0] - start,)"))
+    assert status("paths.dask.n3") == "failed"
+
+
+def test_dask_chunk_offset_default_is_equivalent(monkeypatch):
+    # mutants-equivalent.toml, dask_orbit:60: `... if block_info else 0` -> `else 1`.  dask_orbit calls _chunk only
+    # through map_blocks, which passes a non-empty block_info to every block it computes; the default is read only
+    # in the NoRealMapError branch, which a block without block_info (dask's meta inference on an empty block)
+    # never reaches.  Mechanically: every call that computes members gets a non-empty block_info, and with the
+    # mutant planted paths.dask (member 4 without a real map, named by where) still verifies.
+    pytest.importorskip("dask")
+    from symbt.numeric.float64 import dask_orbit as mod
+
+    mutant = _planted(mod._chunk, 'if block_info else 0', 'if block_info else 1')
+    seen = []
+
+    def spy(block, *args, block_info=None):
+        seen.append((block.shape[0], bool(block_info)))
+        return mutant(block, *args, block_info=block_info)
+    monkeypatch.setattr(mod, "_chunk", spy)
+    assert status("paths.dask.n3") == "verified"
+    assert any(rows > 0 for rows, _ in seen)
+    assert all(info for rows, info in seen if rows > 0)
+
+
+def test_members_compacted_buffer_of_the_wrong_width(monkeypatch):
+    # _ensemble's compacted Q buffer with Q.shape[0] (the rows) for Q.shape[-1] (mutant orbit:394): only an
+    # ensemble with an idle member (mu = 0) compacts
+    monkeypatch.setattr(orbit_module, "_ensemble", _planted(orbit_module._ensemble, "Q.shape[-1]))",
+                                                            "Q.shape[-0]))"))
+    assert status("paths.members.n3") == "failed"
+
+
+def test_invariants_unit_coefficient_sign_of_zero_is_equivalent():
+    # mutants-equivalent.toml, invariants:82: `A = [P[0], 1.0 + zero]` -> `1.0 - zero`.  zero = 0.0 * P[0] is
+    # +0.0 or -0.0 (float64: inputs are validated real and finite), mpf 0 or the interval [0, 0]; 1.0 -+ (+-0.0) is
+    # exactly 1.0 in IEEE 754, and 1 - 0 is 1 in mpmath and in its interval arithmetic.  Checked bit for bit on
+    # states with P[0] negative (zero = -0.0), positive, +0.0 and -0.0, single, batched, mpmath and interval.
+    import mpmath
+
+    from symbt.numeric.flow import invariants as inv_module
+
+    mutant = _planted(inv_module._invariants, "A = [P[0], 1.0 + zero]", "A = [P[0], 1.0 - zero]")
+    states = [([-1.5, 2.0, 0.25], [0.1, -0.3, 0.2]), ([3.0, -2.0, 1.0], [0.0, 1.0, -1.0]),
+              ([0.0, 1.0, -1.0], [0.5, 0.0, 0.0]), ([-0.0, 1.0, -1.0], [0.5, 0.0, 0.0]),
+              ([[-1.5, 2.0, 0.25], [-0.0, 4.0, 1e-300]], [[0.1, -0.3, 0.2], [2.0, 1.0, 0.0]])]
+    for p, q in states:
+        a, b = inv_module._invariants(p, q), mutant(p, q)
+        assert np.asarray(a).dtype == np.asarray(b).dtype
+        assert np.array_equal(np.asarray(a), np.asarray(b))
+        assert np.array_equal(np.signbit(np.asarray(a, dtype=float)), np.signbit(np.asarray(b, dtype=float)))
+    with mpmath.workdps(40):
+        p, q = [mpmath.mpf(-1.5), mpmath.mpf(2), mpmath.mpf("0.25")], [mpmath.mpf("0.1"), 0, mpmath.mpf("0.2")]
+        assert list(inv_module._invariants(p, q)) == list(mutant(p, q))
+        pi, qi = [mpmath.iv.mpf(v) for v in (-1.5, 2, 0.25)], [mpmath.iv.mpf(v) for v in (0.1, 0, 0.2)]
+        ai, bi = inv_module._invariants(pi, qi), mutant(pi, qi)
+        assert [(x.a, x.b) for x in ai] == [(x.a, x.b) for x in bi]
+
+
+def test_members_block_with_one_forward_member(monkeypatch):
+    # the block kernel's forward sweep skipped when exactly one member of the block is transported forward
+    # (`nf > 0` -> `nf > 1` at the forward sweep): a one-member ensemble of a forward state keeps stale slopes
+    monkeypatch.setattr(kernels_block, "_slopes", _planted(kernels_block._slopes, "    if nf > 0:\n        for j",
+                                                           "    if nf > 1:\n        for j"))
+    assert status("paths.members.n3") == "failed"
+
+
+def test_members_backward_slopes_not_copied_with_one_forward_member(monkeypatch):
+    # the backward members' slopes not copied from tmp when exactly one member is transported forward (mutant
+    # kernels_block:157 `nf > 0` -> `nf > 1`): the far member of the two-member block keeps its forward slopes
+    monkeypatch.setattr(kernels_block, "_slopes", _planted(kernels_block._slopes,
+                                                           "        if nf > 0:\n            for j in range(1, N):",
+                                                           "        if nf > 1:\n            for j in range(1, N):"))
+    assert status("paths.members.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.step_core
+
+def test_step_core_opposite_traces_test_on_arrays_flipped(monkeypatch):
+    # _opposite on arrays with `real(t1) > 0` for `real(t1) < 0` (mutant step:333): traces of one sign reported
+    # opposite, so step_core(FLOAT) with check_real refuses states that have a real map
+    from symbt.numeric.core import step as step_module
+
+    monkeypatch.setattr(step_module, "_opposite", _planted(step_module._opposite, "np.real(t1) < 0, np.real(t2)",
+                                                           "np.real(t1) > 0, np.real(t2)"))
+    assert status("paths.step_core.n3") == "failed"
+
+
+def test_step_core_where_of_the_opposite_traces(monkeypatch):
+    # the rows named by where taken from `opp` instead of its negation: the rows with a real map are named
+    from symbt.numeric.core import step as step_module
+
+    monkeypatch.setattr(step_module, "step_core", _planted(step_module.step_core,
+                                                           "where_text(np.logical_not(opp), shape",
+                                                           "where_text(opp, shape"))
+    assert status("paths.step_core.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- equivalent: kernels:424
+
+def test_orbit_store_range_test_on_the_previous_site_is_equivalent():
+    # mutants-equivalent.toml, kernels:424: the stored row's test `abs(p[j]) < 1e300` -> `abs(p[j - 1]) < 1e300`.
+    # Over the loop j = 0..N-1, j - 1 runs over the same sites (p[-1] = p[N-1]), so RANGE is returned iff some
+    # |y_j| or some |p_j| fails, as before: the same status for every input, the same rows when it is OK; only the
+    # entries of the failing row written before the return differ, and no caller reads a failed state's rows
+    # (documented: the drivers recompute it with the general path).  Checked on every pattern of sites with a
+    # p~ beyond 1e300 or NaN (a stub step sets p~), positions in and out of range, N = 2, 3.
+    import inspect
+    import itertools
+    import textwrap
+
+    src = textwrap.dedent(inspect.getsource(kernels.orbit))
+    old, new = "abs(p[j]) < 1e300)", "abs(p[j - 1]) < 1e300)"
+    assert src.count(old) == 1
+    for N in (2, 3):
+        for pattern in itertools.product((1.5, 2e300, math.nan, -3e300), repeat=N):
+            for q0 in (np.linspace(0.0, 1.0, N), np.full(N, 2e300)):
+                runs = []
+                for text in (src, src.replace(old, new)):
+                    def stub(p, *args, _pattern=pattern):
+                        p[:] = _pattern
+                        return kernels.OK
+                    ns: dict = {}
+                    exec(compile(text, "orbit", "exec"), {**kernels.__dict__, "step": stub}, ns)
+                    P, Q = np.full((3, N), -1.0), np.full((3, N), -1.0)
+                    st = ns["orbit"](np.ones(N), q0.copy(), 1.0, -1.0, 2.0, 1, 2, 1, kernels.ANCHOR, P, Q)
+                    runs.append((st, P, Q))
+                (s0, P0, Q0), (s1, P1, Q1) = runs
+                assert s0 == s1
+                if s0 == kernels.OK:
+                    assert np.array_equal(P0, P1) and np.array_equal(Q0, Q1)
+    assert s0 == kernels.RANGE     # the last pattern fails the test (the loop did reach it)
+
+
+# --------------------------------------------------------------------------- paths.device
+
+def test_device_inlines_the_helpers_of_other_modules(monkeypatch):
+    # inline._helper takes the functions of *other* modules for the callee's own (mutant inline:154): the rewrite
+    # of python_orbit_with tries to inline condition.sharp_trace_kappa and refuses it
+    from symbt.numeric.core import inline
+
+    monkeypatch.setattr(inline, "_helper", _planted(inline._helper, "v.__module__ == fn.__module__",
+                                                    "v.__module__ != fn.__module__"))
+    assert status("paths.device.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.enclosures
+
+def test_enclosures_states_counted_from_zero(monkeypatch):
+    # common_invariants' `enumerate(H[1:], 1)` -> `enumerate(H[1:], 0)` (mutant lohner_checks:236): the message
+    # names the wrong states, or no earlier state is found (StopIteration)
+    pytest.importorskip("flint")
+    from symbt.numeric.multiprec import lohner_checks
+
+    monkeypatch.setattr(lohner_checks, "common_invariants", _planted(lohner_checks.common_invariants,
+                                                                     "enumerate(H[1:], 1)", "enumerate(H[1:], 0)"))
+    assert status("paths.enclosures.n3") == "failed"

@@ -46,6 +46,8 @@ CLAIM_MODULES = (
     "shipped_condition",
     "shipped_existence",
     "shipped_dask",
+    "shipped_members",
+    "shipped_core",
     "shipped_field",
     "checker",
     "checker_mutation",
