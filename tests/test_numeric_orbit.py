@@ -28,8 +28,8 @@ after a few steps is a sum of a few amplified roundings: which route is lower
 at step 6 is a matter of the realisation.  ``test_kernel_error_statistics``
 therefore also compares the two routes over 40 random states (10 steps each)
 instead of relying on one realisation.  Bounds asserted for both routes:
-1e-10 overall, 3e-12 up to step 500, 1e-15 for the first 10 steps (one-step
-accuracy does not degrade along the orbit).  (Without carrying the centre of
+1e-10 overall, 3e-12 up to step 500, one ulp per step (i eps) for the first 10
+steps (one-step accuracy does not degrade along the orbit).  (Without carrying the centre of
 mass separately the final error is ~2e-10: the rounding of q at |q| ~ 500
 then feeds back into the relative coordinates.  The kernel's multiplicative
 update of ``r`` between re-anchorings (every 16 steps) and its double-double
@@ -44,6 +44,7 @@ from symbt.benchmarks.numeric_cases import state_error
 from symbt.numeric import bt_orbit, invariants
 from symbt.reference.literal import reference_step as literal_step
 
+EPS = float(np.finfo(np.float64).eps)
 P0 = [-20.0, 10.0, 1.0]
 Q0 = [1.0, 0.0, 0.9]
 
@@ -62,7 +63,9 @@ def test_orbit_3500_against_50_digits():
     for k, (P, Q) in routes.items():
         assert P.shape == Q.shape == (n + 1, 3)
         e = errs[k]
-        assert max(x for i, x in e if i <= 10) <= 1e-15, k
+        # one ulp (eps, normwise) per step over the first steps: the one-step error is below half an ulp of the
+        # state's scale (BENCHMARKS, per-step accuracy: at most 0.49) plus the output's rounding, half an ulp
+        assert all(x <= i * EPS for i, x in e if i <= 10), (k, [(i, x / EPS) for i, x in e if i <= 10])
         assert max(x for i, x in e if i <= 500) <= 3e-12, k
         assert max(x for _, x in e) <= 1e-10, k
         # invariants along the float orbit (relative to the centred state)

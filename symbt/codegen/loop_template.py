@@ -330,7 +330,7 @@ def _traces(_X, P, R, lam0, mu, guards, kappa=None):
         if kappa is not None and _X.conditioned:
             k = _trace_kappa(_X, av, R, M, t, disc, two)
             # +-1; a NaN estimate refuses too: the rescaled trace can underflow to 0 (2**-e below the float64
-            # range, |lambda| ~ 1e103 at N = 6: tr = 0, t**2 - 4 = 0, kappa = 0/0), and the trace guard after
+            # range, |lambda| ~ 10**103 at N = 6: tr = 0, t**2 - 4 = 0, kappa = 0/0), and the trace guard after
             # it would read "no real map" where the map exists (the deep fuzz, docs/fuzz.md)
             _X.guard(guards, "illcond", f"tr L(lam{i + 1})", np.where(k <= _KAPPA_MAX, 1, -1))
             kappa.append(k * _cancellation(lam, P, av))

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 4b536d8c683a4ea799271bad6668b34c6c58d33ed19ad43002b1924a06b694c7
-# symbt-codegen-content-sha256: 23a28a3d54de3a183f270d7994ec974a4ab0d24c4d07e72c9a2ac3cbfa7caa14
+# symbt-codegen-derivation-sha256: a3d65a576070d4e933864f6ae52d9c6d70fdc4cf2cb2daa8fbd95a318f95faa2
+# symbt-codegen-content-sha256: 580ca748d9ae79e5e5074d429aeb467475505926e9c30c62f876b13bd399af9c
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 4b536d8c683a4ea799271bad6668b34c6c58d33ed19ad43002b1924a06b694c7
-# symbt-codegen-content-sha256: f4e31ec7e165df8e3831e3991f458bed1ebbc14bb22becd18365a39afc1ef187
+# symbt-codegen-derivation-sha256: a3d65a576070d4e933864f6ae52d9c6d70fdc4cf2cb2daa8fbd95a318f95faa2
+# symbt-codegen-content-sha256: 2859581de497dc493715a9731e1d344078444aa5adc80ff4945ceea0d9ad990c
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

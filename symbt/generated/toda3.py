@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 4b536d8c683a4ea799271bad6668b34c6c58d33ed19ad43002b1924a06b694c7
-# symbt-codegen-content-sha256: 50bd11b8ddd1043f92ae1bf3e8450aa9fc5aafb45d913b5f777bf7242a1a84d8
+# symbt-codegen-derivation-sha256: a3d65a576070d4e933864f6ae52d9c6d70fdc4cf2cb2daa8fbd95a318f95faa2
+# symbt-codegen-content-sha256: 1f3034a065174bd362b0f66bd23575599acbad24bb9bf7fe156d661428ee4c03
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -435,7 +435,7 @@ def orbit(p0: F64, q0: F64, lam1: float, lam2: float, two_mu: float, branch: int
 step = python_kernels()["step"]
 
 
-class _Row(list):  # type: ignore[type-arg]
+class _Row(list[float]):
     """A state array of :func:`python_orbit`: Python floats, with the ``shape`` and ``copy`` the step reads."""
     __slots__ = ()
 
