@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 import pytest
+from planting import planted as _planted
 
 from symbt.claims import REGISTRY, load_all
 from symbt.numeric.float64 import kernels, kernels_block
@@ -384,19 +385,6 @@ def test_ill_member_escalated_one_site_off(monkeypatch):
 
 
 # --------------------------------------------------------------------------- paths.sharp_kappa
-
-def _planted(func, old: str, new: str):
-    """``func`` rebuilt from its source with the one edit ``old -> new`` (a mutant of `symbt mutate --source`'s
-    kind), in its module's namespace."""
-    import inspect
-    import textwrap
-
-    src = textwrap.dedent(inspect.getsource(func))
-    assert src.count(old) == 1
-    ns: dict = {}
-    exec(compile(src.replace(old, new), inspect.getsourcefile(func), "exec"), func.__globals__, ns)
-    return ns[func.__name__]
-
 
 def test_sharp_kappa_renormalised_with_the_wrong_sign(monkeypatch):
     # the prefix's B scaled by 2**+f instead of 2**-f at a renormalisation (mutant condition:106)

@@ -7,6 +7,7 @@ fail; unpatched, the claims verify.
 from __future__ import annotations
 
 import mpmath as mp
+from planting import planted as _planted
 
 from symbt.claims import library_samples
 from symbt.reference import elliptic, samples
@@ -167,19 +168,6 @@ def test_moments_boundary_not_refused(monkeypatch):
 
 
 # --------------------------------------------------------------------------- library.proposal
-
-def _planted(func, old: str, new: str):
-    """``func`` rebuilt from its source with the one edit ``old -> new`` (a mutant of `symbt mutate --source`'s
-    kind), in its module's namespace."""
-    import inspect
-    import textwrap
-
-    src = textwrap.dedent(inspect.getsource(func))
-    assert src.count(old) == 1
-    ns: dict = {}
-    exec(compile(src.replace(old, new), inspect.getsourcefile(func), "exec"), func.__globals__, ns)
-    return ns[func.__name__]
-
 
 def test_proposal_unpatched_verified():
     from symbt.claims import library_sampler
