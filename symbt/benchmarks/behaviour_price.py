@@ -20,9 +20,12 @@ import argparse
 import sys
 import time
 from collections.abc import Callable
+from functools import partial
 from typing import Any
 
 import numpy as np
+
+from .timing import interleaved_best
 
 __all__ = ["variants", "measure", "main"]
 
@@ -67,16 +70,15 @@ def measure(backend: str, rounds: int = 5) -> dict[str, dict[str, float]]:
     for c in cases(quick=True):
         every = max(1, c.n // 100)
         args = (np.array(c.p), np.array(c.q), c.lam0 + c.mu, c.lam0 - c.mu, 2 * c.mu, c.branch, c.n, every, K.ANCHOR)
-        best = out.setdefault(c.name, {})
-        for _ in range(rounds):
-            for name, fn in fns.items():
-                P = np.empty((K.orbit_rows(c.n, every), len(c.p)))
-                t = time.process_time()
-                for _ in range(reps):
-                    status = fn(*args, P, P.copy())
-                best[name] = min(best.get(name, np.inf), (time.process_time() - t) / reps)
-                if status != 0:
-                    raise RuntimeError(f"{c.name} {name}: status {status}")
+        rows = (K.orbit_rows(c.n, every), len(c.p))
+
+        def run(fn: Callable[..., int], name: str, case: str = c.name) -> None:
+            status = fn(*args, np.empty(rows), np.empty(rows))
+            if status != 0:
+                raise RuntimeError(f"{case} {name}: status {status}")
+
+        out[c.name] = interleaved_best({name: partial(run, fn, name) for name, fn in fns.items()}, rounds, reps,
+                                       clock=time.process_time)
     return out
 
 

@@ -12,10 +12,12 @@ True
 from __future__ import annotations
 
 import argparse
-import time
+from functools import partial
 from typing import Any
 
 import numpy as np
+
+from .timing import interleaved_best
 
 __all__ = ["k_rounded", "compare", "step_accuracy", "main"]
 
@@ -40,16 +42,15 @@ def compare(N: int, n: int, repeat: int = 5) -> dict[str, Any]:
         lam0, mu = 5.1, 1.3
     fns = {"after": kernel("orbit", "numba")[0], "before": orbit_with({"root_slope": k_rounded})}
     out: dict[str, Any] = {}
-    best = {k: np.inf for k in fns}
-    for _ in range(repeat):
-        for name, fn in fns.items():
-            P, Q = np.empty((orbit_rows(n, n), N)), np.empty((orbit_rows(n, n), N))
-            t0 = time.perf_counter()
-            st = fn(p, q, lam0 + mu, lam0 - mu, 2.0 * mu, 1, n, n, ANCHOR, P, Q)
-            best[name] = min(best[name], (time.perf_counter() - t0) / n)
-            if st != 0:
-                raise RuntimeError("kernel status %d" % st)
-            out[name + "_state"] = (P[-1].copy(), Q[-1].copy())
+
+    def run(name: str) -> None:
+        P, Q = np.empty((orbit_rows(n, n), N)), np.empty((orbit_rows(n, n), N))
+        st = fns[name](p, q, lam0 + mu, lam0 - mu, 2.0 * mu, 1, n, n, ANCHOR, P, Q)
+        if st != 0:
+            raise RuntimeError("kernel status %d" % st)
+        out[name + "_state"] = (P[-1].copy(), Q[-1].copy())
+
+    best = {k: t / n for k, t in interleaved_best({k: partial(run, k) for k in fns}, repeat).items()}
     out.update(N=N, n=n, lam0=lam0, mu=mu, before=best["before"], after=best["after"],
                ratio=best["after"] / best["before"])
     return out

@@ -61,6 +61,24 @@ def best_time(fn: Callable[[], Any], min_time: float, repeats: int = 5) -> float
     return best
 
 
+def interleaved_best(fns: dict[str, Callable[[], Any]], rounds: int, reps: int = 1,
+                     clock: Callable[[], float] = time.perf_counter) -> dict[str, float]:
+    """Best time per call of each of ``fns`` over ``rounds`` rounds, one batch of ``reps`` calls of every
+    function per round, in turn (a shared machine's load then falls on all of them alike).
+
+    >>> sorted(interleaved_best({"a": lambda: None, "b": lambda: None}, rounds=2))
+    ['a', 'b']
+    """
+    best = {name: float("inf") for name in fns}
+    for _ in range(rounds):
+        for name, fn in fns.items():
+            t0 = clock()
+            for _ in range(reps):
+                fn()
+            best[name] = min(best[name], (clock() - t0) / reps)
+    return best
+
+
 def _version(module: str) -> str | None:
     try:
         mod = __import__(module)
