@@ -20,16 +20,22 @@ True
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .context import FLOAT, Exponent
+from .monodromy import _product, monodromy
 from .spectral_sum import lam_add
 
 if TYPE_CHECKING:
     import numpy.typing as npt
 
-__all__ = ["sharp_trace_kappa", "SHARP_UNIT"]
+    F64 = npt.NDArray[np.float64]
+    I64 = npt.NDArray[np.int64]
+
+__all__ = ["sharp_trace_kappa", "SHARP_UNIT", "sharp_trace_kappa_rows", "abs_trace_rows", "FEW_ROWS"]
 
 #: the relative allowance per site for the rounding of the sum of :func:`sharp_trace_kappa` and products
 #: (``16 u``, ``u = 2**-53``)``
@@ -144,3 +150,201 @@ def sharp_trace_kappa(p: npt.NDArray[np.float64], r: npt.NDArray[np.float64], la
     if disc == 0.0 or kd == 0.0:        # t = +-2, or some a_j = 0 with lam, p_j not both 0: not decided
         return math.inf
     return float(Ts * (abs(t) + two) / abs(disc) * (kn / kd))     # Ts / ||t| - 2|, as the cheap tier
+
+
+# ----------------------------------------------------------------------------------------------------------
+# The same estimates for many rows at once (the numpy route): bit-identical to the scalar forms, row by row.
+
+#: up to this many rows :func:`sharp_trace_kappa_rows` and :func:`abs_trace_rows` run the scalar form on
+#: Python floats, one row after the other (a numpy operation on a few elements costs ~20 Python float
+#: operations); from here on, numpy operations over the rows, one site after the other
+FEW_ROWS = 16
+
+
+class _Sites(list[float]):
+    """A list of Python floats with the ``shape`` the scalar :func:`sharp_trace_kappa` reads."""
+
+    @property
+    def shape(self) -> tuple[int]:
+        return (len(self),)
+
+
+class _Lists:
+    """What :func:`sharp_trace_kappa` takes from numpy (``empty``, ``int64``), on Python lists: the scalar
+    form then computes on Python floats (a numpy scalar's arithmetic costs ~3x a float's), the same bits."""
+
+    int64 = int
+
+    @staticmethod
+    def empty(n: int, dtype: type = float) -> list[float]:
+        return [0.0] * n
+
+
+def _clone_on_floats() -> Callable[..., float]:
+    import types
+
+    fn = sharp_trace_kappa
+    return types.FunctionType(fn.__code__, {**fn.__globals__, "np": _Lists}, fn.__name__)
+
+
+_SHARP_ON_FLOATS = _clone_on_floats()
+
+
+def _pymax(*xs: F64) -> F64:
+    """Python's ``max(x1, x2, ...)`` elementwise: the first operand unless a later one compares greater
+    (so a NaN operand is kept only in first place, as the builtin does)."""
+    m = xs[0]
+    for x in xs[1:]:
+        m = np.where(x > m, x, m)
+    return m
+
+
+def _exponent(m: F64) -> I64:
+    """``math.frexp(m)[1]`` elementwise (0 for 0, inf and NaN, as ``math.frexp``)."""
+    return np.where(np.isfinite(m) & (m != 0.0), np.frexp(m)[1], 0).astype(np.int64)
+
+
+def _rescaled(xs: list[F64], e: I64) -> tuple[list[F64], I64]:
+    """:func:`sharp_trace_kappa`'s exact power-of-two rescaling of ``xs`` where their largest magnitude
+    (Python's ``max``) leaves ``[2**-200, 2**200]``, row by row."""
+    m = _pymax(*[np.abs(x) for x in xs])
+    hit = ((m > _FAR) | (m < _NEAR)) & (m > 0.0) & (m < math.inf)
+    if not hit.any():
+        return xs, e
+    f = np.where(hit, _exponent(m), 0)
+    return [np.ldexp(x, -f) for x in xs], e + f
+
+
+def sharp_trace_kappa_rows(p: F64, r: F64, lam: F64, lo: F64) -> F64:
+    r""":func:`sharp_trace_kappa` of every row of ``p, r`` (shape ``(R, N)``) at ``lam, lo`` (shape ``(R,)``),
+    each row bit for bit the scalar call's result (and its ``OverflowError``, where ``math.ldexp`` raises).
+
+    Up to :data:`FEW_ROWS` rows: the scalar source itself on Python floats, row by row.  More rows: the
+    same operations in the same order as numpy operations over the rows -- the prefix and suffix products
+    one site after the other (with the scalar's rescaling decisions per row), the terms
+    ``tr(|S_{j+1}| |m_j| |P_{j-1}|)`` over all sites at once, summed in the scalar's order (from the last
+    site down).  Rows where a ``math.ldexp`` of the scalar would overflow are given to the scalar form.
+
+    >>> p = np.array([[-20.0, 10.0, 1.0]] * 20)
+    >>> r = np.tile(np.exp(np.diff([1.0, 0.0, 0.9, 1.0])), (20, 1))
+    >>> lam, lo = np.full(20, 15.0), np.zeros(20)
+    >>> bool(np.all(sharp_trace_kappa_rows(p, r, lam, lo) == sharp_trace_kappa(p[0], r[0], 15.0, 0.0)))
+    True
+    """
+    R, N = p.shape
+    if R <= FEW_ROWS:
+        return np.array([_SHARP_ON_FLOATS(_Sites(p[k].tolist()), _Sites(r[k].tolist()), float(lam[k]),
+                                          float(lo[k])) for k in range(R)], dtype=float)
+    with np.errstate(all="ignore"):
+        return _sharp_over_rows(p, r, lam, lo)
+
+
+def _sharp_over_rows(p: F64, r: F64, lam: F64, lo: F64) -> F64:
+    R, N = p.shape
+    a = lam_add(lam[:, None], lo[:, None], p)                   # (R, N): every a_j, as the scalar forms them
+    aa = np.abs(a)
+    pa, pb = np.empty((R, N)), np.empty((R, N))
+    pe = np.zeros((R, N), np.int64)
+    A, B, C, D = a[:, 0], np.full(R, -1.0), r[:, 0], np.zeros(R)
+    e = np.zeros(R, np.int64)
+    kn, kd = np.abs(lam) + np.abs(p[:, 0]), aa[:, 0]
+    pa[:, 0], pb[:, 0] = A, B
+    for j in range(1, N):
+        cn = np.abs(lam) + np.abs(p[:, j])
+        up = cn * kd > kn * aa[:, j]
+        kn, kd = np.where(up, cn, kn), np.where(up, aa[:, j], kd)
+        aj, rj = a[:, j], r[:, j]
+        A, B, C, D = aj * A - C, aj * B - D, rj * A, rj * B
+        (A, B, C, D), e = _rescaled([A, B, C, D], e)
+        pa[:, j], pb[:, j], pe[:, j] = A, B, e
+    t = A + D
+    two = np.ldexp(2.0, -e)
+    disc = (t - two) * (t + two)
+    # the prefix P_{j-1} of every site j (identity at j = 0; m_1 at j = 1, second row (r_1, 0))
+    P11, P12 = np.ones((R, N)), np.zeros((R, N))
+    P21, P22 = np.zeros((R, N)), np.ones((R, N))
+    ep = np.zeros((R, N), np.int64)
+    if N > 1:
+        P11[:, 1:], P12[:, 1:], ep[:, 1:] = np.abs(pa[:, :-1]), np.abs(pb[:, :-1]), pe[:, :-1]
+        P21[:, 1], P22[:, 1] = r[:, 0], 0.0           # math.ldexp(r[0], -pe[0]) with pe[0] = 0
+    fr = np.ldexp(r[:, 1:N - 1], pe[:, :N - 2] - pe[:, 1:N - 1]) if N > 2 else np.zeros((R, 0))
+    P21[:, 2:], P22[:, 2:] = fr * np.abs(pa[:, :N - 2]), fr * np.abs(pb[:, :N - 2])
+    hazard = np.isinf(two) | np.isinf(fr).any(axis=1)       # where math.ldexp raises in the scalar form
+    # the suffix S_{j+1} of every site j, from the last site down
+    S = [np.ones(R), np.zeros(R), np.zeros(R), np.ones(R)]
+    es = np.zeros(R, np.int64)
+    Sj = np.empty((4, R, N))
+    esj = np.empty((R, N), np.int64)
+    for j in range(N - 1, -1, -1):
+        Sj[:, :, j], esj[:, j] = S, es
+        sa, rj = a[:, j], r[:, j]
+        S11, S12, S21, S22 = S
+        S = [S11 * sa + S12 * rj, -S11, S21 * sa + S22 * rj, -S21]
+        S, es = _rescaled(S, es)
+    X11, X12 = aa * P11 + P21, aa * P12 + P22
+    X21, X22 = r * P11, r * P12
+    term = np.abs(Sj[0]) * X11 + np.abs(Sj[1]) * X21 + np.abs(Sj[2]) * X12 + np.abs(Sj[3]) * X22
+    sh = esj + ep - e[:, None]
+    over = ((term > 0.0) & (_exponent(term) + sh > 1024)).any(axis=1)     # the scalar returns inf there
+    parts = np.ldexp(term, np.where(term > 0.0, np.minimum(sh, 1100), 0))
+    total = np.add.accumulate(np.concatenate([np.zeros((R, 1)), parts[:, ::-1]], axis=1), axis=1)[:, -1]
+    Ts = total / N * (1.0 + SHARP_UNIT * N)
+    out = Ts * (np.abs(t) + two) / np.abs(disc) * (kn / kd)
+    out = np.where(over | (disc == 0.0) | (kd == 0.0), math.inf, out)
+    for k in np.flatnonzero(hazard):
+        out[k] = _SHARP_ON_FLOATS(_Sites(p[k].tolist()), _Sites(r[k].tolist()), float(lam[k]), float(lo[k]))
+    return out
+
+
+def _range_stats(col: list[float]) -> float:
+    """``float(np.maximum(x.max(), -x.min()))`` of the column ``col`` (NaN if any element is NaN)."""
+    m = 0.0
+    for x in col:
+        if x != x:
+            return math.nan
+        m = max(m, abs(x))
+    return m
+
+
+def abs_trace_rows(a: Sequence[F64], r: Sequence[F64]) -> tuple[F64, Exponent]:
+    """``(A + D, e)`` of :func:`~symbt.numeric.core.monodromy.monodromy` ``(FLOAT, [|a_j|], [-r_j])`` -- the
+    product of the entrywise absolute values of the ``m_j``, the cheap tier's scale ``T`` -- bit for bit.
+
+    Up to :data:`FEW_ROWS` rows (site lists of equal 1-d arrays): the product on Python floats, row by row,
+    and :meth:`~symbt.numeric.core.context.FloatContext.out_of_range`'s decision taken on the same numbers
+    (the rows it sends to the renormalised product go there); more rows: the monodromy itself.
+
+    >>> a, r = [np.array([2.0, -3.0]), np.array([3.0, 0.5])], [np.array([1.0, 2.0])] * 2
+    >>> T, e = abs_trace_rows(a, r)
+    >>> T.tolist(), e                               # |a_1| |a_2| + r_1 + r_2
+    ([8.0, 5.5], 0)
+    """
+    N = len(a)
+    try:
+        am, rm = np.abs(np.array(a, dtype=float)), -np.array(r, dtype=float)
+    except ValueError:                  # sites of different shapes: the general form
+        am = rm = np.empty(0)
+    if am.ndim != 2 or am.shape != rm.shape or am.shape[1] > FEW_ROWS or am.shape[1] == 0:
+        Aa, _, _, Da, ea = monodromy(FLOAT, [np.abs(x) for x in a], [-x for x in r])
+        return np.asarray(Aa + Da), ea
+    ents = []
+    for ak, rk in zip(am.T.tolist(), rm.T.tolist()):
+        A, B, C, D = ak[0], -1.0, rk[0], 0.0
+        for j in range(1, N):
+            aj, rj = ak[j], rk[j]
+            A, B, C, D = aj * A - C, aj * B - D, rj * A, rj * B
+        ents.append((A, B, C, D) if N > 1 else (A, C))     # B, D stay scalars for N = 1: not tested
+    big = max(_range_stats([x[i] for x in ents]) for i in range(len(ents[0])))
+    T = np.array([x[0] + x[-1] if N > 1 else x[0] + 0.0 for x in ents])
+    if big < 2.0 ** 500 and math.isfinite(big):
+        return T, 0
+    # out_of_range per row: a non-finite entry, or the largest magnitude outside [2**-500, 2**500]
+    bad = np.array([not all(math.isfinite(v) for v in x) or not 2.0 ** -500 <= max(abs(v) for v in x) <= 2.0 ** 500
+                    for x in ents])
+    if not bad.any():
+        return T, 0
+    A2, _, _, D2, e2 = _product(FLOAT, list(am[:, bad]), list(rm[:, bad]), renorm=True)
+    T[bad] = A2 + D2
+    e = np.zeros(T.shape, np.int64)
+    e[bad] = e2
+    return T, e
