@@ -25,8 +25,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .context import FLOAT, Exponent
-from .monodromy import _product, monodromy
+from .context import FLOAT, Exponent, FloatValue
+from .monodromy import monodromy
 from .spectral_sum import lam_add
 
 if TYPE_CHECKING:
@@ -306,7 +306,7 @@ def _range_stats(col: list[float]) -> float:
     return m
 
 
-def abs_trace_rows(a: Sequence[F64], r: Sequence[F64]) -> tuple[F64, Exponent]:
+def abs_trace_rows(a: Sequence[FloatValue], r: Sequence[FloatValue]) -> tuple[F64, Exponent]:
     """``(A + D, e)`` of :func:`~symbt.numeric.core.monodromy.monodromy` ``(FLOAT, [|a_j|], [-r_j])`` -- the
     product of the entrywise absolute values of the ``m_j``, the cheap tier's scale ``T`` -- bit for bit.
 
@@ -343,8 +343,27 @@ def abs_trace_rows(a: Sequence[F64], r: Sequence[F64]) -> tuple[F64, Exponent]:
                     for x in ents])
     if not bad.any():
         return T, 0
-    A2, _, _, D2, e2 = _product(FLOAT, list(am[:, bad]), list(rm[:, bad]), renorm=True)
-    T[bad] = A2 + D2
     e = np.zeros(T.shape, np.int64)
-    e[bad] = e2
+    for k in np.flatnonzero(bad):       # the renormalised product (FloatContext.renormalize after every site)
+        A, B, C, D, ek = _renormalised_on_floats(am[:, k].tolist(), rm[:, k].tolist())
+        T[k], e[k] = A + D, ek
     return T, e
+
+
+def _nanmax(x: float, y: float) -> float:
+    """``np.maximum`` of two floats (NaN if either is NaN)."""
+    return x if x != x or x >= y else y
+
+
+def _renormalised_on_floats(a: list[float], r: list[float]) -> tuple[float, float, float, float, int]:
+    """:func:`~symbt.numeric.core.monodromy.monodromy`'s renormalised product of one row on Python floats:
+    after every site the entries are divided by the power of two of their largest magnitude (exact), as
+    :meth:`~symbt.numeric.core.context.FloatContext.renormalize` does."""
+    A, B, C, D, e = a[0], -1.0, r[0], 0.0, 0
+    for j in range(len(a)):
+        if j:
+            A, B, C, D = a[j] * A - C, a[j] * B - D, r[j] * A, r[j] * B
+        mx = _nanmax(_nanmax(abs(A), abs(B)), _nanmax(abs(C), abs(D)))
+        k = math.frexp(mx)[1] if mx > 0.0 and mx < math.inf else 0      # np.frexp(inf) has exponent 0
+        A, B, C, D, e = math.ldexp(A, -k), math.ldexp(B, -k), math.ldexp(C, -k), math.ldexp(D, -k), e + k
+    return A, B, C, D, e

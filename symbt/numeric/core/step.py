@@ -107,13 +107,13 @@ True
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import TYPE_CHECKING, TypedDict
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any, TypedDict
 
 import mpmath
 import numpy as np
 
-from .condition import sharp_trace_kappa
+from .condition import abs_trace_rows, sharp_trace_kappa_rows
 from .context import FLOAT, IV, Cond, Context, Exponent, FloatValue, MPValue, Value
 from .errors import NoRealMapError, NumericRangeError
 from .inputs import to_output
@@ -219,7 +219,7 @@ def eigen_slopes(ctx: Context, a: Sequence[Value], r: Sequence[Value], s: int, n
         lam, P, lo = spec
         data.inputs = (P, r, lam, lo)
         with np.errstate(all="ignore"):
-            ka = np.maximum.reduce([(np.abs(lam) + np.abs(P[j])) / np.abs(a[j]) for j in range(len(a))])
+            ka = np.maximum.reduce(_over_sites(lambda Pm, am: (np.abs(lam) + np.abs(Pm)) / np.abs(am), P, a))
         data.kappa = trace_kappa(a, r, t, disc, e, ka, two)
     dl = A - D
     sg, plus = ctx.align(g, dl)           # k = dl + sign(dl) g has no cancellation
@@ -264,8 +264,21 @@ def trace_kappa(a: Sequence[FloatValue], r: Sequence[FloatValue], t: FloatValue,
     4.0
     """
     with np.errstate(all="ignore"):
-        Aa, _, _, Da, ea = monodromy(FLOAT, [np.abs(x) for x in a], [-x for x in r])
-        return np.ldexp(Aa + Da, ea - e) * ((np.abs(t) + np.abs(two)) / np.abs(disc)) * ka
+        Ta, ea = abs_trace_rows(a, r)       # the monodromy of |a_j|, -r_j (floats for a few rows)
+        return np.ldexp(Ta, ea - e) * ((np.abs(t) + np.abs(two)) / np.abs(disc)) * ka
+
+def _over_sites(fn: Callable[..., Any], *lists: Sequence[FloatValue]) -> Any:
+    """``fn`` of the site lists stacked to arrays ``(N,) + row shape`` (the elementwise operations of a loop
+    over the sites, in fewer numpy calls); sites of different shapes are broadcast first."""
+    try:
+        arrays = [np.array(x, dtype=float) for x in lists]
+        if len({a.shape for a in arrays}) == 1:
+            return fn(*arrays)
+    except ValueError:
+        pass
+    shape = np.broadcast_shapes(*(np.shape(v) for x in lists for v in x))
+    return fn(*(np.array([np.broadcast_to(v, shape) for v in x], dtype=float) for x in lists))
+
 
 def sharpened(S: SlopeData, rows: npt.NDArray[np.bool_]) -> npt.NDArray[np.float64]:
     """:func:`~symbt.numeric.core.condition.sharp_trace_kappa` of the float64 rows ``rows`` of
@@ -284,11 +297,13 @@ def sharpened(S: SlopeData, rows: npt.NDArray[np.bool_]) -> npt.NDArray[np.float
     shape = np.shape(rows)
     out = np.full(shape, np.inf)
     with np.errstate(all="ignore"):
-        pv = np.stack([np.broadcast_to(x, shape) for x in P], axis=-1).astype(float)
-        rv = np.stack([np.broadcast_to(x, shape) for x in r], axis=-1).astype(float)
+        pv, rv = (np.moveaxis(x, 0, -1) for x in _over_sites(lambda *x: x, P, r))    # (rows..., N)
+        if pv.shape[:-1] != shape or rv.shape[:-1] != shape:
+            pv = np.stack([np.broadcast_to(x, shape) for x in P], axis=-1).astype(float)
+            rv = np.stack([np.broadcast_to(x, shape) for x in r], axis=-1).astype(float)
         lv, ov = np.broadcast_to(lam, shape), np.broadcast_to(lo, shape)
-        for k in zip(*np.nonzero(rows)):
-            out[k] = sharp_trace_kappa(pv[k], rv[k], float(lv[k]), float(ov[k]))
+        k = np.nonzero(rows)            # every row at once, each bit for bit its scalar sharp_trace_kappa
+        out[k] = sharp_trace_kappa_rows(pv[k], rv[k], lv[k].astype(float), ov[k].astype(float))
     return out
 
 
@@ -312,24 +327,28 @@ def float_status(aux: StepAux, Pn: Sequence[FloatValue], Qn: Sequence[FloatValue
     with np.errstate(all="ignore"):
         t1, t2 = S1.trace_ok > 0, S2.trace_ok > 0
         opp = (S1.t < 0) != (S2.t < 0)
-        xr, u, w = aux["xr"], aux["u"], aux["w"]
+        # the sites' factors at once (arrays over sites and rows; the same operations per element)
+        us, xs, rhs = _over_sites(lambda U, W, X: ((np.abs(U) + np.abs(W), np.abs(X + 1) + np.abs(X)),
+                                                   X + 1 > 0, KAPPA_MAX * np.abs(U - W) * np.abs(X + 1)),
+                                  aux["u"], aux["w"], aux["xr"])
 
         def ill(k1: FloatValue, k2: FloatValue) -> tuple[npt.NDArray[np.bool_], npt.NDArray[np.bool_]]:
             kt = np.maximum(k1, k2)
-            return ~(k1 <= KAPPA_MAX) | ~(k2 <= KAPPA_MAX), np.logical_or.reduce([
-                ~(kt * (np.abs(u[j]) + np.abs(w[j])) * (np.abs(x + 1) + np.abs(x))
-                  <= KAPPA_MAX * np.abs(u[j] - w[j]) * np.abs(x + 1)) for j, x in enumerate(xr)])
+            return ~(k1 <= KAPPA_MAX) | ~(k2 <= KAPPA_MAX), np.logical_or.reduce(~(kt * us[0] * us[1] <= rhs))
 
         ill_t, ill_p = ill(k1, k2)
         rows = np.broadcast_to(ill_t | ill_p, np.shape(k1))
         if np.any(rows):        # the second tier where the cheap estimate escalates (as the kernels do)
             k1, k2 = np.fmin(k1, sharpened(S1, rows)), np.fmin(k2, sharpened(S2, rows))
             ill_t, ill_p = ill(k1, k2)
-        pos = np.logical_and.reduce([x + 1 > 0 for x in xr])
+        pos = np.logical_and.reduce(xs)
         fin = np.isfinite(np.add.reduce(Pn) + np.add.reduce(Qn))
-    conds = [np.broadcast_to(c, np.shape(fin)) for c in (ill_t, ~t1, ~t2, opp, ill_p, ~pos, ~fin)]
-    codes = [ILLCOND, TRACE1, TRACE2, POSITIVITY, ILLCOND, POSITIVITY, RANGE]
-    return np.select(conds, codes, OK).astype(np.int64)
+    # the first condition that holds gives the code (np.select's order, set here from the last one back)
+    out = np.full(np.shape(fin), OK, np.int64)
+    for c, code in zip((~fin, ~pos, ill_p, opp, ~t2, ~t1, ill_t), (RANGE, POSITIVITY, ILLCOND, POSITIVITY, TRACE2,
+                                                                   TRACE1, ILLCOND)):
+        out = np.where(c, code, out)
+    return out.astype(np.int64)
 
 
 def _opposite(t1: Value, t2: Value) -> Cond:
