@@ -29,7 +29,7 @@ QUICK = {c.name: c for c in cases(quick=True)}
 
 # --------------------------------------------------------------------------- the oracle: the forms before
 
-def old_trace_kappa(a, r, t, disc, e, ka=1.0, two=2.0):
+def old_trace_kappa(a, r, t, disc, e, ka=1.0, two=2.0, absolute=None):
     with np.errstate(all="ignore"):
         Aa, _, _, Da, ea = monodromy(FLOAT, [np.abs(x) for x in a], [-x for x in r])
         return np.ldexp(Aa + Da, ea - e) * ((np.abs(t) + np.abs(two)) / np.abs(disc)) * ka
@@ -85,6 +85,7 @@ def old_over_sites(fn, *lists):
 
 def use_oracle(monkeypatch):
     monkeypatch.setattr(step_module, "trace_kappa", old_trace_kappa)
+    monkeypatch.setattr(step_module, "monodromy_and_abs", lambda a, r: (monodromy(FLOAT, a, r), None))
     monkeypatch.setattr(step_module, "_over_sites", old_over_sites)
     for mod in (step_module, rows_module, orbit_module):
         monkeypatch.setattr(mod, "float_status", old_float_status)
@@ -272,3 +273,36 @@ def test_abs_trace_rows_equals_the_monodromy_of_the_absolute_values():
         assert np.broadcast_to(e, (R,)).tolist() == np.broadcast_to(ea, (R,)).tolist()
         renormalised += int(np.any(np.asarray(ea) != 0))
     assert renormalised > 10
+
+
+def test_one_sweep_of_both_products_equals_the_two_products():
+    from symbt.numeric.core.condition import monodromy_and_abs
+
+    rng = np.random.default_rng(2024)
+    seen = {"main renormalised": 0, "abs renormalised": 0, "abs only": 0}
+    for _ in range(60):
+        N, R = int(rng.choice([2, 3, 64, 300, 600])), int(rng.choice([FEW_ROWS + 1, 40]))
+        p, r, lam, _ = _random_rows(rng, R, N)
+        p[: R // 2] *= 1e-3 * N               # some rows near the spectrum, some far from it
+        if N == 600:                          # inside a band: |M| bounded, the product of the |m_j| ~ 2.35**N
+            p[::3], r[::3], lam[::3] = 0.0, 1.0, 1.9
+        a, rr = [lam + p[:, j] for j in range(N)], [r[:, j] for j in range(N)]
+        with np.errstate(all="ignore"):
+            main, (T, e) = monodromy_and_abs(a, rr)
+            ref = monodromy(FLOAT, a, rr)
+            Aa, _, _, Da, ea = monodromy(FLOAT, [np.abs(x) for x in a], [-x for x in rr])
+        for x, y in zip(main, ref):
+            assert _same_bits(np.broadcast_to(x, (R,)), np.broadcast_to(y, (R,)))
+        assert _same_bits(T, Aa + Da) and np.broadcast_to(e, (R,)).tolist() == np.broadcast_to(ea, (R,)).tolist()
+        em, eab = np.broadcast_to(ref[4], (R,)) != 0, np.broadcast_to(ea, (R,)) != 0     # per row
+        seen["main renormalised"] += int(em.sum())
+        seen["abs renormalised"] += int(eab.sum())
+        seen["abs only"] += int((eab & ~em).sum())
+    assert min(seen.values()) > 3
+
+
+@pytest.mark.parametrize("N", [8, 128])
+def test_wide_batches_far_from_the_spectrum_are_the_route_before(N, monkeypatch):
+    rng = np.random.default_rng(N)                # the benchmark's bt_step rows: renormalised products
+    p, q = rng.normal(size=(40, N)), 0.5 * rng.normal(size=(40, N))
+    same_run(lambda: bt_step(p, q, 3.0 * N + 20.0, 2.0, backend="numpy"), monkeypatch)

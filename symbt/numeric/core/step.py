@@ -113,7 +113,7 @@ from typing import TYPE_CHECKING, Any, TypedDict
 import mpmath
 import numpy as np
 
-from .condition import abs_trace_rows, sharp_trace_kappa_rows
+from .condition import abs_trace_rows, monodromy_and_abs, sharp_trace_kappa_rows
 from .context import FLOAT, IV, Cond, Context, Exponent, FloatValue, MPValue, Value
 from .errors import NoRealMapError, NumericRangeError
 from .inputs import to_output
@@ -203,7 +203,11 @@ def eigen_slopes(ctx: Context, a: Sequence[Value], r: Sequence[Value], s: int, n
     >>> mpmath.nstr(S.t, 8), [mpmath.nstr(x, 6) for x in S.u], S.forward
     ('-2021.2173', ['-0.0694993', '0.0725672', '-0.0980994'], True)
     """
-    A, B, C, D, e = monodromy(ctx, a, r)
+    absolute = None
+    if ctx is FLOAT and spec is not None:     # the cheap tier's product of the |a_j| in the same sweep
+        (A, B, C, D, e), absolute = monodromy_and_abs(a, r)
+    else:
+        A, B, C, D, e = monodromy(ctx, a, r)
     t = A + D
     two = ctx.ldexp(2.0, -e) if not isinstance(e, int) or e else 2.0
     disc = (t - two) * (t + two)          # tr^2 - 4 without cancellation (scaled)
@@ -220,7 +224,7 @@ def eigen_slopes(ctx: Context, a: Sequence[Value], r: Sequence[Value], s: int, n
         data.inputs = (P, r, lam, lo)
         with np.errstate(all="ignore"):
             ka = np.maximum.reduce(_over_sites(lambda Pm, am: (np.abs(lam) + np.abs(Pm)) / np.abs(am), P, a))
-        data.kappa = trace_kappa(a, r, t, disc, e, ka, two)
+        data.kappa = trace_kappa(a, r, t, disc, e, ka, two, absolute=absolute)
     dl = A - D
     sg, plus = ctx.align(g, dl)           # k = dl + sign(dl) g has no cancellation
     k = dl + sg
@@ -242,7 +246,8 @@ def eigen_slopes(ctx: Context, a: Sequence[Value], r: Sequence[Value], s: int, n
 
 
 def trace_kappa(a: Sequence[FloatValue], r: Sequence[FloatValue], t: FloatValue, disc: FloatValue, e: Exponent,
-                ka: FloatValue | float = 1.0, two: FloatValue | float = 2.0) -> FloatValue:
+                ka: FloatValue | float = 1.0, two: FloatValue | float = 2.0, *,
+                absolute: tuple[FloatValue, Exponent] | None = None) -> FloatValue:
     """float64 condition estimate of the trace decision: ``T (|t| + 2) / |t**2 - 4| = T / ||t| - 2|`` per row
     (the cheap tier).
 
@@ -264,7 +269,8 @@ def trace_kappa(a: Sequence[FloatValue], r: Sequence[FloatValue], t: FloatValue,
     4.0
     """
     with np.errstate(all="ignore"):
-        Ta, ea = abs_trace_rows(a, r)       # the monodromy of |a_j|, -r_j (floats for a few rows)
+        # the monodromy of |a_j|, -r_j (floats for a few rows), unless given (``absolute``: its A + D and e)
+        Ta, ea = abs_trace_rows(a, r) if absolute is None else absolute
         return np.ldexp(Ta, ea - e) * ((np.abs(t) + np.abs(two)) / np.abs(disc)) * ka
 
 def _over_sites(fn: Callable[..., Any], *lists: Sequence[FloatValue]) -> Any:
