@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, TypeVar
 
 import numpy as np
 
@@ -41,6 +41,7 @@ __all__ = ["sharp_trace_kappa", "SHARP_UNIT", "sharp_trace_kappa_rows", "abs_tra
 #: (``16 u``, ``u = 2**-53``)``
 SHARP_UNIT = 16.0 * 2.0 ** -53
 
+_G = TypeVar("_G", bound=np.generic)
 _FAR = 2.0 ** 200
 _NEAR = 2.0 ** -200
 
@@ -411,7 +412,7 @@ def monodromy_and_abs(a: Sequence[FloatValue], r: Sequence[FloatValue]
     return (A, B, C, D, es[0]), (np.asarray(out[1][0] + out[1][3]), es[1])
 
 
-def _merged(full: npt.NDArray[Any], mask: npt.NDArray[np.bool_], part: npt.ArrayLike) -> npt.NDArray[Any]:
+def _merged(full: npt.NDArray[_G], mask: npt.NDArray[np.bool_], part: npt.ArrayLike) -> npt.NDArray[_G]:
     out = np.array(full, copy=True)
     out[mask] = part
     return out

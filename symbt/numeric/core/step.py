@@ -108,7 +108,7 @@ True
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from typing import TYPE_CHECKING, Any, TypedDict
+from typing import TYPE_CHECKING, TypedDict, TypeVar
 
 import mpmath
 import numpy as np
@@ -128,6 +128,7 @@ __all__ = ["step_core", "eigen_slopes", "SlopeData", "StepAux", "mp_step", "BLOC
            "sharpened", "float_status"]
 
 _GUARD_DIGITS = 12
+_T = TypeVar("_T")
 #: accepted values of ``backend`` (float64: auto/numba/python/numpy; mpmath: auto/qd/flint/mpmath)
 
 class SlopeData:
@@ -273,7 +274,7 @@ def trace_kappa(a: Sequence[FloatValue], r: Sequence[FloatValue], t: FloatValue,
         Ta, ea = abs_trace_rows(a, r) if absolute is None else absolute
         return np.ldexp(Ta, ea - e) * ((np.abs(t) + np.abs(two)) / np.abs(disc)) * ka
 
-def _over_sites(fn: Callable[..., Any], *lists: Sequence[FloatValue]) -> Any:
+def _over_sites(fn: Callable[..., _T], *lists: Sequence[FloatValue]) -> _T:
     """``fn`` of the site lists stacked to arrays ``(N,) + row shape`` (the elementwise operations of a loop
     over the sites, in fewer numpy calls); sites of different shapes are broadcast first."""
     try:
