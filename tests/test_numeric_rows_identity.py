@@ -306,3 +306,21 @@ def test_wide_batches_far_from_the_spectrum_are_the_route_before(N, monkeypatch)
     rng = np.random.default_rng(N)                # the benchmark's bt_step rows: renormalised products
     p, q = rng.normal(size=(40, N)), 0.5 * rng.normal(size=(40, N))
     same_run(lambda: bt_step(p, q, 3.0 * N + 20.0, 2.0, backend="numpy"), monkeypatch)
+
+
+def test_one_sweep_where_every_row_of_both_products_is_renormalised():
+    from symbt.numeric.core.condition import monodromy_and_abs
+
+    rng = np.random.default_rng(128)              # the benchmark's wide rows: far from the spectrum
+    N, R = 128, 40
+    p, q = rng.normal(size=(R, N)), 0.5 * rng.normal(size=(R, N))
+    a = [3.0 * N + 20.0 + p[:, j] for j in range(N)]
+    rr = [np.exp(q[:, (j + 1) % N] - q[:, j]) for j in range(N)]
+    main, (T, e) = monodromy_and_abs(a, rr)
+    ref = monodromy(FLOAT, a, rr)
+    Aa, _, _, Da, ea = monodromy(FLOAT, [np.abs(x) for x in a], [-x for x in rr])
+    assert np.all(ref[4] != 0) and np.all(ea != 0)         # the case: every row renormalised in both
+    for x, y in zip(main, ref):
+        assert _same_bits(x, y) and np.asarray(x).dtype == np.asarray(y).dtype
+    assert _same_bits(T, Aa + Da) and np.asarray(e).tolist() == np.asarray(ea).tolist()
+    assert np.asarray(e).dtype == np.asarray(ea).dtype

@@ -400,8 +400,11 @@ def monodromy_and_abs(a: Sequence[FloatValue], r: Sequence[FloatValue]
     out: list[list[FloatValue]] = [list(h) for h in halves]
     es: list[Exponent] = [0, 0]
     if bad[0].any() or bad[1].any():     # the renormalised rows of both products, side by side again
-        sub = np.concatenate([a2[:, :R][:, bad[0]], a2[:, R:][:, bad[1]]], axis=1)
-        subr = np.concatenate([r2[:, :R][:, bad[0]], r2[:, R:][:, bad[1]]], axis=1)
+        if bad[0].all() and bad[1].all():          # every row of both (far from the spectrum): no copies
+            sub, subr = a2, r2
+        else:
+            sub = np.concatenate([a2[:, :R][:, bad[0]], a2[:, R:][:, bad[1]]], axis=1)
+            subr = np.concatenate([r2[:, :R][:, bad[0]], r2[:, R:][:, bad[1]]], axis=1)
         *Y, e2 = _product(FLOAT, list(sub), list(subr), renorm=True)
         n0 = int(bad[0].sum())
         for i, (b, sl) in enumerate(zip(bad, (slice(0, n0), slice(n0, None)))):
@@ -413,6 +416,8 @@ def monodromy_and_abs(a: Sequence[FloatValue], r: Sequence[FloatValue]
 
 
 def _merged(full: npt.NDArray[_G], mask: npt.NDArray[np.bool_], part: npt.ArrayLike) -> npt.NDArray[_G]:
+    if mask.all():                      # every row replaced: the part itself, in the dtype of ``full``
+        return np.asarray(part, dtype=full.dtype)
     out = np.array(full, copy=True)
     out[mask] = part
     return out
