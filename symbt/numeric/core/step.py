@@ -255,7 +255,10 @@ def trace_kappa(a: Sequence[FloatValue], r: Sequence[FloatValue], t: FloatValue,
     ``T`` is the trace of ``|m_N| ... |m_1|`` (entrywise absolute values, computed as the monodromy of
     ``|a_j|`` and ``-r_j``, which has no cancellation), the scale of the rounding error of ``t``; ``t``,
     ``disc`` are the scaled trace and ``t**2 - 4`` of :func:`eigen_slopes` (exponent ``e``; ``two`` is 2 in that
-    scale), ``ka`` the cancellation factor ``max_j (|lam| + |p_j|) / |lam + p_j|`` it is multiplied by.
+    scale), ``ka`` the cancellation factor ``max_j (|lam| + |p_j|) / |lam + p_j|`` it is multiplied by;
+    ``absolute``: that product's ``(A + D, e)`` where the caller formed it already, in the sweep of the
+    monodromy (:func:`~symbt.numeric.core.condition.monodromy_and_abs`), else formed here
+    (:func:`~symbt.numeric.core.condition.abs_trace_rows`, bit for bit the monodromy).
     Where the state would be escalated with it, :func:`float_status` takes the sharp estimate of
     :func:`~symbt.numeric.core.condition.sharp_trace_kappa` (the second tier, as the fused and block
     kernels do).  Beyond
@@ -273,6 +276,7 @@ def trace_kappa(a: Sequence[FloatValue], r: Sequence[FloatValue], t: FloatValue,
         # the monodromy of |a_j|, -r_j (floats for a few rows), unless given (``absolute``: its A + D and e)
         Ta, ea = abs_trace_rows(a, r) if absolute is None else absolute
         return np.ldexp(Ta, ea - e) * ((np.abs(t) + np.abs(two)) / np.abs(disc)) * ka
+
 
 def _over_sites(fn: Callable[..., _T], *lists: Sequence[FloatValue]) -> _T:
     """``fn`` of the site lists stacked to arrays ``(N,) + row shape`` (the elementwise operations of a loop
