@@ -9,6 +9,11 @@ where the cheap ``k_t`` would escalate the state to mpmath, every float64 route 
 in :mod:`symbt.numeric.float64.kernels`, the block kernel, the numpy rows) takes :func:`sharp_trace_kappa`
 instead.  Plain scalar code: the numba kernels compile it as it is.
 
+The numpy route decides many rows at once: :func:`sharp_trace_kappa_rows` (the sharp tier of every row),
+:func:`abs_trace_rows` (the cheap tier's product of the absolute values) and :func:`monodromy_and_abs`
+(that product in the sweep of the monodromy itself) give each row's result bit for bit as the scalar
+forms do -- on Python floats for a few rows, as numpy operations over the rows for many.
+
 Example
 -------
 >>> import numpy as np
@@ -25,6 +30,7 @@ from typing import TYPE_CHECKING, TypeVar
 
 import numpy as np
 
+from .compile import clone
 from .context import FLOAT, Exponent, FloatValue
 from .monodromy import _product, monodromy
 from .spectral_sum import lam_add
@@ -181,14 +187,8 @@ class _Lists:
         return [0.0] * n
 
 
-def _clone_on_floats() -> Callable[..., float]:
-    import types
-
-    fn = sharp_trace_kappa
-    return types.FunctionType(fn.__code__, {**fn.__globals__, "np": _Lists}, fn.__name__)
-
-
-_SHARP_ON_FLOATS = _clone_on_floats()
+#: the scalar form as it is, its arrays Python lists (one source: a change of it reaches this form too)
+_SHARP_ON_FLOATS: Callable[..., float] = clone(sharp_trace_kappa, np=_Lists)
 
 
 def _pymax(*xs: F64) -> F64:
