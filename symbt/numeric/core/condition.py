@@ -311,44 +311,62 @@ def abs_trace_rows(a: Sequence[FloatValue], r: Sequence[FloatValue]) -> tuple[F6
     """``(A + D, e)`` of :func:`~symbt.numeric.core.monodromy.monodromy` ``(FLOAT, [|a_j|], [-r_j])`` -- the
     product of the entrywise absolute values of the ``m_j``, the cheap tier's scale ``T`` -- bit for bit.
 
-    Up to :data:`FEW_ROWS` rows (site lists of equal 1-d arrays): the product on Python floats, row by row,
-    and :meth:`~symbt.numeric.core.context.FloatContext.out_of_range`'s decision taken on the same numbers
-    (the rows it sends to the renormalised product go there); more rows: the monodromy itself.
+    Up to :data:`FEW_ROWS` rows (site lists of equal 1-d arrays, ``N >= 2``): the product on Python floats,
+    row by row (:func:`_product_on_floats`); more rows: the monodromy itself.
 
     >>> a, r = [np.array([2.0, -3.0]), np.array([3.0, 0.5])], [np.array([1.0, 2.0])] * 2
     >>> T, e = abs_trace_rows(a, r)
     >>> T.tolist(), e                               # |a_1| |a_2| + r_1 + r_2
     ([8.0, 5.5], 0)
     """
-    N = len(a)
-    try:
-        am, rm = np.abs(np.array(a, dtype=float)), -np.array(r, dtype=float)
-    except ValueError:                  # sites of different shapes: the general form
-        am = rm = np.empty(0)
-    if am.ndim != 2 or am.shape != rm.shape or am.shape[1] > FEW_ROWS or am.shape[1] == 0:
+    sites = _few_rows(a, r)
+    if sites is None:
         Aa, _, _, Da, ea = monodromy(FLOAT, [np.abs(x) for x in a], [-x for x in r])
         return np.asarray(Aa + Da), ea
+    ents, e = _product_on_floats(np.abs(sites[0]), -sites[1])
+    return np.array([x[0] + x[3] for x in ents]), e
+
+
+def _few_rows(a: Sequence[FloatValue], r: Sequence[FloatValue]) -> tuple[F64, F64] | None:
+    """``a, r`` as ``(N, R)`` arrays if they are site lists of ``R <= FEW_ROWS`` rows (1-d, equal) and
+    ``N >= 2``, else ``None``."""
+    try:
+        am, rm = np.array(a, dtype=float), np.array(r, dtype=float)
+    except ValueError:                  # sites of different shapes: the general form
+        return None
+    if am.ndim != 2 or am.shape != rm.shape or not 0 < am.shape[1] <= FEW_ROWS or am.shape[0] < 2:
+        return None
+    return am, rm
+
+
+def _product_on_floats(am: F64, rm: F64) -> tuple[list[tuple[float, float, float, float]], Exponent]:
+    """``monodromy(FLOAT, list(am), list(rm))`` of the ``(N, R)`` arrays ``am, rm`` (``N >= 2``) on Python
+    floats: the entries ``(A, B, C, D)`` of every row and the exponents (``0``, or an array where some row
+    was renormalised).  :meth:`~symbt.numeric.core.context.FloatContext.out_of_range`'s decision is taken on
+    the same numbers -- its test of the whole batch first (Python's ``max`` over the four entries' largest
+    magnitudes, NaN if an entry has one), then per row -- and the rows it sends to the renormalised product
+    go through :func:`_renormalised_on_floats`."""
+    N = am.shape[0]
     ents = []
     for ak, rk in zip(am.T.tolist(), rm.T.tolist()):
         A, B, C, D = ak[0], -1.0, rk[0], 0.0
         for j in range(1, N):
             aj, rj = ak[j], rk[j]
             A, B, C, D = aj * A - C, aj * B - D, rj * A, rj * B
-        ents.append((A, B, C, D) if N > 1 else (A, C))     # B, D stay scalars for N = 1: not tested
-    big = max(_range_stats([x[i] for x in ents]) for i in range(len(ents[0])))
-    T = np.array([x[0] + x[-1] if N > 1 else x[0] + 0.0 for x in ents])
+        ents.append((A, B, C, D))
+    big = max(_range_stats([x[i] for x in ents]) for i in range(4))
     if big < 2.0 ** 500 and math.isfinite(big):
-        return T, 0
-    # out_of_range per row: a non-finite entry, or the largest magnitude outside [2**-500, 2**500]
-    bad = np.array([not all(math.isfinite(v) for v in x) or not 2.0 ** -500 <= max(abs(v) for v in x) <= 2.0 ** 500
-                    for x in ents])
-    if not bad.any():
-        return T, 0
-    e = np.zeros(T.shape, np.int64)
+        return ents, 0
+    # per row: a non-finite entry, or the largest magnitude outside [2**-500, 2**500]
+    bad = [not all(math.isfinite(v) for v in x) or not 2.0 ** -500 <= max(abs(v) for v in x) <= 2.0 ** 500
+           for x in ents]
+    if not any(bad):
+        return ents, 0
+    e = np.zeros(len(ents), np.int64)
     for k in np.flatnonzero(bad):       # the renormalised product (FloatContext.renormalize after every site)
-        A, B, C, D, ek = _renormalised_on_floats(am[:, k].tolist(), rm[:, k].tolist())
-        T[k], e[k] = A + D, ek
-    return T, e
+        A, B, C, D, e[k] = _renormalised_on_floats(am[:, k].tolist(), rm[:, k].tolist())
+        ents[k] = (A, B, C, D)
+    return ents, e
 
 
 def _nanmax(x: float, y: float) -> float:
@@ -385,6 +403,11 @@ def monodromy_and_abs(a: Sequence[FloatValue], r: Sequence[FloatValue]
     ([4.0, -5.5], [8.0, 5.5])
     """
     N = len(a)
+    few = _few_rows(a, r)
+    if few is not None:                 # a few rows: both products on Python floats
+        (main, e), (ents, ea) = (_product_on_floats(*few), _product_on_floats(np.abs(few[0]), -few[1]))
+        A, B, C, D = (np.array(x) for x in zip(*main))
+        return (A, B, C, D, e), (np.array([x[0] + x[3] for x in ents]), ea)
     try:
         am, rm = np.array(a, dtype=float), np.array(r, dtype=float)
     except ValueError:
