@@ -330,6 +330,8 @@ def abs_trace_rows(a: Sequence[FloatValue], r: Sequence[FloatValue]) -> tuple[F6
 def _few_rows(a: Sequence[FloatValue], r: Sequence[FloatValue]) -> tuple[F64, F64] | None:
     """``a, r`` as ``(N, R)`` arrays if they are site lists of ``R <= FEW_ROWS`` rows (1-d, equal) and
     ``N >= 2``, else ``None``."""
+    if len(a) < 2 or np.ndim(a[0]) != 1 or not 0 < np.shape(a[0])[0] <= FEW_ROWS:
+        return None                     # (before converting many rows)
     try:
         am, rm = np.array(a, dtype=float), np.array(r, dtype=float)
     except ValueError:                  # sites of different shapes: the general form

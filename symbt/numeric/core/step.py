@@ -123,6 +123,8 @@ from .spectral_sum import lam_add, lam_split, root_slope_rows
 if TYPE_CHECKING:
     import numpy.typing as npt
 
+    F64 = npt.NDArray[np.float64]
+
 
 __all__ = ["step_core", "eigen_slopes", "SlopeData", "StepAux", "mp_step", "BLOCK_ELEMENTS", "trace_kappa",
            "sharpened", "float_status"]
@@ -291,6 +293,16 @@ def _over_sites(fn: Callable[..., _T], *lists: Sequence[FloatValue]) -> _T:
     return fn(*(np.array([np.broadcast_to(v, shape) for v in x], dtype=float) for x in lists))
 
 
+def _site_factors(U: F64, W: F64, X: F64) -> tuple[tuple[F64, F64], npt.NDArray[np.bool_], F64]:
+    """The per-site factors of :func:`float_status`' slope test, ``(|u| + |w|, |x + 1| + |x|)``,
+    ``x + 1 > 0`` and ``KAPPA_MAX |u - w| |x + 1|`` (the operations of the site loop, ``x + 1`` formed once)."""
+    from .limits import KAPPA_MAX
+
+    X1 = X + 1
+    A1 = np.abs(X1)
+    return (np.abs(U) + np.abs(W), A1 + np.abs(X)), X1 > 0, KAPPA_MAX * np.abs(U - W) * A1
+
+
 def sharpened(S: SlopeData, rows: npt.NDArray[np.bool_]) -> npt.NDArray[np.float64]:
     """:func:`~symbt.numeric.core.condition.sharp_trace_kappa` of the float64 rows ``rows`` of
     :func:`eigen_slopes`' data ``S`` (``inf``
@@ -339,9 +351,7 @@ def float_status(aux: StepAux, Pn: Sequence[FloatValue], Qn: Sequence[FloatValue
         t1, t2 = S1.trace_ok > 0, S2.trace_ok > 0
         opp = (S1.t < 0) != (S2.t < 0)
         # the sites' factors at once (arrays over sites and rows; the same operations per element)
-        us, xs, rhs = _over_sites(lambda U, W, X: ((np.abs(U) + np.abs(W), np.abs(X + 1) + np.abs(X)),
-                                                   X + 1 > 0, KAPPA_MAX * np.abs(U - W) * np.abs(X + 1)),
-                                  aux["u"], aux["w"], aux["xr"])
+        us, xs, rhs = _over_sites(_site_factors, aux["u"], aux["w"], aux["xr"])
 
         def ill(k1: FloatValue, k2: FloatValue) -> tuple[npt.NDArray[np.bool_], npt.NDArray[np.bool_]]:
             kt = np.maximum(k1, k2)
@@ -355,11 +365,13 @@ def float_status(aux: StepAux, Pn: Sequence[FloatValue], Qn: Sequence[FloatValue
         pos = np.logical_and.reduce(xs)
         fin = np.isfinite(np.add.reduce(Pn) + np.add.reduce(Qn))
     # the first condition that holds gives the code (np.select's order, set here from the last one back)
-    out = np.full(np.shape(fin), OK, np.int64)
-    for c, code in zip((~fin, ~pos, ill_p, opp, ~t2, ~t1, ill_t), (RANGE, POSITIVITY, ILLCOND, POSITIVITY, TRACE2,
-                                                                   TRACE1, ILLCOND)):
-        out = np.where(c, code, out)
-    return out.astype(np.int64)
+    out = np.where(fin, OK, RANGE)
+    out = np.where(pos, out, POSITIVITY)
+    out = np.where(ill_p, ILLCOND, out)
+    out = np.where(opp, POSITIVITY, out)
+    out = np.where(t2, out, TRACE2)
+    out = np.where(t1, out, TRACE1)
+    return np.where(ill_t, ILLCOND, out).astype(np.int64)
 
 
 def _opposite(t1: Value, t2: Value) -> Cond:
