@@ -111,9 +111,9 @@ def kernel(name: str, backend: str = "auto") -> tuple[Callable[..., Any], str]:
     'ensemble'
     """
     if backend == "python" or (backend == "auto" and not numba_available()):
-        from . import kernels, kernels_block
+        from . import block_python, kernels
 
-        return (kernels.python_orbit if name == "orbit" else getattr(kernels_block, name)), "python"
+        return (kernels.python_orbit if name == "orbit" else block_python.kernel(name)), "python"
     if backend not in BACKENDS:
         from ..core.errors import InvalidInputError
 
