@@ -174,5 +174,13 @@ def run_block(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, 
 
 def ensemble(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, n: int, every: int,
              anchor: int, block: int, outP: F64, outQ: F64, status: I64) -> None:
-    """:func:`.kernels_block.ensemble` on lists of Python floats (arguments and results as there)."""
+    """:func:`.kernels_block.ensemble` on lists of Python floats (arguments and results as there).
+
+    >>> from symbt.numeric.float64.kernels import ANCHOR
+    >>> P, Q, st = np.empty((2, 2, 2)), np.empty((2, 2, 2)), np.zeros(2, np.int64)
+    >>> ensemble(np.zeros((2, 2)), np.zeros((2, 2)), np.array([3.0, 1.0]), np.array([2.5, -1.0]),
+    ...          np.array([0.5, 2.0]), 1, 1, 1, ANCHOR, 8, P, Q, st)
+    >>> st.tolist()                     # the second: lam1 = 1 lies in a band (tr L(1) = -1)
+    [0, 1]
+    """
     _on_lists("ensemble", P0, Q0, lam1, lam2, two_mu, branch, n, every, anchor, block, outP, outQ, status)
