@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from test_numeric_rows_identity import band_edges  # the literal trace's |tr| = 2 points
 
 from symbt.benchmarks.cases import cases
 from symbt.numeric import bt_orbit
@@ -40,9 +41,7 @@ def sweep(seed):
         Q0 = np.array(c.q) + 0.05 * rng.normal(size=(M, N))
         lam0 = c.lam0 + 3.0 * (i % 4) * rng.normal(size=M)
         mu = c.mu * rng.choice([1.0, -1.0, 0.3], M)
-        if N == 3:                     # lam1 within 1e-12 of a band edge (2.5963...: the paper's example)
-            from test_numeric_rows_identity import band_edges
-
+        if N == 3:                     # lam1 within 1e-12 of a band edge of the member's state
             e = band_edges(P0[0], Q0[0])[0]
             lam0[:2], mu[:2], P0[1], Q0[1] = e - 1.0 + 1e-12, 1.0, P0[0], Q0[0]
         Q0[-1, 0] += 705.0              # |q_2 - q_1| > 700: out of the float64 formulation's range
