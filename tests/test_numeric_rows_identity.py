@@ -17,7 +17,13 @@ from symbt.benchmarks.cases import cases
 from symbt.numeric import NoRealMapError, NumericRangeError, bt_orbit, bt_step, spectral_trace
 from symbt.numeric.core import condition
 from symbt.numeric.core import step as step_module
-from symbt.numeric.core.condition import FEW_ROWS, abs_trace_rows, sharp_trace_kappa, sharp_trace_kappa_rows
+from symbt.numeric.core.condition import (
+    FEW_ROWS,
+    SIDE_BY_SIDE_ROWS,
+    abs_trace_rows,
+    sharp_trace_kappa,
+    sharp_trace_kappa_rows,
+)
 from symbt.numeric.core.context import FLOAT
 from symbt.numeric.core.limits import ILLCOND, KAPPA_MAX, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 from symbt.numeric.core.monodromy import monodromy
@@ -176,7 +182,7 @@ def statuses(p, q, lam0, mu, branch=1):
     return step_module.float_status(aux, Pn, Qn)
 
 
-@pytest.mark.parametrize("M", [FEW_ROWS - 3, 3 * FEW_ROWS])
+@pytest.mark.parametrize("M", [FEW_ROWS - 3, 3 * FEW_ROWS, SIDE_BY_SIDE_ROWS + 100])
 def test_a_batch_across_bands_gaps_and_edges_is_the_route_before(M, monkeypatch):
     p, q, lam0, mu = sweep_batch(M, seed=22 + M)
     st = statuses(p, q, lam0, mu)

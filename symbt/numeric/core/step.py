@@ -113,7 +113,7 @@ from typing import TYPE_CHECKING, TypedDict, TypeVar
 import mpmath
 import numpy as np
 
-from .condition import abs_trace_rows, monodromy_and_abs, sharp_trace_kappa_rows
+from .condition import SIDE_BY_SIDE_ROWS, abs_trace_rows, monodromy_and_abs, sharp_trace_kappa_rows
 from .context import FLOAT, IV, Cond, Context, Exponent, FloatValue, MPValue, Value
 from .errors import NoRealMapError, NumericRangeError
 from .inputs import to_output
@@ -282,7 +282,11 @@ def trace_kappa(a: Sequence[FloatValue], r: Sequence[FloatValue], t: FloatValue,
 
 def _over_sites(fn: Callable[..., _T], *lists: Sequence[FloatValue]) -> _T:
     """``fn`` of the site lists stacked to arrays ``(N,) + row shape`` (the elementwise operations of a loop
-    over the sites, in fewer numpy calls); sites of different shapes are broadcast first."""
+    over the sites, in fewer numpy calls); sites of different shapes are broadcast first.  From
+    ``SIDE_BY_SIDE_ROWS`` rows on, ``fn`` of each site in turn, its results gathered as lists over the
+    sites (a call's cost is small there against the work, and the stacked arrays would leave the cache)."""
+    if np.size(lists[0][0]) > SIDE_BY_SIDE_ROWS:
+        return _gathered([fn(*site) for site in zip(*lists)])
     try:
         arrays = [np.array(x, dtype=float) for x in lists]
         if len({a.shape for a in arrays}) == 1:
@@ -291,6 +295,13 @@ def _over_sites(fn: Callable[..., _T], *lists: Sequence[FloatValue]) -> _T:
         pass
     shape = np.broadcast_shapes(*(np.shape(v) for x in lists for v in x))
     return fn(*(np.array([np.broadcast_to(v, shape) for v in x], dtype=float) for x in lists))
+
+
+def _gathered(per_site: list[_T]) -> _T:
+    """A list over the sites of (nested tuples of) results as (nested tuples of) lists over the sites."""
+    if isinstance(per_site[0], tuple):
+        return tuple(_gathered(list(x)) for x in zip(*per_site))        # type: ignore[return-value]
+    return per_site                                                      # type: ignore[return-value]
 
 
 def _site_factors(U: F64, W: F64, X: F64) -> tuple[tuple[F64, F64], npt.NDArray[np.bool_], F64]:
@@ -355,6 +366,9 @@ def float_status(aux: StepAux, Pn: Sequence[FloatValue], Qn: Sequence[FloatValue
 
         def ill(k1: FloatValue, k2: FloatValue) -> tuple[npt.NDArray[np.bool_], npt.NDArray[np.bool_]]:
             kt = np.maximum(k1, k2)
+            if isinstance(rhs, list):       # site by site (many rows)
+                return ~(k1 <= KAPPA_MAX) | ~(k2 <= KAPPA_MAX), np.logical_or.reduce(
+                    [~(kt * a * b <= c) for a, b, c in zip(us[0], us[1], rhs)])
             return ~(k1 <= KAPPA_MAX) | ~(k2 <= KAPPA_MAX), np.logical_or.reduce(~(kt * us[0] * us[1] <= rhs))
 
         ill_t, ill_p = ill(k1, k2)
