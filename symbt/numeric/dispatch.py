@@ -37,7 +37,7 @@ from .backends import BackendName, check_name, pick, run_orbit, run_step
 from .core.context import MPValue
 from .core.errors import InvalidInputError
 from .core.inputs import check_branch, check_steps, to_output
-from .core.problem import OrbitOut, ParamLike, StateLike, StateOut, prepare
+from .core.problem import OrbitOut, ParamLike, StateLike, StateOut, prepare, prepare_checked
 from .float64.kernels import stored_steps
 from .multiprec.runners import MPOrbit
 
@@ -177,7 +177,7 @@ def bt_orbit(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, n: int,
         return certified_orbit(p, q, lam0, mu, n, branch=branch, every=every, tol=tol)
     if tol is not None:
         raise InvalidInputError("tol is only used with certified=True")
-    pr = prepare(p, q, lam0, mu, branch=branch, n=n, every=every)
+    pr = prepare_checked(p, q, lam0, mu, branch, n, every)
     b = pick(backend, pr.arithmetic, pr.n, interval=pr.interval)
     if q_low:
         if pr.arithmetic != "float64":

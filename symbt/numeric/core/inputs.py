@@ -59,6 +59,11 @@ def pick_context(*objs: object) -> Context:
     >>> type(pick_context([1.0, 2.0], [mpmath.mpf(1), 0])).__name__
     'MPContext'
     """
+    for o in objs:      # fast path: float arrays and Python floats are float64 input (no nested walk)
+        if not (type(o) is float or (type(o) is np.ndarray and o.dtype.kind == "f")):
+            break
+    else:
+        return FLOAT
     kinds = {_kind(o) for o in objs}
     if "iv" in kinds:
         return IV
@@ -185,6 +190,10 @@ def float_array(x: npt.ArrayLike, name: str) -> npt.NDArray[np.float64]:
         raise InvalidInputError("%s must be a real numeric array (same length in every row)" % name) from exc
 
 
+#: arrays up to this size are summed as Python floats by :func:`validate_float_pair` (cheaper than a reduction)
+_FEW = 64
+
+
 def validate_float_pair(p: npt.ArrayLike,
                         q: npt.ArrayLike) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], tuple[int, ...]]:
     """Validated float64 ``(pa, qa, batch_shape)`` with ``pa``, ``qa`` of shape (B, N).
@@ -203,7 +212,12 @@ def validate_float_pair(p: npt.ArrayLike,
     N = pa.shape[-1]
     if N < 2:
         raise InvalidInputError("need N >= 2 sites, got N = %d" % N)
-    if not (np.isfinite(pa.sum()) and np.isfinite(qa.sum())):
+    # a finite sum means finite entries; NaN, inf or an overflowed sum take the exact test (math.isfinite
+    # and a list sum for a few sites: a numpy scalar reduction costs more than the step at N = 3)
+    few = pa.size <= _FEW
+    sp = sum(pa.ravel().tolist()) if few else pa.sum()
+    sq = sum(qa.ravel().tolist()) if few else qa.sum()
+    if not (math.isfinite(sp) and math.isfinite(sq)):
         if not (np.all(np.isfinite(pa)) and np.all(np.isfinite(qa))):
             raise InvalidInputError("p and q must be finite (found NaN or inf)")
     return pa.reshape(-1, N), qa.reshape(-1, N), pa.shape[:-1]
