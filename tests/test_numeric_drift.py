@@ -269,3 +269,33 @@ def test_root_slope_is_rounded_once_and_the_rows_form_equals_it():
     # root of fl(A + D) was off by 1e5 ulps and more
     assert m > 1400 and worst_far <= 0.5 + 1e-9 and worst_once <= 32 and worst_twice > 1e3, (
         m, worst_far, worst_once, worst_twice)
+
+
+def test_root_slope_rows_few_rows_path_is_the_array_path(monkeypatch):
+    """Up to ``_FEW_ROWS`` rows :func:`root_slope_rows` calls the scalar form per row (speed); every element
+    must be the array form's bits, including zero denominators (IEEE inf/NaN: the array form takes over),
+    cancelling traces and a scalar ``two``."""
+    import symbt.numeric.core.spectral_sum as ss
+
+    rng = np.random.default_rng(3)
+    fallbacks = 0
+    for trial in range(600):
+        n = int(rng.integers(1, ss._FEW_ROWS + 1))
+        A = rng.normal(0, 10, n) * 10.0 ** rng.integers(-3, 8, n)
+        D = -A + rng.normal(0, 1e-3, n) if trial % 7 == 0 else rng.normal(0, 10, n) * 10.0 ** rng.integers(-3, 8, n)
+        t, dl = A + D, A - D
+        two = 2.0 if trial % 2 else np.full(n, 2.0)
+        with np.errstate(all="ignore"):
+            g = np.sqrt((t - 2) * (t + 2))
+        B, C = rng.normal(0, 3, n), rng.normal(0, 3, n)
+        wantk = rng.random(n) < 0.5
+        if trial % 5 == 0:
+            B[0], wantk[0] = 0.0, True
+            fallbacks += 1
+        args = (A, D, dl, g, B, C, two, dl >= 0, wantk)
+        few = ss.root_slope_rows(*args)
+        monkeypatch.setattr(ss, "_FEW_ROWS", -1)
+        full = ss.root_slope_rows(*args)
+        monkeypatch.setattr(ss, "_FEW_ROWS", 16)
+        assert np.array_equal(few.view(np.int64), full.view(np.int64)), trial
+    assert fallbacks > 0

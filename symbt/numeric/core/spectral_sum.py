@@ -153,6 +153,10 @@ def _split(x: Any) -> tuple[Any, Any]:
     return h, x - h
 
 
+#: up to this many rows :func:`root_slope_rows` calls the scalar form per row
+_FEW_ROWS = 16
+
+
 def root_slope_rows(A: Any, D: Any, dl: Any, g: Any, B: Any, C: Any, two: Any, plus: Any, wantk: Any) -> Any:
     """:func:`root_slope` on numpy arrays (the numpy route of :func:`~symbt.numeric.core.step.step_core`):
     the same operations elementwise, so each element equals the scalar call bit for bit.
@@ -165,6 +169,16 @@ def root_slope_rows(A: Any, D: Any, dl: Any, g: Any, B: Any, C: Any, two: Any, p
     >>> [float(x) for x in rows] == [root_slope(*(a[i] if np.ndim(a) else a for a in args)) for i in range(2)]
     True
     """
+    if np.size(A) <= _FEW_ROWS:     # a few rows: the scalar form on Python floats (a numpy op per row costs more)
+        n = np.size(A)
+        cols = [x.ravel().tolist() if np.size(x) == n else np.broadcast_to(x, np.shape(A)).ravel().tolist()
+                for x in map(np.asarray, (A, D, dl, g, B, C, two, plus, wantk))]
+        try:
+            out = [root_slope(*row) for row in zip(*cols)]
+        except ZeroDivisionError:   # IEEE division (inf, NaN) is numpy's: the arrays below
+            pass
+        else:
+            return np.array(out, dtype=np.float64).reshape(np.shape(A))
     with np.errstate(all="ignore"):
         t = A + D
         bp = t - A
