@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: a3d65a576070d4e933864f6ae52d9c6d70fdc4cf2cb2daa8fbd95a318f95faa2
-# symbt-codegen-content-sha256: 580ca748d9ae79e5e5074d429aeb467475505926e9c30c62f876b13bd399af9c
+# symbt-codegen-derivation-sha256: add370df2a963faed80f408016691b1886d718900ef05bd03f439c38457857ae
+# symbt-codegen-content-sha256: e113a39a6545424cdd37f8a06820d601468ff3a93435bd9a52d7908d4b8e770c
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from
