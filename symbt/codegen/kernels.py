@@ -12,9 +12,7 @@ formulas inside the loops are the SymPy expressions built here (printed by
 * *update* ``M <- m_j M`` (entries ``A, B, C, D``), and ``tr = A + D``,
   ``tr^2 - 4 = (tr - 2)(tr + 2)``; for ``M = 2^e (A, B; C, D)`` (float64 entries rescaled by powers
   of two, exactly) ``disc_scaled = (t - two)(t + two) = 4^-e (tr^2 - 4)`` with ``t = A + D``,
-  ``two = 2^(1 - e)``: the sign of ``tr^2 - 4`` without forming ``tr``; near a closed gap
-  (``near_closed``) ``disc_entries = (A - D)^2 + 4BC``, the same value without the cancellation of ``t -+ two``
-  (:mod:`symbt.codegen.closed_gap`);
+  ``two = 2^(1 - e)``: the sign of ``tr^2 - 4`` without forming ``tr``;
 * *eigenvector slopes*: ``M (1, -u)^T = nu (1, -u)^T`` iff ``B u^2 - (A - D) u - C = 0``;
   with ``det M = 1`` the roots ``(A - D + s g)/(2B)`` (``g^2 = tr^2 - 4``) are, without
   cancellation, ``k/(2B)`` and ``-2C/k``, ``k = (A - D) + sign(A - D) g`` (both unchanged when ``A, B, C, D, g``
@@ -47,7 +45,6 @@ from sympy.codegen.cfunctions import log1p
 
 from ..symbolic.linear import solve_linear
 from ..symbolic.toda import local_lax
-from .closed_gap import entries_discriminant, near_closed_gap
 from .derive import branch, disc, phi_of, tr1, tr2
 from .printer import Quotient
 
@@ -95,11 +92,6 @@ def kernels() -> dict[str, Any]:
     pe = sp.Symbol("pe", positive=True)     # pe = 2^e, M = pe M_s: tr = pe t, 2 = pe two
     _zero(pe ** 2 * out["disc_scaled"].xreplace({two: 2 / pe}) - out["disc"].xreplace({t: pe * t}),
           "tr^2 - 4 = 4^e (t - two)(t + two), two = 2^(1 - e)")
-    # near a closed gap (|t| ~ 2, M ~ +-I): (A - D)^2 + 4BC = 4^-e (tr^2 - 4) as det M = 1, without t -+ two's
-    # cancellation, where its scale is the smaller (symbt.codegen.closed_gap)
-    out["disc_entries"] = entries_discriminant(A, B, C, D)
-    _zero(out["disc_entries"] - ((A + D) ** 2 - 4 * (A * D - B * C)), "(A - D)^2 + 4BC = tr^2 - 4 det")
-    out["near_closed"] = near_closed_gap(A, B, C, D, two)
     out["det_site"] = m_ar.det()                                 # = r: det M = prod r_j = 1
 
     # eigenvector slopes: M (1, -u) = nu (1, -u)  <=>  quadratic in u
@@ -172,4 +164,12 @@ def kernels() -> dict[str, Any]:
     # sgn(t) arccosh(|t|/2) = t_x/sqrt(t^2 - 4), checked there)
     out["phi"] = phi_of(tr1, tr2)
     out["grad"] = -branch * (x1 / sp.sqrt(disc(tr1)) + x2 / sp.sqrt(disc(tr2)))
+    # near a closed gap (|t| ~ 2, M ~ +-I) the trace's discriminant from the entries: ``disc_entries = (A - D)^2 +
+    # 4BC = 4^-e (tr^2 - 4)`` as det M = 1, without the cancellation of ``t -+ two``, where ``near_closed`` (its
+    # scale the smaller; symbt.codegen.closed_gap); imported here, the lines above are named by mutant ids
+    from .closed_gap import entries_discriminant, near_closed_gap
+
+    out["disc_entries"] = entries_discriminant(A, B, C, D)
+    _zero(out["disc_entries"] - ((A + D) ** 2 - 4 * (A * D - B * C)), "(A - D)^2 + 4BC = tr^2 - 4 det")
+    out["near_closed"] = near_closed_gap(A, B, C, D, two)
     return out

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: add370df2a963faed80f408016691b1886d718900ef05bd03f439c38457857ae
-# symbt-codegen-content-sha256: e113a39a6545424cdd37f8a06820d601468ff3a93435bd9a52d7908d4b8e770c
+# symbt-codegen-derivation-sha256: 74f6c289259a1676031ff09747319833e4941c153beb8c5a977568e1b8d8e271
+# symbt-codegen-content-sha256: 0b15cb6f6eaea19a0dcf616d1a8c8fa527767b1683483d5bb3a7de72ad466f19
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: add370df2a963faed80f408016691b1886d718900ef05bd03f439c38457857ae
-# symbt-codegen-content-sha256: f286985f413ca9623f3f195d456410723c03ba5110aaf9034db077e83f940dea
+# symbt-codegen-derivation-sha256: 74f6c289259a1676031ff09747319833e4941c153beb8c5a977568e1b8d8e271
+# symbt-codegen-content-sha256: 75946e4ce8826b70d53ebfaa4306b9d6ae7654406361998e4a78a20f3c93f68d
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: add370df2a963faed80f408016691b1886d718900ef05bd03f439c38457857ae
-# symbt-codegen-content-sha256: 423c3c2127707c20a2718e67c5238d517db619a8c4039af46e37734e5b6a91f8
+# symbt-codegen-derivation-sha256: 74f6c289259a1676031ff09747319833e4941c153beb8c5a977568e1b8d8e271
+# symbt-codegen-content-sha256: 5c0266dda42336046d7f1bd1e6ff262edb2687d047b4e97261c3cc35771cc590
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
