@@ -149,6 +149,14 @@ static int toda@@N@@_monodromy(const double *av, const double *rv, double *M)
     return e;
 }
 
+/* 4^-e (tr^2 - 4) of the rescaled M = 2^e (A, B; C, D), t = A + D, two = 2^(1 - e): near a closed gap (M close
+   to +-I) (A - D)^2 + 4BC, whose terms round at the scale of A - D, B, C, else (t - two)(t + two)
+   (kernels near_closed, disc_entries, disc_scaled; symbt.codegen.closed_gap) */
+static double toda@@N@@_disc(double A, double B, double C, double D, double t, double two)
+{
+    return (@@near_closed@@) ? @@disc_entries@@ : @@disc_scaled@@;
+}
+
 /* scaled slopes of the eigenvector (1, -u) with eigenvalue (t - s g)/2 (M, t rescaled by 2^-e: the roots are
    homogeneous of degree 0, kernels disc_scaled, root_k, root_c), transport in the contracting direction
    (forward iff s t < 0); 0 if a slope or a transport denominator a_j + u_j is not finite (an infinite
@@ -156,7 +164,7 @@ static int toda@@N@@_monodromy(const double *av, const double *rv, double *M)
 static int toda@@N@@_slopes(const double *av, const double *rv, const double *M, double t, int e, double s, double *us)
 {
     const double A = M[0], B = M[1], C = M[2], D = M[3], two = ldexp(2.0, -e);
-    const double g = sqrt(@@disc_scaled@@);
+    const double g = sqrt(toda@@N@@_disc(A, B, C, D, t, two));
     const double sd = (A - D >= 0.0) ? 1.0 : -1.0;
     us[0] = (sd * s > 0.0) ? @@root_k@@ : @@root_c@@;
     /* pass 0 is one turn that refines the root (the loop template's _turn_forward, _turn_backward: the root
@@ -242,7 +250,8 @@ int toda@@N@@_bt_step(const double *p, const double *q, double lam0, double mu, 
     const double k1 = toda@@N@@_trace_kappa(a1, rv, e1, t1, d1), k2 = toda@@N@@_trace_kappa(a2, rv, e2, t2, d2);
     if (!(k1 <= TODA@@N@@_KAPPA_MAX) || !(k2 <= TODA@@N@@_KAPPA_MAX))   /* NaN too: a trace underflowed */
         return SYMBT_TODA_ILL_CONDITIONED;
-    if (!(d1 > 0.0) || !(d2 > 0.0))
+    if (!(toda@@N@@_disc(M1[0], M1[1], M1[2], M1[3], t1, two1) > 0.0)
+        || !(toda@@N@@_disc(M2[0], M2[1], M2[2], M2[3], t2, two2) > 0.0))
         return SYMBT_TODA_NO_REAL_MAP_TRACE;
     if ((t1 > 0.0) != (t2 > 0.0))           /* lambda_1, lambda_2 in different gaps: some Etilde_j <= 0 */
         return SYMBT_TODA_NO_REAL_MAP_POSITIVITY;

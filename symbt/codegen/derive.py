@@ -17,9 +17,9 @@ rational variables :math:`E_j = e^{q_j}`).  Two builds of the same catalogue:
     ``E_j -> exp(q_j - q_1)`` changes nothing; the powers of ``E`` in each product
     are combined into one ``exp(q_i - q_j)`` -- no ``exp(q_j)`` that could overflow
     when the centre of mass drifts.
-  - ``tr^2 - 4`` is written ``(tr - 2)(tr + 2)`` (no cancellation in float64).
+  - ``tr^2 - 4`` is written ``(tr - 2)(tr + 2)``, near a closed gap ``(A - D)^2 + 4BC`` (:mod:`.closed_gap`).
   - The slope at site 1 is read off the monodromy; of ``(A - D + g)/(2B) = -2C/(A - D - g)`` the
-    form without cancellation is selected (``Piecewise`` on the sign of ``(A - D) g``); the other
+    form without cancellation is selected (``Piecewise`` on the sign of ``(A - D) g``, ``sign g = b``); the other
     sites by transport in the contracting direction (:func:`.transport.transported`, as ``symbt.numeric``,
     the root refined by one turn first: :func:`.transport.turned`); ``q~_j = q_j + log1p(-x_j/E_j)``,
     ``p~_j = p_j + 2 mu (u_j/d_j - u_{j+1}/d_{j+1})`` (:func:`.transport.read_out`), ``u_j = E_j y_j``,
@@ -49,6 +49,7 @@ from sympy.polys.rings import PolyElement
 from ..reference.literal import phi_from_traces
 from ..symbolic.darboux import lam0, mu
 from ..symbolic.toda import TodaModel, local_lax, toda_model
+from .closed_gap import trace_discriminant
 from .transport import illcond_guards, read_out, scaled_monodromy, transported, turned
 
 __all__ = ["ArgSpec", "Output", "Guard", "FunctionSpec", "specs", "sources", "interface", "branch", "tr1", "tr2", "lam",
@@ -441,18 +442,17 @@ def _build(N: int, rewrite: bool) -> tuple[FunctionSpec, ...]:
                                 () if rewrite else ((tl, X(T.tr, lam)),))
 
     # --- eigenvector slopes at every site (eqs. l1l2, xy); Dapp's x, y; the step --------------
-    G1 = branch * sp.sqrt(disc(t_1))
-    G2 = branch * sp.sqrt(disc(t_2))
+    G1, G2 = branch * sp.sqrt(disc(t_1)), branch * sp.sqrt(disc(t_2))
     gs = sp.Symbol("g")
     if rewrite:   # scaled slopes u_j = E_j y_j, w_j = E_j z_j: site 1 from the monodromy, then transported
         # the step's monodromies and traces as products of the scaled m_j, a_j = lambda + p_j kept whole (the
         # trace expanded in lambda lost ~log10(lambda^N/|tr|) digits to cancellation: 115 eps x condition)
         M1, M2 = scaled_monodromy(m, lam0 + mu), scaled_monodromy(m, lam0 - mu)
         t_1, t_2 = M1[0, 0] + M1[1, 1], M2[0, 0] + M2[1, 1]
-        tg = [disc(t_1), disc(t_2)]
-        G1, G2 = branch * sp.sqrt(disc(t_1)), branch * sp.sqrt(disc(t_2))
-        f1, s1, c1 = (x.xreplace({gs: G1}) for x in _slope(M1, gs, +1))
-        f2, s2, c2 = (x.xreplace({gs: G2}) for x in _slope(M2, gs, -1))
+        tg = [trace_discriminant(M1), trace_discriminant(M2)]   # near a closed gap: (A - D)^2 + 4BC (closed_gap)
+        G1, G2 = branch * sp.sqrt(tg[0]), branch * sp.sqrt(tg[1])
+        f1, s1, c1 = (x.xreplace({gs: G1 if i < 2 else branch}) for i, x in enumerate(_slope(M1, gs, +1)))
+        f2, s2, c2 = (x.xreplace({gs: G2 if i < 2 else branch}) for i, x in enumerate(_slope(M2, gs, -1)))
         u0, w0 = sp.Piecewise((f1, c1), (s1, True)), sp.Piecewise((f2, c2), (s2, True))
         # u's eigenvalue (t1 - g1)/2 has |v| >= 1 iff t1 g1 <= 0, w's (t2 + g2)/2 iff t2 g2 >= 0: there the forward
         # transport contracts, else the backward one (signs only); each root refined by one turn first (turned)

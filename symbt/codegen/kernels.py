@@ -164,4 +164,12 @@ def kernels() -> dict[str, Any]:
     # sgn(t) arccosh(|t|/2) = t_x/sqrt(t^2 - 4), checked there)
     out["phi"] = phi_of(tr1, tr2)
     out["grad"] = -branch * (x1 / sp.sqrt(disc(tr1)) + x2 / sp.sqrt(disc(tr2)))
+    # near a closed gap (|t| ~ 2, M ~ +-I) the trace's discriminant from the entries: ``disc_entries = (A - D)^2 +
+    # 4BC = 4^-e (tr^2 - 4)`` as det M = 1, without the cancellation of ``t -+ two``, where ``near_closed`` (its
+    # scale the smaller; symbt.codegen.closed_gap); imported here, the lines above are named by mutant ids
+    from .closed_gap import entries_discriminant, near_closed_gap
+
+    out["disc_entries"] = entries_discriminant(A, B, C, D)
+    _zero(out["disc_entries"] - ((A + D) ** 2 - 4 * (A * D - B * C)), "(A - D)^2 + 4BC = tr^2 - 4 det")
+    out["near_closed"] = near_closed_gap(A, B, C, D, two)
     return out

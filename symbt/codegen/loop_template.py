@@ -283,7 +283,7 @@ def _slopes(_X, av, R, mono, t, s):
     transport in the contracting direction (forward iff |(t - s g)/2| >= 1 iff s t < 0)."""
     A, B, C, D, e = mono
     two = _X.ldexp(2 * _X.one, -e)
-    g = _X.sqrt(@@disc_scaled@@)
+    g = _X.sqrt(_disc(_X, A, B, C, D, t, two))
     sd = _X.sgn(A - D)
     u1 = _X.select(sd * s > 0, lambda: @@root_k@@, lambda: @@root_c@@)
     fwd = s * t < 0
@@ -334,8 +334,14 @@ def _traces(_X, P, R, lam0, mu, guards, kappa=None):
             # it would read "no real map" where the map exists (the deep fuzz, docs/fuzz.md)
             _X.guard(guards, "illcond", f"tr L(lam{i + 1})", np.where(k <= _KAPPA_MAX, 1, -1))
             kappa.append(k * _cancellation(lam, P, av))
-        _X.guard(guards, "trace", label, disc)
+        _X.guard(guards, "trace", label, _disc(_X, *M[:4], t, two))
     return a1, a2, M1, M2, t1, t2
+
+
+def _disc(_X, A, B, C, D, t, two):
+    """4**-e (tr**2 - 4) of M = 2**e (A, B; C, D), t = A + D, two = 2**(1 - e): near a closed gap (M close to +-I)
+    (A - D)**2 + 4BC, else (t - two)(t + two) (kernels near_closed, disc_entries, disc_scaled; closed_gap.py)."""
+    return _X.select(@@near_closed@@, lambda: @@disc_entries@@, lambda: @@disc_scaled@@)
 
 
 def _trace_kappa(_X, av, R, M, t, disc, two):

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: a3d65a576070d4e933864f6ae52d9c6d70fdc4cf2cb2daa8fbd95a318f95faa2
-# symbt-codegen-content-sha256: 580ca748d9ae79e5e5074d429aeb467475505926e9c30c62f876b13bd399af9c
+# symbt-codegen-derivation-sha256: 74f6c289259a1676031ff09747319833e4941c153beb8c5a977568e1b8d8e271
+# symbt-codegen-content-sha256: 0b15cb6f6eaea19a0dcf616d1a8c8fa527767b1683483d5bb3a7de72ad466f19
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

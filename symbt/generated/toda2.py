@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: a3d65a576070d4e933864f6ae52d9c6d70fdc4cf2cb2daa8fbd95a318f95faa2
-# symbt-codegen-content-sha256: 2859581de497dc493715a9731e1d344078444aa5adc80ff4945ceea0d9ad990c
+# symbt-codegen-derivation-sha256: 74f6c289259a1676031ff09747319833e4941c153beb8c5a977568e1b8d8e271
+# symbt-codegen-content-sha256: 75946e4ce8826b70d53ebfaa4306b9d6ae7654406361998e4a78a20f3c93f68d
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -532,58 +532,69 @@ def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
         t7 = t5 + t6
         t8 = t3 + t7
         t9 = -t8
-        t10 = np.abs(t1)
-        t11 = np.abs(t2)
-        t12 = t1*t2
-        t13 = -t6
-        t14 = -t5
-        t15 = t13 + t14 + 2
-        t16 = (-t8 - 2)*(t12 + t15)
-        t17 = (np.abs(t9) + 2)*((t10*t11 + t7)/np.abs(t16))
-        t18 = lam0 - mu
-        t19 = p1 + t18
-        t20 = p2 + t18
-        t21 = t19*t20
-        t22 = -t21
-        t23 = t22 + t7
-        t24 = -t23
-        t25 = np.abs(t19)
-        t26 = np.abs(t20)
-        t27 = (-t23 - 2)*(t15 + t21)
-        t28 = (np.abs(t24) + 2)*((t25*t26 + t7)/np.abs(t27))
-        t29 = np.sign(t9)
-        t30 = np.sign(t24)
-        t31 = 2*mu
-        t32 = 2*lam0 + 2*p2
-        t33 = branch*np.sqrt(t16)
-        t34 = t13 + t5
-        t35 = t12 + t34
-        t36 = t14 + t6
-        t37 = 2*t5
-        t38 = np.where(t33*t35 >= 0, (t33 + t35)/(-t31 - t32), -(t1*t37/(-t3 - t33 - t36)))
-        t39 = t29*branch <= 0
-        t40 = np.where(t39, -(t5/(t2 - t6/(t1 + t38))), -t1 - t6/(-t2 - t5/t38))
-        t41 = np.where(t39, -(t6/(t1 + t40)), -t2 - t5/t40)
-        t42 = branch*np.sqrt(t27)
-        t43 = t21 + t34
-        t44 = np.where(t42*t43 <= 0, (-t22 - t36 - t42)/(t31 - t32), -(t19*t37/(t42 + t43)))
-        t45 = t30*branch >= 0
-        t46 = np.where(t45, -(t5/(t20 - t6/(t19 + t44))), -t19 - t6/(-t20 - t5/t44))
-        t47 = np.where(t45, -(t6/(t19 + t46)), -t20 - t5/t46)
-        t48 = -t40 + t46
-        t49 = -t41 + t47
-        t50 = t31/t48
-        t51 = np.abs(t50 - 1)
-        t52 = np.abs(p1)
-        t53 = np.abs(t0)
-        t54 = np.abs(p2)
-        t55 = np.abs(t18)
-        t56 = np.maximum(t17*np.maximum((t52 + t53)/t10, (t53 + t54)/t11), t28*np.maximum((t52 + t55)/t25, (t54 + t55)/t26))
-        t57 = t31/t49
-        t58 = np.abs(t57 - 1)
-        x = _pack([t50*np.exp(q1)], _batch, ())
-        y = _pack([t40*np.exp(-q1)], _batch, ())
-        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t17 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', t16), ('illcond', 'tr L(lam2)', np.where(t28 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', t27), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t29*t30), ('range', 'u_1', t40), ('range', 'u_2', t41), ('range', 'w_1', t46), ('range', 'w_2', t47), ('range', 'd_1', t48), ('range', 'd_2', t49), ('illcond', 'the slopes at site 1', 16777216*t51*np.abs(t48) - t56*(t51 + np.abs(t50))*(np.abs(t40) + np.abs(t46))), ('illcond', 'the slopes at site 2', -t56*(t58 + np.abs(t57))*(np.abs(t41) + np.abs(t47)) + 16777216*t58*np.abs(t49))])
+        t10 = np.abs(t9)
+        t11 = t10 + 2
+        t12 = np.abs(t1)
+        t13 = np.abs(t2)
+        t14 = t1*t2
+        t15 = -t6
+        t16 = -t5
+        t17 = t15 + t16 + 2
+        t18 = (-t8 - 2)*(t14 + t17)
+        t19 = t11*((t12*t13 + t7)/np.abs(t18))
+        t20 = 4*mu
+        t21 = 4*lam0 + 4*p2
+        t22 = t1*t5
+        t23 = t15 + t5
+        t24 = t14 + t23
+        t25 = t22*(-t20 - t21) + t24**2
+        t26 = 2*np.abs(t2) + 2*np.abs(t22) + np.abs(t24)
+        t27 = lam0 - mu
+        t28 = p1 + t27
+        t29 = p2 + t27
+        t30 = t28*t29
+        t31 = -t30
+        t32 = t31 + t7
+        t33 = -t32
+        t34 = np.abs(t33)
+        t35 = t34 + 2
+        t36 = np.abs(t28)
+        t37 = np.abs(t29)
+        t38 = (-t32 - 2)*(t17 + t30)
+        t39 = t35*((t36*t37 + t7)/np.abs(t38))
+        t40 = t28*t5
+        t41 = t23 + t30
+        t42 = t40*(t20 - t21) + t41**2
+        t43 = 2*np.abs(t29) + 2*np.abs(t40) + np.abs(t41)
+        t44 = np.sign(t9)
+        t45 = np.sign(t33)
+        t46 = 2*mu
+        t47 = 2*lam0 + 2*p2
+        t48 = branch*np.where(t10 > (t26 - 2), np.sqrt(t25), np.sqrt(t18))
+        t49 = t16 + t6
+        t50 = np.where(t24*branch >= 0, (t24 + t48)/(-t46 - t47), -(2*t22/(-t3 - t48 - t49)))
+        t51 = t44*branch <= 0
+        t52 = np.where(t51, -(t5/(t2 - t6/(t1 + t50))), -t1 - t6/(-t2 - t5/t50))
+        t53 = np.where(t51, -(t6/(t1 + t52)), -t2 - t5/t52)
+        t54 = branch*np.where(t34 > (t43 - 2), np.sqrt(t42), np.sqrt(t38))
+        t55 = np.where(t41*branch <= 0, (-t31 - t49 - t54)/(t46 - t47), -(2*t40/(t41 + t54)))
+        t56 = t45*branch >= 0
+        t57 = np.where(t56, -(t5/(t29 - t6/(t28 + t55))), -t28 - t6/(-t29 - t5/t55))
+        t58 = np.where(t56, -(t6/(t28 + t57)), -t29 - t5/t57)
+        t59 = -t52 + t57
+        t60 = -t53 + t58
+        t61 = t46/t59
+        t62 = np.abs(t61 - 1)
+        t63 = np.abs(p1)
+        t64 = np.abs(t0)
+        t65 = np.abs(p2)
+        t66 = np.abs(t27)
+        t67 = np.maximum(t19*np.maximum((t63 + t64)/t12, (t64 + t65)/t13), t39*np.maximum((t63 + t66)/t36, (t65 + t66)/t37))
+        t68 = t46/t60
+        t69 = np.abs(t68 - 1)
+        x = _pack([t61*np.exp(q1)], _batch, ())
+        y = _pack([t52*np.exp(-q1)], _batch, ())
+        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t19 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', np.where(t11 > t26, t25, t18)), ('illcond', 'tr L(lam2)', np.where(t39 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', np.where(t35 > t43, t42, t38)), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t44*t45), ('range', 'u_1', t52), ('range', 'u_2', t53), ('range', 'w_1', t57), ('range', 'w_2', t58), ('range', 'd_1', t59), ('range', 'd_2', t60), ('illcond', 'the slopes at site 1', 16777216*t62*np.abs(t59) - t67*(t62 + np.abs(t61))*(np.abs(t52) + np.abs(t57))), ('illcond', 'the slopes at site 2', -t67*(t69 + np.abs(t68))*(np.abs(t53) + np.abs(t58)) + 16777216*t69*np.abs(t60))])
     x, y, = _finish(errors, _bad, _batch, [x, y])
     return x, y
 
@@ -627,61 +638,72 @@ def bt_step(p, q, lam0, mu, branch, errors="raise"):
         t7 = t5 + t6
         t8 = t3 + t7
         t9 = -t8
-        t10 = np.abs(t1)
-        t11 = np.abs(t2)
-        t12 = t1*t2
-        t13 = -t6
-        t14 = -t5
-        t15 = t13 + t14 + 2
-        t16 = (-t8 - 2)*(t12 + t15)
-        t17 = (np.abs(t9) + 2)*((t10*t11 + t7)/np.abs(t16))
-        t18 = lam0 - mu
-        t19 = p1 + t18
-        t20 = p2 + t18
-        t21 = t19*t20
-        t22 = -t21
-        t23 = t22 + t7
-        t24 = -t23
-        t25 = np.abs(t19)
-        t26 = np.abs(t20)
-        t27 = (-t23 - 2)*(t15 + t21)
-        t28 = (np.abs(t24) + 2)*((t25*t26 + t7)/np.abs(t27))
-        t29 = np.sign(t9)
-        t30 = np.sign(t24)
-        t31 = 2*mu
-        t32 = 2*lam0 + 2*p2
-        t33 = branch*np.sqrt(t16)
-        t34 = t13 + t5
-        t35 = t12 + t34
-        t36 = t14 + t6
-        t37 = 2*t5
-        t38 = np.where(t33*t35 >= 0, (t33 + t35)/(-t31 - t32), -(t1*t37/(-t3 - t33 - t36)))
-        t39 = t29*branch <= 0
-        t40 = np.where(t39, -(t5/(t2 - t6/(t1 + t38))), -t1 - t6/(-t2 - t5/t38))
-        t41 = np.where(t39, -(t6/(t1 + t40)), -t2 - t5/t40)
-        t42 = branch*np.sqrt(t27)
-        t43 = t21 + t34
-        t44 = np.where(t42*t43 <= 0, (-t22 - t36 - t42)/(t31 - t32), -(t19*t37/(t42 + t43)))
-        t45 = t30*branch >= 0
-        t46 = np.where(t45, -(t5/(t20 - t6/(t19 + t44))), -t19 - t6/(-t20 - t5/t44))
-        t47 = np.where(t45, -(t6/(t19 + t46)), -t20 - t5/t46)
-        t48 = -t40 + t46
-        t49 = -t41 + t47
-        t50 = t31/t48
-        t51 = np.abs(t50 - 1)
-        t52 = np.abs(p1)
-        t53 = np.abs(t0)
-        t54 = np.abs(p2)
-        t55 = np.abs(t18)
-        t56 = np.maximum(t17*np.maximum((t52 + t53)/t10, (t53 + t54)/t11), t28*np.maximum((t52 + t55)/t25, (t54 + t55)/t26))
-        t57 = t31/t49
-        t58 = np.abs(t57 - 1)
-        t59 = t31/t48
-        t60 = t31/t49
-        t61 = (t40/t48)*(t47/t49) - (t41/t49)*(t46/t48)
-        p_new = _pack([p1 + t31*t61, p2 - t31*t61], _batch, (2,))
-        q_new = _pack([q1 + np.log1p(-t59), q2 + np.log1p(-t60)], _batch, (2,))
-        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t17 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', t16), ('illcond', 'tr L(lam2)', np.where(t28 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', t27), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t29*t30), ('range', 'u_1', t40), ('range', 'u_2', t41), ('range', 'w_1', t46), ('range', 'w_2', t47), ('range', 'd_1', t48), ('range', 'd_2', t49), ('illcond', 'the slopes at site 1', 16777216*t51*np.abs(t48) - t56*(t51 + np.abs(t50))*(np.abs(t40) + np.abs(t46))), ('illcond', 'the slopes at site 2', -t56*(t58 + np.abs(t57))*(np.abs(t41) + np.abs(t47)) + 16777216*t58*np.abs(t49)), ('positivity', 'Etilde_1', 1 - t59), ('positivity', 'Etilde_2', 1 - t60)])
+        t10 = np.abs(t9)
+        t11 = t10 + 2
+        t12 = np.abs(t1)
+        t13 = np.abs(t2)
+        t14 = t1*t2
+        t15 = -t6
+        t16 = -t5
+        t17 = t15 + t16 + 2
+        t18 = (-t8 - 2)*(t14 + t17)
+        t19 = t11*((t12*t13 + t7)/np.abs(t18))
+        t20 = 4*mu
+        t21 = 4*lam0 + 4*p2
+        t22 = t1*t5
+        t23 = t15 + t5
+        t24 = t14 + t23
+        t25 = t22*(-t20 - t21) + t24**2
+        t26 = 2*np.abs(t2) + 2*np.abs(t22) + np.abs(t24)
+        t27 = lam0 - mu
+        t28 = p1 + t27
+        t29 = p2 + t27
+        t30 = t28*t29
+        t31 = -t30
+        t32 = t31 + t7
+        t33 = -t32
+        t34 = np.abs(t33)
+        t35 = t34 + 2
+        t36 = np.abs(t28)
+        t37 = np.abs(t29)
+        t38 = (-t32 - 2)*(t17 + t30)
+        t39 = t35*((t36*t37 + t7)/np.abs(t38))
+        t40 = t28*t5
+        t41 = t23 + t30
+        t42 = t40*(t20 - t21) + t41**2
+        t43 = 2*np.abs(t29) + 2*np.abs(t40) + np.abs(t41)
+        t44 = np.sign(t9)
+        t45 = np.sign(t33)
+        t46 = 2*mu
+        t47 = 2*lam0 + 2*p2
+        t48 = branch*np.where(t10 > (t26 - 2), np.sqrt(t25), np.sqrt(t18))
+        t49 = t16 + t6
+        t50 = np.where(t24*branch >= 0, (t24 + t48)/(-t46 - t47), -(2*t22/(-t3 - t48 - t49)))
+        t51 = t44*branch <= 0
+        t52 = np.where(t51, -(t5/(t2 - t6/(t1 + t50))), -t1 - t6/(-t2 - t5/t50))
+        t53 = np.where(t51, -(t6/(t1 + t52)), -t2 - t5/t52)
+        t54 = branch*np.where(t34 > (t43 - 2), np.sqrt(t42), np.sqrt(t38))
+        t55 = np.where(t41*branch <= 0, (-t31 - t49 - t54)/(t46 - t47), -(2*t40/(t41 + t54)))
+        t56 = t45*branch >= 0
+        t57 = np.where(t56, -(t5/(t29 - t6/(t28 + t55))), -t28 - t6/(-t29 - t5/t55))
+        t58 = np.where(t56, -(t6/(t28 + t57)), -t29 - t5/t57)
+        t59 = -t52 + t57
+        t60 = -t53 + t58
+        t61 = t46/t59
+        t62 = np.abs(t61 - 1)
+        t63 = np.abs(p1)
+        t64 = np.abs(t0)
+        t65 = np.abs(p2)
+        t66 = np.abs(t27)
+        t67 = np.maximum(t19*np.maximum((t63 + t64)/t12, (t64 + t65)/t13), t39*np.maximum((t63 + t66)/t36, (t65 + t66)/t37))
+        t68 = t46/t60
+        t69 = np.abs(t68 - 1)
+        t70 = t46/t59
+        t71 = t46/t60
+        t72 = (t52/t59)*(t58/t60) - (t53/t60)*(t57/t59)
+        p_new = _pack([p1 + t46*t72, p2 - t46*t72], _batch, (2,))
+        q_new = _pack([q1 + np.log1p(-t70), q2 + np.log1p(-t71)], _batch, (2,))
+        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t19 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', np.where(t11 > t26, t25, t18)), ('illcond', 'tr L(lam2)', np.where(t39 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', np.where(t35 > t43, t42, t38)), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t44*t45), ('range', 'u_1', t52), ('range', 'u_2', t53), ('range', 'w_1', t57), ('range', 'w_2', t58), ('range', 'd_1', t59), ('range', 'd_2', t60), ('illcond', 'the slopes at site 1', 16777216*t62*np.abs(t59) - t67*(t62 + np.abs(t61))*(np.abs(t52) + np.abs(t57))), ('illcond', 'the slopes at site 2', -t67*(t69 + np.abs(t68))*(np.abs(t53) + np.abs(t58)) + 16777216*t69*np.abs(t60)), ('positivity', 'Etilde_1', 1 - t70), ('positivity', 'Etilde_2', 1 - t71)])
     p_new, q_new, = _finish(errors, _bad, _batch, [p_new, q_new])
     return p_new, q_new
 
@@ -956,67 +978,84 @@ def dapp_xy_mp(p, q, lam0, mu, branch):
     mu = _mp_value(mu, 'mu')
     branch = _mp_branch(branch)
     try:
-        s0 = lam0 + mu
-        s1 = p1 + s0
-        s2 = p2 + s0
-        s3 = q1 - q2
-        s4 = mpmath.exp(s3)
-        s5 = mpmath.exp(-s3)
-        s6 = s4 + s5
-        s7 = -s1*s2 + s6
-        s8 = -s4 - s5 + 2
-        s9 = lam0 - mu
-        s10 = p1 + s9
-        s11 = p2 + s9
-        s12 = -s10*s11 + s6
-        _mp_guard('trace', 'lam1 = lam0 + mu', (-s7 - 2)*(s1*s2 + s8))
-        _mp_guard('trace', 'lam2 = lam0 - mu', (-s12 - 2)*(s10*s11 + s8))
-        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s12)*mpmath.sign(s7))
+        s0 = 4*mu
+        s1 = 4*lam0 + 4*p2
+        s2 = lam0 + mu
+        s3 = p1 + s2
+        s4 = q1 - q2
+        s5 = mpmath.exp(s4)
+        s6 = s3*s5
+        s7 = p2 + s2
+        s8 = s3*s7
+        s9 = mpmath.exp(-s4)
+        s10 = -s9
+        s11 = s10 + s5
+        s12 = s11 + s8
+        s13 = s5 + s9
+        s14 = s13 - s3*s7
+        s15 = -s14
+        s16 = s10 - s5 + 2
+        s17 = lam0 - mu
+        s18 = p1 + s17
+        s19 = s18*s5
+        s20 = p2 + s17
+        s21 = s18*s20
+        s22 = s11 + s21
+        s23 = s13 - s18*s20
+        s24 = -s23
+        _mp_guard('trace', 'lam1 = lam0 + mu', (s12**2 + s6*(-s0 - s1) if abs(s15) > (abs(s12) + 2*abs(s6) + 2*abs(s7) - 2) else (-s14 - 2)*(s16 + s8)))
+        _mp_guard('trace', 'lam2 = lam0 - mu', (s19*(s0 - s1) + s22**2 if abs(s24) > (2*abs(s19) + 2*abs(s20) + abs(s22) - 2) else (-s23 - 2)*(s16 + s21)))
+        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s15)*mpmath.sign(s24))
         t0 = q1 - q2
         t1 = mpmath.exp(t0)
         t2 = mpmath.exp(-t0)
         t3 = 2*mu
         t4 = 2*lam0 + 2*p2
-        t5 = lam0 + mu
-        t6 = p1 + t5
-        t7 = p2 + t5
-        t8 = -(t6*t7)
-        t9 = t1 + t2
-        t10 = t8 + t9
-        t11 = t6*t7
+        t5 = 4*mu
+        t6 = 4*lam0 + 4*p2
+        t7 = lam0 + mu
+        t8 = p1 + t7
+        t9 = t1*t8
+        t10 = p2 + t7
+        t11 = t10*t8
         t12 = -t2
-        t13 = -t1
-        t14 = t12 + t13 + 2
-        t15 = branch*mpmath.sqrt((-t10 - 2)*(t11 + t14))
-        t16 = t1 + t12
-        t17 = t11 + t16
-        t18 = t13 + t2
-        t19 = 2*t1
-        t20 = ((t15 + t17)/(-t3 - t4) if t15*t17 >= 0 else -(t19*t6/(-t15 - t18 - t8)))
-        t21 = -(branch*mpmath.sign(t10)) <= 0
-        t22 = (-_div(t1, t7 - _div(t2, t20 + t6)) if t21 else -t6 - _div(t2, -t7 - _div(t1, t20)))
-        t23 = (-_div(t2, t22 + t6) if t21 else -t7 - _div(t1, t22))
-        t24 = lam0 - mu
-        t25 = p1 + t24
-        t26 = p2 + t24
-        t27 = t25*t26
-        t28 = -t27
-        t29 = t28 + t9
-        t30 = branch*mpmath.sqrt((-t29 - 2)*(t14 + t27))
-        t31 = t16 + t27
-        t32 = ((-t18 - t28 - t30)/(t3 - t4) if t30*t31 <= 0 else -(t19*t25/(t30 + t31)))
-        t33 = -(branch*mpmath.sign(t29)) >= 0
-        t34 = (-_div(t1, t26 - _div(t2, t25 + t32)) if t33 else -t25 - _div(t2, -t26 - _div(t1, t32)))
-        t35 = (-_div(t2, t25 + t34) if t33 else -t26 - _div(t1, t34))
-        t36 = -t22 + t34
-        _mp_guard('range', 'u_1', t22)
-        _mp_guard('range', 'u_2', t23)
-        _mp_guard('range', 'w_1', t34)
-        _mp_guard('range', 'w_2', t35)
-        _mp_guard('range', 'd_1', t36)
-        _mp_guard('range', 'd_2', -t23 + t35)
-        x = t3*mpmath.exp(q1)/t36
-        y = t22*mpmath.exp(-q1)
+        t13 = t1 + t12
+        t14 = t11 + t13
+        t15 = -(t10*t8)
+        t16 = t1 + t2
+        t17 = t15 + t16
+        t18 = -t17
+        t19 = -t1
+        t20 = t12 + t19 + 2
+        t21 = branch*(mpmath.sqrt(t14**2 + t9*(-t5 - t6)) if abs(t18) > (2*abs(t10) + abs(t14) + 2*abs(t9) - 2) else mpmath.sqrt((-t17 - 2)*(t11 + t20)))
+        t22 = t19 + t2
+        t23 = ((t14 + t21)/(-t3 - t4) if t14*branch >= 0 else -(2*t9/(-t15 - t21 - t22)))
+        t24 = branch*mpmath.sign(t18) <= 0
+        t25 = (-_div(t1, t10 - _div(t2, t23 + t8)) if t24 else -t8 - _div(t2, -t10 - _div(t1, t23)))
+        t26 = (-_div(t2, t25 + t8) if t24 else -t10 - _div(t1, t25))
+        t27 = lam0 - mu
+        t28 = p1 + t27
+        t29 = p2 + t27
+        t30 = t28*t29
+        t31 = -t30
+        t32 = t1*t28
+        t33 = t13 + t30
+        t34 = t16 + t31
+        t35 = -t34
+        t36 = branch*(mpmath.sqrt(t32*(t5 - t6) + t33**2) if abs(t35) > (2*abs(t29) + 2*abs(t32) + abs(t33) - 2) else mpmath.sqrt((-t34 - 2)*(t20 + t30)))
+        t37 = ((-t22 - t31 - t36)/(t3 - t4) if t33*branch <= 0 else -(2*t32/(t33 + t36)))
+        t38 = branch*mpmath.sign(t35) >= 0
+        t39 = (-_div(t1, t29 - _div(t2, t28 + t37)) if t38 else -t28 - _div(t2, -t29 - _div(t1, t37)))
+        t40 = (-_div(t2, t28 + t39) if t38 else -t29 - _div(t1, t39))
+        t41 = -t25 + t39
+        _mp_guard('range', 'u_1', t25)
+        _mp_guard('range', 'u_2', t26)
+        _mp_guard('range', 'w_1', t39)
+        _mp_guard('range', 'w_2', t40)
+        _mp_guard('range', 'd_1', t41)
+        _mp_guard('range', 'd_2', -t26 + t40)
+        x = t3*mpmath.exp(q1)/t41
+        y = t25*mpmath.exp(-q1)
     except ZeroDivisionError as exc:
         raise NumericRangeError('division by zero (degenerate eigenvector)') from exc
     return x, y
@@ -1044,73 +1083,90 @@ def bt_step_mp(p, q, lam0, mu, branch):
     mu = _mp_value(mu, 'mu')
     branch = _mp_branch(branch)
     try:
-        s0 = lam0 + mu
-        s1 = p1 + s0
-        s2 = p2 + s0
-        s3 = q1 - q2
-        s4 = mpmath.exp(s3)
-        s5 = mpmath.exp(-s3)
-        s6 = s4 + s5
-        s7 = -s1*s2 + s6
-        s8 = -s4 - s5 + 2
-        s9 = lam0 - mu
-        s10 = p1 + s9
-        s11 = p2 + s9
-        s12 = -s10*s11 + s6
-        _mp_guard('trace', 'lam1 = lam0 + mu', (-s7 - 2)*(s1*s2 + s8))
-        _mp_guard('trace', 'lam2 = lam0 - mu', (-s12 - 2)*(s10*s11 + s8))
-        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s12)*mpmath.sign(s7))
+        s0 = 4*mu
+        s1 = 4*lam0 + 4*p2
+        s2 = lam0 + mu
+        s3 = p1 + s2
+        s4 = q1 - q2
+        s5 = mpmath.exp(s4)
+        s6 = s3*s5
+        s7 = p2 + s2
+        s8 = s3*s7
+        s9 = mpmath.exp(-s4)
+        s10 = -s9
+        s11 = s10 + s5
+        s12 = s11 + s8
+        s13 = s5 + s9
+        s14 = s13 - s3*s7
+        s15 = -s14
+        s16 = s10 - s5 + 2
+        s17 = lam0 - mu
+        s18 = p1 + s17
+        s19 = s18*s5
+        s20 = p2 + s17
+        s21 = s18*s20
+        s22 = s11 + s21
+        s23 = s13 - s18*s20
+        s24 = -s23
+        _mp_guard('trace', 'lam1 = lam0 + mu', (s12**2 + s6*(-s0 - s1) if abs(s15) > (abs(s12) + 2*abs(s6) + 2*abs(s7) - 2) else (-s14 - 2)*(s16 + s8)))
+        _mp_guard('trace', 'lam2 = lam0 - mu', (s19*(s0 - s1) + s22**2 if abs(s24) > (2*abs(s19) + 2*abs(s20) + abs(s22) - 2) else (-s23 - 2)*(s16 + s21)))
+        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s15)*mpmath.sign(s24))
         t0 = q1 - q2
         t1 = mpmath.exp(t0)
         t2 = mpmath.exp(-t0)
         t3 = 2*mu
         t4 = 2*lam0 + 2*p2
-        t5 = lam0 + mu
-        t6 = p1 + t5
-        t7 = p2 + t5
-        t8 = -(t6*t7)
-        t9 = t1 + t2
-        t10 = t8 + t9
-        t11 = t6*t7
+        t5 = 4*mu
+        t6 = 4*lam0 + 4*p2
+        t7 = lam0 + mu
+        t8 = p1 + t7
+        t9 = t1*t8
+        t10 = p2 + t7
+        t11 = t10*t8
         t12 = -t2
-        t13 = -t1
-        t14 = t12 + t13 + 2
-        t15 = branch*mpmath.sqrt((-t10 - 2)*(t11 + t14))
-        t16 = t1 + t12
-        t17 = t11 + t16
-        t18 = t13 + t2
-        t19 = 2*t1
-        t20 = ((t15 + t17)/(-t3 - t4) if t15*t17 >= 0 else -(t19*t6/(-t15 - t18 - t8)))
-        t21 = -(branch*mpmath.sign(t10)) <= 0
-        t22 = (-_div(t1, t7 - _div(t2, t20 + t6)) if t21 else -t6 - _div(t2, -t7 - _div(t1, t20)))
-        t23 = (-_div(t2, t22 + t6) if t21 else -t7 - _div(t1, t22))
-        t24 = lam0 - mu
-        t25 = p1 + t24
-        t26 = p2 + t24
-        t27 = t25*t26
-        t28 = -t27
-        t29 = t28 + t9
-        t30 = branch*mpmath.sqrt((-t29 - 2)*(t14 + t27))
-        t31 = t16 + t27
-        t32 = ((-t18 - t28 - t30)/(t3 - t4) if t30*t31 <= 0 else -(t19*t25/(t30 + t31)))
-        t33 = -(branch*mpmath.sign(t29)) >= 0
-        t34 = (-_div(t1, t26 - _div(t2, t25 + t32)) if t33 else -t25 - _div(t2, -t26 - _div(t1, t32)))
-        t35 = (-_div(t2, t25 + t34) if t33 else -t26 - _div(t1, t34))
-        t36 = -t22 + t34
-        t37 = -t23 + t35
-        t38 = _div(t3, t36)
-        t39 = _div(t3, t37)
-        t40 = _div(t22, t36)*_div(t35, t37) - _div(t23, t37)*_div(t34, t36)
-        _mp_guard('range', 'u_1', t22)
-        _mp_guard('range', 'u_2', t23)
-        _mp_guard('range', 'w_1', t34)
-        _mp_guard('range', 'w_2', t35)
-        _mp_guard('range', 'd_1', t36)
-        _mp_guard('range', 'd_2', t37)
-        _mp_guard('positivity', 'Etilde_1', 1 - t38)
-        _mp_guard('positivity', 'Etilde_2', 1 - t39)
-        p_new = [p1 + t3*t40, p2 - t3*t40]
-        q_new = [q1 + mpmath.log1p(-t38), q2 + mpmath.log1p(-t39)]
+        t13 = t1 + t12
+        t14 = t11 + t13
+        t15 = -(t10*t8)
+        t16 = t1 + t2
+        t17 = t15 + t16
+        t18 = -t17
+        t19 = -t1
+        t20 = t12 + t19 + 2
+        t21 = branch*(mpmath.sqrt(t14**2 + t9*(-t5 - t6)) if abs(t18) > (2*abs(t10) + abs(t14) + 2*abs(t9) - 2) else mpmath.sqrt((-t17 - 2)*(t11 + t20)))
+        t22 = t19 + t2
+        t23 = ((t14 + t21)/(-t3 - t4) if t14*branch >= 0 else -(2*t9/(-t15 - t21 - t22)))
+        t24 = branch*mpmath.sign(t18) <= 0
+        t25 = (-_div(t1, t10 - _div(t2, t23 + t8)) if t24 else -t8 - _div(t2, -t10 - _div(t1, t23)))
+        t26 = (-_div(t2, t25 + t8) if t24 else -t10 - _div(t1, t25))
+        t27 = lam0 - mu
+        t28 = p1 + t27
+        t29 = p2 + t27
+        t30 = t28*t29
+        t31 = -t30
+        t32 = t1*t28
+        t33 = t13 + t30
+        t34 = t16 + t31
+        t35 = -t34
+        t36 = branch*(mpmath.sqrt(t32*(t5 - t6) + t33**2) if abs(t35) > (2*abs(t29) + 2*abs(t32) + abs(t33) - 2) else mpmath.sqrt((-t34 - 2)*(t20 + t30)))
+        t37 = ((-t22 - t31 - t36)/(t3 - t4) if t33*branch <= 0 else -(2*t32/(t33 + t36)))
+        t38 = branch*mpmath.sign(t35) >= 0
+        t39 = (-_div(t1, t29 - _div(t2, t28 + t37)) if t38 else -t28 - _div(t2, -t29 - _div(t1, t37)))
+        t40 = (-_div(t2, t28 + t39) if t38 else -t29 - _div(t1, t39))
+        t41 = -t25 + t39
+        t42 = -t26 + t40
+        t43 = _div(t3, t41)
+        t44 = _div(t3, t42)
+        t45 = _div(t25, t41)*_div(t40, t42) - _div(t26, t42)*_div(t39, t41)
+        _mp_guard('range', 'u_1', t25)
+        _mp_guard('range', 'u_2', t26)
+        _mp_guard('range', 'w_1', t39)
+        _mp_guard('range', 'w_2', t40)
+        _mp_guard('range', 'd_1', t41)
+        _mp_guard('range', 'd_2', t42)
+        _mp_guard('positivity', 'Etilde_1', 1 - t43)
+        _mp_guard('positivity', 'Etilde_2', 1 - t44)
+        p_new = [p1 + t3*t45, p2 - t3*t45]
+        q_new = [q1 + mpmath.log1p(-t43), q2 + mpmath.log1p(-t44)]
     except ZeroDivisionError as exc:
         raise NumericRangeError('division by zero (degenerate eigenvector)') from exc
     return p_new, q_new

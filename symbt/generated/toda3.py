@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: a3d65a576070d4e933864f6ae52d9c6d70fdc4cf2cb2daa8fbd95a318f95faa2
-# symbt-codegen-content-sha256: 1f3034a065174bd362b0f66bd23575599acbad24bb9bf7fe156d661428ee4c03
+# symbt-codegen-derivation-sha256: 74f6c289259a1676031ff09747319833e4941c153beb8c5a977568e1b8d8e271
+# symbt-codegen-content-sha256: 5c0266dda42336046d7f1bd1e6ff262edb2687d047b4e97261c3cc35771cc590
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -641,68 +641,81 @@ def dapp_xy(p, q, lam0, mu, branch, errors="raise"):
         t12 = t11*t9
         t13 = t10*t6 - t12
         t14 = t13 + t5
-        t15 = np.abs(t3)
-        t16 = np.abs(t9)
-        t17 = np.abs(t6)
-        t18 = (t14 - 2)*(t14 + 2)
-        t19 = (np.abs(t14) + 2)*((t1*t15 + t11*t16 + t17*(t15*t16 + t7))/np.abs(t18))
-        t20 = lam0 - mu
-        t21 = p2 + t20
-        t22 = -t21
-        t23 = t1*t22
-        t24 = p3 + t20
-        t25 = p1 + t20
-        t26 = t21*t25 + t8
-        t27 = t24*t26
-        t28 = t11*t25
-        t29 = t27 - t28
-        t30 = t23 + t29
-        t31 = np.abs(t21)
-        t32 = np.abs(t25)
-        t33 = np.abs(t24)
-        t34 = (t30 - 2)*(t30 + 2)
-        t35 = (np.abs(t30) + 2)*((t1*t31 + t11*t32 + t33*(t31*t32 + t7))/np.abs(t34))
-        t36 = np.sign(t14)
-        t37 = np.sign(t30)
-        t38 = 2*t11
-        t39 = branch*np.sqrt(t18)
-        t40 = -t10*t6 + t12 + t5
-        t41 = 2*t1
-        t42 = np.where(t39*t40 <= 0, (t13 + t39 - t5)/(t38 + 2*t4*t6), -(t10*t41/(-t39 - t40)))
-        t43 = t36*branch <= 0
-        t44 = np.where(t43, -(t1/(t6 - t11/(t3 - t7/(t42 + t9)))), -t9 - t7/(-t3 - t11/(-t6 - t1/t42)))
-        t45 = -(t7/(t44 + t9))
-        t46 = -t6 - t1/t44
-        t47 = np.where(t43, t45, -t3 - t11/t46)
-        t48 = np.where(t43, -(t11/(t3 + t45)), t46)
-        t49 = branch*np.sqrt(t34)
-        t50 = t23 - t27 + t28
-        t51 = np.where(t49*t50 >= 0, (-t49 - t50)/(2*t22*t24 + t38), -(t26*t41/(-t23 + t29 + t49)))
-        t52 = t37*branch >= 0
-        t53 = np.where(t52, -(t1/(t24 - t11/(t21 - t7/(t25 + t51)))), -t25 - t7/(-t21 - t11/(-t24 - t1/t51)))
-        t54 = -(t7/(t25 + t53))
-        t55 = -t24 - t1/t53
-        t56 = np.where(t52, t54, -t21 - t11/t55)
-        t57 = np.where(t52, -(t11/(t21 + t54)), t55)
-        t58 = -t44 + t53
-        t59 = -t47 + t56
-        t60 = -t48 + t57
-        t61 = 2*mu
-        t62 = t61/t58
-        t63 = np.abs(t62 - 1)
-        t64 = np.abs(p1)
-        t65 = np.abs(t2)
-        t66 = np.abs(p2)
-        t67 = np.abs(p3)
-        t68 = np.abs(t20)
-        t69 = np.maximum(t19*np.maximum(np.maximum((t64 + t65)/t16, (t65 + t66)/t15), (t65 + t67)/t17), t35*np.maximum(np.maximum((t64 + t68)/t32, (t66 + t68)/t31), (t67 + t68)/t33))
-        t70 = t61/t59
-        t71 = np.abs(t70 - 1)
-        t72 = t61/t60
-        t73 = np.abs(t72 - 1)
-        x = _pack([t62*np.exp(q1)], _batch, ())
-        y = _pack([t44*np.exp(-q1)], _batch, ())
-        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t19 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', t18), ('illcond', 'tr L(lam2)', np.where(t35 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', t34), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t36*t37), ('range', 'u_1', t44), ('range', 'u_2', t47), ('range', 'u_3', t48), ('range', 'w_1', t53), ('range', 'w_2', t56), ('range', 'w_3', t57), ('range', 'd_1', t58), ('range', 'd_2', t59), ('range', 'd_3', t60), ('illcond', 'the slopes at site 1', 16777216*t63*np.abs(t58) - t69*(t63 + np.abs(t62))*(np.abs(t44) + np.abs(t53))), ('illcond', 'the slopes at site 2', -t69*(t71 + np.abs(t70))*(np.abs(t47) + np.abs(t56)) + 16777216*t71*np.abs(t59)), ('illcond', 'the slopes at site 3', -t69*(t73 + np.abs(t72))*(np.abs(t48) + np.abs(t57)) + 16777216*t73*np.abs(t60))])
+        t15 = np.abs(t14)
+        t16 = t15 + 2
+        t17 = np.abs(t3)
+        t18 = np.abs(t9)
+        t19 = np.abs(t6)
+        t20 = (t14 - 2)*(t14 + 2)
+        t21 = t16*((t1*t17 + t11*t18 + t19*(t17*t18 + t7))/np.abs(t20))
+        t22 = 4*t11
+        t23 = t4*t6
+        t24 = t1*t10
+        t25 = -t10*t6 + t12 + t5
+        t26 = -t25
+        t27 = t24*(t22 + 4*t23) + t26**2
+        t28 = 2*np.abs(t24) + np.abs(t26) + 2*np.abs(t11 + t23)
+        t29 = lam0 - mu
+        t30 = p2 + t29
+        t31 = -t30
+        t32 = t1*t31
+        t33 = p3 + t29
+        t34 = p1 + t29
+        t35 = t30*t34 + t8
+        t36 = t11*t34
+        t37 = t33*t35 - t36
+        t38 = t32 + t37
+        t39 = np.abs(t38)
+        t40 = t39 + 2
+        t41 = np.abs(t30)
+        t42 = np.abs(t34)
+        t43 = np.abs(t33)
+        t44 = (t38 - 2)*(t38 + 2)
+        t45 = t40*((t1*t41 + t11*t42 + t43*(t41*t42 + t7))/np.abs(t44))
+        t46 = t31*t33
+        t47 = t1*t35
+        t48 = t32 - t33*t35 + t36
+        t49 = -t48
+        t50 = t47*(t22 + 4*t46) + t49**2
+        t51 = 2*np.abs(t47) + np.abs(t49) + 2*np.abs(t11 + t46)
+        t52 = np.sign(t14)
+        t53 = np.sign(t38)
+        t54 = 2*t11
+        t55 = branch*np.where(t15 > (t28 - 2), np.sqrt(t27), np.sqrt(t20))
+        t56 = np.where(t26*branch >= 0, (t13 - t5 + t55)/(2*t23 + t54), -(2*t24/(-t25 - t55)))
+        t57 = t52*branch <= 0
+        t58 = np.where(t57, -(t1/(t6 - t11/(t3 - t7/(t56 + t9)))), -t9 - t7/(-t3 - t11/(-t6 - t1/t56)))
+        t59 = -(t7/(t58 + t9))
+        t60 = -t6 - t1/t58
+        t61 = np.where(t57, t59, -t3 - t11/t60)
+        t62 = np.where(t57, -(t11/(t3 + t59)), t60)
+        t63 = branch*np.where(t39 > (t51 - 2), np.sqrt(t50), np.sqrt(t44))
+        t64 = np.where(t48*branch >= 0, (-t48 - t63)/(2*t46 + t54), -(2*t47/(-t32 + t37 + t63)))
+        t65 = t53*branch >= 0
+        t66 = np.where(t65, -(t1/(t33 - t11/(t30 - t7/(t34 + t64)))), -t34 - t7/(-t30 - t11/(-t33 - t1/t64)))
+        t67 = -(t7/(t34 + t66))
+        t68 = -t33 - t1/t66
+        t69 = np.where(t65, t67, -t30 - t11/t68)
+        t70 = np.where(t65, -(t11/(t30 + t67)), t68)
+        t71 = -t58 + t66
+        t72 = -t61 + t69
+        t73 = -t62 + t70
+        t74 = 2*mu
+        t75 = t74/t71
+        t76 = np.abs(t75 - 1)
+        t77 = np.abs(p1)
+        t78 = np.abs(t2)
+        t79 = np.abs(p2)
+        t80 = np.abs(p3)
+        t81 = np.abs(t29)
+        t82 = np.maximum(t21*np.maximum(np.maximum((t77 + t78)/t18, (t78 + t79)/t17), (t78 + t80)/t19), t45*np.maximum(np.maximum((t77 + t81)/t42, (t79 + t81)/t41), (t80 + t81)/t43))
+        t83 = t74/t72
+        t84 = np.abs(t83 - 1)
+        t85 = t74/t73
+        t86 = np.abs(t85 - 1)
+        x = _pack([t75*np.exp(q1)], _batch, ())
+        y = _pack([t58*np.exp(-q1)], _batch, ())
+        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t21 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', np.where(t16 > t28, t27, t20)), ('illcond', 'tr L(lam2)', np.where(t45 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', np.where(t40 > t51, t50, t44)), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t52*t53), ('range', 'u_1', t58), ('range', 'u_2', t61), ('range', 'u_3', t62), ('range', 'w_1', t66), ('range', 'w_2', t69), ('range', 'w_3', t70), ('range', 'd_1', t71), ('range', 'd_2', t72), ('range', 'd_3', t73), ('illcond', 'the slopes at site 1', 16777216*t76*np.abs(t71) - t82*(t76 + np.abs(t75))*(np.abs(t58) + np.abs(t66))), ('illcond', 'the slopes at site 2', -t82*(t84 + np.abs(t83))*(np.abs(t61) + np.abs(t69)) + 16777216*t84*np.abs(t72)), ('illcond', 'the slopes at site 3', -t82*(t86 + np.abs(t85))*(np.abs(t62) + np.abs(t70)) + 16777216*t86*np.abs(t73))])
     x, y, = _finish(errors, _bad, _batch, [x, y])
     return x, y
 
@@ -753,77 +766,90 @@ def bt_step(p, q, lam0, mu, branch, errors="raise"):
         t12 = t11*t9
         t13 = t10*t6 - t12
         t14 = t13 + t5
-        t15 = np.abs(t3)
-        t16 = np.abs(t9)
-        t17 = np.abs(t6)
-        t18 = (t14 - 2)*(t14 + 2)
-        t19 = (np.abs(t14) + 2)*((t1*t15 + t11*t16 + t17*(t15*t16 + t7))/np.abs(t18))
-        t20 = lam0 - mu
-        t21 = p2 + t20
-        t22 = -t21
-        t23 = t1*t22
-        t24 = p3 + t20
-        t25 = p1 + t20
-        t26 = t21*t25 + t8
-        t27 = t24*t26
-        t28 = t11*t25
-        t29 = t27 - t28
-        t30 = t23 + t29
-        t31 = np.abs(t21)
-        t32 = np.abs(t25)
-        t33 = np.abs(t24)
-        t34 = (t30 - 2)*(t30 + 2)
-        t35 = (np.abs(t30) + 2)*((t1*t31 + t11*t32 + t33*(t31*t32 + t7))/np.abs(t34))
-        t36 = np.sign(t14)
-        t37 = np.sign(t30)
-        t38 = 2*t11
-        t39 = branch*np.sqrt(t18)
-        t40 = -t10*t6 + t12 + t5
-        t41 = 2*t1
-        t42 = np.where(t39*t40 <= 0, (t13 + t39 - t5)/(t38 + 2*t4*t6), -(t10*t41/(-t39 - t40)))
-        t43 = t36*branch <= 0
-        t44 = np.where(t43, -(t1/(t6 - t11/(t3 - t7/(t42 + t9)))), -t9 - t7/(-t3 - t11/(-t6 - t1/t42)))
-        t45 = -(t7/(t44 + t9))
-        t46 = -t6 - t1/t44
-        t47 = np.where(t43, t45, -t3 - t11/t46)
-        t48 = np.where(t43, -(t11/(t3 + t45)), t46)
-        t49 = branch*np.sqrt(t34)
-        t50 = t23 - t27 + t28
-        t51 = np.where(t49*t50 >= 0, (-t49 - t50)/(2*t22*t24 + t38), -(t26*t41/(-t23 + t29 + t49)))
-        t52 = t37*branch >= 0
-        t53 = np.where(t52, -(t1/(t24 - t11/(t21 - t7/(t25 + t51)))), -t25 - t7/(-t21 - t11/(-t24 - t1/t51)))
-        t54 = -(t7/(t25 + t53))
-        t55 = -t24 - t1/t53
-        t56 = np.where(t52, t54, -t21 - t11/t55)
-        t57 = np.where(t52, -(t11/(t21 + t54)), t55)
-        t58 = -t44 + t53
-        t59 = -t47 + t56
-        t60 = -t48 + t57
-        t61 = 2*mu
-        t62 = t61/t58
-        t63 = np.abs(t62 - 1)
-        t64 = np.abs(p1)
-        t65 = np.abs(t2)
-        t66 = np.abs(p2)
-        t67 = np.abs(p3)
-        t68 = np.abs(t20)
-        t69 = np.maximum(t19*np.maximum(np.maximum((t64 + t65)/t16, (t65 + t66)/t15), (t65 + t67)/t17), t35*np.maximum(np.maximum((t64 + t68)/t32, (t66 + t68)/t31), (t67 + t68)/t33))
-        t70 = t61/t59
-        t71 = np.abs(t70 - 1)
-        t72 = t61/t60
-        t73 = np.abs(t72 - 1)
-        t74 = t61/t58
-        t75 = t61/t59
-        t76 = t61/t60
-        t77 = t53/t58
-        t78 = t47/t59
-        t79 = t44/t58
-        t80 = t56/t59
-        t81 = t48/t60
-        t82 = t57/t60
-        p_new = _pack([p1 + t61*(-t77*t78 + t79*t80), p2 + t61*(t78*t82 - t80*t81), p3 + t61*(t77*t81 - t79*t82)], _batch, (3,))
-        q_new = _pack([q1 + np.log1p(-t74), q2 + np.log1p(-t75), q3 + np.log1p(-t76)], _batch, (3,))
-        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t19 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', t18), ('illcond', 'tr L(lam2)', np.where(t35 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', t34), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t36*t37), ('range', 'u_1', t44), ('range', 'u_2', t47), ('range', 'u_3', t48), ('range', 'w_1', t53), ('range', 'w_2', t56), ('range', 'w_3', t57), ('range', 'd_1', t58), ('range', 'd_2', t59), ('range', 'd_3', t60), ('illcond', 'the slopes at site 1', 16777216*t63*np.abs(t58) - t69*(t63 + np.abs(t62))*(np.abs(t44) + np.abs(t53))), ('illcond', 'the slopes at site 2', -t69*(t71 + np.abs(t70))*(np.abs(t47) + np.abs(t56)) + 16777216*t71*np.abs(t59)), ('illcond', 'the slopes at site 3', -t69*(t73 + np.abs(t72))*(np.abs(t48) + np.abs(t57)) + 16777216*t73*np.abs(t60)), ('positivity', 'Etilde_1', 1 - t74), ('positivity', 'Etilde_2', 1 - t75), ('positivity', 'Etilde_3', 1 - t76)])
+        t15 = np.abs(t14)
+        t16 = t15 + 2
+        t17 = np.abs(t3)
+        t18 = np.abs(t9)
+        t19 = np.abs(t6)
+        t20 = (t14 - 2)*(t14 + 2)
+        t21 = t16*((t1*t17 + t11*t18 + t19*(t17*t18 + t7))/np.abs(t20))
+        t22 = 4*t11
+        t23 = t4*t6
+        t24 = t1*t10
+        t25 = -t10*t6 + t12 + t5
+        t26 = -t25
+        t27 = t24*(t22 + 4*t23) + t26**2
+        t28 = 2*np.abs(t24) + np.abs(t26) + 2*np.abs(t11 + t23)
+        t29 = lam0 - mu
+        t30 = p2 + t29
+        t31 = -t30
+        t32 = t1*t31
+        t33 = p3 + t29
+        t34 = p1 + t29
+        t35 = t30*t34 + t8
+        t36 = t11*t34
+        t37 = t33*t35 - t36
+        t38 = t32 + t37
+        t39 = np.abs(t38)
+        t40 = t39 + 2
+        t41 = np.abs(t30)
+        t42 = np.abs(t34)
+        t43 = np.abs(t33)
+        t44 = (t38 - 2)*(t38 + 2)
+        t45 = t40*((t1*t41 + t11*t42 + t43*(t41*t42 + t7))/np.abs(t44))
+        t46 = t31*t33
+        t47 = t1*t35
+        t48 = t32 - t33*t35 + t36
+        t49 = -t48
+        t50 = t47*(t22 + 4*t46) + t49**2
+        t51 = 2*np.abs(t47) + np.abs(t49) + 2*np.abs(t11 + t46)
+        t52 = np.sign(t14)
+        t53 = np.sign(t38)
+        t54 = 2*t11
+        t55 = branch*np.where(t15 > (t28 - 2), np.sqrt(t27), np.sqrt(t20))
+        t56 = np.where(t26*branch >= 0, (t13 - t5 + t55)/(2*t23 + t54), -(2*t24/(-t25 - t55)))
+        t57 = t52*branch <= 0
+        t58 = np.where(t57, -(t1/(t6 - t11/(t3 - t7/(t56 + t9)))), -t9 - t7/(-t3 - t11/(-t6 - t1/t56)))
+        t59 = -(t7/(t58 + t9))
+        t60 = -t6 - t1/t58
+        t61 = np.where(t57, t59, -t3 - t11/t60)
+        t62 = np.where(t57, -(t11/(t3 + t59)), t60)
+        t63 = branch*np.where(t39 > (t51 - 2), np.sqrt(t50), np.sqrt(t44))
+        t64 = np.where(t48*branch >= 0, (-t48 - t63)/(2*t46 + t54), -(2*t47/(-t32 + t37 + t63)))
+        t65 = t53*branch >= 0
+        t66 = np.where(t65, -(t1/(t33 - t11/(t30 - t7/(t34 + t64)))), -t34 - t7/(-t30 - t11/(-t33 - t1/t64)))
+        t67 = -(t7/(t34 + t66))
+        t68 = -t33 - t1/t66
+        t69 = np.where(t65, t67, -t30 - t11/t68)
+        t70 = np.where(t65, -(t11/(t30 + t67)), t68)
+        t71 = -t58 + t66
+        t72 = -t61 + t69
+        t73 = -t62 + t70
+        t74 = 2*mu
+        t75 = t74/t71
+        t76 = np.abs(t75 - 1)
+        t77 = np.abs(p1)
+        t78 = np.abs(t2)
+        t79 = np.abs(p2)
+        t80 = np.abs(p3)
+        t81 = np.abs(t29)
+        t82 = np.maximum(t21*np.maximum(np.maximum((t77 + t78)/t18, (t78 + t79)/t17), (t78 + t80)/t19), t45*np.maximum(np.maximum((t77 + t81)/t42, (t79 + t81)/t41), (t80 + t81)/t43))
+        t83 = t74/t72
+        t84 = np.abs(t83 - 1)
+        t85 = t74/t73
+        t86 = np.abs(t85 - 1)
+        t87 = t74/t71
+        t88 = t74/t72
+        t89 = t74/t73
+        t90 = t66/t71
+        t91 = t61/t72
+        t92 = t58/t71
+        t93 = t69/t72
+        t94 = t62/t73
+        t95 = t70/t73
+        p_new = _pack([p1 + t74*(-t90*t91 + t92*t93), p2 + t74*(t91*t95 - t93*t94), p3 + t74*(t90*t94 - t92*t95)], _batch, (3,))
+        q_new = _pack([q1 + np.log1p(-t87), q2 + np.log1p(-t88), q3 + np.log1p(-t89)], _batch, (3,))
+        _bad = _guard(errors, _batch, [('illcond', 'tr L(lam1)', np.where(t21 > 16777216, (-1), 1)), ('trace', 'lam1 = lam0 + mu', np.where(t16 > t28, t27, t20)), ('illcond', 'tr L(lam2)', np.where(t45 > 16777216, (-1), 1)), ('trace', 'lam2 = lam0 - mu', np.where(t40 > t51, t50, t44)), ('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', t52*t53), ('range', 'u_1', t58), ('range', 'u_2', t61), ('range', 'u_3', t62), ('range', 'w_1', t66), ('range', 'w_2', t69), ('range', 'w_3', t70), ('range', 'd_1', t71), ('range', 'd_2', t72), ('range', 'd_3', t73), ('illcond', 'the slopes at site 1', 16777216*t76*np.abs(t71) - t82*(t76 + np.abs(t75))*(np.abs(t58) + np.abs(t66))), ('illcond', 'the slopes at site 2', -t82*(t84 + np.abs(t83))*(np.abs(t61) + np.abs(t69)) + 16777216*t84*np.abs(t72)), ('illcond', 'the slopes at site 3', -t82*(t86 + np.abs(t85))*(np.abs(t62) + np.abs(t70)) + 16777216*t86*np.abs(t73)), ('positivity', 'Etilde_1', 1 - t87), ('positivity', 'Etilde_2', 1 - t88), ('positivity', 'Etilde_3', 1 - t89)])
     p_new, q_new, = _finish(errors, _bad, _batch, [p_new, q_new])
     return p_new, q_new
 
@@ -1211,21 +1237,38 @@ def dapp_xy_mp(p, q, lam0, mu, branch):
     mu = _mp_value(mu, 'mu')
     branch = _mp_branch(branch)
     try:
-        s0 = lam0 + mu
-        s1 = p1 + s0
-        s2 = -q3
-        s3 = mpmath.exp(-q2 - s2)
-        s4 = mpmath.exp(q1 + s2)
-        s5 = p2 + s0
-        s6 = -mpmath.exp(-q1 + q2)
-        s7 = -s1*s3 - s4*s5 + (p3 + s0)*(s1*s5 + s6)
-        s8 = lam0 - mu
-        s9 = p1 + s8
-        s10 = p2 + s8
-        s11 = -s10*s4 - s3*s9 + (s10*s9 + s6)*(p3 + s8)
-        _mp_guard('trace', 'lam1 = lam0 + mu', (s7 - 2)*(s7 + 2))
-        _mp_guard('trace', 'lam2 = lam0 - mu', (s11 - 2)*(s11 + 2))
-        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s11)*mpmath.sign(s7))
+        s0 = -q3
+        s1 = mpmath.exp(-q2 - s0)
+        s2 = 4*s1
+        s3 = lam0 + mu
+        s4 = p3 + s3
+        s5 = p2 + s3
+        s6 = -s5
+        s7 = s4*s6
+        s8 = mpmath.exp(q1 + s0)
+        s9 = -mpmath.exp(-q1 + q2)
+        s10 = p1 + s3
+        s11 = s10*s5 + s9
+        s12 = s11*s8
+        s13 = s1*s10
+        s14 = s6*s8
+        s15 = s11*s4 - s13 - s14
+        s16 = s11*s4 - s13 + s14
+        s17 = lam0 - mu
+        s18 = p3 + s17
+        s19 = p2 + s17
+        s20 = -s19
+        s21 = s18*s20
+        s22 = p1 + s17
+        s23 = s19*s22 + s9
+        s24 = s23*s8
+        s25 = s1*s22
+        s26 = s20*s8
+        s27 = s18*s23 - s25 - s26
+        s28 = s18*s23 - s25 + s26
+        _mp_guard('trace', 'lam1 = lam0 + mu', (s12*(s2 + 4*s7) + s15**2 if abs(s16) > (2*abs(s12) + abs(s15) + 2*abs(s1 + s7) - 2) else (s16 - 2)*(s16 + 2)))
+        _mp_guard('trace', 'lam2 = lam0 - mu', (s24*(s2 + 4*s21) + s27**2 if abs(s28) > (2*abs(s24) + abs(s27) + 2*abs(s1 + s21) - 2) else (s28 - 2)*(s28 + 2)))
+        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s16)*mpmath.sign(s28))
         t0 = -q3
         t1 = mpmath.exp(q1 + t0)
         t2 = mpmath.exp(-q2 - t0)
@@ -1235,55 +1278,60 @@ def dapp_xy_mp(p, q, lam0, mu, branch):
         t6 = p3 + t5
         t7 = p2 + t5
         t8 = -t7
-        t9 = t1*t8
-        t10 = -t3
-        t11 = p1 + t5
-        t12 = t10 + t11*t7
-        t13 = t11*t2
-        t14 = t12*t6 - t13
-        t15 = t14 + t9
-        t16 = branch*mpmath.sqrt((t15 - 2)*(t15 + 2))
-        t17 = -t12*t6 + t13 + t9
-        t18 = 2*t1
-        t19 = ((t14 + t16 - t9)/(t4 + 2*t6*t8) if t16*t17 <= 0 else -(t12*t18/(-t16 - t17)))
-        t20 = branch*mpmath.sign(t15) <= 0
-        t21 = (-_div(t1, t6 - _div(t2, t7 - _div(t3, t11 + t19))) if t20 else -t11 - _div(t3, -t7 - _div(t2, -t6 - _div(t1, t19))))
-        t22 = -_div(t3, t11 + t21)
-        t23 = -t6 - _div(t1, t21)
-        t24 = (t22 if t20 else -t7 - _div(t2, t23))
-        t25 = (-_div(t2, t22 + t7) if t20 else t23)
-        t26 = lam0 - mu
-        t27 = p3 + t26
-        t28 = p2 + t26
-        t29 = -t28
-        t30 = t1*t29
-        t31 = p1 + t26
-        t32 = t10 + t28*t31
-        t33 = t27*t32
-        t34 = t2*t31
-        t35 = t33 - t34
-        t36 = t30 + t35
-        t37 = branch*mpmath.sqrt((t36 - 2)*(t36 + 2))
-        t38 = t30 - t33 + t34
-        t39 = ((-t37 - t38)/(2*t27*t29 + t4) if t37*t38 >= 0 else -(t18*t32/(-t30 + t35 + t37)))
-        t40 = branch*mpmath.sign(t36) >= 0
-        t41 = (-_div(t1, t27 - _div(t2, t28 - _div(t3, t31 + t39))) if t40 else -t31 - _div(t3, -t28 - _div(t2, -t27 - _div(t1, t39))))
-        t42 = -_div(t3, t31 + t41)
-        t43 = -t27 - _div(t1, t41)
-        t44 = (t42 if t40 else -t28 - _div(t2, t43))
-        t45 = (-_div(t2, t28 + t42) if t40 else t43)
-        t46 = -t21 + t41
-        _mp_guard('range', 'u_1', t21)
-        _mp_guard('range', 'u_2', t24)
-        _mp_guard('range', 'u_3', t25)
-        _mp_guard('range', 'w_1', t41)
-        _mp_guard('range', 'w_2', t44)
-        _mp_guard('range', 'w_3', t45)
-        _mp_guard('range', 'd_1', t46)
-        _mp_guard('range', 'd_2', -t24 + t44)
-        _mp_guard('range', 'd_3', -t25 + t45)
-        x = 2*mu*mpmath.exp(q1)/t46
-        y = t21*mpmath.exp(-q1)
+        t9 = t6*t8
+        t10 = 4*t2
+        t11 = -t3
+        t12 = p1 + t5
+        t13 = t11 + t12*t7
+        t14 = t1*t13
+        t15 = t12*t2
+        t16 = t1*t8
+        t17 = -t13*t6 + t15 + t16
+        t18 = -t17
+        t19 = t13*t6 - t15
+        t20 = t16 + t19
+        t21 = branch*(mpmath.sqrt(t14*(t10 + 4*t9) + t18**2) if abs(t20) > (2*abs(t14) + abs(t18) + 2*abs(t2 + t9) - 2) else mpmath.sqrt((t20 - 2)*(t20 + 2)))
+        t22 = ((-t16 + t19 + t21)/(t4 + 2*t9) if t18*branch >= 0 else -(2*t14/(-t17 - t21)))
+        t23 = branch*mpmath.sign(t20) <= 0
+        t24 = (-_div(t1, t6 - _div(t2, t7 - _div(t3, t12 + t22))) if t23 else -t12 - _div(t3, -t7 - _div(t2, -t6 - _div(t1, t22))))
+        t25 = -_div(t3, t12 + t24)
+        t26 = -t6 - _div(t1, t24)
+        t27 = (t25 if t23 else -t7 - _div(t2, t26))
+        t28 = (-_div(t2, t25 + t7) if t23 else t26)
+        t29 = lam0 - mu
+        t30 = p3 + t29
+        t31 = p2 + t29
+        t32 = -t31
+        t33 = t30*t32
+        t34 = p1 + t29
+        t35 = t11 + t31*t34
+        t36 = t1*t35
+        t37 = t2*t34
+        t38 = t1*t32
+        t39 = -t30*t35 + t37 + t38
+        t40 = -t39
+        t41 = t30*t35 - t37
+        t42 = t38 + t41
+        t43 = branch*(mpmath.sqrt(t36*(t10 + 4*t33) + t40**2) if abs(t42) > (2*abs(t36) + abs(t40) + 2*abs(t2 + t33) - 2) else mpmath.sqrt((t42 - 2)*(t42 + 2)))
+        t44 = ((-t39 - t43)/(2*t33 + t4) if t39*branch >= 0 else -(2*t36/(-t38 + t41 + t43)))
+        t45 = branch*mpmath.sign(t42) >= 0
+        t46 = (-_div(t1, t30 - _div(t2, t31 - _div(t3, t34 + t44))) if t45 else -t34 - _div(t3, -t31 - _div(t2, -t30 - _div(t1, t44))))
+        t47 = -_div(t3, t34 + t46)
+        t48 = -t30 - _div(t1, t46)
+        t49 = (t47 if t45 else -t31 - _div(t2, t48))
+        t50 = (-_div(t2, t31 + t47) if t45 else t48)
+        t51 = -t24 + t46
+        _mp_guard('range', 'u_1', t24)
+        _mp_guard('range', 'u_2', t27)
+        _mp_guard('range', 'u_3', t28)
+        _mp_guard('range', 'w_1', t46)
+        _mp_guard('range', 'w_2', t49)
+        _mp_guard('range', 'w_3', t50)
+        _mp_guard('range', 'd_1', t51)
+        _mp_guard('range', 'd_2', -t27 + t49)
+        _mp_guard('range', 'd_3', -t28 + t50)
+        x = 2*mu*mpmath.exp(q1)/t51
+        y = t24*mpmath.exp(-q1)
     except ZeroDivisionError as exc:
         raise NumericRangeError('division by zero (degenerate eigenvector)') from exc
     return x, y
@@ -1311,21 +1359,38 @@ def bt_step_mp(p, q, lam0, mu, branch):
     mu = _mp_value(mu, 'mu')
     branch = _mp_branch(branch)
     try:
-        s0 = lam0 + mu
-        s1 = p1 + s0
-        s2 = -q3
-        s3 = mpmath.exp(-q2 - s2)
-        s4 = mpmath.exp(q1 + s2)
-        s5 = p2 + s0
-        s6 = -mpmath.exp(-q1 + q2)
-        s7 = -s1*s3 - s4*s5 + (p3 + s0)*(s1*s5 + s6)
-        s8 = lam0 - mu
-        s9 = p1 + s8
-        s10 = p2 + s8
-        s11 = -s10*s4 - s3*s9 + (s10*s9 + s6)*(p3 + s8)
-        _mp_guard('trace', 'lam1 = lam0 + mu', (s7 - 2)*(s7 + 2))
-        _mp_guard('trace', 'lam2 = lam0 - mu', (s11 - 2)*(s11 + 2))
-        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s11)*mpmath.sign(s7))
+        s0 = -q3
+        s1 = mpmath.exp(-q2 - s0)
+        s2 = 4*s1
+        s3 = lam0 + mu
+        s4 = p3 + s3
+        s5 = p2 + s3
+        s6 = -s5
+        s7 = s4*s6
+        s8 = mpmath.exp(q1 + s0)
+        s9 = -mpmath.exp(-q1 + q2)
+        s10 = p1 + s3
+        s11 = s10*s5 + s9
+        s12 = s11*s8
+        s13 = s1*s10
+        s14 = s6*s8
+        s15 = s11*s4 - s13 - s14
+        s16 = s11*s4 - s13 + s14
+        s17 = lam0 - mu
+        s18 = p3 + s17
+        s19 = p2 + s17
+        s20 = -s19
+        s21 = s18*s20
+        s22 = p1 + s17
+        s23 = s19*s22 + s9
+        s24 = s23*s8
+        s25 = s1*s22
+        s26 = s20*s8
+        s27 = s18*s23 - s25 - s26
+        s28 = s18*s23 - s25 + s26
+        _mp_guard('trace', 'lam1 = lam0 + mu', (s12*(s2 + 4*s7) + s15**2 if abs(s16) > (2*abs(s12) + abs(s15) + 2*abs(s1 + s7) - 2) else (s16 - 2)*(s16 + 2)))
+        _mp_guard('trace', 'lam2 = lam0 - mu', (s24*(s2 + 4*s21) + s27**2 if abs(s28) > (2*abs(s24) + abs(s27) + 2*abs(s1 + s21) - 2) else (s28 - 2)*(s28 + 2)))
+        _mp_guard('positivity', 'Etilde_j for some j (tr L(lam1), tr L(lam2) of opposite signs)', mpmath.sign(s16)*mpmath.sign(s28))
         t0 = -q3
         t1 = mpmath.exp(q1 + t0)
         t2 = mpmath.exp(-q2 - t0)
@@ -1335,70 +1400,75 @@ def bt_step_mp(p, q, lam0, mu, branch):
         t6 = p3 + t5
         t7 = p2 + t5
         t8 = -t7
-        t9 = t1*t8
-        t10 = -t3
-        t11 = p1 + t5
-        t12 = t10 + t11*t7
-        t13 = t11*t2
-        t14 = t12*t6 - t13
-        t15 = t14 + t9
-        t16 = branch*mpmath.sqrt((t15 - 2)*(t15 + 2))
-        t17 = -t12*t6 + t13 + t9
-        t18 = 2*t1
-        t19 = ((t14 + t16 - t9)/(t4 + 2*t6*t8) if t16*t17 <= 0 else -(t12*t18/(-t16 - t17)))
-        t20 = branch*mpmath.sign(t15) <= 0
-        t21 = (-_div(t1, t6 - _div(t2, t7 - _div(t3, t11 + t19))) if t20 else -t11 - _div(t3, -t7 - _div(t2, -t6 - _div(t1, t19))))
-        t22 = -_div(t3, t11 + t21)
-        t23 = -t6 - _div(t1, t21)
-        t24 = (t22 if t20 else -t7 - _div(t2, t23))
-        t25 = (-_div(t2, t22 + t7) if t20 else t23)
-        t26 = lam0 - mu
-        t27 = p3 + t26
-        t28 = p2 + t26
-        t29 = -t28
-        t30 = t1*t29
-        t31 = p1 + t26
-        t32 = t10 + t28*t31
-        t33 = t27*t32
-        t34 = t2*t31
-        t35 = t33 - t34
-        t36 = t30 + t35
-        t37 = branch*mpmath.sqrt((t36 - 2)*(t36 + 2))
-        t38 = t30 - t33 + t34
-        t39 = ((-t37 - t38)/(2*t27*t29 + t4) if t37*t38 >= 0 else -(t18*t32/(-t30 + t35 + t37)))
-        t40 = branch*mpmath.sign(t36) >= 0
-        t41 = (-_div(t1, t27 - _div(t2, t28 - _div(t3, t31 + t39))) if t40 else -t31 - _div(t3, -t28 - _div(t2, -t27 - _div(t1, t39))))
-        t42 = -_div(t3, t31 + t41)
-        t43 = -t27 - _div(t1, t41)
-        t44 = (t42 if t40 else -t28 - _div(t2, t43))
-        t45 = (-_div(t2, t28 + t42) if t40 else t43)
-        t46 = -t21 + t41
-        t47 = -t24 + t44
-        t48 = -t25 + t45
-        t49 = 2*mu
-        t50 = _div(t49, t46)
-        t51 = _div(t49, t47)
-        t52 = _div(t49, t48)
-        t53 = _div(t41, t46)
-        t54 = _div(t24, t47)
-        t55 = _div(t21, t46)
-        t56 = _div(t44, t47)
-        t57 = _div(t25, t48)
-        t58 = _div(t45, t48)
-        _mp_guard('range', 'u_1', t21)
-        _mp_guard('range', 'u_2', t24)
-        _mp_guard('range', 'u_3', t25)
-        _mp_guard('range', 'w_1', t41)
-        _mp_guard('range', 'w_2', t44)
-        _mp_guard('range', 'w_3', t45)
-        _mp_guard('range', 'd_1', t46)
-        _mp_guard('range', 'd_2', t47)
-        _mp_guard('range', 'd_3', t48)
-        _mp_guard('positivity', 'Etilde_1', 1 - t50)
-        _mp_guard('positivity', 'Etilde_2', 1 - t51)
-        _mp_guard('positivity', 'Etilde_3', 1 - t52)
-        p_new = [p1 + t49*(-t53*t54 + t55*t56), p2 + t49*(t54*t58 - t56*t57), p3 + t49*(t53*t57 - t55*t58)]
-        q_new = [q1 + mpmath.log1p(-t50), q2 + mpmath.log1p(-t51), q3 + mpmath.log1p(-t52)]
+        t9 = t6*t8
+        t10 = 4*t2
+        t11 = -t3
+        t12 = p1 + t5
+        t13 = t11 + t12*t7
+        t14 = t1*t13
+        t15 = t12*t2
+        t16 = t1*t8
+        t17 = -t13*t6 + t15 + t16
+        t18 = -t17
+        t19 = t13*t6 - t15
+        t20 = t16 + t19
+        t21 = branch*(mpmath.sqrt(t14*(t10 + 4*t9) + t18**2) if abs(t20) > (2*abs(t14) + abs(t18) + 2*abs(t2 + t9) - 2) else mpmath.sqrt((t20 - 2)*(t20 + 2)))
+        t22 = ((-t16 + t19 + t21)/(t4 + 2*t9) if t18*branch >= 0 else -(2*t14/(-t17 - t21)))
+        t23 = branch*mpmath.sign(t20) <= 0
+        t24 = (-_div(t1, t6 - _div(t2, t7 - _div(t3, t12 + t22))) if t23 else -t12 - _div(t3, -t7 - _div(t2, -t6 - _div(t1, t22))))
+        t25 = -_div(t3, t12 + t24)
+        t26 = -t6 - _div(t1, t24)
+        t27 = (t25 if t23 else -t7 - _div(t2, t26))
+        t28 = (-_div(t2, t25 + t7) if t23 else t26)
+        t29 = lam0 - mu
+        t30 = p3 + t29
+        t31 = p2 + t29
+        t32 = -t31
+        t33 = t30*t32
+        t34 = p1 + t29
+        t35 = t11 + t31*t34
+        t36 = t1*t35
+        t37 = t2*t34
+        t38 = t1*t32
+        t39 = -t30*t35 + t37 + t38
+        t40 = -t39
+        t41 = t30*t35 - t37
+        t42 = t38 + t41
+        t43 = branch*(mpmath.sqrt(t36*(t10 + 4*t33) + t40**2) if abs(t42) > (2*abs(t36) + abs(t40) + 2*abs(t2 + t33) - 2) else mpmath.sqrt((t42 - 2)*(t42 + 2)))
+        t44 = ((-t39 - t43)/(2*t33 + t4) if t39*branch >= 0 else -(2*t36/(-t38 + t41 + t43)))
+        t45 = branch*mpmath.sign(t42) >= 0
+        t46 = (-_div(t1, t30 - _div(t2, t31 - _div(t3, t34 + t44))) if t45 else -t34 - _div(t3, -t31 - _div(t2, -t30 - _div(t1, t44))))
+        t47 = -_div(t3, t34 + t46)
+        t48 = -t30 - _div(t1, t46)
+        t49 = (t47 if t45 else -t31 - _div(t2, t48))
+        t50 = (-_div(t2, t31 + t47) if t45 else t48)
+        t51 = -t24 + t46
+        t52 = -t27 + t49
+        t53 = -t28 + t50
+        t54 = 2*mu
+        t55 = _div(t54, t51)
+        t56 = _div(t54, t52)
+        t57 = _div(t54, t53)
+        t58 = _div(t46, t51)
+        t59 = _div(t27, t52)
+        t60 = _div(t24, t51)
+        t61 = _div(t49, t52)
+        t62 = _div(t28, t53)
+        t63 = _div(t50, t53)
+        _mp_guard('range', 'u_1', t24)
+        _mp_guard('range', 'u_2', t27)
+        _mp_guard('range', 'u_3', t28)
+        _mp_guard('range', 'w_1', t46)
+        _mp_guard('range', 'w_2', t49)
+        _mp_guard('range', 'w_3', t50)
+        _mp_guard('range', 'd_1', t51)
+        _mp_guard('range', 'd_2', t52)
+        _mp_guard('range', 'd_3', t53)
+        _mp_guard('positivity', 'Etilde_1', 1 - t55)
+        _mp_guard('positivity', 'Etilde_2', 1 - t56)
+        _mp_guard('positivity', 'Etilde_3', 1 - t57)
+        p_new = [p1 + t54*(-t58*t59 + t60*t61), p2 + t54*(t59*t63 - t61*t62), p3 + t54*(t58*t62 - t60*t63)]
+        q_new = [q1 + mpmath.log1p(-t55), q2 + mpmath.log1p(-t56), q3 + mpmath.log1p(-t57)]
     except ZeroDivisionError as exc:
         raise NumericRangeError('division by zero (degenerate eigenvector)') from exc
     return p_new, q_new
