@@ -352,3 +352,35 @@ def test_loop_form_refuses_a_trace_it_cannot_represent(tmp_path):
     subprocess.run([cc, "-std=c99", "-O2", "-shared", "-fPIC", "-o", str(tmp_path / "t6.so"),
                     str(tmp_path / "toda6.c"), "-lm"], check=True, capture_output=True, timeout=300)
     assert CStep(tmp_path / "t6.so", 6)(p, q, lam0, mu, b)[0] == 5              # SYMBT_TODA_ILL_CONDITIONED
+
+
+def test_existence_budget_is_shared_by_a_batch(monkeypatch):
+    """One escalation call shares one existence budget (``BUDGET_S``) among its states: a batch of states that
+    stay undecided costs the budget once plus one first-precision attempt per further state -- not M budgets.
+    The intervals are made undecidable and slow (each attempt sleeps), the budget short."""
+    import time as _time
+
+    import symbt.numeric.float64.existence as ex
+    import symbt.numeric.float64.rows as rows
+    from symbt.numeric.core.limits import RANGE
+
+    attempts = []
+
+    def undecided(*args):
+        attempts.append(_time.monotonic())
+        _time.sleep(0.05)
+        return None
+
+    monkeypatch.setattr(ex, "_at", undecided)
+    monkeypatch.setattr(ex, "BUDGET_S", 0.3)
+    monkeypatch.setattr(rows, "_mp_verdict", lambda *a: (rows.TRACE1, []))    # every run says "no real map"
+    M = 6
+    z = np.zeros((M, 2))
+    start = _time.monotonic()
+    st = rows.escalate_rows(z, z, 0.5, 0.25, 1)[2]
+    took = _time.monotonic() - start
+    assert st.tolist() == [RANGE] * M                                # undecided: refused, never "no real map"
+    per_state_budgets = M * 0.3
+    assert took < per_state_budgets / 2, took
+    assert len(attempts) >= M                                        # every state tried at least once
+    assert len(attempts) <= M + 0.3 / 0.05 + 1

@@ -40,7 +40,8 @@ __all__ = ["decide_existence", "MAX_BITS", "BUDGET_S"]
 
 #: the last working precision (bits) of :func:`decide_existence`; it starts at 256 and doubles
 MAX_BITS = 16384
-#: wall-time budget (seconds) of one :func:`decide_existence`, checked between precisions
+#: wall-time budget (seconds) of one :func:`decide_existence` -- and of all the states of one
+#: :func:`~.rows.escalate_rows` call together -- checked between precisions
 BUDGET_S = 20.0
 
 
@@ -91,12 +92,16 @@ def _at(p: npt.NDArray[np.float64], q: npt.NDArray[np.float64], lam0: float, mu:
 
 
 def decide_existence(p: npt.NDArray[np.float64], q: npt.NDArray[np.float64], lam0: float, mu: float, branch: int,
-                     shift: tuple[float, float] = (0.0, 0.0), bits: int = 256) -> tuple[int | None, int]:
+                     shift: tuple[float, float] = (0.0, 0.0), bits: int = 256,
+                     deadline: float | None = None) -> tuple[int | None, int]:
     """``(verdict, bits)``: ``OK`` (the real map certainly exists), ``TRACE1``/``TRACE2``/``POSITIVITY``
     (certainly not; the codes of :mod:`symbt.numeric.core.limits`) or ``None`` (undecided up to
     :data:`MAX_BITS` or :data:`BUDGET_S`), and the interval precision that decided it.  The state is
-    ``(p, q + shift[0] + shift[1])`` with the exact binary values of its floats."""
+    ``(p, q + shift[0] + shift[1])`` with the exact binary values of its floats.  ``deadline`` (a
+    ``time.monotonic()`` value) ends the doubling earlier: a batch shares one budget, each of its states
+    then tried at least at the first precision."""
     start = time.monotonic()
+    end = start + BUDGET_S if deadline is None else min(deadline, start + BUDGET_S)
     while bits <= MAX_BITS:
         old, mpmath.iv.prec = mpmath.iv.prec, bits         # mpmath.iv has no workprec
         try:
@@ -105,7 +110,7 @@ def decide_existence(p: npt.NDArray[np.float64], q: npt.NDArray[np.float64], lam
             mpmath.iv.prec = old
         if verdict is not None:
             return verdict, bits
-        if time.monotonic() - start > BUDGET_S:
+        if time.monotonic() > end:
             break
         bits *= 2
     return None, bits

@@ -18,6 +18,7 @@ Example
 
 from __future__ import annotations
 
+import time
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -26,6 +27,7 @@ from ..core.context import COMPLEX, FLOAT, MP, FloatParam, FloatValue, MPValue
 from ..core.errors import NoRealMapError, NumericRangeError
 from ..core.limits import ILLCOND, MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 from ..core.step import BLOCK_ELEMENTS, float_status, mp_step, step_core
+from . import existence
 from .existence import decide_existence
 
 if TYPE_CHECKING:
@@ -85,6 +87,7 @@ def escalate_rows(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: in
     M, N = pa.shape
     outp, outq = pa.copy(), qa.copy()
     status = np.full(M, RANGE, np.int64)
+    deadline = time.monotonic() + existence.BUDGET_S     # one existence budget for the batch, not per state
     for k in range(M):
         l0, m = float(_take(lam0, k)), float(_take(mu, k))
         sh = (0.0, 0.0) if shift is None else (float(shift[k, 0]), float(shift[k, 1]))
@@ -95,7 +98,8 @@ def escalate_rows(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: in
             if st != st2:
                 continue
             if st not in (OK, RANGE):  # agreement is not proof (chunks 86, 162, 188 of docs/fuzz.md)
-                exists = decide_existence(pa[k], qa[k], l0, m, branch, sh)[0] if exists is None else exists
+                if exists is None:
+                    exists = decide_existence(pa[k], qa[k], l0, m, branch, sh, deadline=deadline)[0]
                 if exists == OK:       # the map exists: a higher precision computes it
                     continue
                 status[k] = RANGE if exists is None else exists
