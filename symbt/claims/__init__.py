@@ -49,6 +49,7 @@ CLAIM_MODULES = (
     "shipped_members",
     "shipped_core",
     "shipped_field",
+    "shipped_rules",
     "checker",
     "checker_mutation",
     "library",

@@ -1,0 +1,131 @@
+r"""What ships, 4i: two documented rules of the numeric routes that no accuracy bound shows (scene ``numeric-paths``).
+
+* ``paths.escalation.n3`` -- :func:`symbt.numeric.float64.rows.escalate_rows` (the escalation of every float64
+  route) returns the *more precise* of its two agreeing mpmath runs, rounded to float64 (docs/numeric.md,
+  "Conditioned decisions and escalation"): the runs agree to ``2**-64 s`` (``s`` the state's scale), so the
+  returned run, 20 digits more precise, is off by about ``1e-20`` of that, and every component -- even one far
+  below ``s`` -- is the exact map's value correctly rounded.  Checked on one state per branch built so that
+  ``q~_1`` is about ``1e-23`` (a cancellation: ``q_1 + log(...)`` with both terms near 1; the states were found
+  offline by a root search of the literal map in ``q_1`` and a lattice search in the last bits of ``q_1`` and
+  ``p_3``, and the claim checks that the component is that small): every component within
+  ``ulp(r_i)/2 + 2**-64 10**-20 s`` of the literal map at 50 digits with guard digits (checked at 75).  The
+  documented agreement bound alone (``2**-64 s``) admits a ``q~_1`` wrong in its leading digits.
+* ``paths.ball_prec.n3`` -- the plain ball method of :func:`~symbt.numeric.multiprec.certified.certified_orbit`
+  (``method="ball"``): a first pass at 64 bits on exact input with target ``1e-60`` stops after its first step
+  (its radii already exceed the target by far more than 8 bits), so exactly one excess is finite, and the next
+  pass must run at its docstring's rule for that case, ``max(floor(p + e + 24) + 1, p + floor(p/4) + 32)``
+  (``e = max_i log2(rad_i / tol)`` of that step).  The radii of that step are read from an independent call at
+  the same 64 bits with a target it meets at once (``tol = 1``, one step, at 300 bits of output, where the
+  returned radius is the ball's radius exactly): a consistency check -- the schedule decides how many passes
+  run, not the rigour of the enclosure, which is also checked (every returned radius <= the target).
+
+Shown to fail on planted bugs in ``tests/test_killers_numeric2.py``.
+"""
+from __future__ import annotations
+
+import importlib.util
+import math
+
+import mpmath as mp
+import numpy as np
+
+from ._shipped import Tally, scale_parts, scaled, step_ref
+from .base import Outcome, Parts, claim, failed, skipped
+
+#: paths.escalation: per branch, a state whose q~_1 cancels to ~1e-23 (p, q, lam0, mu)
+ESCALATION_STATES = {
+    1: ((-20.0, 10.0, 1.0000000008767729), (1.0856038108756834, 0.0, 0.9), 10.0, 5.0),
+    -1: ((-20.0, 10.0, 1.0000000010917003), (-1.080009029320847, 0.0, 0.9), 10.0, 5.0),
+}
+#: the component that cancels (q~_1: index N in the list p~ + q~) and how small it must be against the scale
+TINY_INDEX, TINY_BELOW = 3, 1e-20
+#: the accuracy of the returned run beyond rounding: the agreement tolerance 2**-64 s times 10**-20
+ESCALATED_SLACK = 2.0 ** -64 * 1e-20
+
+
+@claim("paths.escalation", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       parts=scale_parts,
+       where="symbt/numeric/float64/rows.py: escalate_rows (the escalation's result: the more precise run, rounded)",
+       statement="escalate_rows, N={N}, one state per branch whose q~_1 cancels to ~1e-23 of the scale s: every "
+                 "component within ulp(r_i)/2 + 2**-64 10**-20 s of the literal map r (the more precise of the two "
+                 "agreeing mpmath runs, correctly rounded)")
+def escalation(N: int, parts: Parts) -> Outcome:
+    from ..numeric.float64.rows import escalate_rows
+
+    tally, sc = Tally(), parts.printed["scale"]
+    for b, st in ESCALATION_STATES.items():
+        p, q, l0, m = st
+        ref = step_ref(st, b)
+        cell = {"branch": b}
+        with mp.workdps(60):
+            s = max(max(abs(v) for v in ref.x), abs(mp.mpf(l0)) + abs(mp.mpf(m)))
+            tiny = abs(ref.x[TINY_INDEX]) / s
+        if not tiny < TINY_BELOW:
+            return failed("numeric: escalate_rows vs the literal map",
+                          detail=f"branch {b}: |q~_1| / s = {float(tiny):.3g}, not below {TINY_BELOW:g}: the claim's "
+                                 "premise (a component far below the agreement tolerance) fails")
+        pt, qt, status = escalate_rows(np.array([p]), np.array([q]), l0, m, b)
+        if int(status[0]) != 0:
+            tally.notes.append(f"branch {b}: status {int(status[0])}, not OK.")
+            tally.add("escalate_rows", cell, st, b, math.inf)
+            continue
+        xs = scaled([float(v) for v in list(pt[0]) + list(qt[0])], sc)
+        worst = 0.0
+        with mp.workdps(60):
+            for x, r in zip(xs, ref.x):
+                bound = mp.mpf(math.ulp(float(r))) / 2 + ESCALATED_SLACK * s
+                worst = max(worst, float(abs(mp.mpf(x) - r) / bound))
+        tally.add("escalate_rows", cell, st, b, worst, 0.0, ref.agree)
+    return tally.outcome(method="numeric: escalate_rows vs the literal map (50 digits, checked at 75)",
+                         printed="|x_i - r_i| <= ulp(r_i)/2 + 2**-64 1e-20 s")
+
+
+#: paths.ball_prec: the state (exact binary numbers), the forced first precision, the target, the steps
+BALL_STATE = ((-20, 10, 1), (1, 0, 0.9), 10, 5)
+BALL_FIRST, BALL_TOL, BALL_STEPS, BALL_OUT_BITS = 64, 1e-60, 3, 300
+
+
+def ball_rule(prec: int, e: float) -> int:
+    """The ball method's next precision after a pass with one finite excess ``e`` (certified.py's docstring)."""
+    return max(int(prec + e + 24) + 1, prec + prec // 4 + 32)
+
+
+@claim("paths.ball_prec", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       requires=("flint",),
+       where="symbt/numeric/multiprec/certified.py: the ball method's precision schedule (_next_prec)",
+       statement="certified_orbit(method='ball') on the paper's state (N={N}, exact input), 3 steps, target 1e-60, "
+                 "first pass forced to 64 bits (it stops after one step: one finite excess e): the second pass runs "
+                 "at max(floor(64 + e + 24) + 1, 64 + 16 + 32) (its docstring's rule; e from the radii of the same "
+                 "64-bit step, returned by an independent call) and every returned radius meets the target")
+def ball_precision(N: int) -> Outcome:
+    if importlib.util.find_spec("flint") is None:
+        return skipped("python-flint is not installed (.[certified])")
+    from ..numeric.multiprec.certified import certified_orbit
+
+    p, q, l0, m = BALL_STATE
+    with mp.workprec(BALL_OUT_BITS):
+        first: dict[str, object] = {}
+        _, _, Pr, Qr = certified_orbit(p, q, l0, m, 1, method="ball", prec=BALL_FIRST, tol=1.0, info=first)
+        info: dict[str, object] = {}
+        _, _, Pr3, Qr3 = certified_orbit(p, q, l0, m, BALL_STEPS, method="ball", prec=BALL_FIRST, tol=BALL_TOL,
+                                         info=info)
+    radii = [float(r) for r in list(Pr[-1]) + list(Qr[-1]) if r != 0]
+    e = max(math.log2(r) - math.log2(BALL_TOL) for r in radii)
+    want = ball_rule(BALL_FIRST, e)
+    passes = list(info["passes"])  # type: ignore[call-overload]
+    bad = []
+    if first.get("passes") != [BALL_FIRST]:
+        bad.append(f"the one-step call at tol = 1 ran passes {first.get('passes')}, not one pass at {BALL_FIRST}")
+    if not (e > 8 and want > BALL_FIRST + BALL_FIRST // 4 + 32):
+        bad.append(f"excess {e:.3g} bits after the first step: the case (one finite excess above the floor) is "
+                   "not reached")
+    if passes[:2] != [BALL_FIRST, want]:
+        bad.append(f"passes {passes}, the documented rule gives {want} after {BALL_FIRST} (excess {e:.3g})")
+    if not all(r <= BALL_TOL for r in list(Pr3[-1]) + list(Qr3[-1])):
+        bad.append("the returned orbit does not meet the target radius")
+    detail = f"first step at {BALL_FIRST} bits: excess {e:.4g} bits; passes {passes}."
+    if bad:
+        return failed("numeric: the ball method's schedule vs its documented rule",
+                      detail="; ".join(bad) + " " + detail)
+    return Outcome("verified", "numeric: the ball method's schedule vs its documented rule (consistency)",
+                   evidence="sampled", detail=detail, printed="the second pass at the documented precision")

@@ -1,0 +1,135 @@
+"""The claims of ``symbt/claims/shipped_rules.py`` kill the bugs they were written for, and the equivalence proof of
+``mutants-equivalent.toml``'s ``kernels:235`` (issue 21, item 4; docs/mutation.md, branch ``killnum2``).
+
+Each killer test plants one single-point bug of ``symbt mutate --source``'s kind -- the mutant's own text, with
+:func:`planting.planted` -- and requires the claim to fail; unpatched, every claim verifies.
+"""
+from __future__ import annotations
+
+import ast
+import inspect
+import linecache
+import textwrap
+
+import numpy as np
+import pytest
+from planting import planted
+
+from symbt.claims import REGISTRY, load_all
+from symbt.numeric.float64 import kernels, rows
+
+load_all()
+
+RULES = ["paths.ball_prec.n3", "paths.escalation.n3"]
+
+
+def status(cid: str) -> str:
+    return REGISTRY[cid].run().status
+
+
+@pytest.mark.parametrize("cid", RULES)
+def test_unpatched_verified(cid):
+    if cid == "paths.ball_prec.n3":
+        pytest.importorskip("flint")
+    assert status(cid) == "verified"
+
+
+# --------------------------------------------------------------------------- paths.escalation
+
+def test_escalation_returns_the_less_precise_run(monkeypatch):
+    # mutant rows:94 (sign): the second run at dps - 20 instead of dps + 20.  The two runs still agree to
+    # 2**-64 s, so the documented agreement holds, but the returned run is the less precise one: q~_1 (~1e-23)
+    # comes back wrong in its 11th digit
+    monkeypatch.setattr(rows, "escalate_rows", planted(rows.escalate_rows,
+                                                       "branch, dps + 20, sh)", "branch, dps - 20, sh)"))
+    assert status("paths.escalation.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.ball_prec
+
+def test_ball_schedule_one_finite_excess_from_its_index(monkeypatch):
+    # mutant certified:177 (constant): `extra = finite[-1][1] + _MARGIN` -> `finite[-1][0] + _MARGIN` (the step
+    # number instead of the excess): the second pass at the floor p + p/4 + 32 = 112 bits instead of 229
+    pytest.importorskip("flint")
+    from symbt.numeric.multiprec import certified
+
+    monkeypatch.setattr(certified, "_next_prec", planted(certified._next_prec, "extra = finite[-1][1] + _MARGIN",
+                                                         "extra = finite[-1][0] + _MARGIN"))
+    assert status("paths.ball_prec.n3") == "failed"
+
+
+def test_ball_schedule_without_the_margin(monkeypatch):
+    pytest.importorskip("flint")
+    from symbt.numeric.multiprec import certified
+
+    monkeypatch.setattr(certified, "_next_prec", planted(certified._next_prec, "extra = finite[-1][1] + _MARGIN",
+                                                         "extra = finite[-1][1]"))
+    assert status("paths.ball_prec.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- equivalent: kernels:235
+
+def _planted_with_source(func, old: str, new: str):
+    """As :func:`planting.planted`, with the edited source registered in ``linecache`` under its own name, so that
+    ``inspect.getsource`` of the result -- which ``core.inline`` reads to write a hook inline -- is the mutant's."""
+    src = textwrap.dedent(inspect.getsource(func))
+    assert src.count(old) == 1, (func.__name__, old)
+    text = src.replace(old, new)
+    name = f"<planted {func.__module__}.{func.__name__}>"
+    linecache.cache[name] = (len(text), None, text.splitlines(True), name)
+    ns: dict = {}
+    exec(compile(text, name, "exec"), func.__globals__, ns)
+    return ns[func.__name__]
+
+
+def _calls(fn, name: str) -> list[ast.Call]:
+    tree = ast.parse(textwrap.dedent(inspect.getsource(fn)))
+    return [n for n in ast.walk(tree) if isinstance(n, ast.Call) and isinstance(n.func, ast.Name)
+            and n.func.id == name]
+
+
+def test_decided_condition_slot_negative_index_is_equivalent():
+    # mutants-equivalent.toml, kernels:235: `tt[i + 2] = k` -> `tt[i - 2] = k` in the float64 hook `decided`.
+    # (1) The hook is called only by the fused step's `slopes`, with slopes' own `i`, and `slopes` only by `step`,
+    # with i = 0 and i = 1; (2) every tt the float64 step receives has 4 entries (kernels.orbit's np.empty(4), which
+    # python_orbit runs on lists of 4 and numba compiles); so i - 2 is -2 or -1, and tt[-2], tt[-1] are tt[2], tt[3]
+    # (numpy, list and numba indexing wrap a negative index once).  (3) Run: python_orbit with the mutated hook
+    # equals python_orbit bit for bit (statuses included) on every sign cell's state and the band-edge states
+    # (the sharp tier runs there) and states whose slope differences cancel (the stored condition decides there),
+    # three steps.
+    from symbt.claims._shipped import ship_cells
+    from symbt.claims.shipped_paths import edge_states
+    from symbt.numeric.core import fused
+
+    decided = _calls(fused.slopes, "decided")
+    assert len(decided) == 1 and isinstance(decided[0].args[4], ast.Name) and decided[0].args[4].id == "i"
+    assert {"i"} == {a.arg for a in ast.parse(textwrap.dedent(inspect.getsource(fused.slopes))).body[0].args.args
+                     if a.arg == "i"}
+    slopes = _calls(fused.step, "slopes")
+    assert sorted(c.args[8].value for c in slopes) == [0, 1]
+    assert not _calls(fused.step, "decided")
+    assert "tt = np.empty(4)" in inspect.getsource(kernels.orbit)
+    assert [k for k, v in kernels.HOOKS.items() if v is kernels._decided] == ["decided"]
+
+    mutant = _planted_with_source(kernels._decided, "tt[i + 2] = k", "tt[i - 2] = k")
+    assert "tt[i - 2] = k" in inspect.getsource(mutant)
+    orbit_mutated = kernels.python_orbit_with({"decided": mutant})
+    states = [(st, b) for N in (3, 5) for _, st, b in ship_cells(N, 1)] + [(st, b) for _, st, b in edge_states()]
+    # lam1 ~ lam2 ~ -p_j at a large neighbour distance: the slope difference u_j - w_j cancels, so the read-out
+    # test `trusted` reads the stored condition and decides between finishing and handing back (ILLCOND) -- states
+    # where the value in tt[2], tt[3] matters (with `tt[i + 2] = 0.0 * k` planted instead, 8 of them finish)
+    states += [(((-20.0, 10.0, 1.0), (0.0, 30.0, 3.0), l0, m), b) for l0 in (20.0 - 1e-5, -10.0 - 1e-7, -1.0 + 1e-6)
+               for m in (1e-5, -1e-5, 1e-7, -1e-7) for b in (1, -1)]
+    seen = set()
+    for (p, q, l0, m), b in states:
+        N, n = len(p), 3
+        runs = []
+        for orbit in (kernels.python_orbit, orbit_mutated):
+            P, Q = np.full((n + 1, N), -1.0), np.full((n + 1, N), -1.0)
+            code = orbit(np.array(p), np.array(q), l0 + m, l0 - m, 2 * m, b, n, 1, kernels.ANCHOR, P, Q)
+            runs.append((code, P, Q))
+        (c0, P0, Q0), (c1, P1, Q1) = runs
+        assert c0 == c1
+        assert np.array_equal(P0, P1, equal_nan=True) and np.array_equal(Q0, Q1, equal_nan=True)
+        seen.add(c0)
+    assert {kernels.OK, 5} <= seen         # finished states and states handed back (ILLCOND) both ran
