@@ -20,7 +20,7 @@ from symbt.numeric.float64 import kernels, rows
 
 load_all()
 
-RULES = ["paths.ball_prec.n3", "paths.escalation.n3"]
+RULES = ["paths.ball_prec.n3", "paths.escalation.n3", "paths.range_edge.n2"]
 
 
 def status(cid: str) -> str:
@@ -133,3 +133,32 @@ def test_decided_condition_slot_negative_index_is_equivalent():
         assert np.array_equal(P0, P1, equal_nan=True) and np.array_equal(Q0, Q1, equal_nan=True)
         seen.add(c0)
     assert {kernels.OK, 5} <= seen         # finished states and states handed back (ILLCOND) both ran
+
+
+# --------------------------------------------------------------------------- paths.range_edge
+
+def test_block_kernel_range_edge_inclusive(monkeypatch):
+    # mutant kernels_block:118 (compare): `abs(a_) > 1e-290` -> `abs(a_) >= 1e-290`: the block kernel finishes the
+    # state at the edge, the fused kernel gives it back
+    from symbt.numeric.float64 import kernels_block
+
+    monkeypatch.setattr(kernels_block, "_slopes", planted(kernels_block._slopes, "and (abs(a_) > 1e-290 or",
+                                                          "and (abs(a_) >= 1e-290 or"))
+    assert status("paths.range_edge.n2") == "failed"
+
+
+def test_fused_kernel_range_edge_inclusive(monkeypatch):
+    # the same slip in the fused kernel's hook `in_range` (python_orbit writes the hooks inline when it is built:
+    # rebuilt with the planted hook)
+    hook = _planted_with_source(kernels._in_range, "(abs(A) > 1e-290 or", "(abs(A) >= 1e-290 or")
+    monkeypatch.setattr(kernels, "python_orbit", kernels.python_orbit_with({"in_range": hook}))
+    assert status("paths.range_edge.n2") == "failed"
+
+
+def test_block_kernel_range_edge_shifted(monkeypatch):
+    # the limit moved by a factor 2 (an entry must exceed 2e-290): the state one ulp inside is given back
+    from symbt.numeric.float64 import kernels_block
+
+    monkeypatch.setattr(kernels_block, "_slopes", planted(kernels_block._slopes, "and (abs(a_) > 1e-290 or",
+                                                          "and (abs(a_) > 2e-290 or"))
+    assert status("paths.range_edge.n2") == "failed"

@@ -1,4 +1,4 @@
-r"""What ships, 4i: two documented rules of the numeric routes that no accuracy bound shows (scene ``numeric-paths``).
+r"""What ships, 4i: three documented rules of the numeric routes that no accuracy bound shows (scene ``numeric-paths``).
 
 * ``paths.escalation.n3`` -- :func:`symbt.numeric.float64.rows.escalate_rows` (the escalation of every float64
   route) returns the *more precise* of its two agreeing mpmath runs, rounded to float64 (docs/numeric.md,
@@ -18,6 +18,14 @@ r"""What ships, 4i: two documented rules of the numeric routes that no accuracy 
   the same 64 bits with a target it meets at once (``tol = 1``, one step, at 300 bits of output, where the
   returned radius is the ball's radius exactly): a consistency check -- the schedule decides how many passes
   run, not the rigour of the enclosure, which is also checked (every returned radius <= the target).
+* ``paths.range_edge.n2`` -- the float64 kernels' range test at its lower edge (``kernels.py``'s status 4: the
+  rescaled monodromy's first row needs an entry *above* ``1e-290``).  At ``p = (1, 0)``, ``q = (0, -389.9)``,
+  ``lam0 = mu = lam1 / 2`` with ``lam1 = r_1 - 1e-290 2**400`` (``r_1 = exp(-389.9)``), the first row at
+  ``lam1`` is ``(-1e-290, -lam1 2**-400)`` after the exact rescaling by ``2**-400`` -- computed with exact
+  rationals from the same doubles, each rounding shown exact -- so both the block kernel and the fused kernel
+  (plain Python) must give the state back with ``RANGE``; with ``1e-290`` replaced by the next double, one ulp
+  inside, both must finish it (``OK``), bit for bit alike.  Branch -1 (at branch 1 the eigenvector slope overflows
+  at this state, a second reason for ``RANGE`` on both sides of the edge).
 
 Shown to fail on planted bugs in ``tests/test_killers_numeric2.py``.
 """
@@ -25,6 +33,7 @@ from __future__ import annotations
 
 import importlib.util
 import math
+from fractions import Fraction
 
 import mpmath as mp
 import numpy as np
@@ -129,3 +138,83 @@ def ball_precision(N: int) -> Outcome:
                       detail="; ".join(bad) + " " + detail)
     return Outcome("verified", "numeric: the ball method's schedule vs its documented rule (consistency)",
                    evidence="sampled", detail=detail, printed="the second pass at the documented precision")
+
+
+#: paths.range_edge: the neighbour distance q_2 - q_1 (r_1 = exp of it lies in (T, 2T), T = 1e-290 2**400)
+EDGE_DQ = -389.9
+#: the kernels' range limit of a monodromy entry and the power of two the monodromy is rescaled by (kernels.py)
+EDGE_LIMIT, EDGE_SHRINK_BITS = 1e-290, 400
+#: the branch: its eigenvector slope is the root -2C/k, finite here (at branch 1 the slope k/(2B) overflows, so
+#: both kernels give the state back for that reason too, on either side of the edge)
+EDGE_BRANCH = -1
+
+
+def edge_row(lam1: float, r1: float) -> tuple[Fraction, Fraction, Fraction]:
+    """The first row ``(A, B)`` of the N = 2 monodromy ``m_2 m_1`` at ``lam1`` for ``p = (1, 0)``, computed as the
+    kernels document it (``a_j = lam1 + p_j`` rounded once, each product and difference rounded once: the same
+    doubles), then rescaled exactly by ``2**-400``; exact rationals, and the second-row product ``r_2 |a_1|``
+    that triggers the rescaling.  The claim checks every step is exact where it says so."""
+    a1 = lam1 + 1.0                      # fl(lam1 + p_1)
+    a2 = lam1 + 0.0                      # fl(lam1 + p_2) = lam1
+    A = a2 * a1 - r1                     # fl(fl(a2 a1) - r_1)
+    B = -a2                              # a2 * (-1) - 0
+    scale = Fraction(1, 2 ** EDGE_SHRINK_BITS)
+    return Fraction(A) * scale, Fraction(B) * scale, Fraction(math.exp(-EDGE_DQ)) * Fraction(a1)
+
+
+def edge_states() -> list[tuple[str, float, bool]]:
+    """``(name, lam1, in range)``: ``lam1 = r_1 - T`` puts the rescaled ``A`` at ``-1e-290`` exactly (the edge:
+    not above the limit, so out of range); ``r_1 - T'`` with ``T'`` the next double's multiple puts it one ulp
+    above (in range)."""
+    r1 = math.exp(EDGE_DQ)
+    T = math.ldexp(EDGE_LIMIT, EDGE_SHRINK_BITS)
+    T_in = math.ldexp(math.nextafter(EDGE_LIMIT, 1.0), EDGE_SHRINK_BITS)
+    return [("at the edge", r1 - T, False), ("one ulp inside", r1 - T_in, True)]
+
+
+@claim("paths.range_edge", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(2,),
+       where="symbt/numeric/float64/kernels_block.py, kernels.py: the range test's lower edge (in_range)",
+       statement="the block and the fused kernel (plain Python), N={N}, p = (1, 0), q = (0, -389.9), lam0 = mu = "
+                 "lam1/2, branch -1: where the rescaled monodromy's first row is (-1e-290, b), |b| < 1e-290 "
+                 "exactly (exact rationals), both report RANGE (the documented rule: an entry above 1e-290 is "
+                 "needed); one ulp inside, both finish the state, bit for bit alike")
+def range_edge(N: int) -> Outcome:
+    from ..numeric.core.limits import OK, RANGE
+    from ..numeric.float64.jit import kernel
+    from ..numeric.float64.kernels import ANCHOR, python_orbit
+
+    ensemble, _ = kernel("ensemble", "python")
+    r1 = math.exp(EDGE_DQ)
+    bad, seen = [], []
+    for name, lam1, inside in edge_states():
+        A, B, big = edge_row(lam1, r1)
+        exact = Fraction(lam1) == Fraction(r1) - Fraction(math.ldexp(abs(float(A)), EDGE_SHRINK_BITS)) and \
+            abs(lam1) < 2.0 ** -60 and big > 2 ** EDGE_SHRINK_BITS
+        limit = Fraction(EDGE_LIMIT)
+        rule_in = abs(A) > limit or abs(B) > limit
+        if not exact or rule_in != inside or not abs(B) < limit:
+            bad.append(f"{name}: the construction does not hold (A = {float(A):.17g}, B = {float(B):.3g}, "
+                       f"exact {exact})")
+            continue
+        for b in (EDGE_BRANCH,):
+            p0, q0 = np.array([[1.0, 0.0]]), np.array([[0.0, EDGE_DQ]])
+            P, Q, st = np.empty((2, 1, N)), np.empty((2, 1, N)), np.zeros(1, np.int64)
+            Pf, Qf = np.empty((2, N)), np.empty((2, N))
+            with np.errstate(all="ignore"):
+                ensemble(p0, q0, np.array([lam1]), np.array([0.0]), np.array([lam1]), b, 1, 1, ANCHOR, 8, P, Q, st)
+                fused = python_orbit(p0[0], q0[0], lam1, 0.0, lam1, b, 1, 1, ANCHOR, Pf, Qf)
+            block = int(st[0])
+            seen.append(f"{name}, branch {b}: block {block}, fused {fused}")
+            want = OK if inside else RANGE
+            if block != want or fused != want:
+                bad.append(f"{name}, branch {b}: block kernel status {block}, fused kernel {fused}, the rule gives "
+                           f"{want}")
+            elif inside and not (np.array_equal(P[1, 0], Pf[1]) and np.array_equal(Q[1, 0], Qf[1])):
+                bad.append(f"{name}, branch {b}: the two kernels' states differ")
+    detail = "; ".join(seen) + "."
+    if bad:
+        return failed("numeric: the kernels' range test at its lower edge vs the documented rule (exact rationals)",
+                      detail="; ".join(bad) + ". " + detail)
+    return Outcome("verified", "numeric: the kernels' range test at its lower edge vs the documented rule "
+                   "(exact rationals)", evidence="sampled", detail=detail,
+                   printed="RANGE at |A| = 1e-290 exactly, finished one ulp above")
