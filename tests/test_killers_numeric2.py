@@ -1,5 +1,5 @@
 """The claims of ``symbt/claims/shipped_rules.py`` kill the bugs they were written for, and the equivalence proof of
-``mutants-equivalent.toml``'s ``kernels:235`` (issue 21, item 4; docs/mutation.md, branch ``killnum2``).
+``mutants-equivalent.toml``'s ``kernels:236`` (issue 21, item 4; docs/mutation.md, branch ``killnum2``).
 
 Each killer test plants one single-point bug of ``symbt mutate --source``'s kind -- the mutant's own text, with
 :func:`planting.planted` -- and requires the claim to fail; unpatched, every claim verifies.
@@ -67,7 +67,7 @@ def test_ball_schedule_without_the_margin(monkeypatch):
     assert status("paths.ball_prec.n3") == "failed"
 
 
-# --------------------------------------------------------------------------- equivalent: kernels:235
+# --------------------------------------------------------------------------- equivalent: kernels:236
 
 def _planted_with_source(func, old: str, new: str):
     """As :func:`planting.planted`, with the edited source registered in ``linecache`` under its own name, so that
@@ -89,7 +89,8 @@ def _calls(fn, name: str) -> list[ast.Call]:
 
 
 def test_decided_condition_slot_negative_index_is_equivalent():
-    # mutants-equivalent.toml, kernels:235: `tt[i + 2] = k` -> `tt[i - 2] = k` in the float64 hook `decided`.
+    # mutants-equivalent.toml, kernels:236 (235 before the docstring grew a line): `tt[i + 2] = k` ->
+    # `tt[i - 2] = k` in the float64 hook `decided`.
     # (1) The hook is called only by the fused step's `slopes`, with slopes' own `i`, and `slopes` only by `step`,
     # with i = 0 and i = 1; (2) every tt the float64 step receives has 4 entries (kernels.orbit's np.empty(4), which
     # python_orbit runs on lists of 4 and numba compiles); so i - 2 is -2 or -1, and tt[-2], tt[-1] are tt[2], tt[3]
