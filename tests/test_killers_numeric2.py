@@ -163,3 +163,21 @@ def test_block_kernel_range_edge_shifted(monkeypatch):
     monkeypatch.setattr(kernels_block, "_slopes", planted(kernels_block._slopes, "and (abs(a_) > 1e-290 or",
                                                           "and (abs(a_) > 2e-290 or"))
     assert status("paths.range_edge.n2") == "failed"
+
+
+def test_block_kernel_second_entry_tolerance(monkeypatch):
+    # mutant kernels_block:118 (tolerance): `abs(b_) > 1e-290` -> `abs(b_) > 1e-145`: the state whose first row is
+    # (0, ~4e-271) is given back by the block kernel alone
+    from symbt.numeric.float64 import kernels_block
+
+    monkeypatch.setattr(kernels_block, "_slopes", planted(kernels_block._slopes, "or abs(b_) > 1e-290))",
+                                                          "or abs(b_) > 1e-145))"))
+    assert status("paths.range_edge.n2") == "failed"
+
+
+def test_fused_kernel_range_edge_signed(monkeypatch):
+    # mutant kernels:214 (abs): `abs(A) > 1e-290` -> `A > 1e-290`: the fused kernel gives the state one ulp inside
+    # (A < 0) back
+    hook = _planted_with_source(kernels._in_range, "(abs(A) > 1e-290 or", "(A > 1e-290 or")
+    monkeypatch.setattr(kernels, "python_orbit", kernels.python_orbit_with({"in_range": hook}))
+    assert status("paths.range_edge.n2") == "failed"

@@ -24,8 +24,9 @@ r"""What ships, 4i: three documented rules of the numeric routes that no accurac
   ``lam1`` is ``(-1e-290, -lam1 2**-400)`` after the exact rescaling by ``2**-400`` -- computed with exact
   rationals from the same doubles, each rounding shown exact -- so both the block kernel and the fused kernel
   (plain Python) must give the state back with ``RANGE``; with ``1e-290`` replaced by the next double, one ulp
-  inside, both must finish it (``OK``), bit for bit alike.  Branch -1 (at branch 1 the eigenvector slope overflows
-  at this state, a second reason for ``RANGE`` on both sides of the edge).
+  inside, both must finish it (``OK``), bit for bit alike; and likewise at ``q = (0, -345.4)``, ``lam1 = r_1``,
+  where ``A = 0`` exactly and ``|B| = r_1 2**-400 ~ 4e-271`` (in range by ``B`` alone).  Branch -1 (at branch 1
+  the eigenvector slope overflows at ``q = (0, -389.9)``, a second reason for ``RANGE`` on both sides of the edge).
 
 Shown to fail on planted bugs in ``tests/test_killers_numeric2.py``.
 """
@@ -140,36 +141,40 @@ def ball_precision(N: int) -> Outcome:
                    evidence="sampled", detail=detail, printed="the second pass at the documented precision")
 
 
-#: paths.range_edge: the neighbour distance q_2 - q_1 (r_1 = exp of it lies in (T, 2T), T = 1e-290 2**400)
-EDGE_DQ = -389.9
+#: paths.range_edge: the neighbour distances q_2 - q_1 (r_1 = exp of the first lies in (T, 2T), T = 1e-290 2**400;
+#: of the second near 1e-150, so that 2**-400 r_1 lies between 1e-290 and 1e-145)
+EDGE_DQ, EDGE_DQ_ZERO = -389.9, -345.4
 #: the kernels' range limit of a monodromy entry and the power of two the monodromy is rescaled by (kernels.py)
 EDGE_LIMIT, EDGE_SHRINK_BITS = 1e-290, 400
-#: the branch: its eigenvector slope is the root -2C/k, finite here (at branch 1 the slope k/(2B) overflows, so
-#: both kernels give the state back for that reason too, on either side of the edge)
+#: the branch: its eigenvector slope is the root -2C/k, finite here (at branch 1 the slope k/(2B) overflows at
+#: EDGE_DQ, so both kernels give that state back for that reason too, on either side of the edge)
 EDGE_BRANCH = -1
 
 
-def edge_row(lam1: float, r1: float) -> tuple[Fraction, Fraction, Fraction]:
-    """The first row ``(A, B)`` of the N = 2 monodromy ``m_2 m_1`` at ``lam1`` for ``p = (1, 0)``, computed as the
-    kernels document it (``a_j = lam1 + p_j`` rounded once, each product and difference rounded once: the same
-    doubles), then rescaled exactly by ``2**-400``; exact rationals, and the second-row product ``r_2 |a_1|``
-    that triggers the rescaling.  The claim checks every step is exact where it says so."""
-    a1 = lam1 + 1.0                      # fl(lam1 + p_1)
-    a2 = lam1 + 0.0                      # fl(lam1 + p_2) = lam1
+def edge_row(lam1: float, dq: float) -> tuple[Fraction, Fraction, Fraction, bool]:
+    """The first row ``(A, B)`` of the N = 2 monodromy ``m_2 m_1`` at ``lam1`` for ``p = (1, 0)``, ``q = (0, dq)``,
+    computed as the kernels document it (``r_1 = exp(dq)`` rounded once, ``a_j = lam1 + p_j`` rounded once, each
+    product and difference rounded once), then rescaled by ``2**-400``, as exact rationals; the second-row product
+    ``r_2 |a_1|`` that triggers the rescaling; and whether every rounding on the way is exact (``a_1 = 1``,
+    ``a_2 = lam1``, ``lam1 a_1 - r_1`` representable)."""
+    r1, r2 = math.exp(dq), math.exp(-dq)
+    a1, a2 = lam1 + 1.0, lam1 + 0.0
     A = a2 * a1 - r1                     # fl(fl(a2 a1) - r_1)
-    B = -a2                              # a2 * (-1) - 0
+    exact = a1 == 1.0 and a2 == lam1 and Fraction(A) == Fraction(lam1) - Fraction(r1)
     scale = Fraction(1, 2 ** EDGE_SHRINK_BITS)
-    return Fraction(A) * scale, Fraction(B) * scale, Fraction(math.exp(-EDGE_DQ)) * Fraction(a1)
+    return Fraction(A) * scale, Fraction(-a2) * scale, Fraction(r2) * Fraction(a1), exact
 
 
-def edge_states() -> list[tuple[str, float, bool]]:
-    """``(name, lam1, in range)``: ``lam1 = r_1 - T`` puts the rescaled ``A`` at ``-1e-290`` exactly (the edge:
-    not above the limit, so out of range); ``r_1 - T'`` with ``T'`` the next double's multiple puts it one ulp
-    above (in range)."""
+def edge_states() -> list[tuple[str, float, float, bool]]:
+    """``(name, dq, lam1, in range)``: ``lam1 = r_1 - T`` puts the rescaled ``A`` at ``-1e-290`` exactly (the edge:
+    not above the limit, ``|B| < 1e-290`` too: out of range); ``r_1 - T'``, ``T'`` the next double's multiple, one
+    ulp above (in range); ``lam1 = r_1`` at ``EDGE_DQ_ZERO``: ``A = 0`` and ``1e-290 < |B| <= 1e-145`` (in range by
+    ``B`` alone)."""
     r1 = math.exp(EDGE_DQ)
     T = math.ldexp(EDGE_LIMIT, EDGE_SHRINK_BITS)
     T_in = math.ldexp(math.nextafter(EDGE_LIMIT, 1.0), EDGE_SHRINK_BITS)
-    return [("at the edge", r1 - T, False), ("one ulp inside", r1 - T_in, True)]
+    return [("at the edge", EDGE_DQ, r1 - T, False), ("one ulp inside", EDGE_DQ, r1 - T_in, True),
+            ("A = 0, B above the edge", EDGE_DQ_ZERO, math.exp(EDGE_DQ_ZERO), True)]
 
 
 @claim("paths.range_edge", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(2,),
@@ -177,27 +182,25 @@ def edge_states() -> list[tuple[str, float, bool]]:
        statement="the block and the fused kernel (plain Python), N={N}, p = (1, 0), q = (0, -389.9), lam0 = mu = "
                  "lam1/2, branch -1: where the rescaled monodromy's first row is (-1e-290, b), |b| < 1e-290 "
                  "exactly (exact rationals), both report RANGE (the documented rule: an entry above 1e-290 is "
-                 "needed); one ulp inside, both finish the state, bit for bit alike")
+                 "needed); one ulp inside, and where A = 0 and 1e-290 < |b| <= 1e-145 (q = (0, -345.4), lam1 = r_1), "
+                 "both finish the state, bit for bit alike")
 def range_edge(N: int) -> Outcome:
     from ..numeric.core.limits import OK, RANGE
     from ..numeric.float64.jit import kernel
     from ..numeric.float64.kernels import ANCHOR, python_orbit
 
     ensemble, _ = kernel("ensemble", "python")
-    r1 = math.exp(EDGE_DQ)
     bad, seen = [], []
-    for name, lam1, inside in edge_states():
-        A, B, big = edge_row(lam1, r1)
-        exact = Fraction(lam1) == Fraction(r1) - Fraction(math.ldexp(abs(float(A)), EDGE_SHRINK_BITS)) and \
-            abs(lam1) < 2.0 ** -60 and big > 2 ** EDGE_SHRINK_BITS
-        limit = Fraction(EDGE_LIMIT)
+    limit = Fraction(EDGE_LIMIT)
+    for name, dq, lam1, inside in edge_states():
+        A, B, big, exact = edge_row(lam1, dq)
         rule_in = abs(A) > limit or abs(B) > limit
-        if not exact or rule_in != inside or not abs(B) < limit:
+        if not (exact and big > 2 ** EDGE_SHRINK_BITS and rule_in == inside and abs(B) <= Fraction(1e-145)):
             bad.append(f"{name}: the construction does not hold (A = {float(A):.17g}, B = {float(B):.3g}, "
                        f"exact {exact})")
             continue
         for b in (EDGE_BRANCH,):
-            p0, q0 = np.array([[1.0, 0.0]]), np.array([[0.0, EDGE_DQ]])
+            p0, q0 = np.array([[1.0, 0.0]]), np.array([[0.0, dq]])
             P, Q, st = np.empty((2, 1, N)), np.empty((2, 1, N)), np.zeros(1, np.int64)
             Pf, Qf = np.empty((2, N)), np.empty((2, N))
             with np.errstate(all="ignore"):
