@@ -181,3 +181,11 @@ def test_fused_kernel_range_edge_signed(monkeypatch):
     hook = _planted_with_source(kernels._in_range, "(abs(A) > 1e-290 or", "(A > 1e-290 or")
     monkeypatch.setattr(kernels, "python_orbit", kernels.python_orbit_with({"in_range": hook}))
     assert status("paths.range_edge.n2") == "failed"
+
+
+def test_escalation_second_run_on_the_previous_row(monkeypatch):
+    # mutant rows:94 (index-shift): the second run on `qa[k - 1]`: with one row that is the row itself (qa[-1]), in
+    # the two-row call the neighbour's positions -- the runs never agree, the row ends RANGE
+    monkeypatch.setattr(rows, "escalate_rows", planted(rows.escalate_rows, "(pa[k], qa[k], l0, m, branch, dps + 20",
+                                                       "(pa[k], qa[k - 1], l0, m, branch, dps + 20"))
+    assert status("paths.escalation.n3") == "failed"

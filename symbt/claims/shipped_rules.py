@@ -8,8 +8,9 @@ r"""What ships, 4i: three documented rules of the numeric routes that no accurac
   ``q~_1`` is about ``1e-23`` (a cancellation: ``q_1 + log(...)`` with both terms near 1; the states were found
   offline by a root search of the literal map in ``q_1`` and a lattice search in the last bits of ``q_1`` and
   ``p_3``, and the claim checks that the component is that small): every component within
-  ``ulp(r_i)/2 + 2**-64 10**-20 s`` of the literal map at 50 digits with guard digits (checked at 75).  The
-  documented agreement bound alone (``2**-64 s``) admits a ``q~_1`` wrong in its leading digits.
+  ``ulp(r_i)/2 + 2**-64 10**-20 s`` of the literal map at 50 digits with guard digits (checked at 75), alone
+  and as row 0 of a two-row call whose row 1 is the paper's state (each row decided on its own input).  The
+  documented agreement bound alone (``2**-64 s``) admits a ``q~_1`` wrong in its 11th digit.
 * ``paths.ball_prec.n3`` -- the plain ball method of :func:`~symbt.numeric.multiprec.certified.certified_orbit`
   (``method="ball"``): a first pass at 64 bits on exact input with target ``1e-60`` stops after its first step
   (its radii already exceed the target by far more than 8 bits), so exactly one excess is finite, and the next
@@ -51,12 +52,23 @@ ESCALATION_STATES = {
 TINY_INDEX, TINY_BELOW = 3, 1e-20
 #: the accuracy of the returned run beyond rounding: the agreement tolerance 2**-64 s times 10**-20
 ESCALATED_SLACK = 2.0 ** -64 * 1e-20
+#: the second row of the two-row call: the paper's state (its own lam0, mu: those of the escalated state)
+PAPER_STATE = ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9))
+
+
+def _rounded_ratio(xs: list, ref: tuple, l0: float, m: float) -> float:
+    """``max_i |x_i - r_i| / (ulp(r_i)/2 + ESCALATED_SLACK s)``, ``s = max(|r|, |lam0| + |mu|)``."""
+    with mp.workdps(60):
+        s = max(max(abs(v) for v in ref), abs(mp.mpf(l0)) + abs(mp.mpf(m)))
+        return max(float(abs(mp.mpf(x) - r) / (mp.mpf(math.ulp(float(r))) / 2 + ESCALATED_SLACK * s))
+                   for x, r in zip(xs, ref))
 
 
 @claim("paths.escalation", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
        parts=scale_parts,
        where="symbt/numeric/float64/rows.py: escalate_rows (the escalation's result: the more precise run, rounded)",
-       statement="escalate_rows, N={N}, one state per branch whose q~_1 cancels to ~1e-23 of the scale s: every "
+       statement="escalate_rows, N={N}, one state per branch whose q~_1 cancels to ~1e-23 of the scale s, alone and "
+                 "as row 0 of two (row 1 the paper's state): every "
                  "component within ulp(r_i)/2 + 2**-64 10**-20 s of the literal map r (the more precise of the two "
                  "agreeing mpmath runs, correctly rounded)")
 def escalation(N: int, parts: Parts) -> Outcome:
@@ -66,7 +78,6 @@ def escalation(N: int, parts: Parts) -> Outcome:
     for b, st in ESCALATION_STATES.items():
         p, q, l0, m = st
         ref = step_ref(st, b)
-        cell = {"branch": b}
         with mp.workdps(60):
             s = max(max(abs(v) for v in ref.x), abs(mp.mpf(l0)) + abs(mp.mpf(m)))
             tiny = abs(ref.x[TINY_INDEX]) / s
@@ -74,18 +85,20 @@ def escalation(N: int, parts: Parts) -> Outcome:
             return failed("numeric: escalate_rows vs the literal map",
                           detail=f"branch {b}: |q~_1| / s = {float(tiny):.3g}, not below {TINY_BELOW:g}: the claim's "
                                  "premise (a component far below the agreement tolerance) fails")
-        pt, qt, status = escalate_rows(np.array([p]), np.array([q]), l0, m, b)
-        if int(status[0]) != 0:
-            tally.notes.append(f"branch {b}: status {int(status[0])}, not OK.")
-            tally.add("escalate_rows", cell, st, b, math.inf)
-            continue
-        xs = scaled([float(v) for v in list(pt[0]) + list(qt[0])], sc)
-        worst = 0.0
-        with mp.workdps(60):
-            for x, r in zip(xs, ref.x):
-                bound = mp.mpf(math.ulp(float(r))) / 2 + ESCALATED_SLACK * s
-                worst = max(worst, float(abs(mp.mpf(x) - r) / bound))
-        tally.add("escalate_rows", cell, st, b, worst, 0.0, ref.agree)
+        # alone, and as row 0 of two with the paper's state (each row is decided on its own input)
+        other = (PAPER_STATE[0], PAPER_STATE[1], l0, m)
+        for rows_in in ([st], [st, other]):
+            pt, qt, status = escalate_rows(np.array([r[0] for r in rows_in]), np.array([r[1] for r in rows_in]),
+                                           l0, m, b)
+            for k, row in enumerate(rows_in):
+                cell = {"branch": b, "rows": len(rows_in), "row": k}
+                rref = ref if k == 0 else step_ref(row, b)
+                if int(status[k]) != 0:
+                    tally.notes.append(f"branch {b}, row {k} of {len(rows_in)}: status {int(status[k])}, not OK.")
+                    tally.add("escalate_rows", cell, row, b, math.inf)
+                    continue
+                xs = scaled([float(v) for v in list(pt[k]) + list(qt[k])], sc)
+                tally.add("escalate_rows", cell, row, b, _rounded_ratio(xs, rref.x, l0, m), 0.0, rref.agree)
     return tally.outcome(method="numeric: escalate_rows vs the literal map (50 digits, checked at 75)",
                          printed="|x_i - r_i| <= ulp(r_i)/2 + 2**-64 1e-20 s")
 
