@@ -189,3 +189,110 @@ def test_escalation_second_run_on_the_previous_row(monkeypatch):
     monkeypatch.setattr(rows, "escalate_rows", planted(rows.escalate_rows, "(pa[k], qa[k], l0, m, branch, dps + 20",
                                                        "(pa[k], qa[k - 1], l0, m, branch, dps + 20"))
     assert status("paths.escalation.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- equivalent: the seed-2 sample
+
+def _states(N: int) -> list[tuple[np.ndarray, np.ndarray, float, float]]:
+    """Every sign cell's state (both branches' states), states without a real map, a state whose trace at lam2 is
+    exactly 0 (p = (1, 2, 0...), q = 0, lam2 = 0: tr = a_1 a_2 - r_1 - r_2 = 2 - 2 at N = 2), and states far from
+    the spectrum (|tr| ~ 1e70 N: the block kernel's power-of-two rescaling runs)."""
+    from symbt.claims._shipped import ship_cells
+    from symbt.claims.shipped_emitted import nomap_states
+
+    out = [(np.array(st[0]), np.array(st[1]), st[2], st[3]) for _, st, _ in ship_cells(N, 1)]
+    out += [(np.array(st[0]), np.array(st[1]), st[2], st[3]) for st, _, _ in nomap_states(N)]
+    if N == 2:
+        out.append((np.array([1.0, 2.0]), np.zeros(2), 1.5, 1.5))          # lam1 = 3, lam2 = 0: tr L(lam2) = 0
+    out += [(np.linspace(-1.0, 1.0, N), np.linspace(0.0, 0.5, N), s * 1e70, 3.0) for s in (1, -1)]
+    return out
+
+
+def _block_runs(slopes_fn, run_block_fn, states, b: int):
+    """The block kernel (plain Python) on ``states`` as one block, with ``_slopes``/``run_block`` as given."""
+    from symbt.numeric.float64 import kernels_block
+
+    M, N = len(states), states[0][0].size
+    P0, Q0 = np.array([s[0] for s in states]), np.array([s[1] for s in states])
+    l0, m = np.array([s[2] for s in states]), np.array([s[3] for s in states])
+    P, Q, st = np.full((3, M, N), -1.0), np.full((3, M, N), -1.0), np.zeros(M, np.int64)
+    with np.errstate(all="ignore"):
+        old = kernels_block._slopes
+        kernels_block._slopes = slopes_fn
+        try:
+            run_block_fn(P0, Q0, l0 + m, l0 - m, 2.0 * m, b, 2, 1, kernels.ANCHOR, P, Q, st, 0, M)
+        finally:
+            kernels_block._slopes = old
+    return st, P, Q
+
+
+def _same_block_runs(mutant_slopes=None, mutant_run_block=None) -> set:
+    from symbt.numeric.float64 import kernels_block
+
+    seen = set()
+    for N in (2, 3, 5):
+        for b in (1, -1):
+            states = _states(N)
+            st0, P0, Q0 = _block_runs(kernels_block._slopes, kernels_block.run_block, states, b)
+            st1, P1, Q1 = _block_runs(mutant_slopes or kernels_block._slopes,
+                                      mutant_run_block or kernels_block.run_block, states, b)
+            assert np.array_equal(st0, st1)
+            ok = st0 == 0
+            assert np.array_equal(P0[:, ok], P1[:, ok]) and np.array_equal(Q0[:, ok], Q1[:, ok])
+            seen |= set(st0.tolist())
+    return seen
+
+
+def test_block_rescale_loop_entered_when_nothing_is_big_is_equivalent():
+    # mutants-equivalent.toml, kernels_block:99: `if big > 0:` -> `if big >= 0:`.  `big` counts the members k with
+    # `Ab[0, k] > _BIG or Ab[1, k] > _BIG`, and the loop it guards shrinks exactly those members (the same test, the
+    # same Ab, nothing written in between); with big == 0 no member passes it, so the loop writes nothing.  Checked:
+    # the guard and the loop's test are the same expression, and blocks of every sign cell's state, no-map states
+    # and states far from the spectrum (the rescaling runs) step alike, statuses and states bit for bit.
+    from symbt.numeric.float64 import kernels_block
+
+    src = inspect.getsource(kernels_block._slopes)
+    assert src.count("Ab[0, k] > _BIG or Ab[1, k] > _BIG") == 2
+    mutant = planted(kernels_block._slopes, "        if big > 0:", "        if big >= 0:")
+    assert {0} < _same_block_runs(mutant_slopes=mutant)
+
+
+def test_block_opposite_traces_at_a_zero_trace_is_equivalent():
+    # mutants-equivalent.toml, kernels_block:255: `(t2[k] < 0.0)` -> `(t2[k] <= 0.0)` in the opposite-traces test.
+    # The two differ only at t2[k] == 0 (or -0.0), and the test runs only where st[k] == OK after both slopes calls:
+    # there the second call found `disc > 0.0`, disc = (t2 - two) (t2 + two) with two = 2 sc >= 0, which is
+    # -two**2 <= 0 at t2 = 0 -- so t2 != 0 wherever the test runs.  Checked on the states above, with one whose
+    # trace at lam2 is exactly 0 (status TRACE2 either way).
+    from symbt.numeric.float64 import kernels_block
+
+    mutant = planted(kernels_block.run_block, "(t1[k] < 0.0) != (t2[k] < 0.0)", "(t1[k] < 0.0) != (t2[k] <= 0.0)")
+    assert {0, 2} <= _same_block_runs(mutant_run_block=mutant)
+
+
+def test_float_status_opposite_traces_at_a_zero_trace_is_equivalent():
+    # mutants-equivalent.toml, step:314: `opp = (S1.t < 0) != (S2.t < 0)` -> `(S2.t <= 0)` in float_status.  They
+    # differ only where S2.t is 0 (or -0.0); there S2.trace_ok = (t - two) (t + two) = -two**2 <= 0, so ~t2 holds,
+    # and np.select takes the first true condition in the order (ill_t, ~t1, ~t2, opp, ...): TRACE2 or ILLCOND,
+    # never opp's POSITIVITY; opp is read nowhere else.  Checked: that order in the source, and float_status on
+    # one step_core batch of the states above (the zero trace included) alike.
+    from symbt.numeric.core import step as step_module
+    from symbt.numeric.core.context import FLOAT
+
+    tree = ast.parse(textwrap.dedent(inspect.getsource(step_module.float_status)))
+    conds = [n for n in ast.walk(tree) if isinstance(n, ast.Assign) and getattr(n.targets[0], "id", "") == "conds"]
+    assert len(conds) == 1 and "(ill_t, ~t1, ~t2, opp," in ast.unparse(conds[0].value)
+    assert sum(isinstance(n, ast.Name) and n.id == "opp" for n in ast.walk(tree)) == 2     # set once, read once
+    mutant = planted(step_module.float_status, "(S1.t < 0) != (S2.t < 0)", "(S1.t < 0) != (S2.t <= 0)")
+    seen = set()
+    for N in (2, 3, 5):
+        states = _states(N)
+        P = [np.array([s[0][j] for s in states]) for j in range(N)]
+        Q = [np.array([s[1][j] for s in states]) for j in range(N)]
+        l0, m = np.array([s[2] for s in states]), np.array([s[3] for s in states])
+        for b in (1, -1):
+            with np.errstate(all="ignore"):
+                Pn, Qn, aux = step_module.step_core(FLOAT, P, Q, l0, m, b, check_real=False)
+                a, c = step_module.float_status(aux, Pn, Qn), mutant(aux, Pn, Qn)
+            assert np.array_equal(a, c)
+            seen |= set(a.tolist())
+    assert {0, 2} <= seen
