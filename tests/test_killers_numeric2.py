@@ -20,7 +20,7 @@ from symbt.numeric.float64 import kernels, rows
 
 load_all()
 
-RULES = ["paths.ball_prec.n3", "paths.escalation.n3", "paths.range_edge.n2"]
+RULES = ["paths.ball_prec.n3", "paths.escalation.n3", "paths.idle_rows.n3", "paths.range_edge.n2"]
 
 
 def status(cid: str) -> str:
@@ -296,3 +296,21 @@ def test_float_status_opposite_traces_at_a_zero_trace_is_equivalent():
             assert np.array_equal(a, c)
             seen |= set(a.tolist())
     assert {0, 2} <= seen
+
+
+def test_fused_kernel_hook_range_edge_signed(monkeypatch):
+    # mutant kernels:214 (abs) in the hook itself (HOOKS["in_range"], which the claim also calls directly: the
+    # line map cannot see an inlined hook run, so the claim runs it as a function too)
+    hook = _planted_with_source(kernels._in_range, "(abs(A) > 1e-290 or", "(A > 1e-290 or")
+    monkeypatch.setitem(kernels.HOOKS, "in_range", hook)
+    assert status("paths.range_edge.n2") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.idle_rows
+
+def test_idle_rows_first_row_stepped(monkeypatch):
+    # mutant rows:203 (constant): `idx_all = idx_all[:0]` -> `idx_all[:1]`: with a scalar mu = 0 the first row is
+    # stepped -- at lam0 inside a band it has no real map, and the identity raises NoRealMapError
+    monkeypatch.setattr(rows, "float_rows_step", planted(rows.float_rows_step, "idx_all = idx_all[:0]",
+                                                         "idx_all = idx_all[:1]"))
+    assert status("paths.idle_rows.n3") == "failed"

@@ -1,4 +1,4 @@
-r"""What ships, 4i: three documented rules of the numeric routes that no accuracy bound shows (scene ``numeric-paths``).
+r"""What ships, 4i: four documented rules of the numeric routes that no accuracy bound shows (scene ``numeric-paths``).
 
 * ``paths.escalation.n3`` -- :func:`symbt.numeric.float64.rows.escalate_rows` (the escalation of every float64
   route) returns the *more precise* of its two agreeing mpmath runs, rounded to float64 (docs/numeric.md,
@@ -28,6 +28,11 @@ r"""What ships, 4i: three documented rules of the numeric routes that no accurac
   inside, both must finish it (``OK``), bit for bit alike; and likewise at ``q = (0, -345.4)``, ``lam1 = r_1``,
   where ``A = 0`` exactly and ``|B| = r_1 2**-400 ~ 4e-271`` (in range by ``B`` alone).  Branch -1 (at branch 1
   the eigenvector slope overflows at ``q = (0, -389.9)``, a second reason for ``RANGE`` on both sides of the edge).
+  The fused kernel's hook ``HOOKS["in_range"]`` is also called directly on the same entries: ``python_orbit`` writes
+  it inline, so only a direct call lets ``symbt mutate --source``'s line map see its lines run.
+* ``paths.idle_rows.n3`` -- :func:`~symbt.numeric.float64.rows.float_rows_step` with a scalar ``mu = 0`` returns
+  its input (docs/numeric.md: ``mu = 0`` is the identity), also at ``lam0`` inside a band, where a step would have
+  no real map.
 
 Shown to fail on planted bugs in ``tests/test_killers_numeric2.py``.
 """
@@ -200,9 +205,10 @@ def edge_states() -> list[tuple[str, float, float, bool]]:
 def range_edge(N: int) -> Outcome:
     from ..numeric.core.limits import OK, RANGE
     from ..numeric.float64.jit import kernel
-    from ..numeric.float64.kernels import ANCHOR, python_orbit
+    from ..numeric.float64.kernels import ANCHOR, HOOKS, python_orbit
 
     ensemble, _ = kernel("ensemble", "python")
+    in_range = HOOKS["in_range"]      # the fused kernel's hook itself (python_orbit writes it inline)
     bad, seen = [], []
     limit = Fraction(EDGE_LIMIT)
     for name, dq, lam1, inside in edge_states():
@@ -212,6 +218,9 @@ def range_edge(N: int) -> Outcome:
             bad.append(f"{name}: the construction does not hold (A = {float(A):.17g}, B = {float(B):.3g}, "
                        f"exact {exact})")
             continue
+        if bool(in_range(float(A), float(B), 1.0, -1.0, 0.0)) != inside:
+            bad.append(f"{name}: the fused kernel's hook in_range({float(A):.17g}, {float(B):.3g}, 1, -1) says "
+                       f"{not inside}")
         for b in (EDGE_BRANCH,):
             p0, q0 = np.array([[1.0, 0.0]]), np.array([[0.0, dq]])
             P, Q, st = np.empty((2, 1, N)), np.empty((2, 1, N)), np.zeros(1, np.int64)
@@ -234,3 +243,42 @@ def range_edge(N: int) -> Outcome:
     return Outcome("verified", "numeric: the kernels' range test at its lower edge vs the documented rule "
                    "(exact rationals)", evidence="sampled", detail=detail,
                    printed="RANGE at |A| = 1e-290 exactly, finished one ulp above")
+
+
+
+#: paths.idle_rows: lam0 inside a band of the paper's state (|tr L(-10.28)| = 0.48) and in a gap
+IDLE_LAMS = (-10.28, 15.0)
+
+
+@claim("paths.idle_rows", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       where="symbt/numeric/float64/rows.py: float_rows_step with a scalar mu = 0 (no row is stepped)",
+       statement="float_rows_step (the numpy rows), N={N}, a batch of three states with a scalar mu = 0 at lam0 "
+                 "inside a band (where a step would have no real map) and in a gap, both branches: the input "
+                 "itself, bit for bit, no error (docs/numeric.md: mu = 0 is the identity)")
+def idle_rows(N: int) -> Outcome:
+    from ..numeric.float64.rows import float_rows_step
+    from ..reference.literal import literal_trace
+
+    pa = np.array([[-20.0, 10.0, 1.0], [-1.0, 2.0, 0.5], [3.0, -4.0, 0.25]])
+    qa = np.array([[1.0, 0.0, 0.9], [0.0, 0.3, -0.2], [2.0, 1.0, 0.0]])
+    bad, seen = [], []
+    with mp.workdps(30):
+        band = abs(literal_trace(mp.mpf(IDLE_LAMS[0]), pa[0].tolist(), qa[0].tolist())) < 2
+    if not band:
+        bad.append(f"lam0 = {IDLE_LAMS[0]} is not inside a band of the first state: the premise fails")
+    for l0 in IDLE_LAMS:
+        for b in (1, -1):
+            try:
+                pt, qt = float_rows_step(pa.copy(), qa.copy(), l0, 0.0, b, False, (3,))
+            except (ArithmeticError, ValueError) as exc:
+                bad.append(f"lam0 {l0}, branch {b}: {type(exc).__name__}: {str(exc)[:100]}")
+                continue
+            same = np.array_equal(pt, pa) and np.array_equal(qt, qa)
+            seen.append(f"lam0 {l0}, branch {b}: {'the input' if same else 'changed'}")
+            if not same:
+                bad.append(f"lam0 {l0}, branch {b}: the result differs from the input")
+    detail = "; ".join(seen) + "."
+    if bad:
+        return failed("numeric: float_rows_step at mu = 0 vs the identity", detail="; ".join(bad) + ". " + detail)
+    return Outcome("verified", "numeric: float_rows_step at mu = 0 vs the identity (the input)", evidence="sampled",
+                   detail=detail, printed="the input, bit for bit")
