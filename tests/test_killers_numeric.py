@@ -33,7 +33,7 @@ def test_the_scene_has_the_claims_named_here():
                              "paths.coefficients_mp.n3",
                              "paths.complex.n3", "paths.dask.n3", "paths.device.n3", "paths.edges.n3",
                              "paths.enclosures.n3", "paths.escalation.n3",
-                             "paths.failing_rows.n3", "paths.field_far.n3",
+                             "paths.failing_rows.n3", "paths.failure_text.n3", "paths.field_far.n3",
                              "paths.frame.n13", "paths.frame_inverse.n13", "paths.growth.n3",
                              "paths.idle_rows.n3", "paths.ill_member.n3",
                              "paths.jacobian.n3",

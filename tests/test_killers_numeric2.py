@@ -20,7 +20,8 @@ from symbt.numeric.float64 import kernels, rows
 
 load_all()
 
-RULES = ["paths.ball_prec.n3", "paths.escalation.n3", "paths.idle_rows.n3", "paths.range_edge.n2"]
+RULES = ["paths.ball_prec.n3", "paths.escalation.n3", "paths.failure_text.n3", "paths.idle_rows.n3",
+         "paths.range_edge.n2"]
 
 
 def status(cid: str) -> str:
@@ -314,3 +315,14 @@ def test_idle_rows_first_row_stepped(monkeypatch):
     monkeypatch.setattr(rows, "float_rows_step", planted(rows.float_rows_step, "idx_all = idx_all[:0]",
                                                          "idx_all = idx_all[:1]"))
     assert status("paths.idle_rows.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.failure_text
+
+def test_failure_text_ellipsis_inverted(monkeypatch):
+    # mutant orbit:295 (branch): `", ..." if len(where) > 5 else ""` inverted
+    from symbt.numeric.float64 import orbit
+
+    monkeypatch.setattr(orbit, "raise_for_status", planted(orbit.raise_for_status, '", ..." if len(where) > 5',
+                                                           '", ..." if not (len(where) > 5)'))
+    assert status("paths.failure_text.n3") == "failed"

@@ -1,4 +1,4 @@
-r"""What ships, 4i: four documented rules of the numeric routes that no accuracy bound shows (scene ``numeric-paths``).
+r"""What ships, 4i: five documented rules of the numeric routes that no accuracy bound shows (scene ``numeric-paths``).
 
 * ``paths.escalation.n3`` -- :func:`symbt.numeric.float64.rows.escalate_rows` (the escalation of every float64
   route) returns the *more precise* of its two agreeing mpmath runs, rounded to float64 (docs/numeric.md,
@@ -33,6 +33,8 @@ r"""What ships, 4i: four documented rules of the numeric routes that no accuracy
 * ``paths.idle_rows.n3`` -- :func:`~symbt.numeric.float64.rows.float_rows_step` with a scalar ``mu = 0`` returns
   its input (docs/numeric.md: ``mu = 0`` is the identity), also at ``lam0`` inside a band, where a step would have
   no real map.
+* ``paths.failure_text.n3`` -- :func:`~symbt.numeric.float64.orbit.raise_for_status`' message (its docstring):
+  the first five failing members, ``, ...`` exactly when there are more than five, their count.
 
 Shown to fail on planted bugs in ``tests/test_killers_numeric2.py``.
 """
@@ -282,3 +284,36 @@ def idle_rows(N: int) -> Outcome:
         return failed("numeric: float_rows_step at mu = 0 vs the identity", detail="; ".join(bad) + ". " + detail)
     return Outcome("verified", "numeric: float_rows_step at mu = 0 vs the identity (the input)", evidence="sampled",
                    detail=detail, printed="the input, bit for bit")
+
+
+@claim("paths.failure_text", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       where="symbt/numeric/float64/orbit.py: raise_for_status (the message of a failed ensemble)",
+       statement="raise_for_status on 8 members of which 7, 5 or 6 have no real map (N={N}): NoRealMapError whose "
+                 "message names the first five failing members, ', ...' exactly when there are more than five, "
+                 "and their count (its docstring), where = every failing member")
+def failure_text(N: int) -> Outcome:
+    from ..numeric.core.errors import NoRealMapError
+    from ..numeric.core.limits import OK, POSITIVITY
+    from ..numeric.float64.orbit import raise_for_status
+
+    bad, seen = [], []
+    for k in (5, 6, 7):
+        status = np.array([POSITIVITY] * k + [OK] * (8 - k), np.int64)
+        steps = np.full(8, 2, np.int64)
+        members = [(i,) for i in range(k)]
+        want = "(at step 2; batch index %s%s; %d state(s) in all)" % (
+            ", ".join(str(m) for m in members[:5]), ", ..." if k > 5 else "", k)
+        try:
+            raise_for_status(status, steps, (8,))
+            bad.append(f"{k} failing members: nothing raised")
+            continue
+        except NoRealMapError as exc:
+            text, where = str(exc), tuple(exc.where)
+        seen.append(f"{k}: ...{text[-60:]}")
+        if not text.endswith(want) or where != tuple(members):
+            bad.append(f"{k} failing members: message ends {text[-80:]!r}, want {want!r}; where {where}")
+    detail = "; ".join(seen)
+    if bad:
+        return failed("numeric: raise_for_status' message vs its docstring", detail="; ".join(bad))
+    return Outcome("verified", "numeric: raise_for_status' message vs its docstring", evidence="sampled",
+                   detail=detail, printed="the first five members, ', ...' beyond five, the count")
