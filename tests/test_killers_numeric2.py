@@ -20,8 +20,8 @@ from symbt.numeric.float64 import kernels, rows
 
 load_all()
 
-RULES = ["paths.ball_prec.n3", "paths.escalation.n3", "paths.failure_text.n3", "paths.idle_rows.n3",
-         "paths.range_edge.n2"]
+RULES = ["paths.ball_prec.n3", "paths.batch_range.n3", "paths.escalation.n3", "paths.failure_text.n3",
+         "paths.idle_rows.n3", "paths.range_edge.n2"]
 
 
 def status(cid: str) -> str:
@@ -326,3 +326,17 @@ def test_failure_text_ellipsis_inverted(monkeypatch):
     monkeypatch.setattr(orbit, "raise_for_status", planted(orbit.raise_for_status, '", ..." if len(where) > 5',
                                                            '", ..." if not (len(where) > 5)'))
     assert status("paths.failure_text.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.batch_range
+
+def test_batch_range_test_reads_the_minimum_only(monkeypatch):
+    # mutant monodromy:59 (min-max): `max(np.max(d), -np.min(d))` -> `max(np.min(d), -np.min(d))`: a batch whose
+    # largest difference is positive and past 700 is stepped (exp(701) is still a finite double)
+    from symbt.numeric.core import monodromy
+    from symbt.numeric.flow import invariants, phi
+
+    mutant = planted(monodromy.neighbour_ratios, "max(np.max(d), -np.min(d))", "max(np.min(d), -np.min(d))")
+    for module in (invariants, phi):
+        monkeypatch.setattr(module, "neighbour_ratios", mutant)
+    assert status("paths.batch_range.n3") == "failed"

@@ -1,4 +1,4 @@
-r"""What ships, 4i: five documented rules of the numeric routes that no accuracy bound shows (scene ``numeric-paths``).
+r"""What ships, 4i: six documented rules of the numeric routes that no accuracy bound shows (scene ``numeric-paths``).
 
 * ``paths.escalation.n3`` -- :func:`symbt.numeric.float64.rows.escalate_rows` (the escalation of every float64
   route) returns the *more precise* of its two agreeing mpmath runs, rounded to float64 (docs/numeric.md,
@@ -35,6 +35,9 @@ r"""What ships, 4i: five documented rules of the numeric routes that no accuracy
   no real map.
 * ``paths.failure_text.n3`` -- :func:`~symbt.numeric.float64.orbit.raise_for_status`' message (its docstring):
   the first five failing members, ``, ...`` exactly when there are more than five, their count.
+* ``paths.batch_range.n3`` -- the float64 range limit ``|q_{j+1} - q_j| <= 700`` on batches: ``invariants`` and
+  ``phi`` refuse a batch whose one member has a difference of +701 (its others -350.5) with
+  ``NumericRangeError``.
 
 Shown to fail on planted bugs in ``tests/test_killers_numeric2.py``.
 """
@@ -317,3 +320,37 @@ def failure_text(N: int) -> Outcome:
         return failed("numeric: raise_for_status' message vs its docstring", detail="; ".join(bad))
     return Outcome("verified", "numeric: raise_for_status' message vs its docstring", evidence="sampled",
                    detail=detail, printed="the first five members, ', ...' beyond five, the count")
+
+
+#: paths.batch_range: a batch whose first member has q_2 - q_1 = 701 > MAX_DQ_FLOAT64 = 700 (and no neighbour
+#: difference below -700: the positive side alone is past the limit) and a moderate second member
+RANGE_P = ((1.0, -0.5, 0.2), (0.3, 0.1, -0.4))
+RANGE_Q = ((0.0, 701.0, 350.5), (0.0, 0.0, 0.0))
+
+
+@claim("paths.batch_range", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       where="symbt/numeric/core/monodromy.py: neighbour_ratios' float64 range test on batches",
+       statement="invariants and phi on a batch (N={N}) whose first member has q_2 - q_1 = 701 (its other neighbour "
+                 "differences -350.5, -350.5) and whose second is moderate: NumericRangeError (the documented limit "
+                 "|q_{j+1} - q_j| <= 700, tested on every member); the moderate member alone: finite")
+def batch_range(N: int) -> Outcome:
+    from ..numeric import invariants, phi
+    from ..numeric.core.errors import NumericRangeError
+
+    P, Q = np.array(RANGE_P), np.array(RANGE_Q)
+    bad, seen = [], []
+    for name, fn in (("invariants", lambda p, q: invariants(p, q)), ("phi", lambda p, q: phi(p, q, 10.0, 5.0))):
+        try:
+            fn(P, Q)
+            bad.append(f"{name}: the batch with |q_2 - q_1| = 701 returned a result")
+        except NumericRangeError:
+            seen.append(f"{name}: NumericRangeError")
+        with np.errstate(all="ignore"):
+            alone = np.asarray(fn(P[1:], Q[1:]), dtype=float)
+        if not np.all(np.isfinite(alone)):
+            bad.append(f"{name}: the moderate member alone is not finite")
+    detail = "; ".join(seen) + "."
+    if bad:
+        return failed("numeric: the batch range test vs the documented limit", detail="; ".join(bad) + ". " + detail)
+    return Outcome("verified", "numeric: the batch range test vs the documented limit |q_{j+1} - q_j| <= 700",
+                   evidence="sampled", detail=detail, printed="NumericRangeError for the batch")
