@@ -38,7 +38,7 @@ def test_the_scene_has_the_claims_named_here():
                              "paths.idle_rows.n3", "paths.ill_member.n3",
                              "paths.jacobian.n3",
                              "paths.kernels.n3",
-                             "paths.kernels.n5", "paths.lohner_box.n3", "paths.members.n3",
+                             "paths.kernels.n5", "paths.lohner_box.n3", "paths.members.n3", "paths.mixed_block.n3",
                              "paths.next_prec.n3", "paths.qd.n2",
                              "paths.qd.n3", "paths.range_edge.n2",
                              "paths.sharp_kappa.n3", "paths.sharp_kappa.n6", "paths.step_core.n3",

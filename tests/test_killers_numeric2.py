@@ -21,7 +21,7 @@ from symbt.numeric.float64 import kernels, rows
 load_all()
 
 RULES = ["paths.ball_prec.n3", "paths.batch_range.n3", "paths.escalation.n3", "paths.failure_text.n3",
-         "paths.idle_rows.n3", "paths.range_edge.n2"]
+         "paths.idle_rows.n3", "paths.mixed_block.n3", "paths.range_edge.n2"]
 
 
 def status(cid: str) -> str:
@@ -340,3 +340,16 @@ def test_batch_range_test_reads_the_minimum_only(monkeypatch):
     for module in (invariants, phi):
         monkeypatch.setattr(module, "neighbour_ratios", mutant)
     assert status("paths.batch_range.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.mixed_block
+
+def test_block_condition_tracked_on_the_previous_member(monkeypatch):
+    # mutant kernels_block:83 (index-shift): `Kn[k] = cn` -> `Kn[k - 1] = cn`: a member's cancellation factor lands
+    # on its neighbour -- invisible in a block of similar members (paths.threshold's scans), 13 of 128 members
+    # decided differently when the paper's and the mirror's scans are interleaved
+    from symbt.numeric.float64 import kernels_block
+
+    monkeypatch.setattr(kernels_block, "_slopes", planted(kernels_block._slopes, "                Kn[k] = cn",
+                                                          "                Kn[k - 1] = cn"))
+    assert status("paths.mixed_block.n3") == "failed"

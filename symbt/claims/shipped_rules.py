@@ -1,4 +1,4 @@
-r"""What ships, 4i: six documented rules of the numeric routes that no accuracy bound shows (scene ``numeric-paths``).
+r"""What ships, 4i: seven documented rules of the numeric routes that no accuracy bound shows (scene ``numeric-paths``).
 
 * ``paths.escalation.n3`` -- :func:`symbt.numeric.float64.rows.escalate_rows` (the escalation of every float64
   route) returns the *more precise* of its two agreeing mpmath runs, rounded to float64 (docs/numeric.md,
@@ -38,6 +38,8 @@ r"""What ships, 4i: six documented rules of the numeric routes that no accuracy 
 * ``paths.batch_range.n3`` -- the float64 range limit ``|q_{j+1} - q_j| <= 700`` on batches: ``invariants`` and
   ``phi`` refuse a batch whose one member has a difference of +701 (its others -350.5) with
   ``NumericRangeError``.
+* ``paths.mixed_block.n3`` -- the block kernel's per-member condition tracking: ``paths.threshold``'s scans of the
+  paper's state and of its mirror interleaved as one block, every member equal to its own in its scan's block.
 
 Shown to fail on planted bugs in ``tests/test_killers_numeric2.py``.
 """
@@ -354,3 +356,35 @@ def batch_range(N: int) -> Outcome:
         return failed("numeric: the batch range test vs the documented limit", detail="; ".join(bad) + ". " + detail)
     return Outcome("verified", "numeric: the batch range test vs the documented limit |q_{j+1} - q_j| <= 700",
                    evidence="sampled", detail=detail, printed="NumericRangeError for the batch")
+
+
+@claim("paths.mixed_block", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       where="symbt/numeric/float64/kernels_block.py: _slopes' per-member condition tracking (Kn, Kd)",
+       statement="the block kernel (plain Python), N={N}: the scans of paths.threshold across KAPPA_MAX for the "
+                 "paper's state and its mirror p -> -p (top edge, branch 1) interleaved as one block of 128 members "
+                 "(neighbours with different cancellations in a_j = lam + p_j): every member's status and state = "
+                 "its own in the block of its scan alone, bit for bit (docs/numeric.md: a member equals its "
+                 "single-state step; a consistency check)")
+def mixed_block(N: int) -> Outcome:
+    from .shipped_paths import _block_kernel
+    from .shipped_routes import threshold_states
+
+    scans = {(label, b): rows for label, b, rows in threshold_states()}
+    b = 1
+    alone = [_block_kernel(list(scans[(name, b)]), b) for name in ("paper top", "mirror top")]
+    rows = [st for pair in zip(scans[("paper top", b)], scans[("mirror top", b)]) for st in pair]
+    P, Q, status = _block_kernel(rows, b)
+    bad = 0
+    for k in range(len(rows)):
+        P1, Q1, s1 = alone[k % 2]
+        i = k // 2
+        same = int(status[k]) == int(s1[i]) and (int(s1[i]) != 0 or (np.array_equal(P[k], P1[i])
+                                                                         and np.array_equal(Q[k], Q1[i])))
+        bad += 0 if same else 1
+    handed = int(np.sum(status != 0))
+    detail = (f"{len(rows)} members, {handed} handed back, {len(rows) - handed} finished; {bad} differ from "
+              "their scan's own block.")
+    if bad or not 0 < handed < len(rows):
+        return failed("numeric: an interleaved block vs each scan's own block", detail=detail)
+    return Outcome("verified", "numeric: an interleaved block vs each scan's own block (consistency)",
+                   evidence="sampled", detail=detail, printed="every member = its own, statuses included")
