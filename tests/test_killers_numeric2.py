@@ -21,7 +21,7 @@ from symbt.numeric.float64 import kernels, rows
 load_all()
 
 RULES = ["paths.ball_prec.n3", "paths.batch_range.n3", "paths.escalation.n3", "paths.failure_text.n3",
-         "paths.idle_rows.n3", "paths.mixed_block.n3", "paths.range_edge.n2"]
+         "paths.existence_iv.n3", "paths.idle_rows.n3", "paths.mixed_block.n3", "paths.range_edge.n2"]
 
 
 def status(cid: str) -> str:
@@ -353,3 +353,13 @@ def test_block_condition_tracked_on_the_previous_member(monkeypatch):
     monkeypatch.setattr(kernels_block, "_slopes", planted(kernels_block._slopes, "                Kn[k] = cn",
                                                           "                Kn[k - 1] = cn"))
     assert status("paths.mixed_block.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.existence_iv
+
+def test_existence_interval_sign_of_a_negative_interval(monkeypatch):
+    # mutant existence:52 (compare): `if x.b < 0:` -> `if x.b > 0:`: an interval below 0 is undecided
+    from symbt.numeric.float64 import existence
+
+    monkeypatch.setattr(existence, "_sign", planted(existence._sign, "if x.b < 0:", "if x.b > 0:"))
+    assert status("paths.existence_iv.n3") == "failed"

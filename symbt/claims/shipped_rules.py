@@ -1,4 +1,4 @@
-r"""What ships, 4i: seven documented rules of the numeric routes that no accuracy bound shows (scene ``numeric-paths``).
+r"""What ships, 4i: eight documented rules of the numeric routes that no accuracy bound shows (scene ``numeric-paths``).
 
 * ``paths.escalation.n3`` -- :func:`symbt.numeric.float64.rows.escalate_rows` (the escalation of every float64
   route) returns the *more precise* of its two agreeing mpmath runs, rounded to float64 (docs/numeric.md,
@@ -40,6 +40,9 @@ r"""What ships, 4i: seven documented rules of the numeric routes that no accurac
   ``NumericRangeError``.
 * ``paths.mixed_block.n3`` -- the block kernel's per-member condition tracking: ``paths.threshold``'s scans of the
   paper's state and of its mirror interleaved as one block, every member equal to its own in its scan's block.
+* ``paths.existence_iv.n3`` -- :func:`~symbt.numeric.float64.existence.decide_existence` (the escalation's
+  interval verdict; no other default claim reaches it): ``OK`` at the paper's state and its mirror (traces of
+  both signs), ``POSITIVITY`` at the no-map states of ``shipped.nomap`` (the literal route's decision).
 
 Shown to fail on planted bugs in ``tests/test_killers_numeric2.py``.
 """
@@ -388,3 +391,33 @@ def mixed_block(N: int) -> Outcome:
         return failed("numeric: an interleaved block vs each scan's own block", detail=detail)
     return Outcome("verified", "numeric: an interleaved block vs each scan's own block (consistency)",
                    evidence="sampled", detail=detail, printed="every member = its own, statuses included")
+
+
+@claim("paths.existence_iv", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       where="symbt/numeric/float64/existence.py: decide_existence (the escalation's interval verdict)",
+       statement="decide_existence (interval arithmetic, 256 bits up), N={N}: OK at the paper's state (traces "
+                 "-2021, -1332: both negative) and at its mirror p -> -p, lam0 -> -lam0 (traces positive), both "
+                 "branches; the no-real-map status (POSITIVITY) at the states without a real map of shipped.nomap, "
+                 "as the literal route decides them (50 digits with guard digits)")
+def existence_iv(N: int) -> Outcome:
+    from ..numeric.core.limits import OK, POSITIVITY
+    from ..numeric.float64.existence import decide_existence
+    from .shipped_emitted import nomap_states
+
+    paper = ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), 10.0, 5.0)
+    mirror = ((20.0, -10.0, -1.0), (1.0, 0.0, 0.9), -10.0, -5.0)
+    cases = [(st, b, OK, name) for name, st in (("paper", paper), ("mirror", mirror)) for b in (1, -1)]
+    cases += [(st, b, POSITIVITY, "no map (%s)" % (cond[0] if isinstance(cond, tuple) else cond))
+              for st, b, cond in nomap_states(N)]
+    bad, seen = [], []
+    for st, b, want, name in cases:
+        got, bits = decide_existence(np.array(st[0]), np.array(st[1]), float(st[2]), float(st[3]), b)
+        seen.append(f"{name}, branch {b}: {got} at {bits} bits")
+        if got != want:
+            bad.append(f"{name}, branch {b}: verdict {got}, want {want}")
+    detail = "; ".join(seen) + "."
+    if bad:
+        return failed("numeric: decide_existence vs the literal route's decision", detail="; ".join(bad) + ". "
+                      + detail)
+    return Outcome("verified", "numeric: decide_existence vs the literal route's decision", evidence="sampled",
+                   detail=detail, printed="OK where the map exists, POSITIVITY where it does not")
