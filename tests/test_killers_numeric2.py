@@ -20,7 +20,7 @@ from symbt.numeric.float64 import kernels, rows
 
 load_all()
 
-RULES = ["paths.ball_prec.n3", "paths.batch_range.n3", "paths.escalation.n3", "paths.failure_text.n3",
+RULES = ["paths.ball_prec.n3", "paths.batch_range.n3", "paths.enclosure_poly.n3", "paths.escalation.n3", "paths.failure_text.n3",
          "paths.existence_iv.n3", "paths.idle_rows.n3", "paths.mixed_block.n3", "paths.range_edge.n2"]
 
 
@@ -363,3 +363,15 @@ def test_existence_interval_sign_of_a_negative_interval(monkeypatch):
 
     monkeypatch.setattr(existence, "_sign", planted(existence._sign, "if x.b < 0:", "if x.b > 0:"))
     assert status("paths.existence_iv.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.enclosure_poly
+
+def test_enclosure_polynomial_site_shifted(monkeypatch):
+    # mutant lohner_checks:214 (index-shift): `arb_poly([pb[j], 1])` -> `pb[j + 1]` (uncovered before)
+    pytest.importorskip("flint")
+    from symbt.numeric.multiprec import lohner_checks
+
+    monkeypatch.setattr(lohner_checks, "invariant_enclosures", planted(
+        lohner_checks.invariant_enclosures, "a = arb_poly([pb[j], 1])", "a = arb_poly([pb[j + 1], 1])"))
+    assert status("paths.enclosure_poly.n3") == "failed"

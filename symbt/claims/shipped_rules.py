@@ -1,4 +1,4 @@
-r"""What ships, 4i: eight documented rules of the numeric routes that no accuracy bound shows (scene ``numeric-paths``).
+r"""What ships, 4i: nine documented rules of the numeric routes that no accuracy bound shows (scene ``numeric-paths``).
 
 * ``paths.escalation.n3`` -- :func:`symbt.numeric.float64.rows.escalate_rows` (the escalation of every float64
   route) returns the *more precise* of its two agreeing mpmath runs, rounded to float64 (docs/numeric.md,
@@ -43,6 +43,9 @@ r"""What ships, 4i: eight documented rules of the numeric routes that no accurac
 * ``paths.existence_iv.n3`` -- :func:`~symbt.numeric.float64.existence.decide_existence` (the escalation's
   interval verdict; no other default claim reaches it): ``OK`` at the paper's state and its mirror (traces of
   both signs), ``POSITIVITY`` at the no-map states of ``shipped.nomap`` (the literal route's decision).
+* ``paths.enclosure_poly.n3`` -- :func:`~symbt.numeric.multiprec.lohner_checks.invariant_enclosures` (``tr L`` as
+  a ball polynomial; ``paths.enclosures`` checks only their intersection) on an exact box: the literal trace at
+  four ``lam`` inside the enclosed polynomial, radii below ``1e-60`` of the trace.
 
 Shown to fail on planted bugs in ``tests/test_killers_numeric2.py``.
 """
@@ -421,3 +424,45 @@ def existence_iv(N: int) -> Outcome:
                       + detail)
     return Outcome("verified", "numeric: decide_existence vs the literal route's decision", evidence="sampled",
                    detail=detail, printed="OK where the map exists, POSITIVITY where it does not")
+
+
+#: paths.enclosure_poly: where the enclosed trace polynomial is compared with the literal trace
+POLY_LAMS = (-3.0, 0.5, 7.0, -12.0)
+
+
+@claim("paths.enclosure_poly", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       requires=("flint",),
+       where="symbt/numeric/multiprec/lohner_checks.py: invariant_enclosures (tr L as a ball polynomial)",
+       statement="invariant_enclosures of the paper's state as an exact box (N={N}, radius 0, 256 bits): "
+                 "lam**N + sum_k H_k lam**k contains the literal trace tr L(lam) (60 digits) at lam = -3, 0.5, 7, "
+                 "-12, every radius below 1e-60 of max(1, |tr|)")
+def enclosure_poly(N: int) -> Outcome:
+    if importlib.util.find_spec("flint") is None:
+        return skipped("python-flint is not installed (.[certified])")
+    from flint import arb
+
+    from ..numeric.multiprec.arb import flint_prec
+    from ..numeric.multiprec.lohner_checks import invariant_enclosures
+    from ..reference.literal import literal_trace
+
+    p, q = [-20.0, 10.0, 1.0], [1.0, 0.0, 0.9]
+    zero = [mp.mpf(0)] * N
+    H = invariant_enclosures([[mp.mpf(v) for v in p]], [[mp.mpf(v) for v in q]], [zero], [zero])[0]
+    bad, worst = [], 0.0
+    for lam in POLY_LAMS:
+        with flint_prec(256):
+            val = arb(lam) ** N + sum((H[k] * arb(lam) ** k for k in range(N)), arb(0))
+        with mp.workdps(60):
+            lit = literal_trace(mp.mpf(lam), p, q)
+            mid, rad = mp.mpf(val.mid().str(70, radius=False)), mp.mpf(val.rad().str(10, radius=False))
+            scale = max(1, abs(lit))
+            off = abs(mid - lit)
+            worst = max(worst, float(off / scale))
+            if not (off <= rad + scale * mp.mpf(10) ** -55 and rad <= scale * mp.mpf(10) ** -60):
+                bad.append(f"lam {lam}: enclosure {mp.nstr(mid, 20)} +- {mp.nstr(rad, 3)}, literal "
+                           f"{mp.nstr(lit, 20)}")
+    detail = f"worst |mid - tr| / max(1, |tr|) = {worst:.3g} at {len(POLY_LAMS)} points."
+    if bad:
+        return failed("numeric: invariant_enclosures vs the literal trace", detail="; ".join(bad) + ". " + detail)
+    return Outcome("verified", "numeric: invariant_enclosures vs the literal trace (60 digits)", evidence="sampled",
+                   detail=detail, printed="the literal trace inside the enclosed polynomial")
