@@ -264,11 +264,12 @@ IDLE_LAMS = (-10.28, 15.0)
 
 
 @claim("paths.idle_rows", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       parts=scale_parts,
        where="symbt/numeric/float64/rows.py: float_rows_step with a scalar mu = 0 (no row is stepped)",
        statement="float_rows_step (the numpy rows), N={N}, a batch of three states with a scalar mu = 0 at lam0 "
                  "inside a band (where a step would have no real map) and in a gap, both branches: the input "
                  "itself, bit for bit, no error (docs/numeric.md: mu = 0 is the identity)")
-def idle_rows(N: int) -> Outcome:
+def idle_rows(N: int, parts: Parts) -> Outcome:
     from ..numeric.float64.rows import float_rows_step
     from ..reference.literal import literal_trace
 
@@ -286,7 +287,8 @@ def idle_rows(N: int) -> Outcome:
             except (ArithmeticError, ValueError) as exc:
                 bad.append(f"lam0 {l0}, branch {b}: {type(exc).__name__}: {str(exc)[:100]}")
                 continue
-            same = np.array_equal(pt, pa) and np.array_equal(qt, qa)
+            sc = parts.printed["scale"]      # outputs x scale = input (symbt mutate perturbs the scale)
+            same = np.array_equal(pt * sc, pa) and np.array_equal(qt * sc, qa)
             seen.append(f"lam0 {l0}, branch {b}: {'the input' if same else 'changed'}")
             if not same:
                 bad.append(f"lam0 {l0}, branch {b}: the result differs from the input")
