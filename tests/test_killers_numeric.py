@@ -43,7 +43,7 @@ def test_the_scene_has_the_claims_named_here():
                              "paths.next_prec.n3", "paths.qd.n2",
                              "paths.qd.n3", "paths.range_edge.n2",
                              "paths.sharp_kappa.n3", "paths.sharp_kappa.n6", "paths.step_core.n3",
-                             "paths.stored.n3", "paths.threshold.n3", "paths.tiny_mu.n3"]
+                             "paths.stored.n3", "paths.threshold.n3", "paths.tiny_mu.n3", "paths.zero_radius.n3"]
 
 
 @pytest.mark.parametrize("cid", NUMERIC_PATHS)

@@ -50,6 +50,7 @@ CLAIM_MODULES = (
     "shipped_core",
     "shipped_field",
     "shipped_rules",
+    "shipped_radius",
     "checker",
     "checker_mutation",
     "library",
