@@ -127,7 +127,11 @@ BALL_FIRST, BALL_TOL, BALL_STEPS, BALL_OUT_BITS = 64, 1e-60, 3, 300
 
 
 def ball_rule(prec: int, e: float) -> int:
-    """The ball method's next precision after a pass with one finite excess ``e`` (certified.py's docstring)."""
+    """The ball method's next precision after a pass with one finite excess ``e`` (certified.py's docstring).
+
+    >>> ball_rule(64, 140.4), ball_rule(64, 1.0)          # the rule, and its floor p + p/4 + 32
+    (229, 112)
+    """
     return max(int(prec + e + 24) + 1, prec + prec // 4 + 32)
 
 
@@ -187,7 +191,13 @@ def edge_row(lam1: float, dq: float) -> tuple[Fraction, Fraction, Fraction, bool
     computed as the kernels document it (``r_1 = exp(dq)`` rounded once, ``a_j = lam1 + p_j`` rounded once, each
     product and difference rounded once), then rescaled by ``2**-400``, as exact rationals; the second-row product
     ``r_2 |a_1|`` that triggers the rescaling; and whether every rounding on the way is exact (``a_1 = 1``,
-    ``a_2 = lam1``, ``lam1 a_1 - r_1`` representable)."""
+    ``a_2 = lam1``, ``lam1 a_1 - r_1`` representable).
+
+    >>> name, dq, lam1, inside = edge_states()[0]
+    >>> A, B, big, exact = edge_row(lam1, dq)
+    >>> float(A), abs(B) < 1e-290, exact
+    (-1e-290, True, True)
+    """
     r1, r2 = math.exp(dq), math.exp(-dq)
     a1, a2 = lam1 + 1.0, lam1 + 0.0
     A = a2 * a1 - r1                     # fl(fl(a2 a1) - r_1)
@@ -200,7 +210,11 @@ def edge_states() -> list[tuple[str, float, float, bool]]:
     """``(name, dq, lam1, in range)``: ``lam1 = r_1 - T`` puts the rescaled ``A`` at ``-1e-290`` exactly (the edge:
     not above the limit, ``|B| < 1e-290`` too: out of range); ``r_1 - T'``, ``T'`` the next double's multiple, one
     ulp above (in range); ``lam1 = r_1`` at ``EDGE_DQ_ZERO``: ``A = 0`` and ``1e-290 < |B| <= 1e-145`` (in range by
-    ``B`` alone)."""
+    ``B`` alone).
+
+    >>> [(name, inside) for name, _, _, inside in edge_states()]
+    [('at the edge', False), ('one ulp inside', True), ('A = 0, B above the edge', True)]
+    """
     r1 = math.exp(EDGE_DQ)
     T = math.ldexp(EDGE_LIMIT, EDGE_SHRINK_BITS)
     T_in = math.ldexp(math.nextafter(EDGE_LIMIT, 1.0), EDGE_SHRINK_BITS)
