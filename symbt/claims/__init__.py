@@ -49,6 +49,8 @@ CLAIM_MODULES = (
     "shipped_members",
     "shipped_core",
     "shipped_field",
+    "shipped_rules",
+    "shipped_radius",
     "checker",
     "checker_mutation",
     "library",

@@ -272,7 +272,9 @@ def raise_for_status(status: I64, step: I64, shape: tuple[int, ...]) -> None:
 
     :class:`NoRealMapError` if some state has no real map (``where``: all of
     them as batch indices; ``condition`` of the first), else
-    :class:`NumericRangeError`.
+    :class:`NumericRangeError`.  The message ends ``(at step s; batch index
+    i1, ..., i5, ...; K state(s) in all)``: the first five failing members,
+    ``, ...`` only if there are more, and their count.
 
     >>> import numpy as np
     >>> try:

@@ -25,6 +25,14 @@ encloses the exact orbit of the given input.
   chosen automatically: a first pass at ``mp.prec + 32`` bits measures the
   growth rate; if the radii exceed the target the orbit is recomputed at the
   precision the measured rate requires (about ``2 n + target bits``).
+  The rule (``method="ball"``): with ``e_k = max_i log2(rad_i / target_i)``
+  after step ``k`` of a pass at ``p`` bits (which stops once ``e_k > 8``),
+  the first and last finite ``e`` at steps ``i0 < i1`` give the rate
+  ``g = max(0, (e_{i1} - e_{i0}) / (i1 - i0))`` and the next pass runs at
+  ``floor(p + e_{i1} + 1.15 g (n - i1) + 4 g + 24) + 1`` bits; with only one
+  finite ``e`` (exact input and a pass that stopped after its first step)
+  at ``floor(p + e + 24) + 1``; never below ``p + floor(p/4) + 32``
+  (``paths.ball_prec`` checks the one-excess case).
 * Target: every radius ``<= tol`` (absolute) or, by default, ``<= 2**-mp.prec
   * max(1, |x|)`` (one unit of the returned precision).  The returned radius
   adds the rounding of the midpoint to ``mp.prec`` bits, so it bounds
