@@ -86,7 +86,7 @@ def _single(p: F64, q: F64, lam0: float, mu: float, branch: int, n: int, every: 
     args = (p, q, lam0 + mu, lam0 - mu, 2.0 * mu, branch, n, every, ANCHOR, P, Q)
     if be == "numba":
         return P, Q, int(fn(*args))
-    try:   # the plain-Python kernel computes on numpy scalars: make IEEE exceptions raise
+    try:   # plain Python: a math range error or a numpy op under errstate raises -- a range failure
         with np.errstate(all="raise"):
             st = int(fn(*args))
     except _PY_ERRORS:
