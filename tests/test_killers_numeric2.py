@@ -274,15 +274,19 @@ def test_block_opposite_traces_at_a_zero_trace_is_equivalent():
 def test_float_status_opposite_traces_at_a_zero_trace_is_equivalent():
     # mutants-equivalent.toml, step:314: `opp = (S1.t < 0) != (S2.t < 0)` -> `(S2.t <= 0)` in float_status.  They
     # differ only where S2.t is 0 (or -0.0); there S2.trace_ok = (t - two) (t + two) = -two**2 <= 0, so ~t2 holds,
-    # and np.select takes the first true condition in the order (ill_t, ~t1, ~t2, opp, ...): TRACE2 or ILLCOND,
-    # never opp's POSITIVITY; opp is read nowhere else.  Checked: that order in the source, and float_status on
-    # one step_core batch of the states above (the zero trace included) alike.
+    # and the where-chain (the last np.where wins) applies opp's POSITIVITY before the codes of ~t2, ~t1 and ill_t:
+    # TRACE2 or ILLCOND, never opp's POSITIVITY; opp is read nowhere else.  Checked: that order in the source, and
+    # float_status on one step_core batch of the states above (the zero trace included) alike.
     from symbt.numeric.core import step as step_module
     from symbt.numeric.core.context import FLOAT
 
     tree = ast.parse(textwrap.dedent(inspect.getsource(step_module.float_status)))
-    conds = [n for n in ast.walk(tree) if isinstance(n, ast.Assign) and getattr(n.targets[0], "id", "") == "conds"]
-    assert len(conds) == 1 and "(ill_t, ~t1, ~t2, opp," in ast.unparse(conds[0].value)
+    chain = [ast.unparse(n.value) for n in ast.walk(tree) if isinstance(n, ast.Assign)
+             and getattr(n.targets[0], "id", "") == "out" and "np.where" in ast.unparse(n.value)]
+    firsts = [c.split("(", 1)[1].split(",", 1)[0] for c in chain]       # the condition of each np.where, in order
+    assert firsts[-3:] == ["opp", "t2", "t1"], chain                    # opp, then t2, t1 override it
+    last = tree.body[0].body[-1]                                         # float_status' own return
+    assert isinstance(last, ast.Return) and ast.unparse(last.value).startswith("np.where(ill_t, ILLCOND, out)")
     assert sum(isinstance(n, ast.Name) and n.id == "opp" for n in ast.walk(tree)) == 2     # set once, read once
     mutant = planted(step_module.float_status, "(S1.t < 0) != (S2.t < 0)", "(S1.t < 0) != (S2.t <= 0)")
     seen = set()
