@@ -110,3 +110,21 @@ def test_the_documented_calls_validate_their_input_once(monkeypatch):
         call()
         assert sorted(calls) in (["float_array", "float_array", "prepare_scalar", "prepare_scalar"],
                                  ["_to_mp", "_to_mp", "prepare_scalar", "prepare_scalar"]), calls
+
+
+def test_prepared_record_is_the_dataclass_record():
+    """``core.problem._record`` builds the frozen ``Problem`` without its ``__init__`` (per-call cost): it must
+    set exactly the dataclass's fields, compare equal to ``Problem(...)`` and stay frozen -- a field added to
+    ``Problem`` (or a ``__post_init__``) that ``_record`` does not know fails here."""
+    import dataclasses
+
+    from symbt.numeric.core.problem import Problem, _record, prepare
+
+    pr = prepare([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0, n=3, every=2)
+    names = [f.name for f in dataclasses.fields(Problem)]
+    assert list(vars(pr)) == names
+    assert not hasattr(Problem, "__post_init__")
+    assert pr == Problem(*(getattr(pr, k) for k in names))
+    assert _record(*(getattr(pr, k) for k in names)) == pr
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        pr.n = 4
