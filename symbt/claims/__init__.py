@@ -51,6 +51,7 @@ CLAIM_MODULES = (
     "shipped_field",
     "shipped_rules",
     "shipped_radius",
+    "shipped_edges",
     "checker",
     "checker_mutation",
     "library",
