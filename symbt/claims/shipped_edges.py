@@ -211,38 +211,38 @@ def kappa_edge(N: int) -> Outcome:
 
 # --------------------------------------------------------------------------- paths.inline_rule
 
-def store_first(u, x):  # noqa: ANN001, ANN201 -- a body for the inliner: it writes to an array (not pure)
+def store_first(u: list[float], x: float) -> float:      # a body for the inliner: writes to an array
     u[0] = x
     return x
 
 
-def nested_operand(u, x):  # noqa: ANN001, ANN201 -- u[0] is read before store_first writes it
+def nested_operand(u: list[float], x: float) -> float:     # u[0] is read before store_first writes it
     y = u[0] + store_first(u, x)
     return y
 
 
-def nested_argument(u, x):  # noqa: ANN001, ANN201
+def nested_argument(u: list[float], x: float) -> float:
     y = abs(store_first(u, x))
     return y
 
 
-def nested_test(u, x):  # noqa: ANN001, ANN201
+def nested_test(u: list[float], x: float) -> float:
     if store_first(u, x) > 0.0:
         return u[0]
     return -u[0]
 
 
-def root_assign(u, x):  # noqa: ANN001, ANN201
+def root_assign(u: list[float], x: float) -> float:
     y = store_first(u, x)
     return y + u[0]
 
 
-def root_statement(u, x):  # noqa: ANN001, ANN201
+def root_statement(u: list[float], x: float) -> float:
     store_first(u, x)
     return u[0]
 
 
-def root_not_test(u, x):  # noqa: ANN001, ANN201
+def root_not_test(u: list[float], x: float) -> float:
     if not store_first(u, x):
         return u[0]
     return -u[0]

@@ -438,7 +438,11 @@ def growth_law(lograd: Sequence[float], first: int = 100) -> dict[str, Any]:
 
 
 def _next_prec(prec: int, run: LohnerPass, n: int) -> int:
-    """Working precision for the next pass: the measured excess, extrapolated polynomially to step ``n``."""
+    """Working precision for the next pass: the measured excess, extrapolated polynomially to step ``n``.
+
+    The degree is :func:`growth_law`'s fit of the pass's radii from step ``max(1, i1 // 10)`` to ``i1``, the last
+    step with a finite excess: the first tenth of the pass, a transient, is left out (as :func:`growth_law` does
+    for a short run)."""
     hist, done = run.hist, run.done
     finite = [i for i in range(1, done + 1) if math.isfinite(hist[i])]
     if not finite:
