@@ -164,8 +164,14 @@ def test_next_precision_fits_the_growth_after_the_transient(monkeypatch):
     want = max(int(prec + 20.0 + 1.5 * 1.0 * math.log2(n / i1) + 16) + 1, prec + 32)
     run = _pass_with_a_transient(i1, 1.0)
     assert lohner._next_prec(prec, run, n) == want == 243
+
+
+def test_next_precision_check_sees_the_mutant():
+    # the check above on the planted mutant: the fit from step 1 takes in the transient (degree ~21.6)
+    from symbt.numeric.multiprec import lohner
+
     mutant = planted(lohner._next_prec, "first=max(1, i1 // 10)", "first=min(1, i1 // 10)")
-    assert mutant(prec, run, n) != want
+    assert mutant(200, _pass_with_a_transient(40, 1.0), 1000) != 243
 
 
 def test_arb_half_plane_at_a_zero_root_as_the_real_routes():
@@ -180,16 +186,23 @@ def test_arb_half_plane_at_a_zero_root_as_the_real_routes():
     from flint import arb
 
     from symbt.numeric.core.context import FLOAT
-    from symbt.numeric.multiprec.arb import ARB_CERTAIN, ArbContext
+    from symbt.numeric.multiprec.arb import ARB_CERTAIN
 
-    mutant = planted(ArbContext.half_plane, "(g.mid() >= 0))", "(g.mid() > 0))")
     for t in (2.0, -2.0, 3.5, -3.5):
         for g in (0.0, 1.5):
             want = bool(FLOAT.half_plane(t, g))
             assert want == (t >= 0)
             assert ARB_CERTAIN.half_plane(arb(t), arb(g)) == want
-            if g == 0.0:
-                assert mutant(ARB_CERTAIN, arb(t), arb(g)) != want
+
+
+def test_arb_half_plane_check_sees_the_mutant():
+    pytest.importorskip("flint")
+    from flint import arb
+
+    from symbt.numeric.multiprec.arb import ARB_CERTAIN, ArbContext
+
+    mutant = planted(ArbContext.half_plane, "(g.mid() >= 0))", "(g.mid() > 0))")
+    assert [mutant(ARB_CERTAIN, arb(t), arb(0)) for t in (2.0, -2.0)] == [False, True]
 
 
 def test_arb_half_plane_mutant_changes_the_dual_jacobians_error(monkeypatch):
