@@ -154,8 +154,8 @@ def _pass_with_a_transient(i1: int, degree: float):
 
 
 def test_next_precision_fits_the_growth_after_the_transient(monkeypatch):
-    # lohner:450 (now :454; min-max): `first=max(1, i1 // 10)` -> `min(1, i1 // 10)`: the fit starts at step 1 and
-    # takes in the transient.  _next_prec's docstring: the degree is fitted from step max(1, i1 // 10); on a record
+    # lohner:450 (min-max): `first=max(1, i1 // 10)` -> `min(1, i1 // 10)`: the fit starts at step 1 and takes in
+    # the transient.  lohner_certified's docstring: the degree is fitted from step max(1, done // 10); on a record
     # growing exactly like n**1 there, the next precision is the documented rule with degree 1 (not growth_law's
     # output: the degree of the construction), max(floor(p + e + 1.5 log2(n / i1) + 16) + 1, p + 32)
     from symbt.numeric.multiprec import lohner

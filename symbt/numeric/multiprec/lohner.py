@@ -438,11 +438,7 @@ def growth_law(lograd: Sequence[float], first: int = 100) -> dict[str, Any]:
 
 
 def _next_prec(prec: int, run: LohnerPass, n: int) -> int:
-    """Working precision for the next pass: the measured excess, extrapolated polynomially to step ``n``.
-
-    The degree is :func:`growth_law`'s fit of the pass's radii from step ``max(1, i1 // 10)`` to ``i1``, the last
-    step with a finite excess: the first tenth of the pass, a transient, is left out (as :func:`growth_law` does
-    for a short run)."""
+    """Working precision for the next pass: the measured excess, extrapolated polynomially to step ``n``."""
     hist, done = run.hist, run.done
     finite = [i for i in range(1, done + 1) if math.isfinite(hist[i])]
     if not finite:
@@ -471,10 +467,10 @@ def lohner_certified(state: Callable[[], tuple[list[Any], list[Any], Any, Any]],
 
     ``state()`` makes the input balls at the current flint precision; the first pass runs at ``prec`` (default
     ``target_bits + 24 + 5 bitlen(n)``, ``target_bits = log2(1 / target radius)``), each later one at the
-    precision the measured growth requires (the excess so far plus 1.5 times the fitted degree times
-    ``log2(n / steps done)``, plus 16 bits); ``passes`` receives the precisions tried.  Raises
-    :class:`JacobianBlowup` (the caller falls back to the plain ball path), :class:`NumericRangeError` (not
-    certified below ``max_prec``), :class:`NoRealMapError`.
+    precision the measured growth requires (the excess so far plus 1.5 times the degree fitted from step ``done // 10``
+    on, at least 1: a transient left out, times ``log2(n / done)``, plus 16 bits; ``done``: the last step with a finite
+    excess); ``passes`` receives the precisions tried.  Raises :class:`JacobianBlowup` (the caller falls back to the
+    plain ball path), :class:`NumericRangeError` (not certified below ``max_prec``), :class:`NoRealMapError`.
 
     >>> def state():
     ...     return [arb(-20), arb(10), arb(1)], [arb(1), arb(0), arb(0.9)], arb(10), arb(5)
