@@ -60,21 +60,30 @@ def test_fused_hook_refuses_the_estimate_at_kappa_max(monkeypatch):
 
 
 def test_kappa_edge_premise_by_the_kernel_itself():
-    # the claim's premise is recomputed with exact rationals; the block kernel's own estimate (kt) at the edge is
-    # the same double, and the neighbours are on either side of it
-    from symbt.claims.shipped_edges import EDGE_L, EDGE_LO, kappa_edge_states, kappa_estimate
+    # the claim's premise is recomputed with exact rationals; the kernels' own cheap estimate, formed with the fused
+    # hooks' track, is the same double at the three states, and 2**24 exactly at the edge
+    from symbt.claims.shipped_edges import EDGE_L, EDGE_LO, EDGE_RATIOS, edge_ratios, kappa_estimate
 
-    for _, d in kappa_edge_states():
-        est = kappa_estimate(EDGE_L, EDGE_LO, d)[0]
-        # the cheap estimate, computed by the kernel's formula with the hooks' track
-        r = (math.exp(d), math.exp(0.0 - d))
+    for name in EDGE_RATIOS:
+        r = edge_ratios(name)
+        est = kappa_estimate(EDGE_L, EDGE_LO, r)[0]
         a = kernels.HOOKS["lam_add"](EDGE_L, EDGE_LO, 0.0)
         aux = kernels.HOOKS["track"](kernels.HOOKS["track_init"](EDGE_L, 0.0, a, r[0]), EDGE_L, 0.0, a, r[1])
         t = (a * a - r[0]) + -r[1]
         disc = (t - 2.0) * (t + 2.0)
         T = aux[0] + aux[3]
         assert T * (abs(t) + 2.0) / abs(disc) * (aux[4] / aux[5]) == est
-    assert kappa_estimate(EDGE_L, EDGE_LO, kappa_edge_states()[0][1])[0] == 2.0 ** 24
+    assert kappa_estimate(EDGE_L, EDGE_LO, edge_ratios("at 2**24"))[0] == 2.0 ** 24
+
+
+def test_kappa_edge_ratios_are_the_reanchored_exponentials():
+    # provenance of EDGE_RATIOS: r = (e**d, e**-d) as the kernels' re-anchoring computes them (math.exp of the
+    # neighbour difference), at d = EDGE_D and its neighbouring doubles
+    from symbt.claims.shipped_edges import EDGE_D, edge_ratios
+
+    for name, d in (("at 2**24", EDGE_D), ("one ulp above", math.nextafter(EDGE_D, math.inf)),
+                    ("one ulp below", math.nextafter(EDGE_D, -math.inf))):
+        assert edge_ratios(name) == (math.exp(d - 0.0), math.exp(0.0 - d))
 
 
 # --------------------------------------------------------------------------- paths.inline_rule

@@ -109,23 +109,28 @@ def renorm_top(N: int) -> Outcome:
 
 #: paths.kappa_edge: lam = L (high part), its low part, and q_2 - q_1 = d (found offline: the estimate is 2**24)
 EDGE_L, EDGE_LO, EDGE_D = 2.9343643216262145, 1.5 * 2.0 ** -52, 1.8649461929027753
+#: the ratios (r_1, r_2) = (e**d, e**-d) as the kernels' re-anchoring rounds them (math.exp) at d, at d one ulp up and
+#: one ulp down: written as the doubles themselves, so that the premise depends on IEEE arithmetic alone
+EDGE_RATIOS = {"at 2**24": ("0x1.9d285cc0a3293p+2", "0x1.3d3e9809506fbp-3"),
+               "one ulp above": ("0x1.9d285cc0a3294p+2", "0x1.3d3e9809506fap-3"),
+               "one ulp below": ("0x1.9d285cc0a3291p+2", "0x1.3d3e9809506fcp-3")}
 
 
-def kappa_estimate(L: float, lo: float, d: float) -> tuple[float, bool, float, float]:
-    """The kernels' condition estimate of the trace at ``lam = L + lo`` for ``p = (0, 0)``, ``q = (0, d)``
-    (``r = (e**d, e**-d)`` as the kernels' re-anchoring rounds them), each documented operation computed with exact
-    rationals and rounded once (``float`` of a ``Fraction`` is correctly rounded): ``(estimate, cheap test failed,
-    t, disc)`` -- ``a_j = fl(L + lo)`` (:func:`lam_add` with ``p_j = 0``), ``t = fl(fl(fl(a a) - r_1) - r_2)``,
-    ``T = fl(fl(fl(a a) + r_1) + r_2)``, ``disc = fl(fl(t - 2) fl(t + 2))``, ``ta = fl(|t| + 2)``, the estimate
-    ``fl(fl(fl(T ta) / |disc|) fl(kn / kd))`` with ``kn = |L|``, ``kd = |a|``.
+def kappa_estimate(L: float, lo: float, r: tuple[float, float]) -> tuple[float, bool, float, float]:
+    """The kernels' condition estimate of the trace at ``lam = L + lo`` for ``p = (0, 0)`` and the ratios ``r``,
+    each documented operation computed with exact rationals and rounded once (``float`` of a ``Fraction`` is
+    correctly rounded): ``(estimate, cheap test failed, t, disc)`` -- ``a_j = fl(L + lo)`` (``lam_add`` with
+    ``p_j = 0``), ``t = fl(fl(fl(a a) - r_1) - r_2)``, ``T = fl(fl(fl(a a) + r_1) + r_2)``,
+    ``disc = fl(fl(t - 2) fl(t + 2))``, ``ta = fl(|t| + 2)``, the estimate ``fl(fl(fl(T ta) / |disc|) fl(kn / kd))``
+    with ``kn = |L|``, ``kd = |a|``.
 
-    >>> kappa_estimate(EDGE_L, EDGE_LO, EDGE_D)[:2] == (2.0 ** 24, True)
+    >>> kappa_estimate(EDGE_L, EDGE_LO, edge_ratios("at 2**24"))[:2] == (2.0 ** 24, True)
     True
     """
     def fl(x: Fraction) -> float:
         return float(x)
     F = Fraction
-    r1, r2 = math.exp(d), math.exp(0.0 - d)
+    r1, r2 = r
     a = fl(F(L) + F(lo))
     P = fl(F(a) * F(a))
     t = fl(F(fl(F(P) - F(r1))) - F(r2))
@@ -137,14 +142,14 @@ def kappa_estimate(L: float, lo: float, d: float) -> tuple[float, bool, float, f
     return est, Tta > F(2) ** 24 * abs(F(disc)), t, disc
 
 
-def kappa_edge_states() -> list[tuple[str, float]]:
-    """``(name, d)``: the edge, ``d`` one ulp up (estimate above ``2**24``) and one ulp down (below).
+def edge_ratios(name: str) -> tuple[float, float]:
+    """``(r_1, r_2)`` of the state ``name`` of :data:`EDGE_RATIOS` (the edge, ``d`` one ulp up, one ulp down).
 
-    >>> [name for name, _ in kappa_edge_states()]
-    ['at 2**24', 'one ulp above', 'one ulp below']
+    >>> [round(v, 6) for v in edge_ratios("at 2**24")]
+    [6.455589, 0.154905]
     """
-    return [("at 2**24", EDGE_D), ("one ulp above", math.nextafter(EDGE_D, math.inf)),
-            ("one ulp below", math.nextafter(EDGE_D, -math.inf))]
+    r1, r2 = EDGE_RATIOS[name]
+    return float.fromhex(r1), float.fromhex(r2)
 
 
 @claim("paths.kappa_edge", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(2,),
@@ -162,13 +167,13 @@ def kappa_edge(N: int) -> Outcome:
     from ..numeric.float64.kernels import HOOKS
     from ..numeric.float64.kernels_block import _slopes
 
-    states = kappa_edge_states()
+    states = list(EDGE_RATIOS)
     bad, seen = [], []
     want = []
-    for name, d in states:
-        est, cheap_failed, t, disc = kappa_estimate(EDGE_L, EDGE_LO, d)
+    for name in states:
+        est, cheap_failed, t, disc = kappa_estimate(EDGE_L, EDGE_LO, edge_ratios(name))
         want.append(est <= KAPPA_MAX)
-        r = np.array([math.exp(d), math.exp(0.0 - d)])
+        r = np.array(edge_ratios(name))
         ks = sharp_trace_kappa(np.zeros(2), r, EDGE_L, EDGE_LO)
         seen.append(f"{name}: estimate {est!r} (sharp {ks!r})")
         premise = {"at 2**24": est == KAPPA_MAX and cheap_failed and ks > est,
@@ -186,15 +191,15 @@ def kappa_edge(N: int) -> Outcome:
                        f"{want[-1]} with {est!r}")
     # the block kernel's trace decision, the three states as one block of members
     B = len(states)
-    p, r = np.zeros((N, B)), np.array([[math.exp(d) for _, d in states], [math.exp(0.0 - d) for _, d in states]])
+    p, r = np.zeros((N, B)), np.array([edge_ratios(name) for name in states]).T.copy()
     lam, lo = np.full(B, EDGE_L), np.full(B, EDGE_LO)
     u, tmp, Ab = np.empty((N, B)), np.empty((N, B)), np.empty((4, B))
     A, Bm, C, D, u1, tt, kt, Kn, Kd, sc = (np.empty(B) for _ in range(10))
     fw, status = np.empty(B, np.int64), np.full(B, OK, np.int64)
     with np.errstate(all="ignore"):
         _slopes(p, r, lam, lo, 1, u, tmp, A, Bm, C, D, u1, fw, status, TRACE1, Ab, tt, kt, Kn, Kd, sc)
-    for k, (name, d) in enumerate(states):
-        est = kappa_estimate(EDGE_L, EDGE_LO, d)[0]
+    for k, name in enumerate(states):
+        est = kappa_estimate(EDGE_L, EDGE_LO, edge_ratios(name))[0]
         code = OK if want[k] else ILLCOND
         seen.append(f"{name}: block status {int(status[k])}")
         if int(status[k]) != code or (code == OK and kt[k] != est):
