@@ -21,8 +21,8 @@ r"""What ships, 4k: four documented rules of the numeric routes at their edges (
   above ``2**24``, one ulp down below.  The block kernel's trace decision (``kernels_block._slopes``, three
   members) and the fused kernel's hook ``HOOKS["decided"]`` are called directly (as ``paths.range_edge`` calls
   ``in_range``): the edge decided (status unchanged, estimate ``2**24``), above refused (``ILLCOND``), below
-  decided.  (Through ``run_block`` such a state is handed back by the read-out test anyway, whose condition
-  ``kappa >= k_t`` is above ``2**24`` there: the rule is visible in the trace decision itself.)
+  decided.  (Through ``run_block``, ``lam2 = L + 1``, the read-out test hands this state back either way: its
+  ``kappa >= k_t = 2**24`` is above ``2**24`` there; the rule is visible in the trace decision itself.)
 * ``paths.inline_rule.n3`` -- :func:`~symbt.numeric.core.inline.inlined` writes a body that writes to an array
   inline only at the root of its statement (``x = f(...)``, ``f(...)``, ``if not f(...):``) and refuses it
   anywhere else with ``ValueError`` (its module docstring: the statements of a nested call are placed before its
