@@ -40,15 +40,7 @@ def local_lax(lam_: sp.Expr, p: sp.Expr, E: sp.Expr) -> sp.Matrix:
 
 
 class TodaModel:
-    """Symbolic N-site periodic Toda lattice in the variables ``p_j``, ``E_j = e^{q_j}``.
-
-    ``p_j``, ``q_j`` (and ``lambda``) are real symbols and ``E_j`` positive ones, so a state given by name
-    (``Symbol("p1", real=True)``, ``Symbol("E1", positive=True)``) is the model's.
-
-    >>> m = TodaModel(2)
-    >>> sp.conjugate(m.p[0]) == m.p[0], sp.Abs(m.E[0]) == m.E[0]
-    (True, True)
-    """
+    """Symbolic N-site periodic Toda lattice in the variables ``p_j``, ``E_j = e^{q_j}``."""
 
     def __init__(self, N: int):
         if N < 2:
