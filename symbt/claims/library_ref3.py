@@ -92,7 +92,7 @@ def model_symbols() -> Outcome:
 
 
 #: library.addition: digits, the move of P~, cases (regime, rng seed string)
-ADD_DPS, ADD_DELTA = 30, mp.mpf("1e-6")
+ADD_DPS, ADD_DELTA = 20, mp.mpf("1e-6")
 ADD_CASES = (("inner", "ref3 addition inner"),)
 
 
@@ -106,7 +106,7 @@ def carlson_F(z: mp.mpf, k: mp.mpf) -> mp.mpf:
        statement="addition_residual <= 10^(12 - dps) at a step2 step; with P~ moved by +-1e-6 (E~ kept) it is "
                  "|delta|/max(1, |P~ + delta|) within twice the unmoved residual; printed_addform_residual = "
                  "|F(P~) - F(P) - F(s-) + F(s+)| with F by mpmath's elliprf (I1, I2, k by the literal trace) within "
-                 "10^(5 - dps); N = 2, 30 digits, an inner case, both branches")
+                 "10^(5 - dps); N = 2, 20 digits, an inner case, both branches")
 def addition_checks() -> Outcome:
     bad, n, worst = [], 0, mp.mpf(0)
     with mp.workdps(ADD_DPS):
