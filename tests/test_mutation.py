@@ -51,9 +51,11 @@ SEED_CLAIMS = 14
 def sample():
     load_all()
     # the paper's claims (the claims about what ships are mutated in tests/test_claims_shipped.py; those about the
-    # numeric routes, scene numeric-paths, are left out too: every new one would redraw this sample)
+    # numeric routes, scene numeric-paths, are left out too), and only claims with a statement to mutate: adding a
+    # claim without one, checked by a planted bug, must not move the sample
     ids = sorted(c.id for c in REGISTRY.values() if not c.deep and not c.requires
-                 and c.scene not in ("shipped", "numeric-paths") and not c.id.startswith("Hdiscr.routes"))
+                 and c.scene not in ("shipped", "numeric-paths") and c.parts is not None
+                 and not c.id.startswith("Hdiscr.routes"))
     chosen = random.Random(2026).sample(ids, SEED_CLAIMS)
     return [mutate_claim(REGISTRY[cid], limit=3, seed=1).to_dict() for cid in chosen]
 

@@ -59,6 +59,7 @@ CLAIM_MODULES = (
     "library_samples",
     "library_moments",
     "library_sampler",
+    "library_ref3",
     "library_codegen",
     "emitted_user",
     "emitted_sources",

@@ -395,7 +395,11 @@ def _fmt(v: float) -> str:
 
 
 def sample_state(rng: random.Random, *, x_sign: int, p_sign: int) -> tuple[list[str], list[str]]:
-    """A random real state (decimal strings p, q) with sign(q1 - q2) = x_sign, sign(p2 - p1) = p_sign."""
+    """A random real state (decimal strings p, q) with sign(q1 - q2) = x_sign, sign(p2 - p1) = p_sign.
+
+    Its level set: ``I1 = (p1 + p2)/2`` uniform on [-2, 2], ``I2`` uniform on [2.3, 9], ``|q1 - q2|`` uniform on
+    ``[0.03, 0.97] acosh(I2/2)`` (away from the turning points ``p1 = p2``), ``q1 + q2`` uniform on [-1, 1].
+    """
     I1, I2 = rng.uniform(-2, 2), rng.uniform(2.3, 9)
     x = x_sign * rng.uniform(0.03, 0.97) * math.acosh(I2 / 2)
     Pr = -p_sign * math.sqrt(max(I2 - 2 * math.cosh(x), 0.0))

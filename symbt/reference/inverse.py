@@ -101,6 +101,11 @@ def solve_parameters(p: Sequence[MPLike], q: Sequence[MPLike], c_target: Sequenc
     Returns a dict with lam0, mu, branch, c (achieved), kappa (achieved/target
     along the target direction), iterations, residual.  Raises ValueError if
     Newton fails (no admissible solution near the initial guess).
+
+    Where the guess's interval ``[lam0 - mu, lam0 + mu]`` meets a band (``|tr| <= 2``), ``mu`` is halved (up to
+    16 times) first.  Newton (modes exact and direction) stops at the first iterate whose residual is below ``tol``
+    (default ``10**-(dps - 8)``) and then takes one more step, kept if it does not increase the residual: the
+    error of the answer is then about the *square* of the error at ``tol``, not ``tol``.
     """
     N = len(p)
     c_target = [mp.mpmathify(v) for v in c_target] + [mp.mpf(0)] * (N + 1 - len(c_target))

@@ -139,6 +139,10 @@ def hamiltonian_flow(p: Sequence[MPLike], q: Sequence[MPLike], c: Sequence[MPLik
     ``c = [c_0, ..., c_N]`` (missing trailing entries are 0).  Negative ``t``
     integrates backwards.  Error per unit time about ``tol`` (default
     ``10**-(dps+2)``, working precision dps + 15).  Returns a :class:`FlowResult`.
+
+    The order is ``order`` or ``max(12, floor(ln(1/tol)/2) + 6)``; each step is 0.7 times the smaller of
+    ``(tol/|X_K|)^(1/K)`` and ``(tol/|X_{K-1}|)^(1/(K-1))`` over the last two Taylor coefficients (scaled by
+    ``max(1, |x|)``, the ones that are not 0), so a vanishing last coefficient does not make a long step.
     """
     N = len(p)
     dps = mp.mp.dps

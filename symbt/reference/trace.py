@@ -113,7 +113,10 @@ def trace_gradient(lam: MPLike, p: Sequence[MPLike],
 
 
 def trace_gap(p: Sequence[MPLike], q: Sequence[MPLike], lo: MPLike, hi: MPLike) -> mp.mpf:
-    """min over [lo, hi] of |tr L(lam)| - 2 (end points and critical points), or 0 if tr L = +-2 somewhere."""
+    """min over [lo, hi] of |tr L(lam)| - 2 (end points and critical points), or 0 if tr L = +-2 somewhere.
+
+    The interval is closed: a root of ``tr L = +-2`` (as ``mpmath.polyroots`` finds it) at ``lo`` or ``hi`` gives 0.
+    """
     H = hamiltonians(p, q)
     lo, hi = mp.mpmathify(lo), mp.mpmathify(hi)
     if lo > hi:
