@@ -147,7 +147,7 @@ def test_neighbour_ratios_refuses_exactly_as_before(case):
 
 # ------------------------------------------------------------------ the rows' largest neighbour step
 
-@pytest.mark.parametrize("N", [1, 2, 3, 8])
+@pytest.mark.parametrize("N", [1, 2, 3, 8, 9, 64])
 def test_largest_step_is_the_rolled_difference(N):
     rng = np.random.default_rng(N)
     q = special_rows(rng, 500 * N).reshape(500, N)

@@ -41,7 +41,8 @@ if TYPE_CHECKING:
     F64 = npt.NDArray[np.float64]
     I64 = npt.NDArray[np.int64]
 
-__all__ = ["sharp_trace_kappa", "SHARP_UNIT", "sharp_trace_kappa_rows", "abs_trace_rows", "FEW_ROWS"]
+__all__ = ["sharp_trace_kappa", "SHARP_UNIT", "SHARP_ON_FLOATS", "sharp_trace_kappa_rows", "abs_trace_rows",
+           "FEW_ROWS"]
 
 #: the relative allowance per site for the rounding of the sum of :func:`sharp_trace_kappa` and products
 #: (``16 u``, ``u = 2**-53``)``
@@ -95,7 +96,9 @@ def sharp_trace_kappa(p: npt.NDArray[np.float64], r: npt.NDArray[np.float64], la
     pa = np.empty(N)
     pb = np.empty(N)
     pe = np.empty(N, dtype=np.int64)
+    az = np.empty(N)                    # every a_j, formed once (the suffix pass reads them again)
     A = lam_add(lam, lo, p[0])
+    az[0] = A
     B = -1.0
     C = r[0]
     D = 0.0
@@ -107,6 +110,7 @@ def sharp_trace_kappa(p: npt.NDArray[np.float64], r: npt.NDArray[np.float64], la
     pe[0] = 0
     for j in range(1, N):
         a = lam_add(lam, lo, p[j])
+        az[j] = a
         cn = abs(lam) + abs(p[j])
         if cn * kd > kn * abs(a):
             kn = cn
@@ -127,7 +131,7 @@ def sharp_trace_kappa(p: npt.NDArray[np.float64], r: npt.NDArray[np.float64], la
     es = 0
     total = 0.0
     for j in range(N - 1, -1, -1):
-        sa = lam_add(lam, lo, p[j])
+        sa = az[j]
         a = abs(sa)
         rj = r[j]
         if j == 0:                      # P_0 = identity
@@ -193,7 +197,7 @@ class _Lists:
 
 
 #: the scalar form as it is, its arrays Python lists (one source: a change of it reaches this form too)
-_SHARP_ON_FLOATS: Callable[..., float] = clone(sharp_trace_kappa, np=_Lists)
+SHARP_ON_FLOATS: Callable[..., float] = clone(sharp_trace_kappa, np=_Lists)
 
 
 def _pymax(*xs: F64) -> F64:
@@ -239,7 +243,7 @@ def sharp_trace_kappa_rows(p: F64, r: F64, lam: F64, lo: F64) -> F64:
     """
     R, N = p.shape
     if R <= FEW_ROWS:
-        return np.array([_SHARP_ON_FLOATS(_Sites(p[k].tolist()), _Sites(r[k].tolist()), float(lam[k]),
+        return np.array([SHARP_ON_FLOATS(_Sites(p[k].tolist()), _Sites(r[k].tolist()), float(lam[k]),
                                           float(lo[k])) for k in range(R)], dtype=float)
     with np.errstate(all="ignore"):
         return _sharp_over_rows(p, r, lam, lo)
@@ -298,7 +302,7 @@ def _sharp_over_rows(p: F64, r: F64, lam: F64, lo: F64) -> F64:
     out = Ts * (np.abs(t) + two) / np.abs(disc) * (kn / kd)
     out = np.where(over | (disc == 0.0) | (kd == 0.0), math.inf, out)
     for k in np.flatnonzero(hazard):
-        out[k] = _SHARP_ON_FLOATS(_Sites(p[k].tolist()), _Sites(r[k].tolist()), float(lam[k]), float(lo[k]))
+        out[k] = SHARP_ON_FLOATS(_Sites(p[k].tolist()), _Sites(r[k].tolist()), float(lam[k]), float(lo[k]))
     return out
 
 

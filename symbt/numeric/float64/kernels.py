@@ -27,8 +27,8 @@ steps, when ``r`` is also re-anchored to ``exp`` of the double-double
 differences.  Stored states read ``q = qh + ql + log F`` without touching the
 state, so the orbit does not depend on ``every`` (bit for bit).  The inner step
 has no transcendental function except two square roots and vectorises over
-the states of a block; the rounding per step stays at the level of the
-exp/log1p formulation (``O(eps)`` in ``log r``) and ``q`` never rounds the
+the states of a block; the rounding per step stays at the level of the exp/log1p formulation (``O(eps)`` in
+``log r``) and ``q`` never rounds the
 increments against ``|q|`` (the centre of mass can drift to ``|q| ~ 1e3``
 without perturbing the relative coordinates).  After one step the result
 equals :func:`~symbt.numeric.core.step.step_core`'s to an ulp.
@@ -38,8 +38,7 @@ Status codes per state (first failure wins): ``0`` ok, ``1``/``2``
 ``tr L(lam2)`` of opposite signs (``lam1``, ``lam2`` in different gaps), ``4``
 range problem (monodromy entries beyond ``1e290`` after the exact power-of-two rescaling, or both
 entries of its first row at most ``1e-290`` there -- an entry strictly above is needed --,
-``|q_{j+1} - q_j| > 700``, a
-non-finite intermediate such as a degenerate eigenvector), ``5`` ill-conditioned
+``|q_{j+1} - q_j| > 700``, a non-finite intermediate such as a degenerate eigenvector), ``5`` ill-conditioned
 (the float64 decision or result is not trustworthy: condition estimate ``kappa``
 beyond :data:`KAPPA_MAX`, see :mod:`symbt.numeric.core.step`, "Existence and
 accuracy").  The drivers recompute every failing state with the general path,
@@ -70,7 +69,7 @@ import numpy as np
 
 from ..core import limits
 from ..core.compile import clone, instantiate
-from ..core.condition import sharp_trace_kappa
+from ..core.condition import SHARP_ON_FLOATS, sharp_trace_kappa
 from ..core.fused import SOURCE
 from ..core.limits import KAPPA_MAX, MAX_DQ_FLOAT64, OK, RANGE
 from ..core.spectral_sum import lam_add, lam_split, root_slope
@@ -287,6 +286,8 @@ HOOKS: dict[str, Callable[..., Any]] = {
          "in_range": _in_range, "two_of": _two_of, "decided": _decided, "disc_fits": _disc_fits,
          "step_kappa": _step_kappa, "sharpen": _sharpen, "bounded": _bounded, "trusted": _trusted, "advance": _advance,
     "ld": _ld, "st": _st, "lam_add": lam_add, "lam_split": lam_split, "root_slope": root_slope}
+#: the hooks of the plain-Python step: the sharp tier on Python floats (a numpy scalar's arithmetic costs ~3x)
+_PY_HOOKS = {**HOOKS, **{k: clone(HOOKS[k], sharp_trace_kappa=SHARP_ON_FLOATS) for k in ("decided", "sharpen")}}
 #: the operations of the float64 arithmetic (the same in plain Python and under numba)
 OPERATIONS = {"add": operator.add, "sub": operator.sub, "mul": operator.mul, "div": operator.truediv,
               "neg": operator.neg, "sqrt": math.sqrt, "add_d": operator.add, "mul2": operator.mul}
@@ -350,7 +351,7 @@ def python_kernels() -> dict[str, Callable[..., Any]]:
     from ..core.inline import FLOAT64_INLINE
 
     kinds = {**FLOAT64_INLINE, **{name: "body" for name in HOOKS if name not in FLOAT64_INLINE}}
-    return instantiate(SOURCE, {**OPERATIONS, **HOOKS}, tag="f64", jit=False, extra=_EXTRA, operations=kinds)
+    return instantiate(SOURCE, {**OPERATIONS, **_PY_HOOKS}, tag="f64", jit=False, extra=_EXTRA, operations=kinds)
 
 
 def _anchor1(qh: F64, ql: F64, fh: F64, fl: F64, r: F64, p: F64) -> int:
@@ -476,7 +477,7 @@ def python_orbit_with(hooks: dict[str, Callable[..., Any]]) -> Callable[..., int
     from ..core.inline import FLOAT64_INLINE
 
     kinds = {**FLOAT64_INLINE, **{name: "body" for name in HOOKS if name not in FLOAT64_INLINE}}
-    st = instantiate(SOURCE, {**OPERATIONS, **HOOKS, **hooks}, tag="f64dev", jit=False, operations=kinds)["step"]
+    st = instantiate(SOURCE, {**OPERATIONS, **_PY_HOOKS, **hooks}, tag="f64dev", jit=False, operations=kinds)["step"]
     return clone(python_orbit, _orbit_on_rows=clone(_orbit_on_rows, step=st))
 
 

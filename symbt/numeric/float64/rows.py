@@ -237,17 +237,23 @@ def float_rows_step(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: 
 def _largest_step(q: F64) -> F64:
     """``max_j |q_{j+1} - q_j|`` (cyclic) of every row of ``q`` (R, N); NaN where a difference is NaN.
 
-    Column by column (no rolled copy of ``q``): the same differences and the same maximum as
-    ``np.abs(np.roll(q, -1, axis=1) - q).max(axis=1)``.
+    The same differences and the same maximum as ``np.abs(np.roll(q, -1, axis=1) - q).max(axis=1)``, without
+    the rolled copy: up to 8 sites column by column (a row-wise ``max`` over a few columns is slow: 100000
+    rows of 3 sites, 0.4 ms against 15 ms), more sites into one array of the differences.
 
     >>> _largest_step(np.array([[0.0, 3.0, 1.0], [0.0, np.nan, 1.0]])).tolist()
     [3.0, nan]
     """
     N = q.shape[1]
-    out = np.abs(q[:, 1 % N] - q[:, 0])
-    for j in range(1, N):
-        np.maximum(out, np.abs(q[:, (j + 1) % N] - q[:, j]), out=out)
-    return out
+    if N <= 8:
+        out = np.abs(q[:, 1 % N] - q[:, 0])
+        for j in range(1, N):
+            np.maximum(out, np.abs(q[:, (j + 1) % N] - q[:, j]), out=out)
+        return out
+    d = np.empty_like(q)
+    np.subtract(q[:, 1:], q[:, :-1], out=d[:, :-1])
+    np.subtract(q[:, 0], q[:, -1], out=d[:, -1])
+    return np.abs(d, out=d).max(axis=1)
 
 
 def _take(x: FloatParam, idx: npt.NDArray[np.intp] | slice | int) -> FloatParam:
