@@ -25,7 +25,7 @@ True
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, TypeVar
 
 import numpy as np
@@ -41,8 +41,8 @@ if TYPE_CHECKING:
     F64 = npt.NDArray[np.float64]
     I64 = npt.NDArray[np.int64]
 
-__all__ = ["sharp_trace_kappa", "SHARP_UNIT", "SHARP_ON_FLOATS", "sharp_trace_kappa_rows", "abs_trace_rows",
-           "FEW_ROWS"]
+__all__ = ["sharp_trace_kappa", "SHARP_UNIT", "SHARP_ON_FLOATS", "sharp_on_floats", "sharp_trace_kappa_rows",
+           "abs_trace_rows", "FEW_ROWS"]
 
 #: the relative allowance per site for the rounding of the sum of :func:`sharp_trace_kappa` and products
 #: (``16 u``, ``u = 2**-53``)``
@@ -141,16 +141,17 @@ def sharp_trace_kappa(p: npt.NDArray[np.float64], r: npt.NDArray[np.float64], la
             P11, P12 = abs(pa[j - 1]), abs(pb[j - 1])
             if j == 1:                  # P_1 = m_1: second row (r_1, 0)
                 P21, P22 = math.ldexp(r[0], -ep), 0.0
-            else:
-                fr = math.ldexp(r[j - 1], int(pe[j - 2]) - ep)
+            else:                       # (an exponent 0 scales by 1: no call)
+                fr = r[j - 1] if pe[j - 2] == ep else math.ldexp(r[j - 1], int(pe[j - 2]) - ep)
                 P21, P22 = fr * abs(pa[j - 2]), fr * abs(pb[j - 2])
         X11, X12 = a * P11 + P21, a * P12 + P22
         X21, X22 = rj * P11, rj * P12
         term = abs(S11) * X11 + abs(S12) * X21 + abs(S21) * X12 + abs(S22) * X22
         sh = es + ep - e
-        if term > 0.0 and math.frexp(term)[1] + sh > 1024:     # beyond float64: math.ldexp would raise
+        # (frexp's exponent is at most 1024, 0 for inf: only sh > 0 can pass 1024)
+        if term > 0.0 and sh > 0 and math.frexp(term)[1] + sh > 1024:     # beyond float64: math.ldexp would raise
             return math.inf             # the rounding scale of t overflows: not conditioned in float64
-        total += math.ldexp(term, sh)
+        total += term if sh == 0 else math.ldexp(term, sh)
         S11, S12, S21, S22 = S11 * sa + S12 * rj, -S11, S21 * sa + S22 * rj, -S21    # S_j = S_{j+1} m_j
         m = max(abs(S11), abs(S12), abs(S21), abs(S22))
         if (m > _FAR or m < _NEAR) and m > 0.0 and m < math.inf:
@@ -198,6 +199,24 @@ class _Lists:
 
 #: the scalar form as it is, its arrays Python lists (one source: a change of it reaches this form too)
 SHARP_ON_FLOATS: Callable[..., float] = clone(sharp_trace_kappa, np=_Lists)
+
+
+def sharp_on_floats(hooks: Mapping[str, Callable[..., object]]) -> dict[str, Callable[..., object]]:
+    """``hooks`` (a float64 arithmetic, e.g. :data:`symbt.numeric.float64.kernels.HOOKS`) with every hook that
+    calls :func:`sharp_trace_kappa` cloned to call :data:`SHARP_ON_FLOATS` instead: the same source on Python
+    floats, for a plain-Python step whose arrays are lists of floats (a numpy scalar's arithmetic takes ~3x a
+    float's).  Cloned at each call, so a hook sees its module's globals as they are then.
+
+    >>> from symbt.numeric.float64.kernels import HOOKS
+    >>> new = sharp_on_floats(HOOKS)
+    >>> new["decided"].__globals__["sharp_trace_kappa"] is SHARP_ON_FLOATS, new["track"] is HOOKS["track"]
+    (True, True)
+    """
+    def calls_sharp(v: Callable[..., object]) -> bool:
+        code = getattr(v, "__code__", None)
+        return code is not None and "sharp_trace_kappa" in code.co_names and \
+            getattr(v, "__globals__", {}).get("sharp_trace_kappa") is sharp_trace_kappa
+    return {k: clone(v, sharp_trace_kappa=SHARP_ON_FLOATS) if calls_sharp(v) else v for k, v in hooks.items()}
 
 
 def _pymax(*xs: F64) -> F64:

@@ -69,7 +69,7 @@ import numpy as np
 
 from ..core import limits
 from ..core.compile import clone, instantiate
-from ..core.condition import SHARP_ON_FLOATS, sharp_trace_kappa
+from ..core.condition import sharp_on_floats, sharp_trace_kappa
 from ..core.fused import SOURCE
 from ..core.limits import KAPPA_MAX, MAX_DQ_FLOAT64, OK, RANGE
 from ..core.spectral_sum import lam_add, lam_split, root_slope
@@ -286,8 +286,6 @@ HOOKS: dict[str, Callable[..., Any]] = {
          "in_range": _in_range, "two_of": _two_of, "decided": _decided, "disc_fits": _disc_fits,
          "step_kappa": _step_kappa, "sharpen": _sharpen, "bounded": _bounded, "trusted": _trusted, "advance": _advance,
     "ld": _ld, "st": _st, "lam_add": lam_add, "lam_split": lam_split, "root_slope": root_slope}
-#: the hooks of the plain-Python step: the sharp tier on Python floats (a numpy scalar's arithmetic costs ~3x)
-_PY_HOOKS = {**HOOKS, **{k: clone(HOOKS[k], sharp_trace_kappa=SHARP_ON_FLOATS) for k in ("decided", "sharpen")}}
 #: the operations of the float64 arithmetic (the same in plain Python and under numba)
 OPERATIONS = {"add": operator.add, "sub": operator.sub, "mul": operator.mul, "div": operator.truediv,
               "neg": operator.neg, "sqrt": math.sqrt, "add_d": operator.add, "mul2": operator.mul}
@@ -351,7 +349,8 @@ def python_kernels() -> dict[str, Callable[..., Any]]:
     from ..core.inline import FLOAT64_INLINE
 
     kinds = {**FLOAT64_INLINE, **{name: "body" for name in HOOKS if name not in FLOAT64_INLINE}}
-    return instantiate(SOURCE, {**OPERATIONS, **_PY_HOOKS}, tag="f64", jit=False, extra=_EXTRA, operations=kinds)
+    return instantiate(SOURCE, {**OPERATIONS, **sharp_on_floats(HOOKS)}, tag="f64", jit=False, extra=_EXTRA,
+                       operations=kinds)
 
 
 def _anchor1(qh: F64, ql: F64, fh: F64, fl: F64, r: F64, p: F64) -> int:
@@ -477,7 +476,8 @@ def python_orbit_with(hooks: dict[str, Callable[..., Any]]) -> Callable[..., int
     from ..core.inline import FLOAT64_INLINE
 
     kinds = {**FLOAT64_INLINE, **{name: "body" for name in HOOKS if name not in FLOAT64_INLINE}}
-    st = instantiate(SOURCE, {**OPERATIONS, **_PY_HOOKS, **hooks}, tag="f64dev", jit=False, operations=kinds)["step"]
+    st = instantiate(SOURCE, {**OPERATIONS, **sharp_on_floats(HOOKS), **hooks}, tag="f64dev", jit=False,
+                     operations=kinds)["step"]
     return clone(python_orbit, _orbit_on_rows=clone(_orbit_on_rows, step=st))
 
 
