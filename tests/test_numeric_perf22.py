@@ -1,7 +1,7 @@
 """The numpy route's cheaper forms (issue 22, "no ratio worse than before"): each the form before, bit for bit.
 
 Each test compares a new form with the expression it replaced, kept here verbatim, on inputs that reach
-every branch (NaN and infinite entries in each position, rows out of range, the chunked path), and checks
+every branch (NaN and infinite entries in each position, rows out of range), and checks
 that the new path is the one taken.
 """
 from __future__ import annotations
@@ -11,7 +11,7 @@ import math
 import numpy as np
 import pytest
 
-from symbt.numeric.core import condition, monodromy, spectral_sum
+from symbt.numeric.core import condition, monodromy
 from symbt.numeric.core.context import FLOAT
 from symbt.numeric.core.errors import NumericRangeError
 from symbt.numeric.core.limits import MAX_DQ_FLOAT64
@@ -29,35 +29,6 @@ def special_rows(rng, n):
     k = rng.integers(0, n, 6)
     x[k] = [np.nan, np.inf, -np.inf, 2.0 ** 600, -(2.0 ** 700), 2.0 ** -600]
     return x
-
-
-# ------------------------------------------------------------------ root_slope_rows in chunks
-
-def test_root_slope_rows_in_chunks_is_the_scalar_form_element_for_element(monkeypatch):
-    rng = np.random.default_rng(22)
-    n = 3 * spectral_sum._CHUNK_ROWS + 17                      # three full chunks and a part
-    A, D = rng.normal(size=n) * 1e3, rng.normal(size=n) * 1e2
-    B, C = rng.normal(size=n), rng.normal(size=n)
-    A[:5] = [np.nan, np.inf, 2.0 ** 996, 0.0, -3.0]            # the uncorrected slope (not ok) and NaN
-    t, dl = A + D, A - D
-    with np.errstate(all="ignore"):
-        g = np.sqrt((t - 2.0) * (t + 2.0))
-    plus, wantk = dl >= 0, rng.random(n) < 0.5
-    calls = []
-    real = spectral_sum._root_slope_arrays
-    monkeypatch.setattr(spectral_sum, "_root_slope_arrays", lambda *a: calls.append(np.size(a[0])) or real(*a))
-    got = spectral_sum.root_slope_rows(A, D, dl, g, B, C, 2.0, plus, wantk)
-    assert calls == [spectral_sum._CHUNK_ROWS] * 3 + [17]    # the chunked path was taken
-    whole = real(A, D, dl, g, B, C, 2.0, plus, wantk)         # one pass over all rows (the form before)
-    assert same_bits(got, whole)
-    with np.errstate(all="ignore"):
-        for i in list(range(8)) + list(rng.integers(0, n, 200)):
-            try:
-                ref = spectral_sum.root_slope(A[i], D[i], dl[i], g[i], B[i], C[i], 2.0, bool(plus[i]),
-                                              bool(wantk[i]))
-            except ZeroDivisionError:
-                continue
-            assert same_bits(got[i], ref) or (np.isnan(got[i]) and np.isnan(ref))   # (a NaN's sign aside)
 
 
 # ------------------------------------------------------------------ the two products' range test at once

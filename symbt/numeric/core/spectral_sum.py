@@ -179,23 +179,6 @@ def root_slope_rows(A: Any, D: Any, dl: Any, g: Any, B: Any, C: Any, two: Any, p
             pass
         else:
             return np.array(out, dtype=np.float64).reshape(np.shape(A))
-    n = np.size(A)
-    if np.ndim(A) == 1 and n > _CHUNK_ROWS:      # many rows: in chunks whose ~60 temporaries stay in cache
-        cols = [np.broadcast_to(x, (n,)) if np.ndim(x) else x for x in (A, D, dl, g, B, C, two, plus, wantk)]
-        res = np.empty(n)
-        for s in range(0, n, _CHUNK_ROWS):
-            res[s:s + _CHUNK_ROWS] = _root_slope_arrays(*(x[s:s + _CHUNK_ROWS] if np.ndim(x) else x for x in cols))
-        return res
-    return _root_slope_arrays(A, D, dl, g, B, C, two, plus, wantk)
-
-
-#: :func:`root_slope_rows` on more rows than this works in chunks of this many (measured at N = 3, 43690
-#: rows, a block of the numpy route: 2.4x faster than one pass; elementwise, so the same bits)
-_CHUNK_ROWS = 2048
-
-
-def _root_slope_arrays(A: Any, D: Any, dl: Any, g: Any, B: Any, C: Any, two: Any, plus: Any, wantk: Any) -> Any:
-    """:func:`root_slope`'s operations on numpy arrays, elementwise (the body of :func:`root_slope_rows`)."""
     with np.errstate(all="ignore"):
         t = A + D
         bp = t - A
