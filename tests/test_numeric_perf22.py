@@ -136,3 +136,32 @@ def test_float_rows_step_refuses_the_far_rows_as_before():
     with pytest.raises(NumericRangeError) as err:
         rows_module.float_rows_step(p, q, 20.0, 1.0, 1, False, (12,))
     assert "(4,)" in str(err.value) and "(9,)" in str(err.value)
+
+
+# ------------------------------------------------------------------ the plain-Python step's sharp tier on floats
+
+def test_the_plain_python_step_calls_the_sharp_tier_on_floats():
+    from symbt.numeric.float64 import kernels
+
+    step_globals = kernels.python_kernels()["step"].__globals__
+    assert condition.SHARP_ON_FLOATS in step_globals.values()
+    assert condition.sharp_trace_kappa not in step_globals.values()
+    dev = kernels.python_orbit_with({})                       # the measuring device too
+    assert condition.SHARP_ON_FLOATS in dev.__globals__["_orbit_on_rows"].__globals__["step"].__globals__.values()
+
+
+def test_the_sharp_tier_on_floats_is_the_array_form_bit_for_bit():
+    # the n64/n256 chains' states (the sharp tier every step) and random rows, renormalised ones included
+    from symbt.benchmarks.cases import cases
+
+    rng = np.random.default_rng(64)
+    states = [(np.array(c.p), np.exp(np.roll(np.array(c.q), -1) - np.array(c.q)), c.lam0 + s * c.mu)
+              for c in cases(quick=True) for s in (1.0, -1.0)]
+    for N in (2, 3, 40, 300):
+        states += [(rng.normal(size=N) * 10.0 ** rng.integers(-1, 3), np.exp(rng.normal(size=N)), float(rng.normal()))
+                   for _ in range(10)]
+    for p, r, lam in states:
+        with np.errstate(all="ignore"):
+            a = condition.sharp_trace_kappa(p, r, lam, 0.0)
+        b = condition.SHARP_ON_FLOATS(condition._Sites(p.tolist()), condition._Sites(r.tolist()), lam, 0.0)
+        assert same_bits(a, b) or (np.isnan(a) and np.isnan(b))
