@@ -117,6 +117,7 @@ from .condition import SIDE_BY_SIDE_ROWS, abs_trace_rows, monodromy_and_abs, sha
 from .context import FLOAT, IV, Cond, Context, Exponent, FloatValue, MPValue, Value
 from .errors import NoRealMapError, NumericRangeError
 from .inputs import to_output
+from .limits import ILLCOND, KAPPA_MAX, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 from .monodromy import monodromy, neighbour_ratios
 from .spectral_sum import lam_add, lam_split, root_slope_rows
 
@@ -307,8 +308,6 @@ def _gathered(per_site: list[_T]) -> _T:
 def _site_factors(U: F64, W: F64, X: F64) -> tuple[tuple[F64, F64], npt.NDArray[np.bool_], F64]:
     """The per-site factors of :func:`float_status`' slope test, ``(|u| + |w|, |x + 1| + |x|)``,
     ``x + 1 > 0`` and ``KAPPA_MAX |u - w| |x + 1|`` (the operations of the site loop, ``x + 1`` formed once)."""
-    from .limits import KAPPA_MAX
-
     X1 = X + 1
     A1 = np.abs(X1)
     return (np.abs(U) + np.abs(W), A1 + np.abs(X)), X1 > 0, KAPPA_MAX * np.abs(U - W) * A1
@@ -353,8 +352,6 @@ def float_status(aux: StepAux, Pn: Sequence[FloatValue], Qn: Sequence[FloatValue
     ``Etilde_j / E_j = 1 + xr_j <= 0``, ``ILLCOND`` where the state's ``kappa`` (module docstring) exceeds
     ``KAPPA_MAX`` (that sign or the result not trusted), ``RANGE`` where the result is not finite.
     """
-    from .limits import ILLCOND, KAPPA_MAX, OK, POSITIVITY, RANGE, TRACE1, TRACE2
-
     S1, S2 = aux["S1"], aux["S2"]
     assert S1.kappa is not None and S2.kappa is not None      # set by eigen_slopes for the float context
     k1, k2 = S1.kappa, S2.kappa
@@ -372,8 +369,9 @@ def float_status(aux: StepAux, Pn: Sequence[FloatValue], Qn: Sequence[FloatValue
             return ~(k1 <= KAPPA_MAX) | ~(k2 <= KAPPA_MAX), np.logical_or.reduce(~(kt * us[0] * us[1] <= rhs))
 
         ill_t, ill_p = ill(k1, k2)
-        rows = np.broadcast_to(ill_t | ill_p, np.shape(k1))
-        if np.any(rows):        # the second tier where the cheap estimate escalates (as the kernels do)
+        rows = ill_t | ill_p
+        if rows.any():          # the second tier where the cheap estimate escalates (as the kernels do)
+            rows = np.broadcast_to(rows, np.shape(k1))
             k1, k2 = np.fmin(k1, sharpened(S1, rows)), np.fmin(k2, sharpened(S2, rows))
             ill_t, ill_p = ill(k1, k2)
         pos = np.logical_and.reduce(xs)

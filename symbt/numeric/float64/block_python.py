@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..core.condition import _SHARP_ON_FLOATS, _Sites
+from ..core.condition import SHARP_ON_FLOATS, _Sites
 from ..core.inline import _IeeeDivision, ieee_div0
 from ..core.spectral_sum import lam_add, lam_split, root_slope
 from . import kernels_block as KB
@@ -120,7 +120,7 @@ def _rewritten(fn: Callable[..., Any], env: dict[str, Any], subscripts: bool = T
 def _build() -> dict[str, Callable[..., Any]]:
     env: dict[str, Any] = {"np": _Lists, "lam_add": lam_add, "lam_split": lam_split,
                            "root_slope": _rewritten(root_slope, {}, subscripts=False),
-                           "sharp_trace_kappa": _SHARP_ON_FLOATS, "prange": range}
+                           "sharp_trace_kappa": SHARP_ON_FLOATS, "prange": range}
     for name in ("_shrink", "_slopes", "_anchor", "run_block", "ensemble"):
         env[name] = _rewritten(getattr(KB, name), env)
     return env

@@ -27,8 +27,8 @@ steps, when ``r`` is also re-anchored to ``exp`` of the double-double
 differences.  Stored states read ``q = qh + ql + log F`` without touching the
 state, so the orbit does not depend on ``every`` (bit for bit).  The inner step
 has no transcendental function except two square roots and vectorises over
-the states of a block; the rounding per step stays at the level of the
-exp/log1p formulation (``O(eps)`` in ``log r``) and ``q`` never rounds the
+the states of a block; the rounding per step stays at the level of the exp/log1p formulation (``O(eps)`` in
+``log r``) and ``q`` never rounds the
 increments against ``|q|`` (the centre of mass can drift to ``|q| ~ 1e3``
 without perturbing the relative coordinates).  After one step the result
 equals :func:`~symbt.numeric.core.step.step_core`'s to an ulp.
@@ -38,8 +38,7 @@ Status codes per state (first failure wins): ``0`` ok, ``1``/``2``
 ``tr L(lam2)`` of opposite signs (``lam1``, ``lam2`` in different gaps), ``4``
 range problem (monodromy entries beyond ``1e290`` after the exact power-of-two rescaling, or both
 entries of its first row at most ``1e-290`` there -- an entry strictly above is needed --,
-``|q_{j+1} - q_j| > 700``, a
-non-finite intermediate such as a degenerate eigenvector), ``5`` ill-conditioned
+``|q_{j+1} - q_j| > 700``, a non-finite intermediate such as a degenerate eigenvector), ``5`` ill-conditioned
 (the float64 decision or result is not trustworthy: condition estimate ``kappa``
 beyond :data:`KAPPA_MAX`, see :mod:`symbt.numeric.core.step`, "Existence and
 accuracy").  The drivers recompute every failing state with the general path,
@@ -70,7 +69,7 @@ import numpy as np
 
 from ..core import limits
 from ..core.compile import clone, instantiate
-from ..core.condition import sharp_trace_kappa
+from ..core.condition import sharp_on_floats, sharp_trace_kappa
 from ..core.fused import SOURCE
 from ..core.limits import KAPPA_MAX, MAX_DQ_FLOAT64, OK, RANGE
 from ..core.spectral_sum import lam_add, lam_split, root_slope
@@ -350,7 +349,8 @@ def python_kernels() -> dict[str, Callable[..., Any]]:
     from ..core.inline import FLOAT64_INLINE
 
     kinds = {**FLOAT64_INLINE, **{name: "body" for name in HOOKS if name not in FLOAT64_INLINE}}
-    return instantiate(SOURCE, {**OPERATIONS, **HOOKS}, tag="f64", jit=False, extra=_EXTRA, operations=kinds)
+    return instantiate(SOURCE, {**OPERATIONS, **sharp_on_floats(HOOKS)}, tag="f64", jit=False, extra=_EXTRA,
+                       operations=kinds)
 
 
 def _anchor1(qh: F64, ql: F64, fh: F64, fl: F64, r: F64, p: F64) -> int:
@@ -476,7 +476,8 @@ def python_orbit_with(hooks: dict[str, Callable[..., Any]]) -> Callable[..., int
     from ..core.inline import FLOAT64_INLINE
 
     kinds = {**FLOAT64_INLINE, **{name: "body" for name in HOOKS if name not in FLOAT64_INLINE}}
-    st = instantiate(SOURCE, {**OPERATIONS, **HOOKS, **hooks}, tag="f64dev", jit=False, operations=kinds)["step"]
+    st = instantiate(SOURCE, {**OPERATIONS, **sharp_on_floats(HOOKS), **hooks}, tag="f64dev", jit=False,
+                     operations=kinds)["step"]
     return clone(python_orbit, _orbit_on_rows=clone(_orbit_on_rows, step=st))
 
 

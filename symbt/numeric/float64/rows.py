@@ -211,7 +211,7 @@ def float_rows_step(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: 
     block = max(256, BLOCK_ELEMENTS // N)
     if idx_all.size:
         # out of the scaled formulation's range (what neighbour_ratios refuses for a whole block): per row
-        dq = np.abs(np.roll(qa[idx_all], -1, axis=1) - qa[idx_all]).max(axis=1)
+        dq = _largest_step(qa if rows is None and idx_all.size == M else qa[idx_all])
         far = ~(dq <= MAX_DQ_FLOAT64)
         status[idx_all[far]] = RANGE
         idx_all = idx_all[~far]
@@ -232,6 +232,28 @@ def float_rows_step(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: 
         status[nomap] = np.where(fin, OK, RANGE)
     raise_for_rows(status, shape)
     return outp, outq
+
+
+def _largest_step(q: F64) -> F64:
+    """``max_j |q_{j+1} - q_j|`` (cyclic) of every row of ``q`` (R, N); NaN where a difference is NaN.
+
+    The same differences and the same maximum as ``np.abs(np.roll(q, -1, axis=1) - q).max(axis=1)``, without
+    the rolled copy: up to 8 sites column by column (a row-wise ``max`` over a few columns is slow: 100000
+    rows of 3 sites, 0.4 ms against 15 ms), more sites into one array of the differences.
+
+    >>> _largest_step(np.array([[0.0, 3.0, 1.0], [0.0, np.nan, 1.0]])).tolist()
+    [3.0, nan]
+    """
+    N = q.shape[1]
+    if N <= 8:
+        out = np.abs(q[:, 1 % N] - q[:, 0])
+        for j in range(1, N):
+            np.maximum(out, np.abs(q[:, (j + 1) % N] - q[:, j]), out=out)
+        return out
+    d = np.empty_like(q)
+    np.subtract(q[:, 1:], q[:, :-1], out=d[:, :-1])
+    np.subtract(q[:, 0], q[:, -1], out=d[:, -1])
+    return np.abs(d, out=d).max(axis=1)
 
 
 def _take(x: FloatParam, idx: npt.NDArray[np.intp] | slice | int) -> FloatParam:
