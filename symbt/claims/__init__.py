@@ -53,6 +53,7 @@ CLAIM_MODULES = (
     "shipped_radius",
     "checker",
     "checker_mutation",
+    "checker_sample3",
     "library",
     "library_reference",
     "library_samples",
