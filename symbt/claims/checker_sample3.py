@@ -12,7 +12,7 @@ small rules"); four claims check them against answers known independently of the
   evidence ``proof`` and refutes it off by :math:`10^{-20}` *definitely*; :func:`~symbt.proof.exponentials.
   rational_linear_form` returns coefficients that rebuild its argument exactly, keyed by symbols and ``1``.
 * ``checker.screen_trust`` -- the screen never verifies sides that agree when a quadrature has not converged
-  (:math:`\int_0^1 \operatorname{sign}(t - 1/3)\,dt` on both sides: ``inconclusive``), and a false verdict's
+  (:math:`\int_0^1 \operatorname{sign}(3t - 1)\,dt` on both sides: ``inconclusive``), and a false verdict's
   digits are :math:`-\log_{10}` of the residual at its counterexample, which is recomputed here (:math:`x = -x`:
   residual 2, digits :math:`-\log_{10} 2`).
 * ``checker.values`` -- the value types :class:`~symbt.proof.Range`, :class:`~symbt.proof.domain.Split`,
@@ -108,15 +108,14 @@ def exact_route_controls() -> Outcome:
 
 @claim("checker.screen_trust", equation="checker", scene="checker",
        where="symbt.proof.decide, numeric screen: an unconverged quadrature; the digits of a false verdict",
-       statement="int_0^1 sign(t - 1/3) dt = int_0^1 sign(s - 1/3) ds (agreeing sides, a quadrature that has not "
+       statement="int_0^1 sign(3t - 1) dt = int_0^1 sign(3s - 1) ds (agreeing sides, a quadrature that has not "
                  "converged) is inconclusive at 12 digits, not verified; x = -x (x real) is false with residual 2 "
                  "at its counterexample and digits -log10 2")
 def screen_trust_controls() -> Outcome:
     from ..proof.decider import decide
 
     t, s = sp.symbols("t s", positive=True)
-    third = sp.Rational(1, 3)
-    q = decide(sp.Integral(sp.sign(t - third), (t, 0, 1)), sp.Integral(sp.sign(s - third), (s, 0, 1)),
+    q = decide(sp.Integral(sp.sign(3 * t - 1), (t, 0, 1)), sp.Integral(sp.sign(3 * s - 1), (s, 0, 1)),
                exact=False, digits=12, points=1)
     if q.verdict != "inconclusive" or q.error is None or not q.error > 1e-4:
         return failed(q.method, residual=q.residual,
