@@ -248,3 +248,14 @@ def test_quadrature_error_recorded_at_the_working_precision(monkeypatch):
     got = decider.decide(side, side.subs(t, sp.Symbol("s", positive=True)), exact=False, digits=12, points=1)
     assert (got.verdict, got.residual, got.error, got.digits) == (want.verdict, want.residual, want.error, want.digits)
     assert math.isfinite(want.error) and want.error > 0
+
+
+# --------------------------------------------------------------------------- a bug found on the way
+
+@pytest.mark.parametrize("args", [(sp.Eq(sp.Symbol("x"), sp.Symbol("x")),), (sp.Eq(1, 2),), (sp.Symbol("x"), True)])
+def test_an_evaluated_eq_is_a_type_error_naming_the_argument(args):
+    # SymPy evaluates Eq(x, x) to True (and Eq(1, 2) to False) before check_identity sees it; that was passed on
+    # to decide, which raised SymPy's "BooleanAtom not allowed in this context" -- a TypeError that did not say
+    # which argument was wrong, as check_identity's docstring promises
+    with pytest.raises(TypeError, match=r"check_identity: (lhs|rhs) is (True|False), not an expression"):
+        identity.check_identity(*args)
