@@ -54,6 +54,7 @@ CLAIM_MODULES = (
     "shipped_edges",
     "checker",
     "checker_mutation",
+    "checker_sample3",
     "library",
     "library_reference",
     "library_samples",

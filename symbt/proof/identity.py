@@ -72,6 +72,7 @@ from dataclasses import dataclass, field
 from typing import Any, TypeAlias
 
 import sympy as sp
+from sympy.logic.boolalg import BooleanAtom
 
 from .decider import decide
 from .verdict import STATUS_COLOURS, Verdict, latex_text
@@ -359,12 +360,16 @@ def _expr(name: str, value: Any) -> sp.Basic:
         raise TypeError(f"check_identity: {name} must be a SymPy expression, number or matrix, "
                         f"not {type(value).__name__}")
     try:
-        return sp.sympify(value, strict=not isinstance(value, str))
+        expr = sp.sympify(value, strict=not isinstance(value, str))
     except (sp.SympifyError, TypeError, ValueError) as exc:
         if isinstance(value, str):
             raise ValueError(f"check_identity: cannot parse {name} {value!r}: {exc}") from exc
         raise TypeError(f"check_identity: {name} must be a SymPy expression, number or matrix, "
                         f"not {type(value).__name__} ({value!r})") from exc
+    if isinstance(expr, BooleanAtom):   # Eq(x, x) is already True when check_identity gets it
+        raise TypeError(f"check_identity: {name} is {expr}, not an expression (an Eq that SymPy has already "
+                        "evaluated?): give its two sides as lhs and rhs")
+    return expr
 
 
 # --------------------------------------------------------------------------- entry point

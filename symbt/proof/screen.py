@@ -20,7 +20,9 @@ __all__ = ["screen", "sample_symbol", "ScreenResult", "PointCheck", "tracked_qua
 def sample_symbol(sym: sp.Symbol, rng: random.Random) -> mpmath.mpf | mpmath.mpc:
     """A random value for ``sym`` honouring its SymPy assumptions.
 
-    ``integer`` (with ``even``/``odd``, sign), ``positive``/``nonnegative``,
+    ``integer`` (with ``even``/``odd``, sign; a uniform draw from 1..9, -9..-1 or -9..9 of the
+    wrong parity moves to its neighbour above for ``odd``, below for ``even``, and the other way
+    at the end of the range), ``positive``/``nonnegative``,
     ``negative``/``nonpositive``, ``real`` (either sign), ``imaginary`` (purely
     imaginary, either sign); anything else is sampled complex with imaginary
     parts up to about 4 in size (beyond pi, so branch cuts of ``log`` are hit).
@@ -145,6 +147,8 @@ def tracked_quad(f: Callable[..., Any], *intervals: Any, **kw: Any) -> Any:
     ``sympy.lambdify`` prints an unevaluated ``Integral`` as ``quad(lambda t: ..., (a, b))``;
     the screen's functions call this instead, so a quadrature that has not converged
     at the working precision (its estimate says so) is counted in the evaluation's error.
+    The pair recorded, ``(|value|, |error|)``, is rounded to the working precision (mpmath
+    computes the quadrature with guard bits).
 
     >>> import mpmath
     >>> round(float(tracked_quad(lambda t: t**2, (0, 1))), 12)
