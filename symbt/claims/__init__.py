@@ -47,6 +47,7 @@ CLAIM_MODULES = (
     "shipped_existence",
     "shipped_dask",
     "shipped_members",
+    "shipped_sample3",
     "shipped_core",
     "shipped_field",
     "shipped_rules",
