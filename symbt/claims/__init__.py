@@ -59,6 +59,7 @@ CLAIM_MODULES = (
     "library_moments",
     "library_sampler",
     "library_codegen",
+    "library_emit3",
     "emitted_user",
     "emitted_sources",
 )
