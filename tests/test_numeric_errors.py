@@ -176,3 +176,15 @@ def test_empty_batch_phi_and_interval_phi_and_parameter_overflow():
         bt_step(np.array([-20.0, 10.0, 1.0]), np.array([1.0, 0.0, 0.9]), 1e308, 1e308)
     with pytest.raises(NumericRangeError):
         phi(np.array([-20.0, 10.0, 1.0]), np.array([1.0, 0.0, 0.9]), 1e308, 1e308)
+
+
+@pytest.mark.parametrize("kw", [{"branch": 0}, {"branch": 2}, {"branch": 0.5}, {"branch": True},
+                                {"n": -1}, {"n": 2.5}, {"every": 0}])
+def test_float_orbit_driver_validates_branch_and_steps(kw):
+    # the documented driver (docs/numeric.md) refuses what bt_orbit refuses: before, branch 0, 2 and 0.5 ran
+    # (a map of no branch, or of branch +1 silently) and n = -1 returned an empty orbit
+    from symbt.numeric.float64.orbit import float_orbit
+    args = {"n": 2, **kw}
+    n = args.pop("n")
+    with pytest.raises(InvalidInputError):
+        float_orbit([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0, n, **args)

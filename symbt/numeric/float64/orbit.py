@@ -38,7 +38,7 @@ import numpy as np
 
 from ..core.context import FLOAT, FloatParam, FloatValue
 from ..core.errors import InvalidInputError, NoRealMapError, NumericRangeError
-from ..core.inputs import prepare_spectral_pair, validate_float_pair
+from ..core.inputs import check_branch, check_steps, prepare_spectral_pair, validate_float_pair
 from ..core.limits import ILLCOND, MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 from ..core.problem import Float64Backend, Problem
 from ..core.step import BLOCK_ELEMENTS, float_status, step_core
@@ -315,6 +315,8 @@ def float_orbit(p: npt.ArrayLike, q: npt.ArrayLike, lam0: npt.ArrayLike, mu: npt
     ((4, 2, 3), True)
     """
     check_orbit_backend(backend)
+    branch = check_branch(branch)
+    n, every = check_steps(n, every)
     pa, qa, shape = validate_float_pair(p, q)
     l0, m = prepare_spectral_pair(FLOAT, lam0, mu, shape)
     return validated_float_orbit(pa, qa, shape, l0, m, n, branch, every, backend)
