@@ -7,17 +7,14 @@ the claim to fail; unpatched, every claim verifies (or is skipped without a C co
 """
 from __future__ import annotations
 
-import importlib
 import sys
-import types
-from pathlib import Path
 
 import pytest
 import sympy as sp
+from planting import mutated
 
 from symbt.claims import REGISTRY, load_all
 from symbt.codegen.user.check import compiler
-from symbt.engine.mutants import find_mutants
 
 load_all()
 
@@ -30,23 +27,6 @@ def status(cid: str) -> str:
     return REGISTRY[cid].run().status
 
 
-def mutated(module: str, before: str, after: str, *, same_classes: bool = False) -> types.ModuleType:
-    """A copy of ``module`` with the one mutant whose line reads ``before`` and, mutated, ``after``;
-    ``same_classes``: the copy's classes replaced by the module's own (so that its values pass the
-    ``isinstance`` checks of other modules -- only when the mutant is not inside a class)."""
-    mod = importlib.import_module(module)
-    data = Path(mod.__file__).read_bytes()
-    hits = [m for m in find_mutants(data, module)
-            if m.line_text.strip() == before.strip() and m.mutated_line.strip() == after.strip()]
-    assert len(hits) == 1, f"{len(hits)} mutants of {module} match {before!r} -> {after!r}"
-    copy = types.ModuleType(module + "_mutant")
-    copy.__dict__.update(__name__=module, __package__=mod.__package__, __file__=mod.__file__)
-    exec(compile(hits[0].apply(data), mod.__file__, "exec"), copy.__dict__)   # noqa: S102 -- symbt's own source
-    if same_classes:
-        for name, value in list(copy.__dict__.items()):
-            if isinstance(value, type) and value.__module__ == module and isinstance(getattr(mod, name, None), type):
-                setattr(copy, name, getattr(mod, name))
-    return copy
 
 
 def plant(monkeypatch, module: str, before: str, after: str, *names: str, into=()) -> None:

@@ -9,19 +9,16 @@ and kill, as tests, the two that change only the order of work or the associatio
 from __future__ import annotations
 
 import ast
-import importlib
-import types
 from pathlib import Path
 
 import mpmath as mp
 import numpy as np
 import pytest
 import sympy as sp
-from planting import planted
+from planting import mutated, planted
 
 from symbt.claims import REGISTRY, load_all
 from symbt.codegen.user.check import compiler
-from symbt.engine.mutants import find_mutants
 
 load_all()
 
@@ -35,18 +32,6 @@ def status(cid: str) -> str:
     return REGISTRY[cid].run().status
 
 
-def mutated(module: str, before: str, after: str) -> types.ModuleType:
-    """A copy of ``module`` with the one mutant of ``symbt mutate --source`` whose line reads ``before`` and,
-    mutated, ``after`` (found by its text, not its line number)."""
-    mod = importlib.import_module(module)
-    data = Path(mod.__file__).read_bytes()
-    hits = [m for m in find_mutants(data, module)
-            if m.line_text.strip() == before.strip() and m.mutated_line.strip() == after.strip()]
-    assert len(hits) == 1, f"{len(hits)} mutants of {module} match {before!r} -> {after!r}"
-    copy = types.ModuleType(module + "_mutant")
-    copy.__dict__.update(__name__=module, __package__=mod.__package__, __file__=mod.__file__)
-    exec(compile(hits[0].apply(data), mod.__file__, "exec"), copy.__dict__)   # noqa: S102 -- symbt's own source
-    return copy
 
 
 @pytest.fixture
