@@ -75,8 +75,8 @@ def renorm_inputs(p: tuple, q: tuple, lam: float) -> tuple[tuple, tuple]:
                  "evaluated with exact 2x2 products at 60 digits (checked at 80), within a relative 16 u N (a "
                  "renormalisation by a smaller entry overflows at the next site, r_1 = e**416)")
 def renorm_top(N: int) -> Outcome:
-    from ..numeric.core.condition import SHARP_UNIT, sharp_trace_kappa
-    from .shipped_condition import KAPPA_CHECK_DPS, KAPPA_DPS, kappa_by_definition
+    from ..numeric.core.condition import SHARP_UNIT
+    from .shipped_condition import sharp_against_definition
 
     bad, seen = [], []
     for p, q, lam in RENORM_CASES:
@@ -85,14 +85,11 @@ def renorm_top(N: int) -> Outcome:
         if not (max(abs(lam), r[1]) < 2.0 ** -200 and r[0] > 2.0 ** 512):
             bad.append(f"lam = {lam:g}: the construction does not hold")
             continue
-        ref = kappa_by_definition(p, r, lam, KAPPA_DPS)
-        check = kappa_by_definition(p, r, lam, KAPPA_CHECK_DPS)
-        if not abs(ref - check) <= abs(check) * mp.mpf(10) ** (5 - KAPPA_DPS):
+        compared = sharp_against_definition(p, r, lam)
+        if compared is None:
             bad.append(f"lam = {lam:g}: the reference disagrees with itself at 80 digits")
             continue
-        with np.errstate(all="ignore"):
-            got = sharp_trace_kappa(np.array(p), np.array(r), lam, 0.0)
-        dev = float(abs(mp.mpf(got) / ref - 1)) if math.isfinite(got) else math.inf
+        got, ref, dev = compared
         seen.append(f"lam = {lam:g}: k_t = {got!r}, definition {mp.nstr(ref, 17)}")
         if not dev <= SHARP_UNIT * N:
             bad.append(f"lam = {lam:g}: k_t = {got!r}, by the definition {mp.nstr(ref, 12)}")
