@@ -128,7 +128,8 @@ def qd_tables() -> Outcome:
         return failed("numeric: the quad-double tables and expm1/log1p vs mpmath", detail="; ".join(bad[:6]) + ". "
                       + detail)
     return Outcome("verified", "numeric: the quad-double tables and expm1/log1p vs mpmath (400 bits, checked at "
-                   "500)", evidence="sampled", detail=detail, printed="every row and call within 2**-200 relative")
+                   "500)", evidence="sampled", n_scope="all", detail=detail,
+                   printed="every row and call within 2**-200 relative")
 
 
 def _inline_probe(x: float) -> float:
@@ -168,7 +169,7 @@ def inline_lines() -> Outcome:
     if bad:
         return failed("numeric: inlined code's line numbers vs the source's", detail="; ".join(bad) + ". " + detail)
     return Outcome("verified", "numeric: inlined code's line numbers vs the source's (inspect)", evidence="sampled",
-                   detail=detail, printed="the same first line and the raising line")
+                   n_scope="all", detail=detail, printed="the same first line and the raising line")
 
 
 #: paths.compress: the documented candidate sizes (flow_quadrature's docstring: 8 to 128 nodes), the tolerances
