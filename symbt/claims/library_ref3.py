@@ -307,5 +307,6 @@ def trace_gap_ends() -> Outcome:
                                        f"[{mp.nstr(lo, 8)}, {mp.nstr(hi, 8)}] = {mp.nstr(g, 3)}, not 0")
     if bad or n < 2 * len(GAP_STATES):
         return failed("trace_gap at band edges", detail="; ".join(bad[:3]) or f"only {n} band edges (control)")
-    return Outcome("verified", "numeric: trace_gap at the band edges from mpmath polyroots (30 digits)", evidence="sampled", n_scope=[2],
+    return Outcome("verified", "numeric: trace_gap at the band edges from mpmath polyroots (30 digits)",
+                   evidence="sampled", n_scope=[2],
                    detail=f"{n} band edges, each as the lower and as the upper end of an interval")
