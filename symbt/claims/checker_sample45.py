@@ -184,10 +184,10 @@ def value_words() -> Outcome:
     r = as_range("n", range(1, 4))
     got.append(("as_range(range(1, 4)) draws", sorted({int(r.draw(random.Random(k))) for k in range(60)}),
                 [1, 2, 3]))
-    for bad in (range(0, 4, 2), range(3, 3)):
+    for refused in (range(0, 4, 2), range(3, 3)):
         try:
-            as_range("n", bad)
-            got.append((f"as_range({bad})", "accepted", "ValueError"))
+            as_range("n", refused)
+            got.append((f"as_range({refused})", "accepted", "ValueError"))
         except ValueError:
             pass
     dom = Domain({"z": (0, 1)}, where=lambda z: z > 2, seed=1)
