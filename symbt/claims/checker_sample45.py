@@ -23,7 +23,8 @@ the code (docs/checker.md, "The checker's small rules"):
   *definitely*.
 * ``checker.value_words`` -- ``as_range`` of a Python ``range``; a domain whose ``where`` rejects every draw counts
   them as outside; the swap and tuple mutants of ``symbt mutate``; the shortening of a long expression in
-  ``why_no_mutants``.
+  ``why_no_mutants``; two splits that make the same cells are equal; a ``PointCheck`` shows its residual,
+  error, point and re-check, not its raw values.
 
 >>> value_words.run().status
 'verified'
@@ -65,7 +66,8 @@ def _draws_until(sym: sp.Symbol, seed: int, value: int, draws: int) -> int:
 @claim("checker.screen_numbers", equation="checker", scene="checker",
        where="symbt.proof.screen: tolerance, rounding floor of a re-evaluated error, trusted digits, draw budget, "
              "integer ranges; symbt.proof.decide: the tolerance named in an inconclusive note",
-       statement="at d = 30 digits x = x(1 + 10^-24) is verified and x = x(1 + 10^-20) false (tolerance 10^-22); "
+       statement="at d = 30 digits x = x(1 + 10^-24) is verified and x = x(1 + 10^-20) false (tolerance 10^-22), "
+                 "with 24 and 20 digits; "
                  "x = -x re-evaluated has error 10^-32; sin 2x = 2 sin x cos x verified has 30 digits; a side "
                  "defined only at n = 3 (n in 1..9) gets its 2 points within 6*2 + 10 draws; integer symbols take "
                  "every value of 1..9, -9..-1, -9..9 and no other; an inconclusive note names the tolerance 1e-22")
@@ -78,6 +80,8 @@ def screen_numbers() -> Outcome:
     for off, want in ((DIGITS - 6, "verified"), (DIGITS - 10, "false")):
         v = decide(x, x * (1 + sp.Integer(10) ** -off), exact=False, digits=DIGITS, points=3)
         got.append((f"x = x(1 + 1e-{off}) at {DIGITS} digits", v.verdict, want))
+        # the digits: -log10 of the relative residual 1e-off / (1 + 1e-off), the error 1e-32 being below it
+        got.append((f"x = x(1 + 1e-{off}): digits", v.digits is not None and abs(v.digits - off) < 1e-6, True))
     # x and -x evaluate exactly at both precisions (drift 0, no quadrature): the error is the rounding floor alone
     f = decide(x, -x, exact=False, digits=DIGITS, points=2)
     floor = 10.0 ** -(DIGITS + 2)
@@ -119,8 +123,10 @@ def screen_numbers() -> Outcome:
        statement="sqrt(x^2) = x (x real) is proved under {Symbol('x'): positive} and false without; eta^2 - mu - w "
                  "constrains eta, x*y - 1 and 1 are refused; Matrix = 0 and 0 = Matrix are compared with zeros; "
                  "nan = nan is false by proof, definitely; an inconclusive result's HTML shows its error; "
-                 "plain_lambdify takes [x, 2, [x*x, 0.5]] and is memoised; x' = x by exp(2t) is false definitely")
+                 "plain_lambdify takes [x, 2, [x*x, 0.5]] and returns the same function again; x' = x by exp(2t) "
+                 "is false definitely")
 def identity_inputs() -> Outcome:
+    from ..proof import lambdify as lambdify_module
     from ..proof.decider import decide
     from ..proof.identity import check_identity, normalize_relations
     from ..proof.lambdify import plain_lambdify
@@ -154,9 +160,13 @@ def identity_inputs() -> Outcome:
     got.append(("inconclusive result's display", (r.status, r.error is not None
                                                   and f"evaluation error {r.error:.1e}" in r._repr_html_()),
                 ("inconclusive", True)))
-    f = plain_lambdify([x], [x, 2, [x * x, 0.5]])
-    got.append(("plain_lambdify of a nested list", (f(3), plain_lambdify([x], [x, 2, [x * x, 0.5]]) is f),
-                ([3, 2, [9, 0.5]], True)))
+    # the memo emptied first (it keeps the most recent MAX_ENTRIES functions; only its cost changes): three new
+    # functions are returned again, the same objects
+    lambdify_module._MEMO.clear()
+    exprs = [[x, 2, [x * x, 0.5]], x + 1, [x - 1]]
+    made = [plain_lambdify([x], e) for e in exprs]
+    got.append(("plain_lambdify of a nested list", made[0](3), [3, 2, [9, 0.5]]))
+    got.append(("plain_lambdify memoised", [plain_lambdify([x], e) is f for e, f in zip(exprs, made)], [True] * 3))
     t, fx = sp.Symbol("t"), sp.Function("X")
     v = solves_ode(sp.Eq(fx(t).diff(t), fx(t)), sp.exp(2 * t), per_cell=2)
     got.append(("x' = x by exp(2t)", (v.verdict, v.evidence, v.definite), ("false", "proof", True)))
@@ -174,11 +184,14 @@ def identity_inputs() -> Outcome:
        statement="as_range('n', range(1, 4)) draws exactly 1, 2, 3, and a range of step 2 or empty is refused; a "
                  "domain whose where rejects every draw reports every draw outside; a1 - 2 a2 + x has the swap "
                  "mutants x - a2, x - a1; (1, 2.0) has the entry mutants of 1 and of 2.0; why_no_mutants shows a "
-                 "product of functions whole below 60 characters and cut to 57 and '...' above")
+                 "product of functions whole below 60 characters and cut to 57 and '...' above; splits making the "
+                 "same cells are equal whatever classifies the points; a PointCheck's repr shows residual, error, "
+                 "point and rechecked, not the raw values, roots and difference")
 def value_words() -> Outcome:
-    from ..proof.domain import Domain, UnfilledCellError
+    from ..proof.domain import Domain, UnfilledCellError, sign
     from ..proof.mutation import mutants, mutate_value, why_no_mutants
     from ..proof.ranges import as_range
+    from ..proof.screen import PointCheck
 
     got: list[tuple[str, Any, Any]] = []
     r = as_range("n", range(1, 4))
@@ -210,8 +223,16 @@ def value_words() -> Outcome:
         got.append((f"product of {k} functions ({len(text)} characters) shown",
                     (why_no_mutants(prod).startswith(f"no operator applies to {shown} (no sum"), len(text) > 60),
                     (True, cut)))
+    # value types compare and show what they are, not how they were computed
+    same = [sign(e, name="s", labels=("lo", "hi")) for e in ("t - t0", "t0 - t")]
+    got.append(("splits making the same cells", (same[0] == same[1], len(set(same))), (True, 1)))
+    pc = PointCheck(0.25, 0.0, {"x": "1"}, values=[sp.Integer(7)], roots=[1], diff=0.25)
+    text = repr(pc)
+    got.append(("PointCheck's repr", [f"{k}=" in text for k in ("residual", "error", "point", "rechecked", "values",
+                                                                "roots", "diff")],
+                [True, True, True, True, False, False, False]))
     bad = _bad("symbt.proof values and words", got)
     return bad or _ok("as_range, Domain(where=...), mutants, mutate_value, why_no_mutants against their stated rules",
                       f"{len(got)} facts: a range's draws, refused ranges, draws outside, swap and tuple mutants, "
-                      "shortened expressions", "proof")
+                      "shortened expressions, split equality, PointCheck's repr", "proof")
 

@@ -199,7 +199,8 @@ class PointCheck:
     ``residual`` is ``|lhs - rhs| / max(|lhs|, |rhs|, 1)`` (from the higher precision
     when there is one), ``error`` the estimated error of that residual (quadrature
     error estimates, plus -- once the point is re-evaluated -- how much the two
-    working precisions differ and the rounding level).
+    working precisions differ and the rounding level).  Its repr shows ``residual``, ``error``, ``point``
+    and ``rechecked``; the raw ``values``, ``roots`` and ``diff`` kept for the re-evaluation are not shown.
     """
 
     residual: Any
