@@ -266,3 +266,18 @@ def test_verdict_132_equivalent():
         for e in [None, *values]:
             v = verdict.Verdict.sampled(t, tol=t, error=e)
             assert v.inconclusive == mutant(v.holds, v.error, v.residual, t, verdict.SAFETY)
+
+
+# --------------------------------------------------------------------------- a bug found on the way
+
+@pytest.mark.parametrize("call", [
+    lambda d: identity.check_identity(sp.sin(x), sp.cos(x), digits=d, exact=False, points=2),
+    lambda d: decider.decide(1, 0, digits=d, exact=False, points=2),
+])
+def test_fewer_than_nine_digits_refused(call):
+    # the screen's tolerance is 10^-(d - 8): at d = 8 it was 1, and sin x = cos x (check_identity) or 1 = 0
+    # (decide) came out verified; at d = 5 every statement did.  Now a ValueError naming digits; at 9, false
+    for d in (1, 5, 8):
+        with pytest.raises(ValueError, match="digits must be at least 9"):
+            call(d)
+    assert call(9).verdict == "false"

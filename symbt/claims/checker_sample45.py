@@ -20,7 +20,7 @@ the code (docs/checker.md, "The checker's small rules"):
   ``ValueError``); a matrix side against 0 is compared with the zero matrix; a side with ``nan`` is false by proof,
   definitely; the rich display of an inconclusive result shows the evaluation error; ``plain_lambdify`` takes
   nested lists with plain numbers and returns the same function for the same call; a false ODE solution is false
-  *definitely*.
+  *definitely*; ``check_identity`` and ``decide`` refuse fewer than 9 digits.
 * ``checker.value_words`` -- ``as_range`` of a Python ``range``; a domain whose ``where`` rejects every draw counts
   them as outside; the swap and tuple mutants of ``symbt mutate``; the shortening of a long expression in
   ``why_no_mutants``; two splits that make the same cells are equal; a ``PointCheck`` shows its residual,
@@ -124,7 +124,7 @@ def screen_numbers() -> Outcome:
                  "constrains eta, x*y - 1 and 1 are refused; Matrix = 0 and 0 = Matrix are compared with zeros; "
                  "nan = nan is false by proof, definitely; an inconclusive result's HTML shows its error; "
                  "plain_lambdify takes [x, 2, [x*x, 0.5]] and returns the same function again; x' = x by exp(2t) "
-                 "is false definitely")
+                 "is false definitely; sin x = cos x at 8 digits is refused, at 9 false")
 def identity_inputs() -> Outcome:
     from ..proof import lambdify as lambdify_module
     from ..proof.decider import decide
@@ -151,6 +151,13 @@ def identity_inputs() -> Outcome:
     zero = sp.Matrix([[(x + 1) ** 2 - x ** 2 - 2 * x - 1, 0]])
     for lhs, rhs, want in ((zero, 0, "proved"), (0, zero, "proved"), (sp.Matrix([[x, 0]]), 0, "false")):
         got.append((f"{lhs} = {rhs}", check_identity(lhs, rhs, points=2).status, want))
+    # at 8 digits the screen's tolerance would be 1, met by sin x against cos x: refused; at 9 it is 0.1
+    for d, want in ((8, "ValueError"), (9, "false")):
+        try:
+            got.append((f"sin x = cos x at {d} digits", check_identity(sp.sin(x), sp.cos(x), digits=d, exact=False,
+                                                                       points=2).status, want))
+        except ValueError:
+            got.append((f"sin x = cos x at {d} digits", "ValueError", want))
     v = decide(sp.nan, sp.nan)
     got.append(("nan = nan", (v.verdict, v.evidence, v.definite), ("false", "proof", True)))
     eps = sp.Integer(10) ** -35
