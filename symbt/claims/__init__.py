@@ -56,6 +56,7 @@ CLAIM_MODULES = (
     "checker",
     "checker_mutation",
     "checker_sample3",
+    "checker_sample45",
     "library",
     "library_reference",
     "library_samples",

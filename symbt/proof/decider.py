@@ -59,7 +59,7 @@ from typing import Any
 import sympy as sp
 
 from .exact import exact_zero
-from .screen import ScreenResult, screen
+from .screen import MIN_DIGITS, ScreenResult, screen
 from .verdict import SAFETY, Verdict
 
 __all__ = ["decide"]
@@ -91,8 +91,14 @@ def decide(lhs: sp.Expr, rhs: sp.Expr = 0, *, relations: Mapping[sp.Symbol, sp.E
     symbol is algebraic over the others, e.g. ``{eta: eta**2 - mu**2 - w}``).
     ``fixed`` pins symbols to given values in the numeric screen (e.g. a
     parameter known to be of one sign).  ``exact=False`` skips the exact
-    layer (used for statements involving transcendental functions).
+    layer (used for statements involving transcendental functions).  ``digits``
+    must be at least ``MIN_DIGITS`` = 9 (``ValueError``): below, the screen's
+    tolerance ``10**-(digits - 8)`` would be 1 or more and every statement would pass.
     """
+    if isinstance(digits, int) and digits < MIN_DIGITS:
+        raise ValueError(f"decide: digits must be at least {MIN_DIGITS} (the numeric screen's tolerance "
+                         f"10**-(digits - 8) would be {10.0 ** -(digits - 8):g}, which any two numbers meet), "
+                         f"got {digits}")
     relations = dict(relations or {})
     fixed = dict(fixed or {})
     lhs, rhs = sp.sympify(lhs), sp.sympify(rhs)

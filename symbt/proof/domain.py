@@ -145,7 +145,9 @@ class Split:
     """One coordinate of the cells: its ``name``, ``kind`` (``sign``, ``choice``, ``regime``) and ``values``.
 
     Made by :func:`sign`, :func:`choice` and :func:`regime`.  ``classify`` (not for choices) maps a
-    point to the split's value (``None``: on the boundary, in no cell).
+    point to the split's value (``None``: on the boundary, in no cell).  A split is a coordinate of the
+    cells: two splits are equal (and hash alike) when they make the same cells -- the same ``name``, ``kind``
+    and ``values`` -- whatever function or expression classifies the points.
     """
 
     name: str

@@ -75,6 +75,7 @@ import sympy as sp
 from sympy.logic.boolalg import BooleanAtom
 
 from .decider import decide
+from .screen import MIN_DIGITS
 from .verdict import STATUS_COLOURS, Verdict, latex_text
 
 #: a side of an identity: a SymPy expression or matrix, a number, or a string SymPy parses
@@ -333,6 +334,9 @@ def _validate(*, digits: object, points: object, seed: object, exact: object, fi
     ValueError: check_identity: digits must be positive, got 0
     """
     _positive_int("digits", digits)
+    if digits < MIN_DIGITS:     # type: ignore[operator]  # an int: _positive_int checked it
+        raise ValueError(f"check_identity: digits must be at least {MIN_DIGITS} (the numeric screen's tolerance "
+                         f"10**-(digits - 8) would be 1 or more, which any two numbers meet), got {digits}")
     _positive_int("points", points)
     if isinstance(seed, bool) or not isinstance(seed, numbers.Integral):
         raise TypeError(f"check_identity: seed must be an int, not {type(seed).__name__} ({seed!r})")
@@ -388,7 +392,7 @@ def check_identity(lhs: ExprLike, rhs: ExprLike = 0, *, relations: RelationsLike
     layer; ``fixed`` pins symbols to values in the numeric screen.
 
     Arguments are checked first: ``digits``, ``points`` and ``seed`` must be
-    integers (``digits`` and ``points`` positive), ``exact`` a bool, ``fixed`` and
+    integers (``digits`` at least 9, ``points`` positive), ``exact`` a bool, ``fixed`` and
     ``assumptions`` dicts, and the sides something SymPy can read; otherwise
     ``TypeError`` or ``ValueError`` says which argument is wrong.
     """

@@ -17,6 +17,11 @@ from .verdict import SAFETY
 __all__ = ["screen", "sample_symbol", "ScreenResult", "PointCheck", "tracked_quad", "high_precision"]
 
 
+#: the fewest digits the screen decides at: its tolerance 10**-(digits - 8) is then 0.1; at 8 digits or fewer it
+#: would be 1 or more, which any two numbers of equal sign meet (a relative residual is at most 2)
+MIN_DIGITS = 9
+
+
 def sample_symbol(sym: sp.Symbol, rng: random.Random) -> mpmath.mpf | mpmath.mpc:
     """A random value for ``sym`` honouring its SymPy assumptions.
 
@@ -199,7 +204,8 @@ class PointCheck:
     ``residual`` is ``|lhs - rhs| / max(|lhs|, |rhs|, 1)`` (from the higher precision
     when there is one), ``error`` the estimated error of that residual (quadrature
     error estimates, plus -- once the point is re-evaluated -- how much the two
-    working precisions differ and the rounding level).
+    working precisions differ and the rounding level).  Its repr shows ``residual``, ``error``, ``point``
+    and ``rechecked``; the raw ``values``, ``roots`` and ``diff`` kept for the re-evaluation are not shown.
     """
 
     residual: Any
@@ -290,7 +296,7 @@ def screen(lhs: sp.Expr, rhs: sp.Expr, relations: Mapping[sp.Symbol, sp.Expr], d
     :func:`high_precision`, and the difference of the two evaluations estimates
     the first one's error.  Then a point *holds* when its residual and its error
     are both below the tolerance; it is a *counterexample* when its residual is
-    above the tolerance and above ``SAFETY`` times its error; anything else
+    above the tolerance and above ``SAFETY`` times its error (both strictly); anything else
     cannot be told apart from noise (``inconclusive``).  Candidates for a
     counterexample are re-checked worst first, and the first confirmed one is
     the counterexample (one extra evaluation for a clearly false identity).
