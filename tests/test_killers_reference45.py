@@ -16,10 +16,11 @@ from planting import planted
 
 from symbt.claims import library_ref45 as L
 from symbt.reference import elliptic as E
-from symbt.reference import literal, samples, spectral, taylor
+from symbt.reference import inverse, literal, samples, spectral, taylor
 from symbt.symbolic import linear
 
-CLAIMS = [L.reference_verify, L.printed_forms, L.gap_cases, L.taylor_rule]
+CLAIMS = [L.reference_verify, L.printed_forms, L.gap_cases, L.taylor_rule, L.inverse_targets, L.addition_w,
+          L.trace_band]
 
 
 def status(check) -> str:
@@ -83,6 +84,38 @@ def test_gap_sampler_one_sided_killed(monkeypatch):
 def test_taylor_rule_killed(monkeypatch, old, new):
     monkeypatch.setattr(L, "hamiltonian_flow", planted(taylor.hamiltonian_flow, old, new))
     assert status(L.taylor_rule) == "failed"
+
+
+# --------------------------------------------------------------------------- reference.inverse: library.inverse_targets
+
+@pytest.mark.parametrize("old, new", [
+    ("trace_gap(p, q, l0 - m, l0 + m) <= 0:", "trace_gap(p, q, l0 - m, l0 + m) <= 1:"),   # inverse:122 (seed 5)
+    ("if {0, 1, 2} <= used", "if {1, 1, 2} <= used"),                                     # inverse:160 (seed 4)
+])
+def test_inverse_targets_killed(monkeypatch, old, new):
+    # the solver is imported inside the claim (from the module), so the module's attribute is patched
+    monkeypatch.setattr(inverse, "solve_parameters", planted(inverse.solve_parameters, old, new))
+    assert status(L.inverse_targets) == "failed"
+
+
+# --------------------------------------------------------------------------- reference.elliptic: library.addition_w
+
+def test_addition_residual_signed_w_term_killed(monkeypatch):
+    # elliptic:372 (seed 5): cn dn - wt / max(1, |wt|): a signed second term, so a w~ above cn dn no longer counts
+    bad = planted(E.addition_residual, "abs(cn * dn - wt) / max(1, abs(wt))", "cn * dn - wt / max(1, abs(wt))")
+    monkeypatch.setattr(E, "addition_residual", bad)
+    assert status(L.addition_w) == "failed"
+
+
+# --------------------------------------------------------------------------- reference.trace: library.trace_band
+
+def test_trace_gap_derivative_shifted_killed(monkeypatch):
+    # trace:132 (seed 4): the derivative's coefficients shifted by one: its "critical points" are not tr's, and one
+    # falls inside the middle band of the N = 3 state, where |tr| - 2 is lower than at the ends
+    T = pytest.importorskip("symbt.reference.trace")
+    bad = planted(T.trace_gap, "d = [coeffs[i] * (len(coeffs) - 1 - i)", "d = [coeffs[i + 1] * (len(coeffs) - 1 - i)")
+    monkeypatch.setattr(T, "trace_gap", bad)
+    assert status(L.trace_band) == "failed"
 
 
 # --------------------------------------------------------------------------- killed by tests
@@ -158,3 +191,40 @@ def test_flow_coefficients_mu_sign_is_equivalent(N):
         for mu in (mp.mpf("0.2"), mp.mpf("-0.2")):
             for b in (1, -1):
                 assert bad(p, q, mp.mpf(6), mu, b) == spectral.flow_coefficients_mp(p, q, mp.mpf(6), mu, b)
+
+
+def _random_state(rng: random.Random, N: int) -> tuple[list, list]:
+    return ([mp.mpf(f"{rng.uniform(-2, 2):.6f}") for _ in range(N)],
+            [mp.mpf(f"{rng.uniform(-2, 2):.6f}") for _ in range(N)])
+
+
+@pytest.mark.parametrize("old, new", [
+    ("if abs(r.imag) < small]", "if r.imag < small]"),          # trace:134 abs (seed 4)
+    ("if abs(r.imag) < small]", "if abs(r.imag) > small]"),     # trace:134 compare (seed 5)
+])
+def test_trace_gap_critical_points_are_equivalent(old, new):
+    # trace:134 (seeds 4, 5): which critical points of tr L enter trace_gap's candidates.  Proof: for a real state
+    # tr L(lam) -+ 2 has all its 2N roots real (the periodic and antiperiodic spectra of a real symmetric Jacobi
+    # matrix), so tr' (degree N - 1) has its N - 1 roots real, one in each closed gap, where |tr| >= 2 and |tr|
+    # rises to its one maximum there.  An interval [lo, hi] that reaches trace_gap's candidates holds no root of
+    # tr = +-2; it lies in one band (no critical point inside) or in one gap (|tr| unimodal with its maximum at the
+    # critical point), so the least |tr| - 2 is at an end point in every case: the critical points never decide.
+    # Checked: the premise (tr' has only real roots, at |tr| >= 2) on random states, N = 2..4, and the planted
+    # mutant's trace_gap bit for bit on intervals in gaps, bands and across them
+    T = pytest.importorskip("symbt.reference.trace")
+    bad = planted(T.trace_gap, old, new)
+    rng = random.Random("ref45 trace_gap")
+    with mp.workdps(30):
+        for N in (2, 3, 4):
+            for _ in range(6):
+                p, q = _random_state(rng, N)
+                coeffs = T.hamiltonians(p, q)[::-1]
+                d = [coeffs[i] * (len(coeffs) - 1 - i) for i in range(len(coeffs) - 1)]
+                roots = mp.polyroots(d, maxsteps=200, extraprec=60) if len(d) > 1 else []
+                for r in roots:
+                    assert abs(mp.im(r)) < mp.mpf(10) ** -15
+                    assert abs(mp.polyval(coeffs, mp.re(r))) >= 2 - mp.mpf(10) ** -20
+                pts = sorted([mp.re(r) for r in roots] + [mp.mpf(rng.uniform(-8, 8)) for _ in range(6)])
+                for lo, hi in zip(pts, pts[1:]):
+                    for a, b in ((lo, hi), (lo - mp.mpf("0.01"), hi), ((lo + hi) / 2, hi + 1)):
+                        assert bad(p, q, a, b) == T.trace_gap(p, q, a, b)

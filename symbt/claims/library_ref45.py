@@ -15,11 +15,23 @@ r"""The independent routes checked, 5: documented rules of :mod:`symbt.reference
   ``elliprf`` (Carlson's form; the library calls ``ellipf``), on inner-regime cases (every argument in [-1, 1]).
 * ``library.gap_cases`` -- :func:`symbt.reference.elliptic.sample_case` draws regime ``gap`` cases in *both* gaps
   of the spectral curve (an end ``s`` in ``(1, 1/k)`` and one in ``(-1/k, -1)`` among 12 draws), as its
-  ``_ZONES`` promise; the regime is re-decided by :func:`~symbt.reference.elliptic.regime_of_state`.
+  docstring now says; the regime is re-decided by :func:`~symbt.reference.elliptic.regime_of_state`.
 * ``library.taylor_rule`` -- :func:`symbt.reference.taylor.hamiltonian_flow`'s documented default order
   ``max(12, floor(ln(1/tol)/2) + 6)`` with ``tol = 10^-(dps + 2)``, and its step rule: the linear flow of
   ``H_1 = p_1 + p_2`` at order 2, ``tol = 10^-2`` takes ``ceil(1/0.007) = 143`` steps (``h = 0.7 tol/|v|``) and is
   exact (``q_j(1) = q_j + 1``).
+
+* ``library.inverse_targets`` -- :func:`symbt.reference.inverse.solve_parameters` recovers ``(lam0, mu)`` from
+  the ``c_k`` computed there when the interval comes within ``|tr| < 3`` of a band (it is admissible: ``|tr| > 2``
+  on it), and, with ``indices=(1, 2)`` (N = 3), from a target whose ``c_0`` violates Cauchy-Schwarz: the screen
+  ``c_0 c_2 > c_1^2`` applies only when ``c_0, c_1, c_2`` are all targets.
+* ``library.addition_w`` -- :func:`symbt.reference.elliptic.addition_residual`'s second term: with ``E~`` moved to
+  ``(E~_1 f, E~_2 / f)`` (the product kept, so the third term is unchanged) the residual is the move of
+  ``w~ = 2 sinh(ln(E~_1/E~_2))/sqrt(I_2^2 - 4)`` over ``max(1, |w~|)``, for ``f = 1 + 1e-6`` and ``1 - 1e-6``.
+
+* ``library.trace_band`` -- :func:`symbt.reference.trace.trace_gap` on an interval inside one band or one gap is
+  ``min(|tr L(lo)|, |tr L(hi)|) - 2`` by the literal trace (N = 2, 3, every band and gap): the least ``|tr|`` is at an
+  end (``tr`` is monotone in a band; ``|tr|`` has its one maximum inside a gap).
 
 Each is shown to fail on the planted mutant it was written for in ``tests/test_killers_reference45.py``.
 
@@ -189,3 +201,136 @@ def taylor_rule() -> Outcome:
     return Outcome("verified", "exact: the documented order and step count; the linear flow's exact solution",
                    evidence="sampled", n_scope=[2],
                    detail=f"orders at dps 15, 30 as documented; 143 steps on the H_1 flow, error {mp.nstr(err, 2)}")
+
+
+#: library.inverse_targets: (p, q, lam0, mu) near a band (N = 2) and an N = 3 state, digits, tol, the guess's moves
+INVT_NEAR = (("0.518591", "-0.82529"), ("-1.341917", "0.453427"), "3.44", "0.26")
+INVT_N3 = (("0.3", "-0.2", "0.5"), ("0.1", "0.4", "-0.3"), "6", "0.3")
+INVT_DPS, INVT_TOL = 15, mp.mpf("1e-6")
+
+
+@claim("library.inverse_targets", equation="linearcomb", scene="library", N=3,
+       where="symbt.reference.inverse.solve_parameters (the admissibility of an interval; the Cauchy-Schwarz screen)",
+       statement="solve_parameters (15 digits, tol = 1e-6) recovers (lam0, mu) to tol^(3/2) from c_k computed there "
+                 "(a) N = 2 with min |tr L| on the interval in (2, 3) (by the literal trace at its ends): admissible "
+                 "however close to a band; (b) N = 3, indices (1, 2), with a c_0 that violates Cauchy-Schwarz "
+                 "(c_0 c_2 <= c_1^2): c_0 is no target, so it is not screened")
+def inverse_targets() -> Outcome:
+    from ..reference.inverse import solve_parameters
+    from ..reference.spectral import flow_coefficients_mp
+
+    bad: list[str] = []
+    worst = mp.mpf(0)
+    bound = INVT_TOL ** mp.mpf(1.5)
+    with mp.workdps(INVT_DPS):
+        for (ps, qs, l0s, ms), idx in ((INVT_NEAR, None), (INVT_N3, (1, 2))):
+            p, q = [mp.mpf(v) for v in ps], [mp.mpf(v) for v in qs]
+            l0, m = mp.mpf(l0s), mp.mpf(ms)
+            c = [v if v is not None else mp.mpf(0) for v in flow_coefficients_mp(p, q, l0, m, 1)]   # all k asked
+            if idx is None:
+                # control: the interval lies above the top band edge, where tr increases: its least |tr| is at lo
+                ends = min(abs(literal_trace(x, p, q)) for x in (l0 - m, l0 + m))
+                if not 2 < ends < 3:
+                    bad.append(f"control: min |tr| at the ends {mp.nstr(ends, 6)}, not in (2, 3)")
+                    continue
+                target = c
+            else:
+                target = list(c)
+                target[0] = mp.mpf("0.5") * c[1] ** 2 / c[2]      # c_0 c_2 = c_1^2 / 2 <= c_1^2
+            try:
+                r = solve_parameters(p, q, target, tol=INVT_TOL, guess=(l0 + mp.mpf("0.01"), m * mp.mpf("0.9")),
+                                     indices=idx)
+            except ValueError as exc:
+                bad.append(f"N={len(p)}: {exc}")
+                continue
+            if r is None:
+                bad.append(f"N={len(p)}: no solution returned")
+                continue
+            err = max(abs(r["lam0"] - l0), abs(r["mu"] - m))
+            worst = max(worst, err)
+            if not err <= bound:
+                bad.append(f"N={len(p)}: recovered to {mp.nstr(err, 3)} (accepted {mp.nstr(bound, 2)})")
+    if bad:
+        return failed("solve_parameters round trip", detail="; ".join(bad))
+    return Outcome("verified", f"numeric: round trip through flow_coefficients_mp ({INVT_DPS} digits)",
+                   evidence="sampled", n_scope=[2, 3], residual=float(worst),
+                   detail=f"near a band (min |tr| in (2, 3)) and with an unscreened c_0: recovered to "
+                          f"{float(worst):.1e} (accepted below tol^(3/2) = {float(bound):.0e})")
+
+
+#: library.addition_w: digits, the relative move of E~_1 (E~_2 moved inversely), the case's rng seed
+ADDW_DPS, ADDW_F, ADDW_SEED = 20, mp.mpf("1e-6"), "ref3 addition inner"
+
+
+@claim("library.addition_w", equation="addform", scene="library", N=2,
+       where="symbt.reference.elliptic.addition_residual (its second term, w~ = cn dn)",
+       statement="with E~ moved to (E~_1 f, E~_2 / f), f = 1 +- 1e-6 (the product kept), addition_residual at a "
+                 "step2 step is |w~(f) - w~(1)| / max(1, |w~(f)|) within twice the unmoved residual, w~ = "
+                 "2 sinh(ln(E~_1/E~_2)) / sqrt(I2^2 - 4) (I2 by the literal trace); an inner case, both branches")
+def addition_w() -> Outcome:
+    bad: list[str] = []
+    with mp.workdps(ADDW_DPS):
+        p, q, l0, m = E.sample_case("inner", random.Random(ADDW_SEED))
+        P, Q, L0, M = [mp.mpf(v) for v in p], [mp.mpf(v) for v in q], mp.mpf(l0), mp.mpf(m)
+        a, b, c = trace_quadratic(P, Q)
+        I2 = b * b / (4 * a) - c
+
+        def w(E1: mp.mpf, E2: mp.mpf) -> mp.mpf:
+            return 2 * mp.sinh(mp.log(E1 / E2)) / mp.sqrt(I2 ** 2 - 4)
+
+        for br in (1, -1):
+            pt, _, info = E.step2(P, Q, L0, M, br)
+            Et = info["E_new"]
+            res0 = E.addition_residual(P, Q, L0, M, br, pt=pt, Et=Et)
+            for f in (1 + ADDW_F, 1 - ADDW_F):
+                moved = [Et[0] * f, Et[1] / f]
+                w1 = w(*moved)
+                want = abs(w1 - w(*Et)) / max(1, abs(w1))
+                got = E.addition_residual(P, Q, L0, M, br, pt=pt, Et=moved)
+                if not abs(got - want) <= 2 * res0 + mp.mpf(10) ** (2 - ADDW_DPS):
+                    bad.append(f"b = {br}, f = {mp.nstr(f, 8)}: residual {mp.nstr(got, 6)}, want {mp.nstr(want, 6)}")
+    if bad:
+        return failed("addition_residual's second term", detail="; ".join(bad))
+    return Outcome("verified", f"numeric: {ADDW_DPS} digits, w~ from E~ by sinh, I2 by the literal trace",
+                   evidence="sampled", n_scope=[2],
+                   detail="an inner case, both branches, E~ moved by a relative +-1e-6 (product kept): the residual "
+                          "is the move of w~")
+
+
+#: library.trace_band: states (N = 2, 3), digits, how far inside each band or gap the interval's ends are
+BAND_STATES = ((("0.3", "-0.2"), ("0.1", "0.4")), (("0.3", "-0.2", "0.5"), ("0.1", "0.4", "-0.3")))
+BAND_DPS, BAND_IN = 30, mp.mpf("0.02")
+
+
+@claim("library.trace_band", equation="spec", scene="library", N=3,
+       where="symbt.reference.trace.trace_gap (its value on intervals inside a band or a gap)",
+       statement="trace_gap on the inner 96 % of every band and of every gap (N = 2, 3) is min(|tr L(lo)|, "
+                 "|tr L(hi)|) - 2 by the literal trace, within 1e-25: tr is monotone in a band and |tr| has its "
+                 "maximum inside a gap, so the least |tr| is at an end (negative in a band, positive in a gap)")
+def trace_band() -> Outcome:
+    from ..reference.trace import hamiltonians, trace_gap
+
+    bad: list[str] = []
+    n = 0
+    with mp.workdps(BAND_DPS):
+        for ps, qs in BAND_STATES:
+            p, q = [mp.mpf(v) for v in ps], [mp.mpf(v) for v in qs]
+            coeffs = hamiltonians(p, q)[::-1]
+            # the band edges only place the intervals; the value is judged by the literal trace at the ends
+            edges = sorted(mp.re(r) for s in (2, -2)
+                           for r in mp.polyroots(coeffs[:-1] + [coeffs[-1] - s], maxsteps=200, extraprec=60))
+            for lo, hi in zip(edges, edges[1:]):
+                a, b = lo + (hi - lo) * BAND_IN, hi - (hi - lo) * BAND_IN
+                ta, tb = abs(literal_trace(a, p, q)), abs(literal_trace(b, p, q))
+                if (ta < 2) != (tb < 2):
+                    bad.append(f"control: the ends {mp.nstr(a, 6)}, {mp.nstr(b, 6)} not in one band or gap")
+                    continue
+                n += 1
+                want, got = min(ta, tb) - 2, trace_gap(p, q, a, b)
+                if not abs(got - want) <= mp.mpf(10) ** -25:
+                    bad.append(f"N={len(p)}, [{mp.nstr(a, 6)}, {mp.nstr(b, 6)}]: trace_gap {mp.nstr(got, 8)}, "
+                               f"least |tr| - 2 at the ends {mp.nstr(want, 8)}")
+    if bad:
+        return failed("trace_gap vs the literal trace at the ends", detail="; ".join(bad))
+    return Outcome("verified", f"numeric: the literal trace ({BAND_DPS} digits)", evidence="sampled",
+                   n_scope=[2, 3], detail=f"{n} intervals (every band and gap of an N = 2 and an N = 3 state)")
