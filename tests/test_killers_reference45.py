@@ -207,8 +207,8 @@ def test_trace_gap_critical_points_are_equivalent(old, new):
     # tr L(lam) -+ 2 has all its 2N roots real (the periodic and antiperiodic spectra of a real symmetric Jacobi
     # matrix), so tr' (degree N - 1) has its N - 1 roots real, one in each closed gap, where |tr| >= 2 and |tr|
     # rises to its one maximum there.  An interval [lo, hi] that reaches trace_gap's candidates holds no root of
-    # tr = +-2; it lies in one band (no critical point inside) or in one gap (|tr| unimodal with its maximum at the
-    # critical point), so the least |tr| - 2 is at an end point in every case: the critical points never decide.
+    # tr = +-2; it lies in one band (no critical point inside) or in one gap (|tr| rising to its maximum at the
+    # critical point), so no critical point inside [lo, hi] is below the ends' least |tr| - 2: they never decide.
     # Checked: the premise (tr' has only real roots, at |tr| >= 2) on random states, N = 2..4, and the planted
     # mutant's trace_gap bit for bit on intervals in gaps, bands and across them
     T = pytest.importorskip("symbt.reference.trace")

@@ -30,8 +30,9 @@ r"""The independent routes checked, 5: documented rules of :mod:`symbt.reference
   ``w~ = 2 sinh(ln(E~_1/E~_2))/sqrt(I_2^2 - 4)`` over ``max(1, |w~|)``, for ``f = 1 + 1e-6`` and ``1 - 1e-6``.
 
 * ``library.trace_band`` -- :func:`symbt.reference.trace.trace_gap` on an interval inside one band or one gap is
-  ``min(|tr L(lo)|, |tr L(hi)|) - 2`` by the literal trace (N = 2, 3, every band and gap): the least ``|tr|`` is at an
-  end (``tr`` is monotone in a band; ``|tr|`` has its one maximum inside a gap).
+  ``min(|tr L(lo)|, |tr L(hi)|) - 2`` by the literal trace (N = 2, 3, every band and gap), as its docstring says:
+  in a gap the least ``|tr| - 2`` (``|tr|`` has its one maximum inside), in a band a negative number (no critical
+  point of ``tr`` lies in a band; only the sign is meant there).
 
 Each is shown to fail on the planted mutant it was written for in ``tests/test_killers_reference45.py``.
 
@@ -305,8 +306,8 @@ BAND_DPS, BAND_IN = 30, mp.mpf("0.02")
 @claim("library.trace_band", equation="spec", scene="library", N=3,
        where="symbt.reference.trace.trace_gap (its value on intervals inside a band or a gap)",
        statement="trace_gap on the inner 96 % of every band and of every gap (N = 2, 3) is min(|tr L(lo)|, "
-                 "|tr L(hi)|) - 2 by the literal trace, within 1e-25: tr is monotone in a band and |tr| has its "
-                 "maximum inside a gap, so the least |tr| is at an end (negative in a band, positive in a gap)")
+                 "|tr L(hi)|) - 2 by the literal trace, within 1e-25 (in a gap the least |tr| - 2, |tr| having its "
+                 "maximum inside; in a band negative: no critical point of tr lies in a band)")
 def trace_band() -> Outcome:
     from ..reference.trace import hamiltonians, trace_gap
 
