@@ -113,10 +113,9 @@ def literal_step(p: Sequence[MPLike], q: Sequence[MPLike], lam0: MPLike, mu: MPL
 
     ``gamma_signs=(s1, s2)`` overrides the branch independently at
     :math:`\\lambda_1` and :math:`\\lambda_2` (to study the mixed choices).
-    Returns ``(p_new, q_new, info)``; ``info`` holds ``x, y, z, eta, tr1, tr2,
-    gamma1, gamma2, E_new`` (``x, y, z, eta, E_new`` are lists over sites: N
-    entries each, as ``p_new`` and ``q_new``).  Values may be complex where the
-    real map does not exist (inputs that are not all mpf take the complex route).
+    Returns ``(p_new, q_new, info)``; ``info`` holds ``x, y, eta, tr1, tr2,
+    gamma1, gamma2, E_new`` (lists over sites where relevant).  Values may be
+    complex where the real map does not exist.
     """
     p = [mp.mpmathify(v) for v in p]
     q = [mp.mpmathify(v) for v in q]
