@@ -63,6 +63,7 @@ CLAIM_MODULES = (
     "library_moments",
     "library_sampler",
     "library_ref3",
+    "library_ref45",
     "library_codegen",
     "library_emit3",
     "emitted_user",

@@ -425,7 +425,8 @@ def sample_case(reg: str, rng: random.Random, *,
                 x_sign: int | None = None) -> tuple[list[str], list[str], str, str]:
     """A random case of regime ``reg``: decimal strings (p, q, lam0, mu), exact at any dps.
 
-    ``rng`` is a ``random.Random``; ``x_sign`` forces the sign of q1 - q2.
+    ``rng`` is a ``random.Random``; ``x_sign`` forces the sign of q1 - q2.  A ``gap`` case has an end in one of
+    the two gaps ``1 < |s| < 1/k`` (``s = (lambda + I1)/sqrt(I2 - 2)``), on either side.
     """
     for _ in range(1000):
         I1, I2 = rng.uniform(-2, 2), rng.uniform(2.3, 9)

@@ -105,7 +105,10 @@ def solve_parameters(p: Sequence[MPLike], q: Sequence[MPLike], c_target: Sequenc
     Where the guess's interval ``[lam0 - mu, lam0 + mu]`` meets a band (``|tr| <= 2``), ``mu`` is halved (up to
     16 times) first.  Newton (modes exact and direction) stops at the first iterate whose residual is below ``tol``
     (default ``10**-(dps - 8)``) and then takes one more step, kept if it does not increase the residual: the
-    error of the answer is then about the *square* of the error at ``tol``, not ``tol``.
+    error of the answer is then about the *square* of the error at ``tol``, not ``tol``.  An interval is
+    admissible when ``|tr| > 2`` on it (:func:`~symbt.reference.trace.trace_gap` ``> 0``), however close to a band.
+    A target with ``c_0 c_2 <= c_1^2`` raises ``ValueError`` (Cauchy-Schwarz) only when ``c_0, c_1, c_2`` are all
+    fitted (``indices`` holds 0, 1, 2; not in mode ``lstsq``).
     """
     N = len(p)
     c_target = [mp.mpmathify(v) for v in c_target] + [mp.mpf(0)] * (N + 1 - len(c_target))

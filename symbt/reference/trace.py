@@ -116,6 +116,10 @@ def trace_gap(p: Sequence[MPLike], q: Sequence[MPLike], lo: MPLike, hi: MPLike) 
     """min over [lo, hi] of |tr L(lam)| - 2 (end points and critical points), or 0 if tr L = +-2 somewhere.
 
     The interval is closed: a root of ``tr L = +-2`` (as ``mpmath.polyroots`` finds it) at ``lo`` or ``hi`` gives 0.
+    On an interval inside one gap the value is ``min(|tr L(lo)|, |tr L(hi)|) - 2 > 0``, the least ``|tr| - 2``
+    there (``|tr|`` has its one maximum inside a gap).  Inside one band it is the same expression, negative (the
+    critical points of ``tr`` lie in the gaps), which is not the least ``|tr| - 2`` there (``tr`` crosses 0 in
+    each band): only its sign is meant.
     """
     H = hamiltonians(p, q)
     lo, hi = mp.mpmathify(lo), mp.mpmathify(hi)
