@@ -13,7 +13,8 @@ from symbt.claims import REGISTRY, load_all
 
 load_all()
 
-SAMPLE45 = ["paths.track_hooks", "paths.kappa_rows.n2", "paths.mp_verdict.n3", "paths.jacobian_dual.n3"]
+SAMPLE45 = ["paths.track_hooks", "paths.kappa_rows.n2", "paths.mp_verdict.n3", "paths.jacobian_dual.n3",
+            "paths.inline_boolop", "paths.side_by_side.n3"]
 NEEDS_FLINT = ("paths.jacobian_dual.n3",)
 
 
@@ -119,3 +120,29 @@ def test_jacobian_dual_seed_shifted(monkeypatch):
     monkeypatch.setattr(lohner_checks, "jacobian_dual", planted(lohner_checks.jacobian_dual, "1 if k == i else 0",
                                                                 "1 if k == (i + 1) % n else 0"))
     assert status("paths.jacobian_dual.n3") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.inline_boolop
+
+def test_inline_boolop_second_operand_twice(monkeypatch):
+    # mutant inline:252 (constant): a BoolOp's first operand replaced by its second, rewritten
+    from symbt.numeric.core import inline
+
+    monkeypatch.setattr(inline._Bodies, "expr", planted(inline._Bodies.expr,
+                                                        "e.values[0] = self.expr(e.values[0], pre, at)",
+                                                        "e.values[0] = self.expr(e.values[1], pre, at)"))
+    assert status("paths.inline_boolop") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.side_by_side
+
+def test_side_by_side_span_minimum(monkeypatch):
+    # mutant condition:481 (min-max): the span of an entry as min(max, -min): a product past 2**500 whose entries
+    # keep one sign over the rows is taken as in range, and not renormalised
+    from symbt.numeric.core import condition
+
+    monkeypatch.setattr(condition, "_both_in_range", planted(condition._both_in_range,
+                                                             "spans = np.maximum(S.max(axis=2)",
+                                                             "spans = np.minimum(S.max(axis=2)"))
+    assert status("paths.side_by_side.n3") == "failed"
+
