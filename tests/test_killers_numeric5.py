@@ -6,6 +6,8 @@ Each killer test plants one single-point bug of ``symbt mutate --source``'s kind
 """
 from __future__ import annotations
 
+import inspect
+
 import pytest
 from planting import planted
 
@@ -146,3 +148,80 @@ def test_side_by_side_span_minimum(monkeypatch):
                                                              "spans = np.minimum(S.max(axis=2)"))
     assert status("paths.side_by_side.n3") == "failed"
 
+
+
+# --------------------------------------------------------------------------- equivalent: condition:121
+
+def test_forward_rescaling_at_an_infinite_maximum_is_equivalent():
+    # mutants-equivalent.toml, condition:121: `m < math.inf` -> `m <= math.inf` in sharp_trace_kappa's forward
+    # rescaling.  The two differ only at m == inf (m = max(|A|, |B|, |C|, |D|) >= 0, or NaN, which fails `m > 0.0`
+    # either way).  There the mutant runs the body with f = math.frexp(inf)[1] = 0: ldexp(x, 0) is x for every double
+    # (infinities, NaN, signed zeros and subnormals included) and e + 0 is e -- the identity.  Checked: that arithmetic,
+    # the body's text, and sharp_trace_kappa with the mutant on states whose forward products overflow, bit for bit.
+    import math
+
+    import numpy as np
+
+    from symbt.numeric.core import condition
+
+    src = inspect.getsource(condition.sharp_trace_kappa)
+    body = ("and m > 0.0 and m < math.inf:      # exact power-of-two rescaling\n"
+            "            f = math.frexp(m)[1]\n"
+            "            A, B, C, D, e = math.ldexp(A, -f), math.ldexp(B, -f), math.ldexp(C, -f), math.ldexp(D, -f), "
+            "e + f\n")
+    assert src.count(body) == 1
+    assert math.frexp(math.inf) == (math.inf, 0)
+    for x in (math.inf, -math.inf, 0.0, -0.0, 5e-324, -2.5e-310, 1.5, -1.7976931348623157e308):
+        y = math.ldexp(x, -0)
+        assert y == x and math.copysign(1.0, y) == math.copysign(1.0, x)
+    assert math.isnan(math.ldexp(math.nan, 0))
+    mutant = planted(condition.sharp_trace_kappa, "m < math.inf:      # exact", "m <= math.inf:      # exact")
+    for lam in (1e200, -1e250, 1e300, 3.0):
+        for N in (3, 5):
+            p = np.linspace(-2.0, 2.0, N)
+            r = np.full(N, 1e200 if lam != 3.0 else 0.5)
+            a, b = condition.sharp_trace_kappa(p, r, lam, 0.0), mutant(p, r, lam, 0.0)
+            assert repr(a) == repr(b)
+
+
+# --------------------------------------------------------------------------- equivalent: kernels_block:286
+
+def test_block_sharp_tier_positivity_at_minus_one_is_equivalent():
+    # mutants-equivalent.toml, kernels_block:286: `not x + 1.0 > 0.0` -> `not x + 1.0 >= 0.0` in run_block's sharp
+    # tier.  They differ only where x + 1.0 == 0.0, i.e. x == -1.0 exactly (a NaN fails both).  There the read-out
+    # test just before is `kt (|u| + |w|) (|x + 1| + |x|) <= KAPPA_MAX |dn| |x + 1|`: its right side is 0 (dn = u - w
+    # is finite and nonzero, since x = tm / dn = -1), its left side kt (|u| + |w|) * 1 >= |u| + |w| >= |dn| > 0
+    # (kt >= 1: `decided`'s docstring; rounding is monotone), or NaN -- so `ok` is False and the status is ILLCOND
+    # (RANGE cannot be: |x| = 1) before the positivity test is read.  Checked: the expression's order in the source,
+    # and both expressions evaluated at x = -1 over kt, u, w (w = u + tm) of every scale.
+    import itertools
+    import math
+
+    from symbt.numeric.core.limits import ILLCOND, KAPPA_MAX, OK, POSITIVITY, RANGE
+    from symbt.numeric.float64 import kernels_block
+
+    src = inspect.getsource(kernels_block.run_block)
+    chain = ("bad = (RANGE if not abs(x) < 1e300 else ILLCOND if not ok\n"
+             "                           else POSITIVITY if not x + 1.0 > 0.0 else OK)")
+    assert src.count(chain) == 1 and src.count("x = xr[j, k]\n                    dn = u[j, k] - w[j, k]") == 1
+
+    def status_of(x, u, w, kt, strict):
+        dn = u - w
+        ok = (kt * (abs(u) + abs(w)) * (abs(x + 1.0) + abs(x)) <= KAPPA_MAX * abs(dn) * abs(x + 1.0))
+        pos = (x + 1.0 > 0.0) if strict else (x + 1.0 >= 0.0)
+        return RANGE if not abs(x) < 1e300 else ILLCOND if not ok else POSITIVITY if not pos else OK
+
+    n = 0
+    for kt, u, tm in itertools.product((1.0, 1.5, 2.0 ** 24, 1e300, math.inf, math.nan),
+                                       (0.0, 1e-300, -3.5, 2.0 ** 60, -1e300),
+                                       (5e-324, 1e-200, 0.75, -4.0, 1e290)):
+        w = u + tm                     # dn = u - w = -tm (rounded), x = tm / dn
+        dn = u - w
+        if dn == 0.0 or not math.isfinite(dn):
+            continue
+        x = tm / dn
+        if x != -1.0:
+            continue
+        n += 1
+        assert status_of(x, u, w, kt, True) == status_of(x, u, w, kt, False) == ILLCOND
+    assert n > 50
