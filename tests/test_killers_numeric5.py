@@ -225,3 +225,51 @@ def test_block_sharp_tier_positivity_at_minus_one_is_equivalent():
         n += 1
         assert status_of(x, u, w, kt, True) == status_of(x, u, w, kt, False) == ILLCOND
     assert n > 50
+
+
+# --------------------------------------------------------------------------- equivalent: lohner:449
+
+def test_next_precision_extrapolation_at_the_last_step_is_equivalent():
+    # mutants-equivalent.toml, lohner:449: `if i1 < n:` -> `if i1 <= n:` in _next_prec.  i1 <= done <= n, so they
+    # differ only at i1 == n, where the mutant adds 1.5 * degree * log2(n / i1) = 1.5 * degree * 0.0: degree is
+    # max(slope or 2.0, 1.0), and the slope is a finite least-squares fit (growth_law keeps finite log-radii only and
+    # fits only points with distinct abscissae), so the term is +0.0 and extra keeps its value (e1 + 0.0 == e1; only
+    # a -0.0 becomes +0.0, and `int(prec + extra + _MARGIN)` reads the value).  Checked: the text, and _next_prec of
+    # both on passes that ran to n with growing, flat, shrinking, partly infinite records.
+    import math
+
+    from symbt.numeric.multiprec import lohner
+
+    src = inspect.getsource(lohner._next_prec)
+    assert "extra = e1 + 1.5 * degree * math.log2(n / i1)" in src and "degree = max(law[\"degree\"] or 2.0, 1.0)" in src
+    mutant = planted(lohner._next_prec, "    if i1 < n:", "    if i1 <= n:")
+    n_seen = 0
+    for n in (1, 2, 5, 40, 300):
+        for hist_of, lograd_of in ((lambda i: -3.0 + 0.1 * i, lambda i: -200.0 + 0.5 * i),
+                                   (lambda i: 2.0, lambda i: -100.0),
+                                   (lambda i: 5.0 - i, lambda i: -50.0 - i),
+                                   (lambda i: math.inf if i % 3 == 2 else 1.0 * i, lambda i: -math.inf if i % 4 == 1
+                                    else -80.0 + i),
+                                   (lambda i: -0.0, lambda i: -60.0 + 2.0 * math.log2(i + 1))):
+            hist = [math.inf] + [hist_of(i) for i in range(1, n + 1)]
+            lograd = [-300.0] + [lograd_of(i) for i in range(1, n + 1)]
+            run = lohner.LohnerPass(False, [], hist, lograd, n)
+            for prec in (64, 200):
+                assert lohner._next_prec(prec, run, n) == mutant(prec, run, n)
+                n_seen += 1
+    assert n_seen == 50
+
+
+# --------------------------------------------------------------------------- killed by tests: qd:154
+
+def test_mark_ready_writes_the_digest(tmp_path, monkeypatch):
+    # mutant qd:154 (sign, uncovered; its default claims load no numba): `_digest() - "\n"` raises TypeError (not an
+    # OSError) after the first compile.  qd_ready's rule: the marker holds the current sources' digest
+    from symbt.numeric.multiprec import qd
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    qd._mark_ready()
+    assert (tmp_path / qd._MARKER).read_text(encoding="utf-8") == qd._digest() + "\n"
+    mutant = planted(qd._mark_ready, 'tmp.write_text(_digest() + "\\n"', 'tmp.write_text(_digest() - "\\n"')
+    with pytest.raises(TypeError):
+        mutant()
