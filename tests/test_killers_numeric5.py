@@ -16,7 +16,7 @@ from symbt.claims import REGISTRY, load_all
 load_all()
 
 SAMPLE45 = ["paths.track_hooks", "paths.kappa_rows.n2", "paths.mp_verdict.n3", "paths.jacobian_dual.n3",
-            "paths.inline_boolop", "paths.side_by_side.n3"]
+            "paths.inline_boolop", "paths.side_by_side.n3", "paths.growth_law"]
 NEEDS_FLINT = ("paths.jacobian_dual.n3",)
 
 
@@ -273,3 +273,24 @@ def test_mark_ready_writes_the_digest(tmp_path, monkeypatch):
     mutant = planted(qd._mark_ready, 'tmp.write_text(_digest() + "\\n"', 'tmp.write_text(_digest() - "\\n"')
     with pytest.raises(TypeError):
         mutant()
+
+
+# --------------------------------------------------------------------------- paths.growth_law
+
+def test_growth_law_compares_a_step_with_a_radius(monkeypatch):
+    # mutant lohner:432 (constant): `xy[-1][0] > xy[0][1]` compares the last log2 step with the first log2 radius:
+    # no fit where the radii are large (the original's test always holds for two distinct steps)
+    from symbt.numeric.multiprec import lohner
+
+    monkeypatch.setattr(lohner, "growth_law", planted(lohner.growth_law, "xy[-1][0] > xy[0][0]",
+                                                      "xy[-1][0] > xy[0][1]"))
+    assert status("paths.growth_law") == "failed"
+
+
+def test_growth_law_window_from_the_start(monkeypatch):
+    # a neighbour: the fit's window from step 1 (`first` ignored)
+    from symbt.numeric.multiprec import lohner
+
+    monkeypatch.setattr(lohner, "growth_law", planted(lohner.growth_law, "first = max(1, min(first, last // 10))",
+                                                      "first = 1"))
+    assert status("paths.growth_law") == "failed"

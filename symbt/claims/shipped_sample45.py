@@ -274,3 +274,31 @@ def side_by_side(N: int) -> Outcome:
                       detail="; ".join(bad) + ". " + detail)
     return Outcome("verified", "numeric: monodromy_and_abs vs the separate calls (bit for bit) and the literal trace "
                    "(30 digits)", evidence="sampled", detail=detail, printed="the same bits, the trace to 1e-13")
+
+
+#: paths.growth_law: (log2 c, degree) of synthetic radius records rad(i) = c i**degree, 1000 steps
+GROWTH_CASES = ((40.0, 1.5), (-166.0, 2.0), (3.0, 1.0))
+
+
+@claim("paths.growth_law", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths",
+       where="symbt/numeric/multiprec/lohner.py: growth_law (the radius growth fitted in log-log)",
+       statement="growth_law on the records log2 rad(i) = log2 c + degree log2 i (i = 1..1000; c = 2**40, 2**-166, "
+                 "2**3; degree 1.5, 2, 1) returns that degree within 1e-9, steps (100, 1000) and the record's values "
+                 "at both ends (its docstring: the least-squares slope over log-spaced steps from first)")
+def growth_record() -> Outcome:
+    from ..numeric.multiprec.lohner import growth_law
+
+    bad, seen = [], []
+    for logc, deg in GROWTH_CASES:
+        lograd = [-math.inf] + [logc + deg * math.log2(i) for i in range(1, 1001)]
+        law = growth_law(lograd)
+        got = law["degree"]
+        if not (got is not None and abs(got - deg) <= 1e-9 and law["steps"] == (100, 1000)
+                and law["log2_radius"] == (lograd[100], lograd[1000])):
+            bad.append(f"log2 c = {logc}, degree {deg}: {law}")
+        seen.append(f"{deg}: {got!r}")
+    detail = "degrees " + ", ".join(seen) + "."
+    if bad:
+        return failed("numeric: growth_law vs synthetic power laws", detail="; ".join(bad) + ". " + detail)
+    return Outcome("verified", "numeric: growth_law vs synthetic power laws (exact records)", evidence="sampled",
+                   n_scope="all", detail=detail, printed="the law's degree")
