@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import inspect
 
+import numpy as np
 import pytest
 from planting import planted
 
@@ -294,3 +295,32 @@ def test_growth_law_window_from_the_start(monkeypatch):
     monkeypatch.setattr(lohner, "growth_law", planted(lohner.growth_law, "first = max(1, min(first, last // 10))",
                                                       "first = 1"))
     assert status("paths.growth_law") == "failed"
+
+
+# --------------------------------------------------------------------------- killed by tests: arb:190
+
+def _acb_half_plane_agrees(ctx) -> bool:
+    from flint import acb
+
+    from symbt.numeric.core.context import COMPLEX
+
+    ok = True
+    for a, g in ((1j, 1.0), (-1j, 1.0), (1.0, 1j), (2.0 + 1j, 1.0 - 2j), (1.0, 1.0), (-1.0, 1.0), (1j, 1j)):
+        want = bool(COMPLEX.half_plane(np.array([a]), np.array([g]))[0])
+        ok &= ctx.half_plane(acb(a.real, a.imag) if isinstance(a, complex) else acb(a),
+                             acb(g.real, g.imag) if isinstance(g, complex) else acb(g)) == want
+    return ok
+
+
+def test_acb_half_plane_at_a_zero_real_part_as_the_complex_route():
+    # arb:190 (compare): AcbContext.half_plane's `re_dot(a, g).mid() >= 0` -> `> 0`.  FloatContext.half_plane's
+    # docstring: `Re(a * conj(g)) >= 0`; the complex numpy route (COMPLEX) and the complex balls must decide alike,
+    # also where Re(a conj g) is exactly 0 (a = i, g = 1), which the complex continuation's claims never meet.
+    pytest.importorskip("flint")
+    from symbt.numeric.multiprec.arb import ACB, AcbContext
+
+    assert _acb_half_plane_agrees(ACB)
+    mutant = planted(AcbContext.half_plane, "return bool(self.re_dot(a, g).mid() >= 0)",
+                     "return bool(self.re_dot(a, g).mid() > 0)")
+    mutant_cls = type("AcbMutant", (AcbContext,), {"half_plane": mutant})
+    assert not _acb_half_plane_agrees(mutant_cls(certain=False))
