@@ -17,7 +17,8 @@ from symbt.claims import REGISTRY, load_all
 load_all()
 
 SAMPLE45 = ["paths.track_hooks", "paths.kappa_rows.n2", "paths.mp_verdict.n3", "paths.jacobian_dual.n3",
-            "paths.inline_boolop", "paths.side_by_side.n3", "paths.growth_law"]
+            "paths.inline_boolop", "paths.side_by_side.n3", "paths.growth_law",
+            "paths.root_slope"]
 NEEDS_FLINT = ("paths.jacobian_dual.n3",)
 
 
@@ -324,3 +325,23 @@ def test_acb_half_plane_at_a_zero_real_part_as_the_complex_route():
                      "return bool(self.re_dot(a, g).mid() > 0)")
     mutant_cls = type("AcbMutant", (AcbContext,), {"half_plane": mutant})
     assert not _acb_half_plane_agrees(mutant_cls(certain=False))
+
+
+# --------------------------------------------------------------------------- paths.root_slope
+
+def test_root_slope_two_sum_sign(monkeypatch):
+    # mutant spectral_sum:101 (sign): `bp = dl + A` -- the error of fl(A - D) computed wrongly
+    from symbt.numeric.core import spectral_sum
+
+    monkeypatch.setattr(spectral_sum, "root_slope", planted(spectral_sum.root_slope, "    bp = dl - A\n",
+                                                            "    bp = dl + A\n"))
+    assert status("paths.root_slope") == "failed"
+
+
+def test_root_slope_rows_correction_sign(monkeypatch):
+    # mutant spectral_sum:213 (sign): the numpy form corrects the quotient by -rem/den
+    from symbt.numeric.core import spectral_sum
+
+    monkeypatch.setattr(spectral_sum, "root_slope_rows", planted(
+        spectral_sum.root_slope_rows, "return np.where(ok, q + rem / den, q)", "return np.where(ok, q - rem / den, q)"))
+    assert status("paths.root_slope") == "failed"
