@@ -316,7 +316,7 @@ def growth_record() -> Outcome:
 def _slope_cases() -> list[tuple[float, float, float, float, bool, bool]]:
     """``(A, D, B, C, plus, wantk)``: monodromies with |A + D| > 3, entries of mixed scale (A - D inexact)."""
     rng = np.random.default_rng(45)
-    out = []
+    out: list[tuple[float, float, float, float, bool, bool]] = []
     while len(out) < 96:
         A, D = float(rng.uniform(-3000, 3000)), float(rng.uniform(-300, 300)) * (1 + 1e-9 * float(rng.random()))
         B, C = float(rng.uniform(0.5, 9)) * float(rng.choice([-1.0, 1.0])), float(rng.uniform(0.5, 9))
