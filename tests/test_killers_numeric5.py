@@ -18,7 +18,7 @@ load_all()
 
 SAMPLE45 = ["paths.track_hooks", "paths.kappa_rows.n2", "paths.mp_verdict.n3", "paths.jacobian_dual.n3",
             "paths.inline_boolop", "paths.side_by_side.n3", "paths.growth_law",
-            "paths.root_slope"]
+            "paths.root_slope", "paths.dq_edge.n3"]
 NEEDS_FLINT = ("paths.jacobian_dual.n3",)
 
 
@@ -345,3 +345,15 @@ def test_root_slope_rows_correction_sign(monkeypatch):
     monkeypatch.setattr(spectral_sum, "root_slope_rows", planted(
         spectral_sum.root_slope_rows, "return np.where(ok, q + rem / den, q)", "return np.where(ok, q - rem / den, q)"))
     assert status("paths.root_slope") == "failed"
+
+
+# --------------------------------------------------------------------------- paths.dq_edge
+
+def test_block_anchor_refuses_the_documented_largest_distance(monkeypatch):
+    # mutant kernels_block:176 (compare): `abs(dq) < MAX_DQ_FLOAT64` refuses a neighbour distance of exactly 700
+    from symbt.numeric.float64 import kernels_block
+
+    mutant = planted(kernels_block._anchor, "if not (abs(dq) <= MAX_DQ_FLOAT64 and",
+                     "if not (abs(dq) < MAX_DQ_FLOAT64 and")
+    monkeypatch.setattr(kernels_block, "_anchor", mutant)
+    assert status("paths.dq_edge.n3") == "failed"

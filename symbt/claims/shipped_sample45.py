@@ -357,3 +357,51 @@ def root_slope_claim() -> Outcome:
         return failed("numeric: root_slope vs the exact slope", detail="; ".join(bad[:6]) + ". " + detail)
     return Outcome("verified", "numeric: root_slope and root_slope_rows vs the exact slope (60 digits)",
                    evidence="sampled", n_scope="all", detail=detail, printed="within half an ulp")
+
+
+#: paths.dq_edge: p = 0, a neighbour distance of exactly MAX_DQ_FLOAT64 (q_2 - q_1 = -700), lam0, mu
+DQ_EDGE = ((0.5, -0.25, 0.125), (0.0, -700.0, -350.0), 1e3, 10.0)
+
+
+@claim("paths.dq_edge", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       where="symbt/numeric/float64/kernels_block.py: the re-anchoring's range test |dq| <= MAX_DQ_FLOAT64",
+       statement="the block kernel (run_block, one step, both branches) at p = (1/2, -1/4, 1/8), "
+                 "q = (0, -700, -350) (N={N}; a neighbour distance of exactly MAX_DQ_FLOAT64 = 700, the documented "
+                 "largest), lam0 = 1000, mu = 10: "
+                 "status OK and the state within 1e-9 (1 + |x|) of the mpmath step at 40 digits (the literal map "
+                 "loses every digit there); with q_2 one ulp further (|dq| > 700) status RANGE")
+def dq_edge(N: int) -> Outcome:
+    from ..numeric.core.limits import MAX_DQ_FLOAT64, OK, RANGE
+    from ..numeric.float64.kernels import ANCHOR
+    from ..numeric.float64.kernels_block import run_block
+    from ..numeric.float64.rows import _mp_verdict
+
+    p, q, l0, m = DQ_EDGE
+    bad, worst = [], 0.0
+    for b in (1, -1):
+        for q2, want in ((q[1], OK), (math.nextafter(q[1], -math.inf), RANGE)):
+            qq = (q[0], q2, q[2])
+            st = np.zeros(1, np.int64)
+            outP, outQ = np.empty((2, 1, N)), np.empty((2, 1, N))
+            run_block(np.array([p]), np.array([qq]), np.array([l0 + m]), np.array([l0 - m]), np.array([2 * m]), b, 1,
+                      1, ANCHOR, outP, outQ, st, 0, 1)
+            if int(st[0]) != want:
+                bad.append(f"branch {b}, q_2 = {q2!r}: status {int(st[0])}, the documented {want}")
+            if want != OK or int(st[0]) != OK:
+                continue
+            # the literal map loses every digit here (E_j ~ e**-700): the mpmath step at 40 digits is the reference
+            code, ref = _mp_verdict(np.array(p), np.array(qq), l0, m, b, 40)
+            with mp.workdps(40):
+                for x, y in zip(list(outP[1, 0]) + list(outQ[1, 0]), ref if code == OK else []):
+                    err = float(abs(mp.mpf(float(x)) - y) / (1 + abs(y)))
+                    worst = max(worst, err)
+                    if not err <= 1e-9:
+                        bad.append(f"branch {b}: {float(x)!r} vs the mpmath step's {mp.nstr(y, 17)}")
+            if code != OK:
+                bad.append(f"branch {b}: the mpmath step's status {code}")
+    detail = f"|dq| = {MAX_DQ_FLOAT64} accepted, one ulp more refused; worst error {worst:.3g} (relative to 1 + |x|)."
+    if bad:
+        return failed("numeric: the block kernel at the documented largest neighbour distance",
+                      detail="; ".join(bad[:6]) + ". " + detail)
+    return Outcome("verified", "numeric: the block kernel at |dq| = MAX_DQ_FLOAT64 vs the mpmath step (40 digits)",
+                   evidence="sampled", detail=detail, printed="700 accepted, 700 + ulp refused")
