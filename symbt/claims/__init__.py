@@ -48,6 +48,7 @@ CLAIM_MODULES = (
     "shipped_dask",
     "shipped_members",
     "shipped_sample3",
+    "shipped_sample45",
     "shipped_core",
     "shipped_field",
     "shipped_rules",

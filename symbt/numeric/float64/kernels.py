@@ -176,7 +176,7 @@ def _st(a: F64, j: int, x: float) -> None:
 def _track_init(lam: float, p0: float, a0: float, r0: float) -> Track:
     """The product of the entrywise absolute values (``Aa, Ba, Ca, Da``, the trace's rounding scale),
     ``max_j (|lam| + |p_j|) / |lam + p_j|`` as ``kn / kd`` (cancellation in ``a_j``) and the scale ``sc``
-    (a power of two: the monodromy is ``sc [[A, B], [C, D]]``), after the first factor."""
+    (a power of two: ``[[A, B], [C, D]]`` is ``sc`` times the monodromy), after the first factor."""
     return abs(a0), 1.0, r0, 0.0, abs(lam) + abs(p0), abs(a0), 1.0
 
 
@@ -256,7 +256,7 @@ def _sharpen(tt: F64, p: F64, r: F64, lam1: float, lo1: float, lam2: float, lo2:
 
 
 def _bounded(x: float) -> bool:
-    return abs(x) < 1e300
+    return abs(x) < 1e300       # the read-out's range: +-1e300 itself, inf and NaN are out
 
 
 def _trusted(kt: float, u: float, w: float, dn: float, x: float) -> bool:
