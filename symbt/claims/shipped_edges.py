@@ -1,4 +1,4 @@
-r"""What ships, 4k: four documented rules of the numeric routes at their edges (scene ``numeric-paths``, issue 21).
+r"""What ships, 4k: three documented rules of the numeric routes at their edges (scene ``numeric-paths``, issue 21).
 
 * ``paths.renorm_top.n2`` -- :func:`~symbt.numeric.core.condition.sharp_trace_kappa`'s backward pass renormalises
   the suffix product by a power of two taken from the *largest magnitude* of its four entries.  After the first
@@ -29,15 +29,6 @@ r"""What ships, 4k: four documented rules of the numeric routes at their edges (
   statement, which would change what runs -- ``u[0] + f(u, x)`` would read ``u[0]`` after ``f`` wrote it).
   Checked: three nested positions (an operand, an argument of ``abs``, an ``if`` test's comparison) refused, the
   three root positions rewritten with results equal to the plain calls bit for bit (including ``u``).
-* ``paths.compressed_rule.n3`` -- :func:`~symbt.numeric.flow.coefficients.flow_quadrature` with ``compress``
-  (FlowField's default ``2e-15``) returns "the smallest single Gauss--Legendre rule on the whole interval (8 to 128
-  nodes) whose integrals agree with the composite ones" (its docstring).  At the paper's state, ``mu = +-5``:
-  the returned nodes and weights are the ``n``-point rule on ``[lam0 - mu, lam0 + mu]`` computed independently
-  (Legendre roots by Newton's method in mpmath at 30 digits: nodes within 4 ulps of the interval's end,
-  weights within ``1e-14`` relative), ``n`` is one of the documented sizes and below the composite rule's node
-  count, the ``c_k`` of the returned rule are within ``compress`` (relative) of the composite's, and every
-  smaller documented size -- the same independent nodes, ``1/sqrt(tr**2 - 4)`` from the literal trace at 30
-  digits -- is not.
 
 Shown to fail on planted bugs in ``tests/test_killers_numeric3.py``.
 """
@@ -45,7 +36,6 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
-from functools import cache
 
 import mpmath as mp
 import numpy as np
@@ -292,107 +282,3 @@ def inline_rule(N: int) -> Outcome:
                       + detail)
     return Outcome("verified", "numeric: inlined vs its documented rule for impure bodies (the plain calls)",
                    evidence="sampled", detail=detail, printed="refused away from the root, bit for bit at it")
-
-
-# --------------------------------------------------------------------------- paths.compressed_rule
-
-#: paths.compressed_rule: the paper's state, lam0, (mu, branch) cases, FlowField's compression tolerance
-RULE_P, RULE_Q, RULE_LAM0 = (-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), 10.0
-RULE_CASES, RULE_COMPRESS = ((5.0, 1), (-5.0, -1)), 2e-15
-#: the single rule sizes flow_quadrature documents (8 to 128 nodes)
-RULE_SIZES = (8, 12, 16, 20, 24, 32, 40, 48, 56, 64, 80, 96, 112, 128)
-
-
-def _legendre_pair(n: int, x: mp.mpf) -> tuple[mp.mpf, mp.mpf]:
-    """``(P_n(x), P_{n-1}(x))`` by the three-term recurrence."""
-    p0, p1 = mp.mpf(1), x
-    for k in range(1, n):
-        p0, p1 = p1, ((2 * k + 1) * x * p1 - k * p0) / (k + 1)
-    return p1, p0
-
-
-@cache
-def gauss_legendre_mp(n: int, dps: int = 30) -> tuple[tuple, tuple]:
-    """The ``n``-point Gauss--Legendre nodes and weights on ``[-1, 1]`` by Newton's method on ``P_n`` in mpmath
-    (``P_n'(x) = n (x P_n - P_{n-1}) / (x**2 - 1)``, ``w = 2 / ((1 - x**2) P_n'(x)**2)``): independent of numpy.
-
-    >>> x, w = gauss_legendre_mp(2)
-    >>> [mp.nstr(v, 10) for v in x], [mp.nstr(v, 10) for v in w]
-    (['-0.5773502692', '0.5773502692'], ['1.0', '1.0'])
-    """
-    with mp.workdps(dps + 10):
-        xs, ws = [], []
-        for i in range(n):
-            x = mp.cos(mp.pi * (i + mp.mpf(0.75)) / (n + mp.mpf(0.5)))
-            for _ in range(100):
-                pn, pm = _legendre_pair(n, x)
-                step = pn / (n * (x * pn - pm) / (x * x - 1))
-                x -= step
-                if abs(step) < mp.mpf(10) ** -(dps + 5):
-                    break
-            pn, pm = _legendre_pair(n, x)
-            d = n * (x * pn - pm) / (x * x - 1)
-            xs.append(x)
-            ws.append(2 / ((1 - x * x) * d * d))
-        order = sorted(range(n), key=lambda k: xs[k])
-        return tuple(+xs[k] for k in order), tuple(+ws[k] for k in order)
-
-
-def rule_on(n: int, a: float, b: float) -> tuple[np.ndarray, np.ndarray, list]:
-    """The ``n``-point rule on ``[a, b]`` (``a`` may exceed ``b``: signed weights): float nodes, float weights, and
-    the nodes at 30 digits."""
-    x, w = gauss_legendre_mp(n)
-    with mp.workdps(40):
-        c, h = (mp.mpf(a) + mp.mpf(b)) / 2, (mp.mpf(b) - mp.mpf(a)) / 2
-        nodes = [c + h * v for v in x]
-        return np.array([float(v) for v in nodes]), np.array([float(h * v) for v in w]), nodes
-
-
-@claim("paths.compressed_rule", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths",
-       sizes=(3,),
-       where="symbt/numeric/flow/coefficients.py: flow_quadrature's compressed rule (compress)",
-       statement="flow_quadrature(compress=2e-15) at the paper's state (N={N}), lam0 = 10, mu = +-5: the returned "
-                 "rule is the n-point Gauss--Legendre rule on [lam0 - mu, lam0 + mu] (mpmath Newton nodes: within 4 "
-                 "ulps, weights 1e-14 relative), n a documented size below the composite rule's count, its c_k "
-                 "within 2e-15 (relative) of the composite rule's and those of every smaller documented size not "
-                 "(its docstring: the smallest single rule that agrees)")
-def compressed_rule(N: int) -> Outcome:
-    from ..numeric.flow.coefficients import FlowQuadrature, flow_quadrature
-    from ..reference.literal import literal_trace
-
-    bad, seen = [], []
-    for mu, b in RULE_CASES:
-        lo, hi = RULE_LAM0 - mu, RULE_LAM0 + mu
-        rule = flow_quadrature(RULE_P, RULE_Q, RULE_LAM0, mu, branch=b, compress=RULE_COMPRESS, check=False)
-        full = flow_quadrature(RULE_P, RULE_Q, RULE_LAM0, mu, branch=b, check=False)
-        ks = range(N + 1)
-        ref = full.moments(ks)
-        n = rule.nodes.size
-        seen.append(f"mu {mu:g}: {n} nodes (composite {full.nodes.size} in {full.panels} panel(s))")
-        if n not in RULE_SIZES or not n < full.nodes.size:
-            bad.append(f"mu {mu:g}: {n} nodes, not a documented size below the composite's {full.nodes.size}")
-            continue
-        nd, wt, _ = rule_on(n, lo, hi)
-        ulp = math.ulp(max(abs(lo), abs(hi)))
-        if not (np.all(np.abs(rule.nodes - nd) <= 4 * ulp) and np.all(np.abs(rule.weights - wt)
-                                                                        <= 1e-14 * np.abs(wt))):
-            bad.append(f"mu {mu:g}: the rule is not the {n}-point Gauss--Legendre rule on [{lo:g}, {hi:g}]")
-        if not np.all(np.abs(rule.moments(ks) - ref) <= RULE_COMPRESS * np.abs(ref)):
-            bad.append(f"mu {mu:g}: its c_k disagree with the composite rule's beyond {RULE_COMPRESS:g}")
-        for m in (s for s in RULE_SIZES if s < n):
-            nd, wt, mp_nodes = rule_on(m, lo, hi)
-            with mp.workdps(30):
-                tr = [literal_trace(x, RULE_P, RULE_Q) for x in mp_nodes]
-                l2 = np.array([float(-mp.log(tr_ * tr_ - 4, 2) / 2) for tr_ in tr])
-            cand = FlowQuadrature(nd, wt, l2, np.log2(np.abs(np.array([float(v) for v in tr]))), b, N, 1)
-            dev = float(np.max(np.abs(cand.moments(ks) - ref) / np.abs(ref)))
-            seen.append(f"{m} nodes: {dev:.2g}")
-            if dev <= RULE_COMPRESS:
-                bad.append(f"mu {mu:g}: the smaller {m}-point rule agrees too ({dev:.3g}): {n} is not the smallest")
-    detail = "; ".join(seen) + "."
-    if bad:
-        return failed("numeric: flow_quadrature's compressed rule vs its docstring (mpmath Gauss--Legendre)",
-                      detail="; ".join(bad) + ". " + detail)
-    return Outcome("verified", "numeric: flow_quadrature's compressed rule vs its docstring (mpmath "
-                   "Gauss--Legendre, literal trace)", evidence="sampled", detail=detail,
-                   printed="the smallest single Gauss--Legendre rule that agrees")
