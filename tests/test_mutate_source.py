@@ -218,6 +218,56 @@ def test_a_line_runs_the_claims_that_cover_it_every_claim_at_import_time_none_if
     assert ms.claims_of_line(lm, "a.py", 30, False) == []
 
 
+TABLED = '''\
+def build(n):
+    return [k * k for k in range(n)]
+
+
+TAB = build(4)
+
+
+def look(i):
+    return TAB[i]
+'''
+
+LAZY_CLAIMS = '''\
+import sympy as sp
+from symbt import claim, decide, from_decision
+
+
+@claim("lazy.first", equation="t", scene="lazy", statement="TAB[2] = 4")
+def first():
+    import tabled
+    return from_decision(decide(sp.Integer(tabled.look(2)), sp.Integer(4)))
+
+
+@claim("lazy.second", equation="t", scene="lazy", statement="TAB[3] = 9")
+def second():
+    import tabled
+    return from_decision(decide(sp.Integer(tabled.TAB[3]), sp.Integer(9)))
+'''
+
+
+@pytest.mark.slow
+def test_lines_run_while_a_lazily_imported_module_loads_are_import_lines(tmp_path):
+    # build()'s body runs once, when `tabled` is imported -- inside lazy.first's check.  Credited to lazy.first,
+    # a mutant there would run lazy.first alone, though TAB is what lazy.second reads.
+    (tmp_path / "tabled.py").write_text(TABLED)
+    (tmp_path / "lazy_claims.py").write_text(LAZY_CLAIMS)
+    out = tmp_path / "map.json"
+    r = subprocess.run([sys.executable, "-m", "symbt.engine.linemap", "--out", str(out), "--claims",
+                        str(tmp_path / "lazy_claims.py"), str(tmp_path / "tabled.py")], cwd=tmp_path,
+                       capture_output=True, text=True, timeout=300,
+                       env={**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), str(tmp_path)])})
+    assert r.returncode == 0, r.stderr
+    lm = json.loads(out.read_text())
+    f = str((tmp_path / "tabled.py").resolve())
+    assert {2, 5} <= set(lm["import"][f])                      # build's body and the table's line
+    assert ms.claims_of_line(lm, f, 2, False) is None          # every claim runs for a mutant there
+    assert ms.claims_of_line(lm, f, 9, False) == ["lazy.first"]   # look() is run by lazy.first only
+    assert lm["failed"] == {}
+
+
 def test_mutated_file_is_restored_with_its_time_stamp(tmp_path):
     f = tmp_path / "m.py"
     f.write_text("x = 1\n")

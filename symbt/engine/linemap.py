@@ -9,6 +9,11 @@ the record at each claim.  The tracer is coverage.py's C tracer with one dynamic
 when coverage is installed (``symbt[mutate]``), else ``sys.settrace`` restricted to the target
 files (slower, no extra library).
 
+Every target module is imported before the first claim runs, so a line run while a module is
+imported -- its top level and whatever the top level calls, a table builder say -- is an import
+line even when the claims import that module lazily (such a line can change any claim; credited
+to the claim that first imported the module, it would hide the mutant from all the others).
+
 Known limits: a line run only to fill a cache that several claims share is credited to the first
 claim that ran it (running each claim in a fresh process instead was 50x slower here: each
 recomputes the shared derivations); lines run in a subprocess of a claim (a C compiler, a pool)
@@ -17,7 +22,7 @@ are not seen.
 The output (JSON)::
 
     {"import": {file: [line, ...]}, "claims": {id: {"lines": {file: [line, ...]}, "seconds": s,
-     "status": st}}, "timed_out": [id, ...], "failed": {}}
+     "status": st}}, "timed_out": [id, ...], "failed": {module: "its import error"}}
 
 >>> tracer, seen = line_tracer({__file__})
 >>> callable(tracer), seen
@@ -35,7 +40,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-__all__ = ["line_tracer", "main"]
+__all__ = ["line_tracer", "main", "module_name"]
 
 
 def line_tracer(files: set[str]) -> tuple[Callable[..., Any], dict[str, set[int]]]:
@@ -63,6 +68,39 @@ def line_tracer(files: set[str]) -> tuple[Callable[..., Any], dict[str, set[int]
         return loc
 
     return tracer, seen
+
+
+def module_name(path: Path) -> str | None:
+    """The dotted name under which ``path`` is imported: its parents up to the first directory without
+    ``__init__.py`` (``None`` for a ``__main__`` module: importing it would run a command).
+
+    >>> module_name(Path(__file__))
+    'symbt.engine.linemap'
+    """
+    parts = [path.stem] if path.name != "__init__.py" else []
+    d = path.parent
+    while (d / "__init__.py").is_file():
+        parts.insert(0, d.name)
+        d = d.parent
+    return None if not parts or parts[-1] == "__main__" else ".".join(parts)
+
+
+def _import_targets(files: set[str]) -> dict[str, str]:
+    """Import the module of every target file (under the import record); the modules that failed to
+    import, with their error (an optional dependency missing, say: its lines then run in no claim
+    either)."""
+    import importlib
+
+    failed: dict[str, str] = {}
+    for f in sorted(files):
+        name = module_name(Path(f))
+        if name is None or name in sys.modules:
+            continue
+        try:
+            importlib.import_module(name)
+        except Exception as exc:  # recorded; the run goes on
+            failed[name] = f"{type(exc).__name__}: {exc}"
+    return failed
 
 
 def _start(tracer: Callable[..., Any]) -> None:
@@ -108,6 +146,7 @@ def _traced_runs(claims: list[Any], files: set[str], timeout: float, scenes: lis
     from .select import select
 
     chosen = select(scenes or None, project=discover(claims=claims), include_deep=deep)
+    result["failed"] = _import_targets(files)
     if cov is None:
         result["import"] = _plain(seen)
     previous = signal.signal(signal.SIGALRM, _alarm)
