@@ -66,6 +66,7 @@ CLAIM_MODULES = (
     "library_ref3",
     "library_ref45",
     "library_codegen",
+    "codegen_controls",
     "library_emit3",
     "emitted_user",
     "emitted_sources",

@@ -1,0 +1,152 @@
+r"""The checks of the emitted code, checked: their metrics and the printer's powers (issue 21, seeds 4 and 5).
+
+* ``checker.codegen_metrics`` -- the two measures :mod:`symbt.codegen.verify` reports besides the numpy flavour's
+  error (``checker.codegen`` covers that one):
+
+  1. :func:`~symbt.codegen.verify.compare` fails a module whose *mpmath* flavour is off by a relative ``1e-40`` in
+     output 1 (the tolerance is ``MP_TOL = 1e-45`` relative to the condition scale), names output 1 and the mpmath
+     value, and reports ``worst_mp`` within a factor 2 of ``1e-40 |f_1| / S_1`` -- the largest relative error
+     seen, not a stale one;
+  2. :func:`~symbt.codegen.verify.phi_grad_vs_fd` measures ``|mp.diff(Phi) - g| / max(1, |g|)`` (its docstring):
+     on a probe module whose ``Phi`` is linear with every slope ``1/4`` and whose gradient is off by ``1e-30`` in
+     one entry, it returns ``1e-30`` to within ``1e-40`` (numerical differentiation of a linear function at 50
+     digits is exact to ~1e-48), where the relative measure ``1e-30 / 1/4`` would be four times larger.
+
+* ``library.printer_powers`` -- :class:`~symbt.codegen.printer.ExprPrinter` prints a power ``x**k`` with an
+  integer or half-integer exponent, negative ones included, in every flavour (numpy ``**``, mpmath, the ops
+  namespace, C as repeated products of ``x`` or ``sqrt(x)``), and refuses any other rational exponent with
+  ``ValueError`` (its module docstring).  The printed text, evaluated by Python at ``x = 9/4`` and ``x = 4``
+  (perfect squares: every power is an exact dyadic or a quotient rounded once), equals ``x**k`` computed with
+  exact rationals to within one rounding per operation, for ``k`` in ``2, 3, -1, -2, 1/2, 3/2, 5/2, -1/2,
+  -3/2``; ``x**(1/3)``, ``x**(2/3)`` and ``x**(-5/3)`` are refused.
+
+Shown to fail on planted bugs in ``tests/test_killers_codegen4.py``.
+"""
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+from types import ModuleType, SimpleNamespace
+from typing import Any, cast
+
+import mpmath as mp
+import numpy as np
+import sympy as sp
+
+from .base import Outcome, claim, failed
+
+#: checker.codegen_metrics: the mpmath flavour's planted error (relative), the gradient's (absolute)
+MP_OFF, GRAD_OFF, GRAD_SLOPE = mp.mpf(10) ** -40, mp.mpf(10) ** -30, mp.mpf(1) / 4
+
+
+def _probe_phi(N: int) -> SimpleNamespace:
+    """A module with ``phi_mp = (sum p + sum q) / 4`` and ``phi_grad_mp`` its gradient, off by ``GRAD_OFF`` in
+    ``d/dp_0``."""
+    def phi_mp(p: Any, q: Any, l0: Any, m: Any, b: int) -> Any:
+        return GRAD_SLOPE * (mp.fsum(p) + mp.fsum(q))
+
+    def phi_grad_mp(p: Any, q: Any, l0: Any, m: Any, b: int) -> tuple[list[Any], list[Any]]:
+        gp = [GRAD_SLOPE] * N
+        gp[0] = GRAD_SLOPE + GRAD_OFF
+        return gp, [GRAD_SLOPE] * N
+    return SimpleNamespace(phi_mp=phi_mp, phi_grad_mp=phi_grad_mp)
+
+
+@claim("checker.codegen_metrics", equation="tra", scene="checker", N=2,
+       where="symbt.codegen.verify.compare (the mpmath flavour's measure), verify.phi_grad_vs_fd",
+       statement="codegen.verify.compare fails toda2.invariants with the mpmath flavour's output 1 off by a relative "
+                 "1e-40, names output 1 and reports worst_mp within a factor 2 of 1e-40 |f_1|/S_1; phi_grad_vs_fd on "
+                 "a linear Phi of slope 1/4 whose gradient is off by 1e-30 returns 1e-30 to within 1e-40")
+def codegen_metrics() -> Outcome:
+    from ..codegen import verify
+    from ..codegen.derive import interface
+    from ..generated import toda2
+
+    spec = interface(2)["invariants"]
+    pts = verify.points(spec, 2)[:3]
+
+    def off_mp(**pt: Any) -> Any:
+        v = list(toda2.invariants_mp(**pt))
+        v[1] = v[1] * (1 + MP_OFF)
+        return v
+
+    wrong = SimpleNamespace(invariants=toda2.invariants, invariants_mp=off_mp)
+    res = verify.compare(cast(ModuleType, wrong), 2, "invariants", pts=pts)
+    bad = res["bad"] or {}
+    # the measure the planted error should give: |f_1| MP_OFF / S_1 at the worst of the points
+    with mp.workdps(verify.MP_DPS):
+        want = max(abs(mp.mpf(toda2.invariants_mp(**pt)[1])) * MP_OFF
+                   / max(verify._scale(spec, toda2.invariants_mp, pt, verify.evaluate_source(2, "invariants", pt),
+                                       list(toda2.invariants_mp(**pt)))[1], mp.mpf(10) ** -300) for pt in pts)
+    problems = []
+    if res["ok"] or bad.get("output") != 1 or "mp" not in bad:
+        problems.append(f"compare with the mpmath flavour off by 1e-40 in output 1: ok={res['ok']}, reported {bad}")
+    if not want / 2 <= res["worst_mp"] <= 2 * want:
+        problems.append(f"worst_mp {mp.nstr(res['worst_mp'], 3)}, the planted error gives {mp.nstr(want, 3)}")
+    r = verify.phi_grad_vs_fd(cast(ModuleType, _probe_phi(2)), 2)
+    if not abs(r - GRAD_OFF) <= mp.mpf(10) ** -40:
+        problems.append(f"phi_grad_vs_fd on a gradient off by 1e-30 (slopes 1/4): {mp.nstr(r, 5)}, want 1e-30 "
+                        "(|mp.diff - g| / max(1, |g|))")
+    detail = (f"mpmath flavour off by 1e-40: ok={res['ok']}, worst_mp {mp.nstr(res['worst_mp'], 3)} (planted "
+              f"{mp.nstr(want, 3)}), reported output {bad.get('output')}; phi_grad_vs_fd: {mp.nstr(r, 5)}")
+    if problems:
+        return failed("numeric: codegen.verify's measures on planted errors", detail="; ".join(problems))
+    return Outcome("verified", "numeric: codegen.verify's measures on planted errors of known size",
+                   evidence="sampled", n_scope=[2], detail=detail)
+
+
+#: library.printer_powers: exponents printed, exponents refused, the points (perfect squares)
+POWERS = (sp.Integer(2), sp.Integer(3), sp.Integer(-1), sp.Integer(-2), sp.Rational(1, 2), sp.Rational(3, 2),
+          sp.Rational(5, 2), sp.Rational(-1, 2), sp.Rational(-3, 2))
+REFUSED = (sp.Rational(1, 3), sp.Rational(2, 3), sp.Rational(-5, 3))
+POWER_POINTS = (Fraction(9, 4), Fraction(4))
+
+
+def _namespace(flavour: str) -> dict[str, Any]:
+    if flavour == "numpy":
+        return {"np": np}
+    if flavour == "mpmath":
+        return {"mpmath": mp, "_Q": lambda p, q: mp.mpf(p) / q}
+    if flavour == "ops":
+        return {"_X": np}
+    return {"sqrt": math.sqrt}
+
+
+@claim("library.printer_powers", equation="checker", scene="library",
+       where="symbt.codegen.printer.ExprPrinter._pow (integer and half-integer exponents, every flavour)",
+       statement="x**k printed in the numpy, mpmath, ops and C flavours, k in 2, 3, -1, -2, 1/2, 3/2, 5/2, -1/2, "
+                 "-3/2, evaluates (Python, x = 9/4 and 4) to the exact power within 4 roundings; x**(1/3), "
+                 "x**(2/3), x**(-5/3) are refused with ValueError in every flavour")
+def printer_powers() -> Outcome:
+    from ..codegen.printer import ExprPrinter
+
+    x = sp.Symbol("x", positive=True)
+    bad, n = [], 0
+    for flavour in ("numpy", "mpmath", "ops", "c"):
+        pr = ExprPrinter(flavour, {x: "x"})
+        for k in POWERS:
+            e = sp.Pow(x, k, evaluate=False)
+            text = pr.text(e)
+            for v in POWER_POINTS:
+                exact = sp.Rational(v.numerator, v.denominator) ** k     # a rational: v is a perfect square
+                want = mp.mpf(int(sp.numer(exact))) / int(sp.denom(exact))
+                with mp.workdps(30):
+                    arg = mp.mpf(v.numerator) / v.denominator if flavour == "mpmath" else float(v)
+                    got = mp.mpf(eval(text, _namespace(flavour), {"x": arg}))  # noqa: S307 -- the printer's own text
+                    err = abs(got - want) / abs(want)
+                n += 1
+                if not err <= 4 * 2.0 ** -53:
+                    bad.append(f"{flavour}: x**{k} printed {text!r} = {mp.nstr(got, 17)} at x = {v}, exactly "
+                               f"{exact} (relative {mp.nstr(err, 3)})")
+        for k in REFUSED:
+            try:
+                text = pr.text(sp.Pow(x, k, evaluate=False))
+            except ValueError:
+                continue
+            bad.append(f"{flavour}: x**{k} printed {text!r}, not refused")
+    detail = (f"{len(POWERS)} exponents x 4 flavours x {len(POWER_POINTS)} points = {n} evaluations, "
+              f"{len(REFUSED)} exponents refused in each flavour")
+    if bad:
+        return failed("numeric: printed powers evaluated by Python vs exact rationals", detail="; ".join(bad[:6]))
+    return Outcome("verified", "numeric: printed powers evaluated by Python at perfect squares vs exact rationals "
+                   "(4 roundings)", evidence="sampled", n_scope="all", detail=detail)

@@ -1,0 +1,62 @@
+"""The claims of ``symbt/claims/codegen_controls.py`` kill survivors of seeds 4 and 5 in ``symbt.codegen``.
+
+Each test plants one mutant's own text (``tests/planting.py``) and requires the claim written for it to fail;
+unpatched, both claims verify.
+"""
+from __future__ import annotations
+
+import pytest
+from planting import planted
+
+from symbt.claims import REGISTRY, load_all
+
+load_all()
+
+
+def status(cid: str) -> str:
+    return REGISTRY[cid].run().status
+
+
+@pytest.mark.parametrize("cid", ["checker.codegen_metrics", "library.printer_powers"])
+def test_unpatched_verified(cid):
+    assert status(cid) == "verified"
+
+
+def test_compare_keeps_a_stale_mp_measure(monkeypatch):
+    # seed 4, verify:216 (compare): `if em > worst_m` -> `if em < worst_m`: worst_mp stays 0, every mpmath
+    # flavour passes
+    from symbt.codegen import verify
+
+    monkeypatch.setattr(verify, "compare", planted(verify.compare, "if em > worst_m:", "if em < worst_m:"))
+    assert status("checker.codegen_metrics") == "failed"
+
+
+def test_compare_mp_tolerance_loosened(monkeypatch):
+    # the mpmath flavour's tolerance loosened from 1e-45 to 1e-35: a 1e-40 error passes
+    from symbt.codegen import verify
+
+    monkeypatch.setattr(verify, "MP_TOL", verify.MP_TOL * 10 ** 10)
+    assert status("checker.codegen_metrics") == "failed"
+
+
+def test_phi_grad_measure_relative_to_the_smaller(monkeypatch):
+    # seed 4, verify:258 (phi_grad_vs_fd): `/ max(1, abs(g))` -> `/ min(1, abs(g))`
+    from symbt.codegen import verify
+
+    monkeypatch.setattr(verify, "phi_grad_vs_fd", planted(verify.phi_grad_vs_fd, "/ max(1, abs(g)))",
+                                                          "/ min(1, abs(g)))"))
+    assert status("checker.codegen_metrics") == "failed"
+
+
+@pytest.mark.parametrize("old, new", [
+    ("if x.is_Integer or x.q == 2:", "if x.is_Integer or x.q != 2:"),       # seed 5, printer:176 (C flavour)
+    ("if x.q == 2:", "if x.q != 2:"),                                       # numpy / mpmath half-integers
+    ("n = int(x) if x.is_Integer else x.p", "n = int(x) if x.is_Integer else x.q"),
+    ("if x.is_negative:", "if x.is_positive:"),
+    ('one = "1.0" if self.flavour == "c" else "1"', 'one = "1.0" if self.flavour == "c" else "2"'),
+])
+def test_printed_powers(monkeypatch, old, new):
+    from symbt.codegen.printer import ExprPrinter
+
+    monkeypatch.setattr(ExprPrinter, "_pow", planted(ExprPrinter._pow, old, new))
+    assert status("library.printer_powers") == "failed"
