@@ -20,7 +20,7 @@ from symbt.reference import inverse, literal, samples, spectral, taylor
 from symbt.symbolic import linear
 
 CLAIMS = [L.reference_verify, L.printed_forms, L.gap_cases, L.taylor_rule, L.inverse_targets, L.addition_w,
-          L.trace_band]
+          L.trace_band, L.ks_selection]
 
 
 def status(check) -> str:
@@ -46,6 +46,8 @@ def test_literal_step_extra_site_killed(monkeypatch):
 @pytest.mark.parametrize("old, new", [
     ("with mp.workdps(dps + guard + 25):", "with mp.workdps(dps - guard + 25):"),       # literal:285 (seed 5)
     ("if diff > scale * mp.mpf(10) ** (-dps):", "if not (diff > scale * mp.mpf(10) ** (-dps)):"),  # literal:291
+    # seed 6, literal:279: the default guard shrinks with the trace; at traces ~1e45 the transport's loss is uncovered
+    ("guard = 20 + 2 * int(mp.log10(big)) + 2 * len(P)", "guard = 20 - 2 * int(mp.log10(big)) + 2 * len(P)"),
 ])
 def test_reference_step_verify_killed(monkeypatch, old, new):
     # uncovered before: no claim ran reference_step(verify=True)
@@ -228,3 +230,18 @@ def test_trace_gap_critical_points_are_equivalent(old, new):
                 for lo, hi in zip(pts, pts[1:]):
                     for a, b in ((lo, hi), (lo - mp.mpf("0.01"), hi), ((lo + hi) / 2, hi + 1)):
                         assert bad(p, q, a, b) == T.trace_gap(p, q, a, b)
+
+
+# --------------------------------------------------------------------------- reference.spectral: library.ks_selection
+
+@pytest.mark.parametrize("old, new", [
+    # seed 6, spectral:66: k = N never selected
+    ("[k for k in range(N + 1) if k in set(ks)]", "[k for k in range(N + 0) if k in set(ks)]"),
+    ("[k for k in range(N + 1) if k in set(ks)]", "list(range(N + 1))"),                 # ks ignored
+    ("return [got.get(k) for k in range(N + 1)]", "return [got.get(k) for k in range(N)] + [got.get(0)]"),
+])
+def test_ks_selection_killed(monkeypatch, old, new):
+    from symbt.reference import spectral
+
+    monkeypatch.setattr(spectral, "flow_coefficients_mp", planted(spectral.flow_coefficients_mp, old, new))
+    assert status(L.ks_selection) == "failed"

@@ -8,7 +8,8 @@ r"""The independent routes checked, 5: documented rules of :mod:`symbt.reference
   ``10^-(dps + 30)`` at 60 digits (one formula, two code paths: a consistency check of the routes); and
   :func:`~symbt.reference.literal.reference_step` with ``verify=True`` (the
   repeat with 25 more digits) returns, without raising, the step that :func:`~symbt.reference.literal.literal_step`
-  computes at 40 more digits, to ``10^-dps`` relative, on a state with large traces (a large guard).
+  computes at 200 more digits, to ``10^-dps`` relative, on states with traces ~1e3 and ~1e45 (there the forward
+  transport loses ~90 digits: the default guard ``20 + 2 log10 |tr| + 2N`` must cover them).
 * ``library.printed_forms`` -- :func:`symbt.reference.elliptic.theta2_printed` is ``F(P, k)/sqrt(I_2 + 2)`` and
   :func:`~symbt.reference.elliptic.printed_shift` is ``(acosh(T_-/2) - acosh(T_+/2),
   (F(s_-) - F(s_+))/sqrt(I_2 + 2))`` with ``T_+- = tr L(lam0 +- mu)`` by the literal trace, ``F`` by mpmath's
@@ -34,6 +35,10 @@ r"""The independent routes checked, 5: documented rules of :mod:`symbt.reference
   in a gap the least ``|tr| - 2`` (``|tr|`` has its one maximum inside), in a band a negative number (no critical
   point of ``tr`` lies in a band; only the sign is meant there).
 
+* ``library.ks_selection`` -- :func:`symbt.reference.spectral.flow_coefficients_mp` with ``ks`` computes exactly
+  those ``c_k`` (the others ``None``, ``k = N`` included), each within ``1e-15`` relative of mpmath's ``quad`` of
+  ``-b lam^k / sqrt(tr^2 - 4)`` with the literal trace (seed 6's ``spectral:66``).
+
 Each is shown to fail on the planted mutant it was written for in ``tests/test_killers_reference45.py``.
 
 >>> reference_verify.run().status
@@ -55,8 +60,12 @@ from .library_sampler import trace_quadratic
 
 #: library.reference_verify: states (p, q, lam0, mu) as decimal strings, digits
 REF_STATES = ((("0.3", "-0.2"), ("0.1", "0.4"), "30", "0.5"),
-              (("0.3", "-0.2", "0.5"), ("0.1", "0.4", "-0.3"), "12", "0.5"))
+              (("0.3", "-0.2", "0.5"), ("0.1", "0.4", "-0.3"), "12", "0.5"),
+              # traces ~1e45: the forward transport loses ~90 digits, reference_step's default guard must cover them
+              (("0.5", "-0.3", "0.1"), ("0", "1", "-0.5"), "1e15", "1e14"))
 REF_DPS = 20
+#: the reference's extra digits (the largest state loses ~90 to the transport)
+REF_EXTRA = 200
 #: the lists over sites of literal_step's info (its docstring)
 SITE_LISTS = ("x", "y", "z", "eta", "E_new")
 
@@ -65,14 +74,15 @@ SITE_LISTS = ("x", "y", "z", "eta", "E_new")
        where="symbt.reference.literal.literal_step (its shape) and reference_step(verify=True)",
        statement="literal_step returns N values of p~, q~ and of each info list over sites (x, y, z, eta, E_new; "
                  "N = 2, 3) on its real and its complex route (mpc "
-                 "inputs), the two equal to 1e-50 at 60 digits; reference_step(verify=True) at 20 digits "
-                 "returns without raising the step literal_step gives at 60 digits, to 1e-20 relative")
+                 "inputs), the two equal to 1e-50 at 220 digits; reference_step(verify=True) at 20 digits "
+                 "returns without raising the step literal_step gives at 220 digits, to 1e-20 relative, on "
+                 "states with traces ~1e3 and ~1e45 (its default guard)")
 def reference_verify() -> Outcome:
     bad: list[str] = []
     worst = mp.mpf(0)
     for p, q, l0, m in REF_STATES:
         N = len(p)
-        with mp.workdps(REF_DPS + 40):
+        with mp.workdps(REF_DPS + REF_EXTRA):
             pt0, qt0, info = literal_step([mp.mpf(v) for v in p], [mp.mpf(v) for v in q], mp.mpf(l0), mp.mpf(m), 1)
             # the same inputs as mpc (imaginary part 0) take the complex route (values may be complex there)
             ptc, qtc, infoc = literal_step([mp.mpc(v) for v in p], [mp.mpc(v) for v in q], mp.mpc(l0), mp.mpc(m), 1)
@@ -96,11 +106,12 @@ def reference_verify() -> Outcome:
                 bad.append(f"N={N}: reference_step off by {mp.nstr(err, 3)} (relative)")
     if bad:
         return failed("literal_step at 60 digits", detail="; ".join(bad))
-    return Outcome("verified", "numeric: literal_step at 40 more digits", evidence="sampled", n_scope=[2, 3],
+    return Outcome("verified", f"numeric: literal_step at {REF_EXTRA} more digits", evidence="sampled",
+                   n_scope=[2, 3],
                    residual=float(worst),
-                   detail=f"2 states (traces up to ~1e3, so guards of 30 digits): N values each on both routes of "
-                          f"literal_step, which agree; reference_step("
-                          f"verify=True) within {mp.nstr(worst, 2)} (accepted 1e-{REF_DPS})")
+                   detail=f"3 states (traces ~1e3, and ~1e45: a default guard of ~116 digits): N values each on "
+                          f"both routes of literal_step, which agree; reference_step(verify=True) within "
+                          f"{mp.nstr(worst, 2)} (accepted 1e-{REF_DPS})")
 
 
 #: library.printed_forms: digits, the inner cases (rng seeds)
@@ -335,3 +346,42 @@ def trace_band() -> Outcome:
         return failed("trace_gap vs the literal trace at the ends", detail="; ".join(bad))
     return Outcome("verified", f"numeric: the literal trace ({BAND_DPS} digits)", evidence="sampled",
                    n_scope=[2, 3], detail=f"{n} intervals (every band and gap of an N = 2 and an N = 3 state)")
+
+
+#: library.ks_selection: the subsets asked for (by N), digits
+KS_SUBSETS, KS_DPS = (lambda N: ([N], [0, N], [1], [N, 0, 0])), 20
+
+
+@claim("library.ks_selection", equation="eqdisc", scene="library", N=3,
+       where="symbt.reference.spectral.flow_coefficients_mp (ks: compute only these k, the others None)",
+       statement="flow_coefficients_mp(ks=S) for S = [N], [0, N], [1], [N, 0, 0] (N = 2, 3): None exactly at the k "
+                 "not in S, and c_k for k in S within 1e-15 relative of -b int lam^k/sqrt(tr^2 - 4) by mpmath's "
+                 "quad with the literal trace (20 digits)")
+def ks_selection() -> Outcome:
+    from ..reference.spectral import flow_coefficients_mp
+
+    bad, n = [], 0
+    with mp.workdps(KS_DPS):
+        for p, q, l0, m in REF_STATES[:2]:
+            N = len(p)
+            P, Q, L0, M = [mp.mpf(v) for v in p], [mp.mpf(v) for v in q], mp.mpf(l0), mp.mpf(m)
+            wants: dict[int, mp.mpf] = {}
+            for S in KS_SUBSETS(N):
+                got = flow_coefficients_mp(P, Q, L0, M, ks=S)
+                if len(got) != N + 1 or [k for k in range(N + 1) if got[k] is None] != [k for k in range(N + 1)
+                                                                                      if k not in S]:
+                    bad.append(f"N={N}, ks={S}: {['-' if v is None else 'c' for v in got]} (want c exactly at {S})")
+                    continue
+                for k in sorted(set(S)):
+                    if k not in wants:
+                        wants[k] = -mp.quad(lambda x, k=k: x ** k / mp.sqrt(literal_trace(x, P, Q) ** 2 - 4),
+                                            [L0 - M, L0 + M])
+                    want = wants[k]
+                    n += 1
+                    if not abs(got[k] - want) <= mp.mpf(10) ** -15 * abs(want):
+                        bad.append(f"N={N}, ks={S}: c_{k} = {mp.nstr(got[k], 12)}, quadrature {mp.nstr(want, 12)}")
+    if bad:
+        return failed("numeric: flow_coefficients_mp's ks vs mpmath quad of the literal trace", detail="; ".join(bad))
+    return Outcome("verified", "numeric: flow_coefficients_mp's ks vs mpmath quad of the literal trace (20 digits)",
+                   evidence="sampled", n_scope=[2, 3],
+                   detail=f"2 states x 4 subsets: None exactly outside ks; {n} values within 1e-15 of the quadrature")
