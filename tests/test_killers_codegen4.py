@@ -60,3 +60,14 @@ def test_printed_powers(monkeypatch, old, new):
 
     monkeypatch.setattr(ExprPrinter, "_pow", planted(ExprPrinter._pow, old, new))
     assert status("library.printer_powers") == "failed"
+
+
+@pytest.mark.parametrize("old, new", [
+    ("if f.p != 1:", "if f.p == 1:"),                                            # seed 6, printer:148
+    ("den.append(sp.Integer(f.q))", "den.append(sp.Integer(f.p))"),
+])
+def test_printed_coefficients(monkeypatch, old, new):
+    from symbt.codegen.printer import ExprPrinter
+
+    monkeypatch.setattr(ExprPrinter, "_mul", planted(ExprPrinter._mul, old, new))
+    assert status("library.printer_powers") == "failed"

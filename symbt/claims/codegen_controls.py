@@ -18,7 +18,9 @@ r"""The checks of the emitted code, checked: their metrics and the printer's pow
   ``ValueError`` (its module docstring).  The printed text, evaluated by Python at ``x = 9/4`` and ``x = 4``
   (perfect squares: every power is an exact dyadic or a quotient rounded once), equals ``x**k`` computed with
   exact rationals to within one rounding per operation, for ``k`` in ``2, 3, -1, -2, 1/2, 3/2, 5/2, -1/2,
-  -3/2``; ``x**(1/3)``, ``x**(2/3)`` and ``x**(-5/3)`` are refused.
+  -3/2``, and so does ``c x (x + 1)/(x + 3)`` for the coefficients ``c = 3/2, 1/2, -5/4, 7/3`` (a numerator other
+  than 1 is printed in the numerator, the denominator in the denominator) within 6 roundings; ``x**(1/3)``,
+  ``x**(2/3)`` and ``x**(-5/3)`` are refused.
 
 Shown to fail on planted bugs in ``tests/test_killers_codegen4.py``.
 """
@@ -100,6 +102,8 @@ POWERS = (sp.Integer(2), sp.Integer(3), sp.Integer(-1), sp.Integer(-2), sp.Ratio
           sp.Rational(5, 2), sp.Rational(-1, 2), sp.Rational(-3, 2))
 REFUSED = (sp.Rational(1, 3), sp.Rational(2, 3), sp.Rational(-5, 3))
 POWER_POINTS = (Fraction(9, 4), Fraction(4))
+#: library.printer_powers: rational coefficients (a numerator other than 1, negative, non-dyadic)
+COEFFS = (sp.Rational(3, 2), sp.Rational(1, 2), sp.Rational(-5, 4), sp.Rational(7, 3))
 
 
 def _namespace(flavour: str) -> dict[str, Any]:
@@ -115,7 +119,8 @@ def _namespace(flavour: str) -> dict[str, Any]:
 @claim("library.printer_powers", equation="checker", scene="library",
        where="symbt.codegen.printer.ExprPrinter._pow (integer and half-integer exponents, every flavour)",
        statement="x**k printed in the numpy, mpmath, ops and C flavours, k in 2, 3, -1, -2, 1/2, 3/2, 5/2, -1/2, "
-                 "-3/2, evaluates (Python, x = 9/4 and 4) to the exact power within 4 roundings; x**(1/3), "
+                 "-3/2, and c x (x + 1)/(x + 3) for c = 3/2, 1/2, -5/4, 7/3 evaluate (Python, x = 9/4 and 4) to "
+                 "the exact value within 4 (6) roundings; x**(1/3), "
                  "x**(2/3), x**(-5/3) are refused with ValueError in every flavour")
 def printer_powers() -> Outcome:
     from ..codegen.printer import ExprPrinter
@@ -138,13 +143,27 @@ def printer_powers() -> Outcome:
                 if not err <= 4 * 2.0 ** -53:
                     bad.append(f"{flavour}: x**{k} printed {text!r} = {mp.nstr(got, 17)} at x = {v}, exactly "
                                f"{exact} (relative {mp.nstr(err, 3)})")
+        for c in COEFFS:      # a rational coefficient times a product and a quotient (numerator and denominator)
+            e = sp.Mul(c, x, x + 1, evaluate=False) / (x + 3)
+            text = pr.text(e)
+            for v in POWER_POINTS:
+                exact = e.subs(x, sp.Rational(v.numerator, v.denominator))
+                want = mp.mpf(int(sp.numer(exact))) / int(sp.denom(exact))
+                with mp.workdps(30):
+                    arg = mp.mpf(v.numerator) / v.denominator if flavour == "mpmath" else float(v)
+                    got = mp.mpf(eval(text, _namespace(flavour), {"x": arg}))  # noqa: S307 -- the printer's own text
+                    err = abs(got - want) / abs(want)
+                n += 1
+                if not err <= 6 * 2.0 ** -53:
+                    bad.append(f"{flavour}: {e} printed {text!r} = {mp.nstr(got, 17)} at x = {v}, exactly {exact}")
         for k in REFUSED:
             try:
                 text = pr.text(sp.Pow(x, k, evaluate=False))
             except ValueError:
                 continue
             bad.append(f"{flavour}: x**{k} printed {text!r}, not refused")
-    detail = (f"{len(POWERS)} exponents x 4 flavours x {len(POWER_POINTS)} points = {n} evaluations, "
+    detail = (f"{len(POWERS)} exponents and {len(COEFFS)} coefficients x 4 flavours x {len(POWER_POINTS)} points = "
+              f"{n} evaluations, "
               f"{len(REFUSED)} exponents refused in each flavour")
     if bad:
         return failed("numeric: printed powers evaluated by Python vs exact rationals", detail="; ".join(bad[:6]))
