@@ -22,7 +22,7 @@ r"""The checks of the emitted code, checked: their metrics and the printer's pow
   than 1 is printed in the numerator, the denominator in the denominator) within 6 roundings; ``x**(1/3)``,
   ``x**(2/3)`` and ``x**(-5/3)`` are refused.
 
-Shown to fail on planted bugs in ``tests/test_killers_codegen4.py``.
+Shown to fail on planted bugs in ``tests/test_killers_controls.py``.
 """
 from __future__ import annotations
 

@@ -1,7 +1,8 @@
-"""The claims of ``symbt/claims/codegen_controls.py`` kill survivors of seeds 4 and 5 in ``symbt.codegen``.
+"""The claims of ``symbt/claims/codegen_controls.py`` and ``checker_seed6.py`` kill survivors of seeds 4, 5 and 6 in
+``symbt.codegen`` and ``symbt.proof.verdict``.
 
 Each test plants one mutant's own text (``tests/planting.py``) and requires the claim written for it to fail;
-unpatched, both claims verify.
+unpatched, every claim verifies.
 """
 from __future__ import annotations
 
@@ -17,7 +18,7 @@ def status(cid: str) -> str:
     return REGISTRY[cid].run().status
 
 
-@pytest.mark.parametrize("cid", ["checker.codegen_metrics", "library.printer_powers"])
+@pytest.mark.parametrize("cid", ["checker.codegen_metrics", "library.printer_powers", "checker.verdict_digits"])
 def test_unpatched_verified(cid):
     assert status(cid) == "verified"
 
@@ -71,3 +72,15 @@ def test_printed_coefficients(monkeypatch, old, new):
 
     monkeypatch.setattr(ExprPrinter, "_mul", planted(ExprPrinter._mul, old, new))
     assert status("library.printer_powers") == "failed"
+
+
+@pytest.mark.parametrize("old, new", [
+    ("if worst > 0 and math.isfinite(worst):", "if worst > 1 and math.isfinite(worst):"),   # seed 6, verdict:137
+    ("min(-math.log10(worst), float(dps))", "max(-math.log10(worst), float(dps))"),
+    ("worst = r if err is None else max(r, err)", "worst = r if err is None else min(r, err)"),
+])
+def test_verdict_digits(monkeypatch, old, new):
+    from symbt.proof.verdict import Verdict
+
+    monkeypatch.setattr(Verdict, "sampled", classmethod(planted(Verdict.sampled.__func__, old, new)))
+    assert status("checker.verdict_digits") == "failed"
