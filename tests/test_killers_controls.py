@@ -18,7 +18,8 @@ def status(cid: str) -> str:
     return REGISTRY[cid].run().status
 
 
-@pytest.mark.parametrize("cid", ["checker.codegen_metrics", "library.printer_powers", "checker.verdict_digits"])
+@pytest.mark.parametrize("cid", ["checker.codegen_metrics", "library.printer_powers", "checker.verdict_digits",
+                                 "paths.rows_out.n3"])
 def test_unpatched_verified(cid):
     assert status(cid) == "verified"
 
@@ -84,3 +85,17 @@ def test_verdict_digits(monkeypatch, old, new):
 
     monkeypatch.setattr(Verdict, "sampled", classmethod(planted(Verdict.sampled.__func__, old, new)))
     assert status("checker.verdict_digits") == "failed"
+
+
+@pytest.mark.parametrize("old, new", [
+    ("outq: FloatValue = qa.copy() if out is None else out[1]",
+     "outq: FloatValue = qa.copy() if out is None else out[0]"),                    # seed 6, rows:209
+    ("outp: FloatValue = pa.copy() if out is None else out[0]",
+     "outp: FloatValue = pa.copy() if out is None else out[0].copy()"),
+    ("idx_all = np.arange(M) if rows is None else rows", "idx_all = np.arange(M)"),
+])
+def test_rows_out(monkeypatch, old, new):
+    from symbt.numeric.float64 import rows
+
+    monkeypatch.setattr(rows, "float_rows_step", planted(rows.float_rows_step, old, new))
+    assert status("paths.rows_out.n3") == "failed"
