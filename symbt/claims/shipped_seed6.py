@@ -11,7 +11,7 @@ r"""The numpy route's rows written into a caller's arrays (scene ``numeric-paths
 
 Shown to fail on planted bugs in ``tests/test_killers_controls.py``.
 
->>> rows_out.run(3).status
+>>> rows_out(3).status
 'verified'
 """
 from __future__ import annotations
