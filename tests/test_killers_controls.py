@@ -99,3 +99,27 @@ def test_rows_out(monkeypatch, old, new):
 
     monkeypatch.setattr(rows, "float_rows_step", planted(rows.float_rows_step, old, new))
     assert status("paths.rows_out.n3") == "failed"
+
+
+@pytest.mark.parametrize("old, new", [
+    ("if sp.cancel(c1) != 0:", "if not (sp.cancel(c1) != 0):"),                  # seed 6, linear:37 (twice)
+    ("if sp.cancel(c1) != 0:", "if sp.cancel(c1) == 0:"),
+])
+def test_solve_linear_avoids_sympy_solve(monkeypatch, old, new):
+    # killed by tests: the mutants send a linear equation to sympy.solve, which gives the same root (a cost: the
+    # module exists to avoid it); the original never calls it for c1 x + c0 = 0
+    import sympy as sp
+
+    from symbt.symbolic import linear
+
+    a, b, x = sp.symbols("a b x")
+
+    def refused(*args, **kwargs):
+        raise AssertionError("sympy.solve called for a linear equation")
+
+    assert linear.solve_linear(a * x + b, x) == [-b / a]
+    monkeypatch.setattr(linear.sp, "solve", refused)
+    assert linear.solve_linear(a * x + b, x) == [-b / a]
+    bad = planted(linear.solve_linear, old, new)
+    with pytest.raises(AssertionError, match="sympy.solve called"):
+        bad(a * x + b, x)
