@@ -56,6 +56,7 @@ CLAIM_MODULES = (
     "shipped_edges",
     "checker",
     "checker_mutation",
+    "checker_identity",
     "checker_sample3",
     "checker_sample45",
     "library",

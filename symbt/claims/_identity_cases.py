@@ -1,0 +1,208 @@
+"""The answers the claims of :mod:`symbt.claims.checker_identity` compare with: refused arguments and the
+exceptions they deserve, relation forms and the polynomials they mean, hints, the complete mutant lists of a few
+expressions -- each written down from the documented rules (docs/checker.md), not computed by the code checked."""
+from __future__ import annotations
+
+from typing import Any
+
+import sympy as sp
+
+x = sp.Symbol("x", real=True)
+y = sp.Symbol("y", positive=True)
+
+
+def calls_refused() -> list[tuple[str, dict[str, Any], str, str]]:
+    """(what, keyword arguments of check_identity(x, x, ...), exception, words of its message)."""
+    return [
+        ("digits True", {"digits": True}, "TypeError", "digits must be an int"),
+        ("digits 30.0", {"digits": 30.0}, "TypeError", "digits must be an int"),
+        ("digits 0", {"digits": 0}, "ValueError", "digits must be positive"),
+        ("digits -3", {"digits": -3}, "ValueError", "digits must be positive"),
+        ("digits 1", {"digits": 1}, "ValueError", "digits must be at least 9"),
+        ("digits 8", {"digits": 8}, "ValueError", "digits must be at least 9"),
+        ("points True", {"points": True}, "TypeError", "points must be an int"),
+        ("points 2.5", {"points": 2.5}, "TypeError", "points must be an int"),
+        ("points 0", {"points": 0}, "ValueError", "points must be positive"),
+        ("seed False", {"seed": False}, "TypeError", "seed must be an int"),
+        ("seed 1.5", {"seed": 1.5}, "TypeError", "seed must be an int"),
+        ("exact 1", {"exact": 1}, "TypeError", "exact must be True or False"),
+        ("fixed a list", {"fixed": [1]}, "TypeError", "fixed must be a dict"),
+        ("assumptions a list", {"assumptions": [x]}, "TypeError", "assumptions must be a dict"),
+        ("assumptions of x True", {"assumptions": {x: True}}, "TypeError", "assumptions[x] must be a dict"),
+        ("relations a string", {"relations": "x"}, "TypeError", "relations must be a dict"),
+        ("relations bytes", {"relations": b"x"}, "TypeError", "relations must be a dict"),
+        ("relations a number", {"relations": 3}, "TypeError", "relations must be a dict"),
+    ]
+
+
+def sides_refused() -> list[tuple[str, Any, Any, str, str]]:
+    """(what, lhs, rhs, exception, words): sides SymPy cannot read, each naming its argument."""
+    return [
+        ("lhs None", None, x, "TypeError", "lhs must be a SymPy expression"),
+        ("rhs a set", x, {1}, "TypeError", "rhs must be a SymPy expression"),
+        ("lhs bytes", b"x", x, "TypeError", "lhs must be"),
+        ("rhs a dict", x, {x: 1}, "TypeError", "rhs must be"),
+        ("lhs a function", lambda: 1, x, "TypeError", "lhs must be"),
+        ("rhs sp.sin", x, sp.sin, "TypeError", "rhs must be"),
+        ("lhs an object", object(), x, "TypeError", "lhs must be a SymPy expression, number or matrix, not object"),
+        ("lhs unparseable", "x +", x, "ValueError", "cannot parse lhs"),
+        ("rhs an evaluated Eq", x, sp.Eq(x, x), "TypeError", "rhs is True"),
+        ("an Eq and rhs 1", sp.Eq(x ** 2, x + 1), 1, "ValueError", "give either an Eq or lhs and rhs"),
+        ("an Eq and rhs 2.5", sp.Eq(x ** 2, x + 1), 2.5, "ValueError", "give either an Eq or lhs and rhs"),
+    ]
+
+
+def relations_cases() -> list[tuple[str, Any, Any]]:
+    """(what, relations, the {symbol: polynomial} the documented rules give, or an exception and its words)."""
+    eta, mu, w, zeta, a, b, z = sp.symbols("eta mu w zeta a b z")
+    quad = eta ** 2 - mu ** 2 - w
+    return [
+        ("None", None, {}),
+        ("one Eq", sp.Eq(eta ** 2, mu ** 2 + w), {eta: quad}),
+        ("one polynomial", eta ** 2 - mu - w, {eta: eta ** 2 - mu - w}),
+        ("a dict of an Eq", {mu: sp.Eq(eta ** 2, mu ** 2 + w)}, {mu: quad}),
+        ("a dict of a polynomial", {w: quad}, {w: quad}),
+        ("pairs", [(mu, sp.Eq(eta ** 2, mu ** 2 + w)), (zeta, zeta ** 3 - a)], {mu: quad, zeta: zeta ** 3 - a}),
+        ("a tuple of Eqs", (sp.Eq(eta ** 2, w), sp.Eq(zeta ** 3, mu)), {eta: eta ** 2 - w, zeta: zeta ** 3 - mu}),
+        # the side with a single symbol, from either side -- not the symbol of highest degree
+        ("Eq(w + mu^3, eta)", [sp.Eq(w + mu ** 3, eta)], {eta: -eta + mu ** 3 + w}),
+        ("Eq(w, mu^3 + eta mu)", [sp.Eq(w, mu ** 3 + eta * mu)], {w: -eta * mu - mu ** 3 + w}),
+        ("Eq(eta^2, eta + 1)", [sp.Eq(eta ** 2, eta + 1)], {eta: eta ** 2 - eta - 1}),
+        # no single-symbol side: the symbol of highest degree, whatever its place in the alphabet
+        ("Eq(a z, b^3 + z^2)", [sp.Eq(a * z, b ** 3 + z ** 2)], {b: a * z - b ** 3 - z ** 2}),
+        ("a z + b^3 + z^2", [a * z + b ** 3 + z ** 2], {b: a * z + b ** 3 + z ** 2}),
+        ("a tie", [eta * mu - 1], ("ValueError", "cannot tell which symbol it constrains")),
+        ("no symbol", [sp.Integer(1)], ("ValueError", "involves no symbol")),
+        ("a key that is a name", {"eta": quad}, ("TypeError", "relation key must be a symbol")),
+        ("a relation without its key", {zeta: quad}, ("ValueError", "does not involve zeta")),
+        ("two relations for eta", [sp.Eq(eta ** 2, w), (eta, eta ** 3 - w)], ("ValueError", "two relations for eta")),
+    ]
+
+
+def hint_cases() -> list[tuple[str, Any, Any, str]]:
+    """(what, lhs, rhs, the start of the hint): K(k) written with the modulus, on either side, and the reverse."""
+    k = sp.Symbol("k", positive=True)
+    by_modulus = sp.pi / 2 * sp.hyper([sp.S.Half, sp.S.Half], [1], k ** 2)      # K of modulus k
+    by_parameter = sp.pi / 2 * sp.hyper([sp.S.Half, sp.S.Half], [1], k)          # K of parameter k
+    to_m = "hint: the sides agree if the modulus k is read as the parameter m = k**2"
+    to_k = "hint: the sides agree if the parameter m is read as the modulus k = sqrt(m)"
+    return [("elliptic lhs", sp.elliptic_k(k), by_modulus, to_m), ("elliptic rhs", by_modulus, sp.elliptic_k(k), to_m),
+            ("parameter for modulus", sp.elliptic_k(k ** 2), by_parameter, to_k),
+            ("matrices", sp.Matrix([[by_modulus, k]]), sp.Matrix([[sp.elliptic_k(k), k]]), to_m),
+            ("no elliptic function", sp.Matrix([[k, 1]]), sp.Matrix([[k + 1, 1]]), ""),
+            ("no swap agrees", sp.elliptic_k(k), sp.elliptic_e(k), "")]
+
+
+def domain_refusals() -> list[tuple[str, Any, str, str]]:
+    from ..proof import domain as module
+
+    # typed Any: the arguments below are wrong on purpose
+    Domain: Any = module.Domain
+    choice: Any = module.choice
+    regime: Any = module.regime
+    sign: Any = module.sign
+    dom = Domain({"t": (0, 1)})
+    return [
+        ("Domain of a list", lambda: Domain([("t", (0, 1))]), "TypeError", "non-empty mapping"),
+        ("Domain of {}", lambda: Domain({}), "TypeError", "non-empty mapping"),
+        ("a number as a name", lambda: Domain({3: (0, 1)}), "TypeError", "variable names"),
+        ("an empty name", lambda: Domain({"": (0, 1)}), "TypeError", "variable names"),
+        ("where not a function", lambda: Domain({"t": (0, 1)}, where=3), "TypeError", "where"),
+        ("seed a string", lambda: Domain({"t": (0, 1)}, seed="1"), "TypeError", "seed is an integer"),
+        ("draws_per_point 0", lambda: Domain({"t": (0, 1)}, draws_per_point=0), "TypeError", "draws_per_point"),
+        ("draws_per_point 1.5", lambda: Domain({"t": (0, 1)}, draws_per_point=1.5), "TypeError", "draws_per_point"),
+        ("a cell of a non-split", lambda: dom.cells("t"), "TypeError", "a split is made by"),
+        ("two splits named b", lambda: dom.cells(choice("b", (1,)), choice("b", (2,))), "ValueError", ": b"),
+        ("a split named as a variable", lambda: dom.cells(choice("t", (1,))), "ValueError", ": t"),
+        ("per_cell 0", lambda: dom.sample(per_cell=0), "ValueError", "per_cell"),
+        ("per_cell True", lambda: dom.sample(per_cell=True), "ValueError", "per_cell"),
+        ("per_cell 1.5", lambda: dom.sample(per_cell=1.5), "ValueError", "per_cell"),
+        ("dps 14", lambda: dom.sample(dps=14), "ValueError", "dps"),
+        ("dps True", lambda: dom.sample(dps=True), "ValueError", "dps"),
+        ("tol -1", lambda: dom.evaluate(printed=lambda t: 0, tol=-1), "ValueError", "tol"),
+        ("tol nan", lambda: dom.evaluate(printed=lambda t: 0, tol=float("nan")), "ValueError", "tol"),
+        ("a residual of a missing variable", lambda: dom.evaluate(printed=lambda t, q: 0), "ValueError",
+         "takes q, which the points lack"),
+        ("a residual without a signature", lambda: dom.evaluate(printed=max), "TypeError", "cannot read"),
+        ("a residual that returns a string", lambda: dom.evaluate(printed=lambda t: "a", per_cell=1), "TypeError",
+         "returned 'a'"),
+        ("a split of a missing variable", lambda: dom.sample(sign("t - q")), "ValueError", "names q"),
+        ("a regime's unknown label", lambda: dom.sample(regime("r", lambda t: "c", ("a", "b"))), "ValueError",
+         "returned 'c'"),
+        ("a regime without a function", lambda: regime("r", 3, ("a",)), "TypeError", "func must be"),
+        ("a choice of nothing", lambda: choice("b", ()), "ValueError", "one or more distinct"),
+        ("a choice of 1 twice", lambda: choice("b", (1, 1)), "ValueError", "one or more distinct"),
+        ("a choice of None", lambda: choice("b", (None,)), "TypeError", "numbers or strings"),
+        ("sign of a number", lambda: sign(3), "TypeError", "sign(expr)"),
+        ("sign of an unnamed lambda", lambda: sign(lambda t: t), "ValueError", "give the split a name"),
+        ("sign with one label", lambda: sign("t", labels=("a",)), "ValueError", "two different labels"),
+        ("sign with equal labels", lambda: sign("t", labels=("a", "a")), "ValueError", "two different labels"),
+        ("sign of a non-expression", lambda: sign("t +"), "ValueError", "not an expression"),
+    ]
+
+
+def mutant_lists() -> list[tuple[Any, set[tuple[str, str, Any]]]]:
+    """Expressions with every mutant the documented operators give: (operator, words, expression)."""
+    f = sp.Function("f")
+    third = sp.Rational(3000003, 1000000)
+    return [
+        (3 * sp.sqrt(y) + sp.Abs(x) - 1, {
+            ("flip_sign", "flip the sign of -1", 3 * sp.sqrt(y) + sp.Abs(x) + 1),
+            ("flip_sign", "flip the sign of 3*sqrt(y)", -3 * sp.sqrt(y) + sp.Abs(x) - 1),
+            ("flip_sign", "flip the sign of Abs(x)", 3 * sp.sqrt(y) - sp.Abs(x) - 1),
+            ("drop_term", "drop the term -1", 3 * sp.sqrt(y) + sp.Abs(x)),
+            ("drop_term", "drop the term 3*sqrt(y)", sp.Abs(x) - 1),
+            ("drop_term", "drop the term Abs(x)", 3 * sp.sqrt(y) - 1),
+            ("change_const", "change the constant -1 to -2", 3 * sp.sqrt(y) + sp.Abs(x) - 2),
+            ("change_const", "change the constant 3 to 4", 4 * sp.sqrt(y) + sp.Abs(x) - 1),
+            ("perturb", "perturb the coefficient -1 by a relative 1e-6",
+             3 * sp.sqrt(y) + sp.Abs(x) - sp.Rational(1000001, 1000000)),
+            ("perturb", "perturb the coefficient 3 by a relative 1e-6", third * sp.sqrt(y) + sp.Abs(x) - 1),
+            # sqrt(y) -> -sqrt(y) is -3 sqrt(y), the flip above: one mutant, not two
+            ("convention", "drop the absolute value in Abs(x)", x + 3 * sp.sqrt(y) - 1)}),
+        # the exponents 3 and -1 are structure, not constants; sign(x) -> -sign(x) inside exp is its own mutant
+        (sp.exp(sp.sign(x)) + x ** 3 + 1 / y, {
+            ("flip_sign", "flip the sign of x**3", -x ** 3 + sp.exp(sp.sign(x)) + 1 / y),
+            ("flip_sign", "flip the sign of 1/y", x ** 3 + sp.exp(sp.sign(x)) - 1 / y),
+            ("flip_sign", "flip the sign of exp(sign(x))", x ** 3 - sp.exp(sp.sign(x)) + 1 / y),
+            ("drop_term", "drop the term x**3", sp.exp(sp.sign(x)) + 1 / y),
+            ("drop_term", "drop the term 1/y", x ** 3 + sp.exp(sp.sign(x))),
+            ("drop_term", "drop the term exp(sign(x))", x ** 3 + 1 / y),
+            ("convention", "swap the sign convention sign(x) -> -sign(x)", x ** 3 + sp.exp(-sp.sign(x)) + 1 / y)}),
+        # a sum inside a function, under a coefficient
+        (2 * f(x + 1), {
+            ("flip_sign", "flip the sign of 1", 2 * f(x - 1)), ("flip_sign", "flip the sign of x", 2 * f(1 - x)),
+            ("drop_term", "drop the term 1", 2 * f(x)), ("drop_term", "drop the term x", 2 * f(sp.Integer(1))),
+            ("change_const", "change the constant 2 to 3", 3 * f(x + 1)),
+            ("change_const", "change the constant 1 to 2", 2 * f(x + 2)),
+            ("perturb", "perturb the coefficient 2 by a relative 1e-6", sp.Rational(1000001, 500000) * f(x + 1)),
+            ("perturb", "perturb the coefficient 1 by a relative 1e-6", 2 * f(x + sp.Rational(1000001, 1000000)))}),
+        # a branch symbol and indexed symbols: b -> -b, and p1 <-> p2 inside one term
+        (sp.exp(sp.Symbol("branch") * x) + sp.Symbol("p1") * sp.Symbol("p2") ** 2, {
+            ("flip_sign", "flip the sign of p1*p2**2", sp.exp(sp.Symbol("branch") * x) - sp.Symbol("p1")
+             * sp.Symbol("p2") ** 2),
+            ("flip_sign", "flip the sign of exp(branch*x)", -sp.exp(sp.Symbol("branch") * x) + sp.Symbol("p1")
+             * sp.Symbol("p2") ** 2),
+            ("drop_term", "drop the term p1*p2**2", sp.exp(sp.Symbol("branch") * x)),
+            ("drop_term", "drop the term exp(branch*x)", sp.Symbol("p1") * sp.Symbol("p2") ** 2),
+            ("swap_index", "swap p1 and p2 in p1*p2**2", sp.exp(sp.Symbol("branch") * x) + sp.Symbol("p2")
+             * sp.Symbol("p1") ** 2),
+            ("convention", "swap the branch convention branch -> -branch", sp.exp(-sp.Symbol("branch") * x)
+             + sp.Symbol("p1") * sp.Symbol("p2") ** 2)}),
+    ]
+
+
+def value_mutants() -> list[tuple[Any, list[tuple[str, str, Any]]]]:
+    return [(True, [("convention", "negate True", False)]), (False, [("convention", "negate False", True)]),
+            (1, [("convention", "swap the branch +1 -> -1", -1)]),
+            (-1, [("convention", "swap the branch -1 -> +1", 1)]),
+            (0, []), (0.0, []), ("", []), (None, []), ([1], []),
+            (2, [("flip_sign", "negate 2", -2), ("perturb", "perturb 2 by a relative 1e-6", 2 * (1 + 1e-6))]),
+            (-2.5, [("flip_sign", "negate -2.5", 2.5), ("perturb", "perturb -2.5 by a relative 1e-6",
+                                                         -2.5 * (1 + 1e-6))]),
+            (sp.Float(1.5), [("flip_sign", "negate 1.50000000000000", sp.Float(-1.5)),
+                             ("perturb", "perturb 1.50000000000000 by a relative 1e-6", sp.Float(1.5) * (1 + 1e-6))]),
+            ("abc", [("change_const", "change the last character of abc... to 0", "ab0")]),
+            ("a0", [("change_const", "change the last character of a0... to 1", "a1")]),
+            ((1, "x0"), [("convention", "entry 0: swap the branch +1 -> -1", (-1, "x0")),
+                         ("change_const", "entry 1: change the last character of x0... to 1", (1, "x1"))])]
