@@ -113,6 +113,8 @@ def identity_result() -> Outcome:
          "inconclusive: cannot tell at 50 digits (relative residual undefined, evaluation error unknown; m)"),
         ("false", {"residual": 0.5, "counterexample": SEVEN, "note": "hint: k is m"},
          f"false: counterexample {SIX_SHOWN} (relative residual 0.5; m); hint: k is m"),
+        ("false", {"residual": 0.5, "counterexample": dict(list(SEVEN.items())[:6])},
+         "false: counterexample a1=1, a2=2, a3=3, a4=4, a5=5, a6=6 (relative residual 0.5; m)"),
         ("false", {"residual": None, "counterexample": {"x": "2"}, "note": "other words"},
          "false: counterexample x=2 (relative residual undefined; m)"),
         ("false", {"residual": 2.0, "counterexample": None}, "false: counterexample - (relative residual 2; m)"),
@@ -152,6 +154,11 @@ def identity_result() -> Outcome:
         fields = {"residual": 1e-60, "digits": 50.0} if status == "verified" else {}
         got.append((f"LaTeX of {status}", _result(status, **fields)._repr_latex_(),
                     rf"$\displaystyle x + 1 {rel} x + 1\quad \text{{({status})}}$"))
+    shown = repr(_result("proved", residual=0.0, lhs=sp.Symbol("left_side"), rhs=sp.Symbol("right_side")))
+    got.append(("repr: the verdict's fields, not the sides", [w in shown for w in ("holds=True", "evidence='proof'",
+                                                                                 "requested_digits=50", "left_side",
+                                                                                 "right_side")],
+                [True, True, True, False, False]))
     d = _result("false", residual=0.5, digits=0.3, error=1e-40, counterexample={"x": "2"}, note="n").to_dict()
     got.append(("to_dict", d, {"statement": "x + 1 == x + 1", "status": "false", "evidence": "sampled", "method": "m",
                                "residual": 0.5, "digits": 0.3, "error": 1e-40, "points": [],
@@ -200,6 +207,8 @@ def identity_arguments() -> Outcome:
                     ("verified", {"3.0"})))
     r = check_identity("(z + 1)**2", "z**2 + 2*z + 1")
     got.append(("string sides", (r.status, r.statement), ("proved", "(z + 1)**2 == z**2 + 2*z + 1")))
+    r = check_identity(x, x, digits=9, exact=False, points=1)
+    got.append(("digits 9, the fewest accepted", (r.status, r.requested_digits), ("verified", 9)))
     for zero in (0, 0.0):
         r = check_identity(sp.Eq(square, expanded), zero)
         got.append((f"an Eq with rhs {zero!r}", (r.status, r.statement), ("proved", "(x + 1)**2 == x**2 + 2*x + 1")))
@@ -245,6 +254,14 @@ def identity_relations() -> Outcome:
                                                       x in repl), (True, True, None, sp.Matrix([[new, new]]), {new},
                                                                    True)))
     got.append(("no assumptions", apply_assumptions({}, x + 1, None), ({}, x + 1, None)))
+    # the key's own assumptions are combined with the new ones: a positive key of x's name, made an integer, turns
+    # the real x of the statement into a positive integer (sqrt(x^2) = x proved); the matrix stays a mutable one
+    key = sp.Symbol("x", positive=True)
+    repl, new, mat = apply_assumptions({key: {"integer": True}}, sp.sqrt(x ** 2), sp.Matrix([[x]]))
+    got.append(("a positive key made an integer", (new.is_positive, new.is_integer, set(repl), type(mat)),
+                (True, True, {key, x}, sp.MutableDenseMatrix)))
+    r = check_identity(sp.sqrt(x ** 2), x, assumptions={key: {"integer": True}})
+    got.append(("sqrt(x^2) = x under a positive key made an integer", r.status, "proved"))
     for what, assume, kind in (("inconsistent", {x: {"positive": True, "negative": True}}, "ValueError"),
                                ("against the symbol's own", {y: {"negative": True}}, "ValueError"),
                                ("a number as key", {3: {"positive": True}}, "TypeError")):
@@ -309,6 +326,8 @@ def domain_rules() -> Outcome:
 
     got.append(("named splits", [(s.name, s.values) for s in (sign(u - 2), sign(gap), sign("t", labels=("lo", "hi")))],
                 [("sign(u - 2)", ("u<2", "u>2")), ("gap", ("gap<0", "gap>0")), ("sign(t)", ("lo", "hi"))]))
+    got.append(("a split's repr", repr(sign(lambda t: t, name="s")), "Split(name='s', kind='sign', values=('s<0', "
+                                                                      "'s>0'))"))
     side = sign(lambda z: z, name="s").bind(["z"])
     got.append(("sign labels of -1, 2, 0, inf, nan", [side({"z": v}) for v in (mp.mpf(-1), mp.mpf(2), mp.mpf(0),
                                                                             mp.inf, mp.nan)],
@@ -429,6 +448,8 @@ def mutation_rules() -> Outcome:
     got.append(("a seeded subset of 4 of 11", (len(subsets[0]), positions == sorted(set(positions)),
                                                  subsets[0] == subsets[1], subsets[0] == subsets[2]),
                 (4, True, True, False)))
+    got.append(("the default seed is 0", [[m.expr for m in mutants(expr, limit=4, **kw)] for kw in ({}, {"seed": 1})],
+                [[m.expr for m in mutants(expr, limit=4, seed=s)] for s in (0, 1)]))
     got.append(("limits of 11 and 12", [[m.expr for m in mutants(expr, limit=k, seed=5)] for k in (11, 12)],
                 [full, full]))
     a = sp.Symbol("a")

@@ -147,7 +147,8 @@ class Split:
     Made by :func:`sign`, :func:`choice` and :func:`regime`.  ``classify`` (not for choices) maps a
     point to the split's value (``None``: on the boundary, in no cell).  A split is a coordinate of the
     cells: two splits are equal (and hash alike) when they make the same cells -- the same ``name``, ``kind``
-    and ``values`` -- whatever function or expression classifies the points.
+    and ``values`` -- whatever function or expression classifies the points; for the same reason its ``repr``
+    shows only those three.
     """
 
     name: str
