@@ -144,6 +144,7 @@ def domain_refusals() -> list[tuple[str, Any, str, str]]:
 def mutant_lists() -> list[tuple[Any, set[tuple[str, str, Any]]]]:
     """Expressions with every mutant the documented operators give: (operator, words, expression)."""
     f = sp.Function("f")
+    b, p1, p2 = sp.symbols("branch p1 p2")
     third = sp.Rational(3000003, 1000000)
     return [
         (3 * sp.sqrt(y) + sp.Abs(x) - 1, {
@@ -177,18 +178,21 @@ def mutant_lists() -> list[tuple[Any, set[tuple[str, str, Any]]]]:
             ("change_const", "change the constant 1 to 2", 2 * f(x + 2)),
             ("perturb", "perturb the coefficient 2 by a relative 1e-6", sp.Rational(1000001, 500000) * f(x + 1)),
             ("perturb", "perturb the coefficient 1 by a relative 1e-6", 2 * f(x + sp.Rational(1000001, 1000000)))}),
-        # a branch symbol and indexed symbols: b -> -b, and p1 <-> p2 inside one term
-        (sp.exp(sp.Symbol("branch") * x) + sp.Symbol("p1") * sp.Symbol("p2") ** 2, {
-            ("flip_sign", "flip the sign of p1*p2**2", sp.exp(sp.Symbol("branch") * x) - sp.Symbol("p1")
-             * sp.Symbol("p2") ** 2),
-            ("flip_sign", "flip the sign of exp(branch*x)", -sp.exp(sp.Symbol("branch") * x) + sp.Symbol("p1")
-             * sp.Symbol("p2") ** 2),
-            ("drop_term", "drop the term p1*p2**2", sp.exp(sp.Symbol("branch") * x)),
-            ("drop_term", "drop the term exp(branch*x)", sp.Symbol("p1") * sp.Symbol("p2") ** 2),
-            ("swap_index", "swap p1 and p2 in p1*p2**2", sp.exp(sp.Symbol("branch") * x) + sp.Symbol("p2")
-             * sp.Symbol("p1") ** 2),
-            ("convention", "swap the branch convention branch -> -branch", sp.exp(-sp.Symbol("branch") * x)
-             + sp.Symbol("p1") * sp.Symbol("p2") ** 2)}),
+        # a branch symbol and indexed symbols: branch -> -branch, and p1 <-> p2 inside the middle term of three
+        (sp.exp(b * x) + p1 * p2 ** 2 + 3, {
+            ("flip_sign", "flip the sign of 3", p1 * p2 ** 2 + sp.exp(b * x) - 3),
+            ("flip_sign", "flip the sign of p1*p2**2", -p1 * p2 ** 2 + sp.exp(b * x) + 3),
+            ("flip_sign", "flip the sign of exp(branch*x)", p1 * p2 ** 2 - sp.exp(b * x) + 3),
+            ("drop_term", "drop the term 3", p1 * p2 ** 2 + sp.exp(b * x)),
+            ("drop_term", "drop the term p1*p2**2", sp.exp(b * x) + 3),
+            ("drop_term", "drop the term exp(branch*x)", p1 * p2 ** 2 + 3),
+            ("swap_index", "swap p1 and p2 in p1*p2**2", p1 ** 2 * p2 + sp.exp(b * x) + 3),
+            ("change_const", "change the constant 3 to 4", p1 * p2 ** 2 + sp.exp(b * x) + 4),
+            ("perturb", "perturb the coefficient 3 by a relative 1e-6", p1 * p2 ** 2 + sp.exp(b * x) + third),
+            ("convention", "swap the branch convention branch -> -branch", p1 * p2 ** 2 + 3 + sp.exp(-b * x))}),
+        # no sum: only the square root is a convention (y**2 is not, and its 2 is structure)
+        (sp.exp(sp.sqrt(y)) * sp.sin(y ** 2), {
+            ("convention", "swap the sign convention sqrt(y) -> -sqrt(y)", sp.exp(-sp.sqrt(y)) * sp.sin(y ** 2))}),
     ]
 
 

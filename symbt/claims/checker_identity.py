@@ -24,7 +24,7 @@ by the code under test:
   ``2 dps / 3``, the labels of :func:`~symbt.proof.domain.sign` splits and their refusals, the sign of zero,
   infinity and each side, choices and regimes, :class:`~symbt.proof.Domain`'s refusals, cells, and a sample
   checked point by point against its cell, its ``where`` and the deep run's prefix; an unfilled cell's counts.
-* ``checker.mutation_rules`` -- :mod:`symbt.proof.mutation`: the indexed names, the complete mutant lists of four
+* ``checker.mutation_rules`` -- :mod:`symbt.proof.mutation`: the indexed names, the complete mutant lists of five
   expressions and a matrix (operator, words, expression), the exponent rule, plain values of every type, a
   seeded subset, and :func:`~symbt.proof.mutation.why_no_mutants` of every type.
 
@@ -345,6 +345,9 @@ def domain_rules() -> Outcome:
     worst = [one.evaluate(printed=f, per_cell=2).worst("printed")[0] for f in shapes]
     got.append(("residual of a pair, a list, a negative number, nan", [float(f"{w:.12g}") for w in worst],
                 [float(f"{1e-3 / (1 + 1e-3):.12g}"), 2.0, 1e-25, float("inf")]))
+    got.append(("the least dps, tol 0", (len(one.sample(dps=15, per_cell=2)),
+                                          one.evaluate(printed=lambda t: 0, tol=0, per_cell=1).verdict().holds),
+                (2, True)))
     got.append(("tol given, default", [one.evaluate(printed=lambda t: 1e-10, tol=tl, per_cell=1).verdict().holds
                                        for tl in (1e-9, 1e-11)], [True, False]))
 
@@ -411,7 +414,7 @@ def domain_rules() -> Outcome:
        where="symbt.proof.mutation: index_parts, the six operators on sums, functions, exponents, conventions and "
              "matrices, mutate_value of each type, the seeded subset, why_no_mutants of each type",
        statement="indexed names split into stem and index (p1, E_jp1, a_jm1, b_2, xj; x, j and _1 are not indexed); "
-                 "the mutants of four expressions and of a matrix are exactly the documented ones with their words; "
+                 "the mutants of five expressions and of a matrix are exactly the documented ones with their words; "
                  "plain values of each type give their documented mutants; a seeded subset is a reproducible ordered "
                  "subset of its size; why_no_mutants names the case of each type")
 def mutation_rules() -> Outcome:
@@ -470,6 +473,6 @@ def mutation_rules() -> Outcome:
     got.append(("why_no_mutants of each type", [why_no_mutants(v) for v, _ in why], [w for _, w in why]))
     bad = _bad("symbt.proof.mutation", got)
     return bad or _ok("index_parts, mutants, mutate_value, why_no_mutants against the documented operator rules",
-                      f"{len(got)} facts: {len(names)} names, the mutants of 4 expressions and a matrix, "
+                      f"{len(got)} facts: {len(names)} names, the mutants of 5 expressions and a matrix, "
                       f"{len(cases.value_mutants())} plain values, a seeded subset, {len(why)} cases without mutants",
                       "proof")
