@@ -81,7 +81,7 @@ def relations_cases() -> list[tuple[str, Any, Any]]:
 
 def hint_cases() -> list[tuple[str, Any, Any, str]]:
     """(what, lhs, rhs, the start of the hint): K(k) written with the modulus, on either side, and the reverse."""
-    k = sp.Symbol("k", positive=True)
+    k, z = sp.symbols("k z", positive=True)
     by_modulus = sp.pi / 2 * sp.hyper([sp.S.Half, sp.S.Half], [1], k ** 2)      # K of modulus k
     by_parameter = sp.pi / 2 * sp.hyper([sp.S.Half, sp.S.Half], [1], k)          # K of parameter k
     to_m = "hint: the sides agree if the modulus k is read as the parameter m = k**2"
@@ -89,18 +89,24 @@ def hint_cases() -> list[tuple[str, Any, Any, str]]:
     return [("elliptic lhs", sp.elliptic_k(k), by_modulus, to_m), ("elliptic rhs", by_modulus, sp.elliptic_k(k), to_m),
             ("parameter for modulus", sp.elliptic_k(k ** 2), by_parameter, to_k),
             ("matrices", sp.Matrix([[by_modulus, k]]), sp.Matrix([[sp.elliptic_k(k), k]]), to_m),
+            ("incomplete, two arguments", sp.elliptic_f(z, k), sp.elliptic_f(z, k ** 2), to_m),
+            # the screen alone decides: exactly, K(k^2) + 1e-40 is no K(k^2), at 20 digits it is
+            ("within the screen's tolerance", sp.elliptic_k(k), sp.elliptic_k(k ** 2) + sp.Integer(10) ** -40, to_m),
             ("no elliptic function", sp.Matrix([[k, 1]]), sp.Matrix([[k + 1, 1]]), ""),
             ("no swap agrees", sp.elliptic_k(k), sp.elliptic_e(k), "")]
 
 
 def domain_refusals() -> list[tuple[str, Any, str, str]]:
-    from ..proof import domain as module
+    from ..proof.domain import Domain as TypedDomain
+    from ..proof.domain import choice as typed_choice
+    from ..proof.domain import regime as typed_regime
+    from ..proof.domain import sign as typed_sign
 
     # typed Any: the arguments below are wrong on purpose
-    Domain: Any = module.Domain
-    choice: Any = module.choice
-    regime: Any = module.regime
-    sign: Any = module.sign
+    Domain: Any = TypedDomain
+    choice: Any = typed_choice
+    regime: Any = typed_regime
+    sign: Any = typed_sign
     dom = Domain({"t": (0, 1)})
     return [
         ("Domain of a list", lambda: Domain([("t", (0, 1))]), "TypeError", "non-empty mapping"),
