@@ -220,3 +220,82 @@ def test_mutation_rules_kill(monkeypatch, func, old, new):
         monkeypatch.setattr(mutation, "OPERATORS", mutation.OPERATORS._replace(**{name: new_op}))
         monkeypatch.setattr(mutation.mutants, "__defaults__", (mutation.OPERATORS,))
     assert status("checker.mutation_rules") == "failed"
+
+
+# ---------------------------------------------------------------- equivalent mutants (mutants-equivalent.toml)
+
+def _source_lines(func) -> list[str]:
+    import inspect
+    import textwrap
+
+    return [ln.strip() for ln in textwrap.dedent(inspect.getsource(func)).splitlines()]
+
+
+def test_sign_label_at_zero_is_equivalent():
+    # domain:189 `values[0] if v < 0` -> `if v <= 0`: they differ only at v == 0, and the line before returns None
+    # for v == 0 (and for every non-finite v) -- so the mutant's extra case is never reached
+    import mpmath as mp
+
+    lines = _source_lines(domain._sign_label)
+    guard = lines.index("if v == 0 or not mp.isfinite(v):")
+    assert lines[guard + 1] == "return None"
+    assert lines[guard + 2] == "return split.values[0] if v < 0 else split.values[1]"
+    mutant = planted(domain._sign_label, "split.values[0] if v < 0 else", "split.values[0] if v <= 0 else")
+    split = domain.sign(lambda z: z, name="s")
+    values = [0, -0.0, 0.0, 1e-300, -1e-300, 1, -1, mp.mpf("1e-100000"), -mp.mpf("1e-100000"), mp.inf, -mp.inf,
+              mp.nan, mp.mpc(0, 0), mp.mpc(-2, 0), mp.mpc(3, 0)]
+    for v in values:
+        assert mutant(v, split) == domain._sign_label(v, split), v
+
+
+def test_seeded_subset_of_every_mutant_is_equivalent():
+    # mutation:266 `len(out) > limit` -> `>= limit`: they differ only at limit == len(out), where the mutant draws
+    # rng.sample(out, len(out)) -- a permutation of all of out -- and sorts it back by out.index: the list itself
+    # (equal mutants are equal objects, so a tie in out.index leaves an equal list)
+    import sympy as sp
+
+    lines = _source_lines(mutation.mutants)
+    assert "if limit is not None and len(out) > limit:" in lines
+    assert "out = sorted(rng.sample(out, limit), key=out.index)" in lines
+    mutant = planted(mutation.mutants, "len(out) > limit:", "len(out) >= limit:")
+    x, y = sp.symbols("x y")
+    for expr in (x + 2 * y, 3 * sp.sqrt(y) + sp.Abs(x) - 1, sp.Matrix([[x + 1, 2 * x]]), (1, 2.0, "ab"), x * y):
+        full = mutation.mutants(expr)
+        for seed in range(5):
+            assert mutant(expr, limit=len(full), seed=seed) == full == mutation.mutants(expr, limit=len(full),
+                                                                                          seed=seed)
+
+
+def test_hint_joined_to_an_empty_note_is_equivalent():
+    # identity:426 `" " + note` -> `" " - note`: the mutated operand is evaluated only when note is non-empty, and
+    # check_identity joins a hint only to the note of a false verdict that is neither definite nor inconclusive.
+    # decide builds such a verdict without a note: every `Verdict(False, ...)` it returns is definite, inconclusive
+    # or has no note= (the default ""), and its other returns are true verdicts or entries of a matrix decided by
+    # decide itself.  So note is "" there and the mutant's operand is never evaluated.
+    import ast
+    import inspect
+    import textwrap
+
+    from symbt.proof import decider
+
+    tree = ast.parse(textwrap.dedent(inspect.getsource(decider.decide)))
+    returns = [n.value for n in ast.walk(tree) if isinstance(n, ast.Return)]
+    assert returns
+    for value in returns:
+        text = ast.unparse(value)
+        if isinstance(value, ast.Call) and ast.unparse(value.func) == "Verdict" and value.args and \
+                ast.unparse(value.args[0]) == "False":
+            kw = {k.arg: ast.unparse(k.value) for k in value.keywords}
+            assert kw.get("definite") == "True" or kw.get("inconclusive") == "True" or "note" not in kw, text
+        else:
+            assert (text.startswith("Verdict(True,") or text.startswith("Verdict.from_proof(")
+                    or text in ("max(bad, key=lambda d: d.residual or 0.0)",
+                                "max(undecided, key=lambda d: d.residual or 0.0)")), text
+    assert "bad = [d for d in parts if not d.holds and not d.inconclusive]" in _source_lines(decider.decide)
+    line = [ln for ln in _source_lines(identity.check_identity) if ln.startswith("note = (hint")]
+    assert line == ['note = (hint + (" " + note if note else "")) if hint else note']
+    original = eval(compile("lambda hint, note: " + line[0][len("note = "):], "identity", "eval"))
+    mutant = eval(compile("lambda hint, note: " + line[0][len("note = "):].replace('" " + note', '" " - note'),
+                          "identity", "eval"))
+    for hint in ("", "hint: the sides agree"):
+        assert original(hint, "") == mutant(hint, "")
