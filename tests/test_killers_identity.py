@@ -189,6 +189,8 @@ MUTATION = [
      "if not (isinstance(e, (sp.sign, sp.Abs))):"),
     ("_is_convention", "e.exp == sp.Rational(1, 2)", "e.exp != sp.Rational(1, 2)"),
     ("_sites", "[(path + (i,), a) for", "[(path - (i,), a) for"),                             # seed 21, :184
+    ("_sites", "stack[0:0] = [", "stack[1:0] = ["),
+    ("_index_pairs", "for b in syms[i + 1:]]", "for b in syms[i - 1:]]"),
     ("_replace_at", "args[path[0]] = _replace_at(", "args[path[1]] = _replace_at("),           # seed 21, :191
     ("_expr_mutants", "if mutated == expr or mutated in seen:",                                # seed 21, :207
      "if mutated != expr or mutated in seen:"),
@@ -299,3 +301,31 @@ def test_hint_joined_to_an_empty_note_is_equivalent():
                           "identity", "eval"))
     for hint in ("", "hint: the sides agree"):
         assert original(hint, "") == mutant(hint, "")
+
+
+def test_index_pairs_with_self_pairs_is_equivalent():
+    # mutation:91 `syms[i + 1:]` -> `syms[i + 0:]`: the mutant adds the pairs (a, a); their only user, _swap, maps a
+    # term t to t.xreplace({a: a}) == t for them and keeps a swap only `if u != t` -- so no mutant is added
+    import sympy as sp
+
+    assert [n for n in dir(mutation) if "_index_pairs" in _source_text(getattr(mutation, n))] == ["_index_pairs",
+                                                                                                  "_swap"]
+    assert "if u != t:" in _source_lines(mutation._swap)
+    mutant = planted(mutation._index_pairs, "for b in syms[i + 1:]]", "for b in syms[i + 0:]]")
+    p1, p2, p3, q1, x = sp.symbols("p1 p2 p3 q_1 x")
+    for expr in (p1 * p2 ** 2 * p3 ** 3 + 1, p1 - 2 * p2 + x, q1 * p1 + p3 - q1, x + 1, p1 * sp.exp(p2) - p3 * q1):
+        try:
+            mutation._index_pairs, original = mutant, mutation._index_pairs
+            got = mutation.mutants(expr)
+        finally:
+            mutation._index_pairs = original
+        assert got == mutation.mutants(expr), expr
+
+
+def _source_text(obj) -> str:
+    import inspect
+
+    try:
+        return inspect.getsource(obj) if callable(obj) and getattr(obj, "__module__", "") == mutation.__name__ else ""
+    except (OSError, TypeError):
+        return ""

@@ -216,3 +216,29 @@ def value_mutants() -> list[tuple[Any, list[tuple[str, str, Any]]]]:
             ("a0", [("change_const", "change the last character of a0... to 1", "a1")]),
             ((1, "x0"), [("convention", "entry 0: swap the branch +1 -> -1", (-1, "x0")),
                          ("change_const", "entry 1: change the last character of x0... to 1", (1, "x1"))])]
+
+
+def ordered_mutants() -> list[tuple[Any, list[tuple[str, str]]]]:
+    """Expressions with their mutants' (operator, words) in the documented order: operator by operator, and for
+    each its sites in preorder (a node, then the subtree of its first argument, then of its second ...)."""
+    p1, p2, p3 = sp.symbols("p1 p2 p3")
+    z = sp.Symbol("z")
+    nested = [("flip_sign", "flip the sign of sqrt(z + 1)"), ("flip_sign", "flip the sign of 2*Abs(z - 3)"),
+              ("flip_sign", "flip the sign of 1"), ("flip_sign", "flip the sign of z"),
+              ("flip_sign", "flip the sign of -3"),
+              ("drop_term", "drop the term sqrt(z + 1)"), ("drop_term", "drop the term 2*Abs(z - 3)"),
+              ("drop_term", "drop the term 1"), ("drop_term", "drop the term z"), ("drop_term", "drop the term -3"),
+              ("drop_term", "drop the term z"),
+              ("change_const", "change the constant 1 to 2"), ("change_const", "change the constant 2 to 3"),
+              ("change_const", "change the constant -3 to -2"),
+              ("perturb", "perturb the coefficient 1 by a relative 1e-6"),
+              ("perturb", "perturb the coefficient 2 by a relative 1e-6"),
+              ("perturb", "perturb the coefficient -3 by a relative 1e-6"),
+              ("convention", "drop the absolute value in Abs(z - 3)")]
+    three = [("flip_sign", "flip the sign of 1"), ("flip_sign", "flip the sign of p1*p2**2*p3**3"),
+             ("drop_term", "drop the term 1"), ("drop_term", "drop the term p1*p2**2*p3**3"),
+             ("swap_index", "swap p1 and p2 in p1*p2**2*p3**3"), ("swap_index", "swap p1 and p3 in p1*p2**2*p3**3"),
+             ("swap_index", "swap p2 and p3 in p1*p2**2*p3**3"),
+             ("change_const", "change the constant 1 to 2"),
+             ("perturb", "perturb the coefficient 1 by a relative 1e-6")]
+    return [(sp.sqrt(z + 1) + 2 * sp.Abs(z - 3), nested), (p1 * p2 ** 2 * p3 ** 3 + 1, three)]

@@ -447,6 +447,9 @@ def mutation_rules() -> Outcome:
     for expr, want in cases.mutant_lists():
         found = [(m.operator, m.description, m.expr) for m in mutants(expr)]
         got.append((f"mutants of {expr}", (len(found), set(found)), (len(want), want)))
+    for expr, order in cases.ordered_mutants():
+        got.append((f"the order of the mutants of {expr}", [(m.operator, m.description) for m in mutants(expr)],
+                    order))
     matrix = sp.Matrix([[x + 1, 0], [2 * x, y]])
     found = [(m.operator, m.description, m.expr.tolist()) for m in mutants(matrix)]
     got.append(("mutants of a matrix", found, [
