@@ -492,6 +492,12 @@ def mutation_rules() -> Outcome:
              (2, "no operator applies to 2: " + SIDES),
              ([1], "a list is not mutated: parts must be SymPy expressions or matrices, numbers, strings or tuples of "
                    "them")]
+    for width in (60, 61):     # an expression of 60 characters is shown whole, one of 61 cut to 57 and "..."
+        long_name = sp.Function("g" * (width - 10))(x) * sp.sin(x)
+        text = sp.sstr(long_name)
+        why.append((long_name, f"no operator applies to {text if width == 60 else text[:57] + '...'} (no sum, no "
+                                "numeric constant other than 0, no sign, Abs or sqrt): declare the expression with "
+                                "its terms, or " + SIDES))
     got.append(("why_no_mutants of each type", [why_no_mutants(v) for v, _ in why], [w for _, w in why]))
     bad = _bad("symbt.proof.mutation", got)
     return bad or _ok("index_parts, mutants, mutate_value, why_no_mutants against the documented operator rules",
