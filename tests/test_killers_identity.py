@@ -80,6 +80,10 @@ ARGUMENTS = [   # planted into a module function, seen through check_identity
      "if isinstance(rhs, (int, float)) and rhs == 0:"),
     ("check_identity", "exact: bool = True,", "exact: bool = False,"),                        # seed 21, :383
     ("check_identity", "points=list(d.points) if not d.exact else []", "points=list(d.points) if d.exact else []"),
+    ("check_identity", "if isinstance(lhs, sp.MatrixBase) and rhs == 0:",
+     "if isinstance(lhs, sp.MatrixBase) and rhs == 1:"),
+    ("check_identity", "elif isinstance(rhs, sp.MatrixBase) and lhs == 0:",
+     "elif not (isinstance(rhs, sp.MatrixBase) and lhs == 0):"),
 ]
 
 
@@ -134,6 +138,7 @@ DOMAIN = [   # (object in symbt.proof.domain, attribute or None, old, new)
     ("_caller", None, "if p.default is p.empty:", "if not (p.default is p.empty):"),
     ("relative_residual", None, "max(mp.mpf(1), abs(lhs), abs(rhs))", "max(mp.mpf(1), lhs, abs(rhs))"),
     ("_residual", None, "return r if not math.isnan(r) else math.inf", "return r if math.isnan(r) else math.inf"),
+    ("_residual", None, "r = float(abs(mp.mpmathify(value)))", "r = float(mp.mpmathify(value))"),
     ("default_tol", None, "-(2 * dps // 3)", "-(2 * dps // 2)"),
     ("_sign_label", None, "if v == 0 or not mp.isfinite(v):", "if v != 0 or not mp.isfinite(v):"),
     ("_sign_label", None, "split.values[0] if v < 0 else", "split.values[1] if v < 0 else"),
@@ -152,6 +157,8 @@ DOMAIN = [   # (object in symbt.proof.domain, attribute or None, old, new)
     ("Domain", "sample", "point.update({c: cell[c] for c in choices})",                           # seed 21, :363
      "point.update({c: cell[c + 1] for c in choices})"),
     ("Domain", "sample", "elsewhere += 1", "elsewhere += 0"),
+    ("Domain", "sample", 'names = [*self.variables, *(s.name for s in splits if s.kind == "choice")]',
+     'names = [*self.variables, *(s.name for s in splits if s.kind != "choice")]'),
     ("Domain", "sample", "while got < n and draws < n * self.draws_per_point:",
      "while got < n and draws <= n * self.draws_per_point:"),
     ("Domain", "evaluate", "if not tol >= 0:", "if not tol > 0:"),
@@ -166,6 +173,14 @@ def test_domain_rules_kill(monkeypatch, obj, attr, old, new):
     else:
         cls = getattr(domain, obj)
         monkeypatch.setattr(cls, attr, planted(getattr(cls, attr), old, new))
+    assert status("checker.domain_rules") == "failed"
+
+
+def test_domain_rules_kills_an_expression_compared(monkeypatch):
+    copy = mutated("symbt.proof.domain", "expr: Any = field(default=None, compare=False, repr=False)",
+                   "expr: Any = field(default=None, compare=True, repr=False)")
+    monkeypatch.setattr(domain, "Split", copy.Split)
+    monkeypatch.setattr(domain, "sign", copy.sign)
     assert status("checker.domain_rules") == "failed"
 
 
@@ -205,6 +220,8 @@ MUTATION = [
     ("mutants", "len(out) > limit:", "len(out) < limit:"),                                     # seed 21, :266
     ("why_no_mutants", 'return "it is a zero matrix: " + _SIDES', 'return "it is a zero matrix: " - _SIDES'),
     ("why_no_mutants", 'if value == 0 or value in ("", ()):', 'if value != 0 or value in ("", ()):'),
+    ("_short", "if len(text) <= limit else", "if len(text) < limit else"),
+    ("_short", "text[:limit - 3]", "text[:limit + 3]"),
 ]
 
 

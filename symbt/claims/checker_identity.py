@@ -214,6 +214,14 @@ def identity_arguments() -> Outcome:
         got.append((f"an Eq with rhs {zero!r}", (r.status, r.statement), ("proved", "(x + 1)**2 == x**2 + 2*x + 1")))
     r = check_identity(sp.Eq(square, expanded + 1))
     got.append(("a false Eq", r.status, "false"))
+    # a matrix side against the number 0 is compared with the zero matrix of its shape, on either side; against
+    # another number it is not (SymPy cannot subtract them: an error, never a verdict)
+    zero = sp.Matrix([[square - expanded, 0]])
+    got.append(("a matrix against 0", [check_identity(a, b, points=2).status for a, b in
+                                       ((zero, 0), (0, zero), (sp.Matrix([[x, 0]]), 0), (0, sp.Matrix([[0, x]])))],
+                ["proved", "proved", "false", "false"]))
+    got.append(("a matrix against 1", [_raises(lambda a=a, b=b: check_identity(a, b))[0] != "returned"
+                                       for a, b in ((zero, 1), (1, zero))], [True, True]))
     bad = _bad("check_identity's arguments", got)
     return bad or _ok("check_identity on refused and accepted arguments of known effect",
                       f"{len(got)} facts: {len(cases.calls_refused())} refused arguments, "
@@ -327,7 +335,9 @@ def domain_rules() -> Outcome:
     got.append(("named splits", [(s.name, s.values) for s in (sign(u - 2), sign(gap), sign("t", labels=("lo", "hi")))],
                 [("sign(u - 2)", ("u<2", "u>2")), ("gap", ("gap<0", "gap>0")), ("sign(t)", ("lo", "hi"))]))
     by_f, by_g = sign(lambda t: t, name="s"), sign(lambda t: 2 * t, name="s")
-    got.append(("splits by two functions making the same cells", (by_f == by_g, len({by_f, by_g})), (True, 1)))
+    by_e, by_h = (sign(e, name="s", labels=("s<0", "s>0")) for e in ("t - t0", "2*t0 - 2*t"))
+    got.append(("splits by two functions, by two expressions, making the same cells",
+                (by_f == by_g, len({by_f, by_g}), by_e == by_h, len({by_e, by_h})), (True, 1, True, 1)))
     cx = sign(lambda z: z, name="c").bind(["z"])
     got.append(("sign labels of -1 + 0j, 2 + 0j", (cx({"z": mp.mpc(-1, 0)}), cx({"z": mp.mpc(2, 0)})), ("c<0", "c>0")))
     got.append(("the sign of 1 + 1j", _raises(lambda: cx({"z": mp.mpc(1, 1)}))[0], "ValueError"))
@@ -346,12 +356,12 @@ def domain_rules() -> Outcome:
                 [1e-10, 1e-20, 1e-20, 1e-21, 1e-30]))
     one = Domain({"t": (1, 2)}, seed=3)
     shapes = [lambda t: (t, t * (1 + mp.mpf(10) ** -3)), lambda t: [t, -t], lambda t: -mp.mpf(10) ** -25,
-              lambda t: mp.nan, lambda t: -1]
+              lambda t: mp.nan, lambda t: -1, lambda t: mp.mpc(3, 4) * mp.mpf(10) ** -26]
     tables = [one.evaluate(printed=f, per_cell=2) for f in shapes]
-    got.append(("residual of a pair, a list, a negative number, nan, -1",
+    got.append(("residual of a pair, a list, a negative number, nan, -1, a complex number",
                 ([float(f"{tb.worst('printed')[0]:.12g}") for tb in tables], [tb.verdict().holds for tb in tables]),
-                ([float(f"{1e-3 / (1 + 1e-3):.12g}"), 2.0, 1e-25, float("inf"), 1.0], [False, False, True, False,
-                                                                                          False])))
+                ([float(f"{1e-3 / (1 + 1e-3):.12g}"), 2.0, 1e-25, float("inf"), 1.0, 5e-26],
+                 [False, False, True, False, False, True])))
     scope = Domain({"t": (1, 2), "n": integers(1, 2)}, seed=2).evaluate(
         sign("t - 3/2"), printed=lambda t, n: (mp.sqrt((t - mp.mpf(3) / 2) ** 2) * n, (t - mp.mpf(3) / 2) * n))
     shown = scope.worst("printed")[1] or {}
@@ -398,6 +408,9 @@ def domain_rules() -> Outcome:
     got.append(("every point in its cell and in the domain", [(_in_cell(p, c), abs(p["t"]) > 0.3 * p["n"],
                                                                sorted(p), type(p["n"])) for c, p in pts],
                 [(True, True, ["b", "n", "t", "t0"], int)] * len(pts)))
+    chosen = Domain({"t": (-1, 1)}, where=lambda t, b: b * t > 0, seed=1).sample(splits[1], per_cell=2)
+    got.append(("a where that takes the choice", [(c["b"], p["b"] * p["t"] > 0) for c, p in chosen],
+                [(1, True)] * 2 + [(-1, True)] * 2))
     again, other = dom.sample(*splits, per_cell=4), Domain(dict(dom.variables), where=dom.where, seed=12)
     got.append(("reproducible; another seed, other points", (again == pts, other.sample(*splits, per_cell=4) == pts),
                 (True, False)))
