@@ -9,6 +9,9 @@ import sympy as sp
 
 x = sp.Symbol("x", real=True)
 y = sp.Symbol("y", positive=True)
+SIDES = "declare both sides of the statement as parts (e.g. lhs and rhs) and let the check compare them"
+SEVEN = {f"a{k}": str(k) for k in range(1, 8)}
+SIX_SHOWN = "a1=1, a2=2, a3=3, a4=4, a5=5, a6=6, ..."
 
 
 def calls_refused() -> list[tuple[str, dict[str, Any], str, str]]:
@@ -242,3 +245,73 @@ def ordered_mutants() -> list[tuple[Any, list[tuple[str, str]]]]:
              ("change_const", "change the constant 1 to 2"),
              ("perturb", "perturb the coefficient 1 by a relative 1e-6")]
     return [(sp.sqrt(z + 1) + 2 * sp.Abs(z - 3), nested), (p1 * p2 ** 2 * p3 ** 3 + 1, three)]
+
+
+def summaries() -> list[tuple[str, dict[str, Any], str]]:
+    """(status, fields of an IdentityResult with method "m" and sides x + 1, its summary)."""
+    return [
+        ("proved", {"residual": 0.0}, "proved by m"),
+        ("verified", {"residual": 1e-60, "digits": 50.0, "points": [{"x": "1"}, {"x": "2"}]},
+         "verified numerically to 50 digits at 2 random points (worst relative residual 1.0e-60; m)"),
+        ("verified", {"residual": 1e-60, "digits": 51.0, "points": [{}]},
+         "verified numerically to 50 digits at 1 random points (worst relative residual 1.0e-60; m)"),
+        ("verified", {"residual": 4e-13, "digits": 12.4, "points": [{}], "requested_digits": 30},
+         "verified numerically to 12 of the 30 digits asked for at 1 random points (worst relative residual "
+         "4.0e-13; m)"),
+        ("verified", {"residual": 1e-31, "digits": None, "points": [{}], "requested_digits": 30},
+         "verified numerically to 30 digits at 1 random points (worst relative residual 1.0e-31; m)"),
+        ("inconclusive", {"residual": 3e-21, "error": 2e-20, "requested_digits": 30},
+         "inconclusive: cannot tell at 30 digits (relative residual 3e-21, evaluation error 2.0e-20; m)"),
+        ("inconclusive", {"residual": None, "error": None},
+         "inconclusive: cannot tell at 50 digits (relative residual undefined, evaluation error unknown; m)"),
+        ("false", {"residual": 0.5, "counterexample": SEVEN, "note": "hint: k is m"},
+         f"false: counterexample {SIX_SHOWN} (relative residual 0.5; m); hint: k is m"),
+        ("false", {"residual": 0.5, "counterexample": dict(list(SEVEN.items())[:6])},
+         "false: counterexample a1=1, a2=2, a3=3, a4=4, a5=5, a6=6 (relative residual 0.5; m)"),
+        ("false", {"residual": None, "counterexample": {"x": "2"}, "note": "other words"},
+         "false: counterexample x=2 (relative residual undefined; m)"),
+        ("false", {"residual": 2.0, "counterexample": None}, "false: counterexample - (relative residual 2; m)"),
+        ("false", {"residual": 2.0, "counterexample": {}}, "false: counterexample - (relative residual 2; m)"),
+    ]
+
+
+def displays() -> list[tuple[str, dict[str, Any], list[str], list[str]]]:
+    """(status, fields, what the HTML display must contain, what it must not)."""
+    return [
+        ("proved", {"residual": 0.0}, ["symbt-proved", "<th style='text-align:left;padding-right:1em'>method</th>"
+                                       "<td>m</td>", "#2e7d32"], ["residual", "note"]),
+        ("verified", {"residual": 1e-60, "digits": 48.0, "points": [{"x": "1"}, {"x": "2"}]},
+         ["1.00e-60 (48 digits agree, 50 requested)", "x=1<br>x=2"], ["counterexample", "note"]),
+        ("inconclusive", {"residual": 3e-21, "error": 2e-20, "requested_digits": 30},
+         ["3.00e-21 (evaluation error 2.0e-20: cannot tell at 30 digits)", "#6a1b9a"], ["counterexample"]),
+        ("inconclusive", {"residual": 3e-21, "error": None}, ["evaluation error unknown: cannot tell"], []),
+        ("false", {"residual": 0.5, "counterexample": SEVEN, "note": "a note"},
+         ["<td>0.5</td>", "a7=7", ">note</th><td>a note</td>", "#c62828"], ["..."]),
+        ("false", {"residual": None, "counterexample": {"x": "2"}}, ["<td>undefined</td>", "<td>x=2</td>"], ["note"]),
+    ]
+
+
+def why_cases() -> list[tuple[Any, str]]:
+    """(a part without mutants, the words why_no_mutants gives for it)."""
+    a = sp.Symbol("a")
+    why = [(sp.zeros(2, 2), "it is a zero matrix: " + SIDES),
+             (sp.Matrix([[a, 1]]), "a matrix of bare symbols and zeros: declare the entries' expressions (the matrix "
+                                   "the statement is about)"),
+             (sp.Matrix([[sp.sin(x) * sp.cos(x)]]), "no operator applies to any entry (no sum, no numeric constant, "
+                                                    "no sign, Abs or sqrt): declare the entries' expressions with "
+                                                    "their terms, or " + SIDES),
+             (sp.S(0), "it is 0: " + SIDES), (a, "it is the bare symbol a: declare the expression it stands for"),
+             (sp.sin(x) * sp.cos(x), "no operator applies to sin(x)*cos(x) (no sum, no numeric constant other than 0, "
+                                     "no sign, Abs or sqrt): declare the expression with its terms, or " + SIDES),
+             (False, "it is False: " + SIDES), (0.0, "it is 0.0: " + SIDES), ((), "it is (): " + SIDES),
+             ("", "it is '': " + SIDES), ("abc", "no operator applies to 'abc': " + SIDES),
+             (2, "no operator applies to 2: " + SIDES),
+             ([1], "a list is not mutated: parts must be SymPy expressions or matrices, numbers, strings or tuples of "
+                   "them")]
+    for width in (60, 61):     # an expression of 60 characters is shown whole, one of 61 cut to 57 and "..."
+        long_name = sp.Function("g" * (width - 10))(x) * sp.sin(x)
+        text = sp.sstr(long_name)
+        why.append((long_name, f"no operator applies to {text if width == 60 else text[:57] + '...'} (no sum, no "
+                                "numeric constant other than 0, no sign, Abs or sqrt): declare the expression with "
+                                "its terms, or " + SIDES))
+    return why
