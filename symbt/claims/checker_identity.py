@@ -128,8 +128,8 @@ def identity_result() -> Outcome:
                                "counterexample": {"x": "2"}, "note": "n"}))
     bad = _bad("IdentityResult", got)
     return bad or _ok("IdentityResult of each verdict against its documented words",
-                      f"{len(got)} facts: {len(rows)} summaries and strings, 2 statements, {len(html_rows)} HTML displays, 4 LaTeX "
-                      "relations, to_dict", "proof")
+                      f"{len(got)} facts: {len(rows)} summaries and strings, 2 statements, {len(html_rows)} HTML "
+                      "displays, 4 LaTeX relations, to_dict", "proof")
 
 
 # --------------------------------------------------------------------------- check_identity's arguments
