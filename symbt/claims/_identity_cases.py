@@ -1,6 +1,6 @@
 """The answers the claims of :mod:`symbt.claims.checker_identity` compare with: refused arguments and the
 exceptions they deserve, relation forms and the polynomials they mean, hints, the complete mutant lists of a few
-expressions -- each written down from the documented rules (docs/checker.md), not computed by the code checked."""
+expressions -- each written down from the functions' docstrings, not computed by the code checked."""
 from __future__ import annotations
 
 from typing import Any

@@ -4,8 +4,8 @@ r"""Whole functions of ``check_identity``, the domains and the statement mutatio
 The claims of seeds 3, 4 and 5 (``checker_sample3``, ``checker_sample45``) each observe the one case a survivor
 missed, so a fresh sample found the next case of the same function unobserved.  These claims take a function at a
 time and walk it through every documented case -- every verdict, every accepted form, every refused argument --
-against answers written down from the documentation (docs/checker.md, "The checker's small rules"), not computed
-by the code under test:
+against answers written down from the functions' docstrings, not computed by the code under test (docs/mutation.md,
+"Fresh samples of symbt/proof/identity.py, domain.py, mutation.py"):
 
 * ``checker.identity_result`` -- :class:`~symbt.proof.IdentityResult` of each of the four verdicts, built from
   known fields: ``status``, ``proved``, ``bool``, the statement (sides cut at 80 characters), ``summary`` (every
