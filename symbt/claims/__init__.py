@@ -57,6 +57,7 @@ CLAIM_MODULES = (
     "shipped_edges",
     "checker",
     "checker_mutation",
+    "checker_identity",
     "checker_sample3",
     "checker_sample45",
     "checker_seed6",

@@ -147,7 +147,8 @@ class Split:
     Made by :func:`sign`, :func:`choice` and :func:`regime`.  ``classify`` (not for choices) maps a
     point to the split's value (``None``: on the boundary, in no cell).  A split is a coordinate of the
     cells: two splits are equal (and hash alike) when they make the same cells -- the same ``name``, ``kind``
-    and ``values`` -- whatever function or expression classifies the points.
+    and ``values`` -- whatever function or expression classifies the points; for the same reason its ``repr``
+    shows only those three.
     """
 
     name: str
@@ -289,7 +290,8 @@ class Domain:
     ``range(a, b)`` (integers), or :func:`uniform`, :func:`log_uniform`, :func:`integers`,
     :func:`complex_box`.  ``where`` is a function of the variables (named parameters) that is
     true on the domain; points where it is false are drawn again, at most
-    ``draws_per_point * per_cell`` draws per cell.
+    ``draws_per_point * per_cell`` draws per cell.  It may also take the choices of the splits
+    (:func:`choice`) as parameters: a point carries its cell's choices.
 
     >>> dom = Domain({"x": (-1, 1), "n": range(1, 4)}, where=lambda x: abs(x) > 0.1, seed=7)
     >>> pts = dom.sample(sign("x"), per_cell=3)

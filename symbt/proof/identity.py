@@ -118,7 +118,8 @@ class IdentityResult(Verdict):
     when proved); ``error`` the estimated error of the evaluation at the decisive
     point; ``requested_digits`` the working precision asked for; ``points`` the
     sample points (symbol name -> value as a string); ``counterexample`` the worst
-    point when false.  ``bool(result)`` is true only for ``proved`` and ``verified``.
+    point when false.  ``bool(result)`` is true only for ``proved`` and ``verified``.  ``repr`` shows the
+    verdict's fields and ``requested_digits``, not the sides (``str`` shows the statement).
     """
 
     requested_digits: int = 50

@@ -250,6 +250,9 @@ def mutants(value: Any, operators: Operators = OPERATORS, *, limit: int | None =
             seed: int = 0) -> list[Mutant]:
     """Every single-site mutant of ``value`` (a SymPy expression or matrix, or a plain value).
 
+    In order: operator by operator (the order of :data:`OPERATORS`), and for each operator its sites in preorder
+    (a node, then the subtree of its first argument, then of its second ...); a matrix entry by entry.
+
     With ``limit``, a seeded random subset of that size (the same for the same seed).
     """
     if isinstance(value, sp.MatrixBase):
