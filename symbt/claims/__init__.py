@@ -49,6 +49,7 @@ CLAIM_MODULES = (
     "shipped_members",
     "shipped_sample3",
     "shipped_sample45",
+    "shipped_condition_file",
     "shipped_core",
     "shipped_field",
     "shipped_rules",
