@@ -248,8 +248,8 @@ def kappa_cells_rows(N: int) -> Outcome:
 def product_rows(N: int) -> tuple[tuple[tuple[float, ...], tuple[float, ...], str], ...]:
     """``(a, r, label)``: the distinct rows of ``paths.abs_products`` (site values ``a_j`` and ``r_j``).
 
-    >>> [label for _a, _r, label in product_rows(3)][2:]
-    ['past 2**500', 'past the double range', 'below 2**-500', 'largest entry negative', 'absolute part only']
+    >>> [label for _a, _r, label in product_rows(3)][3:]
+    ['past the double range', 'below 2**-500', 'largest entry negative', 'absolute part only', 'C the largest']
     """
     rng = np.random.default_rng(7 + N)
 
@@ -267,6 +267,9 @@ def product_rows(N: int) -> tuple[tuple[tuple[float, ...], tuple[float, ...], st
     rows.append((neg, np.ones(N), "largest entry negative"))
     if N == 3:
         rows.append((np.array([1e160, 0.0, -1e160]), np.ones(3), "absolute part only"))
+        # after the second site C = -0.94 is the largest entry, the others below 2**-1022: renormalised by a
+        # smaller one, C becomes -0.94 * 2**1023 and the third site's a_3 A - C leaves the double range
+        rows.append((np.array([-1.7e308, 2.0 ** -1023, -1.5e308]), np.array([1e-20, 1.0, 1.0]), "C the largest"))
     return tuple((tuple(float(x) for x in a), tuple(float(x) for x in r), lab) for a, r, lab in rows)
 
 
