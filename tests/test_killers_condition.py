@@ -165,8 +165,8 @@ FEW = ("        (main, e), (ents, ea) = (_product_on_floats(*few), _product_on_f
      "                es[i] = _merged(np.zeros(R, np.int64), b, np.asarray(e2)[sl + 1])"),   # :469
     ("    return (A, B, C, D, es[0]), (np.asarray(out[1][0] + out[1][3]), es[1])",
      "    return (A, B, C, D, es[0]), (np.asarray(out[1][0] - out[1][3]), es[1])"),   # :471
-], ids=["abs-site", "shapes", "extra-site", "nanmax", "a0", "B-sign", "C-site", "mx-abs-A", "mx-abs-C", "k-sign", "few-branch",
-        "few-abs", "concat-axis", "merge-slice", "trace-sign"])
+], ids=["abs-site", "shapes", "extra-site", "nanmax", "a0", "B-sign", "C-site", "mx-abs-A", "mx-abs-C", "k-sign",
+        "few-branch", "few-abs", "concat-axis", "merge-slice", "trace-sign"])
 def test_products_mutants_killed(monkeypatch, before, after):
     within = condition._product_on_floats if "range(1, N)" in before else None    # (three such loops)
     fails(monkeypatch, before, after, "paths.abs_products.n3", within=within)
@@ -176,3 +176,95 @@ def test_products_largest_entry_negative_n2(monkeypatch):
     # condition:415 at N = 2: the renormalisation by a smaller entry than the largest magnitude (a0 = -1e300) leaves
     # a1 a0 past the double range at the next site
     fails(monkeypatch, MX, MX.replace("abs(A)", "A"), "paths.abs_products.n2")
+
+
+# --------------------------------------------------------------------------- equivalent: condition:240, condition:318
+
+def grid_rows(N: int):
+    from symbt.claims.shipped_condition_file import kappa_grid
+
+    cases = sum(kappa_grid(N), ())
+    return (np.array([c[0] for c in cases]), np.array([c[1] for c in cases]), np.array([c[2] for c in cases]),
+            np.array([c[3] for c in cases]))
+
+
+def test_rows_rescaling_at_an_infinite_maximum_is_equivalent():
+    # mutants-equivalent.toml, condition:240: `(m < math.inf)` -> `(m <= math.inf)` in _rescaled (the numpy form's
+    # power-of-two rescaling).  The two differ only where m == inf (m is a maximum of absolute values, >= 0, or NaN,
+    # which fails `m > 0.0` either way).  There the mutant sets f = _exponent(inf) = 0, and np.ldexp(x, -0) is x for
+    # every double (infinities, NaN, signed zeros, subnormals), e + 0 is e: the identity.  Checked: the body's text,
+    # that arithmetic, and the mutant's sharp_trace_kappa_rows bit for bit on the grid rows (products past the
+    # double range included) of N = 2, 3, 5.
+    src = inspect.getsource(condition._rescaled)
+    assert src.count("f = np.where(hit, _exponent(m), 0)") == 1
+    assert src.count("return [np.ldexp(x, -f) for x in xs], e + f") == 1
+    assert condition._exponent(np.array([math.inf, -math.inf, math.nan, 0.0])).tolist() == [0, 0, 0, 0]
+    x = np.array([math.inf, -math.inf, 0.0, -0.0, 5e-324, -2.5e-310, 1.5, -1.7976931348623157e308])
+    y = np.ldexp(x, -np.zeros(len(x), np.int64))
+    assert np.array_equal(y, x) and np.array_equal(np.signbit(y), np.signbit(x))
+    assert np.isnan(np.ldexp(np.array([math.nan]), 0)).all()
+    line = "    hit = ((m > _FAR) | (m < _NEAR)) & (m > 0.0) & (m < math.inf)"
+    copy = mutated(MODULE, line, line.replace("(m < math.inf)", "(m <= math.inf)"))
+    with np.errstate(all="ignore"):
+        for N in (2, 3, 5):
+            P, R, L, O = grid_rows(N)
+            P = np.concatenate([P, P * 1e300])         # rows whose products overflow at every site
+            R, L, O = np.concatenate([R, R]), np.concatenate([L, L]), np.concatenate([O, O])
+            assert np.array_equal(copy.sharp_trace_kappa_rows(P, R, L, O),
+                                  condition.sharp_trace_kappa_rows(P, R, L, O), equal_nan=True)
+
+
+def test_zero_terms_shift_is_equivalent():
+    # mutants-equivalent.toml, condition:318: `np.where(term > 0.0, ...)` -> `term >= 0.0` in _sharp_over_rows.  A
+    # term is a sum of products of absolute values (|S|, |a_j|, |P|) and of r_j, fr = 2**k r_j >= 0, so it is +0.0,
+    # positive or NaN/inf (the rows' r are positive); the two differ only at term == 0, where the mutant shifts
+    # 0.0 by min(sh, 1100) instead of by 0, and np.ldexp(0.0, k) is 0.0 for every k; the overflow test `over` has
+    # its own `term > 0.0` (unchanged).  Checked: the text, that arithmetic over every shift the line can give,
+    # and the mutant bit for bit on the grid rows (a_j = 0 and t = +-2 rows included).
+    src = inspect.getsource(condition._sharp_over_rows)
+    assert src.count("np.where(term > 0.0, np.minimum(sh, 1100), 0)") == 1
+    assert src.count("over = ((term > 0.0) & (_exponent(term) + sh > 1024)).any(axis=1)") == 1
+    k = np.arange(-3000, 1101)
+    z = np.ldexp(np.zeros(len(k)), k)
+    assert np.all(z == 0.0) and not np.signbit(z).any()
+    line = "    parts = np.ldexp(term, np.where(term > 0.0, np.minimum(sh, 1100), 0))"
+    copy = mutated(MODULE, line, line.replace("term > 0.0", "term >= 0.0"))
+    with np.errstate(all="ignore"):
+        for N in (2, 3, 5):
+            P, R, L, O = grid_rows(N)
+            P = np.concatenate([P, np.zeros_like(P)])           # p = 0: a_j = lam exactly
+            R, L, O = np.concatenate([R, R]), np.concatenate([L, np.zeros_like(L)]), np.concatenate([O, O])
+            assert np.array_equal(copy.sharp_trace_kappa_rows(P, R, L, O),
+                                  condition.sharp_trace_kappa_rows(P, R, L, O), equal_nan=True)
+
+
+# --------------------------------------------------------------------------- cost only: the rows' route (condition:367)
+
+@pytest.mark.parametrize("before, after", [
+    (SHAPES, SHAPES.replace("not 0 < am.shape[1] <= FEW_ROWS", "not 0 > am.shape[1] <= FEW_ROWS")),
+    (SHAPES, SHAPES.replace("<= FEW_ROWS", "< FEW_ROWS")),
+], ids=["never-few", "few-edge"])
+def test_few_rows_on_python_floats(monkeypatch, before, after):
+    # condition:367's range of the few-rows form mutated: the general form (numpy, monodromy) gives the same bits, so
+    # only the route changes -- a cost (a numpy operation on a few elements costs ~20 Python float operations).
+    # abs_trace_rows' docstring: up to FEW_ROWS rows the product runs on Python floats.  The test: that route taken
+    # at 1 and at FEW_ROWS rows, not at FEW_ROWS + 1.
+    def routes(mod) -> list[bool]:
+        seen = []
+        real = mod._product_on_floats
+
+        def spy(*args):
+            seen.append(True)
+            return real(*args)
+        monkeypatch.setattr(mod, "_product_on_floats", spy)
+        out = []
+        for R in (1, condition.FEW_ROWS, condition.FEW_ROWS + 1):
+            seen.clear()
+            a = [np.linspace(1.0, 2.0, R), np.linspace(-3.0, 1.0, R)]
+            r = [np.full(R, 0.5), np.full(R, 2.0)]
+            mod.abs_trace_rows(a, r)
+            out.append(bool(seen))
+        return out
+
+    assert routes(condition) == [True, True, False]
+    assert routes(mutated(MODULE, before, after)) != [True, True, False]
