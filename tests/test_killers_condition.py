@@ -268,3 +268,32 @@ def test_few_rows_on_python_floats(monkeypatch, before, after):
 
     assert routes(condition) == [True, True, False]
     assert routes(mutated(MODULE, before, after)) != [True, True, False]
+
+
+# --------------------------------------------------------------------------- cost only: sharp_on_floats
+
+def test_sharp_on_floats_clones_exactly_the_hooks_that_call_the_sharp_tier():
+    # sharp_on_floats only changes which function a hook calls (the same source on Python floats: the same bits), so
+    # a mutant of it is a cost -- seen here, not by verify: every hook whose code names sharp_trace_kappa (and whose
+    # global is it) is a clone calling SHARP_ON_FLOATS, every other hook is returned as it is, and the clones give
+    # the originals' results bit for bit.
+    from symbt.numeric.float64.kernels import HOOKS
+
+    new = condition.sharp_on_floats(HOOKS)
+    assert new.keys() == HOOKS.keys()
+    calling = [k for k, v in HOOKS.items() if "sharp_trace_kappa" in getattr(v, "__code__", type("", (), {
+        "co_names": ()})).co_names]
+    assert calling, "no hook calls the sharp tier"
+    for k, v in HOOKS.items():
+        if k in calling:
+            assert new[k] is not v and new[k].__globals__["sharp_trace_kappa"] is condition.SHARP_ON_FLOATS, k
+            assert new[k].__code__.co_code == v.__code__.co_code, k
+        else:
+            assert new[k] is v, k
+    other = {"sharp": condition.sharp_trace_kappa_rows}             # a callable that does not call the sharp tier
+    assert condition.sharp_on_floats(other)["sharp"] is other["sharp"]
+    p, r = np.array([-20.0, 10.0, 1.0]), np.exp(np.diff([1.0, 0.0, 0.9, 1.0]))
+    for lam in (15.0, -5.0, 0.5):
+        a = condition.sharp_trace_kappa(p, r, lam, 0.0)
+        b = condition.SHARP_ON_FLOATS(condition._Sites(p.tolist()), condition._Sites(r.tolist()), lam, 0.0)
+        assert repr(a) == repr(b)
