@@ -297,3 +297,69 @@ def test_sharp_on_floats_clones_exactly_the_hooks_that_call_the_sharp_tier():
         a = condition.sharp_trace_kappa(p, r, lam, 0.0)
         b = condition.SHARP_ON_FLOATS(condition._Sites(p.tolist()), condition._Sites(r.tolist()), lam, 0.0)
         assert repr(a) == repr(b)
+
+
+def test_range_stats_signed(monkeypatch):
+    # _range_stats without abs: a batch whose every large entry is negative (a_1 = -1e300) looks in range, and its
+    # overflowing product is returned unrenormalised
+    fails(monkeypatch, "        m = max(m, abs(x))", "        m = max(m, x)", "paths.abs_products.n2")
+
+
+def test_side_by_side_and_sharp_rows_routes():
+    # the documented routes by row count (cost only: every route gives the same bits): monodromy_and_abs runs the
+    # two products side by side from FEW_ROWS + 1 to SIDE_BY_SIDE_ROWS rows (N >= 2) and as two calls beyond;
+    # sharp_trace_kappa_rows runs the scalar source on Python floats up to FEW_ROWS rows and numpy beyond
+    few, side = condition.FEW_ROWS, condition.SIDE_BY_SIDE_ROWS
+    calls: list[str] = []
+    real_mono, real_sharp = condition.monodromy, condition.SHARP_ON_FLOATS
+
+    def mono(*args):
+        calls.append("monodromy")
+        return real_mono(*args)
+
+    def sharp(*args):
+        calls.append("scalar")
+        return real_sharp(*args)
+
+    with pytest.MonkeyPatch.context() as mp_:
+        mp_.setattr(condition, "monodromy", mono)
+        mp_.setattr(condition, "SHARP_ON_FLOATS", sharp)
+        seen = {}
+        for R in (few + 1, side, side + 1):
+            calls.clear()
+            a = [np.linspace(1.0, 2.0, R), np.linspace(-3.0, 1.0, R)]
+            condition.monodromy_and_abs(a, [np.full(R, 0.5), np.full(R, 2.0)])
+            seen[("side by side", R)] = "monodromy" not in calls
+        for R in (1, few, few + 1):
+            calls.clear()
+            P, Rr = np.tile([-20.0, 10.0, 1.0], (R, 1)), np.tile([0.5, 2.0, 1.0], (R, 1))
+            condition.sharp_trace_kappa_rows(P, Rr, np.full(R, 15.0), np.zeros(R))
+            seen[("scalar", R)] = calls.count("scalar") == R
+    assert seen == {("side by side", few + 1): True, ("side by side", side): True,
+                    ("side by side", side + 1): False, ("scalar", 1): True, ("scalar", few): True,
+                    ("scalar", few + 1): False}
+
+
+def test_both_in_range_is_out_of_range_of_both_halves():
+    # _both_in_range's docstring: whether FloatContext.out_of_range is False for both halves of the side-by-side
+    # entries (a cost-saving form: a mutant that answers False more often changes only the route); against
+    # out_of_range itself on halves in range, one half past 2**500 (either), both, a NaN entry and an infinity
+    from symbt.numeric.core.context import FLOAT
+
+    R = 5
+    base = [np.linspace(-3.0, 3.0, 2 * R) + k for k in range(4)]
+    cases = {"in range": base}
+    for h in (0, 1):
+        X = [x.copy() for x in base]
+        X[2][h * R + 1] = -2.0 ** 501
+        cases[f"half {h} past 2**500"] = X
+        Y = [x.copy() for x in base]
+        Y[3][h * R] = math.nan
+        cases[f"half {h} NaN"] = Y
+        Z = [x.copy() for x in base]
+        Z[0][h * R + 2] = math.inf
+        cases[f"half {h} inf"] = Z
+    for name, X in cases.items():
+        want = not any(np.any(FLOAT.out_of_range(*[x[s] for x in X])) for s in (slice(0, R), slice(R, None)))
+        assert condition._both_in_range(X, R) == want, name
+    assert condition._both_in_range(base, R) is True

@@ -17,17 +17,21 @@ a route that shares no code with it.
   own rounding, ``16 u N k_ref`` the first-order error of the computed trace (``|delta t| <= 3 N u T_s``)
   carried through ``(|t| + 2) / |t**2 - 4|``, whose log-derivative is at most ``3 / ||t| - 2|``.  And the
   documented ``inf``: at ``t = +-2`` exactly (``p = 0``, ``r = 1``, ``lam = +-2``: ``t = 2 T_N(+-1)``) and where
-  some ``a_j = 0`` exactly (``lam = -p_j``, at the first and at the last site).
+  some ``a_j = 0`` exactly (``lam = -p_j``, at the first and at the last site); ``inf`` or NaN ("not trusted"),
+  never an exception, where the products leave the double range (``p_j = +-1.5 * 2**780``).
 * ``paths.kappa_cells_rows.n{2,3,5}`` -- :func:`~symbt.numeric.core.condition.sharp_trace_kappa_rows` on the same
   states stacked, in both of its forms (the first ``FEW_ROWS`` rows: the scalar source on Python floats; all rows:
   numpy operations over the rows), every row against the same reference and bound (and ``inf`` where documented);
   and bit for bit the scalar call (its docstring; a consistency check, the reference above is the independent one).
 * ``paths.abs_products.n{2,3}`` -- :func:`~symbt.numeric.core.condition.abs_trace_rows` and
-  :func:`~symbt.numeric.core.condition.monodromy_and_abs` in each of their regimes (1, 7 and 16 rows: Python floats;
+  :func:`~symbt.numeric.core.condition.monodromy_and_abs` in each of their regimes (1, 7 and 16 rows: Python floats --
+  one batch whose every large entry is negative;
   17, 20 and 40 rows: the two products side by side, with no row, some rows and every row renormalised; 2049 rows
-  at N = 2: the separate calls), rows at moderate scale, past ``2**500``, past the double range (the unscaled
-  product overflows) and below ``2**-500``, and at N = 3 a row whose product of absolute values is past ``2**500``
-  while the monodromy itself is ``[[0, 1], [-1, 0]]`` (only the second product renormalised).  Against the exact
+  at N = 2: the separate calls; sites of different shapes), rows at moderate scale, past ``2**500``, past the double
+  range (the unscaled product overflows), below ``2**-500``, with the largest entry negative (``a_1 = -1e300``),
+  and at N = 3 a row whose product of absolute values is past ``2**500`` while the monodromy itself is
+  ``[[0, 1], [-1, 0]]`` (only the second product renormalised) and one whose largest entry after the second site is
+  a negative ``C`` with the others ``2**-1023`` below it.  Against the exact
   rational products of the double inputs: ``2**e (A, B; C, D)`` within ``3 N u |m_N| ... |m_1|`` entrywise plus
   ``2**-500`` of its largest entry (underflow in the scaled arithmetic, whose largest entry is at least
   ``2**-500``), the trace of the absolute product within a relative ``3 N u`` plus the same; and
@@ -324,7 +328,8 @@ def abs_products(N: int) -> Outcome:
 
     rows = product_rows(N)
     far = [k for k, (_a, _r, lab) in enumerate(rows) if lab in ("past 2**500", "past the double range")]
-    batches = [[0], [k % len(rows) for k in range(7)], [k % len(rows) for k in range(16)],
+    neg = [k for k, (_a, _r, lab) in enumerate(rows) if lab == "largest entry negative"]
+    batches = [[0], neg, [k % len(rows) for k in range(7)], [k % len(rows) for k in range(16)],
                [0, 1] * 8 + [1], [far[k % 2] for k in range(20)], [k % len(rows) for k in range(40)]]
     if N == 2:
         batches.append([k % len(rows) for k in range(2049)])
