@@ -363,3 +363,45 @@ def test_both_in_range_is_out_of_range_of_both_halves():
         want = not any(np.any(FLOAT.out_of_range(*[x[s] for x in X])) for s in (slice(0, R), slice(R, None)))
         assert condition._both_in_range(X, R) == want, name
     assert condition._both_in_range(base, R) is True
+
+
+# --------------------------------------------------------------------------- equivalent: the rescaling guards
+
+SCAL_F = "        if (m > _FAR or m < _NEAR) and m > 0.0 and m < math.inf:      # exact power-of-two rescaling"
+SCAL_B = "        if (m > _FAR or m < _NEAR) and m > 0.0 and m < math.inf:"
+ROWS_H = "    hit = ((m > _FAR) | (m < _NEAR)) & (m > 0.0) & (m < math.inf)"
+
+
+@pytest.mark.parametrize("before, after", [
+    (SCAL_F, SCAL_F.replace("m > 0.0", "m >= 0.0")),            # condition:121:compare:96d63511
+    (SCAL_B, SCAL_B.replace("m > 0.0", "m >= 0.0")),            # condition:157:compare:3273f737
+    (SCAL_B, SCAL_B.replace("m < math.inf", "m <= math.inf")),  # condition:157:compare:6f5e35c7
+    (ROWS_H, ROWS_H.replace("(m > 0.0)", "(m >= 0.0)")),        # condition:240:compare:67125b35
+], ids=["forward-zero", "backward-zero", "backward-inf", "rows-zero"])
+def test_rescaling_guards_skip_only_the_identity(before, after):
+    # mutants-equivalent.toml: the guards `m > 0.0` and `m < math.inf` of the three power-of-two rescalings only keep
+    # the body from running at m == 0 (all four entries zero; m is a maximum of absolute values, so never negative,
+    # and NaN fails both forms) and at m == inf.  There the body rescales by the exponent of m, which is 0
+    # (math.frexp(0.0) = (0.0, 0), math.frexp(inf) = (inf, 0), _exponent likewise), and ldexp(x, -0) is x for every
+    # double, e + 0 is e: the identity.  Checked: the bodies' text, that arithmetic, and the mutants bit for bit on
+    # the grid rows of paths.kappa_cells (and the same rows scaled by 1e300, whose products overflow, and at
+    # p = lam = 0 with r = 0, whose products are exactly zero) through the scalar and both row forms.
+    src = inspect.getsource(condition)
+    assert src.count("            f = math.frexp(m)[1]\n") == 2 and src.count("f = np.where(hit, _exponent(m), 0)") == 1
+    assert math.frexp(0.0) == (0.0, 0) and math.frexp(math.inf) == (math.inf, 0)
+    assert condition._exponent(np.array([0.0, math.inf])).tolist() == [0, 0]
+    for x in (math.inf, -math.inf, 0.0, -0.0, 5e-324, 1.5, -1.7976931348623157e308):
+        assert repr(math.ldexp(x, -0)) == repr(x)
+    copy = mutated(MODULE, before, after)
+    with np.errstate(all="ignore"):
+        for N in (2, 3, 5):
+            P, R, L, O = grid_rows(N)
+            P = np.concatenate([P, P * 1e300, np.zeros_like(P)])
+            R = np.concatenate([R, R, np.zeros_like(R)])
+            L, O = np.concatenate([L, L, np.zeros_like(L)]), np.concatenate([O, O, np.zeros_like(O)])
+            assert np.array_equal(copy.sharp_trace_kappa_rows(P, R, L, O),
+                                  condition.sharp_trace_kappa_rows(P, R, L, O), equal_nan=True)
+            for k in range(0, len(L), 3):
+                a = condition.sharp_trace_kappa(P[k], R[k], float(L[k]), float(O[k]))
+                b = copy.sharp_trace_kappa(P[k], R[k], float(L[k]), float(O[k]))
+                assert repr(a) == repr(b)
