@@ -50,6 +50,7 @@ CLAIM_MODULES = (
     "shipped_sample3",
     "shipped_sample45",
     "shipped_seed6",
+    "shipped_condition_file",
     "shipped_core",
     "shipped_field",
     "shipped_rules",
