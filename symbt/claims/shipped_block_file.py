@@ -270,3 +270,153 @@ def hook_rules() -> Outcome:
     return Outcome("verified", "numeric: the fused kernel's hooks and double-double helpers vs their documented rules "
                    "(exact rationals)", evidence="sampled", n_scope="all", detail=detail,
                    printed="every hook's documented rule on every branch")
+
+
+# --------------------------------------------------------------------------- paths.block_slopes
+
+#: paths.block_slopes: (p, q, lam, lo) per member -- the paper's state on both sides of its gaps (traces of both
+#: signs: both transport directions in one block), far from the spectrum (the monodromy rescaled by 2**-400), with a
+#: low part, in a band (|tr| < 2), the free chain where only the sharp condition decides (cheap estimate ~1.9e7, sharp
+#: ~1.6e7 against KAPPA_MAX ~1.7e7) and where neither does; the last two last, so that a neighbour's index past the
+#: block cannot wrap round.  At lam = 1e100 the monodromy (~1e300) fits only rescaled; at lam = -1e200 it overflows
+#: (RANGE).  The low part 2**95 at lam = 1e45 (half its ulp) is far from its neighbour's: a member reading another's
+#: low part is seen
+SLOPE_MEMBERS = (((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), 15.0, 0.0), ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), 21.0, 0.0),
+                 ((20.0, -10.0, -1.0), (1.0, 0.0, 0.9), -25.0, 2.0 ** -50),
+                 ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), -5.0, -(2.0 ** -51)),
+                 ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), 1e45, 2.0 ** 95), ((0.5, -0.25, 0.0), (0.0, 0.5, -1.0), 9.0, 0.0),
+                 ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), 0.5, 0.0), ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), 2.0 + 8e-8, 0.0),
+                 ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), 1e100, 0.0), ((1.0, 0.0, -2.0), (0.0, 0.0, 0.0), -1e200, 0.0),
+                 ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), 2.0 + 8e-8, 0.0),
+                 ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), 2.0 + 1e-10, 0.0))
+
+
+def _slope_reference(p: tuple, r: list[float], lam: float, lo: float, s: int) -> dict:
+    """The definition at 50 digits from the member's doubles: the monodromy ``m_{N-1} ... m_0`` of
+    ``m_j = [[lam + lo + p_j, -1], [r_j, 0]]``, its trace, the trace of the product of the entrywise absolute values
+    ``T``, the cheap estimate ``T (|t| + 2) / |t**2 - 4| max_j (|lam| + |p_j|) / |lam + lo + p_j|`` and the slopes:
+    ``u_0 = (A - D + s sqrt(t**2 - 4)) / (2 B)``, ``u_{j+1} = -r_j / (a_j + u_j)`` (exact arithmetic has no
+    direction: the transport loses at most ``log10`` of the eigenvalue ratio, ``2 log10 |t|``, so the digits are
+    50 plus that)."""
+    with mp.workdps(20):
+        m = mp.eye(2)
+        for j in range(len(p)):
+            m = mp.matrix([[mp.mpf(lam) + p[j], -1], [r[j], 0]]) * m
+        extra = 2 * int(mp.log10(abs(m[0, 0] + m[1, 1]) + 10))
+    with mp.workdps(50 + extra):
+        a = [mp.mpf(lam) + mp.mpf(lo) + mp.mpf(x) for x in p]
+        M = mp.eye(2)
+        Mabs = mp.eye(2)
+        for j in range(len(p)):
+            M = mp.matrix([[a[j], -1], [r[j], 0]]) * M
+            Mabs = mp.matrix([[abs(a[j]), 1], [r[j], 0]]) * Mabs
+        t = M[0, 0] + M[1, 1]
+        T = Mabs[0, 0] + Mabs[1, 1]
+        # the documented rescaling: after each site j >= 1 the tracked matrix and its absolute product are multiplied
+        # by 2**-400 where Aa or Ba is past 2**400 (kernels._rescale), after the last where Ca or Da is
+        # (_rescale_last): the scale from the absolute product carried the same way, exactly
+        big, ab, sc, over = mp.mpf(2) ** 400, [abs(a[0]), mp.mpf(1), mp.mpf(r[0]), mp.mpf(0)], mp.mpf(1), False
+        for j in range(1, len(p)):
+            ab = [abs(a[j]) * ab[0] + ab[2], abs(a[j]) * ab[1] + ab[3], r[j] * ab[0], r[j] * ab[1]]
+            over = over or max(ab) > 2 ** 1023          # an intermediate past the doubles
+            if ab[0] > big or ab[1] > big:
+                ab, sc = [x / big for x in ab], sc / big
+        if ab[2] > big or ab[3] > big:
+            sc = sc / big
+        cancel = max((abs(mp.mpf(lam)) + abs(mp.mpf(x))) / abs(aj) for x, aj in zip(p, a))
+        cheap = T * (abs(t) + 2) / abs(t * t - 4) * cancel
+        u = None
+        if abs(t) > 2:
+            u = [(M[0, 0] - M[1, 1] + s * mp.sqrt(t * t - 4)) / (2 * M[0, 1])]
+            for j in range(len(p) - 1):
+                u.append(-r[j] / (a[j] + u[j]))
+        return {"t": t, "T": T, "cheap": cheap, "u": u, "sc": sc, "over": over}
+
+
+@claim("paths.block_slopes", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       where="symbt/numeric/float64/kernels_block.py: _slopes (traces, condition estimates, slopes, statuses)",
+       statement="the block kernel's slopes (N={N}) on a block of nine unlike members -- traces of both signs (both "
+                 "transport directions in one block), one rescaled by 2**-400, one in a band, one decided only by the "
+                 "sharp condition, one by neither, one already failed -- for s = +-1, and on the forward-only and "
+                 "backward-only sub-blocks: each member's trace, condition estimate, scale, status and every slope "
+                 "against the definition at 50 digits from the member's doubles, within 16 N eps of the trace's "
+                 "rounding scale, 4 N eps of the estimate, 32 N eps (1 + k_t) of each slope")
+def block_slopes(N: int) -> Outcome:
+    from ..numeric.core.condition import sharp_trace_kappa
+    from ..numeric.core.limits import ILLCOND, KAPPA_MAX, OK, RANGE, TRACE1, TRACE2
+    from ..numeric.float64.kernels_block import _slopes
+
+    eps = EPS
+    bad: list[str] = []
+    members = [(np.array(p[:N]), [math.exp(q[(j + 1) % N] - q[j]) for j in range(N)], lam, lo)
+               for p, q, lam, lo in SLOPE_MEMBERS]
+    refs = {s: [_slope_reference(tuple(p), r, lam, lo, s) for p, r, lam, lo in members] for s in (1, -1)}
+    with np.errstate(all="ignore"):
+        sharp = [sharp_trace_kappa(p, np.array(r), lam, lo) for p, r, lam, lo in members]
+    preset = 6                              # a member already failed (TRACE2): its status stays
+    ran = 0
+    for s in (1, -1):
+        fwd = [k for k in range(len(members)) if (refs[s][k]["t"] < 0) == (s > 0)]
+        back = [k for k in range(len(members)) if k not in fwd]
+        # the whole block; forward-only and backward-only; every forward member and one backward (B - 1 forward),
+        # one forward member and every backward one (1 forward)
+        for block in (list(range(len(members))), fwd, back, fwd + back[:1], fwd[:1] + back):
+            B = len(block)
+            P = np.array([members[k][0] for k in block]).T.copy()
+            R = np.array([members[k][1] for k in block]).T.copy()
+            lam = np.array([members[k][2] for k in block])
+            lo = np.array([members[k][3] for k in block])
+            u, tmp, Ab = np.full((N, B), np.nan), np.empty((N, B)), np.empty((4, B))
+            A, Bm, C, D, u1, tt, kt, Kn, Kd, sc = (np.empty(B) for _ in range(10))
+            fw = np.empty(B, np.int64)
+            status = np.array([TRACE2 if k == preset else OK for k in block], np.int64)
+            with np.errstate(all="ignore"):
+                _slopes(P, R, lam, lo, s, u, tmp, A, Bm, C, D, u1, fw, status, TRACE1, Ab, tt, kt, Kn, Kd, sc)
+            ran += 1
+            for i, k in enumerate(block):
+                ref = refs[s][k]
+                tag = f"s = {s}, member {k} (block of {B})"
+                scale = sc[i]
+                if ref["over"]:                         # the scaled monodromy overflows: a range problem
+                    if int(status[i]) != RANGE:
+                        bad.append(f"{tag}: status {int(status[i])} where the monodromy overflows, RANGE wanted")
+                    continue
+                if mp.mpf(scale) != ref["sc"]:
+                    bad.append(f"{tag}: scale {scale!r}, the rescaling rule gives {mp.nstr(ref['sc'], 6)}")
+                    continue
+                tr = mp.mpf(tt[i]) / mp.mpf(scale)
+                if not abs(tr - ref["t"]) <= 16 * N * eps * ref["T"]:
+                    bad.append(f"{tag}: trace {mp.nstr(tr, 17)}, definition {mp.nstr(ref['t'], 17)}")
+                cheap = ref["cheap"]
+                inband = abs(ref["t"]) <= 2
+                if inband:
+                    want_status, want_kt = TRACE1, float(cheap)
+                elif cheap <= KAPPA_MAX * (1 - 1e-6):
+                    want_status, want_kt = OK, float(cheap)
+                elif min(float(cheap), sharp[k]) <= KAPPA_MAX * (1 - 1e-6):
+                    want_status, want_kt = OK, min(float(cheap), sharp[k])
+                else:
+                    want_status, want_kt = ILLCOND, min(float(cheap), sharp[k])
+                if k == preset:
+                    want_status = TRACE2
+                if int(status[i]) != want_status:
+                    bad.append(f"{tag}: status {int(status[i])}, the definition gives {want_status}")
+                if not abs(kt[i] - want_kt) <= 4 * N * eps * want_kt * (1 + (want_kt if not inband else 0)):
+                    bad.append(f"{tag}: condition estimate {kt[i]!r}, definition {want_kt!r}")
+                if want_status == OK or (k == preset and not inband and ref["u"] is not None
+                                         and cheap <= KAPPA_MAX * (1 - 1e-6)):
+                    tol = 32 * N * eps * (1 + want_kt)
+                    errs = [abs(mp.mpf(u[j, i]) - ref["u"][j]) / abs(ref["u"][j]) if math.isfinite(u[j, i])
+                            else mp.inf for j in range(N)]
+                    if not max(errs) <= tol:
+                        bad.append(f"{tag}: slopes {u[:, i].tolist()}, definition "
+                                   f"{[mp.nstr(x, 12) for x in ref['u']]} (relative {mp.nstr(max(errs), 3)})")
+    detail = (f"{len(members)} members, {ran} calls (s = +-1; the whole block, the forward-only and the "
+              f"backward-only sub-blocks); traces {', '.join(mp.nstr(r['t'], 4) for r in refs[1])}.")
+    if bad:
+        return failed("numeric: the block kernel's _slopes vs the definition at 50 digits",
+                      detail="; ".join(bad[:6]) + (f" (and {len(bad) - 6} more)" if len(bad) > 6 else "") + ". "
+                      + detail)
+    return Outcome("verified", "numeric: the block kernel's _slopes vs the definition at 50 digits (member by "
+                   "member)", evidence="sampled", detail=detail,
+                   printed="every member's trace, estimate, status and slopes as defined")
