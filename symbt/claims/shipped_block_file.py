@@ -420,3 +420,124 @@ def block_slopes(N: int) -> Outcome:
     return Outcome("verified", "numeric: the block kernel's _slopes vs the definition at 50 digits (member by "
                    "member)", evidence="sampled", detail=detail,
                    printed="every member's trace, estimate, status and slopes as defined")
+
+
+# --------------------------------------------------------------------------- paths.block_driver
+
+_PAPER_P, _PAPER_Q = (-20.0, 10.0, 1.0), (1.0, 0.0, 0.9)
+#: paths.block_driver: (p, q, lam0, mu) per member, in blocks of four: a block of unlike members (OK, lam1 in a
+#: band -- the free chain --, lam1 and lam2 in different gaps, lam2 in a band), a block of four OK members (the
+#: paper's state, its mirror, far left, a small mu; parameters whose sums are not exact, so that the low parts of
+#: the spectral parameters differ), and a last, partial block of failing ones (ill-conditioned, p_1 = -1e300,
+#: q_2 - q_1 = -701 with every other distance within 700); every mu differs from its neighbours'
+DRIVER_MEMBERS = ((_PAPER_P, _PAPER_Q, 10.0, 5.0), ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), -2.5, 3.0),
+                  (_PAPER_P, _PAPER_Q, -15.0, 5.0), ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), 2.5, 2.0),
+                  (_PAPER_P, _PAPER_Q, 10.1, 4.9), ((20.0, -10.0, -1.0), _PAPER_Q, -10.3, 4.7),
+                  (_PAPER_P, _PAPER_Q, -30.1, 2.2), (_PAPER_P, _PAPER_Q, 25.0, 0.3),
+                  (_PAPER_P, _PAPER_Q, 15.0, 5.0), ((-1e300, 0.0, 0.0), (0.0, 0.0, 0.0), 10.0, 5.5),
+                  (_PAPER_P, (0.0, -701.0, -1.0), 10.0, 5.2))
+
+
+def _literal_codes(p: tuple, q: tuple, lam0: float, mu: float) -> str:
+    """What the definitions say of a member before any step (30 digits): ``RANGE`` where a neighbour distance
+    passes ``MAX_DQ_FLOAT64`` or some ``|p_j|``, ``|q_j|`` is at least ``1e300`` (the kernels' range), ``TRACE1`` / ``TRACE2`` where ``|tr L(lam0 +- mu)| <= 2``, ``POSITIVITY`` where the
+    two traces differ in sign, else ``open`` (OK or ill-conditioned: the estimate decides)."""
+    from ..numeric.core.limits import MAX_DQ_FLOAT64
+    from ..reference.literal import literal_trace
+
+    N = len(p)
+    if any(abs(q[(j + 1) % N] - q[j]) > MAX_DQ_FLOAT64 or abs(p[j]) >= 1e300 or abs(q[j]) >= 1e300
+           for j in range(N)):
+        return "RANGE"
+    with mp.workdps(30):
+        t1 = literal_trace(mp.mpf(lam0) + mu, p, q)
+        t2 = literal_trace(mp.mpf(lam0) - mu, p, q)
+    if abs(t1) <= 2:
+        return "TRACE1"
+    if abs(t2) <= 2:
+        return "TRACE2"
+    return "POSITIVITY" if (t1 < 0) != (t2 < 0) else "open"
+
+
+@claim("paths.block_driver", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       where="symbt/numeric/float64/kernels_block.py: run_block, ensemble, _anchor (the block driver); kernels.py: "
+             "orbit, _anchor1 (the single-state driver)",
+       statement="the block ensemble (backend 'python', N={N}) of eleven members in blocks of four -- every "
+                 "status code, a block of unlike members, one of OK members, a partial one of failing members -- ANCHOR + 3 steps stored every 2nd step with the low "
+                 "parts, both branches: each member's status is the single-state orbit's and the definitions' "
+                 "(codes 1-4 from the literal traces and distances at 30 digits), every stored row of an OK "
+                 "member equals the single-state orbit's bit for bit (also with N columns of Q: no low parts), and "
+                 "the paper's member's first stored state (step 2) is the literal map's at 40 digits within "
+                 "16 N n eps S")
+def block_driver(N: int) -> Outcome:
+    from ..numeric.core import limits
+    from ..numeric.float64.jit import kernel
+    from ..numeric.float64.kernels import ANCHOR, orbit_rows, python_orbit, stored_steps
+    from ..reference.literal import reference_step
+
+    ensemble, _ = kernel("ensemble", "python")
+    n, every, block = ANCHOR + 3, 2, 4
+    M = len(DRIVER_MEMBERS)
+    P0 = np.array([m[0] for m in DRIVER_MEMBERS])
+    Q0 = np.array([m[1] for m in DRIVER_MEMBERS])
+    lam0 = np.array([m[2] for m in DRIVER_MEMBERS])
+    mu = np.array([m[3] for m in DRIVER_MEMBERS])
+    rows = orbit_rows(n, every)
+    codes = [_literal_codes(*m) for m in DRIVER_MEMBERS]
+    bad: list[str] = []
+    seen: list[str] = []
+    for b in (1, -1):
+        P, Q = np.full((rows, M, N), np.nan), np.full((rows, M, 2 * N), np.nan)
+        status = np.full(M, -1, np.int64)
+        with np.errstate(all="ignore"):
+            ensemble(P0, Q0, lam0 + mu, lam0 - mu, 2 * mu, b, n, every, ANCHOR, block, P, Q, status)
+        for k, (p, q, l0, m) in enumerate(DRIVER_MEMBERS):
+            Ps, Qs = np.full((rows, N), np.nan), np.full((rows, 2 * N), np.nan)
+            st = python_orbit(np.array(p), np.array(q), l0 + m, l0 - m, 2 * m, b, n, every, ANCHOR, Ps, Qs)
+            want = codes[k]
+            tag = f"branch {b}, member {k} ({want})"
+            if int(status[k]) != st or (want != "open" and st != getattr(limits, want)) or \
+                    (want == "open" and st not in (limits.OK, limits.ILLCOND)):
+                bad.append(f"{tag}: block status {int(status[k])}, single-state {st}")
+                continue
+            if not (np.array_equal(P[0, k], p) and np.array_equal(Q[0, k, :N], q) and not Q[0, k, N:].any()):
+                bad.append(f"{tag}: the first stored row is not the initial state")
+            if st != limits.OK:
+                continue
+            if not (np.array_equal(P[:, k], Ps) and np.array_equal(Q[:, k], Qs)):
+                diff = [s for i, s in enumerate(stored_steps(n, every))
+                        if not (np.array_equal(P[i, k], Ps[i]) and np.array_equal(Q[i, k], Qs[i]))]
+                bad.append(f"{tag}: the stored rows of steps {diff[:5]} differ from the single-state orbit's")
+                continue
+            if k != 0:          # the literal map for the first member (the single-state orbit: paths.kernels)
+                continue
+            with mp.workdps(40):
+                pr, qr = list(p), list(q)
+                for _ in range(every):
+                    pr, qr = reference_step(pr, qr, l0, m, branch=b)
+                S = max(1.0, *(abs(float(x)) for x in pr + qr))
+                err = max(abs(mp.mpf(P[1, k, j]) - pr[j]) for j in range(N))
+                err = max(err, *(abs(mp.mpf(Q[1, k, j]) + mp.mpf(Q[1, k, N + j]) - qr[j]) for j in range(N)))
+            if not err <= 16 * N * every * EPS * S:
+                bad.append(f"{tag}: step {every} off the literal map by {mp.nstr(err, 3)} (bound "
+                           f"{16 * N * every * EPS * S:.3g})")
+            seen.append(f"b = {b}, member {k}: {mp.nstr(err, 2)}")
+        if b == 1:
+            # outQ of N columns: no low parts, the positions the same bits (orbit's docstring), first block only
+            Pn, Qn, sn = np.full((rows, block, N), np.nan), np.full((rows, block, N), np.nan), np.zeros(block, np.int64)
+            with np.errstate(all="ignore"):
+                ensemble(P0[:block], Q0[:block], (lam0 + mu)[:block], (lam0 - mu)[:block], 2 * mu[:block], b, n,
+                         every, ANCHOR, block, Pn, Qn, sn)
+            ok = [k for k in range(block) if status[k] == limits.OK]
+            if not (np.array_equal(sn, status[:block]) and np.array_equal(Pn[:, ok], P[:, ok])
+                    and np.array_equal(Qn[:, ok], Q[:, ok, :N])):
+                bad.append("the ensemble without low parts differs from the one with them")
+        seen.append(f"branch {b} statuses {status.tolist()}")
+    detail = "; ".join(seen) + "."
+    if bad:
+        return failed("numeric: the block ensemble's driver vs the single-state orbit and the literal map",
+                      detail="; ".join(bad[:6]) + (f" (and {len(bad) - 6} more)" if len(bad) > 6 else "") + ". "
+                      + detail)
+    return Outcome("verified", "numeric: the block ensemble's driver vs the single-state orbit (bit for bit) and the "
+                   "literal map (40 digits)", evidence="sampled", detail=detail,
+                   printed="every member's status and stored rows as the single-state orbit's")
