@@ -29,14 +29,15 @@ def status(cid: str) -> str:
 
 
 def test_the_scene_has_the_claims_named_here():
-    assert NUMERIC_PATHS == ["paths.anchored.n3", "paths.ball_prec.n3", "paths.batch_range.n3",
+    assert NUMERIC_PATHS == ["paths.anchored.n3", "paths.ball_prec.n3", "paths.batch_range.n3", "paths.block_driver.n3",
+                             "paths.block_slopes.n3",
                              "paths.certified_nomap.n3", "paths.coefficients_mp.n3", "paths.complex.n3",
                              "paths.compress.n3", "paths.dask.n3", "paths.decimal_input.n3", "paths.device.n3",
                              "paths.dq_edge.n3", "paths.edges.n3", "paths.enclosure_poly.n3", "paths.enclosures.n3",
                              "paths.error_bounds.n3", "paths.escalation.n3", "paths.existence_iv.n3",
                              "paths.failing_rows.n3", "paths.failure_text.n3", "paths.field_far.n3",
                              "paths.frame.n13", "paths.frame_inverse.n13", "paths.growth.n3", "paths.growth_law",
-                             "paths.idle_rows.n3", "paths.ill_member.n3", "paths.inline_boolop",
+                             "paths.hook_rules", "paths.idle_rows.n3", "paths.ill_member.n3", "paths.inline_boolop",
                              "paths.inline_lines", "paths.inline_rule.n3", "paths.jacobian.n3",
                              "paths.jacobian_dual.n3", "paths.kappa_edge.n2", "paths.kappa_rows.n2",
                              "paths.kernels.n3", "paths.kernels.n5", "paths.lohner_box.n3", "paths.members.n3",
