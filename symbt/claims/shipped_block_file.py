@@ -66,7 +66,8 @@ def _rescale_last_rules(H: dict, bad: list[str]) -> int:
     n = 0
     for name, aux, shrink in (("Ca past", (1.0, 1.0, 2.0 * big, 1.0, 1.0, 1.0, 1.0), True),
                               ("Da past", (1.0, 1.0, 1.0, 3.0 * big, 2.0, 1.0, 0.25), True),
-                              ("Aa, Ba past, Ca = Da = 2**400", (4.0 * big, 4.0 * big, big, big, 1.0, 1.0, 1.0), False)):
+                              ("Aa, Ba past, Ca = Da = 2**400", (4.0 * big, 4.0 * big, big, big, 1.0, 1.0, 1.0),
+                               False)):
         A, B, C, D, aux2 = H["rescale_last"](*ABCD, aux)
         if shrink:
             ok = ((A, B, C, D) == tuple(x * S for x in ABCD) and aux2[:4] == tuple(x * S for x in aux[:4])
@@ -93,10 +94,10 @@ def _range_rules(H: dict, bad: list[str]) -> int:
     for a, b, want in ((low, low, False), (-low, 0.0, False), (0.0, -low, False), (above, 0.0, True),
                        (0.0, -above, True), (-above, low, True), (low, above, True)):
         cases.append(((a, b, 1.0, 1.0), want))
-    for e, want in cases:
-        got = bool(H["in_range"](*e, 0.0))
+    for entries, want in cases:
+        got = bool(H["in_range"](*entries, 0.0))
         if got != want:
-            bad.append(f"in_range{e} = {got}, the rule gives {want}")
+            bad.append(f"in_range{entries} = {got}, the rule gives {want}")
     for d, want in ((1e300, False), (math.nextafter(1e300, 0.0), True), (math.inf, False), (-1.0, True)):
         if bool(H["disc_fits"](d)) != want:
             bad.append(f"disc_fits({d!r}) = {not want}")
@@ -229,10 +230,10 @@ def _double_double_rules(bad: list[str]) -> int:
     for hi, lo, s in ((1.0, 2.0 ** -60, 2.0 ** -55), (1e3, -3e-14, -999.75), (-7.0, 1e-16, 3.5 + 2.0 ** -40),
                       (0.0, 0.0, 1.5), (2.0 ** 60, 1.0, -(2.0 ** 60))):
         h2, l2 = K._dd_add(hi, lo, s)
-        want = F(hi) + F(lo) + F(s)
-        got = F(h2) + F(l2)
+        exact = F(hi) + F(lo) + F(s)
+        pair = F(h2) + F(l2)
         scale = max(abs(F(hi)) + abs(F(lo)) + abs(F(s)), F(1, 2 ** 1000))
-        if abs(got - want) > scale * F(1, 2 ** 104) or (h2 != 0 and abs(F(l2)) > abs(F(h2)) * F(1, 2 ** 53)):
+        if abs(pair - exact) > scale * F(1, 2 ** 104) or (h2 != 0 and abs(F(l2)) > abs(F(h2)) * F(1, 2 ** 53)):
             bad.append(f"_dd_add({hi!r}, {lo!r}, {s!r}) = ({h2!r}, {l2!r})")
         n += 1
     for qh, ql, fh, fl in ((3.0, 1e-16, 1.5, 2e-17), (-250.0, -2e-14, 0.25, 0.0), (1e-3, 1e-20, 1.0, 1e-17)):
@@ -284,7 +285,8 @@ def hook_rules() -> Outcome:
 SLOPE_MEMBERS = (((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), 15.0, 0.0), ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), 21.0, 0.0),
                  ((20.0, -10.0, -1.0), (1.0, 0.0, 0.9), -25.0, 2.0 ** -50),
                  ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), -5.0, -(2.0 ** -51)),
-                 ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), 1e45, 2.0 ** 95), ((0.5, -0.25, 0.0), (0.0, 0.5, -1.0), 9.0, 0.0),
+                 ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), 1e45, 2.0 ** 95),
+                 ((0.5, -0.25, 0.0), (0.0, 0.5, -1.0), 9.0, 0.0),
                  ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), 0.5, 0.0), ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), 2.0 + 8e-8, 0.0),
                  ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), 1e100, 0.0), ((1.0, 0.0, -2.0), (0.0, 0.0, 0.0), -1e200, 0.0),
                  ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), 2.0 + 8e-8, 0.0),
@@ -440,8 +442,9 @@ DRIVER_MEMBERS = ((_PAPER_P, _PAPER_Q, 10.0, 5.0), ((0.0, 0.0, 0.0), (0.0, 0.0, 
 
 def _literal_codes(p: tuple, q: tuple, lam0: float, mu: float) -> str:
     """What the definitions say of a member before any step (30 digits): ``RANGE`` where a neighbour distance
-    passes ``MAX_DQ_FLOAT64`` or some ``|p_j|``, ``|q_j|`` is at least ``1e300`` (the kernels' range), ``TRACE1`` / ``TRACE2`` where ``|tr L(lam0 +- mu)| <= 2``, ``POSITIVITY`` where the
-    two traces differ in sign, else ``open`` (OK or ill-conditioned: the estimate decides)."""
+    passes ``MAX_DQ_FLOAT64`` or some ``|p_j|``, ``|q_j|`` is at least ``1e300`` (the kernels' range, their module
+    docstring), ``TRACE1`` / ``TRACE2`` where ``|tr L(lam0 +- mu)| <= 2``, ``POSITIVITY`` where the two traces
+    differ in sign, else ``open`` (OK or ill-conditioned: the estimate decides)."""
     from ..numeric.core.limits import MAX_DQ_FLOAT64
     from ..reference.literal import literal_trace
 
@@ -463,8 +466,9 @@ def _literal_codes(p: tuple, q: tuple, lam0: float, mu: float) -> str:
        where="symbt/numeric/float64/kernels_block.py: run_block, ensemble, _anchor (the block driver); kernels.py: "
              "orbit, _anchor1 (the single-state driver)",
        statement="the block ensemble (backend 'python', N={N}) of eleven members in blocks of four -- every "
-                 "status code, a block of unlike members, one of OK members, a partial one of failing members -- ANCHOR + 3 steps stored every 2nd step with the low "
-                 "parts, both branches: each member's status is the single-state orbit's and the definitions' "
+                 "status code, a block of unlike members, one of OK members, a partial one of failing members -- "
+                 "ANCHOR + 3 steps stored every 2nd step with the low parts, both branches: each member's status "
+                 "is the single-state orbit's and the definitions' "
                  "(codes 1-4 from the literal traces and distances at 30 digits), every stored row of an OK "
                  "member equals the single-state orbit's bit for bit (also with N columns of Q: no low parts), and "
                  "the paper's member's first stored state (step 2) is the literal map's at 40 digits within "
