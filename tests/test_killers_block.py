@@ -320,3 +320,17 @@ def test_flush_range_of_the_log_factor_is_equivalent():
         for u in (3.0, -0.5):
             w = u - 2.0 / x                                      # tm = 2, dn = u - w, x = tm / dn
             assert not kernels._trusted(1.0, u, w, u - w, x)
+
+
+@pytest.mark.parametrize("func,old,new", [
+    ("orbit", "wide = outQ.shape[1] > N", "wide = outQ.shape[1] < N"),                         # kernels:409
+    ("orbit", "if i % anchor == 0:", "if i % anchor != 0:"),                                   # kernels:418
+    ("_anchor1", "jn = j + 1 if j + 1 < N else 0", "jn = j + 1 if j + 1 < N else 1"),       # kernels:367
+])
+def test_block_driver_sees_a_single_state_driver_mutant(monkeypatch, func, old, new):
+    # the single-state driver (kernels.orbit, as python_orbit runs it) against the block: the statuses and rows differ
+    from symbt.numeric.core.compile import clone
+
+    monkeypatch.setattr(kernels, func, planted(getattr(kernels, func), old, new))
+    monkeypatch.setattr(kernels, "_orbit_on_rows", clone(kernels.orbit, np=kernels._Rows))
+    assert status("paths.block_driver.n3") == "failed"
