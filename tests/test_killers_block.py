@@ -326,6 +326,8 @@ def test_flush_range_of_the_log_factor_is_equivalent():
     ("orbit", "wide = outQ.shape[1] > N", "wide = outQ.shape[1] < N"),                         # kernels:409
     ("orbit", "if i % anchor == 0:", "if i % anchor != 0:"),                                   # kernels:418
     ("_anchor1", "jn = j + 1 if j + 1 < N else 0", "jn = j + 1 if j + 1 < N else 1"),       # kernels:367
+    ("orbit", "_dd_low(qh[j], ql[j], fh[j], fl[j], y)", "_dd_low(qh[j], ql[j - 1], fh[j], fl[j], y)"),   # kernels:430
+    ("orbit", "outQ[0, j] = q0[j]", "outQ[0, j] = q0[j - 1]"),                                # kernels:404
 ])
 def test_block_driver_sees_a_single_state_driver_mutant(monkeypatch, func, old, new):
     # the single-state driver (kernels.orbit, as python_orbit runs it) against the block: the statuses and rows differ
@@ -334,3 +336,11 @@ def test_block_driver_sees_a_single_state_driver_mutant(monkeypatch, func, old, 
     monkeypatch.setattr(kernels, func, planted(getattr(kernels, func), old, new))
     monkeypatch.setattr(kernels, "_orbit_on_rows", clone(kernels.orbit, np=kernels._Rows))
     assert status("paths.block_driver.n3") == "failed"
+
+
+def test_cheap_kernels_are_plain_python():
+    # seed 41's kernels:338 (`jit=True` in cheap_kernels, uncovered: no claim builds it): a cost and route change
+    # only -- numba's kernels are bit-identical -- but cheap_kernels' docstring promises plain Python (the boundary
+    # of the emitted code in tests and benchmarks, runnable without numba): killed by this test, not by verify
+    step = kernels.cheap_kernels()["step"]
+    assert inspect.isfunction(step) and step.__module__ != "numba"
