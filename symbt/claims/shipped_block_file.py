@@ -426,11 +426,11 @@ def _literal_codes(p: tuple, q: tuple, lam0: float, mu: float) -> str:
              "orbit, _anchor1 (the single-state driver)",
        statement="the block ensemble (backend 'python', N={N}) of eleven members in blocks of four -- every "
                  "status code, a block of unlike members, one of OK members, a partial one of failing members -- "
-                 "ANCHOR + 3 steps stored every 2nd step with the low parts, both branches: each member's status "
+                 "ANCHOR + 1 steps stored every 2nd step with the low parts, both branches: each member's status "
                  "is the single-state orbit's and the definitions' "
                  "(codes 1-4 from the literal traces and distances at 30 digits), every stored row of an OK "
                  "member equals the single-state orbit's bit for bit (also with N columns of Q: no low parts), and "
-                 "the paper's member's first stored state (step 2) is the literal map's at 40 digits within "
+                 "the paper's member's first stored state (branch 1) (step 2) is the literal map's at 40 digits within "
                  "16 N n eps S")
 def block_driver(N: int) -> Outcome:
     from ..numeric.core import limits
@@ -439,7 +439,7 @@ def block_driver(N: int) -> Outcome:
     from ..reference.literal import reference_step
 
     ensemble, _ = kernel("ensemble", "python")
-    n, every, block = ANCHOR + 3, 2, 4
+    n, every, block = ANCHOR + 1, 2, 4
     M = len(DRIVER_MEMBERS)
     P0, Q0, lam0, mu = (np.array([m[i] for m in DRIVER_MEMBERS]) for i in range(4))
     rows = orbit_rows(n, every)
@@ -468,7 +468,7 @@ def block_driver(N: int) -> Outcome:
                         if not (np.array_equal(P[i, k], Ps[i]) and np.array_equal(Q[i, k], Qs[i]))]
                 bad.append(f"{tag}: the stored rows of steps {diff[:5]} differ from the single-state orbit's")
                 continue
-            if k != 0:          # the literal map for the first member (the single-state orbit: paths.kernels)
+            if k != 0 or b != 1:    # the literal map for the first member (the single-state orbit: paths.kernels)
                 continue
             with mp.workdps(40):
                 pr, qr = list(p), list(q)
