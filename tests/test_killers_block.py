@@ -58,6 +58,7 @@ HOOK_MUTANTS = [  # (hook, function, old, new): the seed-41 sample's mutants of 
     ("advance", "_advance", "fl[j] = fl[j] + fl[j] * x", "fl[j - 1] = fl[j] + fl[j] * x"),  # kernels:278
     ("advance", "_advance", "fh[j] = s", "fh[j - 1] = s"),                    # kernels:279
     ("advance", "_advance", "fl[j] = fl[j] + fl[j] * x", "fl[j] = fl[j] * x"),
+    ("advance", "_advance", "fl[j] = fl[j] + fl[j] * x", "fl[j] = fl[j] + fl[j - 1] * x"),   # seed 42's :278
 ]
 
 
