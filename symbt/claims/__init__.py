@@ -56,6 +56,7 @@ CLAIM_MODULES = (
     "shipped_rules",
     "shipped_radius",
     "shipped_edges",
+    "shipped_block_file",
     "checker",
     "checker_mutation",
     "checker_identity",

@@ -36,10 +36,10 @@ equals :func:`~symbt.numeric.core.step.step_core`'s to an ulp.
 Status codes per state (first failure wins): ``0`` ok, ``1``/``2``
 ``|tr L(lam1/lam2)| <= 2``, ``3`` some ``Etilde_j <= 0`` or ``tr L(lam1)``,
 ``tr L(lam2)`` of opposite signs (``lam1``, ``lam2`` in different gaps), ``4``
-range problem (monodromy entries beyond ``1e290`` after the exact power-of-two rescaling, or both
-entries of its first row at most ``1e-290`` there -- an entry strictly above is needed --,
-``|q_{j+1} - q_j| > 700``, a non-finite intermediate such as a degenerate eigenvector), ``5`` ill-conditioned
-(the float64 decision or result is not trustworthy: condition estimate ``kappa``
+range problem (monodromy entries beyond ``1e290`` after the exact power-of-two rescaling, or both entries of its
+first row at most ``1e-290`` there -- an entry strictly above is needed --, ``|q_{j+1} - q_j| > 700``, some
+``|p_j|`` or ``|q_j|`` at least ``1e300``, a non-finite intermediate such as a degenerate eigenvector), ``5``
+ill-conditioned (the float64 decision or result is not trustworthy: condition estimate ``kappa``
 beyond :data:`KAPPA_MAX`, see :mod:`symbt.numeric.core.step`, "Existence and
 accuracy").  The drivers recompute every failing state with the general path,
 which decides the error (and recomputes an ill-conditioned state at higher
