@@ -58,6 +58,7 @@ CLAIM_MODULES = (
     "checker_mutation",
     "checker_sample3",
     "checker_sample45",
+    "checker_screen",
     "library",
     "library_reference",
     "library_samples",
