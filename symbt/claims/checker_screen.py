@@ -144,7 +144,11 @@ def _root_index(rel: sp.Expr, point: dict[str, str]) -> tuple[int, float]:
     with mp.workdps(40):
         # the coefficients are constants or one parameter each (RELATIONS): read them off the point
         coeffs = [_coefficient(c, point) for c in sp.Poly(rel, E).all_coeffs()]
-        roots = mp.polyroots(coeffs, maxsteps=200, extraprec=100)
+        # ranked by (real part, imaginary part): the closed forms list the roots in another order, and a pick that
+        # always took the same closed form would still reach one rank only (for a quadratic: the smaller root, or
+        # the one below the real axis)
+        roots = sorted(mp.polyroots(coeffs, maxsteps=200, extraprec=100),
+                       key=lambda r: (float(mp.re(r)), float(mp.im(r))))
         ev = mp.mpmathify(point[str(E)].replace(" ", "").strip("()"))
         dist = [abs(ev - r) / max(1, abs(r)) for r in roots]
     k = min(range(len(roots)), key=lambda i: dist[i])
@@ -289,6 +293,8 @@ def _inconclusive_in(k: int) -> tuple[sp.Expr, sp.Expr]:
 
 def _shown(note: str) -> tuple[int, bool]:
     """How many coordinates an inconclusive note shows, and whether it ends them with ', ...'."""
+    if ": at " not in note:
+        return -1, False
     where = note.split(": at ", 1)[1].split(" the sides", 1)[0].split(" the relative", 1)[0]
     return where.count("="), where.endswith(", ...")
 
@@ -309,12 +315,18 @@ def decide_rules() -> Outcome:
     x, b = sp.symbols("x b", real=True)
     pos = sp.Symbol("x", positive=True)
     # matrices against their entries decided one by one
-    entries = [(sp.sin(2 * x), 2 * sp.sin(x) * sp.cos(x)), ((x + 1) ** 2, x ** 2 + 2 * x + 1)]
-    one = [decide(lhs, rhs, points=3) for lhs, rhs in entries]
-    m = decide(sp.Matrix([[e[0] for e in entries]]), sp.Matrix([[e[1] for e in entries]]), points=3)
-    got.append(("[sin 2x, (x+1)^2]: sampled like its sampled entry",
-                (m.verdict, m.evidence, m.residual, m.digits, m.error, m.note),
-                ("verified", "sampled", max(d.residual or 0.0 for d in one), one[0].digits, one[0].error, one[0].note)))
+    # under b = 3: two sampled entries that hold with different residuals and notes (b x = 3 x: an exact remainder,
+    # residual 0; (1 + 1e-45) sin x = sin x: residual 1e-45, 45 digits) and a proved one
+    entries = [(b * x, 3 * x), ((1 + sp.Integer(10) ** -45) * sp.sin(x), sp.sin(x)), ((x + 1) ** 2, x ** 2 + 2 * x + 1)]
+    fixed = {b: 3}
+    one = [decide(lhs, rhs, points=3, fixed=fixed) for lhs, rhs in entries]
+    m = decide(sp.Matrix([[e[0] for e in entries]]), sp.Matrix([[e[1] for e in entries]]), points=3, fixed=fixed)
+    got.append(("[b x, (1 + 1e-45) sin x, (x+1)^2]: its entries", [(d.verdict, d.evidence, bool(d.note)) for d in one],
+                [("verified", "sampled", True), ("verified", "sampled", False), ("proved", "proof", False)]))
+    got.append(("[b x, (1 + 1e-45) sin x, (x+1)^2]: sampled, the largest residual and error, the fewest digits, the "
+                "first sampled entry's note", (m.verdict, m.evidence, m.residual, m.digits, m.error, m.note),
+                ("verified", "sampled", max(d.residual or 0.0 for d in one), min(d.digits or 50.0 for d in one[:2]),
+                 max(d.error or 0.0 for d in one[:2]), one[0].note)))
     m = decide(sp.Matrix([[(x + 1) ** 2, x]]), sp.Matrix([[x ** 2 + 2 * x + 1, x]]))
     got.append(("[(x+1)^2, x]: proved", (m.verdict, m.evidence), ("proved", "proof")))
     # two false entries: x = -x (residual 2 where |x| >= 1) and 3x = 2x (1/3): the worse one decides
@@ -436,10 +448,10 @@ def ranges_whole() -> Outcome:
                (integers, 1.0, 3), (integers, 3, 2), (complex_box, (1, 0), (0, 1)), (complex_box, (0, 1), (1, 1))]
     got.append(("malformed intervals", [_raises(f, *a) for f, *a in refused], ["ValueError"] * len(refused)))
     r = uniform(0, 1)
-    got.append(("as_range of each spelling", [as_range("v", r) is r, as_range("v", range(2, 5)),
-                                              as_range("v", (0, 1)), as_range("v", [0, 1]),
-                                              as_range("v", (-1j, 1 + 1j))],
-                [True, Range("integers", 2, 4), Range("uniform", 0.0, 1.0), Range("uniform", 0.0, 1.0),
+    spellings: list[Any] = [range(2, 5), range(5, 6), (0, 1), [0, 1], (-1j, 1 + 1j)]
+    got.append(("as_range of each spelling", [as_range("v", r) is r] + [as_range("v", o) for o in spellings],
+                [True, Range("integers", 2, 4), Range("integers", 5, 5), Range("uniform", 0.0, 1.0),
+                 Range("uniform", 0.0, 1.0),
                  Range("complex_box", complex(0, -1), complex(1, 1))]))
     others: list[Any] = [(1, 2, 3), 5, "ab", None]
     got.append(("as_range of other things", [_raises(as_range, "v", o) for o in others], ["TypeError"] * 4))
