@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections import OrderedDict
 
 import pytest
+import sympy as sp
 from planting import planted
 
 from symbt.claims import REGISTRY, load_all
@@ -31,8 +32,8 @@ def outcome(cid: str) -> Outcome:
 
 #: the mutants that raise where the claim runs them (the claim fails as "exception"); every other one must fail by
 #: the claim's own comparison
-CRASH = {"screen:350 abs(rv)", "screen:350 abs(lv)", "screen:354 no checks", "screen:278 abs(rv)",
-         "decider:107 shapes", "decider:117 undecided", "decider:79 nan", "decider:82 oo"}
+CRASH = {"screen:350 abs(rv)", "screen:350 abs(lv)", "screen:354 no checks", "screen:354 finite skipped", "screen:278 abs(rv)",
+         "decider:107 shapes", "decider:98 refusal", "decider:117 undecided", "decider:79 nan", "decider:82 oo"}
 
 
 def fails(cid: str, *, crash: bool = False) -> bool:
@@ -171,8 +172,10 @@ SCREEN = [   # (mutant, old, new) in screen.screen
     ("screen:365 counterexample", "pc.residual > SAFETY * pc.error", "pc.residual < SAFETY * pc.error"),
     ("screen:374 clear point", "if pc.residual <= clear and pc.error <= clear:",
      "if not (pc.residual <= clear and pc.error <= clear):"),
-    ("screen:354 no checks", "    if not checks:\n", "    if checks:\n"),
+    ("screen:354 no checks", "screen:354 finite skipped", "    if not checks:\n", "    if checks:\n"),
     ("screen:343 draw budget", "attempts < 6 * points + 10", "attempts < 6 * points + 11"),
+    ("screen:354 finite skipped", "            if not (_finite(lv) and _finite(rv)):",
+     "            if _finite(lv) and _finite(rv):"),
 ]
 
 
@@ -195,6 +198,14 @@ RECHECK = [   # (mutant, old, new) in screen._recheck
 def test_screen_arithmetic_kills_recheck(monkeypatch, where, old, new):
     monkeypatch.setattr(screen_module, "_recheck", planted(screen_module._recheck, old, new))
     assert fails("checker.screen_arithmetic", crash=where in CRASH)
+
+
+def test_fixed_int_kept_as_a_python_int(monkeypatch):
+    # screen:73: `if not isinstance(x, (mpf, mpc))`: a fixed int stays an int, and 1/b is a double
+    monkeypatch.setattr(screen_module, "_as_mp", planted(
+        screen_module._as_mp, "    if isinstance(x, (mpmath.mpf, mpmath.mpc)):",
+        "    if not isinstance(x, (mpmath.mpf, mpmath.mpc)):"))
+    assert fails("checker.screen_arithmetic")
 
 
 def test_high_precision_shifted(monkeypatch):
@@ -227,6 +238,9 @@ def test_screen_arithmetic_kills_quadrature_errors(monkeypatch, where, name, old
 
 DECIDE = [   # (mutant, old, new) in decider.decide
     ("decider:86 default exact", "exact: bool = True", "exact: bool = False"),
+    ("decider:98 nine digits", "digits < MIN_DIGITS:", "digits <= MIN_DIGITS:"),
+    ("decider:98 refusal", "    if isinstance(digits, int) and digits < MIN_DIGITS:",
+     "    if not (isinstance(digits, int) and digits < MIN_DIGITS):"),
     ("decider:107 shapes", "        if lm.shape != rm.shape:", "        if not (lm.shape != rm.shape):"),
     ("decider:113 empty", "            return Verdict.from_proof(\"exact: empty matrices\")",
      "            return Verdict(False, \"proof\", \"exact: empty matrices\")"),
@@ -326,3 +340,30 @@ MAKERS = [   # (mutant, function, old, new)
 def test_ranges_kill_makers(monkeypatch, where, name, old, new):
     monkeypatch.setattr(ranges, name, planted(getattr(ranges, name), old, new))
     assert fails("checker.ranges", crash=True)
+
+
+# --------------------------------------------------------------------------- a tie (killed by tests)
+
+def test_definite_falsity_at_exactly_the_tolerance_is_noted_tiny(monkeypatch):
+    # decider:149 `residual <= tol` -> `residual < tol`: differs only at a residual exactly the double 10^-(d-8),
+    # which no statement evaluates to; a screen stub returns that tie for a definite falsity (x + 1 = x)
+    from symbt.proof.screen import ScreenResult
+    from symbt.proof.verdict import Verdict
+
+    x = sp.Symbol("x", real=True)
+    tie = 10.0 ** -(30 - 8)
+
+    def stub(*args, **kwargs):
+        return ScreenResult("false", tie, 0.0, 22.0, {"x": "1"}, [{"x": "1"}])
+
+    monkeypatch.setattr(decider, "screen", stub)
+
+    def note(decide) -> str:
+        v: Verdict = decide(x + 1, x, digits=30)
+        assert (v.verdict, v.evidence, v.definite, v.residual) == ("false", "proof", True, tie)
+        return v.note
+
+    assert "numerically tiny" in note(decider.decide)
+    mutant = planted(decider.decide, "if sr.residual <= 10.0 ** (-(digits - 8)):",
+                     "if sr.residual < 10.0 ** (-(digits - 8)):")
+    assert "numerically tiny" not in note(mutant)

@@ -21,10 +21,13 @@ branches, against answers computed without the code under test:
   of their absolute errors summed and their relative errors summed times the side), recomputed from
   ``mpmath.quad``'s own estimates for a product and a quotient of two integrals; the second precision
   :math:`2d + 10` digits (a 65-digit cancellation at :math:`d = 30` is resolved by the re-evaluation, not by the
-  first); no re-evaluation of a clear point; no admissible point is a ``ValueError`` after :math:`6p + 10` draws.
+  first); no re-evaluation of a clear point; a point where a side is :math:`-\infty` (no exception) is skipped;
+  fixed values given as ``int``, ``mpf`` or ``float`` are exact mpmath numbers; no admissible point is a
+  ``ValueError`` after :math:`6p + 10` draws.
 * ``checker.decide_rules`` -- :func:`~symbt.proof.decide` on matrices (the verdict of the worst entry: a false one
   with the largest residual, else an inconclusive one, else proved or sampled with the largest residual and error
-  and the fewest digits; shapes must agree; empty matrices are proved), the words of its verdicts (the method names
+  and the fewest digits; shapes must agree; empty matrices are proved), fewer than 9 digits refused, the words of
+  its verdicts (the method names
   the exact layer and the re-evaluation; the two kinds of inconclusive note, naming at most four coordinates of the
   point; the notes of an exact remainder and of a numerically tiny falsity) and its undefined sides.
 * ``checker.ranges`` -- :mod:`symbt.proof.ranges`: each kind draws inside its interval and near both ends (half
@@ -229,9 +232,10 @@ def _inherited(value: Any, pairs: list[tuple[Any, Any]]) -> Any:
                  "quadrature error is max(sum of errors, |side| sum of relative errors) (a product and a quotient of "
                  "two integrals, from mpmath.quad's estimates, 1e-9); a 65-digit cancellation at 30 digits is "
                  "resolved by the re-evaluation at 2*30 + 10 digits (residual < 1e-12), not by the first; a clear "
-                 "point is not re-evaluated; gamma(-n) has no admissible point in 6p + 10 draws")
+                 "point is not re-evaluated; a point where a side is -inf is skipped; fixed values given as int, "
+                 "mpf or float are exact; gamma(-n) has no admissible point in 6p + 10 draws")
 def screen_arithmetic() -> Outcome:
-    from ..proof.screen import high_precision, screen
+    from ..proof.screen import high_precision, sample_symbol, screen
 
     got: Facts = []
     pos = sp.Symbol("x", positive=True)
@@ -270,6 +274,19 @@ def screen_arithmetic() -> Outcome:
     r = screen(sp.sin(2 * pos), 2 * sp.sin(pos) * sp.cos(pos), {}, 30, 3, 1, {})
     got.append(("sin 2x = 2 sin x cos x: a clear point is not re-evaluated", (r.status, r.rechecked), ("verified", 0)))
     n = sp.Symbol("n", integer=True, positive=True)
+    # a side that is -inf at n = 3 (log 0, no exception): the point is skipped, not decided; the documented sampler
+    # (seed 1) draws 3 first
+    r = screen(sp.log(n - 3), sp.log(n - 3), {}, 30, 4, 1, {})
+    rng = random.Random(1)
+    got.append(("log(n - 3) = log(n - 3): verified, n = 3 drawn and skipped",
+                (r.status, int(sample_symbol(n, rng)), sorted({p["n"] for p in r.points})),
+                ("verified", 3, ["2.0", "5.0", "8.0"])))
+    # fixed values as an int, an mpmath number, a float: each an exact mpmath number in the evaluation (1/b with an
+    # int b would be a double, off by 1e-17)
+    b = sp.Symbol("b", positive=True)
+    for value in (3, mp.mpf(3), 3.0):
+        r = screen(1 / b, sp.Rational(1, 3), {}, 30, 1, 1, {b: value})
+        got.append((f"1/b = 1/3 with b = {value!r}", (r.status, r.residual), ("verified", 0.0)))
     try:
         screen(sp.gamma(-n), sp.Integer(0), {}, 30, 2, 1, {})
         got.append(("gamma(-n): no admissible point", "accepted", "ValueError"))
@@ -278,7 +295,7 @@ def screen_arithmetic() -> Outcome:
     bad = _bad("the screen's arithmetic", got)
     return bad or _ok("screen's residuals recomputed at the counterexample; quadrature errors from mpmath.quad",
                       f"{len(got)} facts: 5 residual cells x 2 evaluations, 2 inherited errors, the second "
-                      "precision, a clear point, no admissible point", "sampled")
+                      "precision, a clear point, a skipped point, fixed values, no admissible point", "sampled")
 
 
 # --------------------------------------------------------------------------- decide: matrices, words, undefined sides
@@ -306,7 +323,8 @@ def _shown(note: str) -> tuple[int, bool]:
                  "must agree, empty matrices are proved; the method names the exact layer and the re-evaluation; an "
                  "inconclusive note says which kind and shows at most 4 coordinates, then ', ...'; an exact "
                  "remainder under fixed values is noted; a definite falsity is noted tiny only below the tolerance; "
-                 "nan, zoo, oo, -oo and a Sum to oo are undefined; the default decides a polynomial identity by proof")
+                 "nan, zoo, oo, -oo and a Sum to oo are undefined; the default decides a polynomial identity by proof; "
+                 "8 digits are refused, 9 decide")
 def decide_rules() -> Outcome:
     from ..proof.decider import decide
     from ..proof.screen import high_precision
@@ -390,6 +408,13 @@ def decide_rules() -> Outcome:
         got.append((f"{side} = 1", (v.verdict, v.evidence, v.definite), ("false", "proof", True)))
     v = decide((x + 1) ** 2, x ** 2 + 2 * x + 1)
     got.append(("(x+1)^2 = x^2 + 2x + 1 by default", (v.verdict, v.evidence), ("proved", "proof")))
+    # MIN_DIGITS = 9: at 8 digits the tolerance would be 1 (refused); at 9 it is 0.1, and sin x = cos x is false
+    for d, want in ((8, "ValueError"), (9, "false")):
+        try:
+            got.append((f"sin x = cos x at {d} digits", decide(sp.sin(x), sp.cos(x), digits=d, exact=False,
+                                                               points=2).verdict, want))
+        except ValueError:
+            got.append((f"sin x = cos x at {d} digits", "ValueError", want))
     bad = _bad("decide's rules", got)
     return bad or _ok("decide on statements of known truth; matrices against their entries decided one by one",
                       f"{len(got)} facts: 6 matrix cells, the method and the 5 notes, 6 undefined sides, the default",
