@@ -173,7 +173,7 @@ SCREEN = [   # (mutant, old, new) in screen.screen
     ("screen:365 counterexample", "pc.residual > SAFETY * pc.error", "pc.residual < SAFETY * pc.error"),
     ("screen:374 clear point", "if pc.residual <= clear and pc.error <= clear:",
      "if not (pc.residual <= clear and pc.error <= clear):"),
-    ("screen:354 no checks", "screen:354 finite skipped", "    if not checks:\n", "    if checks:\n"),
+    ("screen:354 no checks", "    if not checks:\n", "    if checks:\n"),
     ("screen:343 draw budget", "attempts < 6 * points + 10", "attempts < 6 * points + 11"),
     ("screen:354 finite skipped", "            if not (_finite(lv) and _finite(rv)):",
      "            if _finite(lv) and _finite(rv):"),
@@ -368,3 +368,15 @@ def test_definite_falsity_at_exactly_the_tolerance_is_noted_tiny(monkeypatch):
     mutant = planted(decider.decide, "if sr.residual <= 10.0 ** (-(digits - 8)):",
                      "if sr.residual < 10.0 ** (-(digits - 8)):")
     assert "numerically tiny" not in note(mutant)
+
+
+def test_inconclusive_note_at_exactly_the_tolerance_says_the_sides_agree():
+    # decider:165 `residual > tol` -> `residual >= tol`: differs only at a residual exactly the double 10^-(d-8);
+    # there the sides agree to the tolerance (Verdict.sampled's `residual <= tol`), so the note says so
+    from symbt.proof.screen import ScreenResult
+
+    tie = 10.0 ** -(30 - 8)
+    sr = ScreenResult("inconclusive", tie, 1e-3, 3.0, {"x": "1"}, [{"x": "1"}], rechecked=1, high_digits=70)
+    assert "the sides agree to 1.0e-22" in decider._cannot_tell(sr, 30)
+    mutant = planted(decider._cannot_tell, "    if sr.residual > tol:", "    if sr.residual >= tol:")
+    assert "is within 10x the evaluation's own error" in mutant(sr, 30)
