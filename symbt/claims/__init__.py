@@ -63,6 +63,7 @@ CLAIM_MODULES = (
     "checker_sample3",
     "checker_sample45",
     "checker_seed6",
+    "checker_screen",
     "library",
     "library_reference",
     "library_samples",

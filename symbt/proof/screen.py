@@ -31,6 +31,12 @@ def sample_symbol(sym: sp.Symbol, rng: random.Random) -> mpmath.mpf | mpmath.mpc
     ``negative``/``nonpositive``, ``real`` (either sign), ``imaginary`` (purely
     imaginary, either sign); anything else is sampled complex with imaginary
     parts up to about 4 in size (beyond pi, so branch cuts of ``log`` are hit).
+    A non-integer draw's magnitude (the real part's; the imaginary part's for ``imaginary``)
+    lies in ``[0.3, 3 + 1/7)``; a complex draw's imaginary part in ``[-4, 4 + 1/11)``.
+
+    >>> v = sample_symbol(sp.Symbol("a", negative=True), random.Random(0))
+    >>> -3 - 1 / 7 < v <= -0.3
+    True
     """
     a = sym.assumptions0
     if a.get("integer"):
