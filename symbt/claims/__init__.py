@@ -67,6 +67,8 @@ CLAIM_MODULES = (
     "library_ref45",
     "library_codegen",
     "library_emit3",
+    "library_derive_file",
+    "library_user_file",
     "emitted_user",
     "emitted_sources",
 )
