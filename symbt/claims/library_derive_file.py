@@ -17,9 +17,10 @@ exact fact:
   guards positive at these well-conditioned states.  Off the map: a state whose ``lambda_1`` lies in a band
   (``tr_1^2 - 4 < 0``), one whose traces have opposite signs (gap guard ``-1``), a ``lambda`` in a band for the
   ``c_k`` integrand, traces ``|tr| < 2`` for ``phi_tr``: the guard values there too.
-* ``library.sources_literal`` (N = 2, 3) -- :func:`symbt.codegen.derive.sources` (the paper's route), derived
-  afresh, every output and every guard of every function (:func:`symbt.codegen.verify.evaluate_source`, 40 digits)
-  against the same reference.
+* ``library.sources_literal`` (N = 2; ``library.sources_literal_n3`` under ``--deep``) --
+  :func:`symbt.codegen.derive.sources` (the paper's route), derived afresh, every output and every guard of every
+  function (:func:`symbt.codegen.verify.evaluate_source`, 40 digits) against the same reference.  And at 16 seeded
+  random states, on and off the map, the closed form's trace guards and gap sign (the traces it *decides* with).
 
 The reference, per function: ``H_k`` the coefficients of the literal ``tr L(lambda)`` (solved from ``N + 1``
 values); the fields ``dH_k/dp_j``, ``-dH_k/dq_j`` and the gradient of ``Phi`` by central differences of the
@@ -314,7 +315,10 @@ def check_specs(N: int) -> Outcome:
                     bad.append(f"{name} at {_brief(pt)}: off by {mp.nstr(r, 3)}")
             if name in ("phi_tr", "ck_integrand", "phi", "phi_grad", "dapp_xy", "bt_step"):
                 bad += _off_map(N, s, name)
-    detail = f"{n} points over {len(specs)} functions (outputs and guards), worst {mp.nstr(worst, 3)} (bound 1e-22)"
+            if name == "bt_step":
+                bad += _decisions(N, s)
+    detail = f"{n} points over {len(specs)} functions (outputs and guards), worst {mp.nstr(worst, 3)} (bound 1e-22); " \
+             f"trace and gap-sign guards at {RANDOM} random states"
     if bad:
         return failed("numeric: literal map and trace (symbt.reference.literal) at 40 digits",
                       residual=float(worst), detail="; ".join(bad[:6]) + "; " + detail)
@@ -369,6 +373,28 @@ def _off_map(N: int, s: Any, name: str) -> list[str]:
     return bad
 
 
+#: random states (p, q, lambda_0, mu, b) at which the closed form's stage-0 decisions are compared
+RANDOM = 16
+
+
+def _decisions(N: int, s: Any) -> list[str]:
+    """The trace guards ``tr_i^2 - 4`` and the gap sign ``sign(tr_1) sign(tr_2)`` of the closed form ``s`` at seeded
+    random states, on and off the map (the traces the closed form decides with, not only the ones it reads out)."""
+    rng = random.Random(733 * N)
+    bad = []
+    for _ in range(RANDOM):
+        pt = dict(p=[mp.mpf(rng.uniform(-2, 2)) for _ in range(N)],
+                  q=[mp.mpf(rng.uniform(-1.5, 1.5)) for _ in range(N)], lam0=mp.mpf(rng.uniform(-3, 3)),
+                  mu=mp.mpf(rng.uniform(0.1, 3)), branch=rng.choice((1, -1)))
+        env, memo = _env(s, pt), dict[Any, Any]()
+        with mp.workdps(DPS):
+            got = [value(s.guards[i].expr, env, memo) for i in (1, 3, 4)]
+            if _close(got, _off_reference("bt_step", pt)) > TOL:
+                bad.append(f"bt_step: trace and gap guards {[mp.nstr(v, 5) for v in got]} at {_brief(pt)}, reference "
+                           f"{[mp.nstr(v, 5) for v in _off_reference('bt_step', pt)]}")
+    return bad
+
+
 @claim("library.specs_literal", equation="imptransf", scene="library", N=2,
        where="symbt.codegen.derive.specs (the closed forms printed into toda2), derived afresh",
        statement="every output and guard of every function of specs(2) (evaluated at 40 digits) equals the literal "
@@ -387,12 +413,8 @@ def specs_literal_n3() -> Outcome:
     return check_specs(3)
 
 
-@claim("library.sources_literal", equation="imptransf", scene="library", sizes=(2, 3),
-       where="symbt.codegen.derive.sources (the paper's route the emitted modules are checked against), N = {N}",
-       statement="every output and guard of every function of sources({N}), derived afresh and evaluated at 40 "
-                 "digits, equals the literal trace and map of symbt.reference.literal (central differences for the "
-                 "fields and the gradient) within 1e-22 max(1, |x|), on the map and (trace guards) off it")
-def sources_literal(N: int) -> Outcome:
+def check_sources(N: int) -> Outcome:
+    """``library.sources_literal``: every function of ``derive.sources(N)`` (derived afresh) against the reference."""
     from ..codegen import derive
     from ..codegen.verify import evaluate_source
 
@@ -429,3 +451,20 @@ def sources_literal(N: int) -> Outcome:
                       residual=float(worst), detail="; ".join(bad[:6]) + "; " + detail)
     return Outcome("verified", "numeric: literal map and trace (symbt.reference.literal), central differences, at "
                    "40 digits", residual=float(worst), evidence="sampled", n_scope=[N], detail=detail)
+
+
+@claim("library.sources_literal", equation="imptransf", scene="library", N=2,
+       where="symbt.codegen.derive.sources (the paper's route the emitted modules are checked against), N = 2",
+       statement="every output and guard of every function of sources(2), derived afresh and evaluated at 40 digits, "
+                 "equals the literal trace and map of symbt.reference.literal (central differences for the fields and "
+                 "the gradient) within 1e-22 max(1, |x|), on the map and (trace guards) off it")
+def sources_literal() -> Outcome:
+    return check_sources(2)
+
+
+@claim("library.sources_literal_n3", equation="imptransf", scene="library", N=3, deep=True,
+       where="symbt.codegen.derive.sources (the paper's route), N = 3",
+       statement="every output and guard of every function of sources(3), derived afresh and evaluated at 40 digits, "
+                 "equals the literal trace and map within 1e-22 max(1, |x|), on the map and (trace guards) off it")
+def sources_literal_n3() -> Outcome:
+    return check_sources(3)
