@@ -16,11 +16,12 @@ exact fact:
   ``d_j = w_j - u_j`` (the scaled slopes of the literal map) and ``E~_j/E_j``; the conditioning
   guards positive at these well-conditioned states.  Off the map: a state whose ``lambda_1`` lies in a band
   (``tr_1^2 - 4 < 0``), one whose traces have opposite signs (gap guard ``-1``), a ``lambda`` in a band for the
-  ``c_k`` integrand, traces ``|tr| < 2`` for ``phi_tr``: the guard values there too.
+  ``c_k`` integrand, traces ``|tr| < 2`` for ``phi_tr``: the guard values there too; and at 10 seeded random states,
+  on and off the map, the closed form's trace guards and gap sign (the traces it *decides* with: a trace read from
+  the wrong entry changes only which transport runs, not a value at 40 digits, but it flips the gap sign).
 * ``library.sources_literal`` (N = 2; ``library.sources_literal_n3`` under ``--deep``) --
   :func:`symbt.codegen.derive.sources` (the paper's route), derived afresh, every output and every guard of every
-  function (:func:`symbt.codegen.verify.evaluate_source`, 40 digits) against the same reference.  And at 16 seeded
-  random states, on and off the map, the closed form's trace guards and gap sign (the traces it *decides* with).
+  function (:func:`symbt.codegen.verify.evaluate_source`, 40 digits) against the same reference.
 
 The reference, per function: ``H_k`` the coefficients of the literal ``tr L(lambda)`` (solved from ``N + 1``
 values); the fields ``dH_k/dp_j``, ``-dH_k/dq_j`` and the gradient of ``Phi`` by central differences of the
@@ -313,7 +314,7 @@ def check_specs(N: int) -> Outcome:
                     worst = r
                 if r > TOL:
                     bad.append(f"{name} at {_brief(pt)}: off by {mp.nstr(r, 3)}")
-            if name in ("phi_tr", "ck_integrand", "phi", "phi_grad", "dapp_xy", "bt_step"):
+            if name in ("phi_tr", "ck_integrand", "bt_step"):   # phi, phi_grad, dapp_xy: the same guard expressions
                 bad += _off_map(N, s, name)
             if name == "bt_step":
                 bad += _decisions(N, s)
@@ -374,7 +375,7 @@ def _off_map(N: int, s: Any, name: str) -> list[str]:
 
 
 #: random states (p, q, lambda_0, mu, b) at which the closed form's stage-0 decisions are compared
-RANDOM = 16
+RANDOM = 10
 
 
 def _decisions(N: int, s: Any) -> list[str]:
