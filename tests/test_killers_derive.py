@@ -200,6 +200,7 @@ def test_user_provenance_killed(monkeypatch, func, old, new):
 @pytest.mark.parametrize("func, old, new", [
     ("mpmath_function", "            val = items[0]", "            val = items[1]"),               # render_typed:204
     ("mpmath_function", "            n = o.shape[1]", "            n = o.shape[0]"),
+    ("mpmath_function", 'for r in range(o.shape[0])) + "]"', 'for r in range(o.shape[0])) - "]"'),  # 209 (seed 61)
     ("numpy_function", "items = outs[k:k + len(o.exprs)]", "items = outs[k:k + len(o.exprs) + 1]"),
 ])
 def test_typed_render_killed(monkeypatch, func, old, new):
