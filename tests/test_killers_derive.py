@@ -217,3 +217,20 @@ def test_loop_shape_killed(monkeypatch):
 
     monkeypatch.setattr(user, "emit", bad)
     assert verdict(U.user_typed_shapes) != "verified"
+
+
+# ------------------------------------------------------------------------------------- the N = 3 variants (--deep)
+
+def test_sources_literal_n3_sees_a_shift_equal_at_n2(monkeypatch, fresh):
+    # eta_{j-1} for eta_{j+1}: the same at N = 2 (mod 2), another map at N = 3
+    bad = planted(derive._build, "pt = [p[j] + eta[j] - eta[(j + 1) % N] for j in range(N)]",
+                  "pt = [p[j] + eta[j] - eta[(j - 1) % N] for j in range(N)]")
+    monkeypatch.setattr(derive, "_build", bad)
+    assert verdict(D.check_sources, 2) == "verified"
+    assert verdict(D.sources_literal_n3) != "verified"
+
+
+def test_specs_literal_n3_killed(monkeypatch, fresh):
+    bad = planted(derive._slope, "-2 * C / (dl - sign * g)", "-2 * C / (dl + sign * g)")
+    monkeypatch.setattr(derive, "_slope", bad)
+    assert verdict(D.specs_literal_n3) != "verified"
