@@ -234,3 +234,44 @@ def test_specs_literal_n3_killed(monkeypatch, fresh):
     bad = planted(derive._slope, "-2 * C / (dl - sign * g)", "-2 * C / (dl + sign * g)")
     monkeypatch.setattr(derive, "_slope", bad)
     assert verdict(D.specs_literal_n3) != "verified"
+
+
+# ------------------------------------------------------------------------------------------------ equivalence proofs
+
+def test_trace_ring_lam_attribute_is_equivalent(fresh):
+    # derive:178 (seed 62), self.lam = g[1] for g[0]: _TraceRing.lam is written once and read nowhere -- the ring's
+    # lambda is reached through the monomials' exponent 0 (parts[mon[0]]) and as_expr(m.lam, ...) -- so every other
+    # attribute of the ring is the same object graph, and the derivations built from it are identical
+    import ast
+    import inspect
+    from pathlib import Path
+
+    import symbt
+
+    reads = []
+    for f in Path(symbt.__file__).parent.rglob("*.py"):
+        tree = ast.parse(f.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Attribute) and node.attr == "lam" and isinstance(node.ctx, ast.Load) \
+                    and isinstance(node.value, ast.Name) and node.value.id in ("T", "ring", "self") \
+                    and f.name == "derive.py" and "RingValue" not in _enclosing_class(tree, node):
+                reads.append((f.name, node.lineno))
+    assert reads == [], reads     # no read of _TraceRing.lam (RingValue.lam is another class's field)
+    src = inspect.getsource(derive._TraceRing)
+    assert src.count("self.lam") == 1
+    bad_init = planted(derive._TraceRing.__init__, "self.lam, self.p, self.E = g[0],",
+                       "self.lam, self.p, self.E = g[1],")
+    for N in (2, 3):
+        good = derive._TraceRing(N)
+        bad = derive._TraceRing.__new__(derive._TraceRing)
+        bad_init(bad, N)
+        assert bad.lam != good.lam      # the mutant does change the attribute ...
+        assert (bad.tr, bad.H, bad.p, bad.E, bad.Einv, bad.cg) == (good.tr, good.H, good.p, good.E, good.Einv, good.cg)
+        assert [bad.d_q(bad.tr, i) for i in range(N)] == [good.d_q(good.tr, i) for i in range(N)]
+
+
+def _enclosing_class(tree, target) -> str:
+    import ast
+
+    return next((c.name for c in ast.walk(tree) if isinstance(c, ast.ClassDef)
+                 and any(n is target for n in ast.walk(c))), "")
