@@ -208,6 +208,15 @@ def test_typed_render_killed(monkeypatch, func, old, new):
     assert verdict(U.user_typed_shapes) != "verified"
 
 
+def test_compare_refusal_count_killed(monkeypatch):
+    # check:337 (seed 62): the first refusal of a condition counted twice in Comparison.conditions
+    from symbt.codegen.user import check
+
+    bad = planted(check.compare, "seen.conditions.get(got.condition, 0) + 1", "seen.conditions.get(got.condition, 1) + 1")
+    monkeypatch.setattr(check, "compare", bad)
+    assert verdict(U.user_typed_shapes) != "verified"
+
+
 def test_loop_shape_killed(monkeypatch):
     # declare:244 (seed 61): a one-output Loop's shape (1,) instead of its output's
     bad = planted(declare.emit, "(outputs[0].shape if len(outputs) == 1 else (len(outputs),))",

@@ -23,7 +23,9 @@ Each claim checks a documented property of :mod:`symbt.codegen.user` against a r
 * ``library.user_typed_shapes`` -- typed declarations with a scalar, a vector and a 2 x 3 matrix output, and two
   :class:`~symbt.codegen.user.Loop` declarations (one output, two outputs): ``Emission.shape`` as documented (one
   output: its shape, several: their number), and the rendered numpy and mpmath flavours equal the values written out
-  by hand at dyadic inputs, exactly; ``errors="mask"`` masks exactly the batch element whose guard fails.
+  by hand at dyadic inputs, exactly; ``errors="mask"`` masks exactly the batch element whose guard fails;
+  :func:`~symbt.codegen.user.check.compare` on it (``x`` drawn on both sides of the guard) holds, and its
+  :class:`~symbt.codegen.user.check.Comparison` counts every refusal once under its condition.
 
 >>> user_printer.run().status
 'verified'
@@ -222,12 +224,14 @@ def user_provenance() -> Outcome:
 def _typed_probe() -> tuple[list[Any], Any]:
     """A typed declaration with a scalar, a vector and a 2 x 3 matrix output (guard ``x > 0``), two loops."""
     from ..codegen.user import Guard, Loop, emit
+    from ..proof import Domain
 
     b = sp.Symbol("b", real=True)
     M = sp.Matrix([[x, y, x * y], [x + y, 2 * x, x - 3 * y]])
     mod = "symbt_user_shapes"
     shapes = emit("shapes", {"s": b * x * y, "v": [x, y, x + y], "M": M}, args=(("v", (x, y)), ("b", b, "sign")),
-                  module=mod, guards=[Guard("domain", "x", x)], register=False)
+                  module=mod, guards=[Guard("domain", "x", x)], domain=Domain({"v": (-1, 2)}, seed=5),
+                  register=False)
     one = emit("one", {"M": M}, args=(("v", (x, y)),), module=mod, register=False)
     np_body = "a = v[..., 0]\nc = v[..., 1]"
     loop1 = emit("loop1", Loop(outputs=(("r", (3,)),), numpy=np_body, items=(("r", "[a * c, a + c, c - a]"),),
@@ -250,7 +254,7 @@ def _hand(xv: float, yv: float, bv: int) -> tuple[float, list[float], list[list[
                  "numpy and mpmath, equal the values written out by hand at dyadic inputs; errors='mask' masks exactly "
                  "the element whose guard fails; a one-output declaration's shape is its output's shape")
 def user_typed_shapes() -> Outcome:
-    from ..codegen.user.check import load_python
+    from ..codegen.user.check import Comparison, compare, load_python
     from ..codegen.user.files import generate
 
     ems, M = _typed_probe()
@@ -288,8 +292,14 @@ def user_typed_shapes() -> Outcome:
         if mask != [[False, True]] * 3 or float(masked[0][0]) != s0 or masked[2][0].tolist() != m0:
             bad.append(f"errors='mask' at x = (1.5, -0.5): masks {mask} (want element 1 only), values "
                        f"{masked[0][0]}, {masked[2][0]}")
+        seen = Comparison()
+        table = compare(shapes, out / "symbt_user_shapes.py", "numpy", per_cell=3, seen=seen)
+        if not table.printed_holds_everywhere() or not seen.refused or not seen.compared \
+                or seen.conditions != {"domain": seen.refused}:
+            bad.append(f"compare: holds {table.printed_holds_everywhere()}, {seen.refused} refused, {seen.compared} "
+                       f"compared, refusals by condition {seen.conditions} (want every refusal counted once, 'domain')")
     if bad:
         return failed("exact: values written out by hand at dyadic inputs", detail="; ".join(bad[:6]))
     return Outcome("verified", "exact: values written out by hand at dyadic inputs", evidence="proof", n_scope="all",
                    detail=f"scalar, vector, 2 x 3 matrix and loop outputs, numpy and mpmath, at {len(pts)} points; "
-                          "the mask of a failing guard; shapes of one-output declarations")
+                          "the mask of a failing guard; shapes of one-output declarations; compare's refusals counted by condition")
