@@ -212,7 +212,8 @@ def test_compare_refusal_count_killed(monkeypatch):
     # check:337 (seed 62): the first refusal of a condition counted twice in Comparison.conditions
     from symbt.codegen.user import check
 
-    bad = planted(check.compare, "seen.conditions.get(got.condition, 0) + 1", "seen.conditions.get(got.condition, 1) + 1")
+    bad = planted(check.compare, "seen.conditions.get(got.condition, 0) + 1",
+                  "seen.conditions.get(got.condition, 1) + 1")
     monkeypatch.setattr(check, "compare", bad)
     assert verdict(U.user_typed_shapes) != "verified"
 
