@@ -142,6 +142,30 @@ def test_user_printer_killed(monkeypatch, old, new):
     assert verdict(U.user_printer) != "verified"
 
 
+def test_user_printer_float_flavour_killed(monkeypatch):
+    # printing:56 (seed 62): the numpy text of a float as mpmath.mpf(...) (and the mpmath one as a float literal): the
+    # same values where mpmath is at hand, but the numpy flavour is no longer float64 code
+    bad = planted(printing.UserPrinter._p, 'txt = repr(v) if fl != "mpmath" else',
+                  'txt = repr(v) if fl == "mpmath" else')
+    monkeypatch.setattr(printing.UserPrinter, "_p", bad)
+    assert verdict(U.user_printer) != "verified"
+
+
+def test_ring_value_memo_is_shared():
+    # derive:227 (seed 62), `memo = {} if not (memo is None) else memo`: a given memo is replaced by a fresh one (the
+    # powers are no longer shared between values at the same point: a cost change, every value the same), and
+    # without a memo the call fails; RingValue.evaluate's docstring: the memo shares the generators' powers
+    import mpmath as mp
+
+    T = derive._trace_ring(2)
+    v = derive.RingValue(T, T.tr)
+    env = {s: mp.mpf(k + 1) / 3 for k, s in enumerate([derive.lam, *T.m.p, *T.m.q])}
+    memo: dict = {}
+    a = v.evaluate(env, mp.exp, memo)
+    assert any(k[0] == "ringpowers" for k in memo) and memo[("ringpowers", "None")][1]
+    assert v.evaluate(env, mp.exp) == a == v.evaluate(env, mp.exp, memo)
+
+
 def test_user_printer_power_killed(monkeypatch):
     bad = planted(printing.UserPrinter._pow, "return f\"{one}/{self._wrap(sp.Pow(b, -x), _MUL)}\", _MUL",
                   "return f\"{one}/{self._wrap(sp.Pow(b, x), _MUL)}\", _MUL")

@@ -75,7 +75,8 @@ def _want(e: sp.Expr, pt: tuple[float, float, float]) -> Any:
 
 
 def _python_value(text: str, flavour: str, pt: tuple[float, float, float]) -> Any:
-    ns: dict[str, Any] = {"np": np, "mpmath": mp, "_Q": lambda p, q: mp.mpf(p) / q}
+    # each flavour's own namespace only: the numpy text is float64 code (no mpmath), the mpmath text needs no numpy
+    ns: dict[str, Any] = {"np": np} if flavour == "numpy" else {"mpmath": mp, "_Q": lambda p, q: mp.mpf(p) / q}
     vals = dict(zip("xyz", (mp.mpf(v) for v in pt) if flavour == "mpmath" else pt))
     return eval(text, ns, vals)    # noqa: S307 -- the printer's own text of fixed expressions
 
