@@ -242,6 +242,15 @@ def test_compare_refusal_count_killed(monkeypatch):
     assert verdict(U.user_typed_shapes) != "verified"
 
 
+def test_mixed_c_header_killed(monkeypatch):
+    # render:228 (seed 62, uncovered): the header of a module with both kinds cut by the source's length
+    from symbt.codegen.user import render
+
+    monkeypatch.setattr(render, "c_header", planted(render.c_header, "assert typed[1].endswith(end)",
+                                                    "assert typed[0].endswith(end)"))
+    assert verdict(U.user_typed_shapes) != "verified"
+
+
 def test_loop_shape_killed(monkeypatch):
     # declare:244 (seed 61): a one-output Loop's shape (1,) instead of its output's
     bad = planted(declare.emit, "(outputs[0].shape if len(outputs) == 1 else (len(outputs),))",
@@ -309,3 +318,19 @@ def _enclosing_class(tree, target) -> str:
 
     return next((c.name for c in ast.walk(tree) if isinstance(c, ast.ClassDef)
                  and any(n is target for n in ast.walk(c))), "")
+
+
+def test_shift_exponent_of_the_first_site_is_equivalent():
+    # derive:139 (seed 62), `if j >= 0 and k` for `if j > 0 and k`: the extra term is k (q_1 - q_1), which SymPy
+    # evaluates to 0 when it is built, and Add drops a 0: the argument of every exponential is the same expression
+    from symbt.symbolic.toda import toda_model
+
+    bad = planted(derive._shift, "if j > 0 and k]", "if j >= 0 and k]")
+    for N in (2, 3):
+        m = toda_model(N)
+        E, p = m.E, m.p
+        exprs = [E[0], E[1] / E[0], E[0] ** 3 * E[-1] ** -2 + p[0] * E[1] / E[0], (E[0] * E[1]) ** 2 / E[-1] ** 4,
+                 m.trace.subs(m.lam, 2) / E[0] ** 0, sp.sqrt(E[1] / E[0] + 1) * E[0] / E[1]]
+        for e in exprs:
+            for expand in (False, True):
+                assert bad(m, e, expand) == derive._shift(m, e, expand)

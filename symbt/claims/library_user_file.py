@@ -25,7 +25,8 @@ Each claim checks a documented property of :mod:`symbt.codegen.user` against a r
   output: its shape, several: their number), and the rendered numpy and mpmath flavours equal the values written out
   by hand at dyadic inputs, exactly; ``errors="mask"`` masks exactly the batch element whose guard fails;
   :func:`~symbt.codegen.user.check.compare` on it (``x`` drawn on both sides of the guard) holds, and its
-  :class:`~symbt.codegen.user.check.Comparison` counts every refusal once under its condition.
+  :class:`~symbt.codegen.user.check.Comparison` counts every refusal once under its condition; the C header of a
+  module with a typed and a plain declaration is one header holding both prototypes inside its include guard.
 
 >>> user_printer.run().status
 'verified'
@@ -293,6 +294,17 @@ def user_typed_shapes() -> Outcome:
         if mask != [[False, True]] * 3 or float(masked[0][0]) != s0 or masked[2][0].tolist() != m0:
             bad.append(f"errors='mask' at x = (1.5, -0.5): masks {mask} (want element 1 only), values "
                        f"{masked[0][0]}, {masked[2][0]}")
+        from ..codegen.user import emit
+        from ..codegen.user.render import c_header
+
+        plain = emit("plainf", x * y, args=(x, y), module="symbt_user_shapes", register=False)
+        h = c_header("symbt_user_shapes", [shapes, plain])
+        guard = "SYMBT_EMITTED_SYMBT_USER_SHAPES_H"
+        if h.count(f"#ifndef {guard}") != 1 or not h.rstrip().endswith(f"#endif /* {guard} */") \
+                or "int symbt_user_shapes_plainf(const double *in, double *out);" not in h \
+                or "int symbt_user_shapes_shapes(" not in h:
+            bad.append("the C header of a module with a typed and a plain declaration is not one header with both "
+                       "prototypes inside its include guard")
         seen = Comparison()
         table = compare(shapes, out / "symbt_user_shapes.py", "numpy", per_cell=3, seen=seen)
         if not table.printed_holds_everywhere() or not seen.refused or not seen.compared \
