@@ -74,6 +74,8 @@ CLAIM_MODULES = (
     "library_codegen",
     "codegen_controls",
     "library_emit3",
+    "library_derive_file",
+    "library_user_file",
     "emitted_user",
     "emitted_sources",
 )
