@@ -65,6 +65,7 @@ CLAIM_MODULES = (
     "library_sampler",
     "library_ref3",
     "library_ref45",
+    "library_elliptic_file",
     "library_codegen",
     "library_emit3",
     "emitted_user",

@@ -1,0 +1,128 @@
+"""The claims of ``symbt/claims/library_elliptic_file.py`` observe whole functions of ``symbt.reference.elliptic``,
+``taylor`` and ``inverse``: each planted single-point bug of ``symbt mutate --source``'s kind (the mutant's own text,
+with :func:`planting.planted`) makes the claim fail; unpatched, every claim verifies (issue 21, item 4;
+docs/mutation.md, "Fresh samples of symbt/reference/elliptic.py, taylor.py, inverse.py").
+
+The mutants planted are those of the fresh samples (seeds 51 and 52) and their neighbours in the same functions:
+the claims were written for the functions, not for the lines.
+"""
+from __future__ import annotations
+
+import pytest
+from planting import planted
+
+from symbt.claims import library_elliptic_file as L
+from symbt.reference import elliptic as E
+from symbt.reference import taylor
+
+CLAIMS = [L.abel_cell, L.F_forms, L.shift_fields, L.flow_angles, L.flow_field]
+
+
+def status(check) -> str:
+    return check.run().status
+
+
+@pytest.mark.parametrize("check", CLAIMS, ids=lambda c: c.id)
+def test_unpatched_verified(check):
+    assert status(check) == "verified"
+
+
+# ------------------------------------------------------------------------------------------ library.abel_cell
+
+@pytest.mark.parametrize("old, new", [
+    ("a, sg = abs(s), (1 if s >= 0 else -1)", "a, sg = abs(s), (1 if not (s >= 0) else -1)"),       # elliptic:223
+    ("W = mp.sqrt((1 - s * s) * (1 - m * s * s))", "W = mp.sqrt((1 - s * s) * (0 - m * s * s))"),  # elliptic:224
+    ("_F_m(1 / (mp.sqrt(m) * a), m), -W", "_F_m(1 / (mp.sqrt(m) * a), m), W"),                   # elliptic:231
+    ("v, cd = K + 1j * _F_m(t, 1 - m), -W", "v, cd = K - 1j * _F_m(t, 1 - m), -W"),
+    ("elif m * a * a < 1:", "elif m * a * a > 1:"),
+    ("return u0 if abs(cd - w) <= abs(cd + w) else 2 * K - u0",
+     "return u0 if abs(cd - w) <= abs(cd + w) else 2 * K + u0"),
+])
+def test_abel_killed(monkeypatch, old, new):
+    monkeypatch.setattr(E, "abel", planted(E.abel, old, new))
+    assert status(L.abel_cell) == "failed"
+
+
+@pytest.mark.parametrize("old, new", [
+    ("d = d - 2j * Kp * mp.nint(mp.im(d) / (2 * Kp))", "d = d - 2j * Kp * mp.nint(mp.im(d) / (Kp))"),
+    ("return abs(d - 4 * K * mp.nint(mp.re(d) / (4 * K)))", "return abs(d + 4 * K * mp.nint(mp.re(d) / (4 * K)))"),
+])
+def test_lattice_residual_killed(monkeypatch, old, new):
+    monkeypatch.setattr(E, "lattice_residual", planted(E.lattice_residual, old, new))
+    assert status(L.abel_cell) == "failed"
+
+
+# ------------------------------------------------------------------------------------------ library.F_forms
+
+@pytest.mark.parametrize("func, old, new", [
+    ("_F_m", "return -_F_memo(-z, m, mp.mp.prec)", "return -_F_memo(z, m, mp.mp.prec)"),           # elliptic:146
+    ("F", "if abs(z) > 1:", "if abs(z) >= 1:"),
+    ("F_real", "return -_F_m(1 / (k * s), k ** 2)", "return _F_m(1 / (k * s), k ** 2)"),
+    ("F_real", "if abs(k * s) >= 1:", "if abs(k * s) <= 1:"),
+    ("F_real", "if abs(s) <= 1:", "if abs(s) >= 1:"),
+    ("theta2_printed", "mm = (I2 - 2) / (I2 + 2) if m is None else m",
+     "mm = (I2 - 2) / (I2 + 2) if not (m is None) else m"),
+    ("angles", "return q[0] + q[1], u / mp.sqrt(I2 + 2)", "return q[0] - q[1], u / mp.sqrt(I2 + 2)"),
+    ("F_principal", "return mp.ellipf(mp.asin(z), k ** 2)", "return mp.ellipf(mp.asin(z), k ** 1)"),
+])
+def test_F_forms_killed(monkeypatch, func, old, new):
+    monkeypatch.setattr(E, func, planted(getattr(E, func), old, new))
+    assert status(L.F_forms) == "failed"
+
+
+# ------------------------------------------------------------------------------------------ library.shift_fields
+
+@pytest.mark.parametrize("func, old, new", [
+    ("shift", "v1, v2 = (T1 - g1) / 2, (T2 + g2) / 2", "v1, v2 = (T1 + g1) / 2, (T2 + g2) / 2"),
+    ("shift", "du = abel(s1, w1, m) - abel(s2, w2, m)", "du = abel(s1, w1, m) + abel(s2, w2, m)"),
+    ("shift", "dtheta2=du / mp.sqrt(I2 + 2)", "dtheta2=du / mp.sqrt(I2 - 2)"),
+    ("shift", "s1, w1, T1, g1 = spectral_point(lam0 + mu, I1, I2, branch)",
+     "s1, w1, T1, g1 = spectral_point(lam0 - mu, I1, I2, branch)"),
+    ("spectral_point", "T = (lam + I1) ** 2 - I2", "T = (lam - I1) ** 2 - I2"),
+    ("spectral_point", "return (lam + I1) / mp.sqrt(I2 - 2), gam / mp.sqrt(I2 ** 2 - 4), T, gam",
+     "return (lam + I1) / mp.sqrt(I2 - 2), gam / mp.sqrt(I2 ** 2 + 4), T, gam"),
+    ("curve_point", "return P, (r - 1 / r) / mp.sqrt(I2 ** 2 - 4)", "return P, (r + 1 / r) / mp.sqrt(I2 ** 2 - 4)"),
+])
+def test_shift_fields_killed(monkeypatch, func, old, new):
+    monkeypatch.setattr(E, func, planted(getattr(E, func), old, new))
+    assert status(L.shift_fields) == "failed"
+
+
+# ------------------------------------------------------------------------------------------ library.flow_angles
+
+@pytest.mark.parametrize("func, old, new", [
+    ("_poly_G", "G[e] = G.get(e, 0) + c[k] * v", "G[e] = G.get(e, 0) + c[k - 1] * v"),                  # taylor:42
+    ("hamiltonian_flow", "with mp.workdps(dps + 15):", "with mp.workdps(dps - 15):"),                   # taylor:150
+    ("hamiltonian_flow", "sign = 1 if t >= 0 else -1", "sign = 1 if t <= 0 else -1"),
+    ("hamiltonian_flow", "while done < T:", "while done > T:"),                                          # taylor:158
+    ("hamiltonian_flow", "h = min(h, T - done)", "h = max(h, T - done)"),
+])
+def test_flow_angles_killed(monkeypatch, func, old, new):
+    monkeypatch.setattr(taylor, func, planted(getattr(taylor, func), old, new))
+    monkeypatch.setattr(L, "hamiltonian_flow", taylor.hamiltonian_flow)
+    assert status(L.flow_angles) == "failed"
+
+
+@pytest.mark.parametrize("old, new", [
+    ("J[key].append(mp.fsum(pj[m] * leaf[n - m] for m in range(n + 1)))",
+     "J[key].append(mp.fsum(pj[m] * leaf[n - m] for m in range(n + 0)))"),
+    ("X[i].append(s / (n + 1))", "X[i].append(s / (n - 1))"),
+])
+def test_flow_angles_jets_killed(monkeypatch, old, new):
+    monkeypatch.setattr(taylor._TaylorSystem, "jets", planted(taylor._TaylorSystem.jets, old, new))
+    assert status(L.flow_angles) == "failed"
+
+
+# ------------------------------------------------------------------------------------------ library.flow_field
+
+@pytest.mark.parametrize("func, old, new", [
+    ("hamilton_equations", "ad = [_mul_var(_add(qd[(j + 1) % N], qd[j], signs=[1, -1]), N + j) for j in range(N)]",
+     "ad = [_mul_var(_add(qd[(j + 1) % N], qd[j], signs=[1, -0]), N + j) for j in range(N)]"),        # taylor:83
+    ("hamilton_equations", "_mul_var(_d(G, N + (j - 1) % N), N + (j - 1) % N)",
+     "_mul_var(_d(G, N + (j + 1) % N), N + (j - 1) % N)"),
+    ("_poly_G", "k, e = key[0], key[1:]", "k, e = key[1], key[1:]"),
+])
+def test_flow_field_killed(monkeypatch, func, old, new):
+    monkeypatch.setattr(taylor, func, planted(getattr(taylor, func), old, new))
+    monkeypatch.setattr(L, "hamilton_equations", taylor.hamilton_equations)
+    assert status(L.flow_field) == "failed"
