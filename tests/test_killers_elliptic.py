@@ -13,9 +13,9 @@ from planting import planted
 
 from symbt.claims import library_elliptic_file as L
 from symbt.reference import elliptic as E
-from symbt.reference import taylor
+from symbt.reference import inverse, taylor
 
-CLAIMS = [L.abel_cell, L.F_forms, L.shift_fields, L.flow_angles, L.flow_field]
+CLAIMS = [L.abel_cell, L.F_forms, L.shift_fields, L.flow_angles, L.flow_field, L.inverse_fields]
 
 
 def status(check) -> str:
@@ -126,3 +126,26 @@ def test_flow_field_killed(monkeypatch, func, old, new):
     monkeypatch.setattr(taylor, func, planted(getattr(taylor, func), old, new))
     monkeypatch.setattr(L, "hamilton_equations", taylor.hamilton_equations)
     assert status(L.flow_field) == "failed"
+
+
+# ------------------------------------------------------------------------------------------ library.inverse_fields
+
+@pytest.mark.parametrize("func, old, new", [
+    ("_newton", "return x, it + 1", "return x, it - 1"),                                               # inverse:68
+    ("_newton", "return x, it + 1", "return x, it + 0"),                                               # inverse:68
+    ("solve_parameters", "m = -c_target[0] * mp.sqrt(abs(t0 ** 2 - 4)) / 2",
+     "m = -c_target[0] * mp.sqrt(abs(t0 ** 2 - 4))"),                                                 # inverse:160
+    ("solve_parameters", "l0 = c_target[1] / c_target[0]", "l0 = c_target[0] / c_target[0]"),
+    ("solve_parameters", "branch=1 if m > 0 else -1", "branch=1 if m < 0 else -1"),                    # inverse:182
+    ("solve_parameters", "res = max(abs(c[k] - c_target[k]) for k in range(N))",
+     "res = min(abs(c[k] - c_target[k]) for k in range(N))"),
+    ("solve_parameters", "res = max(abs(c[k] - c_target[k]) for k in range(N))",
+     "res = max(abs(c[k] + c_target[k]) for k in range(N))"),
+    ("solve_parameters", "kappa = num / mp.fsum(b ** 2 for b in c_target[:N])",
+     "kappa = num / mp.fsum(b ** 1 for b in c_target[:N])"),
+    ("solve_parameters", "c = flow_coefficients_mp(p, q, l0, m, 1, check=False)",
+     "c = flow_coefficients_mp(p, q, l0, m, 0, check=False)"),
+])
+def test_inverse_fields_killed(monkeypatch, func, old, new):
+    monkeypatch.setattr(inverse, func, planted(getattr(inverse, func), old, new))
+    assert status(L.inverse_fields) == "failed"
