@@ -149,3 +149,34 @@ def test_flow_field_killed(monkeypatch, func, old, new):
 def test_inverse_fields_killed(monkeypatch, func, old, new):
     monkeypatch.setattr(inverse, func, planted(getattr(inverse, func), old, new))
     assert status(L.inverse_fields) == "failed"
+
+
+# ------------------------------------------------------------------------------------------ equivalent mutants
+
+def test_taylor_empty_rule_step_is_equivalent():
+    # taylor:170 (seed 51): `h = min(hs) * 0.7 if hs else T - done` -> `... else T + done`.  The next statement is
+    # `h = min(h, T - done)`, `done` starts at 0 and only grows by `done += h` with h > 0 (the loop runs while
+    # done < T), so T + done >= T - done and the min is T - done either way -- checked on the syntax tree, and bit
+    # for bit on the flow of G = H_2 (every Taylor coefficient 0: the branch taken) and of G = H_0 (not taken)
+    import ast
+    import inspect
+    import textwrap
+
+    import mpmath as mp
+
+    tree = ast.parse(textwrap.dedent(inspect.getsource(taylor.hamiltonian_flow)))
+    loop = next(n for n in ast.walk(tree) if isinstance(n, ast.While))
+    texts = [ast.unparse(s) for s in loop.body]
+    i = texts.index("h = min(hs) * mp.mpf('0.7') if hs else T - done")
+    assert texts[i + 1] == "h = min(h, T - done)"
+    assert ast.unparse(loop.test) == "done < T"
+    writes = [ast.unparse(n) for n in ast.walk(tree) if isinstance(n, (ast.Assign, ast.AugAssign))
+              and "done" in {t.id for t in ast.walk(n.targets[0] if isinstance(n, ast.Assign) else n.target)
+                             if isinstance(t, ast.Name)}]
+    assert writes == ["T, done, steps = (abs(t), mp.mpf(0), 0)", "done += h"]
+    bad = planted(taylor.hamiltonian_flow, "if hs else T - done", "if hs else T + done")
+    p, q = [mp.mpf("0.3"), mp.mpf("-0.2")], [mp.mpf("0.1"), mp.mpf("0.4")]
+    with mp.workdps(20):
+        for c, t in (([0, 0, 1], mp.mpf(2)), ([0, 0, 1], mp.mpf(-3)), ([1, 0, 0], mp.mpf("0.3"))):
+            got, want = bad(p, q, c, t), taylor.hamiltonian_flow(p, q, c, t)
+            assert (got, got.steps) == (want, want.steps)
