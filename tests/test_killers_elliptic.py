@@ -15,7 +15,8 @@ from symbt.claims import library_elliptic_file as L
 from symbt.reference import elliptic as E
 from symbt.reference import inverse, taylor
 
-CLAIMS = [L.abel_cell, L.F_forms, L.shift_fields, L.flow_angles, L.flow_field, L.inverse_fields]
+CLAIMS = [L.abel_cell, L.F_forms, L.shift_fields, L.flow_angles, L.flow_field, L.inverse_fields, L.flow_steps,
+          L.addition_third]
 
 
 def status(check) -> str:
@@ -149,6 +150,36 @@ def test_flow_field_killed(monkeypatch, func, old, new):
 def test_inverse_fields_killed(monkeypatch, func, old, new):
     monkeypatch.setattr(inverse, func, planted(getattr(inverse, func), old, new))
     assert status(L.inverse_fields) == "failed"
+
+
+# ------------------------------------------------------------------------------------------ library.flow_steps
+
+@pytest.mark.parametrize("func, old, new", [
+    ("hamiltonian_flow", "scale = max(1, max(abs(v) for v in x))", "scale = min(1, max(abs(v) for v in x))"),
+    ("hamiltonian_flow", "if steps >= max_steps:", "if steps > max_steps:"),
+    ("hamiltonian_flow", 'h = min(hs) * mp.mpf("0.7") if hs else T - done',
+     'h = min(hs) * mp.mpf("0.7") if not hs else T - done'),
+    ("hamiltonian_flow", "out.steps, out.order = steps, K", "out.steps, out.order = steps + 1, K"),
+    ("_poly_G", "if k < len(c) and c[k]:", "if k <= len(c) and c[k]:"),
+])
+def test_flow_steps_killed(monkeypatch, func, old, new):
+    monkeypatch.setattr(taylor, func, planted(getattr(taylor, func), old, new))
+    monkeypatch.setattr(L, "hamiltonian_flow", taylor.hamiltonian_flow)
+    monkeypatch.setattr(L, "hamilton_equations", taylor.hamilton_equations)
+    assert status(L.flow_steps) == "failed"
+
+
+# ------------------------------------------------------------------------------------------ library.addition_third
+
+@pytest.mark.parametrize("old, new", [
+    ("abs(Et[0] * Et[1] - E1E2) / max(1, abs(E1E2)))", "abs(Et[0] * Et[1] - E1E2) / min(1, abs(E1E2)))"),
+    ("abs(Et[0] * Et[1] - E1E2) / max(1, abs(E1E2)))", "abs(Et[0] * Et[1] + E1E2) / max(1, abs(E1E2)))"),
+    ('E1E2 = mp.exp(q[0] + q[1]) * sh["v1"] * sh["v2"]', 'E1E2 = mp.exp(q[0] - q[1]) * sh["v1"] * sh["v2"]'),
+    ('u + (sh["du"] if du is None else du)', 'u + (sh["du"] if not (du is None) else du)'),
+])
+def test_addition_third_killed(monkeypatch, old, new):
+    monkeypatch.setattr(E, "addition_residual", planted(E.addition_residual, old, new))
+    assert status(L.addition_third) == "failed"
 
 
 # ------------------------------------------------------------------------------------------ equivalent mutants

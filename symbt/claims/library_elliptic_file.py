@@ -35,6 +35,19 @@ that does not share their derivation.
   ``c_k``) evaluated at a state is ``(sign dG/dp, -sign dG/dq, a_j (qdot_{j+1} - qdot_j))`` with
   ``G = sum_k c_k H_k``, ``H_k`` the coefficients of the literal trace (interpolated at ``lambda = 0..3``) and the
   derivatives by mpmath's ``diff``.
+* ``library.inverse_fields`` -- :func:`symbt.reference.inverse.solve_parameters` returns every field its docstring
+  defines: from the documented small-``mu`` start (no guess) a target of ``mu = 10^-3`` meets ``tol`` at once
+  (``iterations = 1``) and ``(lam0, mu, b = -1)`` comes back; in mode ``direction`` (N = 3) the target ``2 c`` gives
+  ``kappa = 1/2`` and ``residual = max |c_k|``; ``c`` is ``[c_0, ..., c_N]`` at the answer (N = 2: mpmath ``quad``
+  of the literal trace), ``kappa`` and ``residual`` are their definitions.
+* ``library.flow_steps`` -- :func:`~symbt.reference.taylor.hamiltonian_flow`'s step rule scales by ``max(1, |x|)``
+  (the linear flow of ``H_1`` takes 6 steps from a state of size 5 and 29 from one of size 1, at order 2 and
+  ``tol = 0.05``), ``max_steps`` allows exactly that many steps, ``t = 0`` takes none and the still flow of
+  ``H_2 = 1`` one; :func:`~symbt.reference.taylor.hamilton_equations` pads a short ``c`` with zeros.
+* ``library.addition_third`` -- :func:`~symbt.reference.elliptic.addition_residual`'s third term: with ``E~`` scaled
+  by ``f`` (the ratio kept) the residual is ``|f^2 - 1| |X| / max(1, |X|)``, ``X = e^{q_1 + q_2} v_1 v_2`` from the
+  literal trace's eigenvalues, at states with ``|X| < 1`` and ``> 1``; its ``du`` override is read (``+4K``: still a
+  solution, ``+2K``: not).
 
 Each is shown to fail on planted mutants in ``tests/test_killers_elliptic.py``.
 
@@ -439,3 +452,107 @@ def inverse_fields() -> Outcome:
         return failed("solve_parameters' answer vs quad and the definitions", detail="; ".join(bad) + ". " + detail)
     return Outcome("verified", f"numeric: mpmath quad of the literal trace at {INVF_DPS} digits", evidence="sampled",
                    n_scope=[2, 3], detail=detail)
+
+
+#: library.flow_steps: digits, tol: the linear flow of H_1 at order 2 from p = (5, -5) (|x| = 5) and p = (1/2, -1/2)
+STEPS_DPS, STEPS_TOL = 20, mp.mpf("5e-2")
+
+
+@claim("library.flow_steps", equation="flow", scene="library", N=2,
+       where="symbt.reference.taylor.hamiltonian_flow (its step rule's scale, max_steps, t = 0, a still flow) and "
+             "hamilton_equations (a short c)",
+       statement="the linear flow of H_1 (order 2, tol 0.05, t = 1) from p = (5, -5), q = 0 takes ceil(1/(0.7 tol "
+                 "max(1, |x|))) = 6 steps (the step scaled by the state's size 5) and from p = (1/2, -1/2) 29 "
+                 "steps, exactly (q_j(1) = q_j + 1); with max_steps = 29 the second runs and with 28 it raises "
+                 "RuntimeError; t = 0 takes no step and returns the state; the flow of H_2 = 1 takes one step and "
+                 "moves nothing; hamilton_equations(3, c) with c = (c_0, c_1) equals it with c padded by zeros")
+def flow_steps() -> Outcome:
+    bad: list[str] = []
+    with mp.workdps(STEPS_DPS):
+        q0 = [mp.mpf(0), mp.mpf(0)]
+        for p0, want in (([mp.mpf(5), mp.mpf(-5)], 6), ([mp.mpf("0.5"), mp.mpf("-0.5")], 29)):
+            out = hamiltonian_flow(p0, q0, [0, 1, 0], mp.mpf(1), tol=STEPS_TOL, order=2)
+            err = max(abs(a - b) for a, b in zip([*out[0], *out[1]], [*p0, mp.mpf(1), mp.mpf(1)]))
+            if out.steps != want or not err <= mp.mpf(10) ** (3 - STEPS_DPS):
+                bad.append(f"H_1 flow from p = {mp.nstr(p0[0], 3)}: {out.steps} steps (rule: {want}), error "
+                           f"{mp.nstr(err, 3)}")
+        p0 = [mp.mpf("0.5"), mp.mpf("-0.5")]
+        try:
+            hamiltonian_flow(p0, q0, [0, 1, 0], mp.mpf(1), tol=STEPS_TOL, order=2, max_steps=29)
+        except RuntimeError:
+            bad.append("max_steps = 29 refused a flow of 29 steps")
+        try:
+            hamiltonian_flow(p0, q0, [0, 1, 0], mp.mpf(1), tol=STEPS_TOL, order=2, max_steps=28)
+            bad.append("max_steps = 28 let a flow of 29 steps run")
+        except RuntimeError:
+            pass
+        p, q = [mp.mpf("0.3"), mp.mpf("-0.2")], [mp.mpf("0.1"), mp.mpf("0.4")]
+        for c, t, steps in (([1, 0, 0], mp.mpf(0), 0), ([0, 0, 1], mp.mpf(2), 1)):
+            out = hamiltonian_flow(p, q, c, t)
+            if out.steps != steps or [*out[0], *out[1]] != [*p, *q]:
+                bad.append(f"c = {c}, t = {t}: {out.steps} steps (want {steps}), state moved")
+        c3 = [mp.mpf("0.7"), mp.mpf("-0.4")]
+        if hamilton_equations(3, c3) != hamilton_equations(3, c3 + [0, 0]):
+            bad.append("hamilton_equations with c = (c_0, c_1) differs from c padded by zeros")
+    detail = "6 and 29 steps by the documented rule, max_steps at its edge, t = 0, H_2, a short c"
+    if bad:
+        return failed("hamiltonian_flow's step rule and limits", detail="; ".join(bad) + ". " + detail)
+    return Outcome("verified", "exact: the documented step counts; the linear flow's exact solution",
+                   evidence="sampled", n_scope=[2, 3], detail=detail)
+
+
+#: library.addition_third: digits, the rng seed of an outer-same case (e^{q1 + q2} v1 v2 far from 1), the move of E~
+ADD3_DPS, ADD3_SEED, ADD3_F, ADD3_DRAWS = 20, "efile addition third", mp.mpf("1e-6"), 40
+
+
+@claim("library.addition_third", equation="addform", scene="library", N=2,
+       where="symbt.reference.elliptic.addition_residual (its third term; the du override)",
+       statement="with E~ moved to (E~_1 f, E~_2 f), f = 1 +- 1e-6 (the ratio kept: sn and cn dn unchanged), "
+                 "addition_residual at a step2 step is |f^2 - 1| |X| / max(1, |X|), X = e^{q1 + q2} v1 v2 = E~_1 E~_2 "
+                 "(v by the literal trace's eigenvalues), within twice the unmoved residual, at a state with |X| "
+                 "< 1 and one with |X| > 1; with du overridden by the shift + 4K the residual stays below 10^(12 - "
+                 "dps), by the shift + 2K it is >= 1 (sn(u + 2K) = -sn u)")
+def addition_third() -> Outcome:
+    bad: list[str] = []
+    sizes: set[bool] = set()
+    rng = random.Random(ADD3_SEED)
+    with mp.workdps(ADD3_DPS):
+        for _ in range(ADD3_DRAWS):
+            if len(sizes) == 2:
+                break
+            p, q, l0, m = E.sample_case("outer-same", rng)
+            P, Q, L0, M = [mp.mpf(v) for v in p], [mp.mpf(v) for v in q], mp.mpf(l0), mp.mpf(m)
+            _, I2 = _actions(P, Q)
+            b = 1
+            pt, _, info = E.step2(P, Q, L0, M, b)
+            Et = info["E_new"]
+            X = Et[0] * Et[1]
+            if abs(abs(X) - 1) < mp.mpf("0.1") or (abs(X) > 1) in sizes:
+                continue
+            sizes.add(abs(X) > 1)
+            # X from the eigenvalues v of L(lam0 +- mu): v + 1/v = T by the literal trace (v1 the root of branch b)
+            T1, T2 = literal_trace(L0 + M, P, Q), literal_trace(L0 - M, P, Q)
+            v1, v2 = (T1 - b * mp.sqrt(T1 ** 2 - 4)) / 2, (T2 + b * mp.sqrt(T2 ** 2 - 4)) / 2
+            if not abs(mp.exp(Q[0] + Q[1]) * v1 * v2 - X) <= mp.mpf(10) ** (10 - ADD3_DPS) * max(1, abs(X)):
+                bad.append(f"control: E~_1 E~_2 = {mp.nstr(X, 8)}, e^(q1+q2) v1 v2 differs")
+                continue
+            res0 = E.addition_residual(P, Q, L0, M, b, pt=pt, Et=Et)
+            for f in (1 + ADD3_F, 1 - ADD3_F):
+                want = abs(f * f - 1) * abs(X) / max(1, abs(X))
+                got = E.addition_residual(P, Q, L0, M, b, pt=pt, Et=[Et[0] * f, Et[1] * f])
+                if not abs(got - want) <= 2 * res0 + mp.mpf(10) ** (2 - ADD3_DPS):
+                    bad.append(f"|X| = {mp.nstr(abs(X), 4)}, f = {mp.nstr(f, 8)}: residual {mp.nstr(got, 6)}, "
+                               f"want {mp.nstr(want, 6)}")
+            du = E.shift(*E.actions(P, Q), L0, M, b)["du"]
+            K = mp.ellipk((I2 - 2) / (I2 + 2))
+            r4 = E.addition_residual(P, Q, L0, M, b, pt=pt, Et=Et, du=du + 4 * K)
+            r2 = E.addition_residual(P, Q, L0, M, b, pt=pt, Et=Et, du=du + 2 * K)
+            if not (r4 <= mp.mpf(10) ** (12 - ADD3_DPS) and r2 >= mp.mpf("1e-3")):
+                bad.append(f"|X| = {mp.nstr(abs(X), 4)}: du + 4K gives {mp.nstr(r4, 3)}, du + 2K {mp.nstr(r2, 3)}")
+    if sizes != {True, False}:
+        bad.append(f"control: the cases drawn have |X| > 1 only {sizes}")
+    detail = "two outer-same steps (|E~_1 E~_2| < 1 and > 1), E~ scaled by 1 +- 1e-6; du + 4K and du + 2K"
+    if bad:
+        return failed("addition_residual's third term and du", detail="; ".join(bad) + ". " + detail)
+    return Outcome("verified", f"numeric: {ADD3_DPS} digits, the literal trace's eigenvalues", evidence="sampled",
+                   n_scope=[2], detail=detail)
