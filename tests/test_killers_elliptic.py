@@ -16,7 +16,7 @@ from symbt.reference import elliptic as E
 from symbt.reference import inverse, taylor
 
 CLAIMS = [L.abel_cell, L.F_forms, L.shift_fields, L.flow_angles, L.flow_field, L.inverse_fields, L.flow_steps,
-          L.addition_third]
+          L.addition_third, L.newton_rule]
 
 
 def status(check) -> str:
@@ -134,6 +134,7 @@ def test_flow_field_killed(monkeypatch, func, old, new):
 @pytest.mark.parametrize("func, old, new", [
     ("_newton", "return x, it + 1", "return x, it - 1"),                                               # inverse:68
     ("_newton", "return x, it + 1", "return x, it + 0"),                                               # inverse:68
+    ("_newton", "else mp.qr_solve(Jm, -mp.matrix(r))[0]", "else mp.qr_solve(Jm, mp.matrix(r))[0]"),     # inverse:70
     ("solve_parameters", "m = -c_target[0] * mp.sqrt(abs(t0 ** 2 - 4)) / 2",
      "m = -c_target[0] * mp.sqrt(abs(t0 ** 2 - 4))"),                                                 # inverse:160
     ("solve_parameters", "l0 = c_target[1] / c_target[0]", "l0 = c_target[0] / c_target[0]"),
@@ -146,7 +147,6 @@ def test_flow_field_killed(monkeypatch, func, old, new):
      "kappa = num / mp.fsum(b ** 1 for b in c_target[:N])"),
     ("solve_parameters", "c = flow_coefficients_mp(p, q, l0, m, 1, check=False)",
      "c = flow_coefficients_mp(p, q, l0, m, 0, check=False)"),
-    ("_newton", "else mp.qr_solve(Jm, -mp.matrix(r))[0]", "else mp.qr_solve(Jm, mp.matrix(r))[0]"),     # inverse:70
 ])
 def test_inverse_fields_killed(monkeypatch, func, old, new):
     monkeypatch.setattr(inverse, func, planted(getattr(inverse, func), old, new))
@@ -181,6 +181,25 @@ def test_flow_steps_killed(monkeypatch, func, old, new):
 def test_addition_third_killed(monkeypatch, old, new):
     monkeypatch.setattr(E, "addition_residual", planted(E.addition_residual, old, new))
     assert status(L.addition_third) == "failed"
+
+
+# ------------------------------------------------------------------------------------------ library.newton_rule
+
+@pytest.mark.parametrize("func, old, new", [
+    ("_newton", "return (x, maxit) if rf is not None and max(abs(v) for v in rf) < tol else None",
+     "return (x, maxit) if rf is not None and max(v for v in rf) < tol else None"),                  # inverse:80
+    ("_newton", "lambda rn, lam: _norm(rn) < r0 * (1 - lam / 4) + tol",
+     "lambda rn, lam: _norm(rn) < r0 * (1 - lam) + tol"),                                              # inverse:75
+    ("_newton", "return x, it + 1", "return x, it + 0"),                                               # inverse:68
+    ("_newton", "else mp.qr_solve(Jm, -mp.matrix(r))[0]", "else mp.qr_solve(Jm, mp.matrix(r))[0]"),     # inverse:70
+    ("_newton", "if rn is not None and max(abs(v) for v in rn) <= max(abs(v) for v in r):",
+     "if rn is not None and max(abs(v) for v in rn) >= max(abs(v) for v in r):"),
+    ("_gauss_newton", "if step is None:", "if not (step is None):"),
+    ("_gauss_newton", "if max(abs(d) for d in dx) * lam < tol:", "if max(abs(d) for d in dx) * lam > tol:"),
+])
+def test_newton_rule_killed(monkeypatch, func, old, new):
+    monkeypatch.setattr(inverse, func, planted(getattr(inverse, func), old, new))
+    assert status(L.newton_rule) == "failed"
 
 
 # ------------------------------------------------------------------------------------------ equivalent mutants

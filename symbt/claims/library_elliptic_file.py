@@ -569,3 +569,46 @@ def addition_third() -> Outcome:
         return failed("addition_residual's third term and du", detail="; ".join(bad) + ". " + detail)
     return Outcome("verified", f"numeric: {ADD3_DPS} digits, the literal trace's eigenvalues", evidence="sampled",
                    n_scope=[2], detail=detail)
+
+
+#: library.newton_rule: Newton on f(x) = -x^3 from x = 1 (each full step x -> 2x/3, the residual times 8/27)
+NEWTON_TOLS = (mp.mpf("1e-6"), mp.mpf("1e-300"))
+
+
+@claim("library.newton_rule", equation="linearcomb", scene="library", N=2,
+       where="symbt.reference.inverse's Newton and Gauss-Newton loops (the rules solve_parameters documents)",
+       statement="solve_parameters' Newton on f(x) = -x^3 from x = 1 (full steps x -> 2x/3: the residual falls by "
+                 "8/27, so the damping keeps them) with tol = 1e-6 stops at the first iterate below tol, the 12th, "
+                 "reports iterations = 13 and takes one more step: x = (2/3)^13 (also with the equation twice: "
+                 "least-squares steps); with tol = 1e-300 it gives up after "
+                 "its 40 iterations (None: the residual -(2/3)^120 is negative, its size above tol); Gauss-Newton "
+                 "on the inconsistent (x - 1, x + 1) returns the least-squares x = 0 after one step")
+def newton_rule() -> Outcome:
+    from ..reference import inverse as inv
+
+    bad: list[str] = []
+    with mp.workdps(30):
+        F = lambda x: [-x[0] ** 3]                        # noqa: E731 -- a toy residual
+        J = lambda x: [[-3 * x[0] ** 2]]                  # noqa: E731
+        got = inv._newton(F, J, [mp.mpf(1)], NEWTON_TOLS[0])
+        want = (mp.mpf(2) / 3) ** 13
+        if got is None or got[1] != 13 or not abs(got[0][0] - want) <= mp.mpf(10) ** -25 * want:
+            bad.append(f"tol 1e-6: {got if got is None else (mp.nstr(got[0][0], 10), got[1])}, want "
+                       f"({mp.nstr(want, 10)}, 13)")
+        # the same equation twice: a 2 x 1 Jacobian, so the steps are least-squares (qr_solve) steps, the same x
+        got = inv._newton(lambda x: F(x) * 2, lambda x: J(x) * 2, [mp.mpf(1)], NEWTON_TOLS[0])
+        if got is None or got[1] != 13 or not abs(got[0][0] - want) <= mp.mpf(10) ** -25 * want:
+            bad.append(f"tol 1e-6, the equation twice: {got if got is None else (mp.nstr(got[0][0], 10), got[1])}")
+        got = inv._newton(F, J, [mp.mpf(1)], NEWTON_TOLS[1])
+        if got is not None:
+            bad.append(f"tol 1e-300: returned {mp.nstr(got[0][0], 5)} after {got[1]} iterations, not None")
+        G = lambda x: [x[0] - 1, x[0] + 1]                # noqa: E731
+        JG = lambda x: [[mp.mpf(1)], [mp.mpf(1)]]         # noqa: E731
+        gn = inv._gauss_newton(G, JG, [mp.mpf("0.4")], mp.mpf("1e-20"))
+        if gn is None or gn[1] != 1 or not abs(gn[0][0]) <= mp.mpf(10) ** -25:
+            bad.append(f"Gauss-Newton: {gn}, want ([0], 1)")
+    detail = "Newton: 13 iterations and the extra step at tol 1e-6, None at 1e-300; Gauss-Newton: x = 0 after 1 step"
+    if bad:
+        return failed("the Newton loops' documented rules on toy residuals", detail="; ".join(bad) + ". " + detail)
+    return Outcome("verified", "exact: Newton's iterates on -x^3 are (2/3)^n", evidence="sampled", n_scope=[2],
+                   detail=detail)
