@@ -12,11 +12,12 @@ import pytest
 from planting import planted
 
 from symbt.claims import library_elliptic_file as L
+from symbt.claims import library_elliptic_flows as LF
 from symbt.reference import elliptic as E
 from symbt.reference import inverse, taylor
 
-CLAIMS = [L.abel_cell, L.F_forms, L.shift_fields, L.flow_angles, L.flow_field, L.inverse_fields, L.flow_steps,
-          L.addition_third, L.newton_rule]
+CLAIMS = [L.abel_cell, L.F_forms, L.shift_fields, LF.flow_angles, LF.flow_field, LF.inverse_fields, LF.flow_steps,
+          L.addition_third, LF.newton_rule]
 
 
 def status(check) -> str:
@@ -100,8 +101,8 @@ def test_shift_fields_killed(monkeypatch, func, old, new):
 ])
 def test_flow_angles_killed(monkeypatch, func, old, new):
     monkeypatch.setattr(taylor, func, planted(getattr(taylor, func), old, new))
-    monkeypatch.setattr(L, "hamiltonian_flow", taylor.hamiltonian_flow)
-    assert status(L.flow_angles) == "failed"
+    monkeypatch.setattr(LF, "hamiltonian_flow", taylor.hamiltonian_flow)
+    assert status(LF.flow_angles) == "failed"
 
 
 @pytest.mark.parametrize("old, new", [
@@ -111,7 +112,7 @@ def test_flow_angles_killed(monkeypatch, func, old, new):
 ])
 def test_flow_angles_jets_killed(monkeypatch, old, new):
     monkeypatch.setattr(taylor._TaylorSystem, "jets", planted(taylor._TaylorSystem.jets, old, new))
-    assert status(L.flow_angles) == "failed"
+    assert status(LF.flow_angles) == "failed"
 
 
 # ------------------------------------------------------------------------------------------ library.flow_field
@@ -125,8 +126,8 @@ def test_flow_angles_jets_killed(monkeypatch, old, new):
 ])
 def test_flow_field_killed(monkeypatch, func, old, new):
     monkeypatch.setattr(taylor, func, planted(getattr(taylor, func), old, new))
-    monkeypatch.setattr(L, "hamilton_equations", taylor.hamilton_equations)
-    assert status(L.flow_field) == "failed"
+    monkeypatch.setattr(LF, "hamilton_equations", taylor.hamilton_equations)
+    assert status(LF.flow_field) == "failed"
 
 
 # ------------------------------------------------------------------------------------------ library.inverse_fields
@@ -150,7 +151,7 @@ def test_flow_field_killed(monkeypatch, func, old, new):
 ])
 def test_inverse_fields_killed(monkeypatch, func, old, new):
     monkeypatch.setattr(inverse, func, planted(getattr(inverse, func), old, new))
-    assert status(L.inverse_fields) == "failed"
+    assert status(LF.inverse_fields) == "failed"
 
 
 # ------------------------------------------------------------------------------------------ library.flow_steps
@@ -165,9 +166,9 @@ def test_inverse_fields_killed(monkeypatch, func, old, new):
 ])
 def test_flow_steps_killed(monkeypatch, func, old, new):
     monkeypatch.setattr(taylor, func, planted(getattr(taylor, func), old, new))
-    monkeypatch.setattr(L, "hamiltonian_flow", taylor.hamiltonian_flow)
-    monkeypatch.setattr(L, "hamilton_equations", taylor.hamilton_equations)
-    assert status(L.flow_steps) == "failed"
+    monkeypatch.setattr(LF, "hamiltonian_flow", taylor.hamiltonian_flow)
+    monkeypatch.setattr(LF, "hamilton_equations", taylor.hamilton_equations)
+    assert status(LF.flow_steps) == "failed"
 
 
 # ------------------------------------------------------------------------------------------ library.addition_third
@@ -199,7 +200,7 @@ def test_addition_third_killed(monkeypatch, old, new):
 ])
 def test_newton_rule_killed(monkeypatch, func, old, new):
     monkeypatch.setattr(inverse, func, planted(getattr(inverse, func), old, new))
-    assert status(L.newton_rule) == "failed"
+    assert status(LF.newton_rule) == "failed"
 
 
 # ------------------------------------------------------------------------------------------ equivalent mutants
