@@ -144,6 +144,8 @@ def test_flow_field_killed(monkeypatch, func, old, new):
      "res = min(abs(c[k] - c_target[k]) for k in range(N))"),
     ("solve_parameters", "res = max(abs(c[k] - c_target[k]) for k in range(N))",
      "res = max(abs(c[k] + c_target[k]) for k in range(N))"),
+    ("solve_parameters", "res = max(abs(c[k] - c_target[k]) for k in range(N))",
+     "res = max(c[k] - c_target[k] for k in range(N))"),                                               # inverse:187
     ("solve_parameters", "kappa = num / mp.fsum(b ** 2 for b in c_target[:N])",
      "kappa = num / mp.fsum(b ** 1 for b in c_target[:N])"),
     ("solve_parameters", "c = flow_coefficients_mp(p, q, l0, m, 1, check=False)",

@@ -11,8 +11,9 @@ module): whole functions of :mod:`symbt.reference.taylor` and :mod:`symbt.refere
   derivatives by mpmath's ``diff``.
 * ``library.inverse_fields`` -- :func:`symbt.reference.inverse.solve_parameters` returns every field its docstring
   defines: from the documented small-``mu`` start (no guess) a target of ``mu = 10^-3`` meets ``tol`` at once
-  (``iterations = 1``) and ``(lam0, mu, b = -1)`` comes back; in mode ``direction`` (N = 3) the target ``2 c`` gives
-  ``kappa = 1/2`` and ``residual = max |c_k|``; in mode ``exact`` on three indices (N = 3: the least-squares
+  (``iterations = 1``) and ``(lam0, mu, b = -1)`` comes back; in mode ``direction`` (N = 3) the target ``c/2`` gives
+  ``kappa = 2`` and ``residual = max |c_k|/2`` (the c_k all negative: a signed residual would differ); in mode ``exact``
+  on three indices (N = 3: the least-squares
   Newton step; under ``--deep``) from a start ``10^-4`` off it recovers the target's ``(lam0, mu)``; ``c`` is
   ``[c_0, ..., c_N]`` at the answer (N = 2: mpmath ``quad`` of the literal trace), ``kappa`` and ``residual`` are
   their definitions.
@@ -153,11 +154,12 @@ def _c_quad(p: list, q: list, l0: mp.mpf, mu: mp.mpf, b: int) -> list:
        where="symbt.reference.inverse.solve_parameters (every field of its answer; the documented start)",
        statement="solve_parameters (15 digits) returns every documented field: (a) N = 2, the target c_k of "
                  "(lam0, mu, b) = (4.504539, 1e-3, -1), no guess: the small-mu start meets tol, so iterations = 1, "
-                 "(lam0, mu, b) recovered to 1e-12; (b) N = 3, mode direction, the target 2 c of (6, 0.3, +1) from "
-                 "the guess (6, 0.3): iterations = 1, kappa = 1/2, residual = max_(k<3) |c_k|; (c) N = 3, mode exact, "
+                 "(lam0, mu, b) recovered to 1e-12; (b) N = 3, mode direction, the target c/2 of (6, 0.3, +1) from "
+                 "the guess (6, 0.3): iterations = 1, kappa = 2, residual = max_(k<3) |c_k|/2; (c) N = 3, mode exact, "
                  "indices (0, 1, 2) (least squares; under --deep), the target c from (6 + 1e-4, 0.3): iterations "
                  ">= 2, (6, 0.3, +1) to 1e-12, kappa = 1; c = [c_0..c_N] at the "
-                 "answer (N = 2: by mpmath quad of the literal trace; N = 3: target/2), kappa = sum c_k t_k / "
+                 "answer (N = 2: by mpmath quad of the literal trace; N = 3: the coefficients the target was made "
+                 "from), kappa = sum c_k t_k / "
                  "sum t_k^2 and residual = max |c_k - t_k| (k < N) within 1e-12 of the size")
 def inverse_fields(deep: bool = False) -> Outcome:
     from ..reference.inverse import solve_parameters
@@ -170,7 +172,7 @@ def inverse_fields(deep: bool = False) -> Outcome:
         # mode exact on three indices from INVF_OFF off (the least-squares step) runs under --deep only: its cost;
         # library.newton_rule observes the least-squares step on a toy residual in the default run
         cases: list[tuple[Any, ...]] = [(INVF_SMALL, -1, "exact", 1, None, None),
-                                        (INVF_DIR, 1, "direction", 2, None, 0)]
+                                        (INVF_DIR, 1, "direction", mp.mpf("0.5"), None, 0)]
         if deep:
             cases.append((INVF_DIR, 1, "exact", 1, (0, 1, 2), INVF_OFF))
         for (ps, qs, l0s, ms), b, mode, scale, idx, off in cases:
@@ -208,7 +210,8 @@ def inverse_fields(deep: bool = False) -> Outcome:
                 why.append(f"residual {mp.nstr(r['residual'], 8)}, by the definition {mp.nstr(resid, 8)}")
             if why:
                 bad.append(f"N={N}, {mode}: " + ", ".join(why))
-    detail = ("N = 2 from the small-mu start at branch -1; N = 3 by direction to 2c and exact on 3 indices: "
+    detail = ("N = 2 from the small-mu start at branch -1; N = 3 by direction to c/2 (and "
+              "exact on 3 indices under --deep): "
               "iterations, (lam0, mu, b), c (by quad for N = 2), kappa and residual by their definitions (accepted "
               "1e-12)")
     if bad:
