@@ -71,6 +71,7 @@ CLAIM_MODULES = (
     "library_sampler",
     "library_ref3",
     "library_ref45",
+    "library_elliptic_file",
     "library_codegen",
     "codegen_controls",
     "library_emit3",

@@ -98,9 +98,15 @@ def solve_parameters(p: Sequence[MPLike], q: Sequence[MPLike], c_target: Sequenc
       ``indices[-1]`` (N = 3 default (0, 1, 2), i.e. ratios to c_2);
     * ``"lstsq"``: Gauss-Newton on sum_k (c_k - c_target_k)^2 over k < N.
 
-    Returns a dict with lam0, mu, branch, c (achieved), kappa (achieved/target
-    along the target direction), iterations, residual.  Raises ValueError if
-    Newton fails (no admissible solution near the initial guess).
+    Returns a dict with lam0, mu, branch, c (achieved: ``[c_0, ..., c_N]`` at the answer), kappa (achieved/target
+    along the target direction: ``sum_k c_k t_k / sum_k t_k^2`` over k < N, t the target), iterations (the number
+    of iterates at which the residual and the Jacobian were evaluated: 1 when the start already meets ``tol``),
+    residual (``max_k |c_k - t_k|`` over k < N).  Raises ValueError if Newton fails (no admissible solution near
+    the initial guess).
+
+    Without ``guess`` the start is the small-mu asymptotics ``c_k ~ -2 m lam0^k / sqrt(tr L(lam0)^2 - 4)``:
+    ``lam0 = c_1/c_0``, ``m = -c_0 sqrt(|tr L(lam0)^2 - 4|)/2`` (``branch = sign(m)``), so a target of a small
+    ``mu`` meets ``tol`` at the start (its relative error is of order ``mu^2``).
 
     Where the guess's interval ``[lam0 - mu, lam0 + mu]`` meets a band (``|tr| <= 2``), ``mu`` is halved (up to
     16 times) first.  Newton (modes exact and direction) stops at the first iterate whose residual is below ``tol``

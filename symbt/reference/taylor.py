@@ -74,7 +74,8 @@ def hamilton_equations(N: int, c: Sequence[Coefficient], sign: int = 1) -> list[
     """Right-hand sides in the state (q_1..q_N, p_1..p_N, a_1..a_N) as polynomials in (p, a).
 
     qdot_j = dG/dp_j;  pdot_j = -dG/dq_j = a_j dG/da_j - a_{j-1} dG/da_{j-1};
-    adot_j = a_j (qdot_{j+1} - qdot_j).  ``sign = -1`` gives the reversed flow.
+    adot_j = a_j (qdot_{j+1} - qdot_j).  ``sign = -1`` gives the reversed flow.  Missing trailing entries of ``c``
+    are 0.
     """
     G = _poly_G(N, [sign * ci for ci in c])
     qd = [_d(G, j) for j in range(N)]
@@ -140,6 +141,7 @@ def hamiltonian_flow(p: Sequence[MPLike], q: Sequence[MPLike], c: Sequence[MPLik
     integrates backwards.  Error per unit time about ``tol`` (default
     ``10**-(dps+2)``, working precision dps + 15).  Returns a :class:`FlowResult`.
 
+    At most ``max_steps`` steps are taken (RuntimeError beyond); ``t = 0`` takes none.
     The order is ``order`` or ``max(12, floor(ln(1/tol)/2) + 6)``; each step is 0.7 times the smaller of
     ``(tol/|X_K|)^(1/K)`` and ``(tol/|X_{K-1}|)^(1/(K-1))`` over the last two Taylor coefficients (scaled by
     ``max(1, |x|)``, the ones that are not 0), so a vanishing last coefficient does not make a long step.
