@@ -40,21 +40,14 @@ import sympy as sp
 
 from ..proof.verdict import Evidence
 from . import _identity_cases as cases
-from .base import Outcome, claim, failed
+from ._facts import facts_failed as _bad
+from ._facts import facts_verified as _ok
+from .base import Outcome, claim
 
 x = sp.Symbol("x", real=True)
 y = sp.Symbol("y", positive=True)
 
 
-def _ok(method: str, detail: str, evidence: Any) -> Outcome:
-    return Outcome("verified", method, evidence=evidence, detail=detail, n_scope="all")
-
-
-def _bad(where: str, got: list[tuple[str, Any, Any]]) -> Outcome | None:
-    wrong = [(what, g, want) for what, g, want in got if g != want]
-    if not wrong:
-        return None
-    return failed(where, detail="; ".join(f"{w}: got {g!r}, want {v!r}" for w, g, v in wrong[:6]))
 
 
 def _raises(call: Any) -> tuple[str, str]:

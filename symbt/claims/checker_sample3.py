@@ -42,6 +42,8 @@ from typing import Any
 import mpmath as mp
 import sympy as sp
 
+from ._facts import facts_failed as _bad
+from ._facts import facts_verified as _ok
 from .base import Outcome, claim, failed
 
 x = sp.Symbol("x", real=True)
@@ -49,15 +51,6 @@ y = sp.Symbol("y", positive=True)
 SMALL = sp.Integer(10) ** -20
 
 
-def _ok(method: str, detail: str, evidence: Any) -> Outcome:
-    return Outcome("verified", method, evidence=evidence, detail=detail, n_scope="all")
-
-
-def _bad(where: str, got: list[tuple[str, Any, Any]]) -> Outcome | None:
-    wrong = [(what, g, want) for what, g, want in got if g != want]
-    if not wrong:
-        return None
-    return failed(where, detail="; ".join(f"{w}: got {g!r}, want {v!r}" for w, g, v in wrong))
 
 
 # --------------------------------------------------------------------------- the exact layer

@@ -36,21 +36,14 @@ from typing import Any
 
 import sympy as sp
 
-from .base import Outcome, claim, failed
+from ._facts import facts_failed as _bad
+from ._facts import facts_verified as _ok
+from .base import Outcome, claim
 
 x = sp.Symbol("x", real=True)
 DIGITS = 30
 
 
-def _ok(method: str, detail: str, evidence: Any) -> Outcome:
-    return Outcome("verified", method, evidence=evidence, detail=detail, n_scope="all")
-
-
-def _bad(where: str, got: list[tuple[str, Any, Any]]) -> Outcome | None:
-    wrong = [(what, g, want) for what, g, want in got if g != want]
-    if not wrong:
-        return None
-    return failed(where, detail="; ".join(f"{w}: got {g!r}, want {v!r}" for w, g, v in wrong))
 
 
 # --------------------------------------------------------------------------- the screen's numbers

@@ -47,21 +47,10 @@ from typing import Any
 import mpmath as mp
 import sympy as sp
 
-from .base import Outcome, claim, failed
-
-Facts = list[tuple[str, Any, Any]]
-
-
-def _ok(method: str, detail: str, evidence: Any) -> Outcome:
-    return Outcome("verified", method, evidence=evidence, detail=detail, n_scope="all")
-
-
-def _bad(where: str, got: Facts) -> Outcome | None:
-    wrong = [(what, g, want) for what, g, want in got if g != want]
-    if not wrong:
-        return None
-    return failed(where, detail="; ".join(f"{w}: got {g!r}, want {v!r}" for w, g, v in wrong))
-
+from ._facts import Facts
+from ._facts import facts_failed as _bad
+from ._facts import facts_verified as _ok
+from .base import Outcome, claim
 
 # --------------------------------------------------------------------------- sample_symbol
 
