@@ -52,11 +52,19 @@ def kappa_cases(N: int) -> list[tuple[tuple, tuple, float]]:
     return [(CHAIN_P, ratios(CHAIN_Q), lam) for lam in CHAIN_LAMS]
 
 
-def kappa_by_definition(p: tuple, r: tuple, lam: float, dps: int) -> mp.mpf:
-    """The docstring's ``k_t`` with exact products at ``dps`` digits (the factor ``1 + 16 u N`` included)."""
+def kappa_by_definition(p: tuple, r: tuple, lam: float, dps: int, lo: float = 0.0) -> mp.mpf:
+    """The docstring's ``k_t`` with exact products at ``dps`` digits (the factor ``1 + 16 u N`` included):
+    ``a_j = lam + lo + p_j`` exactly (``lo`` the spectral parameter's low part), ``T_s`` the mean of
+    ``tr(|S_{j+1}| |m_j| |P_{j-1}|)``, times ``(|t| + 2) / |t**2 - 4|`` and ``max_j (|lam| + |p_j|) / |a_j|``; no
+    renormalisation, no stored rows.
+
+    >>> k = kappa_by_definition((-20.0, 10.0, 1.0), (math.exp(-1), math.exp(0.9), math.exp(0.1)), 15.0, 30)
+    >>> 1 <= k < 20
+    True
+    """
     N = len(p)
     with mp.workdps(dps):
-        a = [mp.mpf(lam) + mp.mpf(x) for x in p]
+        a = [mp.mpf(lam) + mp.mpf(lo) + mp.mpf(x) for x in p]
         m = [mp.matrix([[a[j], -1], [mp.mpf(r[j]), 0]]) for j in range(N)]
         pre = [mp.eye(2)]
         for j in range(N):

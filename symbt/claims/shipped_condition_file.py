@@ -8,7 +8,8 @@ slip in any other branch went unseen.  These claims observe each function over t
 a route that shares no code with it.
 
 * ``paths.kappa_cells.n{2,3,5}`` -- :func:`~symbt.numeric.core.condition.sharp_trace_kappa` against its docstring's
-  definition with exact 2x2 products at 60 digits (checked at 80; :func:`kappa_reference`), on a grid of states:
+  definition with exact 2x2 products at 60 digits (checked at 80; the one reference of
+  :func:`~symbt.claims.shipped_condition.kappa_by_definition`), on a grid of states:
   ``lam`` of both signs with a nonzero low part ``lo``, at moderate values (bands, gaps, outside), at ``+-1e40``
   (prefix and suffix products past ``2**200``), at steep ``q`` (``r_j = e**+-300``: renormalised up and down) and at
   tiny ``lam, p`` with ``q`` falling (products below ``2**-200``), and with ``a_j`` cancelling to ``2**-20`` of
@@ -49,6 +50,7 @@ import mpmath as mp
 import numpy as np
 
 from .base import Outcome, claim, failed
+from .shipped_condition import kappa_by_definition
 
 U = 2.0 ** -53
 #: the digits of the reference and of its check
@@ -103,43 +105,13 @@ def kappa_grid(N: int) -> tuple[tuple[Case, ...], tuple[Case, ...], tuple[Case, 
     return tuple(fin), tuple(inf), tuple(untrusted)
 
 
-def kappa_reference(p: tuple[float, ...], r: tuple[float, ...], lam: float, lo: float, dps: int) -> mp.mpf:
-    r"""The docstring's ``k_t`` with exact 2x2 products at ``dps`` digits: ``a_j = lam + lo + p_j`` exactly, ``T_s``
-    the mean of ``tr(|S_{j+1}| |m_j| |P_{j-1}|)``, times ``1 + 16 u N``, times ``(|t| + 2) / |t**2 - 4|`` and
-    ``max_j (|lam| + |p_j|) / |a_j|``.  No renormalisation, no stored rows.
-
-    >>> k = kappa_reference((-20.0, 10.0, 1.0), (math.exp(-1), math.exp(0.9), math.exp(0.1)), 15.0, 0.0, 30)
-    >>> 1 <= k < 20
-    True
-    """
-    N = len(p)
-    with mp.workdps(dps):
-        L = mp.mpf(lam) + mp.mpf(lo)
-        a = [L + mp.mpf(x) for x in p]
-        m = [mp.matrix([[a[j], -1], [mp.mpf(r[j]), 0]]) for j in range(N)]
-        pre = [mp.eye(2)]
-        for j in range(N):
-            pre.append(m[j] * pre[-1])                  # pre[j] = m_{j-1} ... m_0
-        suf = [mp.eye(2)] * (N + 1)
-        for j in range(N - 1, -1, -1):
-            suf[j] = suf[j + 1] * m[j]                  # suf[j] = m_{N-1} ... m_j
-        terms = []
-        for j in range(N):
-            X = suf[j + 1].apply(abs) * m[j].apply(abs) * pre[j].apply(abs)
-            terms.append(X[0, 0] + X[1, 1])
-        Ts = mp.fsum(terms) / N * (1 + 16 * mp.mpf(2) ** -53 * N)
-        t = pre[N][0, 0] + pre[N][1, 1]
-        kk = max((abs(mp.mpf(lam)) + abs(mp.mpf(x))) / abs(aj) for x, aj in zip(p, a))
-        return Ts * (abs(t) + 2) / abs(t * t - 4) * kk
-
-
 @cache
 def kappa_references(N: int) -> tuple[tuple[float, ...], int]:
     """The reference ``k_t`` (as a double) of every finite state of :func:`kappa_grid`, and how many states'
     references disagree with themselves at ``CHECK_DPS`` digits (those are ``nan``)."""
     out, unsure = [], 0
     for p, r, lam, lo in kappa_grid(N)[0]:
-        ref, check = kappa_reference(p, r, lam, lo, REF_DPS), kappa_reference(p, r, lam, lo, CHECK_DPS)
+        ref, check = kappa_by_definition(p, r, lam, REF_DPS, lo), kappa_by_definition(p, r, lam, CHECK_DPS, lo)
         if abs(ref - check) <= abs(check) * mp.mpf(10) ** (5 - REF_DPS):
             out.append(float(ref))
         else:
