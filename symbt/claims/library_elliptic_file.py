@@ -40,7 +40,6 @@ Each is shown to fail on planted mutants in ``tests/test_killers_elliptic.py``.
 from __future__ import annotations
 
 import random
-from collections.abc import Sequence
 from typing import Any
 
 import mpmath as mp
@@ -48,18 +47,13 @@ import mpmath as mp
 from ..reference import elliptic as E
 from ..reference.literal import literal_trace
 from .base import Outcome, claim, failed
-from .library_sampler import trace_quadratic
+from .library_sampler import trace_actions as _actions
 
 
 def _periods(m: mp.mpf) -> tuple[mp.mpf, mp.mpf]:
     """``(K, K')`` by the arithmetic-geometric mean (not ``ellipk``): ``K = pi / (2 agm(1, sqrt(1 - m)))``."""
     return mp.pi / (2 * mp.agm(1, mp.sqrt(1 - m))), mp.pi / (2 * mp.agm(1, mp.sqrt(m)))
 
-
-def _actions(p: Sequence[mp.mpf], q: Sequence[mp.mpf]) -> tuple[mp.mpf, mp.mpf]:
-    """``(I_1, I_2)`` read off the literal trace, ``tr L = (lambda + I_1)^2 - I_2``."""
-    a, b, c = trace_quadratic(list(p), list(q))
-    return b / (2 * a), b * b / (4 * a) - c
 
 
 #: library.abel_cell: digits, the parameter m, real s (in units of 1 and of 1/k), complex s, lattice vectors

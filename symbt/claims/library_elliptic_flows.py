@@ -41,14 +41,7 @@ from ..reference import elliptic as E
 from ..reference.literal import literal_trace
 from ..reference.taylor import hamilton_equations, hamiltonian_flow
 from .base import Outcome, claim, failed
-from .library_sampler import trace_quadratic
-
-
-def _actions(p: Sequence[mp.mpf], q: Sequence[mp.mpf]) -> tuple[mp.mpf, mp.mpf]:
-    """``(I_1, I_2)`` read off the literal trace, ``tr L = (lambda + I_1)^2 - I_2``."""
-    a, b, c = trace_quadratic(list(p), list(q))
-    return b / (2 * a), b * b / (4 * a) - c
-
+from .library_sampler import trace_actions as _actions
 
 #: library.flow_angles: digits, (p, q, c, t): G = c0 H0 + c1 H1 + c2 H2, forward and backward
 FLOWA_DPS = 15

@@ -64,6 +64,12 @@ def trace_quadratic(p: list, q: list) -> tuple[mp.mpf, mp.mpf, mp.mpf]:
     return (t1 + tm) / 2 - t0, (t1 - tm) / 2, t0
 
 
+def trace_actions(p: list, q: list) -> tuple[mp.mpf, mp.mpf]:
+    """``(I_1, I_2)`` read off the literal trace (N = 2): ``tr L(lambda) = (lambda + I_1)^2 - I_2``."""
+    a, b, c = trace_quadratic(list(p), list(q))
+    return b / (2 * a), b * b / (4 * a) - c
+
+
 def _edges(a: mp.mpf, b: mp.mpf, c: mp.mpf) -> list:
     """The four band edges, sorted: the roots of ``tr = -2`` and ``tr = 2``."""
     out = []
