@@ -31,7 +31,10 @@ def verdict(check, *args) -> str:
 
 @pytest.fixture
 def fresh():
-    """Clear derive's caches after the test: a planted derivation must not outlive it."""
+    """Clear derive's caches before the test (the claims read them: a derivation cached earlier would hide the
+    planted one) and after it (a planted derivation must not outlive it)."""
+    for f in CACHED:
+        f.cache_clear()
     yield
     for f in CACHED:
         f.cache_clear()

@@ -268,6 +268,73 @@ def test_lines_run_while_a_lazily_imported_module_loads_are_import_lines(tmp_pat
     assert lm["failed"] == {}
 
 
+SHARED = '''\
+import functools
+
+
+def row(k):
+    return k * k
+
+
+@functools.lru_cache(maxsize=None)
+def table(n):
+    return tuple(row(k) for k in range(n))
+
+
+def outside(n):
+    return table(n)[-1]
+'''
+
+SHARED_CLAIMS = '''\
+import sympy as sp
+from symbt import claim, decide, from_decision
+from shared import table
+
+
+@claim("shared.first", equation="t", scene="shared", statement="table(4)[2] = 4")
+def first():
+    return from_decision(decide(sp.Integer(table(4)[2]), sp.Integer(4)))
+
+
+@claim("shared.second", equation="t", scene="shared", statement="table(4)[3] = 9")
+def second():
+    import shared
+    return from_decision(decide(sp.Integer(shared.outside(4)), sp.Integer(9)))
+
+
+@claim("shared.third", equation="t", scene="shared", statement="1 = 1")
+def third():
+    return from_decision(decide(sp.Integer(1), sp.Integer(1)))
+'''
+
+
+_NO_COVERAGE = ("import sys; sys.modules['coverage'] = None; from symbt.engine.linemap import main; "
+                "sys.exit(main(sys.argv[1:]))")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("tracer", [["-m", "symbt.engine.linemap"], ["-c", _NO_COVERAGE]],
+                         ids=["coverage", "settrace"])
+def test_lines_a_shared_cache_runs_are_credited_to_every_claim_that_reads_it(tmp_path, tracer):
+    # table(4) is filled by shared.first; shared.second only reads it (through outside()).  In a mutant's run
+    # shared.second starts cold and runs row() itself, so a mutant in row() must run both claims.
+    (tmp_path / "shared.py").write_text(SHARED)
+    (tmp_path / "shared_claims.py").write_text(SHARED_CLAIMS)
+    out = tmp_path / "map.json"
+    r = subprocess.run([sys.executable, *tracer, "--out", str(out), "--claims",
+                        str(tmp_path / "shared_claims.py"), str(tmp_path / "shared.py")], cwd=tmp_path,
+                       capture_output=True, text=True, timeout=300,
+                       env={**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), str(tmp_path)])})
+    assert r.returncode == 0, r.stderr
+    lm = json.loads(out.read_text())
+    f = str((tmp_path / "shared.py").resolve())
+    assert ms.claims_of_line(lm, f, 5, False) == ["shared.first", "shared.second"]   # row()'s body
+    assert ms.claims_of_line(lm, f, 10, False) == ["shared.first", "shared.second"]  # the fill
+    assert ms.claims_of_line(lm, f, 14, False) == ["shared.second"]                  # outside(): its own
+    assert lm["caches"]["cache:shared.table"]["callers"] == ["shared.first", "shared.second"]
+    assert lm["claims"]["shared.first"]["status"] == lm["claims"]["shared.second"]["status"] == "verified"
+
+
 def test_mutated_file_is_restored_with_its_time_stamp(tmp_path):
     f = tmp_path / "m.py"
     f.write_text("x = 1\n")

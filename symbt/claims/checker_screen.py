@@ -164,11 +164,8 @@ def _refused(relations: dict[sp.Symbol, sp.Expr]) -> str:
                  "false; chained relations are solved in order; degree 0 and 5, exp(e) - b and a cyclic pair are "
                  "refused")
 def screen_relations(deep: bool = False) -> Outcome:
-    from ..proof import screen as screen_module
     from ..proof.screen import screen
 
-    # the closed forms are cached: built afresh, so the line map credits this claim
-    screen_module._generic_roots.cache_clear()
     got: Facts = []
     for degree in (1, 2, 3, 4) if deep else (1, 2, 3):
         rel = RELATIONS[degree]

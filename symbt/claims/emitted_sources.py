@@ -1,13 +1,12 @@
 r"""Zullo's code generation checked where the ``codegen`` claims do not look (scene ``library``).
 
-The ``codegen`` claims compare the shipped ``toda{N}.py`` with :func:`symbt.codegen.derive.sources`, which is
-cached: a claim that fills the cache is credited by ``symbt mutate --source``'s line map with every line it ran,
-and later claims are never run for them.  These claims derive afresh (uncached) what they check, each against a
-route that shares nothing with it (issue 21, item 4: the survivors of ``symbt mutate --source codegen``,
+The ``codegen`` claims compare the shipped ``toda{N}.py`` with :func:`symbt.codegen.derive.sources`: code
+compared with what it was printed from.  These claims check what ``derive`` builds, each against a route that
+shares nothing with it (issue 21, item 4: the survivors of ``symbt mutate --source codegen``,
 docs/mutation.md):
 
 * ``library.sources_step`` -- the SymPy source of ``bt_step`` for N = 3 (the paper's route, eq. ``xy``:
-  ``p~_j = p_j + eta_j - eta_{j+1}``, ``q~_j = log(E_j - x_j)``), derived afresh and evaluated at 30 digits, against
+  ``p~_j = p_j + eta_j - eta_{j+1}``, ``q~_j = log(E_j - x_j)``), evaluated at 30 digits, against
   the literal map (:func:`symbt.reference.literal.literal_step`, 30 digits): within ``1e-20 max(1, |x|)`` at the
   states of the ``codegen`` claims, both branches.
 * ``library.illcond`` -- the float64 conditioning guards of the closed form
@@ -47,15 +46,13 @@ CANCEL = (("0.3", "-2.499999999", "0.1"), ("0", "0.2", "-0.1"), "-1.75", "4.25")
 
 @claim("library.sources_step", equation="imptransf", scene="library", N=3,
        where="symbt.codegen.derive.sources: bt_step (the paper's route), N = 3",
-       statement="the SymPy source of bt_step (N = 3, eq. xy as printed), derived afresh, equals the literal map "
+       statement="the SymPy source of bt_step (N = 3, eq. xy as printed) equals the literal map "
                  "(30 digits) within 1e-20 max(1, |x|), both branches")
 def sources_step() -> Outcome:
-    from ..codegen import derive
     from ..codegen.verify import evaluate_source, map_states
     from ..reference.literal import literal_step
 
     N = 3
-    derive.sources.cache_clear()    # derived here: the verdict is this claim's own (and the line map credits it)
     worst, where = mp.mpf(0), None
     states = map_states(N)
     with mp.workdps(30):

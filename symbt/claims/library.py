@@ -173,13 +173,8 @@ def generating_derivatives(N: int) -> Outcome:
                  "(sum_k c_k of those) and phi_grad equal central differences of the polynomial trace's H_k and of "
                  "Phi(tr L(l1), tr L(l2)) (N={N})")
 def field_sources(N: int) -> Outcome:
-    from ..codegen import derive
     from ..codegen.verify import evaluate_source, map_states
 
-    # derive the sources afresh (~0.03 s for N = 2) instead of reading the caches an earlier claim filled: the
-    # verdict is then this claim's own, whatever ran before, and symbt mutate --source's line map credits it
-    derive.sources.cache_clear()
-    derive._trace_ring.cache_clear()
     worst = mp.mpf(0)
     where: dict[str, object] | None = None
     states = map_states(N)[:2] + map_states(N)[-1:]

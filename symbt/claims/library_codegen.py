@@ -174,8 +174,6 @@ def guard_sources() -> Outcome:
     from ..codegen.verify import evaluate_source, map_states
     from ..reference.literal import literal_step
 
-    # derive afresh so the verdict is this claim's own (and symbt mutate --source's line map credits it)
-    derive.sources.cache_clear()
     N = 2
     spec = next(s for s in derive.sources(N) if s.name == "bt_step")
     labels = [g.condition for g in spec.guards]

@@ -7,8 +7,8 @@ high precision, central differences of them, SymPy's own rewriting, Python's ari
 exact fact:
 
 * ``library.specs_literal`` (N = 2; ``library.specs_literal_n3`` under ``--deep``, N = 3, 2-3 s) --
-  :func:`symbt.codegen.derive.specs`, the closed forms the emitted modules are printed from, derived afresh (the
-  trace ring too) and evaluated at 40 digits (every ``Piecewise`` by its selected piece, ``Quotient`` IEEE-style):
+  :func:`symbt.codegen.derive.specs`, the closed forms the emitted modules are printed from,
+  evaluated at 40 digits (every ``Piecewise`` by its selected piece, ``Quotient`` IEEE-style):
   every output of every function against the reference (below) within ``1e-22 max(1, |x|)``; the guards of the
   map's functions in the order ``_with_guards`` documents (conditioning before each trace, the gap sign, the
   ``range`` guards ``u_j, w_j, d_j``, the slopes' conditioning, the positivity of ``E~_j``; stages 0 and 1) with
@@ -20,7 +20,7 @@ exact fact:
   on and off the map, the closed form's trace guards and gap sign (the traces it *decides* with: a trace read from
   the wrong entry changes only which transport runs, not a value at 40 digits, but it flips the gap sign).
 * ``library.sources_literal`` (N = 2; ``library.sources_literal_n3`` under ``--deep``) --
-  :func:`symbt.codegen.derive.sources` (the paper's route), derived afresh, every output and every guard of every
+  :func:`symbt.codegen.derive.sources` (the paper's route): every output and every guard of every
   function (:func:`symbt.codegen.verify.evaluate_source`, 40 digits) against the same reference.
 
 The reference, per function: ``H_k`` the coefficients of the literal ``tr L(lambda)`` (solved from ``N + 1``
@@ -268,13 +268,9 @@ def _scaled(pt: dict[str, Any]) -> list[Any]:
 
 
 def check_specs(N: int) -> Outcome:
-    """``library.specs_literal``: the closed forms of ``derive.specs(N)`` (derived afresh) against the reference."""
+    """``library.specs_literal``: the closed forms of ``derive.specs(N)`` against the reference."""
     from ..codegen import derive
 
-    # derived here, the trace ring and the interface too: the verdict is this claim's own (and symbt mutate
-    # --source's line map credits it, not whichever claim first filled a cache)
-    for f in (derive.specs, derive.interface, derive._trace_ring):
-        f.cache_clear()
     specs = {s.name: s for s in derive.specs(N)}
     bad: list[str] = []
     worst, n = mp.mpf(0), 0
@@ -397,7 +393,7 @@ def _decisions(N: int, s: Any) -> list[str]:
 
 
 @claim("library.specs_literal", equation="imptransf", scene="library", N=2,
-       where="symbt.codegen.derive.specs (the closed forms printed into toda2), derived afresh",
+       where="symbt.codegen.derive.specs (the closed forms printed into toda2)",
        statement="every output and guard of every function of specs(2) (evaluated at 40 digits) equals the literal "
                  "trace and map of symbt.reference.literal (central differences for the fields and the gradient) "
                  "within 1e-22 max(1, |x|), at map states of both branches and trace signs and off the map; the map's "
@@ -407,7 +403,7 @@ def specs_literal() -> Outcome:
 
 
 @claim("library.specs_literal_n3", equation="imptransf", scene="library", N=3, deep=True,
-       where="symbt.codegen.derive.specs (the closed forms printed into toda3), derived afresh",
+       where="symbt.codegen.derive.specs (the closed forms printed into toda3)",
        statement="every output and guard of every function of specs(3) (evaluated at 40 digits) equals the literal "
                  "trace and map within 1e-22 max(1, |x|), on and off the map; the guards in the documented order")
 def specs_literal_n3() -> Outcome:
@@ -415,12 +411,10 @@ def specs_literal_n3() -> Outcome:
 
 
 def check_sources(N: int) -> Outcome:
-    """``library.sources_literal``: every function of ``derive.sources(N)`` (derived afresh) against the reference."""
+    """``library.sources_literal``: every function of ``derive.sources(N)`` against the reference."""
     from ..codegen import derive
     from ..codegen.verify import evaluate_source
 
-    for f in (derive.sources, derive.interface, derive._trace_ring):
-        f.cache_clear()     # derived here: the verdict is this claim's own (see check_specs)
     bad: list[str] = []
     worst, n = mp.mpf(0), 0
     for name in derive.FUNCTIONS:
@@ -456,7 +450,7 @@ def check_sources(N: int) -> Outcome:
 
 @claim("library.sources_literal", equation="imptransf", scene="library", N=2,
        where="symbt.codegen.derive.sources (the paper's route the emitted modules are checked against), N = 2",
-       statement="every output and guard of every function of sources(2), derived afresh and evaluated at 40 digits, "
+       statement="every output and guard of every function of sources(2), evaluated at 40 digits, "
                  "equals the literal trace and map of symbt.reference.literal (central differences for the fields and "
                  "the gradient) within 1e-22 max(1, |x|), on the map and (trace guards) off it")
 def sources_literal() -> Outcome:
@@ -465,7 +459,7 @@ def sources_literal() -> Outcome:
 
 @claim("library.sources_literal_n3", equation="imptransf", scene="library", N=3, deep=True,
        where="symbt.codegen.derive.sources (the paper's route), N = 3",
-       statement="every output and guard of every function of sources(3), derived afresh and evaluated at 40 digits, "
+       statement="every output and guard of every function of sources(3), evaluated at 40 digits, "
                  "equals the literal trace and map within 1e-22 max(1, |x|), on the map and (trace guards) off it")
 def sources_literal_n3() -> Outcome:
     return check_sources(3)

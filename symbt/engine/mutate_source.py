@@ -190,7 +190,8 @@ def _prepare(base: Path, claims: list[str], scenes: list[str], deadline: float |
         raise UsageError(f"the traced run of the unmutated claims failed: {why}")
     linemap = json.loads(out.read_text(encoding="utf-8"))
     prefix = str(base) + os.sep
-    for section in [linemap["import"], *(e["lines"] for e in linemap["claims"].values())]:
+    for section in [linemap["import"], *(e["lines"] for e in linemap["claims"].values()),
+                    *(e["lines"] for e in linemap.get("caches", {}).values())]:
         for f in list(section):
             section[f[len(prefix):] if f.startswith(prefix) else f] = section.pop(f)
     say("the unmutated verify run ...")
