@@ -40,15 +40,15 @@ def test_the_scene_has_the_claims_named_here():
                              "paths.growth_law", "paths.hook_rules", "paths.idle_rows.n3", "paths.ill_member.n3",
                              "paths.inline_boolop", "paths.inline_lines", "paths.inline_rule.n3",
                              "paths.jacobian.n3", "paths.jacobian_dual.n3", "paths.kappa_cells.n2",
-                             "paths.kappa_cells.n3", "paths.kappa_cells.n5", "paths.kappa_cells_rows.n2",
-                             "paths.kappa_cells_rows.n3", "paths.kappa_cells_rows.n5", "paths.kappa_edge.n2",
-                             "paths.kappa_rows.n2", "paths.kernels.n3", "paths.kernels.n5", "paths.lohner_box.n3",
-                             "paths.members.n3", "paths.mixed_block.n3", "paths.mp_verdict.n3",
-                             "paths.next_prec.n3", "paths.python_kernel.n3", "paths.qd.n2", "paths.qd.n3",
-                             "paths.qd_tables", "paths.range_edge.n2", "paths.renorm_top.n2", "paths.root_slope",
-                             "paths.rows_out.n3", "paths.sharp_kappa.n3", "paths.sharp_kappa.n6",
-                             "paths.side_by_side.n3", "paths.step_core.n3", "paths.stored.n3", "paths.threshold.n3",
-                             "paths.tiny_mu.n3", "paths.track_hooks", "paths.zero_radius.n3"]
+                             "paths.kappa_cells.n3", "paths.kappa_cells.n5", "paths.kappa_cells.n6",
+                             "paths.kappa_cells_rows.n2", "paths.kappa_cells_rows.n3", "paths.kappa_cells_rows.n5",
+                             "paths.kappa_edge.n2", "paths.kappa_rows.n2", "paths.kernels.n3", "paths.kernels.n5",
+                             "paths.lohner_box.n3", "paths.members.n3", "paths.mixed_block.n3",
+                             "paths.mp_verdict.n3", "paths.next_prec.n3", "paths.python_kernel.n3", "paths.qd.n2",
+                             "paths.qd.n3", "paths.qd_tables", "paths.range_edge.n2", "paths.renorm_top.n2",
+                             "paths.root_slope", "paths.rows_out.n3", "paths.side_by_side.n3", "paths.step_core.n3",
+                             "paths.stored.n3", "paths.threshold.n3", "paths.tiny_mu.n3", "paths.track_hooks",
+                             "paths.zero_radius.n3"]
 
 
 @pytest.mark.parametrize("cid", NUMERIC_PATHS)
@@ -392,7 +392,7 @@ def test_ill_member_escalated_one_site_off(monkeypatch):
     assert status("paths.ill_member.n3") == "failed"
 
 
-# --------------------------------------------------------------------------- paths.sharp_kappa
+# --------------------------------------------------------------------------- paths.kappa_cells (the paper's state, the chains)
 
 def test_sharp_kappa_renormalised_with_the_wrong_sign(monkeypatch):
     # the prefix's B scaled by 2**+f instead of 2**-f at a renormalisation (mutant condition:106)
@@ -400,7 +400,7 @@ def test_sharp_kappa_renormalised_with_the_wrong_sign(monkeypatch):
 
     monkeypatch.setattr(condition, "sharp_trace_kappa", _planted(condition.sharp_trace_kappa, "math.ldexp(B, -f)",
                                                                  "math.ldexp(B, f)"))
-    assert status("paths.sharp_kappa.n6") == "failed"
+    assert status("paths.kappa_cells.n6") == "failed"
 
 
 def test_sharp_kappa_exponent_stored_one_site_early(monkeypatch):
@@ -409,7 +409,7 @@ def test_sharp_kappa_exponent_stored_one_site_early(monkeypatch):
 
     monkeypatch.setattr(condition, "sharp_trace_kappa", _planted(condition.sharp_trace_kappa, "        pe[j] = e",
                                                                  "        pe[j - 1] = e"))
-    assert status("paths.sharp_kappa.n6") == "failed"
+    assert status("paths.kappa_cells.n6") == "failed"
 
 
 def test_sharp_kappa_cancellation_factor_kept_at_the_first_site(monkeypatch):
@@ -419,7 +419,7 @@ def test_sharp_kappa_cancellation_factor_kept_at_the_first_site(monkeypatch):
     monkeypatch.setattr(condition, "sharp_trace_kappa", _planted(condition.sharp_trace_kappa,
                                                                  "if cn * kd > kn * abs(a):",
                                                                  "if cn * kd < kn * abs(a):"))
-    assert status("paths.sharp_kappa.n3") == "failed"
+    assert status("paths.kappa_cells.n3") == "failed"
 
 
 # --------------------------------------------------------------------------- paths.coefficients_mp

@@ -12,15 +12,14 @@ trace of the monodromy and :math:`|\cdot|` entrywise; the float64 code forms the
 stored, their second rows rebuilt from ``r``), the suffixes backwards, both renormalised by exact powers of two
 past :math:`2^{\pm 200}`.
 
-* ``paths.sharp_kappa.n{3,6}`` -- that value against the definition evaluated with exact matrix products at 60
-  digits (no renormalisation, no stored rows: the independent route), on the same double inputs ``p, r, lam``:
-  N = 3, the paper's state at :math:`\lambda = 15` and at six points of its gaps and outer zones, and its mirror
-  image :math:`p \to -p` at :math:`-\lambda`; N = 6, chains at :math:`\lambda = \pm 10^{25}`, whose prefix and
-  suffix products pass :math:`2^{200}` after three sites -- the renormalised path, stored rows with exponents.
-  Accepted: :math:`|k_t / k_{ref} - 1| \le 16 u N` (``SHARP_UNIT`` N, the allowance the docstring gives for the
-  routine's own rounding: on these states no product cancels, so each of the :math:`O(N)` roundings is relative),
-  and :math:`k_{ref}` itself checked at 80 digits.  A lost renormalisation exponent, a row read from the wrong
-  site or a term lost changes :math:`k_t` by a factor, not by ulps.
+This module holds that definition, evaluated with exact matrix products at high precision (no renormalisation,
+no stored rows: the independent route), for the claims that compare the float64 value with it
+(``paths.kappa_cells``, ``paths.kappa_cells_rows``, ``paths.renorm_top``), and the states the first of those
+claims took: N = 3, the paper's state at :math:`\lambda = 15` and at six points of its gaps and outer zones, and
+its mirror image :math:`p \to -p` at :math:`-\lambda`; N = 6, chains at :math:`\lambda = \pm 10^{25}`, whose
+prefix and suffix products pass :math:`2^{200}` after three sites -- the renormalised path, stored rows with
+exponents.  On these states no product cancels, so each of the :math:`O(N)` roundings is relative; a lost
+renormalisation exponent, a row read from the wrong site or a term lost changes :math:`k_t` by a factor, not by ulps.
 
 Shown to fail on planted bugs in ``tests/test_killers_numeric.py``.
 """
@@ -31,9 +30,8 @@ import math
 import mpmath as mp
 import numpy as np
 
-from .base import Outcome, claim, failed
 
-#: paths.sharp_kappa: the states (p, q) and the spectral parameters, per N
+#: the paper's state and the chains (among paths.kappa_cells' states): (p, q) and the spectral parameters
 PAPER_P, PAPER_Q = (-20.0, 10.0, 1.0), (1.0, 0.0, 0.9)
 PAPER_LAMS = (15.0, -5.0, -12.0, 3.0, 0.5, 30.0, -40.0)
 CHAIN_P, CHAIN_Q = (-20.0, 10.0, 1.0, 3.0, -2.0, 0.5), (1.0, 0.0, 0.9, 0.3, -0.4, 0.2)
@@ -43,13 +41,14 @@ KAPPA_DPS, KAPPA_CHECK_DPS = 60, 80
 
 
 def kappa_cases(N: int) -> list[tuple[tuple, tuple, float]]:
-    """``(p, r, lam)``: double inputs of ``sharp_trace_kappa`` (``r = exp(q_{j+1} - q_j)`` rounded once)."""
+    """``(p, r, lam)``: double inputs of ``sharp_trace_kappa`` (``r = exp(q_{j+1} - q_j)`` rounded once): the
+    paper's state and its mirror (N = 3), the chains (N = 6), none for other N."""
     def ratios(q: tuple) -> tuple:
         return tuple(math.exp(q[(j + 1) % len(q)] - q[j]) for j in range(len(q)))
     if N == 3:
         out = [(PAPER_P, ratios(PAPER_Q), lam) for lam in PAPER_LAMS]
         return out + [(tuple(-x for x in PAPER_P), ratios(PAPER_Q), -lam) for lam in PAPER_LAMS]
-    return [(CHAIN_P, ratios(CHAIN_Q), lam) for lam in CHAIN_LAMS]
+    return [(CHAIN_P, ratios(CHAIN_Q), lam) for lam in CHAIN_LAMS] if N == len(CHAIN_P) else []
 
 
 def kappa_by_definition(p: tuple, r: tuple, lam: float, dps: int, lo: float = 0.0) -> mp.mpf:
@@ -96,30 +95,3 @@ def sharp_against_definition(p, r, lam) -> tuple[float, mp.mpf, float] | None:
     with np.errstate(all="ignore"):
         got = sharp_trace_kappa(np.array(p), np.array(r), lam, 0.0)
     return got, ref, float(abs(mp.mpf(got) / ref - 1)) if math.isfinite(got) else math.inf
-
-
-@claim("paths.sharp_kappa", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3, 6),
-       where="symbt/numeric/core/condition.py: sharp_trace_kappa",
-       statement="sharp_trace_kappa (N={N}) = its documented k_t evaluated with exact 2x2 products at 60 digits "
-                 "(checked at 80), within a relative 16 u N: the paper's state and its mirror at 7 spectral "
-                 "parameters (N = 3), chains at lam = +-1e25, 3e24 through the renormalised path (N = 6)")
-def sharp_kappa(N: int) -> Outcome:
-    from ..numeric.core.condition import SHARP_UNIT
-
-    bad, worst = [], 0.0
-    cases = kappa_cases(N)
-    for p, r, lam in cases:
-        compared = sharp_against_definition(p, r, lam)
-        if compared is None:
-            bad.append(f"lam = {lam:g}: the reference disagrees with itself at 80 digits")
-            continue
-        got, ref, dev = compared
-        worst = max(worst, dev / (SHARP_UNIT * len(p)))
-        if not dev <= SHARP_UNIT * len(p):
-            bad.append(f"lam = {lam:g}: k_t = {got:.6g}, by the definition {mp.nstr(ref, 8)}")
-    detail = f"{len(cases)} states; worst |k_t / k_ref - 1| = {worst:.3g} x 16 u N."
-    if bad:
-        return failed("numeric: sharp_trace_kappa vs its definition (exact products, 60 digits)",
-                      detail="; ".join(bad[:3]) + ". " + detail)
-    return Outcome("verified", "numeric: sharp_trace_kappa vs its definition (exact products, 60 digits)",
-                   evidence="sampled", detail=detail, printed="k_t = its definition within 16 u N")

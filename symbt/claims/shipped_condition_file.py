@@ -1,19 +1,21 @@
 r"""What ships, 4m: the whole of :mod:`symbt.numeric.core.condition` against independent routes, cell by cell
 (scene ``numeric-paths``; issue 21 item 4, docs/mutation.md "Fresh samples of symbt/numeric/core/condition.py").
 
-The earlier claims on this module each observed one state or one branch (``paths.sharp_kappa``: no cancellation,
-``lam`` of one sign per state family; ``paths.renorm_top``: one backward renormalisation; ``paths.kappa_rows`` and
+The earlier claims on this module each observed one state or one branch (``paths.sharp_kappa``, now part of
+``paths.kappa_cells``: no cancellation, ``lam`` of one sign per state family; ``paths.renorm_top``: one backward renormalisation; ``paths.kappa_rows`` and
 ``paths.side_by_side``: the numpy forms against the scalar ones, bit for bit).  A fresh mutation sample showed that a
 slip in any other branch went unseen.  These claims observe each function over the cells of its branches, against
 a route that shares no code with it.
 
-* ``paths.kappa_cells.n{2,3,5}`` -- :func:`~symbt.numeric.core.condition.sharp_trace_kappa` against its docstring's
+* ``paths.kappa_cells.n{2,3,5,6}`` -- :func:`~symbt.numeric.core.condition.sharp_trace_kappa` against its docstring's
   definition with exact 2x2 products at 60 digits (checked at 80; the one reference of
   :func:`~symbt.claims.shipped_condition.kappa_by_definition`), on a grid of states:
   ``lam`` of both signs with a nonzero low part ``lo``, at moderate values (bands, gaps, outside), at ``+-1e40``
   (prefix and suffix products past ``2**200``), at steep ``q`` (``r_j = e**+-300``: renormalised up and down) and at
   tiny ``lam, p`` with ``q`` falling (products below ``2**-200``), and with ``a_j`` cancelling to ``2**-20`` of
-  ``|lam| + |p_j|`` at the first and at the last site (the cancellation factor's maximum at either end).
+  ``|lam| + |p_j|`` at the first and at the last site (the cancellation factor's maximum at either end); and the
+  states of :func:`~symbt.claims.shipped_condition.kappa_cases` (the paper's state and its mirror, N = 3; chains
+  at ``lam = +-1e25``, N = 6).
   Accepted: ``|k_t / k_ref - 1| <= 16 u N (1 + k_ref)`` -- ``16 u N`` the docstring's allowance for the routine's
   own rounding, ``16 u N k_ref`` the first-order error of the computed trace (``|delta t| <= 3 N u T_s``)
   carried through ``(|t| + 2) / |t**2 - 4|``, whose log-derivative is at most ``3 / ||t| - 2|``.  And the
@@ -50,7 +52,7 @@ import mpmath as mp
 import numpy as np
 
 from .base import Outcome, claim, failed
-from .shipped_condition import kappa_by_definition
+from .shipped_condition import kappa_by_definition, kappa_cases
 
 U = 2.0 ** -53
 #: the digits of the reference and of its check
@@ -86,10 +88,12 @@ def kappa_grid(N: int) -> tuple[tuple[Case, ...], tuple[Case, ...], tuple[Case, 
         add(rng.uniform(-3, 3, N), tuple(rng.uniform(-1, 1, N)), sign * 1e40)   # products past 2**200
         steep = tuple(300.0 * (j % 2) - 40.0 * j for j in range(N))           # r = e**+-300: up and down
         add(rng.uniform(-3, 3, N), steep, sign * 3.5)
-        add(rng.uniform(-1, 1, N) * 1e-70, tuple(-150.0 * j for j in range(N)), sign * 1e-70)  # below 2**-200
+        fall = min(150.0, 700.0 / (N - 1))                          # the wrap-around ratio e**(fall (N-1)) a double
+        add(rng.uniform(-1, 1, N) * 1e-70, tuple(-fall * j for j in range(N)), sign * 1e-70)  # below 2**-200
         for site in (0, N - 1):                                     # a_j cancels to 2**-20 of |lam| + |p_j|
             p = rng.uniform(1, 3, N) * np.where(rng.uniform(size=N) < 0.5, -1.0, 1.0)
             add(p, tuple(rng.uniform(-1, 1, N)), -float(p[site]) * (1 + 2.0 ** -20))
+    fin += [(p, r, lam, 0.0) for p, r, lam in kappa_cases(N)]      # the paper's state (N = 3), the chains (N = 6)
     inf: list[Case] = []
     for lam in (2.0, -2.0):                                         # t = 2 T_N(+-1) = +-2 exactly
         inf.append(((0.0,) * N, (1.0,) * N, lam, 0.0))
@@ -163,12 +167,13 @@ def _scalar_kappas(cases: tuple[Case, ...]) -> tuple[list[float], str]:
 
 
 @claim("paths.kappa_cells", equation="bt_step", source_equation="imptransf", scene="numeric-paths",
-       sizes=(2, 3, 5), where="symbt/numeric/core/condition.py: sharp_trace_kappa (every branch)",
+       sizes=(2, 3, 5, 6), where="symbt/numeric/core/condition.py: sharp_trace_kappa (every branch)",
        statement="sharp_trace_kappa (N={N}) = its documented k_t with exact 2x2 products at 60 digits (checked at "
                  "80) within 16 u N (1 + k_t) on a grid: lam of both signs with a low part, in bands, gaps and "
                  "outside, at +-1e40, at steep q (r = e**+-300), at tiny lam and falling q, a_j cancelling at the "
-                 "first and the last site; inf at t = +-2 and at a_j = 0 (first and last site); inf or NaN, no "
-                 "exception, where the products leave the double range")
+                 "first and the last site; the paper's state and its mirror at 7 spectral parameters (N = 3), chains "
+                 "at lam = +-1e25, 3e24 through the renormalised path (N = 6); inf at t = +-2 and at a_j = 0 (first "
+                 "and last site); inf or NaN, no exception, where the products leave the double range")
 def kappa_cells(N: int) -> Outcome:
     fin, inf, untrusted = kappa_grid(N)
     got, err = _scalar_kappas(fin + inf + untrusted)

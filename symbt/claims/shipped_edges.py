@@ -7,7 +7,7 @@ r"""What ships, 4k: three documented rules of the numeric routes at their edges 
   (``a_2 = lam``, ``r_2 = e**-416 ~ 2**-600``).  Renormalised by the largest magnitude (1) nothing moves; by a
   smaller one the suffix is scaled up by ``~2**599`` and its product with ``r_1 = e**416 ~ 2**600`` at the next
   site leaves the double range (``inf``), though the exponent bookkeeping is exact either way.  Checked as
-  ``paths.sharp_kappa`` checks the value: against the docstring's definition with exact 2x2 products at 60
+  ``paths.kappa_cells`` checks the value: against the docstring's definition with exact 2x2 products at 60
   digits (checked at 80), within a relative ``16 u N``.
 * ``paths.kappa_edge.n2`` -- the float64 kernels decide a trace where its condition estimate is *at most*
   ``KAPPA_MAX = 2**24`` (``kernels._decided``'s docstring, docs/numeric.md "Conditioned decisions and

@@ -13,7 +13,7 @@ unchecked (scene ``numeric-paths``; issue 21 item 4, docs/mutation.md "Seeds 4 a
   ``FEW_ROWS`` rows (its numpy form) where some rows' products leave ``[2**-200, 2**200]`` (``paths.renorm_top``'s
   states and two others) equals the scalar :func:`~symbt.numeric.core.condition.sharp_trace_kappa` row by row, bit
   for bit (its docstring; a consistency check -- the scalar is checked against its definition by
-  ``paths.renorm_top`` and ``paths.sharp_kappa``).
+  ``paths.renorm_top`` and ``paths.kappa_cells``).
 * ``paths.mp_verdict.n3`` -- the escalation's mpmath verdict (:mod:`symbt.numeric.float64.rows`) names the point
   whose trace lies in a band: ``TRACE1`` where ``lam1 = lam0 + mu`` does, ``TRACE2`` where ``lam2 = lam0 - mu``
   does, ``OK`` where neither (the codes' meaning in :mod:`symbt.numeric.core.limits` and ``raise_for_rows``), the
