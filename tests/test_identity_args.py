@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from symbt import check_identity
+from symbt import check_identity, decide
 from symbt.testing import assert_identity
 
 x = sp.Symbol("x", real=True)
@@ -47,6 +47,27 @@ def test_sides_sympy_cannot_read_are_type_errors(side):
 def test_unparsable_string_is_a_value_error():
     with pytest.raises(ValueError, match="cannot parse lhs 'x \\+'"):
         check_identity("x +", 0)
+
+
+@pytest.mark.parametrize("who", [check_identity, decide], ids=["check_identity", "decide"])
+def test_sides_of_no_common_shape_name_both_arguments(who):
+    name = who.__name__
+    with pytest.raises(ValueError, match=rf"{name}: lhs is a 1x1 matrix and rhs the scalar 1"):
+        who(sp.Matrix([[x]]), 1)          # was SymPy's TypeError "Data type not understood" from inside decide
+    with pytest.raises(ValueError, match=rf"{name}: rhs is a 2x1 matrix and lhs the scalar x"):
+        who(x, sp.Matrix([x, 1]))
+    with pytest.raises(ValueError, match=rf"{name}: shape mismatch: lhs is 2x1, rhs 1x2"):
+        who(sp.Matrix([x, 1]), sp.Matrix([[x, 1]]))
+    assert who(sp.Matrix([x - x, 0]), 0).holds          # a scalar 0 is the zero matrix of the other side's shape
+    assert not who(0, sp.Matrix([x, 0])).holds
+
+
+@pytest.mark.parametrize("who", [check_identity, decide], ids=["check_identity", "decide"])
+@pytest.mark.parametrize("side", [sp.Gt(x, 1), sp.And(x > 1, x < 2), sp.true, [x], "x +"],
+                         ids=["relation", "and", "true", "list", "unparsable"])
+def test_a_side_that_is_no_expression_is_named(who, side):
+    with pytest.raises((TypeError, ValueError), match=rf"{who.__name__}: (cannot parse )?rhs"):
+        who(x, side)
 
 
 def test_accepted_forms_still_work():

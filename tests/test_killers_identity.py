@@ -13,7 +13,7 @@ import pytest
 from planting import mutated, planted
 
 from symbt.claims import REGISTRY, load_all
-from symbt.proof import domain, identity, mutation
+from symbt.proof import decider, domain, identity, mutation
 
 load_all()
 
@@ -75,21 +75,22 @@ ARGUMENTS = [   # planted into a module function, seen through check_identity
     ("_validate", "if digits < MIN_DIGITS:", "if digits <= MIN_DIGITS:"),
     ("_validate", "if not isinstance(exact, bool):", "if isinstance(exact, bool):"),
     ("_validate", "if isinstance(seed, bool) or", "if not isinstance(seed, bool) or"),
-    ("_expr", "if isinstance(value, str):", "if not (isinstance(value, str)):"),
+    ("read_side", "if isinstance(value, str):", "if not (isinstance(value, str)):"),   # decider's, shared
     ("check_identity", "if not (isinstance(rhs, (int, float)) and rhs == 0):",              # seed 21, :402
      "if isinstance(rhs, (int, float)) and rhs == 0:"),
     ("check_identity", "exact: bool = True,", "exact: bool = False,"),                        # seed 21, :383
     ("check_identity", "points=list(d.points) if not d.exact else []", "points=list(d.points) if d.exact else []"),
-    ("check_identity", "if isinstance(lhs, sp.MatrixBase) and rhs == 0:",
-     "if isinstance(lhs, sp.MatrixBase) and rhs == 1:"),
-    ("check_identity", "elif isinstance(rhs, sp.MatrixBase) and lhs == 0:",
-     "elif not (isinstance(rhs, sp.MatrixBase) and lhs == 0):"),
+    ("match_shapes", "if lm and not rm and rhs == 0:", "if lm and not rm and rhs == 1:"),  # decider's, shared
+    ("match_shapes", "if rm and not lm and lhs == 0:", "if not (rm and not lm and lhs == 0):"),
 ]
 
 
 @pytest.mark.parametrize("func, old, new", ARGUMENTS, ids=[f"{f}:{o}" for f, o, _ in ARGUMENTS])
 def test_identity_arguments_kill(monkeypatch, func, old, new):
-    monkeypatch.setattr(identity, func, planted(getattr(identity, func), old, new))
+    mutant = planted(getattr(identity, func), old, new)
+    monkeypatch.setattr(identity, func, mutant)
+    if hasattr(decider, func):     # the side reader and the shape rule are decider's, imported by name
+        monkeypatch.setattr(decider, func, mutant)
     assert status("checker.identity_arguments") == "failed"
 
 

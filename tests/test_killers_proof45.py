@@ -124,8 +124,8 @@ IDENTITY = [   # (seed:line, function, old, new)
     ("identity:270", "_pick_symbol", "    if not syms:\n", "    if syms:\n"),
     ("identity:274", "_pick_symbol", "if degs[s] == top]", "if degs[s + 1] == top]"),
     ("identity:275", "_pick_symbol", "if len(best) > 1:", "if not (len(best) > 1):"),
-    ("identity:404", "check_identity", "if isinstance(lhs, sp.MatrixBase) and rhs == 0:",
-     "if not (isinstance(lhs, sp.MatrixBase) and rhs == 0):"),
+    ("identity:404", "match_shapes", "if lm and not rm and rhs == 0:",     # now decider's match_shapes
+     "if not (lm and not rm and rhs == 0):"),
     ("identity:408", "check_identity", "    if assumptions:\n        rel_exprs", "    if not (assumptions):\n"
                                                                                 "        rel_exprs"),
 ]

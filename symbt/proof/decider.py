@@ -57,6 +57,8 @@ from collections.abc import Mapping
 from typing import Any
 
 import sympy as sp
+from sympy.core.relational import Relational
+from sympy.logic.boolalg import BooleanAtom
 
 from .exact import exact_zero
 from .screen import MIN_DIGITS, ScreenResult, screen
@@ -82,6 +84,66 @@ def _undefined(expr: sp.Expr) -> bool:
     return bool(expr.has(sp.oo, -sp.oo))
 
 
+def read_side(name: str, value: Any, caller: str = "decide") -> sp.Basic:
+    """``value`` as a SymPy expression or matrix; ``TypeError`` naming the argument for what SymPy cannot read
+    (``ValueError`` for a string it cannot parse), and for a relation or a truth value, which is not a side.
+
+    >>> read_side("lhs", "x**2 + 1")
+    x**2 + 1
+    >>> read_side("rhs", [1, 2])
+    Traceback (most recent call last):
+    ...
+    TypeError: decide: rhs must be a SymPy expression, number or matrix, not list ([1, 2])
+    """
+    if isinstance(value, sp.MatrixBase):
+        return value
+    unreadable = value is None or isinstance(value, (bytes, bytearray, set, frozenset, dict))
+    if unreadable or (callable(value) and not isinstance(value, sp.Basic)):
+        raise TypeError(f"{caller}: {name} must be a SymPy expression, number or matrix, not {type(value).__name__}")
+    try:
+        expr = sp.sympify(value, strict=not isinstance(value, str))
+    except (sp.SympifyError, TypeError, ValueError) as exc:
+        if isinstance(value, str):
+            raise ValueError(f"{caller}: cannot parse {name} {value!r}: {exc}") from exc
+        raise TypeError(f"{caller}: {name} must be a SymPy expression, number or matrix, "
+                        f"not {type(value).__name__} ({value!r})") from exc
+    if isinstance(expr, BooleanAtom):   # Eq(x, x) is already True when it arrives
+        raise TypeError(f"{caller}: {name} is {expr}, not an expression (an Eq that SymPy has already "
+                        "evaluated?): give its two sides as lhs and rhs")
+    if isinstance(expr, Relational) or not isinstance(expr, (sp.Expr, sp.MatrixBase)):   # x > 1, And(...): not a side
+        raise TypeError(f"{caller}: {name} is {type(expr).__name__} ({expr}), not an expression: give the two "
+                        "sides of a statement as lhs and rhs")
+    return expr
+
+
+def match_shapes(lhs: sp.Basic, rhs: sp.Basic, caller: str = "decide") -> tuple[sp.Basic, sp.Basic]:
+    """The two sides with one shape: a scalar ``0`` beside a matrix becomes the zero matrix of its shape;
+    ``ValueError`` naming both sides for any other scalar beside a matrix, or matrices of different shapes.
+
+    >>> match_shapes(sp.Matrix([1, 2]), 0)
+    (Matrix([
+    [1],
+    [2]]), Matrix([
+    [0],
+    [0]]))
+    """
+    lm, rm = isinstance(lhs, sp.MatrixBase), isinstance(rhs, sp.MatrixBase)
+    if lm and not rm and rhs == 0:
+        return lhs, sp.zeros(*lhs.shape)
+    if rm and not lm and lhs == 0:
+        return sp.zeros(*rhs.shape), rhs
+    if lm != rm:
+        m, other = ("lhs", "rhs") if lm else ("rhs", "lhs")
+        shape = (lhs if lm else rhs).shape
+        raise ValueError(f"{caller}: {m} is a {shape[0]}x{shape[1]} matrix and {other} the scalar "
+                         f"{rhs if lm else lhs}: give both sides as matrices of one shape (a scalar side may only "
+                         "be 0)")
+    if lm and lhs.shape != rhs.shape:
+        raise ValueError(f"{caller}: shape mismatch: lhs is {lhs.shape[0]}x{lhs.shape[1]}, "
+                         f"rhs {rhs.shape[0]}x{rhs.shape[1]}")
+    return lhs, rhs
+
+
 def decide(lhs: sp.Expr, rhs: sp.Expr = 0, *, relations: Mapping[sp.Symbol, sp.Expr] | None = None,
            digits: int = 50, points: int = 6, seed: int = 1729, exact: bool = True,
            fixed: Mapping[sp.Symbol, Any] | None = None) -> Verdict:
@@ -94,6 +156,9 @@ def decide(lhs: sp.Expr, rhs: sp.Expr = 0, *, relations: Mapping[sp.Symbol, sp.E
     layer (used for statements involving transcendental functions).  ``digits``
     must be at least ``MIN_DIGITS`` = 9 (``ValueError``): below, the screen's
     tolerance ``10**-(digits - 8)`` would be 1 or more and every statement would pass.
+    Each side must be something SymPy reads as an expression or matrix (:func:`read_side`: ``TypeError`` or
+    ``ValueError`` naming it); a matrix beside a scalar other than 0, or matrices of different shapes, are a
+    ``ValueError`` (:func:`match_shapes`).
     """
     if isinstance(digits, int) and digits < MIN_DIGITS:
         raise ValueError(f"decide: digits must be at least {MIN_DIGITS} (the numeric screen's tolerance "
@@ -101,13 +166,10 @@ def decide(lhs: sp.Expr, rhs: sp.Expr = 0, *, relations: Mapping[sp.Symbol, sp.E
                          f"got {digits}")
     relations = dict(relations or {})
     fixed = dict(fixed or {})
-    lhs, rhs = sp.sympify(lhs), sp.sympify(rhs)
-    if isinstance(lhs, sp.MatrixBase) or isinstance(rhs, sp.MatrixBase):
-        lm, rm = sp.Matrix(lhs), sp.Matrix(rhs)
-        if lm.shape != rm.shape:
-            raise ValueError(f"shape mismatch {lm.shape} vs {rm.shape}")
+    lhs, rhs = match_shapes(read_side("lhs", lhs), read_side("rhs", rhs))
+    if isinstance(lhs, sp.MatrixBase):
         parts = [decide(a, b, relations=relations, digits=digits, points=points, seed=seed,
-                        exact=exact, fixed=fixed) for a, b in zip(lm, rm)]
+                        exact=exact, fixed=fixed) for a, b in zip(lhs, rhs)]
         if not parts:
             return Verdict.from_proof("exact: empty matrices")
         bad = [d for d in parts if not d.holds and not d.inconclusive]

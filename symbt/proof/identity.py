@@ -72,9 +72,8 @@ from dataclasses import dataclass, field
 from typing import Any, TypeAlias
 
 import sympy as sp
-from sympy.logic.boolalg import BooleanAtom
 
-from .decider import decide
+from .decider import decide, match_shapes, read_side
 from .screen import MIN_DIGITS
 from .verdict import STATUS_COLOURS, Verdict, latex_text
 
@@ -356,27 +355,6 @@ def _validate(*, digits: object, points: object, seed: object, exact: object, fi
         raise TypeError(f"check_identity: relations must be a dict, a list or an Eq, not {type(relations).__name__}")
 
 
-def _expr(name: str, value: Any) -> sp.Basic:
-    """``value`` as a SymPy expression or matrix; ``TypeError`` for what SymPy cannot read."""
-    if isinstance(value, sp.MatrixBase):
-        return value
-    unreadable = value is None or isinstance(value, (bytes, bytearray, set, frozenset, dict))
-    if unreadable or (callable(value) and not isinstance(value, sp.Basic)):
-        raise TypeError(f"check_identity: {name} must be a SymPy expression, number or matrix, "
-                        f"not {type(value).__name__}")
-    try:
-        expr = sp.sympify(value, strict=not isinstance(value, str))
-    except (sp.SympifyError, TypeError, ValueError) as exc:
-        if isinstance(value, str):
-            raise ValueError(f"check_identity: cannot parse {name} {value!r}: {exc}") from exc
-        raise TypeError(f"check_identity: {name} must be a SymPy expression, number or matrix, "
-                        f"not {type(value).__name__} ({value!r})") from exc
-    if isinstance(expr, BooleanAtom):   # Eq(x, x) is already True when check_identity gets it
-        raise TypeError(f"check_identity: {name} is {expr}, not an expression (an Eq that SymPy has already "
-                        "evaluated?): give its two sides as lhs and rhs")
-    return expr
-
-
 # --------------------------------------------------------------------------- entry point
 
 def check_identity(lhs: ExprLike, rhs: ExprLike = 0, *, relations: RelationsLike = None,
@@ -403,13 +381,9 @@ def check_identity(lhs: ExprLike, rhs: ExprLike = 0, *, relations: RelationsLike
         if not (isinstance(rhs, (int, float)) and rhs == 0):
             raise ValueError("give either an Eq or lhs and rhs, not both")
         lhs, rhs = lhs.lhs, lhs.rhs
-    lhs, rhs = _expr("lhs", lhs), _expr("rhs", rhs)
+    lhs, rhs = match_shapes(read_side("lhs", lhs, "check_identity"), read_side("rhs", rhs, "check_identity"),
+                            "check_identity")
     rel_raw = normalize_relations(relations)
-    if isinstance(lhs, sp.MatrixBase) != isinstance(rhs, sp.MatrixBase):
-        if isinstance(lhs, sp.MatrixBase) and rhs == 0:
-            rhs = sp.zeros(*lhs.shape)
-        elif isinstance(rhs, sp.MatrixBase) and lhs == 0:
-            lhs = sp.zeros(*rhs.shape)
     if assumptions:
         rel_exprs = list(rel_raw.values()) + list(rel_raw.keys())
         repl, lhs, rhs, *rest = apply_assumptions(assumptions, lhs, rhs, *rel_exprs)
