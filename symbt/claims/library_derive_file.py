@@ -43,7 +43,6 @@ from functools import cache
 from typing import Any
 
 import mpmath as mp
-import sympy as sp
 
 from .base import Outcome, claim, failed
 
@@ -52,55 +51,6 @@ DPS = 40
 #: the order of the map's guards, written out from ``_with_guards``' docstring (N sites)
 ORDER = lambda N: (["illcond", "trace", "illcond", "trace", "positivity"] + ["range"] * (3 * N)  # noqa: E731
                    + ["illcond"] * N)
-
-
-def value(e: Any, env: dict[Any, Any], memo: dict[Any, Any]) -> Any:
-    """``e`` at ``env`` with mpmath, each distinct subexpression once; a ``Piecewise`` evaluates only its selected
-    piece, ``Quotient(a, b)`` divides IEEE-style (``a/0 = sgn(a) inf``)."""
-    from sympy.codegen.cfunctions import log1p
-
-    from ..codegen.printer import Quotient
-
-    if e in memo:
-        return memo[e]
-    if e.is_Symbol:
-        v = env[e]
-    elif e is sp.true or e is sp.false:
-        v = bool(e)
-    elif e.is_Integer:
-        v = mp.mpf(int(e))
-    elif e.is_Rational:
-        v = mp.mpf(e.p) / e.q
-    elif e.is_Float:
-        v = mp.mpf(e)
-    elif isinstance(e, sp.Piecewise):
-        v = next(value(x, env, memo) for x, c in e.args if value(c, env, memo))
-    elif isinstance(e, Quotient):
-        a, b = (value(x, env, memo) for x in e.args)
-        v = a / b if b != 0 else mp.sign(a) * mp.inf
-    elif e.is_Add:
-        v = mp.fsum(value(x, env, memo) for x in e.args)
-    elif e.is_Mul:
-        v = mp.fprod(value(x, env, memo) for x in e.args)
-    elif e.is_Pow:
-        b, x = value(e.base, env, memo), e.exp
-        v = mp.exp(value(x, env, memo)) if e.base is sp.E else b ** int(x) if x.is_Integer else \
-            mp.sqrt(b) ** int(2 * x) if x.is_Rational and x.q == 2 else None
-        if v is None:
-            raise ValueError(f"cannot evaluate {e}")
-    elif isinstance(e, sp.core.relational.Relational):
-        a, b = value(e.lhs, env, memo), value(e.rhs, env, memo)
-        v = {">=": a >= b, ">": a > b, "<=": a <= b, "<": a < b, "==": a == b, "!=": a != b}[e.rel_op]
-    elif isinstance(e, (sp.Max, sp.Min)):
-        vs = [value(x, env, memo) for x in e.args]
-        v = max(vs) if isinstance(e, sp.Max) else min(vs)
-    else:
-        funcs = {sp.exp: mp.exp, sp.log: mp.log, log1p: mp.log1p, sp.sign: mp.sign, sp.Abs: abs, sp.acosh: mp.acosh}
-        if e.func not in funcs:
-            raise ValueError(f"cannot evaluate {type(e).__name__}")
-        v = funcs[e.func](value(e.args[0], env, memo))
-    memo[e] = v
-    return v
 
 
 def _trace(lam: Any, p: list[Any], q: list[Any]) -> Any:
@@ -270,6 +220,7 @@ def _scaled(pt: dict[str, Any]) -> list[Any]:
 def check_specs(N: int) -> Outcome:
     """``library.specs_literal``: the closed forms of ``derive.specs(N)`` against the reference."""
     from ..codegen import derive
+    from ..codegen.verify import interpret
 
     specs = {s.name: s for s in derive.specs(N)}
     bad: list[str] = []
@@ -290,8 +241,8 @@ def check_specs(N: int) -> Outcome:
                     bad.append(f"{name}: the reference is unstable at {pt}")
                     continue
                 env, memo = _env(s, pt), dict[Any, Any]()
-                got = [value(e, env, memo) for o in s.outputs for e in o.exprs]
-                gv = [value(g.expr, env, memo) for g in s.guards]
+                got = [interpret(e, env, memo) for o in s.outputs for e in o.exprs]
+                gv = [interpret(g.expr, env, memo) for g in s.guards]
                 r = _close(got, ref[0])
                 if name in ("dapp_xy", "bt_step"):
                     tg = [gv[1], gv[3], gv[4]] + gv[5:5 + 3 * N] + gv[5 + 4 * N:]
@@ -351,6 +302,8 @@ def _off_reference(name: str, pt: dict[str, Any]) -> list[Any]:
 
 def _off_map(N: int, s: Any, name: str) -> list[str]:
     """Guard values of the closed form ``s`` where the real function does not exist (traces, gap sign)."""
+    from ..codegen.verify import interpret
+
     bad = []
     for case, pt in _off_cases(N, name):
         env, memo = _env(s, pt), dict[Any, Any]()
@@ -363,7 +316,7 @@ def _off_map(N: int, s: Any, name: str) -> list[str]:
             if not (case == "band" and t1 < 4 or case == "gap" and want[2] < 0):
                 bad.append(f"the {case} state does not reach its case: tr1^2 = {mp.nstr(t1, 5)}, "
                            f"tr2^2 = {mp.nstr(t2, 5)}")
-        got = [value(s.guards[i].expr, env, memo) for i in idx]
+        got = [interpret(s.guards[i].expr, env, memo) for i in idx]
         if _close(got, want[:len(idx)]) > TOL:
             bad.append(f"{name}: guards {[mp.nstr(v, 5) for v in got]} at the {case} state {_brief(pt)}, "
                        f"reference {[mp.nstr(v, 5) for v in want]}")
@@ -377,6 +330,8 @@ RANDOM = 10
 def _decisions(N: int, s: Any) -> list[str]:
     """The trace guards ``tr_i^2 - 4`` and the gap sign ``sign(tr_1) sign(tr_2)`` of the closed form ``s`` at seeded
     random states, on and off the map (the traces the closed form decides with, not only the ones it reads out)."""
+    from ..codegen.verify import interpret
+
     rng = random.Random(733 * N)
     bad = []
     for _ in range(RANDOM):
@@ -385,7 +340,7 @@ def _decisions(N: int, s: Any) -> list[str]:
                   mu=mp.mpf(rng.uniform(0.1, 3)), branch=rng.choice((1, -1)))
         env, memo = _env(s, pt), dict[Any, Any]()
         with mp.workdps(DPS):
-            got = [value(s.guards[i].expr, env, memo) for i in (1, 3, 4)]
+            got = [interpret(s.guards[i].expr, env, memo) for i in (1, 3, 4)]
             if _close(got, _off_reference("bt_step", pt)) > TOL:
                 bad.append(f"bt_step: trace and gap guards {[mp.nstr(v, 5) for v in got]} at {_brief(pt)}, reference "
                            f"{[mp.nstr(v, 5) for v in _off_reference('bt_step', pt)]}")

@@ -34,12 +34,13 @@ from typing import Any
 import mpmath as mp
 import numpy as np
 import sympy as sp
+from sympy.codegen.cfunctions import log1p
 
 from ..reference.literal import literal_step, reference_step
 from ..reference.samples import admissible_states, paper_state
 from .derive import FunctionSpec, RingValue, interface, sources
 
-__all__ = ["compare", "evaluate_source", "map_states", "points", "step_accuracy", "phi_grad_vs_fd",
+__all__ = ["compare", "evaluate_source", "interpret", "map_states", "points", "step_accuracy", "phi_grad_vs_fd",
            "xy_vs_printed", "F64_TOL_ULPS", "MP_TOL", "REF_DPS", "MP_DPS", "EPS"]
 
 F64_TOL_ULPS = 16
@@ -84,39 +85,65 @@ def points(spec: FunctionSpec, N: int) -> list[dict[str, Any]]:
     return pts
 
 
-_FUNCS = {sp.exp: mp.exp, sp.log: mp.log, sp.sign: mp.sign, sp.Abs: abs, sp.acosh: mp.acosh}
+_FUNCS = {sp.exp: mp.exp, sp.log: mp.log, log1p: mp.log1p, sp.sign: mp.sign, sp.Abs: abs, sp.acosh: mp.acosh}
 
 
-def _interpret(e: sp.Basic, env: dict[sp.Basic, Any], memo: dict[Any, Any]) -> Any:
-    """Value of a SymPy expression DAG with mpmath, each distinct subexpression once (the sources'
-    products of local Lax matrices share their subexpressions; a tree walk or ``lambdify`` would
-    see 2^N copies)."""
+def interpret(e: sp.Basic, env: dict[sp.Basic, Any], memo: dict[Any, Any]) -> Any:
+    """Value of a SymPy expression DAG with mpmath at the working precision, each distinct subexpression once
+    (the sources' products of local Lax matrices share their subexpressions; a tree walk or ``lambdify`` would
+    see 2^N copies).  What the derived sources and closed forms contain is read: numbers, ``+ * **`` (integer
+    and half-integer powers, ``E**x``), ``exp log log1p sign Abs acosh``, ``Max Min``, relations and ``true``/
+    ``false``, ``Piecewise`` -- only its selected piece is evaluated, as the printed code does -- and the printer's
+    ``Quotient(a, b)``, IEEE-style (``a/0 = sgn(a) inf``).  Anything else is a ``ValueError``.
+
+    >>> x, y = sp.symbols("x y")
+    >>> e = sp.Piecewise((sp.log(x), x > 0), (y, True)) + sp.Rational(1, 2)
+    >>> [float(interpret(e, {x: mp.mpf(v), y: mp.mpf(7)}, {})) for v in (1, -1)]
+    [0.5, 7.5]
+    """
+    from .printer import Quotient
+
     try:
         return memo[e]
     except KeyError:
         pass
     if e.is_Symbol:
         v = env[e]
+    elif e is sp.true or e is sp.false:
+        v = bool(e)
     elif e.is_Integer:
-        v = int(e)
+        v = mp.mpf(int(e))
     elif e.is_Rational:
         v = mp.mpf(e.p) / e.q
+    elif e.is_Float:
+        v = mp.mpf(e)
+    elif isinstance(e, sp.Piecewise):
+        v = next(interpret(x, env, memo) for x, c in e.args if interpret(c, env, memo))
+    elif isinstance(e, Quotient):
+        a, b = (interpret(x, env, memo) for x in e.args)
+        v = a / b if b != 0 else mp.sign(a) * mp.inf
     elif e.is_Add:
-        v = mp.fsum(_interpret(x, env, memo) for x in e.args)
+        v = mp.fsum(interpret(x, env, memo) for x in e.args)
     elif e.is_Mul:
-        v = mp.fprod(_interpret(x, env, memo) for x in e.args)
+        v = mp.fprod(interpret(x, env, memo) for x in e.args)
     elif e.is_Pow:
-        b, x = _interpret(e.base, env, memo), e.exp
+        b, x = interpret(e.base, env, memo), e.exp
         if e.base is sp.E:
-            v = mp.exp(_interpret(x, env, memo))
+            v = mp.exp(interpret(x, env, memo))
         elif x.is_Integer:
             v = b ** int(x)
         elif x.is_Rational and x.q == 2:
             v = mp.sqrt(b) ** x.p
         else:
             raise ValueError(f"cannot evaluate {e}")
-    elif e.func in _FUNCS and len(e.args) == 1:
-        v = _FUNCS[e.func](_interpret(e.args[0], env, memo))
+    elif isinstance(e, sp.core.relational.Relational):
+        a, b = interpret(e.lhs, env, memo), interpret(e.rhs, env, memo)
+        v = {">=": a >= b, ">": a > b, "<=": a <= b, "<": a < b, "==": a == b, "!=": a != b}[e.rel_op]
+    elif isinstance(e, (sp.Max, sp.Min)):
+        vs = [interpret(x, env, memo) for x in e.args]
+        v = max(vs) if isinstance(e, sp.Max) else min(vs)
+    elif len(e.args) == 1 and e.func in _FUNCS:
+        v = _FUNCS[e.func](interpret(e.args[0], env, memo))
     else:
         raise ValueError(f"cannot evaluate {type(e).__name__}: {e}")
     memo[e] = v
@@ -126,7 +153,7 @@ def _interpret(e: sp.Basic, env: dict[sp.Basic, Any], memo: dict[Any, Any]) -> A
 def _eval(c: Any, env: dict[sp.Basic, Any], memo: dict[Any, Any]) -> Any:
     if isinstance(c, RingValue):
         return c.evaluate(env, mp.exp, memo)
-    return _interpret(sp.sympify(c), env, memo)
+    return interpret(sp.sympify(c), env, memo)
 
 
 def evaluate_source(N: int, name: str, pt: dict[str, Any], dps: int = REF_DPS, part: str = "outputs") -> list[Any]:

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 74f6c289259a1676031ff09747319833e4941c153beb8c5a977568e1b8d8e271
-# symbt-codegen-content-sha256: 0b15cb6f6eaea19a0dcf616d1a8c8fa527767b1683483d5bb3a7de72ad466f19
+# symbt-codegen-derivation-sha256: e41a3f5bff1d890d605bd32e751e7532d0496bc50b8c2ece4b7266ab3e48fc9f
+# symbt-codegen-content-sha256: 7da9b62471d11f68b3b109a5437e1ef52ccb52f54708c9f3b588e6bea27122b9
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 74f6c289259a1676031ff09747319833e4941c153beb8c5a977568e1b8d8e271
-# symbt-codegen-content-sha256: 75946e4ce8826b70d53ebfaa4306b9d6ae7654406361998e4a78a20f3c93f68d
+# symbt-codegen-derivation-sha256: e41a3f5bff1d890d605bd32e751e7532d0496bc50b8c2ece4b7266ab3e48fc9f
+# symbt-codegen-content-sha256: 22f2f0428fb059849ff54f4e0157a1e9d8f8c855fcc4746d4a8bc67ddfd7f6fe
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 74f6c289259a1676031ff09747319833e4941c153beb8c5a977568e1b8d8e271
-# symbt-codegen-content-sha256: 5c0266dda42336046d7f1bd1e6ff262edb2687d047b4e97261c3cc35771cc590
+# symbt-codegen-derivation-sha256: e41a3f5bff1d890d605bd32e751e7532d0496bc50b8c2ece4b7266ab3e48fc9f
+# symbt-codegen-content-sha256: 737e6c362666889ed1d6308214912b2f0a9768a73fcc5bddd437724d574c0b1e
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
