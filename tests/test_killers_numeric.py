@@ -392,7 +392,7 @@ def test_ill_member_escalated_one_site_off(monkeypatch):
     assert status("paths.ill_member.n3") == "failed"
 
 
-# --------------------------------------------------------------------------- paths.kappa_cells (the paper's state, the chains)
+# ----------------------------------------------------------- paths.kappa_cells (the paper's state, the chains)
 
 def test_sharp_kappa_renormalised_with_the_wrong_sign(monkeypatch):
     # the prefix's B scaled by 2**+f instead of 2**-f at a renormalisation (mutant condition:106)

@@ -59,7 +59,7 @@ def _trace(lam: Any, p: list[Any], q: list[Any]) -> Any:
     return literal_trace(lam, p, q)
 
 
-def _invariants(p: list[Any], q: list[Any]) -> list[Any]:
+def trace_invariants(p: list[Any], q: list[Any]) -> list[Any]:
     """``H_0 .. H_{N-1}``: ``tr L(lambda) - lambda^N`` at ``lambda = 0 .. N - 1`` solved for its coefficients."""
     N = len(p)
     V = mp.matrix([[mp.mpf(k) ** i for i in range(N)] for k in range(N)])
@@ -109,9 +109,9 @@ def reference(name: str, pt: dict[str, Any]) -> tuple[list[Any], list[Any] | Non
     p, q = pt["p"], pt["q"]
     N = len(p)
     if name == "invariants":
-        return _invariants(p, q), None
+        return trace_invariants(p, q), None
     if name in ("hamiltonian_fields", "flow_field"):
-        dp, dq = _grad(_invariants, p, q)          # dp[j][k] = dH_k/dp_j
+        dp, dq = _grad(trace_invariants, p, q)          # dp[j][k] = dH_k/dp_j
         qd = [dp[j][k] for k in range(N) for j in range(N)]
         pd = [-dq[j][k] for k in range(N) for j in range(N)]
         if name == "hamiltonian_fields":

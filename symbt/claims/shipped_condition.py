@@ -21,7 +21,8 @@ prefix and suffix products pass :math:`2^{200}` after three sites -- the renorma
 exponents.  On these states no product cancels, so each of the :math:`O(N)` roundings is relative; a lost
 renormalisation exponent, a row read from the wrong site or a term lost changes :math:`k_t` by a factor, not by ulps.
 
-Shown to fail on planted bugs in ``tests/test_killers_numeric.py``.
+The claims that use it are shown to fail on planted bugs in ``tests/test_killers_numeric.py`` and
+``tests/test_killers_condition.py``.
 """
 from __future__ import annotations
 
@@ -29,7 +30,6 @@ import math
 
 import mpmath as mp
 import numpy as np
-
 
 #: the paper's state and the chains (among paths.kappa_cells' states): (p, q) and the spectral parameters
 PAPER_P, PAPER_Q = (-20.0, 10.0, 1.0), (1.0, 0.0, 0.9)

@@ -2,10 +2,10 @@ r"""What ships, 4m: the whole of :mod:`symbt.numeric.core.condition` against ind
 (scene ``numeric-paths``; issue 21 item 4, docs/mutation.md "Fresh samples of symbt/numeric/core/condition.py").
 
 The earlier claims on this module each observed one state or one branch (``paths.sharp_kappa``, now part of
-``paths.kappa_cells``: no cancellation, ``lam`` of one sign per state family; ``paths.renorm_top``: one backward renormalisation; ``paths.kappa_rows`` and
-``paths.side_by_side``: the numpy forms against the scalar ones, bit for bit).  A fresh mutation sample showed that a
-slip in any other branch went unseen.  These claims observe each function over the cells of its branches, against
-a route that shares no code with it.
+``paths.kappa_cells``: no cancellation, ``lam`` of one sign per state family; ``paths.renorm_top``: one backward
+renormalisation; ``paths.kappa_rows`` and ``paths.side_by_side``: the numpy forms against the scalar ones, bit for
+bit).  A fresh mutation sample showed that a slip in any other branch went unseen.  These claims observe each
+function over the cells of its branches, against a route that shares no code with it.
 
 * ``paths.kappa_cells.n{2,3,5,6}`` -- :func:`~symbt.numeric.core.condition.sharp_trace_kappa` against its docstring's
   definition with exact 2x2 products at 60 digits (checked at 80; the one reference of
