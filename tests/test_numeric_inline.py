@@ -8,6 +8,7 @@ chosen so that each inlined hook does real work -- ``lam_split``'s low parts non
 and on the failure statuses.  The rewrite's own rules are tested on small functions.
 """
 
+import dis
 import inspect
 import math
 import operator
@@ -244,3 +245,20 @@ def test_tracebacks_of_inlined_code_name_the_source_lines_of_the_fused_step():
     last = first + len(inspect.getsource(fused.step).splitlines())
     lines = {ln for _, _, ln in code.co_lines() if ln is not None}
     assert lines and all(first <= ln <= last for ln in lines)     # the hooks' code sits at their calls
+
+
+def _keep(x, y):
+    return x, y
+
+
+def _uses_keep(a, b):
+    a, b = _keep(a, b)
+    return a + b
+
+
+def test_a_self_assignment_a_substitution_leaves_is_dropped():
+    # a body that returns its arguments leaves `a, b = a, b` at the call: the rewrite drops it (module docstring),
+    # so the inlined function stores nothing.  Kills inline:185 (`_same` with `!=`: the same values, more work).
+    g = inlined(_uses_keep, "uses_keep_inline", {"_keep": "body"}, {"_keep": _keep})
+    assert g(1.0, 2.0) == 3.0
+    assert [i.opname for i in dis.get_instructions(g) if i.opname.startswith("STORE")] == []

@@ -81,7 +81,6 @@ class Context(Protocol):
     """
 
     is_exact_scale: bool
-    is_complex: bool
 
     def exp(self, x: Value) -> Value: ...
     def log(self, x: Value) -> Value: ...
@@ -121,6 +120,7 @@ class FloatContext:
 
     def __init__(self, dtype: npt.DTypeLike = np.float64) -> None:
         self.dtype = np.dtype(dtype)
+        # this context's own switch between its real and complex forms (no algorithm asks a context for it)
         self.is_complex = self.dtype.kind == "c"
 
     # elementary functions -------------------------------------------------
@@ -260,7 +260,6 @@ class MPContext:
     """
 
     is_exact_scale = True
-    is_complex = True  # mpmath switches to mpc on its own where needed
 
     exp = staticmethod(mpmath.exp)
     log = staticmethod(mpmath.log)
@@ -350,8 +349,6 @@ class IVContext(MPContext):
     >>> IVContext.positive(mpmath.iv.mpf([-1, 2]))
     False
     """
-
-    is_complex = False
 
     exp = staticmethod(mpmath.iv.exp)
     log = staticmethod(mpmath.iv.log)

@@ -14,7 +14,8 @@ source's syntax tree so that those calls disappear, in two ways named by the ``k
   arguments (names and constants directly, other arguments bound once before), its numeric globals
   written as constants, its other globals bound under their own names, the plain functions of its own
   module it calls substituted in turn, and its ``return`` statements turned into assignments at the end
-  of each path (the statements after an ``if`` that returns are copied into both branches).  A call in
+  of each path (the statements after an ``if`` that returns are copied into both branches; an assignment
+  of names to themselves this leaves, ``a, b = a, b`` from a body returning its arguments, is dropped).  A call in
   the middle of an expression is computed by statements placed before its statement; the rewrite
   therefore refuses a body that writes to an array or calls an unknown function anywhere but at the
   root of its statement (``x = f(...)``, ``f(...)``, ``if [not] f(...):``), where that move changes

@@ -83,7 +83,6 @@ class ArbContext:
     """
 
     is_exact_scale = True
-    is_complex = False
     # Any: re-bound to the complex-ball functions in AcbContext (one attribute, two signatures)
     exp: Any = staticmethod(arb.exp)
     log: Any = staticmethod(arb.log)
@@ -165,7 +164,6 @@ class AcbContext(ArbContext):
 
     # the real-ball primitives re-bound to complex balls (the type checker's [override]: an acb context
     # is not an arb context, it shares the control-flow methods)
-    is_complex = True
     exp = staticmethod(acb.exp)
     log = staticmethod(acb.log)
     log1p = staticmethod(acb.log1p)
