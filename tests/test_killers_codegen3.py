@@ -318,3 +318,38 @@ def test_illcond_site_guard_stage_never_read_equivalent():
                  guards=[Guard("domain", "x", x, early=True), Guard("illcond", "site", y - x, early=early)])
         texts.append((mpmath_function(e), numpy_function(e)))
     assert texts[0] == texts[1]
+
+
+CLOSED_GAP = [   # (the line, mutated): symbt.codegen.closed_gap:49 and :58 (seed 5)
+    ("    return sp.StrictLessThan(_abs(A - D) + 2 * (_abs(B) + _abs(C)), _abs(A + D) + two, evaluate=False)",
+     "    return sp.StrictLessThan(_abs(A - D) + 2 * (_abs(B) + _abs(C)), _abs(A + D) + two, evaluate=True)"),
+    ("                         (sp.Mul(t - 2, t + 2, evaluate=False), True), evaluate=False)",
+     "                         (sp.Mul(t - 2, t + 2, evaluate=True), True), evaluate=False)"),
+]
+
+
+@pytest.mark.parametrize("before, after", CLOSED_GAP, ids=["closed_gap:49", "closed_gap:58"])
+def test_closed_gap_evaluated_is_equivalent(monkeypatch, before, after):
+    # evaluate=True of the closed-gap test |A - D| + 2(|B| + |C|) < |A + D| + two (SymPy cannot decide it on the
+    # symbolic entries, so it stays the same relation) and of the product (t - 2)(t + 2) (SymPy orders the same two
+    # factors the same way, and does not expand): the functions' only callers -- derive's closed forms (through
+    # trace_discriminant) and the kernels of the transfer-matrix form and the C target (near_closed_gap) -- build
+    # the same expressions, so every emitted module is the same text
+    from symbt.codegen import closed_gap, derive, kernels, zullo
+
+    def built() -> tuple:
+        for f in (derive.specs, derive.sources, derive.interface, derive._trace_ring, kernels.kernels):
+            f.cache_clear()
+        return (zullo.module_text(2), zullo.module_text(3),
+                {k: sp.srepr(v) for k, v in kernels.kernels().items()})
+
+    want = built()
+    copy = mutated("symbt.codegen.closed_gap", before, after)
+    monkeypatch.setattr(derive, "trace_discriminant", copy.trace_discriminant)
+    monkeypatch.setattr(closed_gap, "near_closed_gap", copy.near_closed_gap)   # kernels imports it at call time
+    try:
+        got = built()
+    finally:
+        monkeypatch.undo()
+        built()
+    assert got == want
