@@ -248,20 +248,25 @@ def second():
 '''
 
 
+def _line_map(tmp_path, files: dict[str, str], tracer=("-m", "symbt.engine.linemap")) -> tuple[dict, str]:
+    """The line map of ``files`` (a target module, then its claims module, by name and text) written into
+    ``tmp_path``, and the target's resolved path."""
+    (target, text), (claims, claims_text) = files.items()
+    (tmp_path / target).write_text(text)
+    (tmp_path / claims).write_text(claims_text)
+    out = tmp_path / "map.json"
+    r = subprocess.run([sys.executable, *tracer, "--out", str(out), "--claims", str(tmp_path / claims),
+                        str(tmp_path / target)], cwd=tmp_path, capture_output=True, text=True, timeout=300,
+                       env={**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), str(tmp_path)])})
+    assert r.returncode == 0, r.stderr
+    return json.loads(out.read_text()), str((tmp_path / target).resolve())
+
+
 @pytest.mark.slow
 def test_lines_run_while_a_lazily_imported_module_loads_are_import_lines(tmp_path):
     # build()'s body runs once, when `tabled` is imported -- inside lazy.first's check.  Credited to lazy.first,
     # a mutant there would run lazy.first alone, though TAB is what lazy.second reads.
-    (tmp_path / "tabled.py").write_text(TABLED)
-    (tmp_path / "lazy_claims.py").write_text(LAZY_CLAIMS)
-    out = tmp_path / "map.json"
-    r = subprocess.run([sys.executable, "-m", "symbt.engine.linemap", "--out", str(out), "--claims",
-                        str(tmp_path / "lazy_claims.py"), str(tmp_path / "tabled.py")], cwd=tmp_path,
-                       capture_output=True, text=True, timeout=300,
-                       env={**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), str(tmp_path)])})
-    assert r.returncode == 0, r.stderr
-    lm = json.loads(out.read_text())
-    f = str((tmp_path / "tabled.py").resolve())
+    lm, f = _line_map(tmp_path, {"tabled.py": TABLED, "lazy_claims.py": LAZY_CLAIMS})
     assert {2, 5} <= set(lm["import"][f])                      # build's body and the table's line
     assert ms.claims_of_line(lm, f, 2, False) is None          # every claim runs for a mutant there
     assert ms.claims_of_line(lm, f, 9, False) == ["lazy.first"]   # look() is run by lazy.first only
@@ -318,16 +323,7 @@ _NO_COVERAGE = ("import sys; sys.modules['coverage'] = None; from symbt.engine.l
 def test_lines_a_shared_cache_runs_are_credited_to_every_claim_that_reads_it(tmp_path, tracer):
     # table(4) is filled by shared.first; shared.second only reads it (through outside()).  In a mutant's run
     # shared.second starts cold and runs row() itself, so a mutant in row() must run both claims.
-    (tmp_path / "shared.py").write_text(SHARED)
-    (tmp_path / "shared_claims.py").write_text(SHARED_CLAIMS)
-    out = tmp_path / "map.json"
-    r = subprocess.run([sys.executable, *tracer, "--out", str(out), "--claims",
-                        str(tmp_path / "shared_claims.py"), str(tmp_path / "shared.py")], cwd=tmp_path,
-                       capture_output=True, text=True, timeout=300,
-                       env={**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), str(tmp_path)])})
-    assert r.returncode == 0, r.stderr
-    lm = json.loads(out.read_text())
-    f = str((tmp_path / "shared.py").resolve())
+    lm, f = _line_map(tmp_path, {"shared.py": SHARED, "shared_claims.py": SHARED_CLAIMS}, tracer)
     assert ms.claims_of_line(lm, f, 5, False) == ["shared.first", "shared.second"]   # row()'s body
     assert ms.claims_of_line(lm, f, 10, False) == ["shared.first", "shared.second"]  # the fill
     assert ms.claims_of_line(lm, f, 14, False) == ["shared.second"]                  # outside(): its own
