@@ -62,7 +62,7 @@ def test_the_operators_are_those_documented():
     assert all(f"``{op}``" in doc for op in OPERATORS)
 
 
-def test_strings_annotations_messages_and_type_checking_blocks_are_left_alone():
+def test_strings_annotations_messages_type_checking_and_main_blocks_are_left_alone():
     src = textwrap.dedent('''\
         """Doc 1 + 2."""
         from typing import TYPE_CHECKING
@@ -75,6 +75,10 @@ def test_strings_annotations_messages_and_type_checking_blocks_are_left_alone():
                 raise ValueError(f"{x + 1} too big")
             print(x - 1)
             return x
+        if __name__ == "__main__":
+            f(1 + 2)
+        if "__main__" == __name__:
+            f(3 - 1)
         ''')
     ms_ = find_mutants(src, "m")
     touched = {src.splitlines()[m.line - 1].strip() for m in ms_}

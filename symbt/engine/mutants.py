@@ -23,7 +23,9 @@ Operators (:data:`OPERATORS`):
 =================  ============================================================
 
 Not mutated: annotations, docstrings and other strings, f-strings, ``raise`` statements (error
-messages), ``print``/``warn`` calls, ``__all__``, ``if TYPE_CHECKING:`` blocks.
+messages), ``print``/``warn`` calls, ``__all__``, ``if TYPE_CHECKING:`` blocks, and ``if __name__ ==
+"__main__":`` blocks (a module's command line, run only as ``python -m``: importing the module never
+runs it, so no claim can see it -- and its guard negated would run the command at import).
 
 A mutant's :attr:`~SourceMutant.id` is stable under edits elsewhere in the file: module, line,
 operator and a hash of the line's text, the replaced snippet, its replacement and its
@@ -68,6 +70,19 @@ _QUIET_CALLS = {"print", "warn", "debug", "info", "warning", "error", "exception
 #: a float constant below this (and above 0) is read as a tolerance
 TOLERANCE_BELOW = 1e-3
 
+
+
+def _is_main_guard(test: ast.expr) -> bool:
+    """``__name__ == "__main__"`` (either order).
+
+    >>> _is_main_guard(ast.parse('__name__ == "__main__"', mode="eval").body)
+    True
+    """
+    if not (isinstance(test, ast.Compare) and len(test.ops) == 1 and isinstance(test.ops[0], ast.Eq)):
+        return False
+    sides = [test.left, test.comparators[0]]
+    return (any(isinstance(x, ast.Name) and x.id == "__name__" for x in sides)
+            and any(isinstance(x, ast.Constant) and x.value == "__main__" for x in sides))
 
 class UsageError(ValueError):
     """Bad input to ``symbt mutate --source`` (an unknown module, a malformed equivalents file): one
@@ -182,6 +197,8 @@ class _Finder(ast.NodeVisitor):
     # ------------------------------------------------------------------ operators
     def visit_If(self, node: ast.If) -> None:
         if isinstance(node.test, ast.Name) and node.test.id == "TYPE_CHECKING":
+            return
+        if _is_main_guard(node.test):
             return
         self._branch(node.test)
         self.generic_visit(node)
