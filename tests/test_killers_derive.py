@@ -337,3 +337,20 @@ def test_shift_exponent_of_the_first_site_is_equivalent():
         for e in exprs:
             for expand in (False, True):
                 assert bad(m, e, expand) == derive._shift(m, e, expand)
+
+
+def test_trace_ring_zero_entry_test_is_equivalent(monkeypatch):
+    # derive:184 (seed 8), `R.from_expr(x) if x != 1 else R.zero` for `x != 0`: no entry of a local Lax matrix
+    # (lambda + p_j, -E_j, 1/E_j, 0) is 1, so the mutant sends every entry through R.from_expr -- and the zero
+    # entry's R.from_expr(0) is the ring's zero: the same trace and Hamiltonians
+    from symbt.symbolic.toda import local_lax, toda_model
+
+    for N in (2, 3, 4):
+        m = toda_model(N)
+        assert all(x != 1 for j in range(N) for x in local_lax(m.lam, m.p[j], m.E[j]))
+    want = {N: derive._TraceRing(N) for N in (2, 3, 4)}
+    monkeypatch.setattr(derive._TraceRing, "__init__", planted(derive._TraceRing.__init__,
+                                                                "if x != 0 else R.zero for", "if x != 1 else R.zero for"))
+    for N, ring in want.items():
+        got = derive._TraceRing(N)
+        assert got.tr == ring.tr and got.H == ring.H and got.R.zero == got.R.from_expr(0)
