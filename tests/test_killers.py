@@ -142,6 +142,18 @@ def test_api_convention_hint_lost(monkeypatch):
     assert _status(checker.api_controls) == "failed"
 
 
+def test_api_decide_one_side_is_against_zero(monkeypatch):
+    # decider:147 (seed 8): decide's default rhs 0 -> 1
+    from planting import mutated
+
+    from symbt.proof import decider
+    copy = mutated("symbt.proof.decider", "def decide(lhs: sp.Expr, rhs: sp.Expr = 0, *, relations: Mapping[sp.Symbol, "
+                   "sp.Expr] | None = None,", "def decide(lhs: sp.Expr, rhs: sp.Expr = 1, *, relations: "
+                   "Mapping[sp.Symbol, sp.Expr] | None = None,")
+    monkeypatch.setattr(decider, "decide", copy.decide)
+    assert _status(checker.api_controls) == "failed"
+
+
 def test_api_relation_symbol(monkeypatch):
     # an equation's constrained symbol taken from the other side (mu or w instead of eta)
     from symbt.proof import identity

@@ -177,7 +177,8 @@ def cell_controls() -> Outcome:
        statement="solves_ode proves the logistic solution and refutes it shifted by 1e-20; x = (t - t0)^2/4 solves "
                  "x' = sqrt(x) exactly in the cell t > t0 only; check_identity proves eta^2 - mu^2 = w under "
                  "eta^2 = mu^2 + w (given as an equation), refutes it off by 1e-20 (given as a mapping), and proves "
-                 "exp(q1/2 - q2/3)^6 = exp(3 q1 - 2 q2); Eq(eta^2, mu^2 + w) constrains eta from either side; "
+                 "exp(q1/2 - q2/3)^6 = exp(3 q1 - 2 q2); decide(e) with one side decides e = 0; "
+                 "Eq(eta^2, mu^2 + w) constrains eta from either side; "
                  "K(k) by the modulus is false with the modulus/parameter hint; x = -1e30 e^t for x' = -x has "
                  "relative residual 2; x = e^t solves x' = n x for n in {1} (sampled, not refuted by the exact layer)")
 def api_controls() -> Outcome:
@@ -203,6 +204,9 @@ def api_controls() -> Outcome:
     got.append(("relation as an equation", r.verdict, "proved"))
     r = check_identity(eta ** 2 - mu ** 2, w * (1 + SMALL), relations={eta: eta ** 2 - mu ** 2 - w})
     got.append(("relation as a mapping, off by 1e-20", r.verdict, "false"))
+    from ..proof.decider import decide
+    one_side = [decide(e, relations={eta: eta ** 2 - mu ** 2 - w}).verdict for e in (eta ** 2 - mu ** 2 - w, w)]
+    got.append(("decide(e) decides e = 0", one_side, ["proved", "false"]))
     r = check_identity(sp.exp(q1 / 2 - q2 / 3) ** 6, sp.exp(3 * q1 - 2 * q2))
     got.append(("exponentials", (r.verdict, r.evidence), ("proved", "proof")))
     # which symbol an equation constrains: the side with a single symbol (eta), from either side
