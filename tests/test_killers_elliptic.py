@@ -61,6 +61,7 @@ def test_lattice_residual_killed(monkeypatch, old, new):
     ("F", "if abs(z) > 1:", "if abs(z) >= 1:"),
     ("F_real", "return -_F_m(1 / (k * s), k ** 2)", "return _F_m(1 / (k * s), k ** 2)"),
     ("F_real", "if abs(k * s) >= 1:", "if abs(k * s) <= 1:"),
+    ("F_real", "if abs(k * s) >= 1:", "if abs(k * s) > 1:"),                                        # seed 8, :171
     ("F_real", "if abs(s) <= 1:", "if abs(s) >= 1:"),
     ("theta2_printed", "mm = (I2 - 2) / (I2 + 2) if m is None else m",
      "mm = (I2 - 2) / (I2 + 2) if not (m is None) else m"),

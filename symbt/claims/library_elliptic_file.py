@@ -138,7 +138,8 @@ def _refused(f, *args) -> bool:
        where="symbt.reference.elliptic.F, F_real, F_principal, theta2_printed (its m), angles and g_real",
        statement="F(z, k) = ellipf(asin z, k^2) on [-1, 1] (both signs), ValueError for |z| > 1; F_real = F on "
                  "[-1, 1], "
-                 "-F(1/(k s)) on |s| >= 1/k, d F_real/ds = 1/|sqrt((1-s^2)(1-k^2 s^2))| (central differences) on the "
+                 "-F(1/(k s)) on |s| >= 1/k (the edges s = +-1/k included), d F_real/ds = "
+                 "1/|sqrt((1-s^2)(1-k^2 s^2))| (central differences) on the "
                  "three pieces, ValueError in both gaps; F_principal(z) = z elliprf(1-z^2, 1-k^2z^2, 1) at complex z; "
                  "theta2_printed(p, q, m=m') = F(P, sqrt m')/sqrt(I2 + 2); angles = (q1 + q2, u/sqrt(I2 + 2)) with "
                  "sn u = P, cn u = C, |u| <= 2K; g_real(T) = sgn T log((|T| + sqrt(T^2 - 4))/2); 25 digits")
@@ -162,6 +163,11 @@ def F_forms() -> Outcome:
             want = -mp.ellipf(mp.asin(1 / (k * s)), m)
             if not abs(E.F_real(s, k) - want) <= tol:
                 bad.append(f"F_real({ss}/k) = {mp.nstr(E.F_real(s, k), 10)}, -F(1/(ks)) = {mp.nstr(want, 10)}")
+        for s in (2, -2):          # the outer edges |s| = 1/k exactly (k = 1/2: k s = +-1 with no rounding)
+            want = -mp.sign(s) * mp.ellipk(mp.mpf(1) / 4)
+            half = mp.mpf(1) / 2
+            if _refused(E.F_real, mp.mpf(s), half) or not abs(E.F_real(mp.mpf(s), half) - want) <= tol:
+                bad.append(f"F_real({s}, 1/2) at the edge |s| = 1/k: want -sgn(s) K(1/4) = {mp.nstr(want, 10)}")
         for ss in FORMS_IN + FORMS_OUT:
             s = mp.mpf(ss) / (k if ss in FORMS_OUT else 1)
             slope = mp.diff(lambda x: E.F_real(x, k), s)
