@@ -199,6 +199,8 @@ def test_addition_third_killed(monkeypatch, old, new):
      "if rn is not None and max(abs(v) for v in rn) >= max(abs(v) for v in r):"),
     ("_gauss_newton", "if step is None:", "if not (step is None):"),
     ("_gauss_newton", "if max(abs(d) for d in dx) * lam < tol:", "if max(abs(d) for d in dx) * lam > tol:"),
+    ("_line_search", "while lam > mp.mpf(2) ** -30:", "while lam >= mp.mpf(2) ** -30:"),               # seed 8, :36
+    ("_line_search", "lam /= 2", "lam /= 3"),
 ])
 def test_newton_rule_killed(monkeypatch, func, old, new):
     monkeypatch.setattr(inverse, func, planted(getattr(inverse, func), old, new))

@@ -271,7 +271,8 @@ NEWTON_TOLS = (mp.mpf("1e-6"), mp.mpf("1e-300"))
                  "reports iterations = 13 and takes one more step: x = (2/3)^13 (also with the equation twice: "
                  "least-squares steps); with tol = 1e-300 it gives up after "
                  "its 40 iterations (None: the residual -(2/3)^120 is negative, its size above tol); Gauss-Newton "
-                 "on the inconsistent (x - 1, x + 1) returns the least-squares x = 0 after one step")
+                 "on the inconsistent (x - 1, x + 1) returns the least-squares x = 0 after one step; the line "
+                 "search tries lam = 1, 1/2, ..., 2**-29 and no smaller")
 def newton_rule() -> Outcome:
     from ..reference import inverse as inv
 
@@ -296,7 +297,14 @@ def newton_rule() -> Outcome:
         gn = inv._gauss_newton(G, JG, [mp.mpf("0.4")], mp.mpf("1e-20"))
         if gn is None or gn[1] != 1 or not abs(gn[0][0]) <= mp.mpf(10) ** -25:
             bad.append(f"Gauss-Newton: {gn}, want ([0], 1)")
-    detail = "Newton: 13 iterations and the extra step at tol 1e-6, None at 1e-300; Gauss-Newton: x = 0 after 1 step"
+        # the line search's 30 tries, lam = 1 ... 2**-29: the last is taken when it alone is accepted, 2**-30 never
+        for last, want_lam in ((29, mp.mpf(2) ** -29), (30, None)):
+            ls = inv._line_search(lambda x: [x[0]], [mp.mpf(0)], [mp.mpf(1)],
+                                  lambda r, lam, last=last: lam <= mp.mpf(2) ** -last)
+            if (ls and ls[1]) != want_lam:
+                bad.append(f"line search accepting lam <= 2**-{last} only: {ls}, want lam = {want_lam}")
+    detail = ("Newton: 13 iterations and the extra step at tol 1e-6, None at 1e-300; Gauss-Newton: x = 0 after 1 step; "
+              "the line search stops at lam = 2**-29")
     if bad:
         return failed("the Newton loops' documented rules on toy residuals", detail="; ".join(bad) + ". " + detail)
     return Outcome("verified", "exact: Newton's iterates on -x^3 are (2/3)^n", evidence="sampled", n_scope=[2],

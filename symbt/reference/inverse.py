@@ -30,8 +30,8 @@ def _norm(r: Sequence[mp.mpf]) -> mp.mpf:
 
 def _line_search(F: Residual, x: Sequence[mp.mpf], dx: Sequence[mp.mpf],
                  accept: Callable[[list[mp.mpf], mp.mpf], bool]) -> tuple[list[mp.mpf], mp.mpf] | None:
-    """``(x + lam dx, lam)`` for the first ``lam = 1, 1/2, ...`` where F is defined and
-    ``accept(F(x + lam dx), lam)`` holds; None below ``lam = 2**-30``."""
+    """``(x + lam dx, lam)`` for the first of ``lam = 1, 1/2, ..., 2**-29`` (30 tries) where F is defined and
+    ``accept(F(x + lam dx), lam)`` holds; None if none does."""
     lam = mp.mpf(1)
     while lam > mp.mpf(2) ** -30:
         xn = [a + lam * d for a, d in zip(x, dx)]
