@@ -245,3 +245,14 @@ def test_ks_selection_killed(monkeypatch, old, new):
 
     monkeypatch.setattr(spectral, "flow_coefficients_mp", planted(spectral.flow_coefficients_mp, old, new))
     assert status(L.ks_selection) == "failed"
+
+
+def test_trace_gap_swap_at_equal_ends_is_equivalent():
+    # trace:126 (seed 8), `if lo >= hi:` for `if lo > hi:`: the mutant also swaps lo and hi when they are equal,
+    # which leaves the same pair (mpf values are immutable): every return value is the same
+    from symbt.reference import trace as T
+
+    bad = planted(T.trace_gap, "    if lo > hi:", "    if lo >= hi:")
+    p, q = [mp.mpf(-1), mp.mpf("0.5")], [mp.mpf("0.3"), mp.mpf(-1)]
+    for lo, hi in [(3, 3), (-1, -1), ("2.5", "2.5"), (0, 4), (4, 0), (-5, 5), (1, 1.5)]:
+        assert bad(p, q, lo, hi) == T.trace_gap(p, q, lo, hi)
