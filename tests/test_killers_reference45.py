@@ -34,6 +34,14 @@ def test_unpatched_verified(check):
 
 # ------------------------------------------------------------------------- reference.literal: library.reference_verify
 
+def test_literal_step_complex_route_eta_killed(monkeypatch):
+    # literal:153 (seed 8): eta = x y - mu on the complex route; mu cancels in p~ = p + eta_j - eta_{j+1}, so only
+    # info's eta shows it -- against the real route's
+    bad = planted(literal._literal_step_generic, "eta = [xx * yy + mu for", "eta = [xx * yy - mu for")
+    monkeypatch.setattr(literal, "_literal_step_generic", bad)
+    assert status(L.reference_verify) == "failed"
+
+
 def test_literal_step_extra_site_killed(monkeypatch):
     # literal:148 (seed 4): the complex route's transport loop runs N times, not N - 1: N + 1 values of y, z, x and
     # eta in info (p~, q~ and E_new are cut to N by zip, so unchanged); no claim gave literal_step complex-route
