@@ -19,7 +19,7 @@ def status(cid: str) -> str:
 
 
 @pytest.mark.parametrize("cid", ["checker.codegen_metrics", "library.printer_powers", "checker.verdict_digits",
-                                 "paths.rows_out.n3"])
+                                 "paths.rows_out.n3", "paths.panels"])
 def test_unpatched_verified(cid):
     assert status(cid) == "verified"
 
@@ -123,3 +123,17 @@ def test_solve_linear_avoids_sympy_solve(monkeypatch, old, new):
     bad = planted(linear.solve_linear, old, new)
     with pytest.raises(AssertionError, match="sympy.solve called"):
         bad(a * x + b, x)
+
+
+@pytest.mark.parametrize("old, new", [
+    ("width = abs(hi - lo) / abs(b - a)", "width = abs(hi + lo) / abs(b - a)"),          # coefficients:226 (seed 8)
+    ("scale = _group_scale(np.abs(i32), groups)", "scale = np.abs(i32)"),
+    ("rtol * np.maximum(np.abs(i32), scale * width)", "rtol * np.minimum(np.abs(i32), scale * width)"),
+    ("if n >= max_intervals or mid in (lo, hi):", "if n > 2 * max_intervals or mid in (lo, hi):"),
+    ("todo.append((mid, hi) + rule(mid, hi))", "todo.append((mid, hi) + rule(lo, hi))"),
+])
+def test_adaptive_panels(monkeypatch, old, new):
+    from symbt.numeric.flow import coefficients
+
+    monkeypatch.setattr(coefficients, "adaptive_panels", planted(coefficients.adaptive_panels, old, new))
+    assert status("paths.panels") == "failed"

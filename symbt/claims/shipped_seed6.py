@@ -1,5 +1,5 @@
-r"""The numpy route's rows written into a caller's arrays (scene ``numeric-paths``; issue 21, seed 6's
-``rows:209``).
+r"""Two documented rules of the float64 library that no other claim pinned (scene ``numeric-paths``; issue 21,
+seed 6's ``rows:209`` and seed 8's ``coefficients:226``).
 
 * ``paths.rows_out.n3`` -- :func:`~symbt.numeric.float64.rows.float_rows_step` with ``rows`` and ``out`` (how the
   batched kernel step hands back the members its kernel gave up on): the rows named are stepped, the others are
@@ -8,6 +8,17 @@ r"""The numpy route's rows written into a caller's arrays (scene ``numeric-paths
   ``+7`` (``p``) and ``-7`` (``q``): row 1 of the result is ``out``'s row 1 exactly, rows 0 and 2 are within
   ``1e-12 (1 + |x|)`` of the literal map at 40 digits (the paper's state is well conditioned: the float64 step is
   ~1e-15 off there), ``p~`` in ``out[0]`` and ``q~`` in ``out[1]``.
+
+* ``paths.panels`` -- :func:`~symbt.numeric.flow.coefficients.adaptive_panels` (the panels of
+  :func:`symbt.numeric.flow_coefficients`) on three integrands over ``[-1, 3]`` -- ``1/sqrt(x + 1 + 2**-10)`` (near
+  a singularity), ``sin(60 x) e^x`` (panels whose integrals cancel: there the width share decides), a tiny peak
+  ``1e-6 / sqrt(|x - 0.3| + 1e-4)`` -- alone and with the peak grouped with the first row: the panels tile
+  ``[-1, 3]``, every panel meets the documented test (16- and 32-point Gauss--Legendre agree to ``rtol`` relative
+  to ``max(|local integral|, scale * width / (b - a))``, ``scale`` the row's whole integral or its group's
+  largest) and no panel's bisection parent does (the panels are the coarsest bisection that passes), evaluated
+  here with numpy's own Gauss--Legendre nodes; grouping the peak with the first row takes fewer panels; past
+  ``max_intervals`` it raises :class:`~symbt.numeric.QuadratureError`.  (All ends are dyadic: the bisection points
+  are exact, so the parents are recomputed exactly.)
 
 Shown to fail on planted bugs in ``tests/test_killers_controls.py``.
 
@@ -62,3 +73,79 @@ def rows_out(N: int) -> Outcome:
         return failed("numeric: float_rows_step(rows, out) vs the literal map and out", detail="; ".join(bad))
     return Outcome("verified", "numeric: float_rows_step(rows, out) vs the literal map (40 digits) and out",
                    evidence="sampled", n_scope=[N], residual=worst, detail=detail)
+
+
+#: paths.panels: the interval (dyadic ends), the tolerance, the panels allowed, the grouping (the peak with row 0)
+PANELS_A, PANELS_B, PANELS_RTOL, PANELS_MAX, PANELS_GROUPS = -1.0, 3.0, 1e-12, 400, (0, 1, 0)
+
+
+def _panel_rows(x: np.ndarray) -> np.ndarray:
+    return np.stack([1 / np.sqrt(x + 1.0009765625), np.sin(60 * x) * np.exp(x),
+                     1e-6 / np.sqrt(np.abs(x - 0.3) + 1e-4)])
+
+
+def _panel_rule(lo: float, hi: float) -> tuple[np.ndarray, np.ndarray]:
+    """32- and 16-point Gauss--Legendre of the rows on ``[lo, hi]`` (numpy's nodes)."""
+    out = []
+    for n in (32, 16):
+        x, w = np.polynomial.legendre.leggauss(n)
+        c, h = 0.5 * (lo + hi), 0.5 * (hi - lo)
+        out.append(h * (_panel_rows(c + h * x) @ w))
+    return out[0], out[1]
+
+
+def _panel_passes(lo: float, hi: float, scale: np.ndarray) -> bool:
+    i32, i16 = _panel_rule(lo, hi)
+    share = scale * (hi - lo) / (PANELS_B - PANELS_A)
+    return bool(np.all(np.abs(i32 - i16) <= PANELS_RTOL * np.maximum(np.abs(i32), share)))
+
+
+def panel_faults(panels: list[tuple[float, float]], groups: tuple[int, ...] | None) -> list[str]:
+    """What breaks the documented rule in ``panels`` (see the module docstring)."""
+    a, b = PANELS_A, PANELS_B
+    whole = np.abs(_panel_rule(a, b)[0])
+    scale = whole if groups is None else np.array([max(whole[[i for i, h in enumerate(groups) if h == g]])
+                                                     for g in groups])
+    bad = []
+    if [lo for lo, _ in panels] != [a] + [hi for _, hi in panels[:-1]] or panels[-1][1] != b:
+        bad.append(f"the panels do not tile [{a:g}, {b:g}]")
+    for lo, hi in panels:
+        if not _panel_passes(lo, hi, scale):
+            bad.append(f"[{lo:g}, {hi:g}] fails the test")
+        w = hi - lo
+        if w < b - a:
+            parent = (lo, hi + w) if round((lo - a) / w) % 2 == 0 else (lo - w, hi)
+            if _panel_passes(*parent, scale):
+                bad.append(f"[{lo:g}, {hi:g}]'s parent [{parent[0]:g}, {parent[1]:g}] passes: it was split")
+    return bad
+
+
+@claim("paths.panels", equation="flow", source_equation="eqdisc", scene="numeric-paths",
+       where="symbt/numeric/flow/coefficients.py: adaptive_panels",
+       statement="adaptive_panels on three integrands over [-1, 3] (near a singularity, cancelling panels, a tiny "
+                 "peak), alone and with the peak grouped with the first row: the panels tile the interval, each "
+                 "passes the documented 16/32-point test against max(|local|, scale * width share) and no "
+                 "bisection parent does (numpy's Gauss-Legendre nodes); grouping takes fewer panels; past "
+                 "max_intervals QuadratureError")
+def panels() -> Outcome:
+    from ..numeric import QuadratureError
+    from ..numeric.flow.coefficients import adaptive_panels
+
+    bad, counts = [], []
+    for groups in (None, PANELS_GROUPS):
+        got = adaptive_panels(_panel_rows, PANELS_A, PANELS_B, PANELS_RTOL, PANELS_MAX,
+                              None if groups is None else np.array(groups))
+        counts.append(len(got))
+        bad += [f"{'grouped' if groups else 'alone'}: {b}" for b in panel_faults(got, groups)]
+    if not counts[1] < counts[0]:
+        bad.append(f"grouped {counts[1]} panels, alone {counts[0]}: the group's scale did not relax the peak")
+    try:
+        adaptive_panels(_panel_rows, PANELS_A, PANELS_B, PANELS_RTOL, counts[0] // 2)
+        bad.append(f"max_intervals {counts[0] // 2} (of {counts[0]} needed) did not raise QuadratureError")
+    except QuadratureError:
+        pass
+    detail = f"{counts[0]} panels alone, {counts[1]} grouped; each passes, no parent does."
+    if bad:
+        return failed("numeric: adaptive_panels vs its documented test", detail="; ".join(bad[:3]) + ". " + detail)
+    return Outcome("verified", "numeric: adaptive_panels vs its documented test (numpy's Gauss-Legendre)",
+                   evidence="sampled", n_scope="all", detail=detail)
