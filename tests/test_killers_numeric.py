@@ -622,6 +622,17 @@ def test_members_block_with_one_forward_member(monkeypatch):
     assert status("paths.members.n3") == "failed"
 
 
+def test_members_active_by_mu_one(monkeypatch):
+    # orbit:370 (seed 8): members active where mu != 1 (not mu != 0): the member at mu = 1 exactly is neither active
+    # nor idle, and its rows are never written
+    from symbt.numeric.float64 import orbit as orbit_module
+
+    monkeypatch.setattr(orbit_module, "validated_float_orbit", _planted(
+        orbit_module.validated_float_orbit, "act = np.flatnonzero(muv != 0) if n else np.arange(0)",
+        "act = np.flatnonzero(muv != 1) if n else np.arange(0)"))
+    assert status("paths.members.n3") == "failed"
+
+
 def test_members_backward_slopes_not_copied_with_one_forward_member(monkeypatch):
     # the backward members' slopes not copied from tmp when exactly one member is transported forward (mutant
     # kernels_block:157 `nf > 0` -> `nf > 1`): the far member of the two-member block keeps its forward slopes

@@ -15,7 +15,9 @@ where the kernel writes the caller's arrays directly -- the compaction is never 
   an ensemble of one member (one block holding one member: exactly one or no member transported forward), within
   the same bound of the same literal orbit.  And a block of two: the branch's fourth state and its second moved
   to ``lam0 = FAR_LAM0`` (one member transported forward, the other backward: each must get the slopes of its
-  own direction), within the same bound of their literal orbits.
+  own direction), within the same bound of their literal orbits.  The ensemble also holds, last, the paper's
+  state at ``mu = 1`` exactly (``UNIT_MEMBER``: a member is idle by ``mu == 0``, not by any other value), within
+  the same bound.
 
 Shown to fail on a planted bug in ``tests/test_killers_numeric.py``.
 """
@@ -32,6 +34,8 @@ from .base import Outcome, Parts, claim
 MEMBER_STEPS = 3
 #: paths.members: where the idle member goes (not first and not last: the compaction must skip it)
 IDLE_AT = 1
+#: paths.members: the paper's state at mu = 1 exactly, the ensemble's last member
+UNIT_MEMBER = ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), 10.0, 1.0)
 #: paths.members: lam0 of the far member of the two-member block (|tr L| ~ lam0**N: transported in the wrong
 #: direction, its slopes lose ~ 2 log10(lam0) digits per period -- measured 1e-10 relative at one step)
 FAR_LAM0 = 200.0
@@ -41,7 +45,8 @@ FAR_LAM0 = 200.0
        parts=scale_parts,
        where="symbt/numeric/float64/orbit.py: validated_float_orbit, _ensemble (idle members, compacted buffers)",
        statement="bt_orbit(backend='python'), N={N}, 3 steps stored at every step, per branch the ensemble of every "
-                 "sign cell's state and one idle member (mu = 0) at index 1: every active member = the literal orbit "
+                 "sign cell's state, one idle member (mu = 0) at index 1 and the paper's state at mu = 1 last: "
+                 "every active member = the literal orbit "
                  "within 16 N n eps S_i; the idle member = its input at every row, bit for bit; each state as an "
                  "ensemble of one member, and a block of two (one far member at lam0 = 200), within the same bound")
 def idle_members(N: int, parts: Parts) -> Outcome:
@@ -53,6 +58,7 @@ def idle_members(N: int, parts: Parts) -> Outcome:
         idle = (rows[0][1][0], rows[0][1][1], rows[0][1][2], 0.0)
         members = [st for _, st in rows]
         members.insert(IDLE_AT, idle)
+        members.append(UNIT_MEMBER)
         cols = [np.array([st[k] for st in members]) for k in range(4)]
         try:
             P, Q = bt_orbit(cols[0], cols[1], cols[2], cols[3], n, branch=b, backend="python")
@@ -65,6 +71,9 @@ def idle_members(N: int, parts: Parts) -> Outcome:
         if not same:
             tally.notes.append(f"branch {b}: the idle member differs from its input.")
         tally.add("idle member", {"branch": b}, idle, b, 0.0 if same else math.inf)
+        ref = orbit_ref(UNIT_MEMBER, b, n)
+        r, allowed = ratios(scaled(list(P[n][-1]) + list(Q[n][-1]), s), ref.xs[n], ref.S, EPS, C * n)
+        tally.add("ensemble member", {"branch": b, "mu": 1}, UNIT_MEMBER, b, r, allowed, ref.agree)
         for k, (cell, st) in enumerate(rows):
             m = k if k < IDLE_AT else k + 1
             ref = orbit_ref(st, b, n)
