@@ -406,3 +406,34 @@ def test_rescaling_guards_skip_only_the_identity(before, after):
                 a = condition.sharp_trace_kappa(P[k], R[k], float(L[k]), float(O[k]))
                 b = copy.sharp_trace_kappa(P[k], R[k], float(L[k]), float(O[k]))
                 assert repr(a) == repr(b)
+
+
+def test_merged_without_a_copy_is_equivalent(monkeypatch):
+    # condition:492 (seed 8), `np.array(full, copy=False)`: _merged then writes the renormalised rows into `full`
+    # itself.  Its callers pass either a fresh zeros array or a half (a slice) of one of the four side-by-side
+    # entries X of monodromy_and_abs -- distinct fresh arrays (N >= 2: every entry is a product), the two halves
+    # disjoint, X read no more -- so the values returned are the same
+    from planting import planted
+
+    rng = np.random.default_rng(492)
+    cases = []
+    for N, R in ((2, 20), (3, 40), (5, 17)):
+        a = rng.uniform(-3, 3, (N, R))
+        r = np.exp(rng.uniform(-1, 1, (N, R)))
+        a[:, 3] = 1e200 * np.sign(a[:, 3])                  # this row's products leave the range in both halves
+        a[:, 7] = -1e160                                     # and this one
+        r[:, 11] = 1e-200                                    # a row whose products fall below 2**-500
+        cases.append((list(a), list(r)))
+    want = [condition.monodromy_and_abs(a, r) for a, r in cases]
+    mutant, partial = planted(condition._merged, "out = np.array(full, copy=True)",
+                              "out = np.array(full, copy=False)"), []
+
+    def spy(full, mask, part):
+        partial.append(not mask.all())
+        return mutant(full, mask, part)
+    monkeypatch.setattr(condition, "_merged", spy)
+    got = [condition.monodromy_and_abs(a, r) for a, r in cases]
+    assert any(partial)                                      # the copy's branch ran: some rows kept, some merged
+    for (w_main, w_abs), (g_main, g_abs) in zip(want, got):
+        for x, y in zip([*w_main, *w_abs], [*g_main, *g_abs]):
+            assert np.array_equal(x, y, equal_nan=True)
