@@ -101,6 +101,7 @@ def test_taylor_rule_killed(monkeypatch, old, new):
 @pytest.mark.parametrize("old, new", [
     ("trace_gap(p, q, l0 - m, l0 + m) <= 0:", "trace_gap(p, q, l0 - m, l0 + m) <= 1:"),   # inverse:122 (seed 5)
     ("if {0, 1, 2} <= used", "if {1, 1, 2} <= used"),                                     # inverse:160 (seed 4)
+    ("[mp.mpf(0)] * (N + 1 - len(c_target))", "[mp.mpf(0)] * (N - 1 - len(c_target))"),  # inverse:120 (seed 8)
 ])
 def test_inverse_targets_killed(monkeypatch, old, new):
     # the solver is imported inside the claim (from the module), so the module's attribute is patched

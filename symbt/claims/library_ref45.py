@@ -74,8 +74,9 @@ SITE_LISTS = ("x", "y", "z", "eta", "E_new")
        where="symbt.reference.literal.literal_step (its shape) and reference_step(verify=True)",
        statement="literal_step returns N values of p~, q~ and of each info list over sites (x, y, z, eta, E_new; "
                  "N = 2, 3) on its real and its complex route (mpc inputs), the two equal to 1e-50 at 220 digits "
-                 "(p~, q~ and every info list); reference_step(verify=True) at 20 digits returns without raising the step literal_step gives at 220 digits, to 1e-20 relative, on "
-                 "states with traces ~1e3 and ~1e45 (its default guard)")
+                 "(p~, q~ and every info list); reference_step(verify=True) at 20 digits returns without raising "
+                 "the step literal_step gives at 220 digits, to 1e-20 relative, on states with traces ~1e3 and "
+                 "~1e45 (its default guard)")
 def reference_verify() -> Outcome:
     bad: list[str] = []
     worst = mp.mpf(0)
@@ -229,7 +230,8 @@ INVT_DPS, INVT_TOL = 15, mp.mpf("1e-6")
        statement="solve_parameters (15 digits, tol = 1e-6) recovers (lam0, mu) to tol^(3/2) from c_k computed there "
                  "(a) N = 2 with min |tr L| on the interval in (2, 3) (by the literal trace at its ends): admissible "
                  "however close to a band; (b) N = 3, indices (1, 2), with a c_0 that violates Cauchy-Schwarz "
-                 "(c_0 c_2 <= c_1^2): c_0 is no target, so it is not screened")
+                 "(c_0 c_2 <= c_1^2): c_0 is no target, so it is not screened; (c) N = 3, the target c_0, c_1 alone: "
+                 "the missing c_k are 0 (the same answer, residual |c_2|)")
 def inverse_targets() -> Outcome:
     from ..reference.inverse import solve_parameters
     from ..reference.spectral import flow_coefficients_mp
@@ -265,6 +267,18 @@ def inverse_targets() -> Outcome:
             worst = max(worst, err)
             if not err <= bound:
                 bad.append(f"N={len(p)}: recovered to {mp.nstr(err, 3)} (accepted {mp.nstr(bound, 2)})")
+            if idx is not None:     # (c) the target c_0, c_1 alone: the missing c_2, c_3 are 0 (the residual sees c_2)
+                try:
+                    r2 = solve_parameters(p, q, c[:2], tol=INVT_TOL, guess=(l0 + mp.mpf("0.01"), m * mp.mpf("0.9")),
+                                          indices=(0, 1))
+                except (ValueError, IndexError) as exc:
+                    bad.append(f"N=3, the target c_0, c_1 alone: {type(exc).__name__}: {exc}")
+                    continue
+                err = max(abs(r2["lam0"] - l0), abs(r2["mu"] - m)) if r2 else mp.inf
+                worst = max(worst, err)
+                if not (err <= bound and abs(r2["residual"] - abs(c[2])) <= bound * abs(c[2])):
+                    bad.append(f"N=3, the target c_0, c_1 alone: recovered to {mp.nstr(err, 3)}, residual "
+                               f"{mp.nstr(r2['residual'] if r2 else None, 6)} (want |c_2| = {mp.nstr(abs(c[2]), 6)})")
     if bad:
         return failed("solve_parameters round trip", detail="; ".join(bad))
     return Outcome("verified", f"numeric: round trip through flow_coefficients_mp ({INVT_DPS} digits)",

@@ -91,6 +91,8 @@ def solve_parameters(p: Sequence[MPLike], q: Sequence[MPLike], c_target: Sequenc
 
     ``mode``:
 
+    ``c_target``: ``c_0, c_1, ...``; entries missing at the end (up to ``c_N``) are 0.
+
     * ``"exact"``: solve c_k = c_target[k] for k in ``indices`` (two indices;
       default (0, 1) -- for N = 2 these are *all* non-trivial constants);
     * ``"direction"``: match c up to a positive factor kappa (same trajectory,
