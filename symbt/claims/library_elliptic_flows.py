@@ -299,8 +299,9 @@ def newton_rule() -> Outcome:
             bad.append(f"Gauss-Newton: {gn}, want ([0], 1)")
         # the line search's 30 tries, lam = 1 ... 2**-29: the last is taken when it alone is accepted, 2**-30 never
         for last, want_lam in ((29, mp.mpf(2) ** -29), (30, None)):
-            ls = inv._line_search(lambda x: [x[0]], [mp.mpf(0)], [mp.mpf(1)],
-                                  lambda r, lam, last=last: lam <= mp.mpf(2) ** -last)
+            def below(r: list[mp.mpf], lam: mp.mpf, last: int = last) -> bool:
+                return bool(lam <= mp.mpf(2) ** -last)
+            ls = inv._line_search(lambda x: [x[0]], [mp.mpf(0)], [mp.mpf(1)], below)
             if (ls and ls[1]) != want_lam:
                 bad.append(f"line search accepting lam <= 2**-{last} only: {ls}, want lam = {want_lam}")
     detail = ("Newton: 13 iterations and the extra step at tol 1e-6, None at 1e-300; Gauss-Newton: x = 0 after 1 step; "

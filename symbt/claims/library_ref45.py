@@ -274,11 +274,14 @@ def inverse_targets() -> Outcome:
                 except (ValueError, IndexError) as exc:
                     bad.append(f"N=3, the target c_0, c_1 alone: {type(exc).__name__}: {exc}")
                     continue
-                err = max(abs(r2["lam0"] - l0), abs(r2["mu"] - m)) if r2 else mp.inf
+                if r2 is None:
+                    bad.append("N=3, the target c_0, c_1 alone: no solution returned")
+                    continue
+                err = max(abs(r2["lam0"] - l0), abs(r2["mu"] - m))
                 worst = max(worst, err)
                 if not (err <= bound and abs(r2["residual"] - abs(c[2])) <= bound * abs(c[2])):
                     bad.append(f"N=3, the target c_0, c_1 alone: recovered to {mp.nstr(err, 3)}, residual "
-                               f"{mp.nstr(r2['residual'] if r2 else None, 6)} (want |c_2| = {mp.nstr(abs(c[2]), 6)})")
+                               f"{mp.nstr(r2['residual'], 6)} (want |c_2| = {mp.nstr(abs(c[2]), 6)})")
     if bad:
         return failed("solve_parameters round trip", detail="; ".join(bad))
     return Outcome("verified", f"numeric: round trip through flow_coefficients_mp ({INVT_DPS} digits)",
