@@ -353,3 +353,18 @@ def test_closed_gap_evaluated_is_equivalent(monkeypatch, before, after):
         monkeypatch.undo()
         built()
     assert got == want
+
+
+def test_transport_extra_forward_slope_is_equivalent():
+    # transport:39 (seed 8), `for j in range(N - 0)`: the forward transport builds one more slope, fwd[N], which
+    # nothing reads (the sites returned are fwd[1] ... fwd[N - 1]): the same expressions
+    from symbt.codegen import transport
+    from symbt.symbolic.toda import toda_model
+
+    bad = planted(transport.transported, "for j in range(N - 1):\n        fwd.append", "for j in range(N - 0):\n"
+                                                                                     "        fwd.append")
+    for N in (2, 3):
+        m = toda_model(N)
+        u0, fw = sp.Symbol("u0"), sp.Symbol("fw")
+        assert [sp.srepr(e) for e in bad(m, m.lam, u0, fw)] == [sp.srepr(e) for e in transport.transported(m, m.lam, u0,
+                                                                                                           fw)]
