@@ -19,7 +19,7 @@ def status(cid: str) -> str:
 
 
 @pytest.mark.parametrize("cid", ["checker.codegen_metrics", "library.printer_powers", "checker.verdict_digits",
-                                 "paths.rows_out.n3", "paths.panels"])
+                                 "paths.rows_out.n3", "paths.panels", "paths.q_low.n3"])
 def test_unpatched_verified(cid):
     assert status(cid) == "verified"
 
@@ -137,3 +137,15 @@ def test_adaptive_panels(monkeypatch, old, new):
 
     monkeypatch.setattr(coefficients, "adaptive_panels", planted(coefficients.adaptive_panels, old, new))
     assert status("paths.panels") == "failed"
+
+
+@pytest.mark.parametrize("old, new", [
+    ("    N = pr.p.shape[-1]\n    return P, np", "    N = pr.p.shape[-0]\n    return P, np"),   # orbit:345 (seed 8)
+    ("np.ascontiguousarray(Q[..., N:])", "np.ascontiguousarray(Q[..., N - 1:-1])"),
+    ("np.ascontiguousarray(Q[..., N:])", "np.zeros_like(Q[..., N:])"),
+])
+def test_q_low(monkeypatch, old, new):
+    from symbt.numeric.float64 import orbit
+
+    monkeypatch.setattr(orbit, "float_orbit_low", planted(orbit.float_orbit_low, old, new))
+    assert status("paths.q_low.n3") == "failed"

@@ -1,5 +1,5 @@
-r"""Two documented rules of the float64 library that no other claim pinned (scene ``numeric-paths``; issue 21,
-seed 6's ``rows:209`` and seed 8's ``coefficients:226``).
+r"""Documented rules of the float64 library that no other claim pinned (scene ``numeric-paths``; issue 21, seed 6's
+``rows:209``, seed 8's ``coefficients:226`` and its uncovered ``orbit:345``).
 
 * ``paths.rows_out.n3`` -- :func:`~symbt.numeric.float64.rows.float_rows_step` with ``rows`` and ``out`` (how the
   batched kernel step hands back the members its kernel gave up on): the rows named are stepped, the others are
@@ -19,6 +19,12 @@ seed 6's ``rows:209`` and seed 8's ``coefficients:226``).
   here with numpy's own Gauss--Legendre nodes; grouping the peak with the first row takes fewer panels; past
   ``max_intervals`` it raises :class:`~symbt.numeric.QuadratureError`.  (All ends are dyadic: the bisection points
   are exact, so the parents are recomputed exactly.)
+* ``paths.q_low.n3`` -- ``bt_orbit(..., q_low=True)`` (the low parts of the carried positions, docs/numeric.md "Long
+  orbits"), kernel and general path, both branches, 3 steps of the paper's state moved to ``q + 1e6 + 0.1`` (where
+  a double's rounding is ``ulp(1e6) = 1.2e-10``): ``P`` and ``Q`` bit for bit those of ``q_low=False``, ``|Q_low|
+  <= ulp(Q)/2``, and the neighbour differences of ``Q + Q_low`` within ``16 N n eps (1 + max |d|)`` of the literal
+  orbit's (40 digits, from the same double inputs), while those of ``Q`` alone are not (a control: the low parts
+  carry what the rounding at ``|q| ~ 1e6`` drops).
 
 Shown to fail on planted bugs in ``tests/test_killers_controls.py``.
 
@@ -149,3 +155,54 @@ def panels() -> Outcome:
         return failed("numeric: adaptive_panels vs its documented test", detail="; ".join(bad[:3]) + ". " + detail)
     return Outcome("verified", "numeric: adaptive_panels vs its documented test (numpy's Gauss-Legendre)",
                    evidence="sampled", n_scope="all", detail=detail)
+
+
+#: paths.q_low: the state (the paper's, moved far along q), the steps, the digits of the literal orbit
+QLOW_P, QLOW_Q, QLOW_LAM0, QLOW_MU = (-20.0, 10.0, 1.0), tuple(x + 1e6 + 0.1 for x in (1.0, 0.0, 0.9)), 10.0, 5.0
+QLOW_STEPS, QLOW_DPS = 3, 40
+
+
+@claim("paths.q_low", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       where="symbt/numeric/float64/orbit.py: float_orbit_low (bt_orbit(q_low=True))",
+       statement="bt_orbit(q_low=True) (N={N}), kernel and general path, both branches, 3 steps of the paper's state "
+                 "at q + 1e6 + 0.1: P, Q bit for bit those of q_low=False, |Q_low| <= ulp(Q)/2, the neighbour "
+                 "differences of Q + Q_low within 16 N n eps (1 + max|d|) of the literal orbit's (40 digits), those "
+                 "of Q alone not")
+def q_low(N: int) -> Outcome:
+    from ..numeric import bt_orbit
+    from ..reference.literal import literal_step
+
+    bad, worst = [], 0.0
+    n = QLOW_STEPS
+    for b in (1, -1):
+        with mp.workdps(QLOW_DPS):
+            pp, qq = [mp.mpf(x) for x in QLOW_P], [mp.mpf(x) for x in QLOW_Q]
+            for _ in range(n):
+                pp, qq, _ = literal_step(pp, qq, QLOW_LAM0, QLOW_MU, b)
+            dref = [qq[(j + 1) % N] - qq[j] for j in range(N)]
+        bound = 16 * N * n * 2.0 ** -52 * (1 + float(max(abs(d) for d in dref)))
+        for be in ("python", "numpy"):
+            P, Q, L = bt_orbit(np.array(QLOW_P), np.array(QLOW_Q), QLOW_LAM0, QLOW_MU, n, branch=b, q_low=True,
+                               backend=be)
+            P0, Q0 = bt_orbit(np.array(QLOW_P), np.array(QLOW_Q), QLOW_LAM0, QLOW_MU, n, branch=b, backend=be)
+            if not (np.array_equal(P, P0) and np.array_equal(Q, Q0)):
+                bad.append(f"{be}, b = {b}: P, Q differ from those of q_low=False")
+            if not bool(np.all(np.abs(L) <= np.spacing(np.abs(Q)) / 2)):
+                bad.append(f"{be}, b = {b}: a low part exceeds half an ulp of its position")
+            both = [mp.mpf(float(Q[-1][(j + 1) % N])) - mp.mpf(float(Q[-1][j]))
+                    + mp.mpf(float(L[-1][(j + 1) % N])) - mp.mpf(float(L[-1][j])) for j in range(N)]
+            high = [mp.mpf(float(Q[-1][(j + 1) % N])) - mp.mpf(float(Q[-1][j])) for j in range(N)]
+            e_both = float(max(abs(a - r) for a, r in zip(both, dref)))
+            e_high = float(max(abs(a - r) for a, r in zip(high, dref)))
+            worst = max(worst, e_both / bound)
+            if not e_both <= bound:
+                bad.append(f"{be}, b = {b}: Q + Q_low's differences {e_both:.3g} off the literal orbit's "
+                           f"(bound {bound:.3g})")
+            if not e_high > bound:
+                bad.append(f"{be}, b = {b}: control: Q alone is within the bound ({e_high:.3g}): the state does not "
+                           "test the low parts")
+    detail = f"kernel and general path, both branches: worst {worst:.3g} x the bound."
+    if bad:
+        return failed("numeric: bt_orbit(q_low=True) vs the literal orbit", detail="; ".join(bad[:3]) + ". " + detail)
+    return Outcome("verified", "numeric: bt_orbit(q_low=True) vs the literal orbit (40 digits)", evidence="sampled",
+                   detail=detail)
