@@ -33,7 +33,7 @@ def outcome(cid: str) -> Outcome:
 #: the mutants that raise where the claim runs them (the claim fails as "exception"); every other one must fail by
 #: the claim's own comparison
 CRASH = {"screen:350 abs(rv)", "screen:350 abs(lv)", "screen:354 no checks", "screen:354 finite skipped",
-         "screen:278 abs(rv)", "decider:107 shapes", "decider:98 refusal", "decider:117 undecided", "decider:79 nan",
+         "screen:278 abs(rv)", "decider:98 refusal", "decider:117 undecided", "decider:79 nan",
          "decider:82 oo"}
 
 
@@ -242,7 +242,6 @@ DECIDE = [   # (mutant, old, new) in decider.decide
     ("decider:98 nine digits", "digits < MIN_DIGITS:", "digits <= MIN_DIGITS:"),
     ("decider:98 refusal", "    if isinstance(digits, int) and digits < MIN_DIGITS:",
      "    if not (isinstance(digits, int) and digits < MIN_DIGITS):"),
-    ("decider:107 shapes", "        if lm.shape != rm.shape:", "        if not (lm.shape != rm.shape):"),
     ("decider:113 empty", "            return Verdict.from_proof(\"exact: empty matrices\")",
      "            return Verdict(False, \"proof\", \"exact: empty matrices\")"),
     ("decider:115 worst entry", "return max(bad, key=lambda d: d.residual or 0.0)",
@@ -267,6 +266,14 @@ DECIDE = [   # (mutant, old, new) in decider.decide
 def test_decide_rules_kill_decide(monkeypatch, where, old, new):
     monkeypatch.setattr(decider, "decide", planted(decider.decide, old, new))
     assert fails("checker.decide_rules", crash=where in CRASH)
+
+
+def test_decide_rules_kill_the_shape_rule(monkeypatch):
+    # decider:107 (the shapes' test, now in match_shapes, which decide and check_identity share) inverted:
+    # matrices of one shape are refused
+    monkeypatch.setattr(decider, "match_shapes", planted(decider.match_shapes, "    if lm and lhs.shape != rhs.shape:",
+                                                         "    if lm and not (lhs.shape != rhs.shape):"))
+    assert fails("checker.decide_rules", crash=True)
 
 
 WORDS = [   # (mutant, function, old, new)
