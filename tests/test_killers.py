@@ -163,6 +163,20 @@ def test_api_relation_symbol(monkeypatch):
     assert _status(checker.api_controls) == "failed"
 
 
+@pytest.mark.parametrize("old, new", [
+    ('    if relations:\n        parts.append("remainder mod "',
+     '    if not (relations):\n        parts.append("remainder mod "'),
+    ('parts.append("remainder mod " + ", ".join(', 'parts.append("remainder modulo " + ", ".join('),
+])
+def test_api_method_names_the_relation(monkeypatch, old, new):
+    # exact:123 (seed 9): the method's "remainder mod ..." where there is no relation, and none where there is
+    from planting import planted
+
+    from symbt.proof import decider, exact
+    monkeypatch.setattr(decider, "exact_zero", planted(exact.exact_zero, old, new))
+    assert _status(checker.api_controls) == "failed"
+
+
 def test_api_ode_scale_signed(monkeypatch):
     from symbt.proof import ode
 

@@ -165,6 +165,7 @@ def test_inverse_fields_killed(monkeypatch, func, old, new):
      'h = min(hs) * mp.mpf("0.7") if not hs else T - done'),
     ("hamiltonian_flow", "out.steps, out.order = steps, K", "out.steps, out.order = steps + 1, K"),
     ("_poly_G", "if k < len(c) and c[k]:", "if k <= len(c) and c[k]:"),
+    ("hamilton_equations", "sign: int = 1) -> list[Polynomial]:", "sign: int = 0) -> list[Polynomial]:"),  # seed 9
 ])
 def test_flow_steps_killed(monkeypatch, func, old, new):
     monkeypatch.setattr(taylor, func, planted(getattr(taylor, func), old, new))

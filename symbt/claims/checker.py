@@ -176,7 +176,8 @@ def cell_controls() -> Outcome:
              "exponentials of rational-linear forms)",
        statement="solves_ode proves the logistic solution and refutes it shifted by 1e-20; x = (t - t0)^2/4 solves "
                  "x' = sqrt(x) exactly in the cell t > t0 only; check_identity proves eta^2 - mu^2 = w under "
-                 "eta^2 = mu^2 + w (given as an equation), refutes it off by 1e-20 (given as a mapping), and proves "
+                 "eta^2 = mu^2 + w (given as an equation; the method names the remainder mod the relation, and "
+                 "only there), refutes it off by 1e-20 (given as a mapping), and proves "
                  "exp(q1/2 - q2/3)^6 = exp(3 q1 - 2 q2); decide(e) with one side decides e = 0; "
                  "Eq(eta^2, mu^2 + w) constrains eta from either side; "
                  "K(k) by the modulus is false with the modulus/parameter hint; x = -1e30 e^t for x' = -x has "
@@ -202,13 +203,15 @@ def api_controls() -> Outcome:
     q1, q2 = sp.symbols("q1 q2", real=True)
     r = check_identity(eta ** 2 - mu ** 2 - w, relations=[sp.Eq(eta ** 2, mu ** 2 + w)])   # rhs: 0 by default
     got.append(("relation as an equation", r.verdict, "proved"))
+    # the method names the reduction modulo the relation, and only where there is one
+    got.append(("the method names the relation", r.method.endswith("; remainder mod eta: eta**2 - mu**2 - w=0"), True))
     r = check_identity(eta ** 2 - mu ** 2, w * (1 + SMALL), relations={eta: eta ** 2 - mu ** 2 - w})
     got.append(("relation as a mapping, off by 1e-20", r.verdict, "false"))
     from ..proof.decider import decide
     one_side = [decide(e, relations={eta: eta ** 2 - mu ** 2 - w}).verdict for e in (eta ** 2 - mu ** 2 - w, w)]
     got.append(("decide(e) decides e = 0", one_side, ["proved", "false"]))
     r = check_identity(sp.exp(q1 / 2 - q2 / 3) ** 6, sp.exp(3 * q1 - 2 * q2))
-    got.append(("exponentials", (r.verdict, r.evidence), ("proved", "proof")))
+    got.append(("exponentials", (r.verdict, r.evidence, "remainder mod" in r.method), ("proved", "proof", False)))
     # which symbol an equation constrains: the side with a single symbol (eta), from either side
     from ..proof.identity import normalize_relations
     keys = [list(normalize_relations([rel])) for rel in (sp.Eq(eta ** 2, mu ** 2 + w), sp.Eq(mu ** 2 + w, eta ** 2))]

@@ -224,7 +224,8 @@ STEPS_DPS, STEPS_TOL = 20, mp.mpf("5e-2")
                  "max(1, |x|))) = 6 steps (the step scaled by the state's size 5) and from p = (1/2, -1/2) 29 "
                  "steps, exactly (q_j(1) = q_j + 1); with max_steps = 29 the second runs and with 28 it raises "
                  "RuntimeError; t = 0 takes no step and returns the state; the flow of H_2 = 1 takes one step and "
-                 "moves nothing; hamilton_equations(3, c) with c = (c_0, c_1) equals it with c padded by zeros")
+                 "moves nothing; hamilton_equations(3, c) with c = (c_0, c_1) equals it with c padded by zeros and "
+                 "with sign = 1 given (the default: the forward flow)")
 def flow_steps() -> Outcome:
     bad: list[str] = []
     with mp.workdps(STEPS_DPS):
@@ -251,8 +252,9 @@ def flow_steps() -> Outcome:
             if out.steps != steps or [*out[0], *out[1]] != [*p, *q]:
                 bad.append(f"c = {c}, t = {t}: {out.steps} steps (want {steps}), state moved")
         c3 = [mp.mpf("0.7"), mp.mpf("-0.4")]
-        if hamilton_equations(3, c3) != hamilton_equations(3, c3 + [0, 0]):
-            bad.append("hamilton_equations with c = (c_0, c_1) differs from c padded by zeros")
+        if not hamilton_equations(3, c3) == hamilton_equations(3, c3 + [0, 0]) == hamilton_equations(3, c3, 1):
+            bad.append("hamilton_equations with c = (c_0, c_1) differs from c padded by zeros, or from the forward "
+                       "flow (sign = 1, the default)")
     detail = "6 and 29 steps by the documented rule, max_steps at its edge, t = 0, H_2, a short c"
     if bad:
         return failed("hamiltonian_flow's step rule and limits", detail="; ".join(bad) + ". " + detail)
