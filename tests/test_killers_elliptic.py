@@ -237,3 +237,18 @@ def test_taylor_empty_rule_step_is_equivalent():
         for c, t in (([0, 0, 1], mp.mpf(2)), ([0, 0, 1], mp.mpf(-3)), ([1, 0, 0], mp.mpf("0.3"))):
             got, want = bad(p, q, c, t), taylor.hamiltonian_flow(p, q, c, t)
             assert (got, got.steps) == (want, want.steps)
+
+
+def test_F_m_other_half_is_equivalent():
+    # elliptic:145 (seed 9), `if not (isinstance(z, mp.mpf) and z < 0)`: F is evaluated at -z and negated for the
+    # other half of the line (and for complex z).  z R_F(1 - z^2, 1 - m z^2, 1) is odd in z exactly: (-z)(-z) = z z
+    # and (-z) R = -(z R) in binary floating point (real and complex), so every value is the same, bit for bit
+    import mpmath as mp
+
+    bad = planted(E._F_m, "    if isinstance(z, mp.mpf) and z < 0:", "    if not (isinstance(z, mp.mpf) and z < 0):")
+    with mp.workdps(30):
+        for m in (mp.mpf("0.36"), mp.mpf("0.9")):
+            for z in ("-1", "-0.7", "-0.2", "0", "0.3", "0.9", "1"):
+                assert bad(mp.mpf(z), m) == E._F_m(mp.mpf(z), m)
+            for a, b in (("0.4", "0.3"), ("-2", "0.5"), ("0.1", "-1.7")):
+                assert bad(mp.mpc(a, b), m) == E._F_m(mp.mpc(a, b), m)
