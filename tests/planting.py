@@ -11,11 +11,24 @@ from pathlib import Path
 
 def planted(func, old: str, new: str):
     """``func`` rebuilt from its source with the one edit ``old -> new`` (a mutant of `symbt mutate --source`'s
-    kind), in its module's namespace; the edit must match exactly once."""
+    kind), in its module's namespace; the edit must match exactly once.
+
+    A method that calls ``super()`` gets its class back: the rebuilt source is not in a class body, so the
+    zero-argument form would find no ``__class__`` cell (every call would raise ``RuntimeError``, and a test
+    requiring a claim to fail would pass without the mutant doing anything); it is compiled inside a factory
+    whose parameter ``__class__`` is the method's class, with ``super()`` spelled ``super(__class__, self)``."""
     src = textwrap.dedent(inspect.getsource(func))
     assert src.count(old) == 1, (func.__name__, old)
+    src = src.replace(old, new)
     ns: dict = {}
-    exec(compile(src.replace(old, new), inspect.getsourcefile(func), "exec"), func.__globals__, ns)
+    code = func.__code__
+    if "__class__" in code.co_freevars:
+        cls = func.__closure__[code.co_freevars.index("__class__")].cell_contents
+        src = src.replace("super()", f"super(__class__, {code.co_varnames[0]})")
+        src = "def _planted_factory(__class__):\n" + textwrap.indent(src, "    ") + f"    return {func.__name__}\n"
+        exec(compile(src, inspect.getsourcefile(func), "exec"), func.__globals__, ns)
+        return ns["_planted_factory"](cls)
+    exec(compile(src, inspect.getsourcefile(func), "exec"), func.__globals__, ns)
     return ns[func.__name__]
 
 

@@ -139,10 +139,20 @@ def test_ring_value_evaluate_killed(monkeypatch, fresh):
     ('f = _MINMAX[fl][isinstance(e, sp.Max)]', 'f = _MINMAX[fl][isinstance(e, sp.Min)]'),
     ('txt = repr(v) if fl != "mpmath" else', 'txt = repr(v) if fl == "mpmath" else'),
     ('return (txt, _ATOM) if v >= 0 else (f"({txt})", _ATOM)', 'return (txt, _ATOM) if v >= 0 else (txt, _ATOM)'),
+    ('return (txt, _ATOM) if v >= 0 else (f"({txt})", _ATOM)',                                       # 57 (seed 9)
+     'return (txt, _ATOM) if not (v >= 0) else (f"({txt})", _ATOM)'),
 ])
 def test_user_printer_killed(monkeypatch, old, new):
     monkeypatch.setattr(printing.UserPrinter, "_p", planted(printing.UserPrinter._p, old, new))
     assert verdict(U.user_printer) != "verified"
+
+
+def test_user_printer_identity_plant_verifies(monkeypatch):
+    # the control for the tests above: _p calls super(); rebuilt by planting with no change it must still verify
+    # (until planting gave rebuilt methods their class back, every plant here raised, so those tests passed blind)
+    same = 'txt = repr(v) if fl != "mpmath" else'
+    monkeypatch.setattr(printing.UserPrinter, "_p", planted(printing.UserPrinter._p, same, same))
+    assert verdict(U.user_printer) == "verified"
 
 
 def test_user_printer_float_flavour_killed(monkeypatch):

@@ -61,6 +61,7 @@ def vocabulary() -> list[sp.Expr]:
         sp.Piecewise((x, sp.And(x > 0, y > 0)), (y, sp.Or(sp.Eq(x, y), sp.Not(z < 2))), (z, sp.Ne(x, 3 * y)),
                      (1, True)),
         z ** sp.Rational(1, 3), z ** sp.Rational(-2, 3), z ** y, 1 / (x * y),
+        sp.Pow(sp.Float("-1.5"), 2, evaluate=False),              # a negative number as a base: in parentheses
         LONG,
     ]
 
