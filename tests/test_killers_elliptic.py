@@ -201,6 +201,8 @@ def test_addition_third_killed(monkeypatch, old, new):
     ("_gauss_newton", "if step is None:", "if not (step is None):"),
     ("_gauss_newton", "if max(abs(d) for d in dx) * lam < tol:", "if max(abs(d) for d in dx) * lam > tol:"),
     ("_line_search", "while lam > mp.mpf(2) ** -30:", "while lam >= mp.mpf(2) ** -30:"),               # seed 8, :36
+    ("_newton", "rf is not None and max(abs(v) for v in rf) < tol else None",
+     "rf is not None and min(abs(v) for v in rf) < tol else None"),                                   # seed 9, :80
     ("_line_search", "lam /= 2", "lam /= 3"),
 ])
 def test_newton_rule_killed(monkeypatch, func, old, new):

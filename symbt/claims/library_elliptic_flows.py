@@ -271,8 +271,9 @@ NEWTON_TOLS = (mp.mpf("1e-6"), mp.mpf("1e-300"))
        statement="solve_parameters' Newton on f(x) = -x^3 from x = 1 (full steps x -> 2x/3: the residual falls by "
                  "8/27, so the damping keeps them) with tol = 1e-6 stops at the first iterate below tol, the 12th, "
                  "reports iterations = 13 and takes one more step: x = (2/3)^13 (also with the equation twice: "
-                 "least-squares steps); with tol = 1e-300 it gives up after "
-                 "its 40 iterations (None: the residual -(2/3)^120 is negative, its size above tol); Gauss-Newton "
+                 "least-squares steps); with tol = 1e-300 it gives up after its 40 iterations (None: the residual "
+                 "-(2/3)^120 is negative, its size above tol; also with x_1 - 1 = 0, solved at once, beside it: the "
+                 "largest component is judged); Gauss-Newton "
                  "on the inconsistent (x - 1, x + 1) returns the least-squares x = 0 after one step; the line "
                  "search tries lam = 1, 1/2, ..., 2**-29 and no smaller")
 def newton_rule() -> Outcome:
@@ -294,6 +295,11 @@ def newton_rule() -> Outcome:
         got = inv._newton(F, J, [mp.mpf(1)], NEWTON_TOLS[1])
         if got is not None:
             bad.append(f"tol 1e-300: returned {mp.nstr(got[0][0], 5)} after {got[1]} iterations, not None")
+        # beside x_1 - 1 (solved by the first step, exactly): the residual judged is the largest component
+        got = inv._newton(lambda x: [-x[0] ** 3, x[1] - 1], lambda x: [[-3 * x[0] ** 2, 0], [0, 1]],
+                          [mp.mpf(1), mp.mpf(0)], NEWTON_TOLS[1])
+        if got is not None:
+            bad.append(f"tol 1e-300 with x_1 - 1 beside: returned after {got[1]} iterations, not None")
         G = lambda x: [x[0] - 1, x[0] + 1]                # noqa: E731
         JG = lambda x: [[mp.mpf(1)], [mp.mpf(1)]]         # noqa: E731
         gn = inv._gauss_newton(G, JG, [mp.mpf("0.4")], mp.mpf("1e-20"))
