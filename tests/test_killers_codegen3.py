@@ -368,3 +368,28 @@ def test_transport_extra_forward_slope_is_equivalent():
         u0, fw = sp.Symbol("u0"), sp.Symbol("fw")
         assert [sp.srepr(e) for e in bad(m, m.lam, u0, fw)] == [sp.srepr(e) for e in transport.transported(m, m.lam, u0,
                                                                                                            fw)]
+
+
+def test_illcond_max_evaluated_is_equivalent():
+    # transport:129 (seed 9), `sp.Max(kta[0], kta[1], evaluate=True)`: SymPy cannot order the two symbolic
+    # condition estimates, so it keeps the same Max of the same two arguments: every guard is the same expression
+    # (and a wrong Max -- kta[0] twice -- is not: the comparison sees kt)
+    from planting import mutated
+
+    from symbt.codegen import transport
+    from symbt.symbolic.toda import toda_model
+
+    def guards(module) -> list[str]:
+        m = toda_model(3)
+        t = sp.symbols("t1 t2", real=True)
+        u, w, d = (list(sp.symbols(f"{c}1:4", real=True)) for c in "uwd")
+        ill_t, ill_s = module.illcond_guards(m, lambda c, label, e, stage: e, t, u, w, d, lambda x: (x - 2) * (x + 2))
+        return [sp.srepr(g) for g in ill_t + ill_s]
+
+    before = "    kt = sp.Max(kta[0], kta[1], evaluate=False)"
+    assert guards(mutated("symbt.codegen.transport", before, before.replace("False", "True"))) == guards(transport)
+    wrong = transport.__dict__.copy()
+    exec(compile(Path(transport.__file__).read_text().replace("sp.Max(kta[0], kta[1], evaluate=False)",
+                                                               "sp.Max(kta[0], kta[0], evaluate=False)"),
+                 transport.__file__, "exec"), wrong)
+    assert guards(type("M", (), {"illcond_guards": staticmethod(wrong["illcond_guards"])})) != guards(transport)
