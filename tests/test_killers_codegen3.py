@@ -338,21 +338,27 @@ def test_closed_gap_evaluated_is_equivalent(monkeypatch, before, after):
     from symbt.codegen import closed_gap, derive, kernels, zullo
 
     def built() -> tuple:
-        for f in (derive.specs, derive.sources, derive.interface, derive._trace_ring, kernels.kernels):
+        for f in (derive.specs, derive.sources, derive.interface, derive._trace_ring, kernels.kernels,
+                  zullo.declarations):
             f.cache_clear()
         return (zullo.module_text(2), zullo.module_text(3),
                 {k: sp.srepr(v) for k, v in kernels.kernels().items()})
 
     want = built()
     copy = mutated("symbt.codegen.closed_gap", before, after)
-    monkeypatch.setattr(derive, "trace_discriminant", copy.trace_discriminant)
-    monkeypatch.setattr(closed_gap, "near_closed_gap", copy.near_closed_gap)   # kernels imports it at call time
     try:
+        monkeypatch.setattr(derive, "trace_discriminant", copy.trace_discriminant)
+        monkeypatch.setattr(closed_gap, "near_closed_gap", copy.near_closed_gap)   # kernels imports it at call time
         got = built()
+        # the control: a wrong discriminant and a wrong test change the texts (the comparison sees both)
+        monkeypatch.setattr(derive, "trace_discriminant", lambda M: sp.Piecewise((M[0, 0] ** 2 + 7, True)))
+        monkeypatch.setattr(closed_gap, "near_closed_gap", lambda A, B, C, D, two=2: sp.StrictLessThan(A, two))
+        wrong = built()
     finally:
         monkeypatch.undo()
         built()
     assert got == want
+    assert all(w != g for w, g in zip(wrong, want))
 
 
 def test_transport_extra_forward_slope_is_equivalent():
