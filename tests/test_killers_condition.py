@@ -437,3 +437,22 @@ def test_merged_without_a_copy_is_equivalent(monkeypatch):
     for (w_main, w_abs), (g_main, g_abs) in zip(want, got):
         for x, y in zip([*w_main, *w_abs], [*g_main, *g_abs]):
             assert np.array_equal(x, y, equal_nan=True)
+
+
+def test_sum_without_its_leading_zero_is_equivalent(monkeypatch):
+    # condition:319 (seed 9): the accumulated sum of the sites' parts without its leading zero column.  Every part
+    # is +0.0, positive, inf or NaN (absolute values times non-negative products), and 0.0 + x = x exactly for each,
+    # so the running sums -- and the total -- are the same, bit for bit
+    from planting import planted
+
+    from symbt.claims.shipped_condition_file import kappa_grid
+
+    mutant = planted(condition._sharp_over_rows, "np.concatenate([np.zeros((R, 1)), parts[:, ::-1]], axis=1)",
+                     "np.concatenate([np.zeros((R, 0)), parts[:, ::-1]], axis=1)")
+    for N in (2, 3, 5):
+        cases = [c for part in kappa_grid(N) for c in part]
+        P, R_ = np.array([c[0] for c in cases]), np.array([c[1] for c in cases])
+        L, O = np.array([c[2] for c in cases]), np.array([c[3] for c in cases])
+        with np.errstate(all="ignore"):
+            want, got = condition._sharp_over_rows(P, R_, L, O), mutant(P, R_, L, O)
+        assert np.array_equal(want, got, equal_nan=True)
