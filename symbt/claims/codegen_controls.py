@@ -134,6 +134,16 @@ def _namespace(flavour: str) -> dict[str, Any]:
     return {"sqrt": math.sqrt}
 
 
+def _printed_at(text: str, flavour: str, exact: sp.Rational, v: Fraction) -> tuple[sp.Rational, Any, Any]:
+    """``(exact, got, relative error)``: the printed ``text`` evaluated by Python at ``x = v`` (an mpf for the
+    mpmath flavour, a double otherwise) against the exact rational value (``v`` a perfect square)."""
+    want = mp.mpf(int(sp.numer(exact))) / int(sp.denom(exact))
+    with mp.workdps(30):
+        arg = mp.mpf(v.numerator) / v.denominator if flavour == "mpmath" else float(v)
+        got = mp.mpf(eval(text, _namespace(flavour), {"x": arg}))  # noqa: S307 -- the printer's own text
+        return exact, got, abs(got - want) / abs(want)
+
+
 @claim("library.printer_powers", equation="checker", scene="library",
        where="symbt.codegen.printer.ExprPrinter._pow (integer and half-integer exponents, every flavour)",
        statement="x**k printed in the numpy, mpmath, ops and C flavours, k in 2, 3, -1, -2, 1/2, 3/2, 5/2, -1/2, "
@@ -147,33 +157,15 @@ def printer_powers() -> Outcome:
     bad, n = [], 0
     for flavour in ("numpy", "mpmath", "ops", "c"):
         pr = ExprPrinter(flavour, {x: "x"})
-        for k in POWERS:
-            e = sp.Pow(x, k, evaluate=False)
+        for e, ulps in [(sp.Pow(x, k, evaluate=False), 4) for k in POWERS] + [
+                (sp.Mul(c, x, x + 1, evaluate=False) / (x + 3), 6) for c in COEFFS]:   # coefficient: num., den.
             text = pr.text(e)
             for v in POWER_POINTS:
-                exact = sp.Rational(v.numerator, v.denominator) ** k     # a rational: v is a perfect square
-                want = mp.mpf(int(sp.numer(exact))) / int(sp.denom(exact))
-                with mp.workdps(30):
-                    arg = mp.mpf(v.numerator) / v.denominator if flavour == "mpmath" else float(v)
-                    got = mp.mpf(eval(text, _namespace(flavour), {"x": arg}))  # noqa: S307 -- the printer's own text
-                    err = abs(got - want) / abs(want)
+                exact, got, err = _printed_at(text, flavour, e.subs(x, sp.Rational(v.numerator, v.denominator)), v)
                 n += 1
-                if not err <= 4 * 2.0 ** -53:
-                    bad.append(f"{flavour}: x**{k} printed {text!r} = {mp.nstr(got, 17)} at x = {v}, exactly "
-                               f"{exact} (relative {mp.nstr(err, 3)})")
-        for c in COEFFS:      # a rational coefficient times a product and a quotient (numerator and denominator)
-            e = sp.Mul(c, x, x + 1, evaluate=False) / (x + 3)
-            text = pr.text(e)
-            for v in POWER_POINTS:
-                exact = e.subs(x, sp.Rational(v.numerator, v.denominator))
-                want = mp.mpf(int(sp.numer(exact))) / int(sp.denom(exact))
-                with mp.workdps(30):
-                    arg = mp.mpf(v.numerator) / v.denominator if flavour == "mpmath" else float(v)
-                    got = mp.mpf(eval(text, _namespace(flavour), {"x": arg}))  # noqa: S307 -- the printer's own text
-                    err = abs(got - want) / abs(want)
-                n += 1
-                if not err <= 6 * 2.0 ** -53:
-                    bad.append(f"{flavour}: {e} printed {text!r} = {mp.nstr(got, 17)} at x = {v}, exactly {exact}")
+                if not err <= ulps * 2.0 ** -53:
+                    bad.append(f"{flavour}: {e} printed {text!r} = {mp.nstr(got, 17)} at x = {v}, exactly {exact} "
+                               f"(relative {mp.nstr(err, 3)})")
         for k in REFUSED:
             try:
                 text = pr.text(sp.Pow(x, k, evaluate=False))
