@@ -8,6 +8,7 @@ from __future__ import annotations
 import mpmath as mp
 import pytest
 import sympy as sp
+from planting import planted
 
 from symbt.claims import checker, library
 from symbt.codegen import derive
@@ -180,12 +181,19 @@ def test_api_method_names_the_relation(monkeypatch, old, new):
 def test_api_ode_scale_signed(monkeypatch):
     from symbt.proof import ode
 
-    def signed(self, **point):
-        worst = mp.mpf(0)
-        for values in self._f(*(point[n] for n in self.variables)):
-            worst = max(worst, abs(mp.fsum(values)) / max([mp.mpf(1), *values]))
-        return worst
-    monkeypatch.setattr(ode.OdeResidual, "__call__", signed)
+    monkeypatch.setattr(ode.OdeResidual, "__call__", planted(
+        ode.OdeResidual.__call__, "scale = max(abs(v) for v in values)", "scale = max(v for v in values)"))
+    assert _status(checker.api_controls) == "failed"
+
+
+@pytest.mark.parametrize("old, new", [
+    ("min(mp.mpf(1), max(self._size(*args)[i]))", "max(mp.mpf(1), max(self._size(*args)[i]))"),   # the old floor 1
+    ("if scale < 1:", "if scale < 0:"),   # no floor
+])
+def test_api_ode_scale_floor(monkeypatch, old, new):
+    # x = 1e-30 e^t for x' = -x is false at its own size; x = e^t (cosh^2 - sinh^2 - 1) solves x'' = 0 up to rounding
+    from symbt.proof import ode
+    monkeypatch.setattr(ode.OdeResidual, "__call__", planted(ode.OdeResidual.__call__, old, new))
     assert _status(checker.api_controls) == "failed"
 
 

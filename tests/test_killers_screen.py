@@ -22,8 +22,8 @@ from symbt.proof import screen as screen_module
 
 load_all()
 
-CLAIMS = ["checker.sample_symbol", "checker.screen_relations", "checker.screen_arithmetic", "checker.decide_rules",
-          "checker.ranges"]
+CLAIMS = ["checker.sample_symbol", "checker.screen_relations", "checker.screen_arithmetic", "checker.screen_scale",
+          "checker.decide_rules", "checker.ranges"]
 
 
 def outcome(cid: str) -> Outcome:
@@ -32,8 +32,8 @@ def outcome(cid: str) -> Outcome:
 
 #: the mutants that raise where the claim runs them (the claim fails as "exception"); every other one must fail by
 #: the claim's own comparison
-CRASH = {"screen:350 abs(rv)", "screen:350 abs(lv)", "screen:354 no checks", "screen:354 finite skipped",
-         "screen:278 abs(rv)", "decider:98 refusal", "decider:117 undecided", "decider:79 nan",
+CRASH = {"scale abs(rv)", "scale abs(lv)", "screen:350 no scale", "screen:354 no checks",
+         "screen:354 finite skipped", "decider:98 refusal", "decider:117 undecided", "decider:79 nan",
          "decider:82 oo"}
 
 
@@ -41,6 +41,12 @@ def fails(cid: str, *, crash: bool = False) -> bool:
     """The claim fails; by its own comparison unless ``crash`` (the mutant raises where the claim runs it)."""
     out = outcome(cid)
     return out.status == "failed" and (crash or out.method != "exception")
+
+
+def screen_claims_fail(*, crash: bool = False) -> bool:
+    """``checker.screen_arithmetic`` or ``checker.screen_scale`` fails (the residual's arithmetic and its scale:
+    a mutant of a line both run is killed by whichever sees it)."""
+    return fails("checker.screen_arithmetic", crash=crash) or fails("checker.screen_scale", crash=crash)
 
 
 @pytest.fixture(autouse=True)
@@ -164,12 +170,10 @@ def plant_screen(monkeypatch, old: str, new: str) -> None:
 
 SCREEN = [   # (mutant, old, new) in screen.screen
     ("screen:335 first precision", "with mpmath.workdps(digits + 10):", "with mpmath.workdps(digits - 10):"),
-    ("screen:350 abs(rv)", "            scale = max(abs(lv), abs(rv), mpmath.mpf(1))\n            diff",
-     "            scale = max(abs(lv), rv, mpmath.mpf(1))\n            diff"),
-    ("screen:350 abs(lv)", "            scale = max(abs(lv), abs(rv), mpmath.mpf(1))\n            diff",
-     "            scale = max(lv, abs(rv), mpmath.mpf(1))\n            diff"),
-    ("screen:350 scale floor 0", "            scale = max(abs(lv), abs(rv), mpmath.mpf(1))\n            diff",
-     "            scale = max(abs(lv), abs(rv), mpmath.mpf(0))\n            diff"),
+    ("screen:350 no scale", "            if scale:\n                checks.append(PointCheck(abs(lv - rv) / scale",
+     "            if not scale:\n                checks.append(PointCheck(abs(lv - rv) / scale"),
+    ("screen:350 absolute residual", "checks.append(PointCheck(abs(lv - rv) / scale, (el + er) / scale",
+     "checks.append(PointCheck(abs(lv - rv), (el + er) / scale"),
     ("screen:365 counterexample", "pc.residual > SAFETY * pc.error", "pc.residual < SAFETY * pc.error"),
     ("screen:374 clear point", "if pc.residual <= clear and pc.error <= clear:",
      "if not (pc.residual <= clear and pc.error <= clear):"),
@@ -183,22 +187,43 @@ SCREEN = [   # (mutant, old, new) in screen.screen
 @pytest.mark.parametrize("where, old, new", SCREEN, ids=[s[0] for s in SCREEN])
 def test_screen_arithmetic_kills_screen(monkeypatch, where, old, new):
     plant_screen(monkeypatch, old, new)
-    assert fails("checker.screen_arithmetic", crash=where in CRASH)
+    assert screen_claims_fail(crash=where in CRASH)
 
 
 RECHECK = [   # (mutant, old, new) in screen._recheck
     ("screen:265 second precision", "with mpmath.workdps(hi + 10):", "with mpmath.workdps(hi - 10):"),
-    ("screen:278 abs(rv)", "scale = max(abs(lv), abs(rv), mpmath.mpf(1))", "scale = max(abs(lv), rv, mpmath.mpf(1))"),
-    ("screen:278 scale floor 0", "scale = max(abs(lv), abs(rv), mpmath.mpf(1))",
-     "scale = max(abs(lv), abs(rv), mpmath.mpf(0))"),
-    ("screen:280 residual", "pc.residual = abs(diff)", "pc.residual = abs(drift)"),
+    ("screen:278 error not scaled", "pc.error = abs(diff - pc.diff) / scale", "pc.error = abs(diff - pc.diff)"),
+    ("screen:278 drift dropped", "pc.error = abs(diff - pc.diff) / scale", "pc.error = abs(diff) * 0 / scale"),
+    ("screen:280 residual", "pc.residual = abs(diff) / scale", "pc.residual = abs(diff - pc.diff) / scale"),
 ]
+
+
+SCALE = [   # (mutant, old, new) in screen._scale: what a point's difference is measured against
+    ("scale abs(rv)", "big = max(abs(lv), abs(rv))", "big = max(abs(lv), rv)"),
+    ("scale abs(lv)", "big = max(abs(lv), abs(rv))", "big = max(lv, abs(rv))"),
+    ("scale floor not capped", "min(mpmath.mpf(1), size())", "max(mpmath.mpf(1), size())"),   # the old floor 1
+    ("scale no floor", "return max(big, min(mpmath.mpf(1), size()))", "return big"),
+    ("scale floor from 1 up", "    if big >= 1:\n", "    if big >= 0:\n"),
+]
+
+
+@pytest.mark.parametrize("where, old, new", SCALE, ids=[s[0] for s in SCALE])
+def test_screen_arithmetic_kills_scale(monkeypatch, where, old, new):
+    monkeypatch.setattr(screen_module, "_scale", planted(screen_module._scale, old, new))
+    assert screen_claims_fail(crash=where in CRASH)
+
+
+def test_screen_size_is_each_sides_terms(monkeypatch):
+    # the size of the rhs's terms only (the lhs's dropped): sin^2 + cos^2 - 1 = 0 is measured against 0's terms
+    monkeypatch.setattr(screen_module, "_sizer", planted(
+        screen_module._sizer, "m = max(f_size(*allv))", "m = f_size(*allv)[1]"))
+    assert screen_claims_fail()
 
 
 @pytest.mark.parametrize("where, old, new", RECHECK, ids=[s[0] for s in RECHECK])
 def test_screen_arithmetic_kills_recheck(monkeypatch, where, old, new):
     monkeypatch.setattr(screen_module, "_recheck", planted(screen_module._recheck, old, new))
-    assert fails("checker.screen_arithmetic", crash=where in CRASH)
+    assert screen_claims_fail(crash=where in CRASH)
 
 
 def test_fixed_int_kept_as_a_python_int(monkeypatch):

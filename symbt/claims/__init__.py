@@ -64,6 +64,7 @@ CLAIM_MODULES = (
     "checker_sample45",
     "checker_seed6",
     "checker_screen",
+    "checker_screen_scale",
     "library",
     "library_reference",
     "library_samples",

@@ -180,8 +180,10 @@ def cell_controls() -> Outcome:
                  "only there), refutes it off by 1e-20 (given as a mapping), and proves "
                  "exp(q1/2 - q2/3)^6 = exp(3 q1 - 2 q2); decide(e) with one side decides e = 0; "
                  "Eq(eta^2, mu^2 + w) constrains eta from either side; "
-                 "K(k) by the modulus is false with the modulus/parameter hint; x = -1e30 e^t for x' = -x has "
-                 "relative residual 2; x = e^t solves x' = n x for n in {1} (sampled, not refuted by the exact layer)")
+                 "K(k) by the modulus is false with the modulus/parameter hint; x = -1e30 e^t and x = 1e-30 e^t for "
+                 "x' = -x have relative residual 2; x = e^t (cosh^2 t - sinh^2 t - 1) solves x'' = 0 (sampled: "
+                 "the rounding of a term that cancels is no residual); x = e^t solves x' = n x for n in {1} "
+                 "(sampled, not refuted by the exact layer)")
 def api_controls() -> Outcome:
     from ..proof.domain import Domain, sign
     from ..proof.identity import check_identity
@@ -226,6 +228,13 @@ def api_controls() -> Outcome:
     v = solves_ode(sp.Eq(X(tt).diff(tt), -X(tt)), -sp.Integer(10) ** 30 * sp.exp(tt), exact=False)
     got.append(("x = -1e30 e^t for x' = -x: relative residual 2",
                 (v.verdict, v.residual is not None and abs(v.residual - 2) < 1e-12), ("false", True)))
+    # ... small or large: no absolute floor, so x = 1e-30 e^t is as false as x = -1e30 e^t (residual 2)
+    v = solves_ode(sp.Eq(X(tt).diff(tt), -X(tt)), sp.Integer(10) ** -30 * sp.exp(tt), exact=False)
+    got.append(("x = 1e-30 e^t for x' = -x: relative residual 2",
+                (v.verdict, v.residual is not None and abs(v.residual - 2) < 1e-12), ("false", True)))
+    # ... and a term that cancels to 0 is measured against its own terms: its rounding is no residual
+    v = solves_ode(sp.Eq(X(tt).diff(tt, 2), 0), sp.exp(tt) * (sp.cosh(tt) ** 2 - sp.sinh(tt) ** 2 - 1), exact=False)
+    got.append(("x = e^t (cosh^2 t - sinh^2 t - 1) for x'' = 0, sampled", v.verdict, "verified"))
     # a nonzero rational residual proves nothing when a parameter is discrete: (1 - n) e^t vanishes at n = 1
     from ..proof.domain import integers
     n = sp.Symbol("n")

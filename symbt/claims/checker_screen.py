@@ -15,8 +15,10 @@ branches, against answers computed without the code under test:
   by ``mpmath.polyroots``, not by the closed forms the screen uses), every root is reached, the relation itself
   holds and off by :math:`10^{-20}` is false; relations that build on each other are solved in order; a relation
   of degree 0 or 5, a non-polynomial one and a cyclic pair are refused (``ValueError``).
-* ``checker.screen_arithmetic`` -- the residual :math:`|l - r| / \max(|l|, |r|, 1)` of a false statement,
-  recomputed at its counterexample, in every cell (either side larger, of either sign, both below 1, complex),
+* ``checker.screen_arithmetic`` -- the residual :math:`|l - r| / \max(|l|, |r|, \min(1, m))` (:math:`m` the
+  size of the sides' terms, :func:`symbt.proof.magnitude.magnitude`; ``checker.screen_scale`` checks that
+  rule) of a false statement, recomputed at its counterexample, in every cell (either side larger, of either
+  sign, both below 1, complex),
   from the first evaluation and from the re-evaluation; the error a side inherits from its quadratures (the larger
   of their absolute errors summed and their relative errors summed times the side), recomputed from
   ``mpmath.quad``'s own estimates for a product and a quotient of two integrals; the second precision
@@ -190,12 +192,21 @@ def screen_relations(deep: bool = False) -> Outcome:
 
 # --------------------------------------------------------------------------- the screen's arithmetic
 
+def _exact(value: sp.Expr) -> sp.Expr:
+    """A printed number with its decimals as exact rationals."""
+    return value.xreplace({f: sp.Rational(str(f)) for f in value.atoms(sp.Float)})
+
+
 def _residual_at(lhs: sp.Expr, rhs: sp.Expr, point: dict[str, str]) -> Any:
-    """``|l - r| / max(|l|, |r|, 1)`` at a printed point, at 50 digits (the definition, evaluated by SymPy)."""
+    """``|l - r| / max(|l|, |r|, min(1, size))`` at a printed point, at 50 digits (the definition, evaluated by
+    SymPy); the terms' size is their largest modulus, the sides' summands (no cell has a sum inside a product)."""
     with mp.workdps(50):
-        sub = {s: sp.sympify(point[str(s)].replace(" ", "")) for s in (lhs - rhs).free_symbols}
+        # the printed decimals taken exactly (a Float's own 20 digits would cap evalf where the sides cancel)
+        sub = {s: _exact(sp.sympify(point[str(s)].replace(" ", ""))) for s in (lhs - rhs).free_symbols}
         lv, rv = (mp.mpmathify(side.xreplace(sub).evalf(50)) for side in (lhs, rhs))
-        return abs(lv - rv) / max(abs(lv), abs(rv), mp.mpf(1))
+        size = max(abs(mp.mpmathify(t.xreplace(sub).evalf(50)))
+                   for side in (lhs, rhs) for t in sp.Add.make_args(side))
+        return abs(lv - rv) / max(abs(lv), abs(rv), min(mp.mpf(1), size))
 
 
 def _quad(f: Any, dps: int) -> tuple[Any, Any]:
@@ -213,8 +224,9 @@ def _inherited(value: Any, pairs: list[tuple[Any, Any]]) -> Any:
 @claim("checker.screen_arithmetic", equation="checker", scene="checker",
        where="symbt.proof.screen.screen: the residual's scale, the error inherited from quadratures, the second "
              "precision, clear points, no admissible point; high_precision",
-       statement="a false statement's residual is |l - r| / max(|l|, |r|, 1) at its counterexample (either side "
-                 "larger, of either sign, both below 1, complex; first evaluation and re-evaluation, 1e-12); a side's "
+       statement="a false statement's residual is |l - r| / max(|l|, |r|, min(1, size of the terms)) at its "
+                 "counterexample (either side larger, of either sign, both below 1, complex; first evaluation and "
+                 "re-evaluation, 1e-12); a side's "
                  "quadrature error is max(sum of errors, |side| sum of relative errors) (a product and a quotient of "
                  "two integrals, from mpmath.quad's estimates, 1e-9); a 65-digit cancellation at 30 digits is "
                  "resolved by the re-evaluation at 2*30 + 10 digits (residual < 1e-12), not by the first; a clear "
@@ -280,8 +292,9 @@ def screen_arithmetic() -> Outcome:
         got.append(("gamma(-n): no admissible point in 6*2 + 10 draws", "in 22 draws" in str(exc), True))
     bad = _bad("the screen's arithmetic", got)
     return bad or _ok("screen's residuals recomputed at the counterexample; quadrature errors from mpmath.quad",
-                      f"{len(got)} facts: 5 residual cells x 2 evaluations, 2 inherited errors, the second "
-                      "precision, a clear point, a skipped point, fixed values, no admissible point", "sampled")
+                      f"{len(got)} facts: 5 residual cells x 2 evaluations, 2 inherited errors, "
+                      "the second precision, a clear point, a skipped point, fixed values, no admissible point",
+                      "sampled")
 
 
 # --------------------------------------------------------------------------- decide: matrices, words, undefined sides

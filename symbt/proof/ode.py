@@ -16,9 +16,11 @@ the derivatives of the closed form taken exactly (SymPy), and:
 2. **sampled** otherwise -- :math:`R_i` at ``dps`` significant digits (mpmath) at the seeded points
    of every cell of a :class:`~symbt.proof.domain.Domain` (default: each variable uniform on
    ``[1/4, 2]``); the residual of a point is the largest over the equations of
-   :math:`|\sum_k T_{ik}| / \max(1, \max_k |T_{ik}|)`, the :math:`T_{ik}` being the terms of
-   :math:`F_i` (``lhs`` and ``-rhs`` of an equation), so that a large solution is judged
-   relative to its size.  The verdict carries the cells and, as its ``note``, the scope sentence.
+   :math:`|\sum_k T_{ik}| / \max(\max_k |T_{ik}|, \min(1, \max_k m(T_{ik})))`, the :math:`T_{ik}`
+   being the terms of :math:`F_i` (``lhs`` and ``-rhs`` of an equation) and :math:`m` the size of a
+   term's own terms (:func:`~symbt.proof.magnitude.magnitude`), so that a solution is judged relative
+   to its size, large or small, and rounding where a term cancels to 0 is not a residual.  The verdict
+   carries the cells and, as its ``note``, the scope sentence.
 
 >>> import sympy as sp
 >>> t, t0 = sp.symbols("t t0")
@@ -45,6 +47,7 @@ from .cells import CellTable
 from .domain import Domain, Split
 from .exact import exact_zero
 from .lambdify import plain_lambdify
+from .magnitude import magnitude
 from .verdict import Verdict
 
 __all__ = ["solves_ode", "ode_residual", "OdeResidual", "DEFAULT_RANGE"]
@@ -142,15 +145,21 @@ class OdeResidual:
     def __init__(self, symbols: list[sp.Symbol], terms: list[list[Any]]) -> None:
         self.variables = tuple(s.name for s in symbols)
         self._f = plain_lambdify(symbols, terms, "mpmath")
+        # the terms' sizes (symbt.proof.magnitude), for the floor of the scale where every term is below 1
+        self._size = plain_lambdify(symbols, [[magnitude(p) for p in eq] for eq in terms], "mpmath")
 
     def __call__(self, **point: Any) -> Any:
         missing = [n for n in self.variables if n not in point]
         if missing:
             raise ValueError(f"the ODE residual needs {', '.join(missing)}; the point has {', '.join(point)}")
+        args = [point[n] for n in self.variables]
         worst = mp.mpf(0)
-        for values in self._f(*(point[n] for n in self.variables)):
-            scale = max([mp.mpf(1), *(abs(v) for v in values)])
-            worst = max(worst, abs(mp.fsum(values)) / scale)
+        for i, values in enumerate(self._f(*args)):
+            scale = max(abs(v) for v in values)
+            if scale < 1:   # floor: the terms' size, at most 1 (no absolute floor for a small solution)
+                scale = max(scale, min(mp.mpf(1), max(self._size(*args)[i])))
+            if scale:       # every term exactly 0: residual 0
+                worst = max(worst, abs(mp.fsum(values)) / scale)
         return worst
 
 

@@ -12,6 +12,7 @@ import mpmath
 import sympy as sp
 
 from .lambdify import plain_lambdify
+from .magnitude import magnitude
 from .verdict import SAFETY
 
 __all__ = ["screen", "sample_symbol", "ScreenResult", "PointCheck", "tracked_quad", "high_precision"]
@@ -203,15 +204,48 @@ def _evaluate(f: Callable[..., Any], allv: Sequence[object]) -> tuple[Any, Any]:
         _QUAD_LOG.errors = None
 
 
+def _scale(lv: Any, rv: Any, size: Callable[[], Any]) -> Any:
+    """What a point's difference ``lhs - rhs`` is measured against: ``max(|lhs|, |rhs|, min(1, size()))``.
+
+    ``size()`` is the size of the sides' terms (:func:`~symbt.proof.magnitude.magnitude`), evaluated only
+    when both sides are below 1.  Its floor keeps rounding noise where the sides cancel to 0 (``e = 0``)
+    from counting as a relative residual of 1; capped at 1, it never makes a statement of size 1 or more
+    absolute, and far below 1 (``1e-50 sin x = 2e-50 sin x``) a statement is judged at its own size.
+    """
+    big = max(abs(lv), abs(rv))
+    if big >= 1:
+        return big
+    return max(big, min(mpmath.mpf(1), size()))
+
+
+def _sizer(f_size: Callable[..., Any], allv: Sequence[object]) -> Callable[[], Any]:
+    """The sides' terms' size at ``allv``, when asked (its quadratures are not counted in the error again).
+
+    A size that cannot be evaluated (a factor with a pole where the product has none) or is not finite is
+    infinite: the floor is then 1, the most lenient, never a smaller scale than the terms warrant.
+    """
+    def size() -> Any:
+        log, _QUAD_LOG.errors = getattr(_QUAD_LOG, "errors", None), None
+        try:
+            m = max(f_size(*allv))
+        except _POLE_ERRORS:
+            return mpmath.inf
+        finally:
+            _QUAD_LOG.errors = log
+        return m if _finite(m) else mpmath.inf
+    return size
+
+
 @dataclass
 class PointCheck:
     """The difference of the sides at one point, and how far the evaluation can be trusted.
 
-    ``residual`` is ``|lhs - rhs| / max(|lhs|, |rhs|, 1)`` (from the higher precision
-    when there is one), ``error`` the estimated error of that residual (quadrature
-    error estimates, plus -- once the point is re-evaluated -- how much the two
-    working precisions differ and the rounding level).  Its repr shows ``residual``, ``error``, ``point``
-    and ``rechecked``; the raw ``values``, ``roots`` and ``diff`` kept for the re-evaluation are not shown.
+    ``residual`` is ``|lhs - rhs| / scale`` (from the higher precision when there is one), ``scale`` being
+    ``max(|lhs|, |rhs|, min(1, size of the terms))`` (:func:`_scale`; a point where it is 0 has residual 0);
+    ``error`` the estimated error of that residual (quadrature error estimates, plus -- once the point is
+    re-evaluated -- how much the two working precisions' differences ``lhs - rhs`` differ, over the scale,
+    and the rounding level).  Its repr shows ``residual``, ``error``, ``point`` and ``rechecked``; the raw
+    ``values``, ``roots``, ``diff`` (``lhs - rhs``) and ``scale`` kept for the re-evaluation are not shown.
     """
 
     residual: Any
@@ -220,6 +254,7 @@ class PointCheck:
     values: list[Any] = field(repr=False, default_factory=list)
     roots: list[int] = field(repr=False, default_factory=list)
     diff: Any = field(repr=False, default=0)
+    scale: Any = field(repr=False, default=1)
     rechecked: bool = False
 
 
@@ -261,7 +296,7 @@ def high_precision(digits: int) -> int:
     return 2 * digits + 10
 
 
-def _recheck(pc: PointCheck, f_l: Callable[..., Any], f_r: Callable[..., Any],
+def _recheck(pc: PointCheck, f_l: Callable[..., Any], f_r: Callable[..., Any], f_size: Callable[..., Any],
              rel_solvers: Sequence[Sequence[Callable[..., Any]]], fixed: Mapping[sp.Symbol, Any], n_free: int,
              digits: int) -> None:
     """Evaluate the point again at :func:`high_precision`; the two evaluations' difference
@@ -280,11 +315,15 @@ def _recheck(pc: PointCheck, f_l: Callable[..., Any], f_r: Callable[..., Any],
         if not (_finite(lv) and _finite(rv)):
             pc.error = mpmath.inf
             return
-        scale = max(abs(lv), abs(rv), mpmath.mpf(1))
-        diff = (lv - rv) / scale
-        drift = abs(diff - pc.diff)
-        pc.residual = abs(diff)
-        pc.error = drift + (el + er) / scale + mpmath.mpf(10) ** (-(digits + 2))
+        # the two differences lhs - rhs compared absolutely, over the new scale (the first one's if the new is 0):
+        # noise that swamped sides below the floor is an error, never a residual
+        scale = _scale(lv, rv, _sizer(f_size, allv)) or pc.scale
+        if not scale:   # both evaluations: every side and term exactly 0
+            pc.residual = pc.error = mpmath.mpf(0)
+            return
+        diff = lv - rv
+        pc.residual = abs(diff) / scale
+        pc.error = abs(diff - pc.diff) / scale + (el + er) / scale + mpmath.mpf(10) ** (-(digits + 2))
 
 
 def screen(lhs: sp.Expr, rhs: sp.Expr, relations: Mapping[sp.Symbol, sp.Expr], digits: int, points: int, seed: int,
@@ -334,6 +373,7 @@ def screen(lhs: sp.Expr, rhs: sp.Expr, relations: Mapping[sp.Symbol, sp.Expr], d
     args = base + constrained
     f_l = plain_lambdify(args, lhs, _MODULES)
     f_r = plain_lambdify(args, rhs, _MODULES)
+    f_size = plain_lambdify(args, [magnitude(lhs), magnitude(rhs)], _MODULES)
     checks: list[PointCheck] = []
     tol = mpmath.mpf(10) ** (-(digits - 8))
     clear = mpmath.mpf(10) ** (-digits)
@@ -353,10 +393,12 @@ def screen(lhs: sp.Expr, rhs: sp.Expr, relations: Mapping[sp.Symbol, sp.Expr], d
                 continue
             if not (_finite(lv) and _finite(rv)):
                 continue  # a pole or an undefined value: not a test of the identity
-            scale = max(abs(lv), abs(rv), mpmath.mpf(1))
-            diff = (lv - rv) / scale
+            scale = _scale(lv, rv, _sizer(f_size, allv))
             point = {str(s): _fmt(v) for s, v in zip(args, allv)}
-            checks.append(PointCheck(abs(diff), (el + er) / scale, point, allv, picks, diff))
+            if scale:
+                checks.append(PointCheck(abs(lv - rv) / scale, (el + er) / scale, point, allv, picks, lv - rv, scale))
+            else:   # every side and term exactly 0: agrees (its quadratures' error counted as it is)
+                checks.append(PointCheck(mpmath.mpf(0), el + er, point, allv, picks, lv - rv, scale))
     if not checks:
         raise ValueError(f"no admissible sample point in {attempts} draws "
                          "(every point hit a pole or an undefined value)")
@@ -365,7 +407,7 @@ def screen(lhs: sp.Expr, rhs: sp.Expr, relations: Mapping[sp.Symbol, sp.Expr], d
 
     def redo(pc: PointCheck) -> None:
         if recheck and not pc.rechecked:
-            _recheck(pc, f_l, f_r, rel_solvers, fixed, n_free, digits)
+            _recheck(pc, f_l, f_r, f_size, rel_solvers, fixed, n_free, digits)
 
     def counterexample(pc: PointCheck) -> bool:
         return bool(pc.residual > tol and pc.residual > SAFETY * pc.error)

@@ -1,0 +1,65 @@
+r"""What the numeric screen measures a difference against (scene ``checker``; issue 21, item 3).
+
+The screen judged every point relative to :math:`\max(|l|, |r|, 1)`.  The floor 1 kept rounding noise where both
+sides vanish from counting as a residual of 1, but made the test absolute for statements far below 1:
+:math:`10^{-50} \sin x = 2 \cdot 10^{-50} \sin x` was *verified*.  The scale is now
+:math:`\max(|l|, |r|, \min(1, m))`, :math:`m` the size of the sides' terms
+(:func:`symbt.proof.magnitude.magnitude`), and the re-evaluation compares the two differences :math:`l - r`
+absolutely, over that scale.
+
+* ``checker.screen_scale`` -- the residual of a false statement recomputed at its counterexample (by SymPy at 50
+  digits, ``checker.screen_arithmetic``'s definition) where the floor used to matter: sides near
+  :math:`10^{-50}` (relative residual 1/2) and a sum that is :math:`10^{-20}` off 0 (judged against its terms of
+  size 1); :math:`\sin^2 x + \cos^2 x - 1 = 0` holds (its rounding is no residual); a 14-digit cancellation
+  :math:`(x + 10^7)^2 - 10^{14} - 2 \cdot 10^7 x = x^2` is verified after the re-evaluation, its error the two
+  evaluations' drift relative to the sides, alike at size 1 and times :math:`10^{50}`.
+"""
+from __future__ import annotations
+
+import mpmath as mp
+import sympy as sp
+
+from ._facts import Facts
+from ._facts import facts_failed as _bad
+from ._facts import facts_verified as _ok
+from .base import Outcome, claim
+from .checker_screen import _residual_at
+
+
+@claim("checker.screen_scale", equation="checker", scene="checker",
+       where="symbt.proof.screen: _scale and the re-evaluation's error (symbt.proof.magnitude for the terms' size)",
+       statement="the residual is |l - r| / max(|l|, |r|, min(1, size of the terms)) with no absolute floor: "
+                 "1e-50 sin x = 2e-50 sin x is false at residual 1/2 and sin^2 x + cos^2 x - 1 - 1e-20 = 0 at 1e-20 "
+                 "(first evaluation and re-evaluation, 1e-12); sin^2 x + cos^2 x - 1 = 0 holds; a 14-digit "
+                 "cancellation is verified after two re-evaluations with error < 1e-22, at size 1 and times 1e50")
+def screen_scale() -> Outcome:
+    from ..proof.screen import screen
+
+    got: Facts = []
+    pos = sp.Symbol("x", positive=True)
+    tiny = sp.Integer(10) ** -50
+    cells = (("both near 1e-50", tiny * sp.sin(pos), 2 * tiny * sp.sin(pos)),
+             # e = 0 is judged against e's terms (size about 1), not against 0: off by 1e-20 is false at 1e-20
+             ("a sum off by 1e-20 against 0", sp.sin(pos) ** 2 + sp.cos(pos) ** 2 - 1 - sp.Integer(10) ** -20,
+              sp.Integer(0)))
+    for what, lhs, rhs in cells:
+        for recheck in (True, False):
+            r = screen(lhs, rhs, {}, 30, 3, 5, {}, recheck=recheck)
+            want = _residual_at(lhs, rhs, r.point or {}) if r.point else mp.inf
+            got.append((f"{what} ({'re-evaluated' if recheck else 'first evaluation'}): false, residual",
+                        (r.status, bool(abs(r.residual - want) <= 1e-12 * want), r.rechecked == int(recheck)),
+                        ("false", True, True)))
+    # a sum that is 0 is measured against its terms: the rounding of sin^2 + cos^2 - 1 is not a residual of size 1
+    r = screen(sp.sin(pos) ** 2 + sp.cos(pos) ** 2 - 1, sp.Integer(0), {}, 30, 4, 1, {})
+    got.append(("sin^2 x + cos^2 x - 1 = 0 (the sides 0 up to rounding)", r.status, "verified"))
+    # a 14-digit cancellation: the first evaluation is good to about 1e-26, short of every digit asked, and the two
+    # evaluations' drift (about 1e-26 of the sides) is the error -- alike times 1e50, where it is 1e24 absolutely
+    for k in (0, 50):
+        big = sp.Integer(10) ** k
+        r = screen(big * ((pos + 10 ** 7) ** 2 - 10 ** 14 - 2 * 10 ** 7 * pos), big * pos ** 2, {}, 30, 2, 1, {})
+        got.append((f"14-digit cancellation times 1e{k}: status, re-evaluated, error < 1e-22",
+                    (r.status, r.rechecked, r.error < 1e-22), ("verified", 2, True)))
+    bad = _bad("the screen's scale", got)
+    return bad or _ok("screen's residuals recomputed at the counterexample where the floor used to matter",
+                      f"{len(got)} facts: 2 residual cells x 2 evaluations, a sum that is 0, a 14-digit "
+                      "cancellation at two sizes", "sampled")
