@@ -189,6 +189,7 @@ def test_api_ode_scale_signed(monkeypatch):
 @pytest.mark.parametrize("old, new", [
     ("min(mp.mpf(1), max(self._size(*args)[i]))", "max(mp.mpf(1), max(self._size(*args)[i]))"),   # the old floor 1
     ("if scale < 1:", "if scale < 0:"),   # no floor
+    ("scale = max(abs(v) for v in values)", "scale = min(abs(v) for v in values)"),   # seed 10's ode:158
 ])
 def test_api_ode_scale_floor(monkeypatch, old, new):
     # x = 1e-30 e^t for x' = -x is false at its own size; x = e^t (cosh^2 - sinh^2 - 1) solves x'' = 0 up to rounding
@@ -361,3 +362,25 @@ def test_angle_states(monkeypatch, bug):
         monkeypatch.setattr(E, "state_on_level", lambda I1, I2, x, th, s: (
             real(I1, I2, x, th, s)[0], [(th - x) / 2, (th - x) / 2]))
     assert _status(library_reference.angle_quadrants) == "failed"
+
+
+def test_ode_floor_from_one_is_equivalent():
+    # seed 10's ode:159 (`scale < 1` -> `scale <= 1`): at a scale of exactly 1 the mutant's floor gives
+    # max(1, min(1, m)) = 1, the original's scale itself; elsewhere both take the same branch.  x = e^t - 1 for
+    # x' = x + 1/2 at t = 0 has terms 1 and -1/2 (scale exactly 1, residual 1/2); at t = -1 and 1 the scale is below
+    # and above 1.  Control: the tie is exercised -- the mutant's branch with a floor of 2 there halves the residual.
+    from symbt.proof import ode
+
+    tt = sp.Symbol("t")
+    X = sp.Function("x")
+    r = ode.ode_residual(sp.Eq(X(tt).diff(tt), X(tt) + sp.Rational(1, 2)), sp.exp(tt) - 1)
+    mutant = planted(ode.OdeResidual.__call__, "if scale < 1:", "if scale <= 1:")
+    control = planted(ode.OdeResidual.__call__, "if scale < 1:   # floor: the terms' size, at most 1 (no absolute "
+                      "floor for a small solution)\n            scale = max(scale, min(mp.mpf(1),",
+                      "if scale <= 1:\n            scale = max(scale, max(mp.mpf(2),")
+    with mp.workdps(30):
+        assert max(abs(v) for v in r._f(mp.mpf(0))[0]) == 1
+        assert r(t=mp.mpf(0)) == mp.mpf(1) / 2
+        for t in (mp.mpf(-1), mp.mpf(0), mp.mpf(1)):
+            assert mutant(r, t=t) == r(t=t)
+        assert control(r, t=mp.mpf(0)) == mp.mpf(1) / 4

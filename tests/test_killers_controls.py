@@ -149,3 +149,41 @@ def test_q_low(monkeypatch, old, new):
 
     monkeypatch.setattr(orbit, "float_orbit_low", planted(orbit.float_orbit_low, old, new))
     assert status("paths.q_low.n3") == "failed"
+
+
+def test_scale_weights_a_small_coordinate_by_one(monkeypatch):
+    # seed 10, verify:215 (_scale): `max(abs(x0), 1)` -> `max(abs(x0), 0)`: the worst of the three points has every
+    # |x_i| >= 1, so only the point-by-point measures see it
+    from symbt.codegen import verify
+
+    monkeypatch.setattr(verify, "_scale", planted(verify._scale, "S[k] += max(abs(x0), 1) * abs(fh[k] - f0[k]) / h",
+                                                  "S[k] += max(abs(x0), 0) * abs(fh[k] - f0[k]) / h"))
+    assert status("checker.codegen_metrics") == "failed"
+
+
+def test_xy_measure_keeps_the_modulus(monkeypatch):
+    # seed 10, verify:300 (xy_vs_printed): the relative error over y itself, negative where y is: not seen by max
+    from symbt.codegen import verify
+
+    monkeypatch.setattr(verify, "xy_vs_printed", planted(verify.xy_vs_printed,
+                                                         'abs(y - info["y"][0]) / abs(info["y"][0]))',
+                                                         'abs(y - info["y"][0]) / info["y"][0])'))
+    assert status("checker.codegen_metrics") == "failed"
+
+
+def test_quotient_by_one_divides(monkeypatch):
+    # seed 10, verify:124 (interpret): `b != 0` -> `b != 1`: a quotient by 1 is infinite (and by 0 raises)
+    from symbt.codegen import verify
+
+    monkeypatch.setattr(verify, "interpret", planted(verify.interpret, "v = a / b if b != 0 else",
+                                                     "v = a / b if b != 1 else"))
+    assert status("checker.codegen_metrics") == "failed"
+
+
+def test_ops_flavour_dyadic_test(monkeypatch):
+    # seed 10, printer:92 (no claim ran it): `e.q & (e.q - 1)` -> `e.q & (e.q - 0)`: every rational refused
+    from symbt.codegen import printer
+
+    monkeypatch.setattr(printer.ExprPrinter, "_p", planted(printer.ExprPrinter._p, "if e.q & (e.q - 1):",
+                                                           "if e.q & (e.q - 0):"))
+    assert status("library.printer_powers") == "failed"

@@ -275,6 +275,7 @@ DECIDE = [   # (mutant, old, new) in decider.decide
     ("decider:120 residual", "res = max((d.residual or 0.0) for d in parts)",
      "res = min((d.residual or 0.0) for d in parts)"),
     ("decider:127 note", "note=numeric[0].note, error", "note=numeric[1].note, error"),
+    ("decider:189 points (seed 10)", "points=numeric[0].points", "points=numeric[1].points"),
     ("decider:127 error", "error=max(errors) if errors else None", "error=max(errors) if not (errors) else None"),
     ("decider:141 re-evaluated", "    if sr.rechecked:", "    if not (sr.rechecked):"),
     ("decider:143 sampled", "    if sr.ok and not definite:", "    if not (sr.ok and not definite):"),

@@ -181,7 +181,8 @@ def cell_controls() -> Outcome:
                  "exp(q1/2 - q2/3)^6 = exp(3 q1 - 2 q2); decide(e) with one side decides e = 0; "
                  "Eq(eta^2, mu^2 + w) constrains eta from either side; "
                  "K(k) by the modulus is false with the modulus/parameter hint; x = -1e30 e^t and x = 1e-30 e^t for "
-                 "x' = -x have relative residual 2; x = e^t (cosh^2 t - sinh^2 t - 1) solves x'' = 0 (sampled: "
+                 "x' = -x have relative residual 2; x = e^t for x' = x + 1 has residual 1/(e^2 + 1) at t = 2 (over "
+                 "its largest term); x = e^t (cosh^2 t - sinh^2 t - 1) solves x'' = 0 (sampled: "
                  "the rounding of a term that cancels is no residual); x = e^t solves x' = n x for n in {1} "
                  "(sampled, not refuted by the exact layer)")
 def api_controls() -> Outcome:
@@ -232,6 +233,15 @@ def api_controls() -> Outcome:
     v = solves_ode(sp.Eq(X(tt).diff(tt), -X(tt)), sp.Integer(10) ** -30 * sp.exp(tt), exact=False)
     got.append(("x = 1e-30 e^t for x' = -x: relative residual 2",
                 (v.verdict, v.residual is not None and abs(v.residual - 2) < 1e-12), ("false", True)))
+    # ... the largest term is the scale: x = e^t for x' = x + 1 has terms e^t and -(e^t + 1) and, at t = 2,
+    # residual 1 / (e^2 + 1) (over the smallest term it would be e^-2)
+    import mpmath as mp
+
+    from ..proof.ode import ode_residual
+    with mp.workdps(40):
+        r = ode_residual(sp.Eq(X(tt).diff(tt), X(tt) + 1), sp.exp(tt))(t=mp.mpf(2))
+        got.append(("x = e^t for x' = x + 1 at t = 2: residual 1/(e^2 + 1)",
+                    bool(abs(r - 1 / (mp.e ** 2 + 1)) < 1e-25), True))
     # ... and a term that cancels to 0 is measured against its own terms: its rounding is no residual
     v = solves_ode(sp.Eq(X(tt).diff(tt, 2), 0), sp.exp(tt) * (sp.cosh(tt) ** 2 - sp.sinh(tt) ** 2 - 1), exact=False)
     got.append(("x = e^t (cosh^2 t - sinh^2 t - 1) for x'' = 0, sampled", v.verdict, "verified"))

@@ -318,7 +318,8 @@ def _shown(note: str) -> tuple[int, bool]:
 @claim("checker.decide_rules", equation="checker", scene="checker",
        where="symbt.proof.decide: matrices, the method and notes of its verdicts, undefined sides, its defaults",
        statement="a matrix statement's verdict is its worst entry's (false with the largest residual, else "
-                 "inconclusive, else proved or sampled with the largest residual and error, fewest digits); shapes "
+                 "inconclusive, else proved or sampled with the largest residual and error, fewest digits, the first "
+                 "sampled entry's points); shapes "
                  "must agree, empty matrices are proved; the method names the exact layer and the re-evaluation; an "
                  "inconclusive note says which kind and shows at most 4 coordinates, then ', ...'; an exact "
                  "remainder under fixed values is noted; a definite falsity is noted tiny only below the tolerance; "
@@ -344,6 +345,12 @@ def decide_rules() -> Outcome:
                 "first sampled entry's note", (m.verdict, m.evidence, m.residual, m.digits, m.error, m.note),
                 ("verified", "sampled", max(d.residual or 0.0 for d in one), min(d.digits or 50.0 for d in one[:2]),
                  max(d.error or 0.0 for d in one[:2]), one[0].note)))
+    # two sampled entries in different symbols: the points shown are the first sampled entry's (in x, not y)
+    y = sp.Symbol("y", real=True)
+    two = [(sp.sin(2 * x), 2 * sp.sin(x) * sp.cos(x)), (sp.sinh(2 * y), 2 * sp.sinh(y) * sp.cosh(y))]
+    m = decide(sp.Matrix([[e[0] for e in two]]), sp.Matrix([[e[1] for e in two]]), exact=False, points=3)
+    got.append(("[sin 2x, sinh 2y]: the first sampled entry's points", (m.verdict, m.points),
+                ("verified", decide(*two[0], exact=False, points=3).points)))
     m = decide(sp.Matrix([[(x + 1) ** 2, x]]), sp.Matrix([[x ** 2 + 2 * x + 1, x]]))
     got.append(("[(x+1)^2, x]: proved", (m.verdict, m.evidence), ("proved", "proof")))
     # two false entries: x = -x (residual 2 where |x| >= 1) and 3x = 2x (1/3): the worse one decides

@@ -151,7 +151,9 @@ PROJECT = {
     "PKG/__init__.py": "",
     "PKG/decl.py": "import json\nimport sympy as sp\nfrom symbt import emit\nfrom . import util\n"
                    "from .sub import leaf\nx = sp.Symbol('x', real=True)\n"
-                   "E = emit('twice', 2 * x, args=(x,), module='PKG_out', register=False)\n",
+                   "E = emit('twice', 2 * x, args=(x,), module='PKG_out', register=False)\n"
+                   "def later():\n    from . import lazy\n    return lazy.z\n",     # imported only when called
+    "PKG/lazy.py": "z = 1\n",
     "PKG/util.py": "from .helper import h\n",
     "PKG/helper.py": "h = 1\n",
     "PKG/unused.py": "u = 1\n",
@@ -161,14 +163,15 @@ PROJECT = {
     "PKG/gen/__init__.py": "",
 }
 #: what derivation_sources must list for PKG.decl (a static scan of the imports, under the root)
-SOURCES = ["PKG/__init__.py", "PKG/decl.py", "PKG/deep.py", "PKG/helper.py", "PKG/sub/__init__.py",
+SOURCES = ["PKG/__init__.py", "PKG/decl.py", "PKG/deep.py", "PKG/helper.py", "PKG/lazy.py", "PKG/sub/__init__.py",
            "PKG/sub/leaf.py", "PKG/util.py"]
 
 
 @claim("library.user_provenance", equation="checker", scene="library",
        where="symbt.codegen.user.files (derivation_sources, derivation_hash, check)",
        statement="derivation_sources of a module declared in a project lists exactly the project's files it imports, "
-                 "directly or not (relative imports of level 1 and 2), none excluded; the derivation hash names files "
+                 "directly or not (relative imports of level 1 and 2; a module imported inside a function, not yet "
+                 "loaded, found by its spec), none excluded; the derivation hash names files "
                  "by their path under the root and changes with one byte; files.check reports the emitted module stale "
                  "after an edit of an indirectly imported module and not after an edit of a module nobody imports")
 def user_provenance() -> Outcome:

@@ -141,7 +141,8 @@ def ball_rule(prec: int, e: float) -> int:
        statement="certified_orbit(method='ball') on the paper's state (N={N}, exact input), 3 steps, target 1e-60, "
                  "first pass forced to 64 bits (it stops after one step: one finite excess e): the second pass runs "
                  "at max(floor(64 + e + 24) + 1, 64 + 16 + 32) (its docstring's rule; e from the radii of the same "
-                 "64-bit step, returned by an independent call) and every returned radius meets the target")
+                 "64-bit step, returned by an independent call) and every returned radius meets the target; with no "
+                 "prec the first pass runs at mp.prec + 32")
 def ball_precision(N: int) -> Outcome:
     if importlib.util.find_spec("flint") is None:
         return skipped("python-flint is not installed (.[certified])")
@@ -154,6 +155,8 @@ def ball_precision(N: int) -> Outcome:
         info: dict[str, object] = {}
         _, _, Pr3, Qr3 = certified_orbit(p, q, l0, m, BALL_STEPS, method="ball", prec=BALL_FIRST, tol=BALL_TOL,
                                          info=info)
+        default: dict[str, object] = {}      # no prec given: the first pass at mp.prec + 32 (the docstring)
+        certified_orbit(p, q, l0, m, 1, method="ball", tol=1.0, info=default)
     radii = [float(r) for r in list(Pr[-1]) + list(Qr[-1]) if r != 0]
     e = max(math.log2(r) - math.log2(BALL_TOL) for r in radii)
     want = ball_rule(BALL_FIRST, e)
@@ -164,6 +167,9 @@ def ball_precision(N: int) -> Outcome:
     if not (e > 8 and want > BALL_FIRST + BALL_FIRST // 4 + 32):
         bad.append(f"excess {e:.3g} bits after the first step: the case (one finite excess above the floor) is "
                    "not reached")
+    if list(default.get("passes", []))[:1] != [BALL_OUT_BITS + 32]:  # type: ignore[call-overload]
+        bad.append(f"with no prec the first pass ran at {default.get('passes')}, not mp.prec + 32 = "
+                   f"{BALL_OUT_BITS + 32}")
     if passes[:2] != [BALL_FIRST, want]:
         bad.append(f"passes {passes}, the documented rule gives {want} after {BALL_FIRST} (excess {e:.3g})")
     if not all(r <= BALL_TOL for r in list(Pr3[-1]) + list(Qr3[-1])):

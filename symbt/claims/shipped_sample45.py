@@ -26,7 +26,9 @@ unchecked (scene ``numeric-paths``; issue 21 item 4, docs/mutation.md "Seeds 4 a
 * ``paths.growth_law`` -- :func:`~symbt.numeric.multiprec.lohner.growth_law` on exact power-law records returns
   their degree (within ``1e-9``), window and end values.
 * ``paths.root_slope`` -- :func:`~symbt.numeric.core.spectral_sum.root_slope` and its numpy form
-  ``root_slope_rows`` are within half an ulp of the exact slope (60 digits) on 96 cases: "rounded once".
+  ``root_slope_rows`` are within half an ulp of the exact slope (60 digits) on 192 cases, a quarter of them at
+  |A| from 1e9 to 1e14 (where the quotient -2C/k once lost 1600 ulps) and a quarter near :math:`2^{27}` (where
+  :math:`t^2 - 4` rounds): "rounded once".
 * ``paths.jacobian_dual.n3`` -- :func:`~symbt.numeric.multiprec.lohner_checks.jacobian_dual` (the step on dual
   numbers) at the paper's state, both branches: its image encloses the literal map at 50 digits and every entry of
   its Jacobian is within ``1e-12 (1 + |J|)`` of a central finite difference of the literal map at 50 digits
@@ -314,11 +316,19 @@ def growth_record() -> Outcome:
 
 
 def _slope_cases() -> list[tuple[float, float, float, float, bool, bool]]:
-    """``(A, D, B, C, plus, wantk)``: monodromies with |A + D| > 3, entries of mixed scale (A - D inexact)."""
+    """``(A, D, B, C, plus, wantk)``: monodromies with |A + D| > 3, entries of mixed scale (A - D inexact); the
+    second half with |A| from 1e9 to 1e14, where the low parts of ``k = (A - D) -+ g`` exceed an ulp of ``k``
+    (the quotient -2 C / k lost its second-order term there: 1600 ulps at |A| = 1e12, now repaired), and near
+    2**27."""
     rng = np.random.default_rng(45)
     out: list[tuple[float, float, float, float, bool, bool]] = []
-    while len(out) < 96:
-        A, D = float(rng.uniform(-3000, 3000)), float(rng.uniform(-300, 300)) * (1 + 1e-9 * float(rng.random()))
+    while len(out) < 192:
+        # the second half: |A| from 1e9 to 1e14, and |A| near 2**27 (where fl(t**2) has an ulp of 2 to 8, so that
+        # the two-sum t**2 - 4 is inexact: its error term is then needed)
+        big = 0 if len(out) < 96 else (1 if len(out) < 144 else 2)
+        A = float(rng.uniform(-3000, 3000)) if not big else float(rng.choice([-1.0, 1.0])) * (
+            10.0 ** float(rng.uniform(9, 14)) if big == 1 else float(rng.uniform(9.5e7, 2.7e8)))
+        D = float(rng.uniform(-300, 300)) * (1 + 1e-9 * float(rng.random()))
         B, C = float(rng.uniform(0.5, 9)) * float(rng.choice([-1.0, 1.0])), float(rng.uniform(0.5, 9))
         if abs(A + D) > 3.0:
             out += [(A, D, B, C, plus, wantk) for plus in (True, False) for wantk in (True, False)]
@@ -327,7 +337,8 @@ def _slope_cases() -> list[tuple[float, float, float, float, bool, bool]]:
 
 @claim("paths.root_slope", equation="bt_step", source_equation="imptransf", scene="numeric-paths",
        where="symbt/numeric/core/spectral_sum.py: root_slope and root_slope_rows (the slope rounded once)",
-       statement="root_slope and root_slope_rows (96 rows: its numpy form) on 24 monodromies x (plus, wantk): within "
+       statement="root_slope and root_slope_rows (192 rows: its numpy form) on 48 monodromies x (plus, wantk), 12 "
+                 "of them with |A| from 1e9 to 1e14 and 12 near 2**27: within "
                  "half an ulp (1 + 2**-20) of the exact slope k / (2 B) or -2 C / k, "
                  "k = (A - D) +- sqrt((A + D)**2 - 4) of A, D at 60 digits (their docstrings: rounded once)")
 def root_slope_claim() -> Outcome:

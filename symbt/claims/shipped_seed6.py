@@ -167,7 +167,7 @@ QLOW_STEPS, QLOW_DPS = 3, 40
        statement="bt_orbit(q_low=True) (N={N}), kernel and general path, both branches, 3 steps of the paper's state "
                  "at q + 1e6 + 0.1: P, Q bit for bit those of q_low=False, |Q_low| <= ulp(Q)/2, the neighbour "
                  "differences of Q + Q_low within 16 N n eps (1 + max|d|) of the literal orbit's (40 digits), those "
-                 "of Q alone not")
+                 "of Q alone not; at mu = 0 and at n = 0 the input repeated with zero low parts")
 def q_low(N: int) -> Outcome:
     from ..numeric import bt_orbit
     from ..reference.literal import literal_step
@@ -201,6 +201,14 @@ def q_low(N: int) -> Outcome:
             if not e_high > bound:
                 bad.append(f"{be}, b = {b}: control: Q alone is within the bound ({e_high:.3g}): the state does not "
                            "test the low parts")
+    # mu = 0 (the identity) and n = 0: the input repeated, its low parts 0, in the documented shapes
+    for mu, steps in ((0.0, n), (QLOW_MU, 0)):
+        P, Q, L = bt_orbit(np.array(QLOW_P), np.array(QLOW_Q), QLOW_LAM0, mu, steps, q_low=True)
+        want = np.tile(np.array(QLOW_Q), (steps + 1, 1))
+        if not (np.array_equal(Q, want) and np.array_equal(L, np.zeros_like(want))
+                and np.array_equal(P, np.tile(np.array(QLOW_P), (steps + 1, 1)))):
+            bad.append(f"mu = {mu}, n = {steps}: not the input repeated with zero low parts (shapes {np.shape(Q)}, "
+                       f"{np.shape(L)})")
     detail = f"kernel and general path, both branches: worst {worst:.3g} x the bound."
     if bad:
         return failed("numeric: bt_orbit(q_low=True) vs the literal orbit", detail="; ".join(bad[:3]) + ". " + detail)

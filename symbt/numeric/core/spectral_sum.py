@@ -142,9 +142,11 @@ def root_slope(A: float, D: float, dl: float, g: float, B: float, C: float, two:
     pl = ((q1 * d1 - ph) + q1 * d2 + q2 * d1) + q2 * d2
     if wantk:
         rem = ((kh - ph) - pl) + kl
-    else:
-        rem = ((num - ph) - pl) - q * kl
-    return q + rem / den
+        return q + rem / den
+    # rem = num - q (kh + kl), so the quotient is q + rem / (kh + kl): over kh alone it would lose the second-order
+    # term q (kl/kh)**2, which is not below an ulp where kl is not (|A + D| >~ 1e11 with k ~ 1e2: 1600 ulps)
+    rem = ((num - ph) - pl) - q * kl
+    return q + rem / (kh + kl)
 
 
 def _split(x: Any) -> tuple[Any, Any]:
@@ -210,4 +212,4 @@ def root_slope_rows(A: Any, D: Any, dl: Any, g: Any, B: Any, C: Any, two: Any, p
         ph = q * den
         pl = ((q1 * d1 - ph) + q1 * d2 + q2 * d1) + q2 * d2
         rem = np.where(wantk, ((k - ph) - pl) + kl, ((num - ph) - pl) - q * kl)
-        return np.where(ok, q + rem / den, q)
+        return np.where(ok, q + rem / np.where(wantk, den, k + kl), q)
