@@ -27,16 +27,11 @@ def test_unpatched_verified(cid):
 
 @pytest.mark.parametrize("name, old, new", [
     ("exact_route", '    if route == "auto":', '    if route != "auto":'),                       # exact:26
-])
-def test_exact_route_names_kills_exact_route(monkeypatch, name, old, new):
-    monkeypatch.setattr(exact, name, planted(getattr(exact, name), old, new))
-    assert fails("checker.exact_route_names")
-
-
-def test_exact_route_names_kills_the_route_taken(monkeypatch):
     # exact:107: the flint route skipped where it is chosen (the same verdicts: only the method shows it)
-    monkeypatch.setattr(exact, "exact_zero", planted(exact.exact_zero, 'if exact_route(route) == "flint":',
-                                                     'if exact_route(route) != "flint":'))
+    ("exact_zero", 'if exact_route(route) == "flint":', 'if exact_route(route) != "flint":'),
+])
+def test_exact_route_names_kills_the_route(monkeypatch, name, old, new):
+    monkeypatch.setattr(exact, name, planted(getattr(exact, name), old, new))
     assert fails("checker.exact_route_names")
 
 

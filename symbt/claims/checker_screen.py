@@ -53,6 +53,7 @@ from ._facts import Facts
 from ._facts import facts_failed as _bad
 from ._facts import facts_verified as _ok
 from .base import Outcome, claim
+from .checker_screen_scale import residual_cells
 
 # --------------------------------------------------------------------------- sample_symbol
 
@@ -192,23 +193,6 @@ def screen_relations(deep: bool = False) -> Outcome:
 
 # --------------------------------------------------------------------------- the screen's arithmetic
 
-def _exact(value: sp.Expr) -> sp.Expr:
-    """A printed number with its decimals as exact rationals."""
-    return value.xreplace({f: sp.Rational(str(f)) for f in value.atoms(sp.Float)})
-
-
-def _residual_at(lhs: sp.Expr, rhs: sp.Expr, point: dict[str, str]) -> Any:
-    """``|l - r| / max(|l|, |r|, min(1, size))`` at a printed point, at 50 digits (the definition, evaluated by
-    SymPy); the terms' size is their largest modulus, the sides' summands (no cell has a sum inside a product)."""
-    with mp.workdps(50):
-        # the printed decimals taken exactly (a Float's own 20 digits would cap evalf where the sides cancel)
-        sub = {s: _exact(sp.sympify(point[str(s)].replace(" ", ""))) for s in (lhs - rhs).free_symbols}
-        lv, rv = (mp.mpmathify(side.xreplace(sub).evalf(50)) for side in (lhs, rhs))
-        size = max(abs(mp.mpmathify(t.xreplace(sub).evalf(50)))
-                   for side in (lhs, rhs) for t in sp.Add.make_args(side))
-        return abs(lv - rv) / max(abs(lv), abs(rv), min(mp.mpf(1), size))
-
-
 def _quad(f: Any, dps: int) -> tuple[Any, Any]:
     """``mpmath.quad`` on [0, 1] with its error estimate, both rounded to ``dps`` digits (as the screen records)."""
     with mp.workdps(dps):
@@ -240,13 +224,7 @@ def screen_arithmetic() -> Outcome:
     z = sp.Symbol("z")
     cells = (("|r| > |l|, r < 0", pos, -3 * pos), ("|l| > |r|, l < 0", -3 * pos, pos),
              ("both below 1", pos / 10, -pos / 10), ("same sign", 3 * pos, pos), ("complex", z, 2 * z))
-    for what, lhs, rhs in cells:
-        for recheck in (True, False):
-            r = screen(lhs, rhs, {}, 30, 3, 5, {}, recheck=recheck)
-            want = _residual_at(lhs, rhs, r.point or {}) if r.point else mp.inf
-            got.append((f"{what} ({'re-evaluated' if recheck else 'first evaluation'}): false, residual",
-                        (r.status, bool(abs(r.residual - want) <= 1e-12 * want), r.rechecked == int(recheck)),
-                        ("false", True, True)))
+    got += residual_cells(cells)
     # quadratures that have not converged (a jump inside [0, 1]): the error a side inherits, from mpmath's estimates
     t, s = sp.symbols("t s", positive=True)
     dps = 12 + 10

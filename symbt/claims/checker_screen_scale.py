@@ -16,6 +16,8 @@ absolutely, over that scale.
 """
 from __future__ import annotations
 
+from typing import Any
+
 import mpmath as mp
 import sympy as sp
 
@@ -23,7 +25,39 @@ from ._facts import Facts
 from ._facts import facts_failed as _bad
 from ._facts import facts_verified as _ok
 from .base import Outcome, claim
-from .checker_screen import _residual_at
+
+
+def _exact(value: sp.Expr) -> sp.Expr:
+    """A printed number with its decimals as exact rationals."""
+    return value.xreplace({f: sp.Rational(str(f)) for f in value.atoms(sp.Float)})
+
+
+def _residual_at(lhs: sp.Expr, rhs: sp.Expr, point: dict[str, str]) -> Any:
+    """``|l - r| / max(|l|, |r|, min(1, size))`` at a printed point, at 50 digits (the definition, evaluated by
+    SymPy); the terms' size is their largest modulus, the sides' summands (no cell has a sum inside a product)."""
+    with mp.workdps(50):
+        # the printed decimals taken exactly (a Float's own 20 digits would cap evalf where the sides cancel)
+        sub = {s: _exact(sp.sympify(point[str(s)].replace(" ", ""))) for s in (lhs - rhs).free_symbols}
+        lv, rv = (mp.mpmathify(side.xreplace(sub).evalf(50)) for side in (lhs, rhs))
+        size = max(abs(mp.mpmathify(t.xreplace(sub).evalf(50)))
+                   for side in (lhs, rhs) for t in sp.Add.make_args(side))
+        return abs(lv - rv) / max(abs(lv), abs(rv), min(mp.mpf(1), size))
+
+
+def residual_cells(cells: Any) -> Facts:
+    """For each ``(what, lhs, rhs)`` of a false statement, screened at 30 digits with and without the re-evaluation:
+    false, its residual within ``1e-12`` of :func:`_residual_at` at its counterexample, re-evaluated or not."""
+    from ..proof.screen import screen
+
+    got: Facts = []
+    for what, lhs, rhs in cells:
+        for recheck in (True, False):
+            r = screen(lhs, rhs, {}, 30, 3, 5, {}, recheck=recheck)
+            want = _residual_at(lhs, rhs, r.point or {}) if r.point else mp.inf
+            got.append((f"{what} ({'re-evaluated' if recheck else 'first evaluation'}): false, residual",
+                        (r.status, bool(abs(r.residual - want) <= 1e-12 * want), r.rechecked == int(recheck)),
+                        ("false", True, True)))
+    return got
 
 
 @claim("checker.screen_scale", equation="checker", scene="checker",
@@ -42,13 +76,7 @@ def screen_scale() -> Outcome:
              # e = 0 is judged against e's terms (size about 1), not against 0: off by 1e-20 is false at 1e-20
              ("a sum off by 1e-20 against 0", sp.sin(pos) ** 2 + sp.cos(pos) ** 2 - 1 - sp.Integer(10) ** -20,
               sp.Integer(0)))
-    for what, lhs, rhs in cells:
-        for recheck in (True, False):
-            r = screen(lhs, rhs, {}, 30, 3, 5, {}, recheck=recheck)
-            want = _residual_at(lhs, rhs, r.point or {}) if r.point else mp.inf
-            got.append((f"{what} ({'re-evaluated' if recheck else 'first evaluation'}): false, residual",
-                        (r.status, bool(abs(r.residual - want) <= 1e-12 * want), r.rechecked == int(recheck)),
-                        ("false", True, True)))
+    got += residual_cells(cells)
     # a sum that is 0 is measured against its terms: the rounding of sin^2 + cos^2 - 1 is not a residual of size 1
     r = screen(sp.sin(pos) ** 2 + sp.cos(pos) ** 2 - 1, sp.Integer(0), {}, 30, 4, 1, {})
     got.append(("sin^2 x + cos^2 x - 1 = 0 (the sides 0 up to rounding)", r.status, "verified"))
