@@ -139,3 +139,14 @@ def test_codegen_c_out_kills_the_target_test(monkeypatch, tmp_path):
     monkeypatch.setattr(files, "generate", planted(files.generate, 'if out is None and target == "c":',
                                                    'if out is None and target != "c":'))
     assert fails("library.codegen_c_out")
+
+
+def test_abs_products_kills_the_exponent_of_a_non_finite_row(monkeypatch):
+    # condition:416: a row whose largest entry is infinite renormalised by 2**-1 with exponent 1 per site, where
+    # monodromy(FLOAT) (np.frexp) gives exponent 0
+    from symbt.numeric.core import condition
+
+    monkeypatch.setattr(condition, "_renormalised_on_floats", planted(
+        condition._renormalised_on_floats, "if mx > 0.0 and mx < math.inf else 0",
+        "if mx > 0.0 and mx < math.inf else 1"))
+    assert fails("paths.abs_products.n3")

@@ -297,7 +297,8 @@ def _row_exp(e: int | np.ndarray, k: int) -> int:
        statement="abs_trace_rows and monodromy_and_abs (N={N}) with 1, 7, 16, 17, 20, 40 rows (and 2049 at N = 2), "
                  "rows moderate, past 2**500, past the double range, below 2**-500 (and at N = 3 a row renormalised "
                  "in the absolute product only) = the exact rational products within 3 N u of the absolute product "
-                 "plus 2**-500 of its largest entry; monodromy_and_abs bit for bit the separate calls")
+                 "plus 2**-500 of its largest entry; monodromy_and_abs bit for bit the separate calls, also beside a "
+                 "row with an infinite a_1")
 def abs_products(N: int) -> Outcome:
     from ..numeric.core.condition import abs_trace_rows, monodromy_and_abs
     from ..numeric.core.context import FLOAT
@@ -346,6 +347,15 @@ def abs_products(N: int) -> Outcome:
         checked += 1
         if why:
             bad.append(f"5 rows, r broadcast, row {k}: {why}")
+    # a row with an infinite a_1 beside a moderate one: the few-rows float form gives the entries and exponents of
+    # monodromy(FLOAT) bit for bit (NaN where it has NaN; the exponent of a non-finite row is 0, as np.frexp's)
+    a = [np.array([rows[0][0][j], np.inf if j == 0 else rows[0][0][j]]) for j in range(N)]
+    r = [np.array([rows[0][1][j]] * 2) for j in range(N)]
+    with np.errstate(all="ignore"):
+        (A, B, C, D, e), _ = monodromy_and_abs(a, r)
+        ref = monodromy(FLOAT, a, r)
+    if not all(np.array_equal(np.asarray(x), np.asarray(y), equal_nan=True) for x, y in zip((A, B, C, D, e), ref)):
+        bad.append(f"a row with a_1 = inf: monodromy_and_abs gives exponents {e}, monodromy(FLOAT) {ref[4]}")
     detail = (f"{len(batches) + 1} batches, {checked} rows against exact rationals; exponents seen "
               f"{min(exps)}..{max(exps)}.")
     if bad:
