@@ -343,7 +343,8 @@ def test_root_slope_rows_correction_sign(monkeypatch):
     from symbt.numeric.core import spectral_sum
 
     monkeypatch.setattr(spectral_sum, "root_slope_rows", planted(
-        spectral_sum.root_slope_rows, "return np.where(ok, q + rem / den, q)", "return np.where(ok, q - rem / den, q)"))
+        spectral_sum.root_slope_rows, "return np.where(ok, q + rem / np.where(wantk, den, k + kl), q)",
+        "return np.where(ok, q - rem / np.where(wantk, den, k + kl), q)"))
     assert status("paths.root_slope") == "failed"
 
 
