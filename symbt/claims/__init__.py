@@ -51,6 +51,7 @@ CLAIM_MODULES = (
     "shipped_sample45",
     "shipped_seed6",
     "shipped_seed10",
+    "seed11",
     "shipped_condition_file",
     "shipped_core",
     "shipped_field",

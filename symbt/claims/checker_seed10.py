@@ -5,7 +5,9 @@ r"""Two rules of the proof engine that no claim ran (scene ``checker``; issue 21
   reads ``SYMBT_EXACT`` first (``sympy`` there gives ``"sympy"``), else takes ``"flint"`` exactly when python-flint
   imports (found here by ``importlib``, not by the code under test); the exact layer's method names the route it
   took -- "one fraction in FLINT fmpq_mpoly" or "together/cancel" -- and both routes prove
-  :math:`(x + 1)^2 = x^2 + 2x + 1` and refute it off by 1.
+  :math:`(x + 1)^2 = x^2 + 2x + 1` and :math:`(x + i)(x - i) = x^2 + 1` (the flint route's generator
+  :math:`i`, reduced modulo :math:`i^2 + 1`) and refute :math:`(x + 1)^2 = x^2 + 2x + 2` and
+  :math:`(1 + i)^2 x = 2x`.
 * ``library.codegen_c_out`` -- :func:`symbt.codegen.files.generate` with the C target and no output directory
   refuses at once with a ``ValueError`` naming ``--out`` (its docstring: "required for C"), writing nothing.
 * ``checker.lambdify_memo`` -- :func:`symbt.proof.lambdify.plain_lambdify`'s memo keeps the most recent
@@ -31,7 +33,8 @@ from .base import Outcome, claim
        where="symbt.proof.exact: exact_route and the route exact_zero takes",
        statement="exact_route('sympy') is 'sympy'; 'auto' reads SYMBT_EXACT first, else is 'flint' exactly when "
                  "python-flint imports; the method names the route taken (FLINT fmpq_mpoly or together/cancel); "
-                 "both routes prove (x + 1)^2 = x^2 + 2x + 1 and refute it off by 1")
+                 "both routes prove (x + 1)^2 = x^2 + 2x + 1 and (x + i)(x - i) = x^2 + 1 and refute them off by 1 "
+                 "and (1 + i)^2 x = 2x")
 def exact_routes() -> Outcome:
     from ..proof.exact import exact_route, exact_zero
 
@@ -54,6 +57,12 @@ def exact_routes() -> Outcome:
         got.append((f"route {route}: proves, names itself", (zero, names[route] in method), (True, True)))
         off, method, definite = exact_zero((x + 1) ** 2 - (x ** 2 + 2 * x + 2), {}, route=route)
         got.append((f"route {route}: off by 1 refuted", (off, definite, names[route] in method), (False, True, True)))
+    # the imaginary unit: the flint route adds a generator i and reduces modulo i^2 + 1
+    for route in (["flint"] if flint else []) + ["sympy"]:
+        zero, _, _ = exact_zero((x + sp.I) * (x - sp.I) - (x ** 2 + 1), {}, route=route)
+        off, _, definite = exact_zero((1 + sp.I) ** 2 * x - 2 * x, {}, route=route)
+        got.append((f"route {route}: (x + i)(x - i) = x^2 + 1 proved, (1 + i)^2 x = 2x refuted",
+                    (zero, off, definite), (True, False, True)))
     zero, method, _ = exact_zero((x + 1) ** 2 - (x ** 2 + 2 * x + 1), {})
     got.append(("the default route's method", names["flint" if flint else "sympy"] in method, True))
     bad = _bad("the exact routes", got)

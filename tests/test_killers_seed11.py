@@ -1,0 +1,151 @@
+"""Seed 11's survivors (docs/mutation.md, "Seed 11"): planted bugs that the new facts now see, and the proofs of the
+mutants marked equivalent.  Unpatched, every claim verifies."""
+from __future__ import annotations
+
+import random
+import sys
+
+import mpmath as mp
+import numpy as np
+import pytest
+import sympy as sp
+from planting import planted
+
+from symbt.claims import REGISTRY, load_all
+
+load_all()
+
+CLAIMS = ["library.defaults", "paths.dq_range.n3", "checker.screen_arithmetic", "checker.exact_route_names"]
+
+
+def fails(cid: str, *, crash: bool = False) -> bool:
+    out = REGISTRY[cid].run()
+    return out.status == "failed" and (crash or out.method != "exception")
+
+
+@pytest.mark.parametrize("cid", CLAIMS)
+def test_unpatched_verified(cid):
+    assert REGISTRY[cid].run().status == "verified"
+
+
+def test_defaults_kill_a_deep_default(monkeypatch):
+    # ode:182
+    from symbt.proof import ode
+
+    monkeypatch.setattr(ode, "solves_ode", planted(ode.solves_ode, "deep: bool = False,", "deep: bool = True,"))
+    assert fails("library.defaults")
+
+
+def test_defaults_kill_a_branch_zero_default(monkeypatch):
+    # elliptic:314
+    from symbt.reference import elliptic
+
+    monkeypatch.setattr(elliptic, "step2", planted(elliptic.step2, "branch: int = 1, *,", "branch: int = 0, *,"))
+    assert fails("library.defaults")
+
+
+def test_dq_range_kills_the_signed_distance(monkeypatch):
+    # coefficients:97: the largest signed distance, not the largest in modulus
+    from symbt.numeric.flow import coefficients
+
+    orig = coefficients.neighbour_ratios_of
+    mutant = planted(orig, "worst = max(abs(float(d)) for d in dq)", "worst = max(float(d) for d in dq)")
+    for mod in list(sys.modules.values()):
+        if mod is not None and getattr(mod, "neighbour_ratios_of", None) is orig:
+            monkeypatch.setattr(mod, "neighbour_ratios_of", mutant)
+    assert fails("paths.dq_range.n3")
+
+
+def test_screen_arithmetic_kills_the_signed_side_in_the_inherited_error(monkeypatch):
+    # screen:194: |side| times the relative errors, for a negative side
+    from symbt.proof import screen
+
+    monkeypatch.setattr(screen, "_quad_error", planted(screen._quad_error, "abs(value) * relative)",
+                                                       "value * relative)"))
+    assert fails("checker.screen_arithmetic")
+
+
+def test_exact_route_names_kills_the_generator_i(monkeypatch):
+    # flint_exact:58 (crashes where the claim runs it) and flint_exact:175
+    from symbt.proof import flint_exact
+
+    monkeypatch.setattr(flint_exact._Converter, "__init__", planted(
+        flint_exact._Converter.__init__, '(["i"] if has_i else [])', '(["i"] if not (has_i) else [])'))
+    assert fails("checker.exact_route_names", crash=True)
+
+
+def test_exact_route_names_kills_the_reduction_modulo_i_squared_plus_one(monkeypatch):
+    from symbt.proof import flint_exact
+
+    monkeypatch.setattr(flint_exact, "rational_zero", planted(flint_exact.rational_zero, "conv.i ** 2 + 1))",
+                                                              "conv.i ** 2 + 0))"))
+    assert fails("checker.exact_route_names")
+
+
+# --------------------------------------------------------------------------- proven equivalent
+
+def test_odd_draw_at_the_top_of_its_range_is_equivalent():
+    # screen:54 (`v - 1` -> `v + 1` where an odd draw at the top moves down): every range the sampler draws from ends
+    # on odd numbers (1..9, -9..-1, -9..9), so an even draw v < hi has v + 1 <= hi and the else branch is never taken;
+    # the mutant draws the same values for every seed (checked on 2000 seeds x each range), a wrong move is seen
+    from symbt.proof import screen
+
+    mutant = planted(screen.sample_symbol, "v = v + 1 if v + 1 <= hi else v - 1", "v = v + 1 if v + 1 <= hi else v + 1")
+    wrong = planted(screen.sample_symbol, "v = v + 1 if v + 1 <= hi else v - 1", "v = v - 1 if v + 1 <= hi else v - 1")
+    syms = [sp.Symbol("n", integer=True, odd=True, **kw) for kw in ({"positive": True}, {"negative": True}, {})]
+    differs = 0
+    for s in syms:
+        for seed in range(2000):
+            assert mutant(s, random.Random(seed)) == screen.sample_symbol(s, random.Random(seed))
+            differs += wrong(s, random.Random(seed)) != screen.sample_symbol(s, random.Random(seed))
+    assert differs > 0
+
+
+def test_transfer_gradient_last_suffix_update_is_equivalent():
+    # field:83 (`if j > 0` -> `if j >= 0`): at j = 0, the last pass of the backward loop, the mutant also updates the
+    # suffix product b, which nothing reads after the loop: the same gradients (bit for bit, N = 2..7, random
+    # entries); a wrong update at j > 0 is seen
+    from symbt.numeric.flow import field
+
+    mutant = planted(field.transfer_gradient, "        if j > 0:\n", "        if j >= 0:\n")
+    wrong = planted(field.transfer_gradient, "b10 * a[j] + b11 * r[j], -inv_s * b10)",
+                    "b10 * a[j] - b11 * r[j], -inv_s * b10)")
+    rng = np.random.default_rng(11)
+    seen = 0
+    for N in range(2, 8):
+        for _ in range(50):
+            a, r, s = list(rng.normal(size=N)), list(rng.uniform(0.1, 3, size=N)), float(rng.uniform(0.5, 2))
+            assert mutant(a, r, s) == field.transfer_gradient(a, r, s)
+            seen += wrong(a, r, s) != field.transfer_gradient(a, r, s)
+    assert seen > 0
+
+
+def test_zero_mu_reversal_is_equivalent():
+    # spectral:67 (`mu < 0` -> `mu <= 0`): at mu = 0 the mutant flips the branch of an empty interval, whose
+    # coefficients are 0 on either branch (mpmath has no signed zero); a nonzero mu is unchanged
+    from symbt.reference import spectral
+
+    mutant = planted(spectral.flow_coefficients_mp, "    if mu < 0:\n", "    if mu <= 0:\n")
+    p, q = [mp.mpf(-1) / 2, mp.mpf(1) / 4, mp.mpf(0)], [mp.mpf(0), mp.mpf(1) / 3, mp.mpf(1) / 5]
+    with mp.workdps(20):
+        for b in (1, -1):
+            got = mutant(p, q, 3, 0, b)
+            assert got == spectral.flow_coefficients_mp(p, q, 3, 0, b)
+            assert all(v == 0 for v in got)
+        assert mutant(p, q, 3, mp.mpf(1) / 10, 1) == spectral.flow_coefficients_mp(p, q, 3, mp.mpf(1) / 10, 1)
+
+
+def test_zero_printed_in_parentheses_is_equivalent():
+    # printer:85 (`v >= 0` -> `v > 0`): the integer 0 printed "(0)" (C: "(0.0)") instead of "0": the same number in
+    # every flavour, evaluated; a negative integer keeps its parentheses either way
+    from symbt.codegen import printer
+
+    x = sp.Symbol("x")
+    mutant = planted(printer.ExprPrinter._p, "return (txt, _ATOM) if v >= 0 else", "return (txt, _ATOM) if v > 0 else")
+    for flavour in ("numpy", "mpmath", "ops", "c"):
+        pr = printer.ExprPrinter(flavour, {x: "x"})
+        text, prec = pr._p(sp.Integer(0))
+        mtext, mprec = mutant(pr, sp.Integer(0))
+        assert (text, mtext) in (("0", "(0)"), ("0.0", "(0.0)")) and prec == mprec
+        assert eval(text) == eval(mtext) == 0     # noqa: S307 -- the printer's own number
+        assert mutant(pr, sp.Integer(-3)) == pr._p(sp.Integer(-3))
