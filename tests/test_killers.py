@@ -187,7 +187,7 @@ def test_api_ode_scale_signed(monkeypatch):
 
 
 @pytest.mark.parametrize("old, new", [
-    ("min(mp.mpf(1), max(self._size(*args)[i]))", "max(mp.mpf(1), max(self._size(*args)[i]))"),   # the old floor 1
+    ("min(mp.mpf(1), sizes[i])", "max(mp.mpf(1), sizes[i])"),   # the old floor 1
     ("if scale < 1:", "if scale < 0:"),   # no floor
     ("scale = max(abs(v) for v in values)", "scale = min(abs(v) for v in values)"),   # seed 10's ode:158
 ])
@@ -376,8 +376,10 @@ def test_ode_floor_from_one_is_equivalent():
     r = ode.ode_residual(sp.Eq(X(tt).diff(tt), X(tt) + sp.Rational(1, 2)), sp.exp(tt) - 1)
     mutant = planted(ode.OdeResidual.__call__, "if scale < 1:", "if scale <= 1:")
     control = planted(ode.OdeResidual.__call__, "if scale < 1:   # floor: the terms' size, at most 1 (no absolute "
-                      "floor for a small solution)\n            scale = max(scale, min(mp.mpf(1),",
-                      "if scale <= 1:\n            scale = max(scale, max(mp.mpf(2),")
+                      "floor for a small solution)\n            sizes = sizes or self._sizes(args)\n"
+                      "            scale = max(scale, min(mp.mpf(1), sizes[i]))",
+                      "if scale <= 1:\n            sizes = sizes or self._sizes(args)\n"
+                      "            scale = max(scale, max(mp.mpf(2), sizes[i]))")
     with mp.workdps(30):
         assert max(abs(v) for v in r._f(mp.mpf(0))[0]) == 1
         assert r(t=mp.mpf(0)) == mp.mpf(1) / 2

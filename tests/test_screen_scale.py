@@ -74,3 +74,17 @@ def test_a_size_that_cannot_be_evaluated_is_infinite(bad):
     size = screen_module._sizer(bad, [mpmath.mpf(1)])()
     assert size == mpmath.inf
     assert screen_module._scale(mpmath.mpf("1e-5"), 0, lambda: size) == 1
+
+
+def test_an_ode_size_that_cannot_be_evaluated_gives_the_floor_one():
+    # the terms' size raising (a factor with a pole where the product has none): the floor is 1, never smaller
+    from symbt.proof.ode import ode_residual
+
+    t = sp.Symbol("t")
+    X = sp.Function("x")
+    r = ode_residual(sp.Eq(X(t).diff(t), -X(t)), sp.Integer(10) ** -30 * sp.exp(t))
+    with mpmath.workdps(30):
+        assert r(t=mpmath.mpf(1)) == 2                       # its own size: terms 1e-30 e, sum 2e-30 e
+        r._size = lambda *args: [[1 / mpmath.mpf(0)]]
+        got = r(t=mpmath.mpf(1))                             # the floor 1: an absolute residual, not a crash
+        assert abs(got - 2 * mpmath.mpf(10) ** -30 * mpmath.e) <= 1e-58

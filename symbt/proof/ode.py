@@ -147,6 +147,7 @@ class OdeResidual:
         self._f = plain_lambdify(symbols, terms, "mpmath")
         # the terms' sizes (symbt.proof.magnitude), for the floor of the scale where every term is below 1
         self._size = plain_lambdify(symbols, [[magnitude(p) for p in eq] for eq in terms], "mpmath")
+        self._equations = len(terms)
 
     def __call__(self, **point: Any) -> Any:
         missing = [n for n in self.variables if n not in point]
@@ -154,13 +155,22 @@ class OdeResidual:
             raise ValueError(f"the ODE residual needs {', '.join(missing)}; the point has {', '.join(point)}")
         args = [point[n] for n in self.variables]
         worst = mp.mpf(0)
+        sizes: list[Any] = []
         for i, values in enumerate(self._f(*args)):
             scale = max(abs(v) for v in values)
             if scale < 1:   # floor: the terms' size, at most 1 (no absolute floor for a small solution)
-                scale = max(scale, min(mp.mpf(1), max(self._size(*args)[i])))
+                sizes = sizes or self._sizes(args)
+                scale = max(scale, min(mp.mpf(1), sizes[i]))
             if scale:       # every term exactly 0: residual 0
                 worst = max(worst, abs(mp.fsum(values)) / scale)
         return worst
+
+    def _sizes(self, args: list[Any]) -> list[Any]:
+        """Each equation's terms' size; infinite (the floor is then 1) where a factor cannot be evaluated."""
+        try:
+            return [m if mp.isfinite(m) else mp.inf for m in (max(eq) for eq in self._size(*args))]
+        except (ZeroDivisionError, ValueError, OverflowError, ArithmeticError):
+            return [mp.inf] * self._equations
 
 
 def ode_residual(ode: Any, solution: Any) -> OdeResidual:
