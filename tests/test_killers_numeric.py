@@ -29,7 +29,7 @@ def status(cid: str) -> str:
 
 
 def test_the_scene_has_the_claims_named_here():
-    assert NUMERIC_PATHS == ["paths.abs_products.n2", "paths.abs_products.n3", "paths.anchored.n3",
+    assert NUMERIC_PATHS == ["paths.abs_products.n2", "paths.abs_products.n3", "paths.acosh_edge", "paths.anchored.n3",
                              "paths.ball_prec.n3", "paths.batch_range.n3", "paths.block_driver.n3",
                              "paths.block_slopes.n3", "paths.certified_nomap.n3", "paths.coefficients_mp.n3",
                              "paths.complex.n3", "paths.compress.n3", "paths.dask.n3", "paths.decimal_input.n3",

@@ -149,3 +149,59 @@ def test_zero_printed_in_parentheses_is_equivalent():
         assert (text, mtext) in (("0", "(0)"), ("0.0", "(0.0)")) and prec == mprec
         assert eval(text) == eval(mtext) == 0     # noqa: S307 -- the printer's own number
         assert mutant(pr, sp.Integer(-3)) == pr._p(sp.Integer(-3))
+
+
+# --------------------------------------------------------------------------- seed 12
+
+def test_acosh_edge_kills_the_branch_exponent(monkeypatch):
+    # context:152: the log1p form chosen at e == 1 instead of e == 0 (the log form near the edge loses bits)
+    from symbt.numeric.core import context
+
+    monkeypatch.setattr(context.FloatContext, "acosh_half_abs", planted(
+        context.FloatContext.acosh_half_abs, "np.asarray(e) == 0, small, big", "np.asarray(e) == 1, small, big"))
+    assert fails("paths.acosh_edge")
+
+
+def test_screen_scale_kills_the_smallest_residual_reported(monkeypatch):
+    # screen:432: a verified screen reports the smallest residual of its points
+    from symbt.proof import decider, screen
+
+    mutant = planted(screen.screen, "worst = max(checks, key=lambda c: c.residual)",
+                     "worst = min(checks, key=lambda c: c.residual)")
+    monkeypatch.setattr(screen, "screen", mutant)
+    monkeypatch.setattr(decider, "screen", mutant)
+    assert fails("checker.screen_scale")
+
+
+def test_codegen_metrics_kills_a_reported_value_of_the_wrong_output(monkeypatch):
+    # verify:246: the reported mpmath value taken from output k - 1
+    from symbt.codegen import verify
+
+    monkeypatch.setattr(verify, "compare", planted(verify.compare, "mp=mp.nstr(fm[k], 30))",
+                                                   "mp=mp.nstr(fm[k - 1], 30))"))
+    assert fails("checker.codegen_metrics")
+
+
+def test_exact_route_names_kills_the_exponential_names(monkeypatch):
+    # exponentials:190: e and e^s swapped in describe_variables
+    from symbt.proof import exponentials
+
+    monkeypatch.setattr(exponentials, "describe_variables", planted(
+        exponentials.describe_variables, 'base = "e" if s is sp.S.One else', 'base = "e" if not (s is sp.S.One) else'))
+    assert fails("checker.exact_route_names")
+
+
+def test_magnitude_of_a_zeroth_power_is_equivalent():
+    # magnitude:32 (`exp > 0` -> `exp >= 0`): SymPy evaluates b**0 to 1, so a Pow with exponent 0 exists only
+    # unevaluated, and then m(b)**0 = |b**0| = 1 (mpmath: 0**0 = 1 too); every other power is unchanged
+    from symbt.proof import magnitude as M
+    from symbt.proof.lambdify import plain_lambdify
+
+    mutant = planted(M.magnitude, "expr.exp.is_Integer and expr.exp > 0:", "expr.exp.is_Integer and expr.exp >= 0:")
+    x, y = sp.symbols("x y")
+    assert (x - y) ** 0 == 1 and not isinstance((x - y) ** 0, sp.Pow)
+    zeroth = sp.Pow(x - y, 0, evaluate=False)
+    for e in (zeroth, x * zeroth, (x - y) ** 2 + zeroth, 1 / (x - y), x ** 3):
+        f, g = (plain_lambdify([x, y], fn(e), "mpmath") for fn in (M.magnitude, mutant))
+        for v in ((mp.mpf(2), mp.mpf(-3)), (mp.mpf(3), mp.mpf("3.5")), (mp.mpf("0.5"), mp.mpf(4))):
+            assert f(*v) == g(*v), (e, v)

@@ -63,6 +63,10 @@ def exact_routes() -> Outcome:
         off, _, definite = exact_zero((1 + sp.I) ** 2 * x - 2 * x, {}, route=route)
         got.append((f"route {route}: (x + i)(x - i) = x^2 + 1 proved, (1 + i)^2 x = 2x refuted",
                     (zero, off, definite), (True, False, True)))
+    from ..proof.exponentials import describe_variables, exponentials_as_monomials
+    q = sp.Symbol("q")
+    names_of = describe_variables(exponentials_as_monomials(sp.exp(q) + sp.E)[1])
+    got.append(("the exponentials' names for e^q + e", names_of, "exp_1=e, exp_q=e^q"))
     zero, method, _ = exact_zero((x + 1) ** 2 - (x ** 2 + 2 * x + 1), {})
     got.append(("the default route's method", names["flint" if flint else "sympy"] in method, True))
     bad = _bad("the exact routes", got)

@@ -94,7 +94,8 @@ def _planted_measure(pt: dict[str, Any]) -> Any:
        where="symbt.codegen.verify.compare (the mpmath flavour's measure), verify.xy_vs_printed, verify.interpret, "
              "verify.phi_grad_vs_fd",
        statement="codegen.verify.compare fails toda2.invariants with the mpmath flavour's output 1 off by a relative "
-                 "1e-40, names output 1 and reports worst_mp within a relative 1e-6 of 1e-40 |f_1|/S_1 (at the worst "
+                 "1e-40, names output 1 and its mpmath value at the point, and reports worst_mp "
+                 "within a relative 1e-6 of 1e-40 |f_1|/S_1 (at the worst "
                  "of three points and at each alone); xy_vs_printed reports 1e-40 for y off by that where y < 0; "
                  "interpret's Quotient(-3, b) is -3, -3/2, -inf at b = 1, 2, 0; phi_grad_vs_fd on "
                  "a linear Phi of slope 1/4 whose gradient is off by 1e-30 returns 1e-30 to within 1e-40")
@@ -120,6 +121,10 @@ def codegen_metrics() -> Outcome:
     with mp.workdps(verify.MP_DPS):
         want = max(_planted_measure(pt) for pt in pts)
     problems = []
+    # the value reported is the mpmath flavour's output 1 at the point reported
+    named = next((pt for pt in pts if repr(pt) == bad.get("point")), None)
+    if named is None or bad.get("mp") != mp.nstr(off_mp(**named)[1], 30):
+        problems.append(f"the reported mpmath value {bad.get('mp')} is not output 1 at the reported point")
     if res["ok"] or bad.get("output") != 1 or "mp" not in bad:
         problems.append(f"compare with the mpmath flavour off by 1e-40 in output 1: ok={res['ok']}, reported {bad}")
     # the two scales differ only by verify's forward differences (h = 1e-18 max(|x|, 1) at 50 digits: ~18 digits),

@@ -1,5 +1,5 @@
-r"""Defaults and a range message that no claim pinned (issue 21, seed 11's ``ode:182``, ``elliptic:314``,
-``coefficients:97``).
+r"""Defaults, a range message and an edge rule that no claim pinned (issue 21, seed 11's ``ode:182``,
+``elliptic:314``, ``coefficients:97``; seed 12's ``context:152``).
 
 * ``library.defaults`` -- :func:`symbt.proof.solves_ode`'s default is the ordinary sample, not ``deep`` (as many
   points per cell as ``deep=False``, fewer than ``deep=True``); :func:`symbt.reference.elliptic.step2`'s default
@@ -8,6 +8,10 @@ r"""Defaults and a range message that no claim pinned (issue 21, seed 11's ``ode
   neighbour distance ``-800`` is beyond the float64 range while the other two are ``400``; both refuse with a
   :class:`~symbt.numeric.NumericRangeError` naming ``|q_{j+1} - q_j| = 800`` -- the cause, not a later non-finite
   intermediate (a test of the signed distances missed the negative one).
+* ``paths.acosh_edge`` -- the float64 context's ``acosh_half_abs(t, g, e)`` = ``arccosh(|t| 2**e / 2)`` (its
+  docstring: ``log1p`` at ``e = 0``, accurate near the band edge; ``e ln 2 + log`` for scaled traces) at
+  ``|t| = 2 (1 + 2**-k)``, ``k = 10, 20, 40``, both signs, and at scaled traces ``(3, e = 1)``, ``(0.75, e = 3)``:
+  within 2 ulps of ``mpmath.acosh`` at 40 digits (near the edge the ``log`` form loses about ``k/2`` bits).
 """
 from __future__ import annotations
 
@@ -68,3 +72,32 @@ def dq_range(N: int) -> Outcome:
     bad = _bad("the float64 range of the neighbour distances", got)
     return bad or _ok("FlowField and flow_quadrature at a negative neighbour distance beyond the range",
                       f"{len(got)} facts", "sampled")
+
+
+#: paths.acosh_edge: (t, e) near the band edge (e = 0) and scaled
+ACOSH_CASES = tuple((sgn * 2 * (1 + 2.0 ** -k), 0) for k in (10, 20, 40) for sgn in (1, -1)) + ((3.0, 1), (0.75, 3))
+
+
+@claim("paths.acosh_edge", equation="bt_step", source_equation="imptransf", scene="numeric-paths",
+       where="symbt/numeric/core/context.py: FloatContext.acosh_half_abs (log1p at e = 0, log when scaled)",
+       statement="acosh_half_abs(t, g, e) = arccosh(|t| 2**e / 2) within 2 ulps of mpmath.acosh (40 digits) at "
+                 "|t| = 2 (1 + 2**-k), k = 10, 20, 40, both signs, e = 0, and at (t, e) = (3, 1), (0.75, 3)")
+def acosh_edge() -> Outcome:
+    import math
+
+    from ..numeric.core.context import FLOAT
+
+    got: Facts = []
+    worst = 0.0
+    for t, e in ACOSH_CASES:
+        c = 2.0 ** (1 - e)
+        g = math.sqrt((t - c) * (t + c))        # as the kernels form it: (t - c)(t + c) is exact near the edge
+        v = float(FLOAT.acosh_half_abs(np.array(t), np.array(g), e))
+        with mp.workdps(40):
+            ref = mp.acosh(abs(mp.mpf(t)) * 2 ** e / 2)
+            ulps = float(abs(v - ref) / ref) / 2.0 ** -52
+        worst = max(worst, ulps)
+        got.append((f"t = {t!r}, e = {e}: within 2 ulps", ulps <= 2, True))
+    bad = _bad("arccosh near the band edge", got)
+    return bad or _ok("acosh_half_abs vs mpmath.acosh (40 digits)", f"{len(got)} cases, worst {worst:.3g} ulps",
+                      "sampled")
