@@ -91,11 +91,12 @@ def lambdify_memo() -> Outcome:
         again = [L.plain_lambdify([x], e) is f for e, f in zip(exprs[1:], made[1:])]
         got.append(("the last three kept", again, [True, True, True]))
         got.append(("the first evicted", L.plain_lambdify([x], exprs[0]) is made[0], False))
-        # the memo now holds x+2, x+3, x+0 (x+1 evicted by the re-made x+0); a hit on x+2 makes x+3 the oldest
+        # the memo now holds x+2, x+3, x+0 (x+1 evicted by the re-made x+0); a hit on x+2 makes x+3 the oldest,
+        # so a new x+9 evicts x+3
         L.plain_lambdify([x], exprs[2])
         L.plain_lambdify([x], x + 9)
-        got.append(("after a hit on x+2, x+3 goes first", [L.plain_lambdify([x], e) is f for e, f in
-                                                           ((exprs[2], made[2]),)] + [len(L._MEMO)], [True, 3]))
+        got.append(("after a hit on x+2 and a new x+9: x+2 kept, three entries",
+                    (L.plain_lambdify([x], exprs[2]) is made[2], len(L._MEMO)), (True, 3)))
         got.append(("the evicted entry was x+3", sorted(str(k[1]) for k in L._MEMO), sorted(["x + 2", "x + 9", "x"])))
     finally:
         L._MEMO, L.MAX_ENTRIES = saved_memo, saved_max
