@@ -182,19 +182,23 @@ def test_api_ode_scale_signed(monkeypatch):
     from symbt.proof import ode
 
     monkeypatch.setattr(ode.OdeResidual, "__call__", planted(
-        ode.OdeResidual.__call__, "scale = max(abs(v) for v in values)", "scale = max(v for v in values)"))
+        ode.OdeResidual.__call__, "floored_scale(max(abs(v) for v in values)", "floored_scale(max(v for v in values)"))
     assert _status(checker.api_controls) == "failed"
 
 
-@pytest.mark.parametrize("old, new", [
-    ("min(mp.mpf(1), sizes[i])", "max(mp.mpf(1), sizes[i])"),   # the old floor 1
-    ("if scale < 1:", "if scale < 0:"),   # no floor
-    ("scale = max(abs(v) for v in values)", "scale = min(abs(v) for v in values)"),   # seed 10's ode:158
+@pytest.mark.parametrize("where, old, new", [
+    ("magnitude", "min(mpmath.mpf(1), size())", "max(mpmath.mpf(1), size())"),   # the old floor 1
+    ("magnitude", "    if big >= 1:\n", "    if big >= 0:\n"),   # no floor below 1 ...
+    ("magnitude", "return max(big, min(mpmath.mpf(1), size()))", "return big"),   # ... or none at all
+    ("ode", "floored_scale(max(abs(v) for v in values)", "floored_scale(min(abs(v) for v in values)"),   # ode:158
 ])
-def test_api_ode_scale_floor(monkeypatch, old, new):
+def test_api_ode_scale_floor(monkeypatch, where, old, new):
     # x = 1e-30 e^t for x' = -x is false at its own size; x = e^t (cosh^2 - sinh^2 - 1) solves x'' = 0 up to rounding
-    from symbt.proof import ode
-    monkeypatch.setattr(ode.OdeResidual, "__call__", planted(ode.OdeResidual.__call__, old, new))
+    from symbt.proof import magnitude, ode
+    if where == "ode":
+        monkeypatch.setattr(ode.OdeResidual, "__call__", planted(ode.OdeResidual.__call__, old, new))
+    else:   # the floor rule is shared with the screen: the ODE's claim must see it alone
+        monkeypatch.setattr(ode, "floored_scale", planted(magnitude.floored_scale, old, new))
     assert _status(checker.api_controls) == "failed"
 
 
@@ -364,25 +368,30 @@ def test_angle_states(monkeypatch, bug):
     assert _status(library_reference.angle_quadrants) == "failed"
 
 
-def test_ode_floor_from_one_is_equivalent():
-    # seed 10's ode:159 (`scale < 1` -> `scale <= 1`): at a scale of exactly 1 the mutant's floor gives
-    # max(1, min(1, m)) = 1, the original's scale itself; elsewhere both take the same branch.  x = e^t - 1 for
-    # x' = x + 1/2 at t = 0 has terms 1 and -1/2 (scale exactly 1, residual 1/2); at t = -1 and 1 the scale is below
-    # and above 1.  Control: the tie is exercised -- the mutant's branch with a floor of 2 there halves the residual.
-    from symbt.proof import ode
+def test_floor_from_one_is_equivalent(monkeypatch):
+    # magnitude.floored_scale's `big >= 1` -> `big > 1` (seed 10's ode:159, now the one floor rule of the screen and
+    # the ODE residual): at big == 1 exactly the mutant gives max(1, min(1, m)) = 1, big itself, for any size m
+    # (size_or_inf never raises: a size that cannot be evaluated is inf); elsewhere both take the same branch.
+    # x = e^t - 1 for x' = x + 1/2 at t = 0 has terms 1 and -1/2 (big exactly 1, residual 1/2); at t = -1 and 1 big
+    # is below and above 1.  Control: the tie is exercised -- the mutant's branch with a floor of 2 halves it.
+    from symbt.proof import magnitude, ode
 
+    original = magnitude.floored_scale
+    mutant = planted(original, "    if big >= 1:\n", "    if big > 1:\n")
+    control = planted(original, "    if big >= 1:\n        return big\n    return max(big, min(mpmath.mpf(1), size()))",
+                      "    if big > 1:\n        return big\n    return max(big, max(mpmath.mpf(2), size()))")
+    values = [mp.mpf(0), mp.mpf("1e-30"), mp.mpf(1) / 2, mp.mpf(1), mp.mpf(2), mp.inf]
+    for big in values:
+        for m in values:
+            assert mutant(big, lambda m=m: m) == original(big, lambda m=m: m)
     tt = sp.Symbol("t")
     X = sp.Function("x")
     r = ode.ode_residual(sp.Eq(X(tt).diff(tt), X(tt) + sp.Rational(1, 2)), sp.exp(tt) - 1)
-    mutant = planted(ode.OdeResidual.__call__, "if scale < 1:", "if scale <= 1:")
-    control = planted(ode.OdeResidual.__call__, "if scale < 1:   # floor: the terms' size, at most 1 (no absolute "
-                      "floor for a small solution)\n            sizes = sizes or self._sizes(args)\n"
-                      "            scale = max(scale, min(mp.mpf(1), sizes[i]))",
-                      "if scale <= 1:\n            sizes = sizes or self._sizes(args)\n"
-                      "            scale = max(scale, max(mp.mpf(2), sizes[i]))")
     with mp.workdps(30):
         assert max(abs(v) for v in r._f(mp.mpf(0))[0]) == 1
         assert r(t=mp.mpf(0)) == mp.mpf(1) / 2
-        for t in (mp.mpf(-1), mp.mpf(0), mp.mpf(1)):
-            assert mutant(r, t=t) == r(t=t)
-        assert control(r, t=mp.mpf(0)) == mp.mpf(1) / 4
+        expected = [r(t=t) for t in (mp.mpf(-1), mp.mpf(0), mp.mpf(1))]
+        monkeypatch.setattr(ode, "floored_scale", mutant)
+        assert [r(t=t) for t in (mp.mpf(-1), mp.mpf(0), mp.mpf(1))] == expected
+        monkeypatch.setattr(ode, "floored_scale", control)
+        assert r(t=mp.mpf(0)) == mp.mpf(1) / 4

@@ -199,11 +199,17 @@ RECHECK = [   # (mutant, old, new) in screen._recheck
 
 
 SCALE = [   # (mutant, old, new) in screen._scale: what a point's difference is measured against
-    ("scale abs(rv)", "big = max(abs(lv), abs(rv))", "big = max(abs(lv), rv)"),
-    ("scale abs(lv)", "big = max(abs(lv), abs(rv))", "big = max(lv, abs(rv))"),
-    ("scale floor not capped", "min(mpmath.mpf(1), size())", "max(mpmath.mpf(1), size())"),   # the old floor 1
-    ("scale no floor", "return max(big, min(mpmath.mpf(1), size()))", "return big"),
-    ("scale floor from 1 up", "    if big >= 1:\n", "    if big >= 0:\n"),
+    ("scale abs(rv)", "floored_scale(max(abs(lv), abs(rv)), size)", "floored_scale(max(abs(lv), rv), size)"),
+    ("scale abs(lv)", "floored_scale(max(abs(lv), abs(rv)), size)", "floored_scale(max(lv, abs(rv)), size)"),
+]
+
+FLOOR = [   # (mutant, old, new) in magnitude.floored_scale: the floor below 1, one rule for the screen and the ODE
+    ("floor not capped", "min(mpmath.mpf(1), size())", "max(mpmath.mpf(1), size())"),   # the old floor 1
+    ("no floor", "return max(big, min(mpmath.mpf(1), size()))", "return big"),
+    ("floor from 1 up", "    if big >= 1:\n", "    if big >= 0:\n"),
+    ("floor at 0", "min(mpmath.mpf(1), size())", "min(mpmath.mpf(0), size())"),
+    ("floor as a cap", "return max(big, min(", "return min(big, min("),
+    ("floor above 1", "    if big >= 1:\n", "    if big <= 1:\n"),
 ]
 
 
@@ -213,10 +219,36 @@ def test_screen_arithmetic_kills_scale(monkeypatch, where, old, new):
     assert screen_claims_fail(crash=where in CRASH)
 
 
+def plant_floor(monkeypatch, old: str, new: str) -> None:
+    """The floor rule mutated where it is written, seen by both its users (as the mutation tool mutates it)."""
+    from symbt.proof import magnitude, ode
+    mutant = planted(magnitude.floored_scale, old, new)
+    for module in (magnitude, screen_module, ode):
+        monkeypatch.setattr(module, "floored_scale", mutant)
+
+
+@pytest.mark.parametrize("where, old, new", FLOOR, ids=[s[0] for s in FLOOR])
+def test_screen_claims_kill_the_floor(monkeypatch, where, old, new):
+    plant_floor(monkeypatch, old, new)
+    assert screen_claims_fail()
+
+
 def test_screen_size_is_each_sides_terms(monkeypatch):
     # the size of the rhs's terms only (the lhs's dropped): sin^2 + cos^2 - 1 = 0 is measured against 0's terms
     monkeypatch.setattr(screen_module, "_sizer", planted(
-        screen_module._sizer, "m = max(f_size(*allv))", "m = f_size(*allv)[1]"))
+        screen_module._sizer, "size_or_inf(lambda: f_size(*allv))", "size_or_inf(lambda: f_size(*allv)[1:])"))
+    assert screen_claims_fail()
+
+
+@pytest.mark.parametrize("old, new", [
+    ("m = max(sizes())", "m = min(sizes())"),   # the smaller side's terms: measured against 0's terms
+    ("return m if mpmath.isfinite(m) else", "return m if not mpmath.isfinite(m) else"),   # every size infinite
+])
+def test_size_or_inf_is_the_largest_finite(monkeypatch, old, new):
+    from symbt.proof import magnitude
+    mutant = planted(magnitude.size_or_inf, old, new)
+    for module in (magnitude, screen_module):
+        monkeypatch.setattr(module, "size_or_inf", mutant)
     assert screen_claims_fail()
 
 

@@ -37,6 +37,7 @@ the derivatives of the closed form taken exactly (SymPy), and:
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
+from functools import partial
 from typing import Any
 
 import mpmath as mp
@@ -47,7 +48,7 @@ from .cells import CellTable
 from .domain import Domain, Split
 from .exact import exact_zero
 from .lambdify import plain_lambdify
-from .magnitude import magnitude
+from .magnitude import floored_scale, magnitude, size_or_inf
 from .verdict import Verdict
 
 __all__ = ["solves_ode", "ode_residual", "OdeResidual", "DEFAULT_RANGE"]
@@ -145,9 +146,8 @@ class OdeResidual:
     def __init__(self, symbols: list[sp.Symbol], terms: list[list[Any]]) -> None:
         self.variables = tuple(s.name for s in symbols)
         self._f = plain_lambdify(symbols, terms, "mpmath")
-        # the terms' sizes (symbt.proof.magnitude), for the floor of the scale where every term is below 1
-        self._size = plain_lambdify(symbols, [[magnitude(p) for p in eq] for eq in terms], "mpmath")
-        self._equations = len(terms)
+        # each equation's terms' sizes (symbt.proof.magnitude), for the floor of its scale where every term is below 1
+        self._sizes = [plain_lambdify(symbols, [magnitude(p) for p in eq], "mpmath") for eq in terms]
 
     def __call__(self, **point: Any) -> Any:
         missing = [n for n in self.variables if n not in point]
@@ -155,22 +155,11 @@ class OdeResidual:
             raise ValueError(f"the ODE residual needs {', '.join(missing)}; the point has {', '.join(point)}")
         args = [point[n] for n in self.variables]
         worst = mp.mpf(0)
-        sizes: list[Any] = []
-        for i, values in enumerate(self._f(*args)):
-            scale = max(abs(v) for v in values)
-            if scale < 1:   # floor: the terms' size, at most 1 (no absolute floor for a small solution)
-                sizes = sizes or self._sizes(args)
-                scale = max(scale, min(mp.mpf(1), sizes[i]))
+        for values, sizes in zip(self._f(*args), self._sizes):
+            scale = floored_scale(max(abs(v) for v in values), partial(size_or_inf, partial(sizes, *args)))
             if scale:       # every term exactly 0: residual 0
                 worst = max(worst, abs(mp.fsum(values)) / scale)
         return worst
-
-    def _sizes(self, args: list[Any]) -> list[Any]:
-        """Each equation's terms' size; infinite (the floor is then 1) where a factor cannot be evaluated."""
-        try:
-            return [m if mp.isfinite(m) else mp.inf for m in (max(eq) for eq in self._size(*args))]
-        except (ZeroDivisionError, ValueError, OverflowError, ArithmeticError):
-            return [mp.inf] * self._equations
 
 
 def ode_residual(ode: Any, solution: Any) -> OdeResidual:

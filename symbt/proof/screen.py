@@ -12,7 +12,7 @@ import mpmath
 import sympy as sp
 
 from .lambdify import plain_lambdify
-from .magnitude import magnitude
+from .magnitude import EVALUATION_ERRORS, floored_scale, magnitude, size_or_inf
 from .verdict import SAFETY
 
 __all__ = ["screen", "sample_symbol", "ScreenResult", "PointCheck", "tracked_quad", "high_precision"]
@@ -78,9 +78,6 @@ def _as_mp(x: object) -> mpmath.mpf | mpmath.mpc:
 
 def _fmt(v: mpmath.mpf | mpmath.mpc) -> str:
     return mpmath.nstr(v, 20)
-
-
-_POLE_ERRORS = (ZeroDivisionError, ValueError, OverflowError, ArithmeticError)
 
 
 def _finite(v: object) -> bool:
@@ -205,34 +202,20 @@ def _evaluate(f: Callable[..., Any], allv: Sequence[object]) -> tuple[Any, Any]:
 
 
 def _scale(lv: Any, rv: Any, size: Callable[[], Any]) -> Any:
-    """What a point's difference ``lhs - rhs`` is measured against: ``max(|lhs|, |rhs|, min(1, size()))``.
-
-    ``size()`` is the size of the sides' terms (:func:`~symbt.proof.magnitude.magnitude`), evaluated only
-    when both sides are below 1.  Its floor keeps rounding noise where the sides cancel to 0 (``e = 0``)
-    from counting as a relative residual of 1; capped at 1, it never makes a statement of size 1 or more
-    absolute, and far below 1 (``1e-50 sin x = 2e-50 sin x``) a statement is judged at its own size.
-    """
-    big = max(abs(lv), abs(rv))
-    if big >= 1:
-        return big
-    return max(big, min(mpmath.mpf(1), size()))
+    """What a point's difference ``lhs - rhs`` is measured against: ``max(|lhs|, |rhs|)``, floored below 1 by the
+    sides' terms' size ``size()`` (:func:`~symbt.proof.magnitude.floored_scale`)."""
+    return floored_scale(max(abs(lv), abs(rv)), size)
 
 
 def _sizer(f_size: Callable[..., Any], allv: Sequence[object]) -> Callable[[], Any]:
-    """The sides' terms' size at ``allv``, when asked (its quadratures are not counted in the error again).
-
-    A size that cannot be evaluated (a factor with a pole where the product has none) or is not finite is
-    infinite: the floor is then 1, the most lenient, never a smaller scale than the terms warrant.
-    """
+    """The sides' terms' size at ``allv`` (:func:`~symbt.proof.magnitude.size_or_inf`), when asked; its
+    quadratures are not counted in the error again."""
     def size() -> Any:
         log, _QUAD_LOG.errors = getattr(_QUAD_LOG, "errors", None), None
         try:
-            m = max(f_size(*allv))
-        except _POLE_ERRORS:
-            return mpmath.inf
+            return size_or_inf(lambda: f_size(*allv))
         finally:
             _QUAD_LOG.errors = log
-        return m if _finite(m) else mpmath.inf
     return size
 
 
@@ -309,7 +292,7 @@ def _recheck(pc: PointCheck, f_l: Callable[..., Any], f_r: Callable[..., Any], f
             for sols, k in zip(rel_solvers, pc.roots):
                 allv.append(sols[k](*allv))
             (lv, el), (rv, er) = _evaluate(f_l, allv), _evaluate(f_r, allv)
-        except _POLE_ERRORS:
+        except EVALUATION_ERRORS:
             pc.error = mpmath.inf
             return
         if not (_finite(lv) and _finite(rv)):
@@ -389,7 +372,7 @@ def screen(lhs: sp.Expr, rhs: sp.Expr, relations: Mapping[sp.Symbol, sp.Expr], d
                     picks.append(k)
                     allv.append(sols[k](*allv))
                 (lv, el), (rv, er) = _evaluate(f_l, allv), _evaluate(f_r, allv)
-            except _POLE_ERRORS:
+            except EVALUATION_ERRORS:
                 continue
             if not (_finite(lv) and _finite(rv)):
                 continue  # a pole or an undefined value: not a test of the identity
