@@ -52,6 +52,7 @@ CLAIM_MODULES = (
     "shipped_seed6",
     "shipped_seed10",
     "seed11",
+    "seed13",
     "shipped_condition_file",
     "shipped_core",
     "shipped_field",

@@ -162,8 +162,8 @@ def illcond() -> Outcome:
 
 @claim("library.zullo_registry", equation="checker", scene="library", N=3,
        where="symbt.codegen.zullo.declaration (Zullo's toda{N} functions as symbt.emit declarations)",
-       statement="declaring Zullo's closed-form functions (toda3) leaves the user's registry symbt.codegen.user."
-                 "EMISSIONS unchanged")
+       statement="declaring Zullo's closed-form functions (toda3) and the loop form's (toda4) leaves the user's "
+                 "registry symbt.codegen.user.EMISSIONS unchanged")
 def zullo_registry() -> Outcome:
     from dataclasses import replace
 
@@ -180,6 +180,7 @@ def zullo_registry() -> Outcome:
                   guards=tuple(replace(g, expr=(t - 2) * (t + 2)) for g, t in zip(face["phi_tr"].guards, (t1, t2))))
     before = dict(EMISSIONS)
     made = [zullo.declaration(s, 3) for s in (inv, phi)]
+    loops, _ = zullo.loop_declarations(4)
     after = dict(EMISSIONS)
     if after.keys() != before.keys() or any(after[k] is not before[k] for k in before):
         added = sorted(set(after) - set(before))
@@ -187,6 +188,9 @@ def zullo_registry() -> Outcome:
     if [(e.module, e.name, e.typed) for e in made] != [("toda3", "invariants", True), ("toda3", "phi_tr", True)]:
         return failed("symbt.codegen.zullo.declaration",
                       detail=f"declared {[(e.module, e.name, e.typed) for e in made]}")
-    return Outcome("verified", "EMISSIONS compared before and after", evidence="proof", n_scope=[3],
-                   detail=f"toda3.invariants and toda3.phi_tr declared (typed); EMISSIONS keeps its {len(before)} "
-                          "entries")
+    if {e.module for e in loops} != {"toda4"} or len(loops) != len(derive.FUNCTIONS):
+        return failed("symbt.codegen.zullo.loop_declarations",
+                      detail=f"declared {sorted((e.module, e.name) for e in loops)}")
+    return Outcome("verified", "EMISSIONS compared before and after", evidence="proof", n_scope=[3, 4],
+                   detail=f"toda3.invariants and toda3.phi_tr declared (typed), and toda4's {len(loops)} loop "
+                          f"functions; EMISSIONS keeps its {len(before)} entries")

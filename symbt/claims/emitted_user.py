@@ -6,7 +6,8 @@ the printer on powers and on ``exp(s) - 1`` near 0 (issue 21, item 4: the surviv
 codegen``, docs/mutation.md).
 
 * ``library.emit_typed`` -- one typed declaration, ``probe(z, s, b)`` with ``z = (x, y)``, outputs
-  ``v = (b x^2 sqrt(y), x^3 - s)`` and ``w = x - y`` (``x > y``) or ``exp(s) - 1``, the guard ``y > 0``, the domain
+  ``v = (b x^2 sqrt(y), x^3 - s, 1/(2 b))`` (the last a quotient with no numerator factor, of the sign ``b``) and
+  ``w = x - y`` (``x > y``) or ``exp(s) - 1``, the guard ``y > 0``, the domain
   given per element of ``z``; emitted (numpy, mpmath and, where a C compiler is present, C99) into a temporary
   directory and loaded from disk.  Three routes:
 
@@ -62,16 +63,16 @@ def declaration(domain: dict[str, Any] | None = None) -> Any:
 
     x, y, s, b = sp.symbols("x y s b", real=True)
     dom = Domain(domain or {"x": (-2, 2), "y": (-1, 3), "s": (-1e-9, 1e-9)}, seed=21)
-    return emit("probe", {"v": [b * x**2 * sp.sqrt(y), x**3 - s],
+    return emit("probe", {"v": [b * x**2 * sp.sqrt(y), x**3 - s, 1 / (2 * b)],
                           "w": sp.Piecewise((x - y, x > y), (sp.exp(s) - 1, True))},
                 args=(("z", (x, y)), s, ("b", b, "sign")), module=MODULE,
                 guards=[Guard("positive", "y", y, early=True)], domain=dom, register=False)
 
 
 def by_hand(x: float, y: float, s: float, b: int) -> list[mp.mpf]:
-    """``v1, v2, w`` from the formulas written out (mpmath at the working precision), not from SymPy."""
+    """``v1, v2, v3, w`` from the formulas written out (mpmath at the working precision), not from SymPy."""
     X, Y, S = mp.mpf(x), mp.mpf(y), mp.mpf(s)
-    return [b * X * X * mp.sqrt(Y), X ** 3 - S, X - Y if X > Y else mp.expm1(S)]
+    return [b * X * X * mp.sqrt(Y), X ** 3 - S, mp.mpf(b) / 2, X - Y if X > Y else mp.expm1(S)]
 
 
 def _worst(got: list[Any], want: list[mp.mpf]) -> mp.mpf:
@@ -80,7 +81,7 @@ def _worst(got: list[Any], want: list[mp.mpf]) -> mp.mpf:
 
 
 def _c_probe(path: Path, e: Any, keep: list[Any]) -> Any:
-    """``probe`` of the compiled C target: ``(status, [v1, v2, w])``."""
+    """``probe`` of the compiled C target: ``(status, [v1, v2, v3, w])``."""
     from ..codegen.user.check import load_c
     from ..codegen.user.render import c_name
 
@@ -89,9 +90,9 @@ def _c_probe(path: Path, e: Any, keep: list[Any]) -> Any:
     fn.restype, fn.argtypes = ctypes.c_int, [dp, ctypes.c_double, ctypes.c_int, dp, dp]
 
     def call(x: float, y: float, s: float, b: int) -> tuple[int, list[float]]:
-        v, w = (ctypes.c_double * 2)(), (ctypes.c_double * 1)()
+        v, w = (ctypes.c_double * 3)(), (ctypes.c_double * 1)()
         code = fn((ctypes.c_double * 2)(x, y), s, b, v, w)
-        return code, [v[0], v[1], w[0]]
+        return code, [v[0], v[1], v[2], w[0]]
     return call
 
 
@@ -137,10 +138,11 @@ def emit_typed() -> Outcome:
                         bad.append(f"the hand-written reference disagrees with itself at ({x}, {y}, {s}, {b})")
                 try:
                     v, w = mod.probe([x, y], s, b)
-                    worst["numpy"] = max(worst["numpy"], _worst([float(v[0]), float(v[1]), float(w)], want))
+                    got = [float(v[0]), float(v[1]), float(v[2]), float(w)]
+                    worst["numpy"] = max(worst["numpy"], _worst(got, want))
                     with mp.workdps(50):
                         vm, wm = mod.probe_mp([x, y], s, b)
-                    worst["mpmath"] = max(worst["mpmath"], _worst([vm[0], vm[1], wm], want))
+                    worst["mpmath"] = max(worst["mpmath"], _worst([vm[0], vm[1], vm[2], wm], want))
                 except Exception as exc:    # a valid point: no flavour may refuse it
                     bad.append(f"probe({x}, {y}, {s}, {b}) raised {type(exc).__name__}: {str(exc)[:100]}")
                 if c_call is not None:

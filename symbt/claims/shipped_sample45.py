@@ -21,8 +21,9 @@ unchecked (scene ``numeric-paths``; issue 21 item 4, docs/mutation.md "Seeds 4 a
 * ``paths.inline_boolop`` -- :func:`~symbt.numeric.core.inline.inlined` writes a pure body called in the first
   operand of ``and`` / ``or`` (the operand always evaluated) inline, with the plain function's values.
 * ``paths.side_by_side.n3`` -- :func:`~symbt.numeric.core.condition.monodromy_and_abs` on 20 rows, half of them
-  past ``2**500`` (renormalised), equals ``monodromy(FLOAT)`` and ``abs_trace_rows`` bit for bit (its docstring),
-  and its trace the literal trace at 30 digits within ``1e-13`` relative.
+  past ``2**500`` (renormalised), and on a batch where only the absolute product leaves the range in some rows,
+  equals ``monodromy(FLOAT)`` and ``abs_trace_rows`` bit for bit (its docstring), and its trace the literal trace
+  at 30 digits within ``1e-13`` relative.
 * ``paths.growth_law`` -- :func:`~symbt.numeric.multiprec.lohner.growth_law` on exact power-law records returns
   their degree (within ``1e-9``), window and end values.
 * ``paths.root_slope`` -- :func:`~symbt.numeric.core.spectral_sum.root_slope` and its numpy form
@@ -165,7 +166,8 @@ def mp_verdict(N: int) -> Outcome:
        where="symbt/numeric/multiprec/lohner_checks.py: jacobian_dual (the step on dual numbers)",
        statement="jacobian_dual at the paper's state (N={N}), both branches, 30 digits: its image encloses the literal "
                  "map (50 digits) and every Jacobian entry is within 1e-12 (1 + |J|) of the central finite difference "
-                 "of the literal map at 50 digits (step 1e-15)")
+                 "of the literal map at 50 digits (step 1e-15); at lam0 = -2, mu = +-1.215 (lam1 or lam2 in the band "
+                 "near -0.785, by the literal trace at 30 digits) NoRealMapError with condition 'trace'")
 def jacobian_dual(N: int) -> Outcome:
     if importlib.util.find_spec("flint") is None:
         return skipped("python-flint is not installed (.[certified])")
@@ -203,7 +205,26 @@ def jacobian_dual(N: int) -> Outcome:
                         bad.append(f"branch {b}: J[{i}, {j}] = {got!r}, finite difference {mp.nstr(col[i], 15)}")
         if not inside:
             bad.append(f"branch {b}: the image does not enclose the literal map")
-    detail = f"worst |J - finite difference| {worst:.3g} over 2 x {(2 * N) ** 2} entries."
+    # refusal: one of lam0 +- mu in a band (the existence decision on the dual numbers' value balls)
+    from ..numeric import NoRealMapError
+    from ..reference.literal import literal_trace
+    refused = 0
+    for mu in (1.215, -1.215):
+        with mp.workdps(30):
+            in_band = any(abs(literal_trace(mp.mpf(-2 + s * mu), [mp.mpf(v) for v in p], [mp.mpf(v) for v in q])) <= 2
+                          for s in (1, -1))
+            try:
+                jd([arb(v) for v in list(p) + list(q)], arb(-2), arb(mu), 1)
+                seen = "a Jacobian"
+            except NoRealMapError as exc:
+                seen = exc.condition
+                refused += 1
+            except Exception as exc:  # noqa: BLE001 -- any other outcome is the finding
+                seen = f"{type(exc).__name__}: {exc}"
+        if not in_band or seen != "trace":
+            bad.append(f"lam0 = -2, mu = {mu}: lam0 +- mu in a band {in_band}, jacobian_dual gave {seen}")
+    detail = (f"worst |J - finite difference| {worst:.3g} over 2 x {(2 * N) ** 2} entries; {refused} of 2 states "
+              "with a spectral parameter in a band refused.")
     if bad:
         return failed("numeric: jacobian_dual vs finite differences of the literal map",
                       detail="; ".join(bad[:6]) + ". " + detail)
@@ -253,9 +274,11 @@ def inline_boolop() -> Outcome:
 @claim("paths.side_by_side", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
        where="symbt/numeric/core/condition.py: monodromy_and_abs's side-by-side range test (_both_in_range)",
        statement="monodromy_and_abs on 20 rows of the paper's p, q (N={N}), lam = 1e40 (products in range) and "
-                 "lam = 1e170 (products past 2**500: renormalised): the monodromy and the absolute trace bit for bit "
-                 "those of monodromy(FLOAT) and abs_trace_rows, and 2**e tr within 1e-13 relative of the literal "
-                 "trace at 30 digits")
+                 "lam = 1e170 (products past 2**500: renormalised), and on a second batch (its first 10 rows, and "
+                 "10 rows a = (X (1 + 2**-20), 1, 1), r = (X, 1, 1/X), X = 2e150: every signed product in range, the "
+                 "absolute one past 2**500 in those 10 rows, renormalised there only): the monodromy and the "
+                 "absolute trace bit for bit those of monodromy(FLOAT) and abs_trace_rows, and 2**e tr within 1e-13 "
+                 "relative of the literal trace at 30 digits")
 def side_by_side(N: int) -> Outcome:
     from ..numeric.core.condition import abs_trace_rows, monodromy_and_abs
     from ..numeric.core.context import FLOAT
@@ -266,11 +289,20 @@ def side_by_side(N: int) -> Outcome:
     lam = np.concatenate([np.full(10, 1e40), np.full(10, 1e170)])
     a = [lam + pj for pj in p]
     r = [np.full(len(lam), math.exp(q[(j + 1) % N] - q[j])) for j in range(N)]
-    (A, B, C, D, e), (T, ea) = monodromy_and_abs(a, r)
-    want = (*monodromy(FLOAT, a, r), *abs_trace_rows(a, r))
+    # a second batch, every signed product in range: 10 rows at lam = 1e40 and 10 where only the absolute product
+    # is past 2**500 (a1 a2 - r1 cancels in the signed one: |A| ~ X there, 3 X in the absolute one)
+    X = 2e150
+    mixed_a, mixed_r = (X * (1 + 2.0 ** -20), 1.0, 1.0), (X, 1.0, 1 / X)
+    a2 = [np.concatenate([x[:10], np.full(10, mixed_a[j])]) for j, x in enumerate(a)]
+    r2 = [np.concatenate([x[:10], np.full(10, mixed_r[j])]) for j, x in enumerate(r)]
     bad = []
-    if not all(np.array_equal(np.asarray(x), np.asarray(y)) for x, y in zip((A, B, C, D, e, T, ea), want)):
-        bad.append("differs from monodromy(FLOAT) and abs_trace_rows")
+    for aa, rr in ((a, r), (a2, r2)):
+        got = monodromy_and_abs(aa, rr)
+        want = (*monodromy(FLOAT, aa, rr), *abs_trace_rows(aa, rr))
+        if not all(np.array_equal(np.asarray(x), np.asarray(y)) for x, y in zip((*got[0], *got[1]), want)):
+            bad.append("differs from monodromy(FLOAT) and abs_trace_rows" + (" (the mixed batch)" if aa is a2 else ""))
+    (A, B, C, D, e), (T, ea) = monodromy_and_abs(a, r)
+    _, (_, ea2) = monodromy_and_abs(a2, r2)
     worst = 0.0
     with mp.workdps(30):
         for k in (0, len(lam) - 1):
@@ -279,7 +311,11 @@ def side_by_side(N: int) -> Outcome:
             worst = max(worst, float(abs(got / ref - 1)))
     if not worst <= 1e-13:
         bad.append(f"2**e tr off the literal trace by {worst:.3g} relative")
-    detail = f"exponents {sorted(set(np.atleast_1d(e).tolist()))}; worst trace error {worst:.3g} relative."
+    exa = np.broadcast_to(np.asarray(ea2), (20,))
+    if not (np.all(exa[:10] == 0) and np.all(exa[10:] != 0)):
+        bad.append(f"the mixed batch's absolute exponents {exa.tolist()} (renormalised in its last 10 rows only)")
+    detail = (f"exponents {sorted(set(np.atleast_1d(e).tolist()))}; the mixed batch's absolute ones "
+              f"{sorted(set(exa.tolist()))}; worst trace error {worst:.3g} relative.")
     if bad:
         return failed("numeric: monodromy_and_abs vs the separate calls and the literal trace",
                       detail="; ".join(bad) + ". " + detail)
@@ -375,13 +411,17 @@ DQ_EDGE = ((0.5, -0.25, 0.125), (0.0, -700.0, -350.0), 1e3, 10.0)
 
 
 @claim("paths.dq_edge", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
-       where="symbt/numeric/float64/kernels_block.py: the re-anchoring's range test |dq| <= MAX_DQ_FLOAT64",
-       statement="the block kernel (run_block, one step, both branches) at p = (1/2, -1/4, 1/8), "
+       where="symbt/numeric/float64/kernels_block.py: the re-anchoring's range test |dq| <= MAX_DQ_FLOAT64; "
+             "rows.py: the numpy route's per-row range test",
+       statement="the block kernel (run_block, one step, both branches) and bt_step (one state and a batch of two, "
+                 "backends python and numpy) at p = (1/2, -1/4, 1/8), "
                  "q = (0, -700, -350) (N={N}; a neighbour distance of exactly MAX_DQ_FLOAT64 = 700, the documented "
                  "largest), lam0 = 1000, mu = 10: "
                  "status OK and the state within 1e-9 (1 + |x|) of the mpmath step at 40 digits (the literal map "
-                 "loses every digit there); with q_2 one ulp further (|dq| > 700) status RANGE")
+                 "loses every digit there); with q_2 one ulp further (|dq| > 700) status RANGE, and bt_step a "
+                 "NumericRangeError naming the range")
 def dq_edge(N: int) -> Outcome:
+    from ..numeric import NumericRangeError, bt_step
     from ..numeric.core.limits import MAX_DQ_FLOAT64, OK, RANGE
     from ..numeric.float64.kernels import ANCHOR
     from ..numeric.float64.kernels_block import run_block
@@ -398,21 +438,36 @@ def dq_edge(N: int) -> Outcome:
                       1, ANCHOR, outP, outQ, st, 0, 1)
             if int(st[0]) != want:
                 bad.append(f"branch {b}, q_2 = {q2!r}: status {int(st[0])}, the documented {want}")
-            if want != OK or int(st[0]) != OK:
+            states = {"run_block": list(outP[1, 0]) + list(outQ[1, 0])} if int(st[0]) == OK else {}
+            for be in ("python", "numpy"):
+                for what, args in (("one state", (np.array(p), np.array(qq))),
+                                   ("a batch of two", (np.array([p, p]), np.array([qq, qq])))):
+                    route = f"bt_step({be}, {what})"
+                    try:
+                        pt, qt = bt_step(*args, l0, m, branch=b, backend=be)
+                        states[route] = list(np.reshape(pt, (-1, N))[-1]) + list(np.reshape(qt, (-1, N))[-1])
+                        if want != OK:
+                            bad.append(f"branch {b}, q_2 = {q2!r}, {route}: a state beyond the range")
+                    except NumericRangeError as exc:
+                        if want == OK or "|q_{j+1} - q_j| > 700" not in str(exc):
+                            bad.append(f"branch {b}, q_2 = {q2!r}, {route}: {exc}")
+            if want != OK or not states:
                 continue
             # the literal map loses every digit here (E_j ~ e**-700): the mpmath step at 40 digits is the reference
             code, ref = _mp_verdict(np.array(p), np.array(qq), l0, m, b, 40)
             with mp.workdps(40):
-                for x, y in zip(list(outP[1, 0]) + list(outQ[1, 0]), ref if code == OK else []):
-                    err = float(abs(mp.mpf(float(x)) - y) / (1 + abs(y)))
-                    worst = max(worst, err)
-                    if not err <= 1e-9:
-                        bad.append(f"branch {b}: {float(x)!r} vs the mpmath step's {mp.nstr(y, 17)}")
+                for route, xs in states.items():
+                    for x, y in zip(xs, ref if code == OK else []):
+                        err = float(abs(mp.mpf(float(x)) - y) / (1 + abs(y)))
+                        worst = max(worst, err)
+                        if not err <= 1e-9:
+                            bad.append(f"branch {b}, {route}: {float(x)!r} vs the mpmath step's {mp.nstr(y, 17)}")
             if code != OK:
                 bad.append(f"branch {b}: the mpmath step's status {code}")
     detail = f"|dq| = {MAX_DQ_FLOAT64} accepted, one ulp more refused; worst error {worst:.3g} (relative to 1 + |x|)."
     if bad:
         return failed("numeric: the block kernel at the documented largest neighbour distance",
                       detail="; ".join(bad[:6]) + ". " + detail)
-    return Outcome("verified", "numeric: the block kernel at |dq| = MAX_DQ_FLOAT64 vs the mpmath step (40 digits)",
+    return Outcome("verified", "numeric: the block kernel and bt_step at |dq| = MAX_DQ_FLOAT64 vs the mpmath step "
+                   "(40 digits)",
                    evidence="sampled", detail=detail, printed="700 accepted, 700 + ulp refused")

@@ -36,7 +36,7 @@ from typing import Literal, overload
 from .backends import BackendName, check_name, pick, run_orbit, run_step
 from .core.context import MPValue
 from .core.errors import InvalidInputError
-from .core.inputs import check_branch, check_steps, to_output
+from .core.inputs import check_branch, check_steps, mp_output
 from .core.problem import OrbitOut, ParamLike, StateLike, StateOut, prepare, prepare_checked
 from .float64.kernels import stored_steps
 from .multiprec.runners import MPOrbit
@@ -92,7 +92,7 @@ def bt_step(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, *, branc
     pr = prepare(p, q, lam0, mu, branch=branch)
     check_name(backend, pr.arithmetic)
     if pr.arithmetic == "mpmath" and pr.mu == 0:
-        return to_output(pr.ctx, pr.p, ()), to_output(pr.ctx, pr.q, ())
+        return mp_output(pr.p), mp_output(pr.q)
     b = pick(backend, pr.arithmetic, 1, interval=pr.interval)
     return run_step(b, pr, allow_complex, forced=backend != "auto")
 
@@ -187,5 +187,5 @@ def bt_orbit(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike, n: int,
         return float_orbit_low(pr, b.name)
     if pr.arithmetic == "mpmath" and (pr.mu == 0 or pr.n == 0):
         rows = len(stored_steps(pr.n, pr.every))
-        return [to_output(pr.ctx, pr.p, ())] * rows, [to_output(pr.ctx, pr.q, ())] * rows
+        return [mp_output(pr.p)] * rows, [mp_output(pr.q)] * rows
     return run_orbit(b, pr, forced=backend != "auto")

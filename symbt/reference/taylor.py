@@ -148,7 +148,6 @@ def hamiltonian_flow(p: Sequence[MPLike], q: Sequence[MPLike], c: Sequence[MPLik
     """
     N = len(p)
     dps = mp.mp.dps
-    c = list(c) + [0] * (N + 1 - len(c))
     with mp.workdps(dps + 15):
         tol = mp.mpf(10) ** (-(dps + 2)) if tol is None else mp.mpf(tol)
         K = order or max(12, int(-mp.log(tol) / 2) + 6)

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 import numbers
 from collections.abc import Sequence
-from typing import Any, TypeAlias, cast
+from typing import TypeAlias, cast
 
 import mpmath
 import numpy as np
@@ -269,17 +269,16 @@ def check_branch(branch: object) -> int:
     return int(branch)
 
 
-def to_output(ctx: Context, P: Sequence[Value], shape: tuple[int, ...]) -> Any:   # Any: an array or a list
-    """Inverse of :func:`as_state_pair` for one list of per-site values.
+def mp_output(P: Sequence[Value]) -> list[Value]:
+    """The output list of an mpmath-arithmetic route: each value rounded afresh to the working precision (``+v``),
+    so that a result never aliases an input or carries more digits than ``mp.dps``.
 
-    >>> to_output(FLOAT, [np.array([1.0]), np.array([2.0])], (1,)).tolist()
-    [[1.0, 2.0]]
+    >>> import mpmath
+    >>> with mpmath.workdps(5):
+    ...     mp_output([mpmath.pi])
+    [mpf('3.1415939')]
     """
-    if ctx is not FLOAT and not isinstance(P[0], np.ndarray):
-        return [+v for v in P]
-    N = len(P)
-    arr = np.stack([np.broadcast_to(np.asarray(x), P[0].shape) for x in P], axis=-1)
-    return arr.reshape(tuple(shape) + (N,))
+    return [+v for v in P]
 
 
 def prepare_spectral_pair(ctx: Context, lam0: ParamLike, mu: ParamLike, shape: tuple[int, ...]) -> tuple[Value, Value]:

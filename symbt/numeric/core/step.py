@@ -116,7 +116,7 @@ import numpy as np
 from .condition import SIDE_BY_SIDE_ROWS, abs_trace_rows, monodromy_and_abs, sharp_trace_kappa_rows
 from .context import FLOAT, IV, Cond, Context, Exponent, FloatValue, MPValue, Value
 from .errors import NoRealMapError, NumericRangeError
-from .inputs import to_output
+from .inputs import mp_output
 from .limits import ILLCOND, KAPPA_MAX, OK, POSITIVITY, RANGE, TRACE1, TRACE2
 from .monodromy import monodromy, neighbour_ratios
 from .spectral_sum import lam_add, lam_split, root_slope_rows
@@ -491,4 +491,4 @@ def mp_step(ctx: Context, P: list[MPValue], Q: list[MPValue], lam0: MPValue, mu:
         Pn, Qn, _ = step_core(ctx, P, Q, lam0, mu, branch, check_real=not allow_complex or ctx is IV)
         if not ctx.isfinite_all(Pn + Qn):
             raise NumericRangeError("non-finite result in the mpmath step (degenerate eigenvector?)")
-    return to_output(ctx, Pn, ()), to_output(ctx, Qn, ())
+    return mp_output(Pn), mp_output(Qn)

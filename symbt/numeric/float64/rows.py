@@ -183,8 +183,9 @@ def raise_for_rows(status: I64, shape: tuple[int, ...]) -> None:
     if nomap.size:
         condition, message = _NO_MAP[int(status[nomap[0]])]
         raise NoRealMapError(message + txt, condition=condition, where=where)
-    raise NumericRangeError("non-finite intermediate in the float64 step (degenerate eigenvector or "
-                            "overflow); use mpmath inputs" + txt)
+    raise NumericRangeError("the float64 step left the range of the scaled formulation (|q_{j+1} - q_j| > 700, "
+                            "overflow or a non-finite intermediate such as a degenerate eigenvector); use mpmath "
+                            "inputs" + txt)
 
 
 def float_rows_step(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: int, allow_complex: bool,

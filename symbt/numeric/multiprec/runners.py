@@ -43,7 +43,7 @@ import mpmath
 
 from ..core.context import MPValue
 from ..core.errors import NoRealMapError, NumericRangeError, importable
-from ..core.inputs import to_output
+from ..core.inputs import mp_output
 from ..core.problem import Problem
 from ..core.step import mp_step, step_core
 from ..float64.kernels import stored_steps
@@ -254,7 +254,7 @@ def mpmath_orbit(pr: Problem) -> tuple[MPOrbit, MPOrbit]:
     (3, '-19.99656766')
     """
     keep = set(stored_steps(pr.n, pr.every))
-    outP, outQ = [to_output(pr.ctx, pr.p, ())], [to_output(pr.ctx, pr.q, ())]
+    outP, outQ = [mp_output(pr.p)], [mp_output(pr.q)]
     pc, qc = pr.p, pr.q
     for i in range(1, pr.n + 1):
         pc, qc = mp_step(pr.ctx, pc, qc, pr.lam0, pr.mu, pr.branch, False)
@@ -277,7 +277,7 @@ def flint_orbit(pr: Problem) -> tuple[MPOrbit, MPOrbit]:
     """
     P, Q, lam0, mu, branch, n = pr.p, pr.q, pr.lam0, pr.mu, pr.branch, pr.n
     keep = set(stored_steps(n, pr.every))
-    outP, outQ = [to_output(pr.ctx, P, ())], [to_output(pr.ctx, Q, ())]
+    outP, outQ = [mp_output(P)], [mp_output(Q)]
     from flint import arb
 
     from .arb import flint_prec

@@ -1,0 +1,162 @@
+"""Seeds 12 and 13's survivors (docs/mutation.md, "Seed 12", "Seed 13"): planted bugs that the new facts now see, and
+the proofs of the mutants marked equivalent.  Unpatched, every claim verifies."""
+from __future__ import annotations
+
+import pytest
+from planting import planted
+
+from symbt.claims import REGISTRY, load_all
+
+load_all()
+
+CLAIMS = ["paths.dq_edge.n3", "paths.side_by_side.n3", "library.guard_far_trace", "library.emit_typed",
+          "library.zullo_registry", "paths.jacobian_dual.n3", "library.codegen_check"]
+
+
+def fails(cid: str, *, crash: bool = False) -> bool:
+    out = REGISTRY[cid].run()
+    return out.status == "failed" and (crash or out.method != "exception")
+
+
+@pytest.mark.parametrize("cid", CLAIMS)
+def test_unpatched_verified(cid):
+    assert REGISTRY[cid].run().status == "verified"
+
+
+def test_rows_range_at_the_documented_largest_distance(monkeypatch):
+    # seed 12's rows:215 (`dq <= MAX_DQ_FLOAT64` -> `<`): a neighbour distance of exactly 700 refused by the numpy route
+    from symbt.numeric.float64 import orbit, rows, step
+
+    mutant = planted(rows.float_rows_step, "far = ~(dq <= MAX_DQ_FLOAT64)", "far = ~(dq < MAX_DQ_FLOAT64)")
+    for module in (rows, step, orbit):
+        monkeypatch.setattr(module, "float_rows_step", mutant)
+    assert fails("paths.dq_edge.n3")
+
+
+def test_side_by_side_range_test_of_the_absolute_half(monkeypatch):
+    # seed 12's condition:482 (`for h in (0, 1)` -> `(0, 0)`): the absolute product's range never tested side by side
+    from symbt.numeric.core import condition
+
+    monkeypatch.setattr(condition, "_both_in_range", planted(condition._both_in_range, "for h in (0, 1):",
+                                                             "for h in (0, 0):"))
+    assert fails("paths.side_by_side.n3")
+
+
+def test_side_by_side_mixed_rows_are_exercised(monkeypatch):
+    # control of the above: with the whole-batch test on the signed half alone the absolute rows go unrenormalised
+    from symbt.numeric.core import condition
+
+    monkeypatch.setattr(condition, "_both_in_range", lambda X, R: True)
+    assert fails("paths.side_by_side.n3")
+
+
+def test_guard_from_both_traces(monkeypatch):
+    # seed 12's literal:276 (`t2 = literal_trace(l0 - m)` -> `l0 + m`): the guard sized from lam1's trace alone
+    from symbt.reference import literal
+
+    monkeypatch.setattr(literal, "reference_step", planted(
+        literal.reference_step, "t2 = literal_trace(l0 - m, P, Q)", "t2 = literal_trace(l0 + m, P, Q)"))
+    assert fails("library.guard_far_trace")
+
+
+def test_numerator_one_or_one_point_zero_is_equivalent(monkeypatch, tmp_path):
+    # seed 12's printer:153 (`"1.0" if flavour == "c" else "1"` swapped): a quotient with no numerator factor prints
+    # `1/d` in C and `1.0/d` elsewhere.  Every flavour converts the 1 exactly to the denominator's type before one
+    # correctly rounded division: C prints every number as a double literal and reads every argument as a double
+    # (the typed sign `b` as `b_value`), and Python's 1/x and 1.0/x agree on float, numpy float64, mpf and mpc.
+    # Checked on the typed control declaration, whose output v3 = 1/(2 b) is such a quotient: the emitted texts differ
+    # only by that numerator, and every flavour's values are the same bits at the claim's points.
+    import mpmath as mp
+
+    from symbt.claims import emitted_user as eu
+    from symbt.codegen import printer
+    from symbt.codegen.user.check import compiler, load_python
+    from symbt.codegen.user.files import generate
+
+    cc = compiler()
+    texts, values, keep = [], [], []
+    for version in ("original", "mutant"):
+        if version == "mutant":
+            monkeypatch.setattr(printer.ExprPrinter, "_mul", planted(
+                printer.ExprPrinter._mul, '("1.0" if self.flavour == "c" else "1")',
+                '("1.0" if not (self.flavour == "c") else "1")'))
+        out = tmp_path / version
+        out.mkdir()
+        e = eu.declaration()
+        generate([e], out, out)
+        if cc is not None:
+            generate([e], out, out, target="c")
+        texts.append({x.suffix: x.read_text() for x in out.iterdir() if x.suffix in (".py", ".c")})
+        mod = load_python(out / f"{eu.MODULE}.py")
+        call = eu._c_probe(out / f"{eu.MODULE}.c", e, keep) if cc is not None else None
+        got = []
+        for x, y, s, b in eu.POINTS:
+            v, w = mod.probe([x, y], s, b)
+            with mp.workdps(50):
+                vm, wm = mod.probe_mp([x, y], s, b)
+            got.append(([float(t) for t in v], float(w), [repr(t) for t in vm], repr(wm),
+                        call(x, y, s, b) if call is not None else None))
+        values.append(got)
+    for t in keep:
+        t.cleanup()
+    assert values[0] == values[1]
+    changed = 0
+    for suffix, text in texts[0].items():
+        lines = [(a, b) for a, b in zip(text.splitlines(), texts[1][suffix].splitlines())
+                 if a != b and "content-sha256" not in a]      # the header's hash of the text itself
+        assert all(a.replace("1.0/", "1/") == b.replace("1.0/", "1/") for a, b in lines), lines
+        changed += len(lines)
+    assert changed     # the quotient is printed: the mutant's text differs
+
+
+def test_short_coefficient_lists_mean_zeros():
+    # seed 12's taylor:151 (the padding of c to N + 1 entries) removed as dead code: the polynomial of G reads c_k
+    # only for k < len(c) (taylor._poly_G), so missing trailing entries are 0 without it -- the flow of a short list
+    # is the flow of the padded one, bit for bit, and a nonzero c_2 changes it
+    import mpmath as mp
+
+    from symbt.reference.taylor import hamiltonian_flow
+
+    p, q = [mp.mpf("0.3"), mp.mpf("-0.2"), mp.mpf("0.1")], [mp.mpf(0), mp.mpf("0.5"), mp.mpf("0.2")]
+    with mp.workdps(20):
+        short = hamiltonian_flow(p, q, [0, mp.mpf("0.7")], mp.mpf("0.3"))
+        padded = hamiltonian_flow(p, q, [0, mp.mpf("0.7"), 0, 0], mp.mpf("0.3"))
+        other = hamiltonian_flow(p, q, [0, mp.mpf("0.7"), mp.mpf("0.1")], mp.mpf("0.3"))
+    assert list(short[0]) + list(short[1]) == list(padded[0]) + list(padded[1])
+    assert list(short[0]) + list(short[1]) != list(other[0]) + list(other[1])
+
+
+def test_loop_declarations_leave_the_users_registry(monkeypatch):
+    # seed 12's zullo:106 (`register=False` -> `True` in loop_declarations): toda4's loop functions recorded among
+    # the user's declarations (which `symbt codegen` would then write as the user's own)
+    from symbt.codegen import zullo
+    from symbt.codegen.user import declare
+
+    monkeypatch.setattr(declare, "EMISSIONS", {})       # the mutant's entries go into a dict thrown away after
+    monkeypatch.setattr(zullo, "loop_declarations", planted(
+        zullo.loop_declarations, "equation=s.equation, register=False,", "equation=s.equation, register=True,"))
+    assert fails("library.zullo_registry")
+
+
+def test_dual_positivity_reads_the_value_ball(monkeypatch):
+    # seed 12's lohner_checks:142 (`x.v if isinstance(x, Dual) else x` negated): a Dual handed to the Arb test,
+    # which cannot order it where the value is not positive (a spectral parameter in a band)
+    pytest.importorskip("flint")
+    from symbt.numeric.multiprec import lohner_checks
+
+    monkeypatch.setattr(lohner_checks._DualContext, "positive", planted(
+        lohner_checks._DualContext.positive, "x.v if isinstance(x, Dual) else x",
+        "x.v if not (isinstance(x, Dual)) else x"))
+    assert fails("paths.jacobian_dual.n3")
+
+
+@pytest.mark.parametrize("old, new", [
+    ('if argv[:1] == ["--"]:', 'if argv[:0] == ["--"]:'),               # seed 12's codegen.cli:81
+    ("return 1 if problems else 0", "return 0 if problems else 0"),    # seed 12's codegen.cli:125
+    ("return 1 if problems else 0", "return 1 if problems else 1"),
+])
+def test_codegen_check_exit_status(monkeypatch, old, new):
+    from symbt.codegen import cli
+
+    monkeypatch.setattr(cli, "main", planted(cli.main, old, new))
+    assert fails("library.codegen_check")
