@@ -2,6 +2,8 @@
 the proofs of the mutants marked equivalent.  Unpatched, every claim verifies."""
 from __future__ import annotations
 
+from dataclasses import replace
+
 import pytest
 from planting import planted
 
@@ -160,3 +162,137 @@ def test_codegen_check_exit_status(monkeypatch, old, new):
 
     monkeypatch.setattr(cli, "main", planted(cli.main, old, new))
     assert fails("library.codegen_check")
+
+
+@pytest.mark.parametrize("old, new", [
+    # seed 13's coefficients:132: the float64 product's B recurrence (read only from the fourth site on)
+    ("                A, B, C, D = a * A - C, a * B - D, r[j] * A, r[j] * B",
+     "                A, B, C, D = a * A - C, a * B + D, r[j] * A, r[j] * B"),
+    # the same in the mpmath form
+    ("            A, B, C, D = a * A - C, a * B - D, r[j] * A, r[j] * B\n        return A + D, 0",
+     "            A, B, C, D = a * A - C, a * B + D, r[j] * A, r[j] * B\n        return A + D, 0"),
+])
+@pytest.mark.parametrize("cid", ["paths.scaled_trace.n4", "paths.scaled_trace.n5"])
+def test_scaled_trace_at_four_sites_and_more(monkeypatch, old, new, cid):
+    from symbt.numeric.flow import coefficients
+
+    monkeypatch.setattr(coefficients, "scaled_trace", planted(coefficients.scaled_trace, old, new))
+    assert fails(cid)
+
+
+def test_escalation_decides_existence_on_its_own_row(monkeypatch):
+    # seed 13's rows:102 (`qa[k]` -> `qa[k + 1]`): the interval verdict of a row taken with the next row's q
+    from symbt.numeric.float64 import orbit, rows
+
+    mutant = planted(rows.escalate_rows, "decide_existence(pa[k], qa[k], l0,", "decide_existence(pa[k], qa[k + 1], l0,")
+    for module in (rows, orbit):
+        monkeypatch.setattr(module, "escalate_rows", mutant)
+    assert fails("paths.existence_iv.n3", crash=True)
+
+
+def test_interval_verdict_at_an_exact_band_edge(monkeypatch):
+    # seed 13's existence:73 (`OK if s > 0` -> `s >= 0`): |t| = 2 exactly counted as a gap
+    from symbt.numeric.float64 import existence
+
+    monkeypatch.setattr(existence, "_at", planted(existence._at, "OK if s > 0 else code", "OK if s >= 0 else code"))
+    assert fails("paths.band_edge.n3")
+
+
+def test_printed_addform_residual_is_a_modulus(monkeypatch):
+    # seed 13's elliptic:383 (the abs dropped): a signed residual, negative for one of the two moves of P~
+    from symbt.reference import elliptic
+
+    monkeypatch.setattr(elliptic, "printed_addform_residual", planted(
+        elliptic.printed_addform_residual, "return abs(F_principal(Pt, k) - F_principal(P, k) - F_principal(lm, k) "
+        "+ F_principal(lp, k))", "return F_principal(Pt, k) - F_principal(P, k) - F_principal(lm, k) + "
+        "F_principal(lp, k)"))
+    assert fails("library.addition")
+
+
+def test_legendre_memo_size_is_equivalent():
+    # seed 13's elliptic:136 (`lru_cache(maxsize=1 << 16)` -> `maxsize=0`): no value is kept, every call computes.
+    # _F_memo is pure -- z R_F(1 - z^2, 1 - m z^2, 1) at the precision passed in, of immutable mpmath numbers -- so a
+    # computed value equals the memoised one bit for bit (real and complex z, both precisions), and the cache is
+    # read by nothing else
+    import ast
+    import inspect
+
+    import mpmath as mp
+
+    from symbt.reference import elliptic
+
+    fresh = elliptic._F_memo.__wrapped__
+    for prec in (70, 140):
+        for z in (mp.mpf("0.3"), mp.mpf("-0.97"), mp.mpc("0.4", "0.2"), mp.mpf(1)):
+            m = mp.mpf("0.6")
+            assert elliptic._F_memo(z, m, prec) == fresh(z, m, prec) == elliptic._F_memo(z, m, prec)
+    tree = ast.parse(inspect.getsource(elliptic))
+    reads = [n for n in ast.walk(tree) if isinstance(n, ast.Attribute) and n.attr in ("cache_info", "cache_clear",
+                                                                                     "cache_parameters")]
+    assert not reads
+
+
+def test_user_numerator_one_or_one_point_zero_is_equivalent(monkeypatch, tmp_path):
+    # seed 13's codegen.user.printing:101 (the same swap in the user printer's negative rational powers): x**(-1/3)
+    # printed `1/x**(1/3)` in C and `1.0/...` elsewhere -- the same values, as for printer:153
+    import ctypes
+
+    import mpmath as mp
+    import sympy as sp
+
+    from symbt.codegen.user import printing
+    from symbt.codegen.user.check import compiler, load_c, load_python
+    from symbt.codegen.user.declare import emit
+    from symbt.codegen.user.files import generate
+    from symbt.codegen.user.render import c_name
+
+    x = sp.Symbol("x", positive=True)
+    module = "symbt_root_control"
+    cc = compiler()
+    texts, values, keep = [], [], []
+    for version in ("original", "mutant"):
+        if version == "mutant":
+            monkeypatch.setattr(printing.UserPrinter, "_pow", planted(
+                printing.UserPrinter._pow, 'one = "1.0" if self.flavour == "c" else "1"',
+                'one = "1.0" if not (self.flavour == "c") else "1"'))
+        out = tmp_path / version
+        out.mkdir()
+        e = emit("root", x ** sp.Rational(-1, 3) + x ** sp.Rational(-5, 7), args=(x,), module=module, register=False)
+        generate([e], out, out)
+        if cc is not None:
+            generate([e], out, out, target="c")
+        texts.append({f.suffix: f.read_text() for f in out.iterdir() if f.suffix in (".py", ".c")})
+        mod = load_python(out / f"{module}.py")
+        got = [float(mod.root(v)) for v in (0.3, 2.0, 1e-5, 7e10)]
+        with mp.workdps(40):
+            got += [repr(mod.root_mp(mp.mpf(v))) for v in ("0.3", "2", "1e-5")]
+        if cc is not None:
+            fn = getattr(load_c(out / f"{module}.c", keep), c_name(module, e))
+            fn.restype, fn.argtypes = ctypes.c_int, [ctypes.POINTER(ctypes.c_double)] * 2
+            for v in (0.3, 2.0, 1e-5, 7e10):
+                res = (ctypes.c_double * 1)()
+                got.append((fn((ctypes.c_double * 1)(v), res), res[0]))
+        values.append(got)
+    for t in keep:
+        t.cleanup()
+    assert values[0] == values[1]
+    changed = 0
+    for suffix, text in texts[0].items():
+        lines = [(a, b) for a, b in zip(text.splitlines(), texts[1][suffix].splitlines())
+                 if a != b and "content-sha256" not in a]
+        assert all(a.replace("1.0/", "1/") == b.replace("1.0/", "1/") for a, b in lines), lines
+        changed += len(lines)
+    assert changed
+
+
+def test_mpmath_orbit_stores_each_step_once(monkeypatch):
+    # seed 13's runners:259 (`range(1, n + 1)` -> `range(0, n + 1)`): one step more, every stored row after step 0
+    # shifted by one and an extra row -- row n right by chance, the count wrong
+    from symbt.numeric import backends
+    from symbt.numeric.multiprec import runners
+
+    mutant = planted(runners.mpmath_orbit, "for i in range(1, pr.n + 1):", "for i in range(0, pr.n + 1):")
+    assert backends.BACKENDS["mpmath"].orbit is runners.mpmath_orbit        # the table holds the function itself
+    monkeypatch.setattr(runners, "mpmath_orbit", mutant)
+    monkeypatch.setitem(backends.BACKENDS, "mpmath", replace(backends.BACKENDS["mpmath"], orbit=mutant))
+    assert fails("shipped.orbit.n3")

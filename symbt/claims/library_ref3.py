@@ -106,7 +106,8 @@ def carlson_F(z: mp.mpf, k: mp.mpf) -> mp.mpf:
        statement="addition_residual <= 10^(12 - dps) at a step2 step; with P~ moved by +-1e-6 (E~ kept) it is "
                  "|delta|/max(1, |P~ + delta|) within twice the unmoved residual; printed_addform_residual = "
                  "|F(P~) - F(P) - F(s-) + F(s+)| with F by mpmath's elliprf (I1, I2, k by the literal trace) within "
-                 "10^(5 - dps); N = 2, 20 digits, an inner case, both branches")
+                 "10^(5 - dps), also with P~ moved by +-1e-6 (a sum of either sign); N = 2, 20 digits, an inner "
+                 "case, both branches")
 def addition_checks() -> Outcome:
     bad, n, worst = [], 0, mp.mpf(0)
     with mp.workdps(ADD_DPS):
@@ -148,6 +149,14 @@ def addition_checks() -> Outcome:
                 if not abs(got - want) <= mp.mpf(10) ** (5 - ADD_DPS):
                     bad.append(f"inner, b = {br}: printed_addform_residual {mp.nstr(got, 8)}, "
                                f"Carlson {mp.nstr(want, 8)}")
+                # P~ moved both ways: the four terms' sum is about +-delta F'(P~), one of them negative -- a modulus
+                for d in (ADD_DELTA, -ADD_DELTA):
+                    moved = [pt[0] - d * r, pt[1] + d * r]
+                    want = abs(carlson_F(Pt + d, k) - F[1] - F[2] + F[3])
+                    got = E.printed_addform_residual(P, Q, moved, I2, L0, M, I1)
+                    if not abs(got - want) <= mp.mpf(10) ** (5 - ADD_DPS) + 2 * res0:
+                        bad.append(f"inner, b = {br}, P~ moved by {mp.nstr(d, 2)}: printed_addform_residual "
+                                   f"{mp.nstr(got, 8)}, Carlson {mp.nstr(want, 8)}")
     detail = (f"{n} steps (an inner case, both branches), residual at the step <= {mp.nstr(worst, 2)} "
               f"(accepted <= 1e{12 - ADD_DPS}); P~ moved by +-1e-6; the printed residual against elliprf (inner)")
     if bad:

@@ -98,3 +98,119 @@ def codegen_check() -> Outcome:
     bad = _bad("symbt codegen --check", got)
     return bad or Outcome("verified", "symbt codegen --check on copies of the shipped files, edited and deleted",
                           evidence="proof", detail=f"{len(got)} runs, each exit status as documented")
+
+
+#: paths.scaled_trace: nodes (in gaps and bands alike: a trace is a trace), one beyond 2**500 per site product
+TRACE_NODES = (-7.5, -1.25, 0.375, 2.0, 6.0, 1e40, -3e60, 1e120)
+#: the states' p and q per size (moderate: the product's condition is that of its terms)
+TRACE_STATES = {4: ((1.5, -0.75, 2.25, -3.0), (0.0, 0.5, -0.25, 1.0)),
+                5: ((-2.0, 1.0, 0.5, -0.25, 3.0), (0.25, 0.0, 1.5, -0.5, 0.75))}
+
+
+@claim("paths.scaled_trace", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(4, 5),
+       where="symbt/numeric/flow/coefficients.py: scaled_trace (float64 nodes, renormalised; one mpmath value)",
+       statement="scaled_trace at N={N} (the product's later sites: at N = 3 the last B of the recurrence is never "
+                 "read), 8 nodes from -7.5 to 1e120: T 2**e within (4N + 1) u |tr|_abs of the literal trace at 40 "
+                 "digits (|tr|_abs: the same product of |a_j| and r_j with every sign positive, the condition of the "
+                 "2x2 product; per site the roundings of a_j, r_j, a product and a difference, and the final sum); "
+                 "the mpmath form at 30 digits within 10**-25 |tr|_abs; the reference at 40 digits within "
+                 "10**-35 |tr|_abs of itself at 60")
+def scaled_trace_claim(N: int) -> Outcome:
+    import numpy as np
+
+    from ..numeric.flow.coefficients import neighbour_ratios_of, scaled_trace
+    from ..reference.literal import literal_trace
+
+    p, q = TRACE_STATES[N]
+    r = neighbour_ratios_of(list(q))
+    T, e = scaled_trace(np.array(TRACE_NODES), list(p), r)
+    u = mp.mpf(2) ** -53
+    bad, worst = [], mp.mpf(0)
+    with mp.workdps(40):
+        for k, lam in enumerate(TRACE_NODES):
+            ref = literal_trace(lam, p, q)
+            with mp.workdps(60):
+                again = literal_trace(lam, p, q)
+            # |tr|_abs: the 2x2 product with |a_j| and the r_j entered with a plus sign (every term of tr positive)
+            A, B, C, D = abs(mp.mpf(lam) + p[0]), mp.mpf(1), mp.exp(mp.mpf(q[1]) - q[0]), mp.mpf(0)
+            for j in range(1, N):
+                a, rj = abs(mp.mpf(lam) + p[j]), mp.exp(mp.mpf(q[(j + 1) % N]) - q[j])
+                A, B, C, D = a * A + C, a * B + D, rj * A, rj * B
+            size = A + D
+            if not abs(again - ref) <= mp.mpf(10) ** -35 * size:
+                bad.append(f"lam = {lam:g}: the literal trace at 40 and 60 digits differ")
+            err = abs(mp.ldexp(mp.mpf(float(T[k])), int(e[k])) - ref) / size
+            worst = max(worst, err / ((4 * N + 1) * u))
+            if not err <= (4 * N + 1) * u:
+                bad.append(f"float64 lam = {lam:g}: {mp.nstr(err, 3)} of |tr|_abs")
+            with mp.workdps(30):
+                t_mp, e_mp = scaled_trace(mp.mpf(lam), [mp.mpf(v) for v in p],
+                                          neighbour_ratios_of([mp.mpf(v) for v in q]))
+            err_mp = abs(mp.ldexp(t_mp, int(e_mp)) - ref) / size
+            if not err_mp <= mp.mpf(10) ** -25:
+                bad.append(f"mpmath lam = {lam:g}: {mp.nstr(err_mp, 3)} of |tr|_abs")
+    detail = (f"{len(TRACE_NODES)} nodes; worst float64 error {mp.nstr(worst, 3)} of the bound (4N + 1) u |tr|_abs; "
+              f"exponents {sorted(set(int(x) for x in e))}.")
+    if bad:
+        return failed("numeric: scaled_trace vs the literal trace", detail="; ".join(bad[:6]) + ". " + detail)
+    return Outcome("verified", "numeric: scaled_trace vs the literal trace (40 digits)", evidence="sampled",
+                   detail=detail, printed="within (4N + 1) u |tr|_abs")
+
+
+#: paths.band_edge: (lam0, mu) with lam0 + mu or lam0 - mu exactly at a band edge of p = q = 0 (tr = lam**3 - 3 lam)
+EDGE_PARAMS = ((2.25, 0.25), (2.25, -0.25), (-2.25, 0.25), (-2.25, -0.25))
+
+
+@claim("paths.band_edge", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       where="symbt/numeric/float64/existence.py: decide_existence's band test at |t| = 2 exactly; every route",
+       statement="p = q = 0 (N={N}: tr L(lam) = lam**3 - 3 lam, exact in binary), lam0 +- mu = 2 or -2 exactly (a band "
+                 "edge, |tr| = 2) and the other 2.5 or -2.5 (|tr| = 8.125): no real map (|tr| <= 2, by the "
+                 "polynomial in exact rationals) -- decide_existence gives that parameter's trace code at its first "
+                 "precision; bt_step (one state and a batch of two, backends python and numpy; mpmath at 30 digits) "
+                 "raises NoRealMapError with condition 'trace'; the emitted toda3.bt_step refuses (NoRealMapError or "
+                 "IllConditionedError), never a state")
+def band_edge(N: int) -> Outcome:
+    from fractions import Fraction
+
+    import numpy as np
+
+    from ..numeric import NoRealMapError, bt_step
+    from ..numeric.core.limits import TRACE1, TRACE2
+    from ..numeric.float64.existence import decide_existence
+
+    p, q = np.zeros(N), np.zeros(N)
+    got: Facts = []
+    for l0, m in EDGE_PARAMS:
+        lams = (Fraction(l0) + Fraction(m), Fraction(l0) - Fraction(m))
+        at_edge = [abs(x ** 3 - 3 * x) <= 2 for x in lams]        # the independent decision: which is in a band
+        want = TRACE1 if at_edge[0] else TRACE2
+        got.append((f"lam0 = {l0}, mu = {m}: the exact polynomial puts one parameter on an edge",
+                    sorted(at_edge), [False, True]))
+        got.append((f"lam0 = {l0}, mu = {m}: decide_existence", decide_existence(p, q, l0, m, 1)[0], want))
+        routes = [(f"bt_step({be}, {what})", lambda be=be, args=args: bt_step(*args, l0, m, backend=be))
+                  for be in ("python", "numpy")
+                  for what, args in (("one state", (p, q)), ("a batch of two", (np.stack([p, p]), np.stack([q, q]))))]
+        routes.append(("bt_step(mpmath, 30 digits)", lambda: bt_step([mp.mpf(0)] * N, [mp.mpf(0)] * N, mp.mpf(l0),
+                                                                     mp.mpf(m), backend="mpmath")))
+        for name, call in routes:
+            try:
+                with mp.workdps(30):
+                    call()
+                seen = "a state"
+            except NoRealMapError as exc:
+                seen = exc.condition
+            except Exception as exc:  # noqa: BLE001 -- any other outcome is the finding
+                seen = f"{type(exc).__name__}: {exc}"
+            got.append((f"lam0 = {l0}, mu = {m}: {name}", seen, "trace"))
+        try:
+            from ..generated import toda3
+            toda3.bt_step(p, q, l0, m, 1)
+            seen = "a state"
+        except (NoRealMapError, toda3.IllConditionedError):
+            seen = "refused"
+        except Exception as exc:  # noqa: BLE001 -- any other outcome is the finding
+            seen = f"{type(exc).__name__}: {exc}"
+        got.append((f"lam0 = {l0}, mu = {m}: toda3.bt_step", seen, "refused"))
+    bad = _bad("existence at an exact band edge", got)
+    return bad or Outcome("verified", "numeric: every route at |tr| = 2 exactly vs the exact trace polynomial",
+                          evidence="sampled", detail=f"{len(got)} facts at {len(EDGE_PARAMS)} parameter pairs")

@@ -423,7 +423,8 @@ def mixed_block(N: int) -> Outcome:
        statement="decide_existence (interval arithmetic, 256 bits up), N={N}: OK at the paper's state (traces "
                  "-2021, -1332: both negative) and at its mirror p -> -p, lam0 -> -lam0 (traces positive), both "
                  "branches; the no-real-map status (POSITIVITY) at the states without a real map of shipped.nomap, "
-                 "as the literal route decides them (50 digits with guard digits)")
+                 "as the literal route decides them (50 digits with guard digits), also through escalate_rows with "
+                 "the paper's state as a second row (whose status is its own, as alone)")
 def existence_iv(N: int) -> Outcome:
     from ..numeric.core.limits import OK, POSITIVITY
     from ..numeric.float64.existence import decide_existence
@@ -440,7 +441,17 @@ def existence_iv(N: int) -> Outcome:
         seen.append(f"{name}, branch {b}: {got} at {bits} bits")
         if got != want:
             bad.append(f"{name}, branch {b}: verdict {got}, want {want}")
-    detail = "; ".join(seen) + "."
+    # through the escalation of a two-row batch: the no-map state first, the paper's state (at that lam0, mu) after
+    # it -- each row's verdict its own (rows.py: a row's result never depends on the other rows)
+    from ..numeric.float64.rows import escalate_rows
+    for st, b, _ in nomap_states(N):
+        P, Q = np.array([st[0], paper[0]]), np.array([st[1], paper[1]])
+        _, _, both = escalate_rows(P, Q, float(st[2]), float(st[3]), b)
+        _, _, alone = escalate_rows(P[1:], Q[1:], float(st[2]), float(st[3]), b)
+        if (int(both[0]), int(both[1])) != (POSITIVITY, int(alone[0])):
+            bad.append(f"escalate_rows of [no map, paper's state] at lam0 = {st[2]}, branch {b}: statuses "
+                       f"{both.tolist()}, want [{POSITIVITY}, {int(alone[0])}] (the second row alone)")
+    detail = "; ".join(seen) + "; escalate_rows of two-row batches: each row's own verdict."
     if bad:
         return failed("numeric: decide_existence vs the literal route's decision", detail="; ".join(bad) + ". "
                       + detail)

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: e41a3f5bff1d890d605bd32e751e7532d0496bc50b8c2ece4b7266ab3e48fc9f
-# symbt-codegen-content-sha256: 7da9b62471d11f68b3b109a5437e1ef52ccb52f54708c9f3b588e6bea27122b9
+# symbt-codegen-derivation-sha256: 2a131d937e4dedba80828b47b117bc60063318acee37226967c47083f8843892
+# symbt-codegen-content-sha256: 4519fea0c0f028ca384fbad13924e6010713fff169212317fa5ba937bc1748a6
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

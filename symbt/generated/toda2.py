@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: e41a3f5bff1d890d605bd32e751e7532d0496bc50b8c2ece4b7266ab3e48fc9f
-# symbt-codegen-content-sha256: 22f2f0428fb059849ff54f4e0157a1e9d8f8c855fcc4746d4a8bc67ddfd7f6fe
+# symbt-codegen-derivation-sha256: 2a131d937e4dedba80828b47b117bc60063318acee37226967c47083f8843892
+# symbt-codegen-content-sha256: 40a840138ca6cd0c66d786070b149b9d3627522cfa0d0c439719252ce01ce14b
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

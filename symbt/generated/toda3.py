@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: e41a3f5bff1d890d605bd32e751e7532d0496bc50b8c2ece4b7266ab3e48fc9f
-# symbt-codegen-content-sha256: 737e6c362666889ed1d6308214912b2f0a9768a73fcc5bddd437724d574c0b1e
+# symbt-codegen-derivation-sha256: 2a131d937e4dedba80828b47b117bc60063318acee37226967c47083f8843892
+# symbt-codegen-content-sha256: 5761b1a919cfceaa562c5ea4db144e4af1ce99fd9ec77bc23dca6a5743265af2
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

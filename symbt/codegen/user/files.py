@@ -78,7 +78,7 @@ def _imports(path: Path, modname: str) -> set[str]:
             base = node.module or ""
             if node.level:
                 parts = pkg.split(".") if pkg else []
-                parts = parts[:len(parts) - (node.level - 1)] if node.level > 1 else parts
+                parts = parts[:len(parts) - (node.level - 1)]      # level 1: the package itself
                 base = ".".join([*parts, base] if base else parts)
             if base:
                 out.add(base)
