@@ -30,13 +30,13 @@ def status(cid: str) -> str:
 
 def test_the_scene_has_the_claims_named_here():
     assert NUMERIC_PATHS == ["paths.abs_products.n2", "paths.abs_products.n3", "paths.acosh_edge", "paths.anchored.n3",
-                             "paths.ball_prec.n3", "paths.batch_range.n3", "paths.block_driver.n3",
-                             "paths.block_slopes.n3", "paths.certified_nomap.n3", "paths.coefficients_mp.n3",
-                             "paths.complex.n3", "paths.compress.n3", "paths.dask.n3", "paths.decimal_input.n3",
-                             "paths.device.n3", "paths.dq_edge.n3", "paths.dq_range.n3", "paths.edges.n3",
-                             "paths.enclosure_poly.n3", "paths.enclosures.n3", "paths.error_bounds.n3",
-                             "paths.escalation.n3", "paths.existence_iv.n3", "paths.failing_rows.n3",
-                             "paths.failure_text.n3", "paths.field_far.n3", "paths.frame.n13",
+                             "paths.ball_prec.n3", "paths.band_edge.n3", "paths.batch_range.n3",
+                             "paths.block_driver.n3", "paths.block_slopes.n3", "paths.certified_nomap.n3",
+                             "paths.coefficients_mp.n3", "paths.complex.n3", "paths.compress.n3", "paths.dask.n3",
+                             "paths.decimal_input.n3", "paths.device.n3", "paths.dq_edge.n3", "paths.dq_range.n3",
+                             "paths.edges.n3", "paths.enclosure_poly.n3", "paths.enclosures.n3",
+                             "paths.error_bounds.n3", "paths.escalation.n3", "paths.existence_iv.n3",
+                             "paths.failing_rows.n3", "paths.failure_text.n3", "paths.field_far.n3", "paths.frame.n13",
                              "paths.frame_inverse.n13", "paths.growth.n3", "paths.growth_law", "paths.hook_rules",
                              "paths.idle_rows.n3", "paths.ill_member.n3", "paths.inline_boolop", "paths.inline_lines",
                              "paths.inline_rule.n3", "paths.jacobian.n3", "paths.jacobian_dual.n3",
@@ -47,9 +47,10 @@ def test_the_scene_has_the_claims_named_here():
                              "paths.mixed_block.n3", "paths.mp_verdict.n3", "paths.next_prec.n3", "paths.panels",
                              "paths.python_kernel.n3", "paths.q_low.n3", "paths.qd.n2", "paths.qd.n3",
                              "paths.qd_tables", "paths.range_edge.n2", "paths.renorm_top.n2", "paths.root_slope",
-                             "paths.rows_out.n3", "paths.side_by_side.n3", "paths.spectral_overflow.n3",
-                             "paths.step_core.n3", "paths.stored.n3", "paths.threshold.n3", "paths.tiny_mu.n3",
-                             "paths.track_hooks", "paths.zero_radius.n3"]
+                             "paths.rows_out.n3", "paths.scaled_trace.n4", "paths.scaled_trace.n5",
+                             "paths.side_by_side.n3", "paths.spectral_overflow.n3", "paths.step_core.n3",
+                             "paths.stored.n3", "paths.threshold.n3", "paths.tiny_mu.n3", "paths.track_hooks",
+                             "paths.zero_radius.n3"]
 
 
 @pytest.mark.parametrize("cid", NUMERIC_PATHS)

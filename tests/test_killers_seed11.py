@@ -135,13 +135,15 @@ def test_zero_mu_reversal_is_equivalent():
         assert mutant(p, q, 3, mp.mpf(1) / 10, 1) == spectral.flow_coefficients_mp(p, q, 3, mp.mpf(1) / 10, 1)
 
 
-def test_zero_printed_in_parentheses_is_equivalent():
-    # printer:85 (`v >= 0` -> `v > 0`): the integer 0 printed "(0)" (C: "(0.0)") instead of "0": the same number in
-    # every flavour, evaluated; a negative integer keeps its parentheses either way
+@pytest.mark.parametrize("test", ["v > 0", "v >= 1"])     # seed 11's printer:85 and seed 13's (the constant)
+def test_zero_printed_in_parentheses_is_equivalent(test):
+    # printer:85 (`v >= 0` -> `v > 0` or `v >= 1`, v an int): the integer 0 printed "(0)" (C: "(0.0)") instead of
+    # "0": the same number in every flavour, evaluated; a negative or positive integer prints as before
     from symbt.codegen import printer
 
     x = sp.Symbol("x")
-    mutant = planted(printer.ExprPrinter._p, "return (txt, _ATOM) if v >= 0 else", "return (txt, _ATOM) if v > 0 else")
+    mutant = planted(printer.ExprPrinter._p, "return (txt, _ATOM) if v >= 0 else",
+                     f"return (txt, _ATOM) if {test} else")
     for flavour in ("numpy", "mpmath", "ops", "c"):
         pr = printer.ExprPrinter(flavour, {x: "x"})
         text, prec = pr._p(sp.Integer(0))
@@ -149,6 +151,7 @@ def test_zero_printed_in_parentheses_is_equivalent():
         assert (text, mtext) in (("0", "(0)"), ("0.0", "(0.0)")) and prec == mprec
         assert eval(text) == eval(mtext) == 0     # noqa: S307 -- the printer's own number
         assert mutant(pr, sp.Integer(-3)) == pr._p(sp.Integer(-3))
+        assert mutant(pr, sp.Integer(1)) == pr._p(sp.Integer(1)) and mutant(pr, sp.Integer(7)) == pr._p(sp.Integer(7))
 
 
 # --------------------------------------------------------------------------- seed 12

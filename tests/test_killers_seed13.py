@@ -12,7 +12,9 @@ from symbt.claims import REGISTRY, load_all
 load_all()
 
 CLAIMS = ["paths.dq_edge.n3", "paths.side_by_side.n3", "library.guard_far_trace", "library.emit_typed",
-          "library.zullo_registry", "paths.jacobian_dual.n3", "library.codegen_check"]
+          "library.zullo_registry", "paths.jacobian_dual.n3", "library.codegen_check", "paths.scaled_trace.n4",
+          "paths.scaled_trace.n5", "paths.band_edge.n3", "paths.existence_iv.n3", "shipped.orbit.n3",
+          "library.addition", "library.state_ranges", "paths.complex.n3"]
 
 
 def fails(cid: str, *, crash: bool = False) -> bool:
@@ -296,3 +298,33 @@ def test_mpmath_orbit_stores_each_step_once(monkeypatch):
     monkeypatch.setattr(runners, "mpmath_orbit", mutant)
     monkeypatch.setitem(backends.BACKENDS, "mpmath", replace(backends.BACKENDS["mpmath"], orbit=mutant))
     assert fails("shipped.orbit.n3")
+
+
+def test_c_target_body_is_the_form_its_header_names(monkeypatch):
+    # seed 13's emit_c:53 (`form == "closed"` -> `!=`): N = 3 rendered as the loop, N = 5 as the closed form -- each
+    # accurate, the size policy inverted (the header still names form_of(N))
+    from symbt.claims import shipped_emitted
+    from symbt.codegen import emit_c
+    from symbt.codegen.user.check import compiler
+
+    if compiler() is None:
+        pytest.skip("no C compiler on PATH: shipped.c is skipped")
+    monkeypatch.setattr(emit_c, "c_files", planted(emit_c.c_files, 'if form == "closed":', 'if form != "closed":'))
+    for f in (shipped_emitted.c_texts, shipped_emitted.c_step):
+        f.cache_clear()
+    try:
+        assert fails("shipped.c.n3")
+    finally:
+        for f in (shipped_emitted.c_texts, shipped_emitted.c_step):
+            f.cache_clear()
+
+
+@pytest.mark.parametrize("old, new", [
+    ("th1 = rng.uniform(-1, 1)", "th1 = rng.uniform(-0, 1)"),         # seed 13's elliptic:406
+    ("I1, I2 = rng.uniform(-2, 2), rng.uniform(2.3, 9)", "I1, I2 = rng.uniform(-2, 2), rng.uniform(2.3, 5)"),
+])
+def test_sampled_states_fill_their_ranges(monkeypatch, old, new):
+    from symbt.reference import elliptic
+
+    monkeypatch.setattr(elliptic, "sample_state", planted(elliptic.sample_state, old, new))
+    assert fails("library.state_ranges")

@@ -15,6 +15,8 @@ r"""A guard that no claim stretched and the staleness check's exit status (issue
 """
 from __future__ import annotations
 
+from typing import Any
+
 import mpmath as mp
 
 from ._facts import Facts
@@ -187,15 +189,15 @@ def band_edge(N: int) -> Outcome:
         got.append((f"lam0 = {l0}, mu = {m}: the exact polynomial puts one parameter on an edge",
                     sorted(at_edge), [False, True]))
         got.append((f"lam0 = {l0}, mu = {m}: decide_existence", decide_existence(p, q, l0, m, 1)[0], want))
-        routes = [(f"bt_step({be}, {what})", lambda be=be, args=args: bt_step(*args, l0, m, backend=be))
-                  for be in ("python", "numpy")
-                  for what, args in (("one state", (p, q)), ("a batch of two", (np.stack([p, p]), np.stack([q, q]))))]
-        routes.append(("bt_step(mpmath, 30 digits)", lambda: bt_step([mp.mpf(0)] * N, [mp.mpf(0)] * N, mp.mpf(l0),
-                                                                     mp.mpf(m), backend="mpmath")))
-        for name, call in routes:
+        zero = [mp.mpf(0)] * N
+        routes: list[tuple[str, Any, Any, Any, Any, Any]] = [
+            (f"bt_step({be}, {what})", P, Q, l0, m, be) for be in ("python", "numpy")
+            for what, P, Q in (("one state", p, q), ("a batch of two", np.stack([p, p]), np.stack([q, q])))]
+        routes.append(("bt_step(mpmath, 30 digits)", zero, zero, mp.mpf(l0), mp.mpf(m), "mpmath"))
+        for name, P, Q, lam0, mu, be in routes:
             try:
                 with mp.workdps(30):
-                    call()
+                    bt_step(P, Q, lam0, mu, backend=be)
                 seen = "a state"
             except NoRealMapError as exc:
                 seen = exc.condition

@@ -36,10 +36,16 @@ MP_DPS = 30
 #: the literal continuation's digits (checked at REF_DPS + 25) and those of its forward differences (step 1e-15)
 REF_DPS, FD_DPS = 60, 45
 #: the paper's N = 3 state (bands near -10.28, -0.787 and 20.06; the gaps between them carry traces of opposite
-#: signs): lam2 = -0.787 in the middle band; lam2 = -0.787 with lam1 = 0.787; lam1 = 2, lam2 = -5 in different gaps
+#: signs): lam2 = -0.787 in the middle band; lam2 = -0.787 with lam1 = 0.787; lam1 = 2, lam2 = -5 in different gaps;
+#: lam1 = 40, lam2 = -30 in the two outer gaps (|tr| ~ 1e4: the transport's direction matters there, a wrong one
+#: loses about 2 log10 |tr| digits)
 STATES = (((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), 4.213, 5.0),
           ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), 0.0, 0.787),
-          ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), -1.5, 3.5))
+          ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), -1.5, 3.5),
+          ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), 5.0, 35.0))
+#: the reference's accepted disagreement with itself at REF_DPS + 25 digits: the literal continuation loses about
+#: 2 log10 |tr| digits in its forward transport (6 at the last state); 10 digits leave it 20 below the bound's 1e-30
+REF_LOSS = 10
 
 
 def _literal(st: tuple, b: int, dps: int) -> list:
@@ -114,7 +120,7 @@ def complex_continuation(N: int, parts: Parts) -> Outcome:
                                 for i, (g, xr, s) in enumerate(zip(got, x, S)))
                 except Exception:  # the continuation exists (a complex state): any error fails
                     r = math.inf
-                if agree > 10.0 ** (5 - REF_DPS):
+                if agree > 10.0 ** (REF_LOSS - REF_DPS):
                     r = math.inf
                 worst[name] = max(worst.get(name, 0.0), r)
                 table.add({"route": name, "state": k, "branch": b}, printed=r,

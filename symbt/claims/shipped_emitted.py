@@ -52,7 +52,7 @@ from ._shipped import (
     step_ref,
     wide_states,
 )
-from .base import Outcome, Parts, claim, judge_cells, skipped
+from .base import Outcome, Parts, claim, failed, judge_cells, skipped
 
 MP_DPS = 30
 C_OK, C_NO_MAP, C_RANGE = 0, (1, 2), 3
@@ -86,13 +86,30 @@ def c_compiler() -> str | None:
 
 
 @cache
-def c_step(N: int) -> Callable[..., tuple[int, list, list]]:
-    """``toda{N}_bt_step`` of the C target, rendered, compiled (``-O2``) and wrapped: ``(status, p~, q~)``."""
+def c_texts(N: int) -> dict[str, str]:
+    """The C target's files for ``N`` (``toda{N}.c``, ``toda{N}.h``), rendered once."""
     from ..codegen import render
 
+    return render((N,), "c")
+
+
+def c_form_problem(N: int) -> str | None:
+    """Why ``toda{N}.c``'s body is not the form its header names (``form_of(N)``: the closed form's CSE section
+    for N = 2, 3, the transfer-matrix loop beyond), or None."""
+    text = c_texts(N)[f"toda{N}.c"]
+    header = next(line for line in text.splitlines() if "symbt-codegen-target:" in line)
+    closed_header, closed_body = "closed form" in header, "closed form: CSE" in text
+    if closed_header != closed_body or closed_header != (N <= 3):
+        return f"toda{N}.c: header {header.split(':', 1)[1].strip()!r}, closed-form body {closed_body}"
+    return None
+
+
+@cache
+def c_step(N: int) -> Callable[..., tuple[int, list, list]]:
+    """``toda{N}_bt_step`` of the C target, rendered, compiled (``-O2``) and wrapped: ``(status, p~, q~)``."""
     with tempfile.TemporaryDirectory(prefix="symbt-shipped-") as tmp:   # a loaded library outlives its file
         d = Path(tmp)
-        for name, text in render((N,), "c").items():
+        for name, text in c_texts(N).items():
             (d / name).write_text(text, encoding="utf-8")
         so = d / f"libtoda{N}.so"
         cmd = [str(c_compiler()), "-std=c99", "-O2", "-shared", "-fPIC", "-o", str(so), str(d / f"toda{N}.c"), "-lm"]
@@ -177,14 +194,14 @@ def loop(N: int, parts: Parts, deep: bool = False) -> Outcome:
        parts=scale_parts, sizes=(2,), deep=True,
        where="symbt codegen --target c --n {N}: toda{N}.c",
        statement="the C99 target of symbt codegen for N={N}, compiled with the system C compiler, = the literal "
-                 "map (50 digits) within 16 N eps S_i, every cell and at q spread over ~1000 (skipped without a "
-                 "C compiler)")
+                 "map (50 digits) within 16 N eps S_i, every cell and at q spread over ~1000, its body the form its "
+                 "header names (closed for N <= 3, the loop beyond; skipped without a C compiler)")
 @claim("shipped.c", equation="toda{N}_bt_step", source_equation="imptransf", scene="shipped",
        parts=scale_parts, sizes=(3, 5),
        where="symbt codegen --target c --n {N}: toda{N}.c",
        statement="the C99 target of symbt codegen for N={N}, compiled with the system C compiler, = the literal "
-                 "map (50 digits) within 16 N eps S_i, every cell and at q spread over ~1000 (skipped without a "
-                 "C compiler)")
+                 "map (50 digits) within 16 N eps S_i, every cell and at q spread over ~1000, its body the form its "
+                 "header names (closed for N <= 3, the loop beyond; skipped without a C compiler)")
 def c_target(N: int, parts: Parts, deep: bool = False) -> Outcome:
     if c_compiler() is None:
         return skipped("no C compiler (cc, gcc or clang) on PATH")
@@ -197,6 +214,9 @@ def c_target(N: int, parts: Parts, deep: bool = False) -> Outcome:
         if rc != C_OK:
             raise RuntimeError(f"status {rc}")
         return pt, qt
+    problem = c_form_problem(N)
+    if problem:
+        return failed("the C target's form", detail=problem + " (closed form for N = 2, 3; the loop beyond)")
     return _check_emitted(N, {f"toda{N}.c": run}, deep, f"C toda{N}_bt_step", parts.printed["scale"])
 
 

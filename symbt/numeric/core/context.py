@@ -242,8 +242,7 @@ class FloatContext:
 
     @staticmethod
     def merge(full: npt.ArrayLike, mask: Cond, part: npt.ArrayLike) -> npt.NDArray[np.generic]:
-        if np.ndim(full) == 0:
-            full = np.full(np.shape(mask), full)
+        # ``full`` has the rows' shape (monodromy passes the broadcast entries and an array of exponents)
         full = np.array(full, copy=True)
         full[mask] = part
         return full

@@ -330,10 +330,9 @@ def sharpened(S: SlopeData, rows: npt.NDArray[np.bool_]) -> npt.NDArray[np.float
     shape = np.shape(rows)
     out = np.full(shape, np.inf)
     with np.errstate(all="ignore"):
-        pv, rv = (np.moveaxis(x, 0, -1) for x in _over_sites(lambda *x: x, P, r))    # (rows..., N)
-        if pv.shape[:-1] != shape or rv.shape[:-1] != shape:
-            pv = np.stack([np.broadcast_to(x, shape) for x in P], axis=-1).astype(float)
-            rv = np.stack([np.broadcast_to(x, shape) for x in r], axis=-1).astype(float)
+        # (rows..., N); a site may be a scalar (broadcast); only flagged rows get here, so one plain stack suffices
+        pv = np.stack([np.broadcast_to(x, shape) for x in P], axis=-1).astype(float)
+        rv = np.stack([np.broadcast_to(x, shape) for x in r], axis=-1).astype(float)
         lv, ov = np.broadcast_to(lam, shape), np.broadcast_to(lo, shape)
         k = np.nonzero(rows)            # every row at once, each bit for bit its scalar sharp_trace_kappa
         out[k] = sharp_trace_kappa_rows(pv[k], rv[k], lv[k].astype(float), ov[k].astype(float))
