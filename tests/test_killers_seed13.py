@@ -328,3 +328,13 @@ def test_sampled_states_fill_their_ranges(monkeypatch, old, new):
 
     monkeypatch.setattr(elliptic, "sample_state", planted(elliptic.sample_state, old, new))
     assert fails("library.state_ranges")
+
+
+def test_codegen_check_project_option(monkeypatch):
+    # seed 13's codegen.cli:99 (`if args.project is not None` negated): --project ignored, the checkout searched from
+    # the working directory instead
+    from symbt.codegen import cli
+
+    monkeypatch.setattr(cli, "main", planted(cli.main, "        if args.project is not None:\n",
+                                             "        if not (args.project is not None):\n"))
+    assert fails("library.codegen_check")

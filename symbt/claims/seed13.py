@@ -11,7 +11,8 @@ r"""A guard that no claim stretched and the staleness check's exit status (issue
   at ``lam2 = -1e20``.
 * ``library.codegen_check`` -- ``symbt codegen --check`` (what CI pipelines run to fail on a drifted generated
   file) on copies of the shipped ``toda2.py`` and ``__init__.py``: exit 0, also written ``symbt codegen --
-  --check``; exit 1 naming "edited by hand" after a one-byte edit, and "missing" after the file is deleted.
+  --check``; exit 1 naming "edited by hand" after a one-byte edit, and "missing" after the file is deleted; with
+  ``--project DIR`` naming a directory that is not a checkout, exit 2 naming it.
 """
 from __future__ import annotations
 
@@ -66,7 +67,8 @@ def guard_far_trace() -> Outcome:
        where="symbt codegen --check (symbt.codegen.cli.main on the installed derivations)",
        statement="symbt codegen --check --installed --n 2 --out DIR, DIR holding copies of the shipped toda2.py and "
                  "__init__.py: exit 0 (also after a leading '--'); with toda2.py edited by one byte: exit 1 and a "
-                 "message 'edited by hand'; with toda2.py deleted: exit 1 and 'missing'")
+                 "message 'edited by hand'; with toda2.py deleted: exit 1 and 'missing'; --project DIR: exit 2 "
+                 "naming DIR, not a checkout")
 def codegen_check() -> Outcome:
     import contextlib
     import io
@@ -97,6 +99,12 @@ def codegen_check() -> Outcome:
         module.unlink()
         code, msg = run()
         got.append(("toda2.py deleted", (code, "missing" in msg), (1, True)))
+        # --project naming a directory that is no checkout: a usage error naming it (exit 2), nothing checked
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+            code = main(["--check", "--project", tmp, "--n", "2"])
+        named = f"--project {tmp}: not a symbt checkout" in err.getvalue()
+        got.append(("--project DIR, DIR no checkout", (code, named), (2, True)))
     bad = _bad("symbt codegen --check", got)
     return bad or Outcome("verified", "symbt codegen --check on copies of the shipped files, edited and deleted",
                           evidence="proof", detail=f"{len(got)} runs, each exit status as documented")

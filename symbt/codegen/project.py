@@ -15,18 +15,17 @@ True
 from __future__ import annotations
 
 import os
-import re
 import subprocess
 import sys
 from pathlib import Path
 
+from .._toml import loads
 from .provenance import PACKAGE
 
 __all__ = ["is_project", "find_project", "imported_package", "run_in_checkout", "DELEGATED_ENV"]
 
 #: set in the environment of the re-run, so that it never delegates again
 DELEGATED_ENV = "SYMBT_CODEGEN_DELEGATED"
-_NAME = re.compile(r"""^\s*name\s*=\s*["']symbt["']\s*$""", re.M)
 
 
 def _project_name(pyproject: Path) -> str | None:
@@ -35,14 +34,10 @@ def _project_name(pyproject: Path) -> str | None:
     except (OSError, UnicodeDecodeError):
         return None
     try:
-        import tomllib
-    except ModuleNotFoundError:   # Python 3.10: the [project] table's name line
-        section = text.split("[project]", 1)[1].split("\n[", 1)[0] if "[project]" in text else ""
-        return "symbt" if _NAME.search(section) else None
-    try:
-        return tomllib.loads(text).get("project", {}).get("name")
-    except tomllib.TOMLDecodeError:
+        name = loads(text).get("project", {}).get("name")
+    except ValueError:      # tomllib.TOMLDecodeError
         return None
+    return name if isinstance(name, str) else None
 
 
 def is_project(root: Path) -> bool:

@@ -46,9 +46,10 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from .._files import atomic_write
+from .._toml import loads as toml_loads
 from .coverage import OneLineParser
 from .labels import LatexError, TexLabel, scan_file
-from .project import ConfigError, _toml, read_config
+from .project import ConfigError, read_config
 
 __all__ = ["claim_ids", "stubs", "claims_module", "config_lines", "main"]
 
@@ -145,7 +146,7 @@ def _scene_name(stem: str) -> str:
 
 def _toml_parses(text: str) -> bool:
     try:
-        _toml(text)
+        toml_loads(text)
     except ValueError:
         return False
     return True

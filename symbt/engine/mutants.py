@@ -370,14 +370,11 @@ def module_level_lines(source: str | bytes) -> set[int]:
 def parse_equivalents(text: str, where: str = "equivalents file") -> dict[str, str]:
     """``[[mutant]]`` tables with ``id`` and ``reason`` -> {id: reason}; anything else raises
     :class:`UsageError` (one line)."""
-    try:
-        import tomllib
-    except ModuleNotFoundError:  # Python 3.10
-        import tomli as tomllib
+    from .._toml import loads
 
     try:
-        doc = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
+        doc = loads(text)
+    except ValueError as exc:       # tomllib.TOMLDecodeError
         raise UsageError(f"{where}: not TOML: {exc}") from None
     extra = set(doc) - {"mutant"}
     if extra:

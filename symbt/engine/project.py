@@ -49,6 +49,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from .._toml import loads as toml_loads
+
 if TYPE_CHECKING:
     from ..claims.base import Claim
 
@@ -128,23 +130,17 @@ def _has_table(text: str) -> bool:
     """Whether the TOML ``text`` has a ``[tool.symbt]`` table (a file that does not parse: yes, so its
     reader reports the error instead of silently skipping the file)."""
     try:
-        return _toml(text).get("tool", {}).get("symbt") is not None
+        return toml_loads(text).get("tool", {}).get("symbt") is not None
     except ValueError:
         return True
 
 
-def _toml(text: str) -> dict[str, Any]:
-    try:
-        import tomllib
-    except ModuleNotFoundError:  # Python 3.10
-        import tomli as tomllib
-    return tomllib.loads(text)
 
 
 def read_config(path: Path) -> dict[str, Any]:
     """The validated ``[tool.symbt]`` table of ``path`` (paths made absolute); :class:`ConfigError` if malformed."""
     try:
-        data = _toml(path.read_text(encoding="utf-8"))
+        data = toml_loads(path.read_text(encoding="utf-8"))
     except OSError as exc:
         raise ConfigError(f"cannot read {path}: {exc.strerror or exc}") from None
     except ValueError as exc:  # tomllib.TOMLDecodeError

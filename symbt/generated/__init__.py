@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2a131d937e4dedba80828b47b117bc60063318acee37226967c47083f8843892
-# symbt-codegen-content-sha256: 4519fea0c0f028ca384fbad13924e6010713fff169212317fa5ba937bc1748a6
+# symbt-codegen-derivation-sha256: f2695d4caa094a2c4a9c4ebcfb0338ca749b2ad810146302a53228beb138432b
+# symbt-codegen-content-sha256: 775d598120ee469828488834b5b7291e26c60cfb91f941855be85dab4c6a19fb
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

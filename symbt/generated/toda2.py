@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 2a131d937e4dedba80828b47b117bc60063318acee37226967c47083f8843892
-# symbt-codegen-content-sha256: 40a840138ca6cd0c66d786070b149b9d3627522cfa0d0c439719252ce01ce14b
+# symbt-codegen-derivation-sha256: f2695d4caa094a2c4a9c4ebcfb0338ca749b2ad810146302a53228beb138432b
+# symbt-codegen-content-sha256: 37c7efff0debf78784c443a749c786ae12e65bfdff01edd359f2ce86364e5240
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
