@@ -338,3 +338,26 @@ def test_codegen_check_project_option(monkeypatch):
     monkeypatch.setattr(cli, "main", planted(cli.main, "        if args.project is not None:\n",
                                              "        if not (args.project is not None):\n"))
     assert fails("library.codegen_check")
+
+
+def test_inconclusive_screen_reports_its_least_trustworthy_point(monkeypatch):
+    # seed 13's screen:413 (`max(c.residual, c.error)` -> `min(...)` as the key): the point with the largest residual
+    # reported, not the one with the largest error
+    from symbt.proof import screen as screen_module
+
+    monkeypatch.setattr(screen_module, "screen", planted(
+        screen_module.screen, "worst = max(undecided, key=lambda c: max(c.residual, c.error))",
+        "worst = max(undecided, key=lambda c: min(c.residual, c.error))"))
+    assert fails("checker.screen_arithmetic")
+
+
+def test_complex_arb_transport_direction(monkeypatch):
+    # seed 13's arb:188 (ACB.half_plane's `>= 0` -> `<= 0`): the slopes transported against the dominant direction;
+    # harmless at moderate traces, about 5 digits lost at |tr| ~ 1e9 (paths.complex's outer-gap state)
+    pytest.importorskip("flint")
+    from symbt.numeric.multiprec import arb
+
+    cls = type(arb.ACB)
+    monkeypatch.setattr(cls, "half_plane", planted(cls.half_plane, "return bool(self.re_dot(a, g).mid() >= 0)",
+                                                   "return bool(self.re_dot(a, g).mid() <= 0)"))
+    assert fails("paths.complex.n3")

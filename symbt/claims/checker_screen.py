@@ -251,6 +251,16 @@ def screen_arithmetic() -> Outcome:
     got.append(("65-digit cancellation at 30 digits: status, resolved, re-evaluated at",
                 (r.status, r.residual < 1e-12, r.rechecked, r.high_digits), ("inconclusive", True, 2, 70)))
     got.append(("high_precision(d)", [high_precision(d) for d in (9, 30, 50)], [28, 70, 110]))
+    # an inconclusive screen reports its least trustworthy point: the largest max(residual, error) of the points it
+    # could not decide, each point screened again alone (there the error ranks the points, the residual does not)
+    lhs, rhs = _inconclusive_in(1)
+    r = screen(lhs, rhs, {}, 30, 3, 1, {})
+    z = next(iter(lhs.free_symbols))
+    alone = [(pt, screen(lhs, rhs, {}, 30, 1, 1, {z: mp.mpf(pt[z.name])})) for pt in r.points]
+    least = max(alone, key=lambda a: max(a[1].residual, a[1].error))[0]
+    ranked_apart = (max(alone, key=lambda a: a[1].residual)[0] != least)       # the fact can tell the two apart
+    got.append(("an inconclusive screen's reported point: the largest max(residual, error) of its points",
+                (r.status, r.point == least, ranked_apart), ("inconclusive", True, True)))
     r = screen(sp.sin(2 * pos), 2 * sp.sin(pos) * sp.cos(pos), {}, 30, 3, 1, {})
     got.append(("sin 2x = 2 sin x cos x: a clear point is not re-evaluated", (r.status, r.rechecked), ("verified", 0)))
     n = sp.Symbol("n", integer=True, positive=True)
@@ -275,7 +285,8 @@ def screen_arithmetic() -> Outcome:
     bad = _bad("the screen's arithmetic", got)
     return bad or _ok("screen's residuals recomputed at the counterexample; quadrature errors from mpmath.quad",
                       f"{len(got)} facts: 5 residual cells x 2 evaluations, 3 inherited errors, "
-                      "the second precision, a clear point, a skipped point, fixed values, no admissible point",
+                      "the second precision, an inconclusive screen's reported point, a clear point, a skipped point, "
+                      "fixed values, no admissible point",
                       "sampled")
 
 
