@@ -50,7 +50,7 @@ def test_the_scene_has_the_claims_named_here():
                              "paths.rows_out.n3", "paths.scaled_trace.n4", "paths.scaled_trace.n5",
                              "paths.side_by_side.n3", "paths.spectral_overflow.n3", "paths.step_core.n3",
                              "paths.stored.n3", "paths.threshold.n3", "paths.tiny_mu.n3", "paths.track_hooks",
-                             "paths.zero_radius.n3"]
+                             "paths.transfer_gradient.n4", "paths.transfer_gradient.n5", "paths.zero_radius.n3"]
 
 
 @pytest.mark.parametrize("cid", NUMERIC_PATHS)

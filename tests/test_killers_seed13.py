@@ -14,7 +14,8 @@ load_all()
 CLAIMS = ["paths.dq_edge.n3", "paths.side_by_side.n3", "library.guard_far_trace", "library.emit_typed",
           "library.zullo_registry", "paths.jacobian_dual.n3", "library.codegen_check", "paths.scaled_trace.n4",
           "paths.scaled_trace.n5", "paths.band_edge.n3", "paths.existence_iv.n3", "shipped.orbit.n3",
-          "library.addition", "library.state_ranges", "paths.complex.n3"]
+          "library.addition", "library.state_ranges", "paths.complex.n3", "paths.transfer_gradient.n4",
+          "paths.transfer_gradient.n5", "paths.mixed_block.n3"]
 
 
 def fails(cid: str, *, crash: bool = False) -> bool:
@@ -361,3 +362,98 @@ def test_complex_arb_transport_direction(monkeypatch):
     monkeypatch.setattr(cls, "half_plane", planted(cls.half_plane, "return bool(self.re_dot(a, g).mid() >= 0)",
                                                    "return bool(self.re_dot(a, g).mid() <= 0)"))
     assert fails("paths.complex.n3")
+
+
+@pytest.mark.parametrize("old, new", [
+    # seed 14's field:71: the prefix product's r-row with the next site's r (read only from the fourth site on)
+    ("a[j] * f01 - inv_s * f11, r[j] * f00, r[j] * f01", "a[j] * f01 - inv_s * f11, r[j + 1] * f00, r[j] * f01"),
+    ("b10 * a[j] + b11 * r[j], -inv_s * b10)", "b10 * a[j] + b11 * r[j], inv_s * b10)"),
+])
+@pytest.mark.parametrize("cid", ["paths.transfer_gradient.n4", "paths.transfer_gradient.n5"])
+def test_transfer_gradient_at_four_sites_and_more(monkeypatch, old, new, cid):
+    from symbt.numeric.flow import field
+
+    monkeypatch.setattr(field, "transfer_gradient", planted(field.transfer_gradient, old, new))
+    assert fails(cid)
+
+
+def test_typed_docstrings_given_or_generated(monkeypatch):
+    # seed 14's render_typed:78 (`if given is not None` negated): a given docstring replaced by the generated one,
+    # and none at all where none was given
+    from symbt.codegen.user import render_typed
+
+    mutant = planted(render_typed.typed_doc, "    if given is not None:\n", "    if not (given is not None):\n")
+    monkeypatch.setattr(render_typed, "typed_doc", mutant)
+    assert fails("library.emit_typed")
+
+
+def test_block_rescale_counter_start_is_equivalent(monkeypatch):
+    # seed 14's kernels_block:78 (`big = 0` -> `big = 1` at each site): `big` is read only by `if big > 0:`, whose
+    # loop re-tests every member (`Ab[0, k] > _BIG or Ab[1, k] > _BIG`) before it shrinks one -- the mutant runs that
+    # loop at every site, shrinking exactly the same members.  Checked: a block of a moderate member and one whose
+    # absolute product passes _BIG (2**400), the same bits either way; control: without the shrink the bits differ
+    import inspect
+
+    import numpy as np
+
+    from symbt.numeric.float64 import kernels_block
+    from symbt.numeric.float64.kernels import ANCHOR
+
+    src = kernels_block._slopes
+    uses = [line.split("#")[0].strip() for line in inspect.getsource(src).splitlines() if "big" in line]
+    assert uses == ["big = 0", "big += 1 if (Ab[0, k] > _BIG or Ab[1, k] > _BIG) else 0", "if big > 0:"]
+    P0 = np.array([[0.5, -0.25, 0.125, 1.0, -1.5], [0.5, -0.25, 0.125, 1.0, -1.5]])
+    Q0 = np.array([[0.0, 0.5, -0.25, 0.75, 0.1]] * 2)
+    lam0, mu = np.array([30.0, 1e100]), np.array([1.0, 1e98])
+
+    def run() -> tuple:
+        st = np.zeros(2, np.int64)
+        outP, outQ = np.empty((2, 2, 5)), np.empty((2, 2, 5))
+        kernels_block.run_block(P0, Q0, lam0 + mu, lam0 - mu, 2 * mu, 1, 1, 1, ANCHOR, outP, outQ, st, 0, 2)
+        return outP.tobytes(), outQ.tobytes(), st.tolist()
+
+    original = run()
+    assert original[2] == [0, 0]
+    monkeypatch.setattr(kernels_block, "_slopes", planted(src, "        big = 0\n", "        big = 1\n"))
+    assert run() == original
+    monkeypatch.setattr(kernels_block, "_slopes", planted(src, "        if big > 0:", "        if big < 0:"))
+    with np.errstate(over="ignore", invalid="ignore"):      # unshrunk, the big member's products overflow
+        assert run() != original
+
+
+def test_single_denominator_in_parentheses_is_equivalent():
+    # seed 14's printer:156 (`len(den) == 1` -> `== 0`): a single denominator factor printed in parentheses too,
+    # `x/(y**2)` for `x/y**2` -- the wrapped factor is already an operand of `/` (its precedence is at least _MUL's), so
+    # the parentheses change no parse: the same value in every flavour
+    import numpy as np
+    import sympy as sp
+
+    from symbt.codegen import printer
+
+    x, y = sp.symbols("x y", positive=True)
+    mutant = planted(printer.ExprPrinter._mul, "    if len(den) == 1:\n", "    if len(den) == 0:\n")
+    exprs = [x / y, x / y ** 2, x / sp.exp(y), x / (y + 1), 3 * x / y ** 3, x * y / sp.sqrt(y), x ** 2 / (x - y)]
+    evaluated = 0
+    for flavour in ("numpy", "mpmath", "ops", "c"):
+        pr = printer.ExprPrinter(flavour, {x: "x", y: "y"})
+        for e in exprs:
+            text, _ = pr._mul(e)
+            mtext, _ = mutant(pr, e)
+            num, _, den = text.partition("/")
+            assert mtext in (text, f"{num}/({den})"), (flavour, text, mtext)
+            if flavour in ("numpy", "ops"):
+                env = {"x": 1.7, "y": 0.3, "np": np, "_X": np}
+                assert eval(mtext, env) == eval(text, env)     # noqa: S307 -- the printer's own text
+                evaluated += 1
+    assert evaluated == 2 * len(exprs)
+
+
+def test_block_sharp_tier_reads_each_members_own_status(monkeypatch):
+    # seed 14's kernels_block:257 (`sh[k] = st[k]` -> `sh[k - 1] = st[k]`): the sharp tier of a member decided by its
+    # neighbour's status before the read-out; each member in its scan's block shifts alike, a block of one does not
+    from symbt.numeric.float64 import block_python, kernels_block
+
+    assert block_python.kernel("run_block") is block_python.run_block    # built from the source before the plant
+    monkeypatch.setattr(kernels_block, "run_block", planted(kernels_block.run_block, "            sh[k] = st[k]\n",
+                                                            "            sh[k - 1] = st[k]\n"))
+    assert fails("paths.mixed_block.n3")

@@ -104,8 +104,9 @@ def _c_probe(path: Path, e: Any, keep: list[Any]) -> Any:
                  "1e-45), refuses where its guard fails, and compare samples every cell of it")
 def emit_typed() -> Outcome:
     from ..codegen.user.check import Comparison, c_status, compare, compiler, load_python
-    from ..codegen.user.declare import EmitError
+    from ..codegen.user.declare import EmitError, emit
     from ..codegen.user.files import generate
+    from ..codegen.user.render_typed import typed_doc
 
     bad: list[str] = []
     e = declaration()
@@ -163,6 +164,15 @@ def emit_typed() -> Outcome:
                 except mod.NoRealMapError as exc:
                     if exc.condition != "positive":
                         bad.append(f"probe at y < 0 raised NoRealMapError with condition {exc.condition!r}")
+            # the docstrings: generated for this declaration (it gives none), the given text verbatim otherwise
+            doc = mod.probe.__doc__ or ""
+            if not ("errors='mask'" in doc and "NoRealMapError" in doc):
+                bad.append(f"probe's generated docstring does not describe its guard: {doc[:80]!r}")
+            x_, y_ = sp.symbols("x y", real=True)
+            given = emit("probe_doc", x_ * y_, args=(("z", (x_, y_)),), module=MODULE, register=False,
+                         doc={"numpy": "Given, numpy.", "mpmath": "Given, mpmath."})
+            if [typed_doc(given, fl) for fl in ("numpy", "mpmath")] != ["Given, numpy.", "Given, mpmath."]:
+                bad.append(f"a given docstring not kept verbatim: {typed_doc(given, 'numpy')[:60]!r}")
             mv, mw = mod.probe(np.array([[0.5, -0.25], [0.5, 0.25]]), 1e-10, 1, errors="mask")
             if list(np.ma.getmaskarray(mw)) != [True, False] or abs(float(mw[1]) - 0.25) > 2 * EPS:
                 bad.append(f"errors='mask' at y = (-0.25, 0.25): w = {mw!r}")

@@ -391,8 +391,9 @@ def batch_range(N: int) -> Outcome:
        statement="the block kernel (plain Python), N={N}: the scans of paths.threshold across KAPPA_MAX for the "
                  "paper's state and its mirror p -> -p (top edge, branch 1) interleaved as one block of 128 members "
                  "(neighbours with different cancellations in a_j = lam + p_j): every member's status and state = "
-                 "its own in the block of its scan alone, bit for bit (docs/numeric.md: a member equals its "
-                 "single-state step; a consistency check)")
+                 "its own in the block of its scan alone and in a block of one, bit for bit; likewise the paper's "
+                 "scan with each member beside a state that fails before the read-out (lam2 in a band) "
+                 "(docs/numeric.md: a member equals its single-state step; a consistency check)")
 def mixed_block(N: int) -> Outcome:
     from .shipped_paths import _block_kernel
     from .shipped_routes import threshold_states
@@ -408,11 +409,27 @@ def mixed_block(N: int) -> Outcome:
         i = k // 2
         same = int(status[k]) == int(s1[i]) and (int(s1[i]) != 0 or (np.array_equal(P[k], P1[i])
                                                                          and np.array_equal(Q[k], Q1[i])))
+        # and its block of one (no neighbour at all): the single-state step's status and bits
+        P0, Q0, s0 = _block_kernel([rows[k]], b)
+        same = same and int(status[k]) == int(s0[0]) and (int(s0[0]) != 0 or (np.array_equal(P[k], P0[0])
+                                                                              and np.array_equal(Q[k], Q0[0])))
         bad += 0 if same else 1
+    # the scan of the paper's state, each member beside a state that fails before the read-out (lam2 in a band):
+    # a member the sharp tier finishes must not read its neighbour's early failure
+    in_band = ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), 0.0, 0.787)
+    mixed = [st for m in scans[("paper top", b)] for st in (m, in_band)]
+    Pm, Qm, sm = _block_kernel(mixed, b)
+    for k in range(0, len(mixed), 2):
+        P1, Q1, s1 = alone[0]
+        same = int(sm[k]) == int(s1[k // 2]) and (int(s1[k // 2]) != 0 or (np.array_equal(Pm[k], P1[k // 2])
+                                                                            and np.array_equal(Qm[k], Q1[k // 2])))
+        bad += 0 if same else 1
+    early = int(sm[1])
     handed = int(np.sum(status != 0))
-    detail = (f"{len(rows)} members, {handed} handed back, {len(rows) - handed} finished; {bad} differ from "
-              "their scan's own block.")
-    if bad or not 0 < handed < len(rows):
+    detail = (f"{len(rows)} members, {handed} handed back, {len(rows) - handed} finished; the paper's scan "
+              f"interleaved with a state in a band (its status {early}); {bad} differ from their scan's own block "
+              "or from their block of one.")
+    if bad or not 0 < handed < len(rows) or early == 0:
         return failed("numeric: an interleaved block vs each scan's own block", detail=detail)
     return Outcome("verified", "numeric: an interleaved block vs each scan's own block (consistency)",
                    evidence="sampled", detail=detail, printed="every member = its own, statuses included")
