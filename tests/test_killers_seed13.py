@@ -457,3 +457,55 @@ def test_block_sharp_tier_reads_each_members_own_status(monkeypatch):
     monkeypatch.setattr(kernels_block, "run_block", planted(kernels_block.run_block, "            sh[k] = st[k]\n",
                                                             "            sh[k - 1] = st[k]\n"))
     assert fails("paths.mixed_block.n3")
+
+
+@pytest.mark.parametrize("old, new", [
+    # seed 14's inverse:159: the least-squares residual with the target's sign flipped
+    ("[wk * (c[k] - c_target[k]) for wk, k in zip(w, idx)]", "[wk * (c[k] + c_target[k]) for wk, k in zip(w, idx)]"),
+])
+def test_least_squares_mode_recovers_its_start(monkeypatch, old, new):
+    from symbt.reference import inverse
+
+    monkeypatch.setattr(inverse, "solve_parameters", planted(inverse.solve_parameters, old, new))
+    assert fails("library.inverse_fields")
+
+
+def test_gauss_newton_counts_the_iterates_evaluated(monkeypatch):
+    # _gauss_newton reported one iterate fewer than solve_parameters documents (0 where the start meets tol): fixed;
+    # the old count is seen by library.newton_rule and library.inverse_fields
+    from symbt.reference import inverse
+
+    monkeypatch.setattr(inverse, "_gauss_newton", planted(
+        inverse._gauss_newton, "* lam < tol:\n            return x, it + 1\n", "* lam < tol:\n            return x, it\n"))
+    assert fails("library.inverse_fields") and fails("library.newton_rule")
+
+
+def test_general_orbit_block_size_is_equivalent(monkeypatch):
+    # seed 14's orbit:161 (`N = pa.shape[1]` -> `pa.shape[0]`, the batch size M for the site count): N is read only
+    # by `block = max(256, BLOCK_ELEMENTS // N)`, the rows per numpy block, and a row's result never depends on
+    # the block it falls in (docs/numeric.md, float64.rows) -- so only the partition changes.  Checked: 700 rows,
+    # one block of 700 against three of 256, 256 and 188, the same bits and statuses (rows without a real map among
+    # them); M >= 1 whenever general_orbit is called (the drivers call it only for a non-empty `todo`)
+    import inspect
+
+    import numpy as np
+
+    from symbt.numeric.float64 import orbit
+
+    uses = [line.strip() for line in inspect.getsource(orbit.general_orbit).split('"""')[-1].splitlines()
+            if "N" in line.replace("NoReal", "")]
+    assert uses == ["N = pa.shape[1]", "block = max(256, BLOCK_ELEMENTS // N)"]
+    rng = np.random.default_rng(5)
+    M = 700
+    pa, qa = rng.uniform(-2, 2, (M, 3)), rng.uniform(-1, 1, (M, 3))
+    lam0, mu = rng.uniform(-6, 6, M), rng.uniform(0.1, 1.5, M)
+
+    def run(fn) -> tuple:
+        P, Q = np.zeros((3, M, 3)), np.zeros((3, M, 3))
+        st, fs = fn(pa, qa, lam0, mu, 1, 2, 1, P, Q, np.arange(M))
+        return P.tobytes(), Q.tobytes(), st.tolist(), fs.tolist()
+
+    original = run(orbit.general_orbit)
+    assert 0 < original[2].count(0) < M          # some rows finish, some have no real map
+    mutant = planted(orbit.general_orbit, "    N = pa.shape[1]\n", "    N = pa.shape[0]\n")
+    assert run(mutant) == original

@@ -148,7 +148,9 @@ def _c_quad(p: list, q: list, l0: mp.mpf, mu: mp.mpf, b: int) -> list:
        statement="solve_parameters (15 digits) returns every documented field: (a) N = 2, the target c_k of "
                  "(lam0, mu, b) = (4.504539, 1e-3, -1), no guess: the small-mu start meets tol, so iterations = 1, "
                  "(lam0, mu, b) recovered to 1e-12; (b) N = 3, mode direction, the target c/2 of (6, 0.3, +1) from "
-                 "the guess (6, 0.3): iterations = 1, kappa = 2, residual = max_(k<3) |c_k|/2; (c) N = 3, mode exact, "
+                 "the guess (6, 0.3): iterations = 1, kappa = 2, residual = max_(k<3) |c_k|/2; mode lstsq, the "
+                 "target c from the guess (6, 0.3): iterations = 1, kappa = 1, residual 0 to 1e-12; (c) N = 3, mode "
+                 "exact, "
                  "indices (0, 1, 2) (least squares; under --deep), the target c from (6 + 1e-4, 0.3): iterations "
                  ">= 2, (6, 0.3, +1) to 1e-12, kappa = 1; c = [c_0..c_N] at the "
                  "answer (N = 2: by mpmath quad of the literal trace; N = 3: the coefficients the target was made "
@@ -165,7 +167,8 @@ def inverse_fields(deep: bool = False) -> Outcome:
         # mode exact on three indices from INVF_OFF off (the least-squares step) runs under --deep only: its cost;
         # library.newton_rule observes the least-squares step on a toy residual in the default run
         cases: list[tuple[Any, ...]] = [(INVF_SMALL, -1, "exact", 1, None, None),
-                                        (INVF_DIR, 1, "direction", mp.mpf("0.5"), None, 0)]
+                                        (INVF_DIR, 1, "direction", mp.mpf("0.5"), None, 0),
+                                        (INVF_DIR, 1, "lstsq", 1, None, 0)]
         if deep:
             cases.append((INVF_DIR, 1, "exact", 1, (0, 1, 2), INVF_OFF))
         for (ps, qs, l0s, ms), b, mode, scale, idx, off in cases:
@@ -203,7 +206,7 @@ def inverse_fields(deep: bool = False) -> Outcome:
                 why.append(f"residual {mp.nstr(r['residual'], 8)}, by the definition {mp.nstr(resid, 8)}")
             if why:
                 bad.append(f"N={N}, {mode}: " + ", ".join(why))
-    detail = ("N = 2 from the small-mu start at branch -1; N = 3 by direction to c/2 (and "
+    detail = ("N = 2 from the small-mu start at branch -1; N = 3 by direction to c/2, by least squares to c (and "
               "exact on 3 indices under --deep): "
               "iterations, (lam0, mu, b), c (by quad for N = 2), kappa and residual by their definitions (accepted "
               "1e-12)")
@@ -274,7 +277,8 @@ NEWTON_TOLS = (mp.mpf("1e-6"), mp.mpf("1e-300"))
                  "least-squares steps); with tol = 1e-300 it gives up after its 40 iterations (None: the residual "
                  "-(2/3)^120 is negative, its size above tol; also with x_1 - 1 = 0, solved at once, beside it: the "
                  "largest component is judged); Gauss-Newton "
-                 "on the inconsistent (x - 1, x + 1) returns the least-squares x = 0 after one step; the line "
+                 "on the inconsistent (x - 1, x + 1) returns the least-squares x = 0 after one step (iterations = 2: "
+                 "the iterates evaluated); the line "
                  "search tries lam = 1, 1/2, ..., 2**-29 and no smaller")
 def newton_rule() -> Outcome:
     from ..reference import inverse as inv
@@ -303,8 +307,8 @@ def newton_rule() -> Outcome:
         G = lambda x: [x[0] - 1, x[0] + 1]                # noqa: E731
         JG = lambda x: [[mp.mpf(1)], [mp.mpf(1)]]         # noqa: E731
         gn = inv._gauss_newton(G, JG, [mp.mpf("0.4")], mp.mpf("1e-20"))
-        if gn is None or gn[1] != 1 or not abs(gn[0][0]) <= mp.mpf(10) ** -25:
-            bad.append(f"Gauss-Newton: {gn}, want ([0], 1)")
+        if gn is None or gn[1] != 2 or not abs(gn[0][0]) <= mp.mpf(10) ** -25:
+            bad.append(f"Gauss-Newton: {gn}, want ([0], 2): one step, evaluated at two iterates")
         # the line search's 30 tries, lam = 1 ... 2**-29: the last is taken when it alone is accepted, 2**-30 never
         for last, want_lam in ((29, mp.mpf(2) ** -29), (30, None)):
             def below(r: list[mp.mpf], lam: mp.mpf, last: int = last) -> bool:
@@ -312,7 +316,8 @@ def newton_rule() -> Outcome:
             ls = inv._line_search(lambda x: [x[0]], [mp.mpf(0)], [mp.mpf(1)], below)
             if (ls and ls[1]) != want_lam:
                 bad.append(f"line search accepting lam <= 2**-{last} only: {ls}, want lam = {want_lam}")
-    detail = ("Newton: 13 iterations and the extra step at tol 1e-6, None at 1e-300; Gauss-Newton: x = 0 after 1 step; "
+    detail = ("Newton: 13 iterations and the extra step at tol 1e-6, None at 1e-300; Gauss-Newton: x = 0 after 1 step "
+              "(2 iterates); "
               "the line search stops at lam = 2**-29")
     if bad:
         return failed("the Newton loops' documented rules on toy residuals", detail="; ".join(bad) + ". " + detail)

@@ -203,10 +203,10 @@ def _gauss_newton(F: Residual, J: Jacobian, x0: Sequence[MPLike], tol: mp.mpf,
         r0 = _norm(r)
         step = _line_search(F, x, dx, lambda rn, lam: _norm(rn) <= r0)
         if step is None:
-            return x, it
+            return x, it + 1            # iterates evaluated (solve_parameters' `iterations`), as _newton counts
         x, lam = step
         if max(abs(d) for d in dx) * lam < tol:
-            return x, it
+            return x, it + 1
     return x, maxit
 
 
