@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: e7dc5563254ce74f482d7582503863d57841e3834e8bd10022c5bfe271a17e38
-// symbt-codegen-content-sha256: 0ef474c36c87873a40b4dd6a869dae94bde51bbba773c277c0448a876d667313
+// symbt-codegen-derivation-sha256: 596ccb158a6c538810c9b385ea26905929b81fd1aa4e8e07f11ea66010c2f473
+// symbt-codegen-content-sha256: 9510243eaed08ba79fc2c83d71e27650130af6c038896d8999a5f17b2df851d2
 #include <math.h>
 #include "drag_numeric.h"
 

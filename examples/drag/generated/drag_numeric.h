@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: e7dc5563254ce74f482d7582503863d57841e3834e8bd10022c5bfe271a17e38
-// symbt-codegen-content-sha256: 2b2abc78b77509bd0100718069fea1676d8f765419b96460f7c0bf44150ae57a
+// symbt-codegen-derivation-sha256: 596ccb158a6c538810c9b385ea26905929b81fd1aa4e8e07f11ea66010c2f473
+// symbt-codegen-content-sha256: 1ff2232ce48e188cb4c08872bf0b1db2fc7731d896db36b8f3efd9141c971211
 #ifndef SYMBT_EMITTED_DRAG_NUMERIC_H
 #define SYMBT_EMITTED_DRAG_NUMERIC_H
 

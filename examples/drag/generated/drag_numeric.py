@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: drag_numeric (declared in drag_emit)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: e7dc5563254ce74f482d7582503863d57841e3834e8bd10022c5bfe271a17e38
-# symbt-codegen-content-sha256: 8e083c5aafecf050be3955ab85c813a78c6c10620141c56813121adbfc960c75
+# symbt-codegen-derivation-sha256: 596ccb158a6c538810c9b385ea26905929b81fd1aa4e8e07f11ea66010c2f473
+# symbt-codegen-content-sha256: fd166a11a87857c0b37cf5d3fa815c6d477e6bd63b660d9906b73528aea7e1ed
 """drag_numeric: functions emitted by `symbt codegen` from drag_emit.
 
 Each function has a numpy float64 flavour (vectorised over broadcast arguments) and an
