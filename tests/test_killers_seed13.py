@@ -510,3 +510,14 @@ def test_general_orbit_block_size_is_equivalent(monkeypatch):
     assert 0 < original[2].count(0) < M          # some rows finish, some have no real map
     mutant = planted(orbit.general_orbit, "    N = pa.shape[1]\n", "    N = pa.shape[0]\n")
     assert run(mutant) == original
+
+
+def test_range_test_at_two_to_the_500(monkeypatch):
+    # seed 12's condition:388 (`big < 2.0 ** 500` -> `<=`): a batch whose largest entry is 2**500 exactly taken as in
+    # range, so a row below 2**-500 beside it is not renormalised
+    from symbt.numeric.core import condition
+
+    monkeypatch.setattr(condition, "_product_on_floats", planted(
+        condition._product_on_floats, "if big < 2.0 ** 500 and math.isfinite(big):",
+        "if big <= 2.0 ** 500 and math.isfinite(big):"))
+    assert fails("paths.abs_products.n2")

@@ -298,7 +298,8 @@ def _row_exp(e: int | np.ndarray, k: int) -> int:
                  "rows moderate, past 2**500, past the double range, below 2**-500 (and at N = 3 a row renormalised "
                  "in the absolute product only) = the exact rational products within 3 N u of the absolute product "
                  "plus 2**-500 of its largest entry; monodromy_and_abs bit for bit the separate calls, also beside a "
-                 "row with an infinite a_1")
+                 "row with an infinite a_1, and (N = 2) a row whose largest entry is 2**500 exactly beside one below "
+                 "2**-500")
 def abs_products(N: int) -> Outcome:
     from ..numeric.core.condition import abs_trace_rows, monodromy_and_abs
     from ..numeric.core.context import FLOAT
@@ -356,6 +357,18 @@ def abs_products(N: int) -> Outcome:
         ref = monodromy(FLOAT, a, r)
     if not all(np.array_equal(np.asarray(x), np.asarray(y), equal_nan=True) for x, y in zip((A, B, C, D, e), ref)):
         bad.append(f"a row with a_1 = inf: monodromy_and_abs gives exponents {e}, monodromy(FLOAT) {ref[4]}")
+    if N == 2:
+        # the range test's edge: a row whose largest entry is 2**500 exactly (a1 a2 = 2**500, r1 below its ulp:
+        # in range, "below 2**500" fails for the batch) beside a row whose largest is 2**-510 (renormalised): the
+        # few-rows form decides per row as monodromy(FLOAT) does, bit for bit
+        a = [np.array([2.0 ** 250, 2.0 ** -510])] * 2
+        r = [np.array([2.0 ** -1000, 2.0 ** -600]), np.array([1.0, 2.0 ** -520])]
+        with np.errstate(all="ignore"):
+            (A, B, C, D, e), _ = monodromy_and_abs(a, r)
+            ref = monodromy(FLOAT, a, r)
+        if not (float(A[0]) == 2.0 ** 500 and all(np.array_equal(np.asarray(x), np.asarray(y))
+                                                  for x, y in zip((A, B, C, D, e), ref))):
+            bad.append(f"a row at 2**500 exactly beside one below 2**-500: exponents {e}, monodromy(FLOAT) {ref[4]}")
     detail = (f"{len(batches) + 1} batches, {checked} rows against exact rationals; exponents seen "
               f"{min(exps)}..{max(exps)}.")
     if bad:
