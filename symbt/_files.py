@@ -23,8 +23,9 @@ import stat
 import sys
 import tempfile
 from pathlib import Path
+from typing import Any
 
-__all__ = ["atomic_write", "write_report", "output_problem", "directory_problem", "is_stdout"]
+__all__ = ["atomic_write", "write_report", "output_problem", "directory_problem", "is_stdout", "toml_loads"]
 
 
 def atomic_write(path: str | os.PathLike[str], data: str | bytes, *, mkdir: bool = True) -> Path:
@@ -189,3 +190,23 @@ def output_problem(path: str | os.PathLike[str]) -> str | None:
     if not os.access(parent.parent, os.W_OK) or _probe_directory(parent.parent):
         return f"{path}: directory {parent.parent} is not writable"
     return None
+
+
+def toml_loads(text: str) -> dict[str, Any]:
+    """``text`` parsed as TOML -- the one TOML reader (the ``[tool.symbt]`` table, the equivalents file, a
+    checkout's ``pyproject.toml``): ``tomllib`` from Python 3.11, else ``tomli`` (a dependency on 3.10).  A
+    ``ValueError`` (``TOMLDecodeError``) if it is not TOML.
+
+    >>> toml_loads('[project]\\nname = "symbt"')["project"]["name"]
+    'symbt'
+    >>> try:
+    ...     toml_loads("name = ")
+    ... except ValueError as exc:          # tomllib.TOMLDecodeError is a ValueError
+    ...     print(type(exc).__name__)
+    TOMLDecodeError
+    """
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10
+        import tomli as tomllib
+    return tomllib.loads(text)

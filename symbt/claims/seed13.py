@@ -1,5 +1,5 @@
-r"""A guard that no claim stretched and the staleness check's exit status (issue 21, seed 12's ``literal:276``,
-``codegen.cli:81`` and ``:125``).
+r"""Lines the claims did not reach (issue 21, seeds 12-14: ``literal:276``, ``codegen.cli:81``/``:99``/``:125``,
+``coefficients:132``, ``existence:73``, ``field:71``, ``kernels_block:257``).
 
 * ``library.guard_far_trace`` -- :func:`symbt.reference.literal.reference_step` chooses its guard digits from the
   larger of ``|tr L(lam1)|``, ``|tr L(lam2)|`` (the forward transport loses about twice their ``log10``).  At the
@@ -13,12 +13,27 @@ r"""A guard that no claim stretched and the staleness check's exit status (issue
   file) on copies of the shipped ``toda2.py`` and ``__init__.py``: exit 0, also written ``symbt codegen --
   --check``; exit 1 naming "edited by hand" after a one-byte edit, and "missing" after the file is deleted; with
   ``--project DIR`` naming a directory that is not a checkout, exit 2 naming it.
+* ``paths.scaled_trace.n{4,5}`` -- :func:`symbt.numeric.flow.coefficients.scaled_trace` (the float64 transfer product
+  of the flow quadrature, renormalised at every site; and its mpmath form) at 4 and 5 sites -- at N = 3 the
+  recurrence's last ``B`` is never read, so no N <= 3 computation sees it -- against the literal trace at 40 digits,
+  within ``(4N + 1) u |tr|_abs`` (``|tr|_abs``: the same product with every term positive, the product's condition).
+* ``paths.band_edge.n3`` -- ``p = q = 0`` (``tr = lam**3 - 3 lam``, exact in binary) with ``lam0 +- mu`` exactly at a
+  band edge (``|tr| = 2``): the interval verdict, ``bt_step`` (python, numpy, one state and a batch, mpmath) and the
+  emitted ``toda3.bt_step`` all refuse, as the polynomial decides in exact rationals.
+* ``paths.transfer_gradient.n{4,5}`` -- :func:`symbt.numeric.flow.field.transfer_gradient` on mpf entries against
+  central differences of the 2x2 product at 70 digits (its prefix's last row and its suffix's middle are read only
+  from four sites on).
+* ``paths.mixed_block.n3`` -- the block kernel's per-member condition tracking: ``paths.threshold``'s scans of the
+  paper's state and of its mirror interleaved as one block, every member equal to its own in its scan's block and
+  in a block of one; the paper's scan with each member beside a state that fails before the read-out (the sharp
+  tier of a member must read its own early status, not its neighbour's).
 """
 from __future__ import annotations
 
 from typing import Any
 
 import mpmath as mp
+import numpy as np
 
 from ._facts import Facts
 from ._facts import facts_failed as _bad
@@ -271,3 +286,52 @@ def transfer_gradient_claim(N: int) -> Outcome:
         return failed("numeric: transfer_gradient vs central differences", detail="; ".join(bad[:6]) + ". " + detail)
     return Outcome("verified", "numeric: transfer_gradient vs central differences of the product (70 digits)",
                    evidence="sampled", detail=detail, printed="within 1e-35 (1 + |g|)")
+
+
+@claim("paths.mixed_block", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       where="symbt/numeric/float64/kernels_block.py: _slopes' per-member condition tracking (Kn, Kd)",
+       statement="the block kernel (plain Python), N={N}: the scans of paths.threshold across KAPPA_MAX for the "
+                 "paper's state and its mirror p -> -p (top edge, branch 1) interleaved as one block of 128 members "
+                 "(neighbours with different cancellations in a_j = lam + p_j): every member's status and state = "
+                 "its own in the block of its scan alone and in a block of one, bit for bit; likewise the paper's "
+                 "scan with each member beside a state that fails before the read-out (lam2 in a band) "
+                 "(docs/numeric.md: a member equals its single-state step; a consistency check)")
+def mixed_block(N: int) -> Outcome:
+    from .shipped_paths import _block_kernel
+    from .shipped_routes import threshold_states
+
+    scans = {(label, b): rows for label, b, rows in threshold_states()}
+    b = 1
+    alone = [_block_kernel(list(scans[(name, b)]), b) for name in ("paper top", "mirror top")]
+    rows = [st for pair in zip(scans[("paper top", b)], scans[("mirror top", b)]) for st in pair]
+    P, Q, status = _block_kernel(rows, b)
+    bad = 0
+    for k in range(len(rows)):
+        P1, Q1, s1 = alone[k % 2]
+        i = k // 2
+        same = int(status[k]) == int(s1[i]) and (int(s1[i]) != 0 or (np.array_equal(P[k], P1[i])
+                                                                         and np.array_equal(Q[k], Q1[i])))
+        # and its block of one (no neighbour at all): the single-state step's status and bits
+        P0, Q0, s0 = _block_kernel([rows[k]], b)
+        same = same and int(status[k]) == int(s0[0]) and (int(s0[0]) != 0 or (np.array_equal(P[k], P0[0])
+                                                                              and np.array_equal(Q[k], Q0[0])))
+        bad += 0 if same else 1
+    # the scan of the paper's state, each member beside a state that fails before the read-out (lam2 in a band):
+    # a member the sharp tier finishes must not read its neighbour's early failure
+    in_band = ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), 0.0, 0.787)
+    mixed = [st for m in scans[("paper top", b)] for st in (m, in_band)]
+    Pm, Qm, sm = _block_kernel(mixed, b)
+    for k in range(0, len(mixed), 2):
+        P1, Q1, s1 = alone[0]
+        same = int(sm[k]) == int(s1[k // 2]) and (int(s1[k // 2]) != 0 or (np.array_equal(Pm[k], P1[k // 2])
+                                                                            and np.array_equal(Qm[k], Q1[k // 2])))
+        bad += 0 if same else 1
+    early = int(sm[1])
+    handed = int(np.sum(status != 0))
+    detail = (f"{len(rows)} members, {handed} handed back, {len(rows) - handed} finished; the paper's scan "
+              f"interleaved with a state in a band (its status {early}); {bad} differ from their scan's own block "
+              "or from their block of one.")
+    if bad or not 0 < handed < len(rows) or early == 0:
+        return failed("numeric: an interleaved block vs each scan's own block", detail=detail)
+    return Outcome("verified", "numeric: an interleaved block vs each scan's own block (consistency)",
+                   evidence="sampled", detail=detail, printed="every member = its own, statuses included")

@@ -38,8 +38,6 @@ r"""What ships, 4i: nine documented rules of the numeric routes that no accuracy
 * ``paths.batch_range.n3`` -- the float64 range limit ``|q_{j+1} - q_j| <= 700`` on batches: ``invariants`` and
   ``phi`` refuse a batch whose one member has a difference of +701 (its others -350.5) with
   ``NumericRangeError``.
-* ``paths.mixed_block.n3`` -- the block kernel's per-member condition tracking: ``paths.threshold``'s scans of the
-  paper's state and of its mirror interleaved as one block, every member equal to its own in its scan's block.
 * ``paths.existence_iv.n3`` -- :func:`~symbt.numeric.float64.existence.decide_existence` (the escalation's
   interval verdict; no other default claim reaches it): ``OK`` at the paper's state and its mirror (traces of
   both signs), ``POSITIVITY`` at the no-map states of ``shipped.nomap`` (the literal route's decision).
@@ -384,55 +382,6 @@ def batch_range(N: int) -> Outcome:
         return failed("numeric: the batch range test vs the documented limit", detail="; ".join(bad) + ". " + detail)
     return Outcome("verified", "numeric: the batch range test vs the documented limit |q_{j+1} - q_j| <= 700",
                    evidence="sampled", detail=detail, printed="NumericRangeError for the batch")
-
-
-@claim("paths.mixed_block", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
-       where="symbt/numeric/float64/kernels_block.py: _slopes' per-member condition tracking (Kn, Kd)",
-       statement="the block kernel (plain Python), N={N}: the scans of paths.threshold across KAPPA_MAX for the "
-                 "paper's state and its mirror p -> -p (top edge, branch 1) interleaved as one block of 128 members "
-                 "(neighbours with different cancellations in a_j = lam + p_j): every member's status and state = "
-                 "its own in the block of its scan alone and in a block of one, bit for bit; likewise the paper's "
-                 "scan with each member beside a state that fails before the read-out (lam2 in a band) "
-                 "(docs/numeric.md: a member equals its single-state step; a consistency check)")
-def mixed_block(N: int) -> Outcome:
-    from .shipped_paths import _block_kernel
-    from .shipped_routes import threshold_states
-
-    scans = {(label, b): rows for label, b, rows in threshold_states()}
-    b = 1
-    alone = [_block_kernel(list(scans[(name, b)]), b) for name in ("paper top", "mirror top")]
-    rows = [st for pair in zip(scans[("paper top", b)], scans[("mirror top", b)]) for st in pair]
-    P, Q, status = _block_kernel(rows, b)
-    bad = 0
-    for k in range(len(rows)):
-        P1, Q1, s1 = alone[k % 2]
-        i = k // 2
-        same = int(status[k]) == int(s1[i]) and (int(s1[i]) != 0 or (np.array_equal(P[k], P1[i])
-                                                                         and np.array_equal(Q[k], Q1[i])))
-        # and its block of one (no neighbour at all): the single-state step's status and bits
-        P0, Q0, s0 = _block_kernel([rows[k]], b)
-        same = same and int(status[k]) == int(s0[0]) and (int(s0[0]) != 0 or (np.array_equal(P[k], P0[0])
-                                                                              and np.array_equal(Q[k], Q0[0])))
-        bad += 0 if same else 1
-    # the scan of the paper's state, each member beside a state that fails before the read-out (lam2 in a band):
-    # a member the sharp tier finishes must not read its neighbour's early failure
-    in_band = ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), 0.0, 0.787)
-    mixed = [st for m in scans[("paper top", b)] for st in (m, in_band)]
-    Pm, Qm, sm = _block_kernel(mixed, b)
-    for k in range(0, len(mixed), 2):
-        P1, Q1, s1 = alone[0]
-        same = int(sm[k]) == int(s1[k // 2]) and (int(s1[k // 2]) != 0 or (np.array_equal(Pm[k], P1[k // 2])
-                                                                            and np.array_equal(Qm[k], Q1[k // 2])))
-        bad += 0 if same else 1
-    early = int(sm[1])
-    handed = int(np.sum(status != 0))
-    detail = (f"{len(rows)} members, {handed} handed back, {len(rows) - handed} finished; the paper's scan "
-              f"interleaved with a state in a band (its status {early}); {bad} differ from their scan's own block "
-              "or from their block of one.")
-    if bad or not 0 < handed < len(rows) or early == 0:
-        return failed("numeric: an interleaved block vs each scan's own block", detail=detail)
-    return Outcome("verified", "numeric: an interleaved block vs each scan's own block (consistency)",
-                   evidence="sampled", detail=detail, printed="every member = its own, statuses included")
 
 
 @claim("paths.existence_iv", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),

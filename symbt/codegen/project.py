@@ -19,7 +19,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from .._toml import loads
+from .._files import toml_loads
 from .provenance import PACKAGE
 
 __all__ = ["is_project", "find_project", "imported_package", "run_in_checkout", "DELEGATED_ENV"]
@@ -34,7 +34,7 @@ def _project_name(pyproject: Path) -> str | None:
     except (OSError, UnicodeDecodeError):
         return None
     try:
-        name = loads(text).get("project", {}).get("name")
+        name = toml_loads(text).get("project", {}).get("name")
     except ValueError:      # tomllib.TOMLDecodeError
         return None
     return name if isinstance(name, str) else None

@@ -45,8 +45,7 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from .._files import atomic_write
-from .._toml import loads as toml_loads
+from .._files import atomic_write, toml_loads
 from .coverage import OneLineParser
 from .labels import LatexError, TexLabel, scan_file
 from .project import ConfigError, read_config

@@ -370,10 +370,10 @@ def module_level_lines(source: str | bytes) -> set[int]:
 def parse_equivalents(text: str, where: str = "equivalents file") -> dict[str, str]:
     """``[[mutant]]`` tables with ``id`` and ``reason`` -> {id: reason}; anything else raises
     :class:`UsageError` (one line)."""
-    from .._toml import loads
+    from .._files import toml_loads
 
     try:
-        doc = loads(text)
+        doc = toml_loads(text)
     except ValueError as exc:       # tomllib.TOMLDecodeError
         raise UsageError(f"{where}: not TOML: {exc}") from None
     extra = set(doc) - {"mutant"}

@@ -49,7 +49,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from .._toml import loads as toml_loads
+from .._files import toml_loads
 
 if TYPE_CHECKING:
     from ..claims.base import Claim

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: f2695d4caa094a2c4a9c4ebcfb0338ca749b2ad810146302a53228beb138432b
-# symbt-codegen-content-sha256: 775d598120ee469828488834b5b7291e26c60cfb91f941855be85dab4c6a19fb
+# symbt-codegen-derivation-sha256: 7295127969f66884c151511ba338ddf83c8db9ed791bf9cf21a4837efe80c8fc
+# symbt-codegen-content-sha256: 7dc2fda41d78dbad229c1d045718aeb19f5d1376d55d84294625fce128913fc4
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

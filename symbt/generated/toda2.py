@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: f2695d4caa094a2c4a9c4ebcfb0338ca749b2ad810146302a53228beb138432b
-# symbt-codegen-content-sha256: 37c7efff0debf78784c443a749c786ae12e65bfdff01edd359f2ce86364e5240
+# symbt-codegen-derivation-sha256: 7295127969f66884c151511ba338ddf83c8db9ed791bf9cf21a4837efe80c8fc
+# symbt-codegen-content-sha256: c5be7e4e44fd984aa0032d5567b8f4e76e482c8d7df90a66837a794cb8672eed
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: f2695d4caa094a2c4a9c4ebcfb0338ca749b2ad810146302a53228beb138432b
-# symbt-codegen-content-sha256: dc0d30217d9d694505d69b15be70595e3f9a083ec978b290875b92398069dfa7
+# symbt-codegen-derivation-sha256: 7295127969f66884c151511ba338ddf83c8db9ed791bf9cf21a4837efe80c8fc
+# symbt-codegen-content-sha256: e7cc2eb9907149efefda413d0d8b39b683be158bf419cfdf8713b7bae6d31fd8
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
