@@ -222,8 +222,7 @@ def test_factor_threshold_is_exclusive(monkeypatch):
     ("derivation_sources", "if name in seen:", "if not (name in seen):"),                            # 96 (seed 61)
     ("derivation_hash", "as_posix() if root.resolve() in f.parents else f.name",
      "as_posix() if not (root.resolve() in f.parents) else f.name"),                                  # 112 (seed 61)
-    ("_imports", "parts[:len(parts) - (node.level - 1)] if node.level > 1 else parts",
-     "parts[:len(parts) - (node.level - 0)] if node.level > 1 else parts"),
+    ("_imports", "parts[:len(parts) - (node.level - 1)]", "parts[:len(parts) - (node.level - 0)]"),
     ("_imports", "pkg = modname if path.name == \"__init__.py\" else",
      "pkg = modname if path.name != \"__init__.py\" else"),
 ])

@@ -75,7 +75,7 @@ def guard_far_trace() -> Outcome:
     if bad:
         return failed("reference_step at a far trace", detail="; ".join(bad[:4]) + ". " + detail)
     return Outcome("verified", "reference_step (verify=True) vs bt_step's mpmath backend (60 digits)",
-                   evidence="sampled", detail=detail, printed="converged, within 1e-28")
+                   evidence="sampled", n_scope=[3], detail=detail, printed="converged, within 1e-28")
 
 
 @claim("library.codegen_check", equation="checker", scene="library",
@@ -122,7 +122,7 @@ def codegen_check() -> Outcome:
         got.append(("--project DIR, DIR no checkout", (code, named), (2, True)))
     bad = _bad("symbt codegen --check", got)
     return bad or Outcome("verified", "symbt codegen --check on copies of the shipped files, edited and deleted",
-                          evidence="proof", detail=f"{len(got)} runs, each exit status as documented")
+                          evidence="proof", n_scope=[2], detail=f"{len(got)} runs, each exit status as documented")
 
 
 #: paths.scaled_trace: nodes (in gaps and bands alike: a trace is a trace), one beyond 2**500 per site product
