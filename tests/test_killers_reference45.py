@@ -190,16 +190,17 @@ def test_zone_out_sign_is_equivalent():
 
 
 @pytest.mark.parametrize("N", [2, 3])
-def test_flow_coefficients_mu_sign_is_equivalent(N):
-    # spectral:67 (seed 4): the normalisation of a negative mu (mu, b -> -mu, -b) taken for a positive mu instead:
-    # flow_coefficients_mp passes the pair on to symbt.numeric.flow_coefficients, which documents and computes
-    # c(-mu, b) = c(mu, -b) itself (the reversed interval of one tanh-sinh rule); bit for bit for both signs
-    bad = planted(spectral.flow_coefficients_mp, "if mu < 0:", "if mu > 0:")
+@pytest.mark.parametrize("test", ["mu > 0", "mu < 1"])     # seed 4's spectral:67, seed 15's (the constant)
+def test_flow_coefficients_mu_sign_is_equivalent(N, test):
+    # spectral:67 (seed 4): the normalisation of a negative mu (mu, b -> -mu, -b) taken for a positive mu instead
+    # (seed 15: for every mu < 1): flow_coefficients_mp passes the pair on to symbt.numeric.flow_coefficients, which
+    # documents and computes c(-mu, b) = c(mu, -b) itself (the reversed interval of one tanh-sinh rule); bit for bit
+    bad = planted(spectral.flow_coefficients_mp, "if mu < 0:", f"if {test}:")
     rng = random.Random(N)
     with mp.workdps(30):
         p = [mp.mpf(f"{rng.uniform(-0.5, 0.5):.6f}") for _ in range(N)]
         q = [mp.mpf(f"{rng.uniform(-0.5, 0.5):.6f}") for _ in range(N)]
-        for mu in (mp.mpf("0.2"), mp.mpf("-0.2")):
+        for mu in (mp.mpf("0.2"), mp.mpf("-0.2"), mp.mpf("0.75")):
             for b in (1, -1):
                 assert bad(p, q, mp.mpf(6), mu, b) == spectral.flow_coefficients_mp(p, q, mp.mpf(6), mu, b)
 

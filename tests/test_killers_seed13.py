@@ -15,7 +15,7 @@ CLAIMS = ["paths.dq_edge.n3", "paths.side_by_side.n3", "library.guard_far_trace"
           "library.zullo_registry", "paths.jacobian_dual.n3", "library.codegen_check", "paths.scaled_trace.n4",
           "paths.scaled_trace.n5", "paths.band_edge.n3", "paths.existence_iv.n3", "shipped.orbit.n3",
           "library.addition", "library.state_ranges", "paths.complex.n3", "paths.transfer_gradient.n4",
-          "paths.transfer_gradient.n5", "paths.mixed_block.n3"]
+          "paths.transfer_gradient.n5", "paths.mixed_block.n3", "shipped.loop_integrand.n5", "checker.screen_relations"]
 
 
 def fails(cid: str, *, crash: bool = False) -> bool:
@@ -521,3 +521,55 @@ def test_range_test_at_two_to_the_500(monkeypatch):
         condition._product_on_floats, "if big < 2.0 ** 500 and math.isfinite(big):",
         "if big <= 2.0 ** 500 and math.isfinite(big):"))
     assert fails("paths.abs_products.n2")
+
+
+def test_guard_from_the_larger_trace_in_modulus(monkeypatch):
+    # seed 15's literal:278 (`abs(t1)` -> `t1`): a large negative trace at lam1 counted as small
+    from symbt.reference import literal
+
+    monkeypatch.setattr(literal, "reference_step", planted(
+        literal.reference_step, "big = max(abs(t1), abs(t2), mp.mpf(10))", "big = max(t1, abs(t2), mp.mpf(10))"))
+    assert fails("library.guard_far_trace")
+
+
+def test_relation_of_degree_zero_refused_by_its_degree(monkeypatch):
+    # seed 15's screen:119 (`1 <= degree` -> `0 <= degree`): a relation without its symbol taken to the generic roots
+    # of degree 0 -- still refused, but as unsolvable, not for its degree
+    from symbt.proof import screen as screen_module
+
+    monkeypatch.setattr(screen_module, "_roots", planted(screen_module._roots, "not 1 <= poly.degree()",
+                                                         "not 0 <= poly.degree()"))
+    assert fails("checker.screen_relations")
+
+
+def test_arb_trace_sign_at_a_zero_midpoint_is_equivalent():
+    # seed 15's runners:129 (`tg = t.mid() >= 0` -> `> 0`): they differ only at a trace ball whose midpoint is 0, and
+    # _slopes raises NoRealMapError before it reads tg whenever disc = (t - 2)(t + 2) has a midpoint <= 0: Arb's
+    # product of [-2 +- R] and [2 +- R] has the midpoint -4 (the product of the midpoints) for every radius R, so
+    # a zero midpoint never reaches the line.  Checked on the source (the raise precedes the read) and on balls
+    import inspect
+
+    flint = pytest.importorskip("flint")
+    from symbt.numeric.multiprec import runners
+
+    src = inspect.getsource(runners._slopes)
+    assert src.index("if not disc.mid() > 0:") < src.index("raise NoRealMapError") < src.index("tg = t.mid() >= 0")
+    for rad in ("0", "1e-30", "0.5", "3", "1e10"):
+        t = flint.arb(0, rad)
+        disc = (t - 2.0) * (t + 2.0)
+        assert not disc.mid() > 0
+
+
+def test_loop_form_integrand_weight(monkeypatch):
+    # seed 15's codegen.kernels:89 (`1 / sqrt(disc)` -> `0 / sqrt(disc)`): the loop form's c_k integrand identically 0
+    from symbt.claims import shipped_emitted
+    from symbt.codegen import emit_loop, kernels
+
+    mutant = planted(kernels.kernels.__wrapped__, 'out["inv_sqrt_disc"] = 1 / sp.sqrt(disc(t))',
+                     'out["inv_sqrt_disc"] = 0 / sp.sqrt(disc(t))')
+    monkeypatch.setattr(emit_loop, "kernels", mutant)       # what the loop form's printed core reads
+    shipped_emitted.emitted_module.cache_clear()
+    try:
+        assert fails("shipped.loop_integrand.n5")
+    finally:
+        shipped_emitted.emitted_module.cache_clear()

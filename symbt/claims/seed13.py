@@ -1,10 +1,11 @@
 r"""Lines the claims did not reach (issue 21, seeds 12-14: ``literal:276``, ``codegen.cli:81``/``:99``/``:125``,
-``coefficients:132``, ``existence:73``, ``field:71``, ``kernels_block:257``).
+``coefficients:132``, ``existence:73``, ``field:71``, ``kernels_block:257``, ``codegen.kernels:89``).
 
 * ``library.guard_far_trace`` -- :func:`symbt.reference.literal.reference_step` chooses its guard digits from the
   larger of ``|tr L(lam1)|``, ``|tr L(lam2)|`` (the forward transport loses about twice their ``log10``).  At the
   paper-like state ``p = (0.3, -0.2, 0.1)``, ``q = (0, 0.5, 0.2)`` with ``lam1 = -2.5`` just below the lowest band
-  (``|tr| ~ 6``) and ``lam2 = -1e13`` or ``-1e20`` in the same outer gap (``|tr L(lam2)| ~ |lam2|^3``), both
+  (``|tr| ~ 6``) and ``lam2 = -1e13`` or ``-1e20`` in the same outer gap (``|tr L(lam2)| ~ |lam2|^3``; and the
+  other way round, ``lam1 = -1e20``, whose trace ``~ -1e60`` is the larger in modulus and negative), both
   branches, 30 digits: the step with ``verify=True`` (the same computation with 25 more digits agrees to 30
   digits), and within ``1e-28`` of ``bt_step``'s mpmath backend at 60 digits (the scaled formulation of
   ``symbt.numeric``, another route) relative to ``1 + |x|``.  A guard sized from ``lam1`` alone loses every digit
@@ -23,6 +24,9 @@ r"""Lines the claims did not reach (issue 21, seeds 12-14: ``literal:276``, ``co
 * ``paths.transfer_gradient.n{4,5}`` -- :func:`symbt.numeric.flow.field.transfer_gradient` on mpf entries against
   central differences of the 2x2 product at 70 digits (its prefix's last row and its suffix's middle are read only
   from four sites on).
+* ``shipped.loop_integrand.n5`` -- the loop form's ``ck_integrand`` (float64 and mpmath; only ``bt_step`` of the loop
+  form was checked by a default claim) against ``lam^k / sqrt(tr^2 - 4)`` with the literal trace, within the
+  product's condition carried through the square root.
 * ``paths.mixed_block.n3`` -- the block kernel's per-member condition tracking: ``paths.threshold``'s scans of the
   paper's state and of its mirror interleaved as one block, every member equal to its own in its scan's block and
   in a block of one; the paper's scan with each member beside a state that fails before the read-out (the sharp
@@ -41,13 +45,14 @@ from .base import Outcome, claim, failed
 
 #: library.guard_far_trace: the state, lam1 below the lowest band, lam2 far in the same outer gap
 GUARD_STATE = (("0.3", "-0.2", "0.1"), ("0", "0.5", "0.2"))
-GUARD_LAMBDAS = (("-2.5", "-1e13"), ("-2.5", "-1e20"))
+GUARD_LAMBDAS = (("-2.5", "-1e13"), ("-2.5", "-1e20"), ("-1e20", "-2.5"))       # (lam1, lam2); the last mu < 0
 
 
 @claim("library.guard_far_trace", equation="checker", scene="library",
        where="symbt/reference/literal.py: reference_step's guard digits (from both traces)",
        statement="reference_step (30 digits, verify=True) at p = (0.3, -0.2, 0.1), q = (0, 0.5, 0.2), lam1 = -2.5, "
-                 "lam2 = -1e13 and -1e20 (|tr L(lam2)| ~ |lam2|^3 far above |tr L(lam1)| ~ 6), both branches: "
+                 "lam2 = -1e13 and -1e20 (|tr L(lam2)| ~ |lam2|^3 far above |tr L(lam1)| ~ 6), and the other way "
+                 "round (lam1 = -1e20: tr L(lam1) ~ -1e60, the larger trace negative), both branches: "
                  "converged, and within 1e-28 (1 + |x|) of bt_step's mpmath backend at 60 digits")
 def guard_far_trace() -> Outcome:
     from ..numeric import bt_step
@@ -335,3 +340,52 @@ def mixed_block(N: int) -> Outcome:
         return failed("numeric: an interleaved block vs each scan's own block", detail=detail)
     return Outcome("verified", "numeric: an interleaved block vs each scan's own block (consistency)",
                    evidence="sampled", detail=detail, printed="every member = its own, statuses included")
+
+
+#: shipped.loop_integrand: a moderate N = 5 state and spectral parameters in its outer gaps (|tr| >= 3 there)
+LOOP_STATE = ((0.3, -0.2, 0.1, 0.5, -0.4), (0.0, 0.5, 0.2, -0.3, 0.1))
+LOOP_LAMS = (6.0, -7.0, 3.5, -4.25, 11.0)
+
+
+@claim("shipped.loop_integrand", equation="toda{N}.ck_integrand", source_equation="eqdisc", scene="shipped",
+       sizes=(5,), where="symbt codegen --n {N}: toda{N}.py (loop form): ck_integrand, ck_integrand_mp",
+       statement="the loop form's c_k integrand (N={N}; float64 and mpmath at 30 digits) at 5 spectral parameters "
+                 "in the outer gaps = lam^k / sqrt(tr^2 - 4), tr the literal trace at 40 digits: float64 within "
+                 "(t^2/(t^2 - 4) (4N + 1) |tr|_abs/|tr| + N + 3) u relative (the product's condition carried "
+                 "through the square root, then k products), mpmath within 1e-25")
+def loop_integrand(N: int) -> Outcome:
+    from ..reference.literal import literal_trace
+    from .shipped_emitted import emitted_module
+
+    mod = emitted_module(N)
+    p, q = LOOP_STATE
+    u = mp.mpf(2) ** -53
+    bad, worst = [], mp.mpf(0)
+    got64 = np.asarray(mod.ck_integrand(np.array(LOOP_LAMS), np.array(p), np.array(q)))
+    with mp.workdps(30):
+        P, Q = [mp.mpf(v) for v in p], [mp.mpf(v) for v in q]
+        got_mp = [mod.ck_integrand_mp(mp.mpf(lam), P, Q) for lam in LOOP_LAMS]
+    with mp.workdps(40):
+        for i, lam in enumerate(LOOP_LAMS):
+            t = literal_trace(lam, p, q)
+            A, B, C, D = abs(mp.mpf(lam) + p[0]), mp.mpf(1), mp.exp(mp.mpf(q[1]) - q[0]), mp.mpf(0)
+            for j in range(1, N):               # |tr|_abs: every term of the 2x2 product positive
+                a, rj = abs(mp.mpf(lam) + p[j]), mp.exp(mp.mpf(q[(j + 1) % N]) - q[j])
+                A, B, C, D = a * A + C, a * B + D, rj * A, rj * B
+            cond = t * t / (t * t - 4) * (4 * N + 1) * (A + D) / abs(t) + N + 3
+            w = 1 / mp.sqrt(t * t - 4)
+            for k in range(N):
+                ref = mp.mpf(lam) ** k * w
+                err = abs(mp.mpf(float(got64[i, k])) - ref) / abs(ref)
+                worst = max(worst, err / (cond * u))
+                if not err <= cond * u:
+                    bad.append(f"float64 lam = {lam}, k = {k}: {mp.nstr(err, 3)} relative "
+                               f"(bound {mp.nstr(cond * u, 3)})")
+                if not abs(got_mp[i][k] - ref) <= mp.mpf(10) ** -25 * abs(ref):
+                    bad.append(f"mpmath lam = {lam}, k = {k}: {mp.nstr(got_mp[i][k], 12)} vs {mp.nstr(ref, 12)}")
+    detail = f"{len(LOOP_LAMS)} parameters x {N} moments; worst float64 error {mp.nstr(worst, 3)} of its bound."
+    if bad:
+        return failed("the loop form's c_k integrand vs the literal trace", detail="; ".join(bad[:4]) + ". " + detail)
+    return Outcome("verified", "numeric: the emitted loop form's ck_integrand vs lam^k/sqrt(tr^2 - 4), tr literal "
+                   "(40 digits)", evidence="sampled", n_scope=[N], detail=detail, printed="within the product's "
+                   "condition")
