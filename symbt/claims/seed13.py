@@ -41,7 +41,8 @@ import numpy as np
 
 from ._facts import Facts
 from ._facts import facts_failed as _bad
-from .base import Outcome, claim, failed
+from ._shipped import scale_parts, scaled
+from .base import Outcome, Parts, claim, failed
 
 #: library.guard_far_trace: the state, lam1 below the lowest band, lam2 far in the same outer gap
 GUARD_STATE = (("0.3", "-0.2", "0.1"), ("0", "0.5", "0.2"))
@@ -348,12 +349,13 @@ LOOP_LAMS = (6.0, -7.0, 3.5, -4.25, 11.0)
 
 
 @claim("shipped.loop_integrand", equation="toda{N}.ck_integrand", source_equation="eqdisc", scene="shipped",
-       sizes=(5,), where="symbt codegen --n {N}: toda{N}.py (loop form): ck_integrand, ck_integrand_mp",
+       sizes=(5,), parts=scale_parts,
+       where="symbt codegen --n {N}: toda{N}.py (loop form): ck_integrand, ck_integrand_mp",
        statement="the loop form's c_k integrand (N={N}; float64 and mpmath at 30 digits) at 5 spectral parameters "
                  "in the outer gaps = lam^k / sqrt(tr^2 - 4), tr the literal trace at 40 digits: float64 within "
                  "(t^2/(t^2 - 4) (4N + 1) |tr|_abs/|tr| + N + 3) u relative (the product's condition carried "
                  "through the square root, then k products), mpmath within 1e-25")
-def loop_integrand(N: int) -> Outcome:
+def loop_integrand(N: int, parts: Parts) -> Outcome:
     from ..reference.literal import literal_trace
     from .shipped_emitted import emitted_module
 
@@ -361,10 +363,11 @@ def loop_integrand(N: int) -> Outcome:
     p, q = LOOP_STATE
     u = mp.mpf(2) ** -53
     bad, worst = [], mp.mpf(0)
-    got64 = np.asarray(mod.ck_integrand(np.array(LOOP_LAMS), np.array(p), np.array(q)))
+    s = parts.printed["scale"]                      # route output x scale = reference (scale = 1)
+    got64 = np.asarray(mod.ck_integrand(np.array(LOOP_LAMS), np.array(p), np.array(q))) * s
     with mp.workdps(30):
         P, Q = [mp.mpf(v) for v in p], [mp.mpf(v) for v in q]
-        got_mp = [mod.ck_integrand_mp(mp.mpf(lam), P, Q) for lam in LOOP_LAMS]
+        got_mp = [scaled(mod.ck_integrand_mp(mp.mpf(lam), P, Q), s) for lam in LOOP_LAMS]
     with mp.workdps(40):
         for i, lam in enumerate(LOOP_LAMS):
             t = literal_trace(lam, p, q)
