@@ -22,8 +22,8 @@ r"""Lines the claims did not reach (issue 21, seeds 12-14: ``literal:276``, ``co
   band edge (``|tr| = 2``): the interval verdict, ``bt_step`` (python, numpy, one state and a batch, mpmath) and the
   emitted ``toda3.bt_step`` all refuse, as the polynomial decides in exact rationals.
 * ``paths.transfer_gradient.n{4,5}`` -- :func:`symbt.numeric.flow.field.transfer_gradient` on mpf entries against
-  central differences of the 2x2 product at 70 digits (its prefix's last row and its suffix's middle are read only
-  from four sites on).
+  the exact prefix and suffix products at 70 digits (``shipped.field``'s reference; its prefix's last row and its
+  suffix's middle are read only from four sites on).
 * ``shipped.loop_integrand.n5`` -- the loop form's ``ck_integrand`` (float64 and mpmath; only ``bt_step`` of the loop
   form was checked by a default claim) against ``lam^k / sqrt(tr^2 - 4)`` with the literal trace, within the
   product's condition carried through the square root.
@@ -34,6 +34,8 @@ r"""Lines the claims did not reach (issue 21, seeds 12-14: ``literal:276``, ``co
 """
 from __future__ import annotations
 
+import math
+from collections.abc import Sequence
 from typing import Any
 
 import mpmath as mp
@@ -43,6 +45,7 @@ from ._facts import Facts
 from ._facts import facts_failed as _bad
 from ._shipped import scale_parts, scaled
 from .base import Outcome, Parts, claim, failed
+from .shipped_condition_file import exact_products
 
 #: library.guard_far_trace: the state, lam1 below the lowest band, lam2 far in the same outer gap
 GUARD_STATE = (("0.3", "-0.2", "0.1"), ("0", "0.5", "0.2"))
@@ -131,6 +134,16 @@ def codegen_check() -> Outcome:
                           evidence="proof", n_scope=[2], detail=f"{len(got)} runs, each exit status as documented")
 
 
+def _abs_trace(lam: float, p: Sequence[float], q: Sequence[float]) -> mp.mpf:
+    """``|tr|_abs``: the trace of the 2x2 product of the entrywise absolute values (every term of ``tr L(lam)``
+    positive: the product's condition), exactly by ``exact_products`` for the doubles ``a_j = lam + p_j``,
+    ``r_j = exp(q_{j+1} - q_j)`` (their rounding moves it by a few ulps: a bound's scale, not a reference)."""
+    N = len(p)
+    _, T = exact_products(tuple(lam + p[j] for j in range(N)), tuple(math.exp(q[(j + 1) % N] - q[j]) for j in range(N)))
+    t = T[0] + T[3]
+    return mp.mpf(t.numerator) / t.denominator
+
+
 #: paths.scaled_trace: nodes (in gaps and bands alike: a trace is a trace), one beyond 2**500 per site product
 TRACE_NODES = (-7.5, -1.25, 0.375, 2.0, 6.0, 1e40, -3e60, 1e120)
 #: the states' p and q per size (moderate: the product's condition is that of its terms)
@@ -163,11 +176,7 @@ def scaled_trace_claim(N: int) -> Outcome:
             with mp.workdps(60):
                 again = literal_trace(lam, p, q)
             # |tr|_abs: the 2x2 product with |a_j| and the r_j entered with a plus sign (every term of tr positive)
-            A, B, C, D = abs(mp.mpf(lam) + p[0]), mp.mpf(1), mp.exp(mp.mpf(q[1]) - q[0]), mp.mpf(0)
-            for j in range(1, N):
-                a, rj = abs(mp.mpf(lam) + p[j]), mp.exp(mp.mpf(q[(j + 1) % N]) - q[j])
-                A, B, C, D = a * A + C, a * B + D, rj * A, rj * B
-            size = A + D
+            size = _abs_trace(lam, p, q)
             if not abs(again - ref) <= mp.mpf(10) ** -35 * size:
                 bad.append(f"lam = {lam:g}: the literal trace at 40 and 60 digits differ")
             err = abs(mp.ldexp(mp.mpf(float(T[k])), int(e[k])) - ref) / size
@@ -257,40 +266,31 @@ GRADIENT_CASES = {4: ((2.5, -1.25, 0.75, 3.0), (0.5, 1.75, 0.25, 2.0), 1.0),
        where="symbt/numeric/flow/field.py: transfer_gradient (the prefix and suffix products of FlowField)",
        statement="transfer_gradient at N={N} (at N <= 3 the prefix's last r-row and the suffix's middle are never "
                  "read), mpf entries at 50 digits: d tr/da_j and d tr/dr_j of tr(m_N ... m_1), "
-                 "m_j = [[a_j, -inv_s], [r_j, 0]], within 1e-35 (1 + |g|) of central differences (step 1e-20) of "
-                 "the product written out at 70 digits")
+                 "m_j = [[a_j, -inv_s], [r_j, 0]], within 1e-35 (1 + |g|) of the exact prefix and suffix products at "
+                 "70 digits (shipped.field's reference)")
 def transfer_gradient_claim(N: int) -> Outcome:
     from ..numeric.flow.field import transfer_gradient
+    from .shipped_field import trace_gradient
 
     a0, r0, s0 = GRADIENT_CASES[N]
-
-    def trace(a: list, r: list) -> mp.mpf:
-        A, B, C, D = mp.mpf(1), mp.mpf(0), mp.mpf(0), mp.mpf(1)
-        for aj, rj in zip(a, r):                 # m_j (A B; C D) with m_j = [[a_j, -inv_s], [r_j, 0]]
-            A, B, C, D = aj * A - s0 * C, aj * B - s0 * D, rj * A, rj * B
-        return A + D
-
     bad, worst = [], mp.mpf(0)
     with mp.workdps(50):
         a, r = [mp.mpf(v) for v in a0], [mp.mpf(v) for v in r0]
         da, dr = transfer_gradient(a, r, mp.mpf(s0))
-    with mp.workdps(70):
-        h = mp.mpf(10) ** -20
-        for name, got, which in (("da", da, 0), ("dr", dr, 1)):
+    with mp.workdps(70):                 # the exact prefix and suffix products (lam = 0: a_j = p_j)
+        ref = trace_gradient(mp.mpf(0), [mp.mpf(v) for v in a0], [mp.mpf(v) for v in r0], False, mp.mpf(s0))
+        for k, (name, got) in enumerate((("da", da), ("dr", dr))):
             for j in range(N):
-                up = [list(map(mp.mpf, a0)), list(map(mp.mpf, r0))]
-                dn = [list(map(mp.mpf, a0)), list(map(mp.mpf, r0))]
-                up[which][j] += h
-                dn[which][j] -= h
-                ref = (trace(*up) - trace(*dn)) / (2 * h)
-                err = abs(got[j] - ref) / (1 + abs(ref))
+                want = ref[k * N + j]
+                err = abs(got[j] - want) / (1 + abs(want))
                 worst = max(worst, err)
                 if not err <= mp.mpf(10) ** -35:
-                    bad.append(f"{name}[{j}] = {mp.nstr(got[j], 12)}, central difference {mp.nstr(ref, 12)}")
+                    bad.append(f"{name}[{j}] = {mp.nstr(got[j], 12)}, the exact product's {mp.nstr(want, 12)}")
     detail = f"{2 * N} derivatives; worst {mp.nstr(worst, 3)} relative to 1 + |g|."
     if bad:
-        return failed("numeric: transfer_gradient vs central differences", detail="; ".join(bad[:6]) + ". " + detail)
-    return Outcome("verified", "numeric: transfer_gradient vs central differences of the product (70 digits)",
+        return failed("numeric: transfer_gradient vs the exact products' gradient",
+                      detail="; ".join(bad[:6]) + ". " + detail)
+    return Outcome("verified", "numeric: transfer_gradient vs the exact products' gradient (70 digits)",
                    evidence="sampled", detail=detail, printed="within 1e-35 (1 + |g|)")
 
 
@@ -371,11 +371,7 @@ def loop_integrand(N: int, parts: Parts) -> Outcome:
     with mp.workdps(40):
         for i, lam in enumerate(LOOP_LAMS):
             t = literal_trace(lam, p, q)
-            A, B, C, D = abs(mp.mpf(lam) + p[0]), mp.mpf(1), mp.exp(mp.mpf(q[1]) - q[0]), mp.mpf(0)
-            for j in range(1, N):               # |tr|_abs: every term of the 2x2 product positive
-                a, rj = abs(mp.mpf(lam) + p[j]), mp.exp(mp.mpf(q[(j + 1) % N]) - q[j])
-                A, B, C, D = a * A + C, a * B + D, rj * A, rj * B
-            cond = t * t / (t * t - 4) * (4 * N + 1) * (A + D) / abs(t) + N + 3
+            cond = t * t / (t * t - 4) * (4 * N + 1) * _abs_trace(lam, p, q) / abs(t) + N + 3
             w = 1 / mp.sqrt(t * t - 4)
             for k in range(N):
                 ref = mp.mpf(lam) ** k * w

@@ -43,12 +43,12 @@ FIELD_DPS, FIELD_INFORMATIVE = 350, 1e-8
 EPS = 2.0 ** -52
 
 
-def trace_gradient(lam: mp.mpf, p: list, r: list, absolute: bool) -> list:
-    """``(d tr/dp_j, d tr/dr_j)`` of ``tr(m_N ... m_1)``, ``m_j = [[lam + p_j, -1], [r_j, 0]]`` (exact products);
-    ``absolute``: of the product of the entrywise absolute values."""
+def trace_gradient(lam: mp.mpf, p: list, r: list, absolute: bool, inv_s: Any = 1) -> list:
+    """``(d tr/dp_j, d tr/dr_j)`` of ``tr(m_N ... m_1)``, ``m_j = [[lam + p_j, -inv_s], [r_j, 0]]`` (exact
+    products); ``absolute``: of the product of the entrywise absolute values."""
     N = len(p)
     f = (lambda x: abs(x)) if absolute else (lambda x: x)
-    m = [mp.matrix([[f(lam + p[j]), f(mp.mpf(-1))], [r[j], 0]]) for j in range(N)]
+    m = [mp.matrix([[f(lam + p[j]), f(-mp.mpf(inv_s))], [r[j], 0]]) for j in range(N)]
     pre = [mp.eye(2)]
     for j in range(N):
         pre.append(m[j] * pre[-1])                 # pre[j] = m_{j-1} ... m_0
