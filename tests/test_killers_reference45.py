@@ -190,11 +190,12 @@ def test_zone_out_sign_is_equivalent():
 
 
 @pytest.mark.parametrize("N", [2, 3])
-@pytest.mark.parametrize("test", ["mu > 0", "mu < 1"])     # seed 4's spectral:67, seed 15's (the constant)
+@pytest.mark.parametrize("test", ["mu > 0", "mu < 1", "not (mu < 0)"])     # spectral:67 of seeds 4, 15, 16
 def test_flow_coefficients_mu_sign_is_equivalent(N, test):
     # spectral:67 (seed 4): the normalisation of a negative mu (mu, b -> -mu, -b) taken for a positive mu instead
-    # (seed 15: for every mu < 1): flow_coefficients_mp passes the pair on to symbt.numeric.flow_coefficients, which
-    # documents and computes c(-mu, b) = c(mu, -b) itself (the reversed interval of one tanh-sinh rule); bit for bit
+    # (seed 15: for every mu < 1; seed 16: for every mu >= 0): flow_coefficients_mp passes the pair on to
+    # symbt.numeric.flow_coefficients, which documents and computes c(-mu, b) = c(mu, -b) itself (the reversed
+    # interval of one tanh-sinh rule); bit for bit
     bad = planted(spectral.flow_coefficients_mp, "if mu < 0:", f"if {test}:")
     rng = random.Random(N)
     with mp.workdps(30):

@@ -53,6 +53,7 @@ CLAIM_MODULES = (
     "shipped_seed10",
     "seed11",
     "seed13",
+    "seed16",
     "shipped_condition_file",
     "shipped_core",
     "shipped_field",

@@ -108,7 +108,8 @@ def screen_controls() -> Outcome:
 
 @claim("checker.exact", equation="checker", scene="checker",
        where="symbt.proof.decide, exact layer; symbt.proof.Verdict.sampled",
-       statement="1/(x^2+1) = 1/(x^2+1) + 1e-60 is false by proof, noted as numerically tiny; a sampled verdict's "
+       statement="1/(x^2+1) = 1/(x^2+1) + 1e-60 is false by proof, noted as numerically tiny; so is + 1e-46 (below "
+                 "the screen's tolerance 1e-42 at 50 digits), and + 1e-30 is not noted tiny; a sampled verdict's "
                  "digits are -log10(residual) to one decimal, capped at the working precision; a negative residual "
                  "does not hold")
 def exact_controls() -> Outcome:
@@ -118,6 +119,13 @@ def exact_controls() -> Outcome:
         return failed(d.method, residual=d.residual,
                       detail=f"1/(x^2+1) vs 1/(x^2+1) + 1e-60: holds={d.holds}, evidence={d.evidence}, "
                              f"definite={d.definite}, note={d.note!r} (want: false by proof, noted tiny)")
+    # "tiny" is the screen's own tolerance 10^-(digits - 8) (1e-42 at the default 50 digits), from both sides
+    for e, tiny in ((46, True), (30, False)):
+        d2 = decide(f, f + sp.Integer(10) ** -e)
+        if d2.holds or not d2.definite or ("numerically tiny" in d2.note) != tiny:
+            return failed(d2.method, residual=d2.residual,
+                          detail=f"1/(x^2+1) vs 1/(x^2+1) + 1e-{e}: holds={d2.holds}, definite={d2.definite}, "
+                                 f"note={d2.note!r} (want: false by proof, {'' if tiny else 'not '}noted tiny)")
     v = Verdict.sampled(1e-60, tol=1e-20, method="control", dps=30)
     if not v.holds or v.digits != 30:
         return failed("Verdict.sampled", detail=f"residual 1e-60 at 30 digits: digits={v.digits} (want 30)")

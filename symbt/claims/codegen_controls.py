@@ -97,7 +97,8 @@ def _planted_measure(pt: dict[str, Any]) -> Any:
                  "1e-40, names output 1 and its mpmath value at the point, and reports worst_mp "
                  "within a relative 1e-6 of 1e-40 |f_1|/S_1 (at the worst "
                  "of three points and at each alone); xy_vs_printed reports 1e-40 for y off by that where y < 0; "
-                 "interpret's Quotient(-3, b) is -3, -3/2, -inf at b = 1, 2, 0; phi_grad_vs_fd on "
+                 "interpret's Quotient(-3, b) is -3, -3/2, -inf at b = 1, 2, 0, its Max(-3, 2) 2 and Min(-3, 2) "
+                 "-3; phi_grad_vs_fd on "
                  "a linear Phi of slope 1/4 whose gradient is off by 1e-30 returns 1e-30 to within 1e-40")
 def codegen_metrics() -> Outcome:
     from ..codegen import verify
@@ -150,6 +151,11 @@ def codegen_metrics() -> Outcome:
     quot = [verify.interpret(Quotient(a_, b_), {a_: mp.mpf(-3), b_: mp.mpf(v)}, {}) for v in (1, 2, 0)]
     if quot != [-3, mp.mpf(-3) / 2, -mp.inf]:
         problems.append(f"interpret(Quotient(-3, b)) at b = 1, 2, 0: {quot}")
+    # Max and Min (the guards' kt is a Max; a user's expression may hold either)
+    env = {a_: mp.mpf(-3), b_: mp.mpf(2)}
+    mm = [verify.interpret(f(a_, b_, evaluate=False), env, {}) for f in (sp.Max, sp.Min)]
+    if mm != [2, -3]:
+        problems.append(f"interpret(Max(-3, 2)), interpret(Min(-3, 2)): {mm}")
     r = verify.phi_grad_vs_fd(cast(ModuleType, _probe_phi(2)), 2)
     if not abs(r - GRAD_OFF) <= mp.mpf(10) ** -40:
         problems.append(f"phi_grad_vs_fd on a gradient off by 1e-30 (slopes 1/4): {mp.nstr(r, 5)}, want 1e-30 "

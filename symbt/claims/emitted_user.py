@@ -24,7 +24,8 @@ codegen``, docs/mutation.md).
      present, and every cell -- both signs of ``x - y`` (the ``Piecewise``), both signs ``b`` -- sampled.
 
   A domain without the scalar ``s`` is refused with an :class:`~symbt.codegen.user.EmitError` naming
-  "the argument s".
+  "the argument s"; text in place of an expression (``"x + 1"``, a list holding ``"x"``) is refused as "not a
+  SymPy expression" (not parsed), and ``x - oo``, ``x + oo`` as a "non-finite constant" of their sign.
 * ``library.emit_c_errors`` -- :func:`~symbt.codegen.user.check.load_c` on a C file that does not compile raises
   ``RuntimeError`` carrying the compiler's first diagnostic line (which names the file), and loads a file
   that does (skipped without a C compiler).
@@ -116,6 +117,16 @@ def emit_typed() -> Outcome:
     except EmitError as exc:
         if "lacks the argument s" not in str(exc):
             bad.append(f"a domain without s: the message does not name the argument s: {exc}")
+    xs = sp.Symbol("x", real=True)
+    # text is not parsed (sympify's strict mode); an infinity of either sign is no finite constant
+    for given, words in (("x + 1", "not a SymPy expression"), (["x", xs], "not a SymPy expression"),
+                         (xs - sp.oo, "non-finite constant -oo"), (xs + sp.oo, "non-finite constant oo")):
+        try:
+            emit("refused_probe", given, args=(xs,), module=MODULE, register=False)
+            bad.append(f"{given!r} was accepted as an expression")
+        except EmitError as exc:
+            if words not in str(exc):
+                bad.append(f"{given!r}: the message does not say {words!r}: {exc}")
     worst = {"numpy": mp.mpf(0), "mpmath": mp.mpf(0), "c": mp.mpf(0)}
     cc = compiler()
     flavours = ("numpy", "mpmath", "c") if cc is not None else ("numpy", "mpmath")

@@ -83,15 +83,31 @@ def cancel_mp(x, y):
 '''
 
 
+def _c_warnings(source: Path) -> str:
+    """The compiler's diagnostics for ``source`` under ``-std=c99 -Wall -Wextra`` ('' if none)."""
+    import subprocess
+
+    from ..codegen.user.check import compiler
+
+    cc = compiler()
+    assert cc is not None
+    r = subprocess.run([cc, "-std=c99", "-Wall", "-Wextra", "-c", "-I", str(source.parent), "-o", "/dev/null",
+                        str(source)], capture_output=True, text=True, timeout=120)
+    return (r.stderr.strip().splitlines() or [""])[0] if (r.returncode or r.stderr.strip()) else ""
+
+
 @claim("library.emit", equation="checker", scene="library",
        where="symbt.emit -> symbt.codegen.user (generate, render, check.compare): the user code-generation path",
        statement="functions declared with symbt.emit and emitted into a directory agree with their SymPy source "
                  "(compare, numpy and mpmath; a file off by 1e-9 is rejected), with printed numbers (softplus(0) = "
                  "ln 2) and with independent formulas (sinh, cosh by exp; Max, Min; R^T R = x^2 I); a stale file "
-                 "is replaced")
+                 "is replaced; the C target (where a compiler is present) compiles without a warning under -Wall "
+                 "-Wextra, with sgn() exactly where a sign is printed")
 def emitted_user_functions() -> Outcome:
     from ..codegen.user.check import compare, compiler, load_python
+    from ..codegen.user.declare import emit
     from ..codegen.user.files import generate, render
+    from ..proof import Domain
 
     ems = _declarations()
     bad: list[str] = []
@@ -125,7 +141,22 @@ def emitted_user_functions() -> Outcome:
                     bad.append("compare(cancel, c) rejects the emitted C")
             except RuntimeError as exc:     # load_c: it does not compile
                 bad.append(f"the emitted C: {exc}")
-            c_note = "the C target compiled; compare accepts cancel through it"
+            # warning-free under -Wall -Wextra: no helper the functions do not call -- sgn() only where a sign is
+            # printed (then it must be there, and right)
+            warned = _c_warnings(out / f"{MODULE}.c")
+            if warned or "sgn(" in (out / f"{MODULE}.c").read_text(encoding="utf-8"):
+                bad.append(f"the emitted C without a sign: sgn() present or a warning: {warned}")
+            x, y = sp.symbols("x y", real=True)
+            signed = emit("signed", sp.sign(x) * y + x, args=(x, y), module=MODULE,
+                          domain=Domain({"x": (-3, 3), "y": (-2, 2)}, seed=14), register=False)
+            generate(ems + [signed], out, out, target="c")
+            warned = _c_warnings(out / f"{MODULE}.c")
+            if warned or "sgn(" not in (out / f"{MODULE}.c").read_text(encoding="utf-8"):
+                bad.append(f"the emitted C with a sign: sgn() absent or a warning: {warned}")
+            elif not compare(signed, out / f"{MODULE}.c", "c", per_cell=6).printed_holds_everywhere():
+                bad.append("compare(signed, c) rejects the emitted C")
+            c_note = ("the C target compiled without a warning (-Wall -Wextra; sgn() only with a sign); compare "
+                      "accepts cancel and sign(x) y + x through it")
         # 2. printed numbers
         if float(mod.half(0.5, 1.5)) != -0.25:      # 1/4 + 1/2 - 1, exact in binary
             bad.append(f"half(0.5, 1.5) = {float(mod.half(0.5, 1.5))!r}, not -0.25")

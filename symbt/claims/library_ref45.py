@@ -76,7 +76,7 @@ SITE_LISTS = ("x", "y", "z", "eta", "E_new")
                  "N = 2, 3) on its real and its complex route (mpc inputs), the two equal to 1e-50 at 220 digits "
                  "(p~, q~ and every info list); reference_step(verify=True) at 20 digits returns without raising "
                  "the step literal_step gives at 220 digits, to 1e-20 relative, on states with traces ~1e3 and "
-                 "~1e45 (its default guard)")
+                 "~1e45 (its default guard), and raises 'not converged' without guard digits at traces ~1e30")
 def reference_verify() -> Outcome:
     bad: list[str] = []
     worst = mp.mpf(0)
@@ -108,6 +108,16 @@ def reference_verify() -> Outcome:
             worst = max(worst, err)
             if len(pt + qt) != 2 * N or not err <= mp.mpf(10) ** (-REF_DPS):
                 bad.append(f"N={N}: reference_step off by {mp.nstr(err, 3)} (relative)")
+    # the check itself: without guard digits the forward transport at traces ~1e30 loses ~60 of 20 digits,
+    # and the repetition at 25 more digits disagrees -- verify=True must say so
+    with mp.workdps(REF_DPS):
+        p3, q3 = ["0.3", "-0.2", "0.1"], ["0", "0.5", "0.2"]
+        try:
+            reference_step(p3, q3, mp.mpf(10) ** 10, mp.mpf(10) ** 9, guard=0, verify=True)
+            bad.append("reference_step(guard=0, verify=True) at traces ~1e30 returned (want: not converged)")
+        except AssertionError as exc:
+            if "not converged" not in str(exc):
+                bad.append(f"reference_step(guard=0, verify=True): {exc}")
     if bad:
         return failed("literal_step at 60 digits", detail="; ".join(bad))
     return Outcome("verified", f"numeric: literal_step at {REF_EXTRA} more digits", evidence="sampled",

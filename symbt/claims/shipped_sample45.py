@@ -108,7 +108,7 @@ KAPPA_ROW_CASES = RENORM_CASES + (((1.0, -2.0), (0.0, 300.0), 3.0), ((0.5, 0.25)
        where="symbt/numeric/core/condition.py: sharp_trace_kappa_rows (the rows' power-of-two rescaling)",
        statement="sharp_trace_kappa_rows on 20 rows (N={N}: paths.renorm_top's states, p = (1, -2), q = (0, 300), "
                  "lam = 3 and p = (1/2, 1/4), q = (0, -300), lam = 1e-200, five times each) equals "
-                 "sharp_trace_kappa row by row, bit for bit")
+                 "sharp_trace_kappa row by row, bit for bit; so do their first sites alone (one site)")
 def kappa_rows(N: int) -> Outcome:
     from ..numeric.core.condition import FEW_ROWS, sharp_trace_kappa, sharp_trace_kappa_rows
 
@@ -118,8 +118,12 @@ def kappa_rows(N: int) -> Outcome:
     L = np.array([c[2] for c in KAPPA_ROW_CASES] * reps, dtype=float)
     got = sharp_trace_kappa_rows(P, R, L, np.zeros(len(L)))
     want = np.array([sharp_trace_kappa(P[i], R[i], float(L[i]), 0.0) for i in range(len(L))])
-    detail = f"{len(L)} rows (FEW_ROWS = {FEW_ROWS}); scalar values {', '.join('%.6g' % v for v in want[:4])}."
-    if not (len(L) > FEW_ROWS and np.array_equal(got, want)):
+    # one site (the product is m_1 alone: no prefix row to copy), the first site of the same rows
+    got1 = sharp_trace_kappa_rows(P[:, :1], R[:, :1], L, np.zeros(len(L)))
+    want1 = np.array([sharp_trace_kappa(P[i, :1], R[i, :1], float(L[i]), 0.0) for i in range(len(L))])
+    detail = (f"{len(L)} rows (FEW_ROWS = {FEW_ROWS}); scalar values {', '.join('%.6g' % v for v in want[:4])}; "
+              f"one site: {', '.join('%.6g' % v for v in want1[:2])}.")
+    if not (len(L) > FEW_ROWS and np.array_equal(got, want) and np.array_equal(got1, want1)):
         return failed("numeric: sharp_trace_kappa_rows vs the scalar sharp_trace_kappa",
                       detail=f"rows {', '.join('%.6g' % v for v in got[:4])}. " + detail)
     return Outcome("verified", "numeric: sharp_trace_kappa_rows vs the scalar sharp_trace_kappa, bit for bit "

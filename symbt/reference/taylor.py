@@ -62,11 +62,11 @@ def _mul_var(poly: Polynomial, i: int) -> Polynomial:
     return out
 
 
-def _add(*polys: Polynomial, signs: Sequence[int] | None = None) -> Polynomial:
-    out: Polynomial = {}
-    for s, P in zip(signs or [1] * len(polys), polys):
-        for e, v in P.items():
-            out[e] = out.get(e, 0) + s * v
+def _sub(P: Polynomial, Q: Polynomial) -> Polynomial:
+    """``P - Q`` (zero terms dropped)."""
+    out = dict(P)
+    for e, v in Q.items():
+        out[e] = out.get(e, 0) - v
     return {e: v for e, v in out.items() if v != 0}
 
 
@@ -79,9 +79,9 @@ def hamilton_equations(N: int, c: Sequence[Coefficient], sign: int = 1) -> list[
     """
     G = _poly_G(N, [sign * ci for ci in c])
     qd = [_d(G, j) for j in range(N)]
-    pd = [_add(_mul_var(_d(G, N + j), N + j), _mul_var(_d(G, N + (j - 1) % N), N + (j - 1) % N), signs=[1, -1])
+    pd = [_sub(_mul_var(_d(G, N + j), N + j), _mul_var(_d(G, N + (j - 1) % N), N + (j - 1) % N))
           for j in range(N)]
-    ad = [_mul_var(_add(qd[(j + 1) % N], qd[j], signs=[1, -1]), N + j) for j in range(N)]
+    ad = [_mul_var(_sub(qd[(j + 1) % N], qd[j]), N + j) for j in range(N)]
     return qd + pd + ad
 
 

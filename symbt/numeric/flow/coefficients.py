@@ -39,7 +39,6 @@ Examples
 from __future__ import annotations
 
 import math
-import numbers
 import warnings
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
@@ -50,7 +49,7 @@ import numpy.typing as npt
 
 from ..core.context import FLOAT, MP, MPValue, Value
 from ..core.errors import InvalidInputError, NoRealMapError, NumericRangeError, QuadratureError
-from ..core.inputs import ParamLike, StateLike, _to_mp, float_array, prepare_spectral_pair
+from ..core.inputs import ParamLike, StateLike, _to_mp, check_branch, float_array, prepare_spectral_pair
 from ..core.limits import MAX_DQ_FLOAT64
 from ..core.problem import StateOut
 from ..dispatch import bt_step
@@ -71,12 +70,6 @@ def _is_mp(*objs: object) -> bool:
         if isinstance(o, np.ndarray) and o.dtype == object and _is_mp(*o.ravel().tolist()):
             return True
     return False
-
-
-def _branch(branch: object) -> int:
-    if isinstance(branch, bool) or not isinstance(branch, numbers.Integral) or branch not in (1, -1):
-        raise InvalidInputError("branch must be +1 or -1, got %r" % (branch,))
-    return int(branch)
 
 
 def _float_state(p: npt.ArrayLike, q: npt.ArrayLike) -> tuple[np.ndarray, np.ndarray]:
@@ -296,7 +289,7 @@ def flow_quadrature(p: npt.ArrayLike, q: npt.ArrayLike, lam0: float, mu: float, 
     >>> [round(float(v), 4) for v in rule.moments(range(3))]
     [-0.005, -0.0485, -0.5121]
     """
-    branch = _branch(branch)
+    branch = check_branch(branch)
     P, Q = _float_state(p, q)
     lam0, mu = prepare_spectral_pair(FLOAT, lam0, mu, ())
     a, b = lam0 - mu, lam0 + mu
@@ -365,7 +358,7 @@ def flow_coefficients(p: StateLike, q: StateLike, lam0: ParamLike, mu: ParamLike
     symmetric about 0 where ``tr`` is nearly even); ``mu < 0`` is the reversed
     interval (``c(-mu, b) = c(mu, -b)``).
     """
-    branch = _branch(branch)
+    branch = check_branch(branch)
     if _is_mp(p, q, lam0, mu):
         Pm, Qm = _to_mp(MP, p, "p"), _to_mp(MP, q, "q")
         if len(Pm) != len(Qm) or len(Pm) < 2:

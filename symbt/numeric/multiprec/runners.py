@@ -43,7 +43,7 @@ import mpmath
 
 from ..core.context import MPValue
 from ..core.errors import NoRealMapError, NumericRangeError, importable
-from ..core.inputs import mp_output
+from ..core.inputs import check_branch, mp_output
 from ..core.problem import Problem
 from ..core.step import mp_step, step_core
 from ..float64.kernels import stored_steps
@@ -150,15 +150,17 @@ def arb_step(P: list[arb], Q: list[arb], lam0: arb, mu: arb, branch: int,
 
     Performs exactly the operations of :func:`~symbt.numeric.core.step.step_core` in the same order
     (bit-identical midpoints, ``tests/test_numeric_mpfast.py``) without the context indirection;
-    raises the same :class:`NoRealMapError`.  ``dv`` divides: plain division (fast; a division by
-    an exact zero gives a non-finite result) or :func:`_div` (a projective infinity, as
-    ``ARB_MID.div``) -- callers redo a non-finite step with ``dv=_div``.
+    raises the same :class:`NoRealMapError` (and :class:`InvalidInputError` for a branch other
+    than +-1).  ``dv`` divides: plain division (fast; a division by an exact zero gives a
+    non-finite result) or :func:`_div` (a projective infinity, as ``ARB_MID.div``) -- callers
+    redo a non-finite step with ``dv=_div``.
 
     >>> from flint import arb
     >>> P, Q = arb_step([arb(-20), arb(10), arb(1)], [arb(1), arb(0), arb("0.9")], arb(10), arb(5), 1)
     >>> P[0].str(8, radius=False)
     '-19.996568'
     """
+    branch = check_branch(branch)        # _slopes reads only the sign of +-branch
     N = len(P)
     r = [(Q[(j + 1) % N] - Q[j]).exp() for j in range(N)]
     lam1, lam2 = lam0 + mu, lam0 - mu

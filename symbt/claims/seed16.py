@@ -1,0 +1,316 @@
+r"""Lines the claims did not reach (issue 21, seed 16: ``codegen.kernels:166``, ``context:178``, ``step:367``,
+``kernels:320``).
+
+* ``shipped.loop_phi_grad.n5`` -- the loop form's (``N >= 4``) gradient of the real :math:`\Phi`, ``phi_grad``
+  (float64) and ``phi_grad_mp`` (mpmath, 30 digits), against central differences of
+  :func:`symbt.reference.spectral.phi_real` (the literal traces) at 40 digits -- not the formula
+  :math:`\partial_x\Phi = -b\,(t_{1,x}/\sqrt{t_1^2-4} + t_{2,x}/\sqrt{t_2^2-4})` the loop form prints.  The
+  reference is checked against itself (:func:`~symbt.reference.spectral.phi_gradient`, the trace's exact
+  gradient: another route, within ``1e-30``).  Only the closed forms (``N = 2, 3``) had their gradient checked by
+  a default claim (``codegen.phi_grad``).
+
+  float64's bound, per component ``x``: each term ``T_i = t_{i,x}/\sqrt{t_i^2-4}`` carries the rounding of two
+  products of ``2 x 2`` matrices over ``N`` sites, ``(4N + 1) u`` times their absolute form -- ``|t_x|_abs <=
+  |t|_abs/|a_j|`` for ``x = p_j`` (the derivative replaces ``a_j`` by 1 in one factor), ``<= 2 |t|_abs`` for
+  ``x = q_j`` (two ratios ``r``) -- and of the square root of ``t^2 - 4``, amplified by ``t^2/(t^2 - 4)``; then
+  ``4 u |d_x Phi|`` for the quotients and the sum:
+
+  .. math:: |\mathrm{err}_x| \le u \Big(\sum_i (4N+1)\Big(\frac{|t_{i,x}|_{abs}}{\sqrt{t_i^2-4}}
+            + |T_i| \frac{t_i^2}{t_i^2-4}\frac{|t_i|_{abs}}{|t_i|}\Big)\Big) + 4u\,|\partial_x\Phi|.
+* ``paths.symmetric_monodromy.n2`` -- a state whose monodromy has ``A = D`` *exactly in float64* at one spectral
+  parameter, so ``A - D``, whose sign picks the root formula without cancellation (``k = (A - D) + sgn(A - D) g``),
+  is zero: ``p = (1, r_1 - r_2)``, ``q = (1/4, 0)``, ``r_1 = e^{-1/4}``, ``r_2 = e^{1/4}`` (doubles; ``r_1 - r_2``
+  is exact by Sterbenz's lemma) at ``lam = 0``, where ``A = (r_1 - r_2) 1 - r_1 = -r_2 = D`` in floating point and
+  ``tr = -2 r_2`` (a gap); ``lam0 = -1/4``, ``mu = +-1/4`` puts ``lam1`` or ``lam2`` there and the other at
+  ``-1/2`` (the same gap), both branches.  Every float64 route -- ``bt_step`` with ``backend="python"``,
+  ``"numpy"``, ``"auto"`` (the fused kernel, numba-free), a batch of two, ``bt_orbit`` one state and an ensemble
+  (the block kernel, in plain Python) -- returns the same bits (documented: one order of operations) and is the
+  literal map within ``16 N u S_i`` (``shipped.step``'s bound), as is the general path of the orbit (numpy rows;
+  its positions in double-double, so other last bits).
+* ``paths.many_rows.n3`` -- past ``SIDE_BY_SIDE_ROWS`` rows ``step_core(FLOAT)`` and ``float_status`` work site
+  by site (lists over the sites, not stacked arrays): ``paths.threshold``'s scans (both sides of ``KAPPA_MAX``)
+  repeated to 2304 rows give the bits and statuses of the same rows in batches of one scan (a consistency check
+  of the two forms of one computation).
+* ``shipped.guard_boundary.n{2,3}`` -- the shipped closed form's conditioning guard against the estimate it
+  prints, written separately in :func:`~symbt.numeric.float64.kernels.cheap_kernels` (the fused step without the
+  sharp tier): on the free chain (``p = q = 0``, a band edge at ``lam = 2``) the kernel's status flips from
+  ``ILLCOND`` to ``OK`` at some ``lam2 = 2 + delta`` (bisection); ``toda{N}.bt_step`` refuses at ``delta / 1.02``
+  and at ``delta 1.02`` returns the literal map within ``16 N u S_i`` (the two estimates round differently; the
+  estimate moves ~2 % over that margin).
+"""
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import mpmath as mp
+import numpy as np
+
+from ._shipped import scale_parts, scaled
+from .base import Outcome, Parts, claim, failed
+from .seed13 import LOOP_STATE, _abs_trace
+
+#: shipped.loop_phi_grad: (lam0, mu) with lam0 +- mu in the state's outer gaps (|tr| >= 3 there), of both signs
+#: of the traces and both orders of the pair
+PHI_PAIRS = ((8.5, 2.5), (-5.0, 2.0), (1.25, -9.75), (-0.5, 7.5))
+
+
+def _reference_gradient(p: Any, q: Any, lam0: float, mu: float, b: int) -> list[mp.mpf]:
+    """``d Phi / d(p, q)`` by central differences of ``phi_real`` (current precision)."""
+    from ..reference.spectral import phi_real
+
+    xs = [mp.mpf(v) for v in p + q]
+    N = len(p)
+
+    def phi(*x: Any) -> Any:
+        return phi_real(list(x[:N]), list(x[N:]), mp.mpf(lam0), mp.mpf(mu), b)
+
+    return [mp.diff(phi, xs, tuple(int(i == k) for i in range(2 * N))) for k in range(2 * N)]
+
+
+def _trace_partials(lam: float, p: Any, q: Any) -> list[mp.mpf]:
+    """``d tr L(lam) / d(p, q)`` by central differences of the literal trace (current precision)."""
+    from ..reference.literal import literal_trace
+
+    N = len(p)
+    xs = [mp.mpf(v) for v in p + q]
+    return [mp.diff(lambda *x: literal_trace(lam, list(x[:N]), list(x[N:])), xs,
+                    tuple(int(i == k) for i in range(2 * N))) for k in range(2 * N)]
+
+
+@claim("shipped.loop_phi_grad", equation="toda{N}.phi_grad", source_equation="newkmu", scene="shipped",
+       sizes=(5,), parts=scale_parts,
+       where="symbt codegen --n {N}: toda{N}.py (loop form): phi_grad, phi_grad_mp",
+       statement="the loop form's gradient of the real Phi (N={N}; float64, and mpmath at 30 digits) at 4 pairs "
+                 "(lam0, mu) in the outer gaps, both branches = central differences of phi_real (the literal "
+                 "traces) at 40 digits: float64 within the products' condition carried through the square roots "
+                 "(module docstring), mpmath within 1e-25 of the largest term; the reference = phi_gradient to 1e-30")
+def loop_phi_grad(N: int, parts: Parts) -> Outcome:
+    from ..reference.literal import literal_trace
+    from ..reference.spectral import phi_gradient
+    from .shipped_emitted import emitted_module
+
+    mod = emitted_module(N)
+    p, q = (list(v) for v in LOOP_STATE)
+    u = mp.mpf(2) ** -53
+    s = parts.printed["scale"]                      # route output x scale = reference (scale = 1)
+    bad: list[str] = []
+    worst = mp.mpf(0)
+    for lam0, mu in PHI_PAIRS:
+        for b in (1, -1):
+            gp, gq = mod.phi_grad(np.array(p), np.array(q), lam0, mu, b)
+            got64 = [float(v) * s for v in list(gp) + list(gq)]
+            with mp.workdps(30):
+                P, Q = [mp.mpf(v) for v in p], [mp.mpf(v) for v in q]
+                mp_p, mp_q = mod.phi_grad_mp(P, Q, mp.mpf(lam0), mp.mpf(mu), b)
+                got_mp = scaled(list(mp_p) + list(mp_q), s)
+            with mp.workdps(40):
+                ref = _reference_gradient(p, q, lam0, mu, b)
+                ep, eq = phi_gradient(p, q, mp.mpf(lam0), mp.mpf(mu), b)
+                if not max(abs(a - c) for a, c in zip(ref, ep + eq)) <= mp.mpf(10) ** -30 * max(map(abs, ref)):
+                    bad.append(f"(lam0, mu, b) = ({lam0}, {mu}, {b}): the reference disagrees with phi_gradient")
+                    continue
+                terms, bound = [mp.mpf(0)] * (2 * N), [mp.mpf(0)] * (2 * N)
+                for lam in (lam0 + mu, lam0 - mu):
+                    t = literal_trace(lam, p, q)
+                    g = mp.sqrt(t * t - 4)
+                    tabs = _abs_trace(lam, p, q)
+                    dt = _trace_partials(lam, p, q)
+                    for k in range(2 * N):
+                        dabs = tabs / abs(lam + p[k]) if k < N else 2 * tabs
+                        T = abs(dt[k]) / g
+                        terms[k] = max(terms[k], T)
+                        bound[k] += (4 * N + 1) * (dabs / g + T * t * t / (t * t - 4) * tabs / abs(t))
+                for k in range(2 * N):
+                    tol = u * (bound[k] + 4 * abs(ref[k]))
+                    err = abs(mp.mpf(got64[k]) - ref[k])
+                    worst = max(worst, err / tol)
+                    if not err <= tol:
+                        bad.append(f"float64 (lam0, mu, b) = ({lam0}, {mu}, {b}), component {k}: "
+                                   f"{mp.nstr(err, 3)} (bound {mp.nstr(tol, 3)})")
+                    if not abs(got_mp[k] - ref[k]) <= mp.mpf(10) ** -25 * terms[k]:
+                        bad.append(f"mpmath (lam0, mu, b) = ({lam0}, {mu}, {b}), component {k}: "
+                                   f"{mp.nstr(got_mp[k], 12)} vs {mp.nstr(ref[k], 12)}")
+    detail = (f"{len(PHI_PAIRS)} pairs x 2 branches x {2 * N} components; worst float64 error "
+              f"{mp.nstr(worst, 3)} of its bound.")
+    if bad:
+        return failed("the loop form's phi_grad vs central differences of phi_real",
+                      detail="; ".join(bad[:4]) + ". " + detail)
+    return Outcome("verified", "numeric: the emitted loop form's phi_grad vs central differences of phi_real "
+                   "(literal traces, 40 digits)", evidence="sampled", n_scope=[N], detail=detail,
+                   printed="within the products' condition")
+
+
+def _tie_state() -> tuple:
+    """``(p, q)``: ``A = D`` exactly in float64 at ``lam = 0`` (module docstring)."""
+    r1, r2 = math.exp(-0.25), math.exp(0.25)
+    return (1.0, r1 - r2), (0.25, 0.0)
+
+
+@claim("paths.symmetric_monodromy", equation="bt_step", source_equation="imptransf", scene="numeric-paths",
+       sizes=(2,),
+       where="symbt/numeric/core/context.py: FLOAT.align at A - D = 0; the float64 routes of bt_step and bt_orbit",
+       statement="at p = (1, r1 - r2), q = (1/4, 0), r1 = e^(-1/4), r2 = e^(1/4) (N={N}), whose monodromy at "
+                 "lam = 0 has A = D exactly in float64, lam0 = -1/4, mu = +-1/4, both branches: bt_step's python, "
+                 "numpy and fused routes, a batch, bt_orbit and the block kernel's ensemble return the same bits, "
+                 "the literal map within 16 N u S_i, as is the general orbit's (numpy) result")
+def symmetric_monodromy(N: int) -> Outcome:
+    from ..numeric import bt_orbit, bt_step
+    from ..numeric.core.context import FLOAT
+    from ..numeric.core.step import monodromy
+    from ._shipped import EPS, ratios, step_constant, step_ref, without_numba
+
+    p, q = _tie_state()
+    r = [np.exp(q[1] - q[0]), np.exp(q[0] - q[1])]
+    A, _, _, D, _ = monodromy(FLOAT, [0.0 + v for v in p], r)
+    if not A == D:
+        return failed("the tie state", detail=f"A = {A!r}, D = {D!r} at lam = 0: not a tie in float64")
+    pa, qa = np.array(p), np.array(q)
+    bad: list[str] = []
+    worst = 0.0
+    with without_numba():
+        for mu in (0.25, -0.25):
+            for b in (1, -1):
+                outs: dict[str, tuple] = {}
+                for be in ("python", "numpy", "auto"):
+                    P, Q = bt_step(pa, qa, -0.25, mu, branch=b, backend=be)
+                    outs[be] = tuple(P) + tuple(Q)
+                P, Q = bt_step(np.array([pa, pa]), np.array([qa, qa]), -0.25, mu, branch=b, backend="numpy")
+                outs["batch"] = tuple(P[1]) + tuple(Q[1])
+                P, Q = bt_orbit(pa, qa, -0.25, mu, 1, branch=b)
+                outs["orbit"] = tuple(P[-1]) + tuple(Q[-1])
+                P, Q = bt_orbit(np.array([pa, pa]), np.array([qa, qa]), -0.25, mu, 1, branch=b, backend="python")
+                outs["ensemble"] = tuple(P[-1][1]) + tuple(Q[-1][1])
+                differ = [k for k, v in outs.items() if v != outs["python"]]
+                if differ:
+                    bad.append(f"mu = {mu}, b = {b}: {', '.join(differ)} differ from the python route")
+                # the general path of the orbit (numpy rows, double-double positions: other bits, the same bound)
+                P, Q = bt_orbit(np.array([pa, pa]), np.array([qa, qa]), -0.25, mu, 1, branch=b, backend="numpy")
+                ref = step_ref((p, q, -0.25, mu), b)
+                for name, x in (("python", outs["python"]), ("general orbit", tuple(P[-1][1]) + tuple(Q[-1][1]))):
+                    ratio, _ = ratios(x, ref.x, ref.S, EPS / 2, step_constant(N))
+                    worst = max(worst, ratio)
+                    if not ratio <= 1.0:
+                        bad.append(f"mu = {mu}, b = {b}, {name}: {ratio:.3g} of the bound from the literal map")
+    detail = f"2 (lam0, mu) x 2 branches x 7 routes; worst error {worst:.3g} of 16 N u S_i."
+    if bad:
+        return failed("the float64 routes at A = D", detail="; ".join(bad) + ". " + detail)
+    return Outcome("verified", "numeric: every float64 route at an exact A = D, bit for bit (consistency) and vs "
+                   "the literal map", evidence="sampled", n_scope=[N], residual=worst, detail=detail)
+
+
+@claim("paths.many_rows", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       where="symbt/numeric/core/step.py: step_core past SIDE_BY_SIDE_ROWS rows (_over_sites site by site, "
+             "float_status's condition test per site); core/condition.py: monodromy_and_abs's two calls",
+       statement="step_core(FLOAT) and float_status on paths.threshold's scans (N={N}; per branch, repeated past "
+                 "SIDE_BY_SIDE_ROWS rows) give the bits and statuses of the same rows in batches of one scan "
+                 "(the stacked form), the statuses both OK and ILLCOND")
+def many_rows(N: int) -> Outcome:
+    from ..numeric.core.condition import SIDE_BY_SIDE_ROWS
+    from ..numeric.core.context import FLOAT
+    from ..numeric.core.limits import ILLCOND, OK
+    from ..numeric.core.step import float_status, step_core
+    from .shipped_routes import threshold_states
+
+    def run(rows: list, b: int) -> tuple[np.ndarray, np.ndarray]:
+        pa, qa = np.array([st[0] for st in rows]), np.array([st[1] for st in rows])
+        l0, m = np.array([st[2] for st in rows]), np.array([st[3] for st in rows])
+        with np.errstate(all="ignore"):
+            Pn, Qn, aux = step_core(FLOAT, list(pa.T.copy()), list(qa.T.copy()), l0, m, b, check_real=False)
+            status = float_status(aux, Pn, Qn)
+        return np.concatenate([np.array(Pn), np.array(Qn)]).T, np.asarray(status)
+
+    bad: list[str] = []
+    counts = []
+    for b in (1, -1):
+        scans = [list(sts) for _, bb, sts in threshold_states() if bb == b]
+        one = [st for sts in scans for st in sts]
+        rows = one * (SIDE_BY_SIDE_ROWS // len(one) + 1)
+        X, st = run(rows, b)
+        parts = [run(sts, b) for sts in scans]
+        Xs = np.concatenate([x for x, _ in parts] * (len(rows) // len(one)))
+        sts = np.concatenate([s for _, s in parts] * (len(rows) // len(one)))
+        if not (np.array_equal(X, Xs, equal_nan=True) and np.array_equal(st, sts)):
+            rows_off = np.flatnonzero(np.any((X != Xs) & ~(np.isnan(X) & np.isnan(Xs)), axis=1) | (st != sts))
+            bad.append(f"branch {b}: {rows_off.size} of {len(rows)} rows differ (first {rows_off[:3].tolist()})")
+        counts.append((len(rows), int(np.sum(st == OK)), int(np.sum(st == ILLCOND))))
+        if not (np.any(st == OK) and np.any(st == ILLCOND)):
+            bad.append(f"branch {b}: the statuses are not both OK and ILLCOND (the test would not see the estimate)")
+    detail = "; ".join(f"{n} rows ({ok} OK, {ill} ILLCOND)" for n, ok, ill in counts) + \
+        f" (SIDE_BY_SIDE_ROWS = {SIDE_BY_SIDE_ROWS})."
+    if bad:
+        return failed("numeric: step_core past SIDE_BY_SIDE_ROWS rows vs batches of one scan",
+                      detail="; ".join(bad) + ". " + detail)
+    return Outcome("verified", "numeric: step_core past SIDE_BY_SIDE_ROWS rows vs batches of one scan, bit for bit "
+                   "(consistency)", evidence="sampled", n_scope=[N], detail=detail,
+                   printed="the same bits and statuses")
+
+
+#: shipped.guard_boundary: mu, and the relative margin in delta = lam2 - 2 on either side of the kernel's flip (the
+#: two estimates round differently; the estimate moves ~2 % there, far above the rounding of either)
+GUARD_MU, GUARD_MARGIN = 0.5, 1.02
+
+
+def _cheap_status(N: int, delta: float) -> int:
+    """The status of the fused float64 step with the cheap condition estimate only (``cheap_kernels``: the
+    estimate the emitted guard prints) on the free chain ``p = q = 0``, ``lam2 = 2 + delta`` (a band edge at 2),
+    ``lam1 = lam2 + 2 mu``, branch +1."""
+    from ..numeric.float64.kernels import cheap_kernels
+
+    lam2 = 2.0 + delta
+    w = [np.empty(N) for _ in range(4)]
+    return int(cheap_kernels()["step"](np.zeros(N), np.ones(N), (np.ones(N), np.zeros(N)), lam2 + 2 * GUARD_MU,
+                                       lam2, 2 * GUARD_MU, 1, *w, np.zeros(4)))
+
+
+@claim("shipped.guard_boundary", equation="toda{N}.bt_step", source_equation="imptransf", scene="shipped",
+       sizes=(2, 3), parts=scale_parts,
+       where="symbt/generated/toda{N}.py: bt_step's conditioning guard; symbt/numeric/float64/kernels.py: "
+             "cheap_kernels (the same estimate, written separately)",
+       statement="on the free chain (p = q = 0, N={N}, lam2 = 2 + delta, mu = 1/2) the cheap estimate of the fused "
+                 "float64 step flips from ILLCOND to OK at delta with delta KAPPA_MAX in (1e-9, 1e3); the shipped "
+                 "toda{N}.bt_step refuses (IllConditionedError) at delta / 1.02 and at delta 1.02 returns the "
+                 "literal map within 16 N u S_i")
+def guard_boundary(N: int, parts: Parts) -> Outcome:
+    import importlib
+
+    from ..numeric.core.limits import ILLCOND, KAPPA_MAX, OK
+    from ._shipped import EPS, ratios, step_constant, step_ref
+
+    lo, hi = 1e-12, 1e-2
+    ends = (_cheap_status(N, lo), _cheap_status(N, hi))
+    if ends != (ILLCOND, OK):
+        return failed("the cheap estimate on the free chain", detail=f"statuses {ends} at delta = 1e-12, 1e-2 "
+                      f"(want ILLCOND, OK: the estimate must flip in between)")
+    for _ in range(60):
+        mid = float(np.sqrt(lo * hi))
+        lo, hi = (mid, hi) if _cheap_status(N, mid) == ILLCOND else (lo, mid)
+    flip = hi
+    mod = importlib.import_module(f"symbt.generated.toda{N}")     # the shipped file (codegen.check: = its render)
+    bad: list[str] = []
+    if not 1e-9 < flip * KAPPA_MAX < 1e3:
+        bad.append(f"the flip delta = {flip:.3g} is not the 2**24 limit's (delta KAPPA_MAX = {flip * KAPPA_MAX:.3g})")
+    z = (0.0,) * N
+    inside = (z, z, 2.0 + flip * GUARD_MARGIN + GUARD_MU, GUARD_MU)
+    outside = (z, z, 2.0 + flip / GUARD_MARGIN + GUARD_MU, GUARD_MU)
+    try:
+        mod.bt_step(np.array(outside[0]), np.array(outside[1]), outside[2], outside[3], 1)
+        bad.append(f"bt_step stepped at delta = {flip / GUARD_MARGIN:.4g} (want IllConditionedError)")
+    except mod.IllConditionedError:
+        pass
+    ratio = float("nan")            # no step inside (refused: reported above)
+    try:
+        P, Q = mod.bt_step(np.array(inside[0]), np.array(inside[1]), inside[2], inside[3], 1)
+        ref = step_ref(inside, 1)
+        ratio, _ = ratios(scaled(list(P) + list(Q), parts.printed["scale"]), ref.x, ref.S, EPS / 2,
+                          step_constant(N))
+    except mod.NumericRangeError as exc:
+        bad.append(f"bt_step refused at delta = {flip * GUARD_MARGIN:.4g}: {exc}")
+    if not math.isnan(ratio) and not ratio <= 1.0:
+        bad.append(f"bt_step at delta = {flip * GUARD_MARGIN:.4g}: {ratio:.3g} of 16 N u S_i from the literal map")
+    detail = f"flip at delta = {flip:.4g} (delta KAPPA_MAX = {flip * KAPPA_MAX:.3g}); inside: {ratio:.3g} of the bound."
+    if bad:
+        return failed("the emitted guard vs the cheap estimate's flip", detail="; ".join(bad) + ". " + detail)
+    return Outcome("verified", "numeric: the emitted guard at the cheap estimate's flip (consistency of two "
+                   "implementations), the step inside vs the literal map", evidence="sampled", n_scope=[N],
+                   residual=ratio, detail=detail, printed="refused outside, the literal map inside")

@@ -1,0 +1,316 @@
+"""Seed 16's survivors (docs/mutation.md, "Seed 16"): planted bugs that the new claims and facts now see, the
+proofs of the mutants marked equivalent, and two planted bugs only a test sees.  Unpatched, every claim verifies."""
+from __future__ import annotations
+
+import inspect
+
+import mpmath as mp
+import numpy as np
+import pytest
+from planting import planted
+
+from symbt.claims import REGISTRY, load_all
+
+load_all()
+
+CLAIMS = ["shipped.loop_phi_grad.n5", "paths.symmetric_monodromy.n2", "paths.many_rows.n3", "shipped.guard_boundary.n2",
+          "shipped.guard_boundary.n3", "checker.codegen_metrics", "paths.kappa_rows.n2", "checker.exact",
+          "library.emit_typed", "library.emit", "library.reference_verify"]
+
+
+def fails(cid: str, *, crash: bool = False) -> bool:
+    out = REGISTRY[cid].run()
+    return out.status == "failed" and (crash or out.method != "exception")
+
+
+@pytest.mark.parametrize("cid", CLAIMS)
+def test_unpatched_verified(cid):
+    assert REGISTRY[cid].run().status == "verified"
+
+
+# --------------------------------------------------------------------------- planted bugs the claims now see
+
+def test_interpreter_min(monkeypatch):
+    # codegen.verify:144 (`min(vs)` -> `max(vs)`): the reference interpreter's Min, read by no shipped derivation
+    from symbt.codegen import verify
+
+    monkeypatch.setattr(verify, "interpret", planted(verify.interpret, "else min(vs)", "else max(vs)"))
+    assert fails("checker.codegen_metrics")
+
+
+def test_sharp_rows_at_one_site(monkeypatch):
+    # condition:296 (`if N > 1` -> `N >= 1`): the prefix's second row written at a site that does not exist (an
+    # IndexError at one site, where the scalar form returns its value)
+    from symbt.numeric.core import condition
+
+    monkeypatch.setattr(condition, "_sharp_over_rows", planted(condition._sharp_over_rows, "if N > 1:", "if N >= 1:"))
+    assert fails("paths.kappa_rows.n2", crash=True)
+
+
+def test_tiny_note_at_the_screen_tolerance(monkeypatch):
+    # decider:211 (`10 ** -(digits - 8)` -> `-(digits + 8)`): "numerically tiny" only below 1e-58 at 50 digits
+    from symbt.claims import checker
+    from symbt.proof import decider
+
+    monkeypatch.setattr(checker, "decide", planted(decider.decide, "if sr.residual <= 10.0 ** (-(digits - 8)):",
+                                                   "if sr.residual <= 10.0 ** (-(digits + 8)):"))
+    assert fails("checker.exact")
+
+
+@pytest.mark.parametrize("old, new", [
+    ("sp.sympify(v, strict=True)", "sp.sympify(v, strict=False)"),                    # declare:134: text parsed
+])
+def test_text_is_no_expression(monkeypatch, old, new):
+    from symbt.codegen.user import declare
+
+    monkeypatch.setattr(declare, "_elements", planted(declare._elements, old, new))
+    assert fails("library.emit_typed")
+
+
+def test_negative_infinity_is_non_finite(monkeypatch):
+    # declare:161 (`-sp.oo` -> `sp.oo` in the non-finite constants): -oo then refused as a "complex constant"
+    from symbt.codegen.user import declare
+
+    monkeypatch.setattr(declare, "_check_expr", planted(declare._check_expr, "(sp.nan, sp.oo, -sp.oo, sp.zoo)",
+                                                        "(sp.nan, sp.oo, sp.oo, sp.zoo)"))
+    assert fails("library.emit_typed")
+
+
+def test_reference_verify_runs_when_asked(monkeypatch):
+    # literal:284 (`if verify:` -> `if not verify:`): the convergence check skipped exactly when asked for
+    from symbt.claims import library_ref45
+    from symbt.reference import literal
+
+    monkeypatch.setattr(library_ref45, "reference_step",
+                        planted(literal.reference_step, "    if verify:\n", "    if not verify:\n"))
+    assert fails("library.reference_verify")
+
+
+@pytest.mark.parametrize("old, new", [
+    ('-branch * (x1 / sp.sqrt(disc(tr1)) + x2', '-branch * (x1 / sp.sqrt(disc(tr1)) - x2'),     # kernels:166 sign
+    ('out["grad"] = -branch *', 'out["grad"] = branch *'),                                       # kernels:166 minus
+])
+def test_loop_form_gradient(monkeypatch, old, new):
+    from symbt.claims import shipped_emitted
+    from symbt.codegen import emit_loop, kernels, zullo
+
+    monkeypatch.setattr(emit_loop, "kernels", planted(kernels.kernels.__wrapped__, old, new))
+    caches = (shipped_emitted.emitted_module, zullo.declarations)
+    for f in caches:
+        f.cache_clear()
+    try:
+        assert fails("shipped.loop_phi_grad.n5")
+    finally:
+        for f in caches:
+            f.cache_clear()
+
+
+def test_c_sign_helper_only_where_used(monkeypatch):
+    # render:262 (`if "sgn(" not in ...` inverted): sgn() defined where no function calls it (a -Wall warning) and
+    # dropped where one does (does not compile)
+    from symbt.codegen.user import check, render
+
+    if check.compiler() is None:
+        pytest.skip("no C compiler (cc, gcc or clang) on PATH")
+    monkeypatch.setattr(render, "c_source", planted(render.c_source, 'if "sgn(" not in "\\n".join(lines[5:]):',
+                                                    'if "sgn(" in "\\n".join(lines[5:]):'))
+    assert fails("library.emit")
+
+
+@pytest.mark.parametrize("old, new", [("ref >= 0", "ref > 0"), ("ref >= 0", "ref <= 0")])
+def test_float_align_at_a_symmetric_monodromy(monkeypatch, old, new):
+    # context:178 (`ref >= 0` -> `ref > 0`): at A - D = 0 exactly the numpy route takes the other root formula
+    from symbt.numeric.core import context
+
+    monkeypatch.setattr(context.FloatContext, "align", planted(context.FloatContext.align, old, new))
+    assert fails("paths.symmetric_monodromy.n2")
+
+
+def test_cheap_estimate_takes_the_larger_condition(monkeypatch):
+    # kernels:320 (`max(tt[2], tt[3])` -> `min`): the cheap kernels' read-out test with the better-conditioned trace
+    from symbt.numeric.float64 import kernels
+
+    monkeypatch.setattr(kernels, "_sharpen_off", planted(kernels._sharpen_off, "return max(", "return min("))
+    kernels.cheap_kernels.cache_clear()
+    try:
+        assert fails("shipped.guard_boundary.n2")
+    finally:
+        kernels.cheap_kernels.cache_clear()
+
+
+@pytest.mark.parametrize("old, new", [
+    ("[~(kt * a * b <= c) for a, b, c in", "[~(kt * a * b >= c) for a, b, c in"),
+    ("zip(us[0], us[1], rhs)", "zip(us[0], us[0], rhs)"),
+])
+def test_site_by_site_condition_test(monkeypatch, old, new):
+    # step:367 (uncovered in seed 16: no claim had a batch past SIDE_BY_SIDE_ROWS rows)
+    from symbt.numeric.core import step
+
+    monkeypatch.setattr(step, "float_status", planted(step.float_status, old, new))
+    assert fails("paths.many_rows.n3")
+
+
+# --------------------------------------------------------------------------- planted bugs only a test sees
+
+def test_newton_residual_exactly_at_the_tolerance():
+    # inverse:80 (`< tol` -> `<= tol` in _newton's test after the last iterate): a residual of exactly tol is not
+    # converged (the strict test of the loop); no claim meets a residual equal to its tolerance.  F = tol everywhere
+    # with J = 1: every damped step is accepted, none converges
+    from symbt.reference import inverse
+
+    tol = mp.mpf(2) ** -40
+
+    def F(x):
+        return [tol]
+
+    def J(x):
+        return [[1]]
+
+    mutant = planted(inverse._newton, "max(abs(v) for v in rf) < tol else None",
+                     "max(abs(v) for v in rf) <= tol else None")
+    assert inverse._newton(F, J, [mp.mpf(1)], tol, maxit=3) is None
+    assert mutant(F, J, [mp.mpf(1)], tol, maxit=3) is not None
+
+
+# --------------------------------------------------------------------------- equivalent mutants (proofs)
+
+def test_arb_step_branch_sign_is_equivalent():
+    # runners:130 (`fwd = (not tg) if s > 0 else tg` -> `s >= 0`): _slopes is called only by arb_step, with
+    # +-branch after check_branch (so s is +-1 and s > 0 <=> s >= 0); a branch of 0 is refused before
+    flint = pytest.importorskip("flint")
+    from symbt.numeric.core.errors import InvalidInputError
+    from symbt.numeric.multiprec import runners
+
+    src = inspect.getsource(runners)
+    assert src.count("_slopes(") == 3                   # the definition and arb_step's two calls
+    body = inspect.getsource(runners.arb_step)
+    assert body.index("branch = check_branch(branch)") < body.index("_slopes(") and \
+        "_slopes([lam1 + pj for pj in P], r, branch," in body and "_slopes([lam2 + pj for pj in P], r, -branch," in body
+    P, Q = [flint.arb(-20), flint.arb(10), flint.arb(1)], [flint.arb(1), flint.arb(0), flint.arb("0.9")]
+    for b in (0, 2, True):
+        with pytest.raises(InvalidInputError):
+            runners.arb_step(P, Q, flint.arb(10), flint.arb(5), b)
+
+
+def test_arb_align_at_a_zero_root_is_equivalent():
+    # arb:124 (ArbContext.align's `g.mid() >= 0` -> `> 0`): they differ only at g.mid() == 0.  align is called only
+    # by eigen_slopes with g = ctx.sqrt(disc), disc = trace_ok; Arb's sqrt has midpoint 0 only for the exact zero
+    # ball (a ball holding negatives gives nan, where both tests are false), and every Arb caller of eigen_slopes
+    # (step_core with check_real, as certified, lohner and the Jacobian's dual context call it) raises
+    # NoRealMapError at trace_ok = 0 before the slopes are used.  Checked: the call sites, sqrt's midpoints, and
+    # the certified step at tr = 2 exactly (p = q = 0, lam1 = 2: tr = lam^3 - 3 lam) with both versions of align
+    flint = pytest.importorskip("flint")
+    import symbt
+    from symbt.numeric import NoRealMapError
+    from symbt.numeric.core import step as core_step
+    from symbt.numeric.multiprec import arb as arbmod
+
+    callers = [p for p in __import__("pathlib").Path(symbt.__file__).parent.rglob("*.py")
+               if ".align(" in p.read_text(encoding="utf-8")]
+    assert [p.name for p in callers] == ["step.py"]
+    src = inspect.getsource(core_step.eigen_slopes)
+    assert src.index("g = ctx.sqrt(disc)") < src.index("ctx.align(g, dl)")
+    for ball in (flint.arb(0), flint.arb(0, 1e-10), flint.arb(-1, 0.5), flint.arb("1e-400"), flint.arb(3, 1)):
+        m = ball.sqrt().mid()
+        assert (m == 0) == (ball == 0 and ball.rad() == 0)
+    mutant = planted(arbmod.ArbContext.align, "(g.mid() >= 0)", "(g.mid() > 0)")
+    original = arbmod.ArbContext.align
+    zero = [flint.arb(0)] * 3
+    for align in (original, mutant):
+        arbmod.ArbContext.align = align
+        try:
+            for ctx in (arbmod.ARB_CERTAIN, arbmod.ARB_MID):
+                with pytest.raises(NoRealMapError):
+                    core_step.step_core(ctx, zero, zero, flint.arb("1.5"), flint.arb("0.5"), 1)
+        finally:
+            arbmod.ArbContext.align = original
+
+
+def test_flow_moment_sign_at_a_zero_node_is_equivalent():
+    # coefficients:182 (`lam < 0` -> `lam <= 0` in _log2_rows' sign): at a node lam = 0 the term of an odd k is
+    # sgn * exp2(-inf) * w = +-0, and a sum holding a nonzero term (the node of the largest L contributes
+    # exp2(L - E) >= 1) is unchanged by a +-0 (x + -0 = x; an exact cancellation rounds to +0 either way, and
+    # +0 + -0 = +0 in round-to-nearest).  Checked bit for bit on rules with a node at 0 (weights of both signs)
+    from symbt.numeric.flow import coefficients as C
+
+    mutant = planted(C._log2_rows, "(lam < 0)[None, :]", "(lam <= 0)[None, :]")
+    rng = np.random.default_rng(16)
+    for sign in (1.0, -1.0):
+        for n in (3, 5, 9):
+            nodes = np.concatenate([rng.uniform(-2, -0.1, n // 2), [0.0], rng.uniform(0.1, 2, n // 2)])
+            log2_inv = rng.uniform(-3, 1, nodes.size)
+            ks = np.arange(0, 7, dtype=float)
+            L0, s0 = C._log2_rows(nodes, log2_inv, ks)
+            L1, s1 = mutant(nodes, log2_inv, ks)
+            w = sign * rng.uniform(0.1, 1.0, nodes.size)
+            E = np.floor(np.max(L0, axis=1))
+            a = (s0 * np.exp2(L0 - E[:, None])) @ w
+            b = (s1 * np.exp2(L1 - E[:, None])) @ w
+            assert np.array_equal(a, b) and np.array_equal(np.signbit(a), np.signbit(b))
+            assert not np.array_equal(s0, s1)            # the mutant does change the sign of the zero term
+
+
+def test_quadrature_error_is_nonnegative_so_abs_is_equivalent():
+    # screen:175 (`abs(err)` -> `err` in tracked_quad's log): mpmath.quad's error estimate is a sum of
+    # QuadratureRule.estimate_error values, each abs(...), zero, epsilon or a power of ten: never negative
+    from mpmath.calculus import quadrature as Q
+
+    src = inspect.getsource(Q.QuadratureRule.estimate_error)
+    returns = [line.strip() for line in src.splitlines() if line.strip().startswith("return")]
+    assert returns == ["return abs(results[0]-results[1])", "return self.ctx.zero", "return epsilon",
+                       "return self.ctx.mpf(10) ** int(D4)"]
+    assert "total_err += err" in inspect.getsource(Q.QuadratureRule.summation)
+    for f, iv in ((lambda t: t * t, (0, 1)), (lambda t: mp.exp(1j * t), (0, 3)), (lambda t: 1 / mp.sqrt(t), (0, 1)),
+                  (lambda t: mp.sin(50 * t), (0, 1))):
+        _, err = mp.quad(f, iv, error=True)
+        assert err >= 0
+
+
+def test_abel_sheet_at_a_branch_point_is_equivalent():
+    # elliptic:236 (`abs(cd - w) <= abs(cd + w)` -> `<`): on the curve cd = +-w, so the two sides tie only where
+    # cd w = 0, i.e. cd = 0: s = +-1 or s = +-1/sqrt(m) (branch points of the curve); there u0 and 2K - u0 differ
+    # by a period (4K, 2iK'), and abel is documented mod those periods: the same sn and cn dn
+    from symbt.reference import elliptic as E
+
+    mutant = planted(E.abel, "abs(cd - w) <= abs(cd + w)", "abs(cd - w) < abs(cd + w)")
+    with mp.workdps(30):
+        m = mp.mpf(3) / 7
+        K, Kp = mp.ellipk(m), mp.ellipk(1 - m)
+        for s in (mp.mpf(1), mp.mpf(-1), 1 / mp.sqrt(m), -1 / mp.sqrt(m)):
+            for w in (mp.mpf(0), mp.mpf(10) ** -40, -mp.mpf(10) ** -40):
+                a, b = E.abel(s, w, m), mutant(s, w, m)
+                d = (b - a) / 1
+                n4 = mp.re(d) / (4 * K)
+                n2 = mp.im(d) / (2 * Kp)
+                assert abs(n4 - mp.nint(n4)) < mp.mpf(10) ** -25 and abs(n2 - mp.nint(n2)) < mp.mpf(10) ** -25
+                sa, ca, da = E.sn_cn_dn(a, m)
+                sb, cb, db = E.sn_cn_dn(b, m)
+                assert abs(sa - sb) < mp.mpf(10) ** -20 and abs(ca * da - cb * db) < mp.mpf(10) ** -20
+        # away from the branch points the two agree (the tie needs cd = 0)
+        for s in (mp.mpf("0.3"), mp.mpf("-0.8"), mp.mpf(2), mp.mpf(-4)):
+            W = mp.sqrt((1 - s * s) * (1 - m * s * s))
+            for w in (W, -W):
+                assert E.abel(s, w, m) == mutant(s, w, m)
+
+
+def test_side_by_side_shape_guard_is_equivalent():
+    # condition:446 (`am.shape != rm.shape` -> `==`): every batch of FEW_ROWS < R <= SIDE_BY_SIDE_ROWS rows then
+    # takes the two calls, whose results are the side-by-side form's bit for bit (its docstring; paths.side_by_side),
+    # and no caller passes a and r of different shapes (eigen_slopes' a_j = lam + p_j and r_j = exp(dq_j) share the
+    # batch's shape).  Checked bit for bit on side_by_side's batches, renormalised rows included
+    from symbt.numeric.core import condition
+
+    mutant = planted(condition.monodromy_and_abs, "am.shape != rm.shape", "am.shape == rm.shape")
+    rng = np.random.default_rng(446)
+    for R, scale in ((20, 1.0), (300, 1.0), (64, 1e170)):
+        a = [rng.uniform(-3, 3, R) * scale for _ in range(3)]
+        r = [np.exp(rng.uniform(-2, 2, R)) for _ in range(3)]
+        (A, B, C_, D, e), (T, ea) = condition.monodromy_and_abs(a, r)
+        (A2, B2, C2, D2, e2), (T2, ea2) = mutant(a, r)
+        for x, y in ((A, A2), (B, B2), (C_, C2), (D, D2), (e, e2), (T, T2), (ea, ea2)):
+            assert np.array_equal(np.broadcast_to(x, (R,)), np.broadcast_to(y, (R,)))
+    src = inspect.getsource(condition)
+    assert src.count("monodromy_and_abs(") == 2     # its definition and its docstring; the one caller is in step.py
+    assert "monodromy_and_abs(a, r)" in inspect.getsource(__import__("symbt.numeric.core.step",
+                                                                     fromlist=["eigen_slopes"]).eigen_slopes)
+
