@@ -314,3 +314,96 @@ def guard_boundary(N: int, parts: Parts) -> Outcome:
     return Outcome("verified", "numeric: the emitted guard at the cheap estimate's flip (consistency of two "
                    "implementations), the step inside vs the literal map", evidence="sampled", n_scope=[N],
                    residual=ratio, detail=detail, printed="refused outside, the literal map inside")
+
+
+#: library.input_kinds: the paper's state as each kind of input the public entry points refuse
+_P, _Q = (-20.0, 10.0, 1.0), (1.0, 0.0, 0.9)
+
+
+def _refused_kinds() -> list[tuple[str, Any, str]]:
+    """``(kind, p, words)``: malformed ``p`` and the words the refusal must contain."""
+    text, cplx = "not text or a mapping", "complex input is not supported"
+    return [("a list of str", [str(v) for v in _P], text), ("a numpy str array", np.array([str(v) for v in _P]), text),
+            ("bytes in a list", [b"-20", 10.0, 1.0], text),
+            ("an object array holding str", np.array(["-20", 10.0, 1.0], dtype=object), text),
+            ("a nested list holding str", [[-20.0, "10", 1.0]], text),
+            ("a Python complex", [-20 + 0j, 10.0, 1.0], cplx),
+            ("a numpy complex array", np.array(_P, dtype=complex), cplx), ("mpc", [mp.mpc(v) for v in _P], cplx),
+            ("an object array holding complex", np.array([-20 + 1j, 10.0, 1.0], dtype=object), cplx)]
+
+
+def _entry_points() -> dict[str, Any]:
+    """The public numeric entry points as functions of ``(p, q)`` (the paper's lam0 = 10, mu = 5)."""
+    from ..numeric import FlowField, bt_orbit, bt_step, flow_coefficients, invariants, phi, spectral_trace
+
+    return {"bt_step": lambda p, q: bt_step(p, q, 10.0, 5.0), "bt_orbit": lambda p, q: bt_orbit(p, q, 10.0, 5.0, 2),
+            "phi": lambda p, q: phi(p, q, 10.0, 5.0), "spectral_trace": lambda p, q: spectral_trace(15.0, p, q),
+            "invariants": invariants, "flow_coefficients": lambda p, q: flow_coefficients(p, q, 10.0, 5.0),
+            "FlowField": lambda p, q: FlowField(p, q, 10.0, 5.0)}
+
+
+@claim("library.input_kinds", equation="bt_step", source_equation="imptransf", scene="library",
+       where="symbt/numeric/core/inputs.py: float_array, _has_text, _is_complex, _kind, the finiteness test of "
+             "prepare's batches; every public entry point",
+       statement="bt_step, bt_orbit, phi, spectral_trace, invariants, flow_coefficients and FlowField refuse text "
+                 "(str, numpy strings, bytes, an object array or a nested list holding text) and complex input "
+                 "(Python, numpy, mpc, object) with InvalidInputError naming it; the batch entry points refuse a "
+                 "NaN or an inf anywhere in a batch of 100 states; dates (datetime64) are refused, not as text; "
+                 "object, int, float32 arrays and a list of int holding the same numbers give the float array's "
+                 "result bit for bit, an object array of mpf the mpf list's")
+def input_kinds() -> Outcome:
+    from ..numeric import InvalidInputError
+
+    bad: list[str] = []
+    entries = _entry_points()
+    kinds = _refused_kinds()
+    for name, f in entries.items():
+        for kind, p, words in kinds:
+            q = [list(_Q)] if kind.startswith("a nested") else list(_Q)
+            try:
+                f(p, q)
+                bad.append(f"{name} accepted {kind}")
+            except InvalidInputError as exc:
+                if words not in str(exc):
+                    bad.append(f"{name} on {kind}: {exc}")
+            except Exception as exc:            # noqa: BLE001 -- an untyped error is what this claim looks for
+                bad.append(f"{name} on {kind}: {type(exc).__name__}: {exc}")
+    # dates are no numbers (numpy would cast them to days): refused as such, not as text
+    dates = np.array(["2026-11-27"] * 3, dtype="datetime64[D]")
+    for name, f in entries.items():
+        for kind, p in (("a datetime64 array", dates), ("a list of datetime64", list(dates))):
+            try:
+                f(p, list(_Q))
+                bad.append(f"{name} accepted {kind}")
+            except InvalidInputError as exc:
+                if "real numeric array" not in str(exc) or "text" in str(exc):
+                    bad.append(f"{name} on {kind}: {exc}")
+    P, Q = np.tile(_P, (100, 1)), np.tile(_Q, (100, 1))
+    for bad_value in (math.inf, math.nan, -math.inf):
+        Pb = P.copy()
+        Pb[71, 2] = bad_value
+        for name in ("bt_step", "bt_orbit", "phi", "spectral_trace", "invariants"):
+            try:
+                entries[name](Pb, Q)
+                bad.append(f"{name} accepted {bad_value} in a batch of 100")
+            except InvalidInputError as exc:
+                if "finite" not in str(exc):
+                    bad.append(f"{name} on {bad_value} in a batch: {exc}")
+    floats = entries["bt_step"](np.array(_P), np.array(_Q))
+    for kind, p in (("object", np.array(_P, dtype=object)), ("int", np.array(_P, dtype=np.int64)),
+                    ("float32", np.array(_P, dtype=np.float32)), ("list of int", [int(v) for v in _P])):
+        got = entries["bt_step"](p, np.array(_Q))
+        if not all(np.array_equal(a, b) for a, b in zip(floats, got)):
+            bad.append(f"bt_step on an {kind} array of the same numbers differs from the float arrays")
+    with mp.workdps(30):
+        mps = [mp.mpf(v) for v in _P], [mp.mpf(v) for v in _Q]
+        want = entries["bt_step"](*mps)
+        got = entries["bt_step"](np.array(mps[0], dtype=object), np.array(mps[1], dtype=object))
+        if not (isinstance(got[0][0], mp.mpf) and list(got[0]) == list(want[0]) and list(got[1]) == list(want[1])):
+            bad.append("bt_step on object arrays of mpf differs from the mpf lists' result")
+    detail = (f"{len(entries)} entry points x {len(kinds) + 2} malformed kinds; 3 non-finite values in batches of "
+              "100 for 5 batch entry points; object, int, float32 arrays, int lists, object arrays of mpf.")
+    if bad:
+        return failed("the documented input rules", detail="; ".join(bad[:5]) + ". " + detail)
+    return Outcome("verified", "numeric: the public entry points on malformed and object inputs vs their documented "
+                   "rules", evidence="sampled", n_scope=[3], detail=detail)

@@ -134,6 +134,11 @@ class FloatContext:
     def ldexp(x: FloatValue | float, e: Exponent) -> FloatValue | float:
         if isinstance(e, (int, np.integer)) and e == 0:
             return x
+        if np.iscomplexobj(x):              # numpy's ldexp takes real arrays: each part scaled, exactly
+            z = np.asarray(x)
+            out = np.empty(np.broadcast_shapes(z.shape, np.shape(e)), dtype=z.dtype)
+            out.real, out.imag = np.ldexp(z.real, e), np.ldexp(z.imag, e)
+            return out
         return np.ldexp(x, e)
 
     def acosh_half_abs(self, t: FloatValue, g: FloatValue, e: Exponent) -> FloatValue:
@@ -157,14 +162,14 @@ class FloatContext:
         return a * b
 
     def positive(self, x: FloatValue) -> Cond:
-        if self.is_complex:
-            return np.real(x) > 0
+        if self.is_complex:                 # certainly > 0: real and positive (as MP and ACB decide it)
+            return (np.imag(x) == 0) & (np.real(x) > 0)
         return x > 0
 
     def all_positive(self, x: FloatValue) -> bool:
         """``all(x > 0)`` as a bool (a single reduction; NaN counts as failure)."""
         if self.is_complex:
-            return bool(np.min(np.real(x)) > 0)
+            return bool(np.all(self.positive(x)))
         return bool(np.min(x) > 0)
 
     def align(self, g: FloatValue, ref: FloatValue) -> tuple[FloatValue, Cond]:
@@ -276,11 +281,14 @@ class MPContext:
 
     @staticmethod
     def ldexp(x: MPValue | float, e: Exponent) -> MPValue:
-        return mpmath.ldexp(mpmath.mpf(x), int(e))
+        z = mpmath.mpmathify(x)
+        if isinstance(z, mpmath.mpc):       # mpmath's ldexp takes reals: each part scaled, exactly
+            return mpmath.mpc(mpmath.ldexp(z.real, int(e)), mpmath.ldexp(z.imag, int(e)))
+        return mpmath.ldexp(z, int(e))
 
     @staticmethod
     def acosh_half_abs(t: MPValue, g: MPValue, e: Exponent) -> MPValue:
-        return mpmath.acosh(abs(mpmath.ldexp(t, int(e))) / 2)
+        return mpmath.acosh(abs(MPContext.ldexp(t, e)) / 2)
 
     @staticmethod
     def re_dot(a: MPValue, b: MPValue) -> MPValue:
@@ -364,7 +372,7 @@ class IVContext(MPContext):
 
     @staticmethod
     def acosh_half_abs(t: MPValue, g: MPValue, e: Exponent) -> MPValue:
-        h = abs(t) / 2
+        h = abs(IVContext.ldexp(t, e)) / 2
         return mpmath.iv.log(h + mpmath.iv.sqrt((h - 1) * (h + 1)))
 
     @staticmethod

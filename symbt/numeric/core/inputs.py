@@ -165,8 +165,9 @@ def _has_text(x: object) -> bool:
 def float_array(x: npt.ArrayLike, name: str) -> npt.NDArray[np.float64]:
     """``x`` as a float64 array, or :class:`InvalidInputError` -- the one conversion of real input.
 
-    Refused, never cast: complex values, strings, dicts and other non-numbers, ragged
-    nesting, and integers beyond the float64 range (``10**400``: use mpmath inputs).
+    Refused, never cast: complex values, strings, dicts and other non-numbers (arrays of dates,
+    durations or records too), ragged nesting, and integers beyond the float64 range
+    (``10**400``: use mpmath inputs).
     Finiteness is left to the caller.
 
     >>> float_array([1, 2], "p").tolist()
@@ -183,11 +184,15 @@ def float_array(x: npt.ArrayLike, name: str) -> npt.NDArray[np.float64]:
     if _has_text(x) or isinstance(x, dict):
         raise InvalidInputError("%s must be a real numeric array, not text or a mapping" % name)
     try:
-        return np.asarray(x, dtype=np.float64)
+        a = np.asarray(x)
+        kind = a.dtype.kind
+        if kind not in "mMV":                   # dates, durations, records: numpy would cast them to numbers
+            return np.asarray(a, dtype=np.float64)
     except OverflowError as exc:
         raise InvalidInputError("%s: an integer beyond the float64 range; use mpmath inputs" % name) from exc
     except (TypeError, ValueError) as exc:
         raise InvalidInputError("%s must be a real numeric array (same length in every row)" % name) from exc
+    raise InvalidInputError("%s must be a real numeric array, not of dtype %s" % (name, a.dtype))
 
 
 #: arrays up to this size are summed as Python floats by :func:`validate_float_pair` (cheaper than a reduction)
