@@ -177,15 +177,17 @@ def test_complex_all_positive_at_a_zero_real_part():
     # mutant context:166 (branch): FloatContext.all_positive with `if self.is_complex` inverted.  On real arrays the
     # two bodies agree (np.real of a real array is the array); on a complex array the mutant compares the
     # lexicographic minimum with 0, which differs exactly where the smallest real part is 0 and its imaginary part
-    # positive -- a positivity test on the complex continuation (core/step.py, flow/phi.py) that no claim reaches
-    # with an exactly zero real part.  Killed here, not by verify.
+    # positive.  (No step calls it: the complex continuation runs step_core with check_real=False; paths.contexts
+    # now checks the primitive against the interface table.)
     from planting import planted as plant
 
     from symbt.numeric.core import context
 
     x = np.array([1.0 + 0.0j, 0.0 + 1.0j])
     assert context.COMPLEX.all_positive(x) is False
-    assert context.COMPLEX.all_positive(np.array([1.0 + 5.0j, 2.0 - 1.0j])) is True
+    # "certainly > 0" is real and positive (as MP and ACB decide it; paths.contexts): a nonzero imaginary part fails
+    assert context.COMPLEX.all_positive(np.array([1.0 + 0.0j, 2.0 + 0.0j])) is True
+    assert context.COMPLEX.all_positive(np.array([1.0 + 5.0j, 2.0 - 1.0j])) is False
     assert context.FLOAT.all_positive(np.array([1.0, np.nan])) is False
     mutant = plant(context.FloatContext.all_positive, "if self.is_complex:", "if not (self.is_complex):")
     assert mutant(context.COMPLEX, x) is True            # the planted mutant says "positive"

@@ -15,7 +15,8 @@ load_all()
 
 CLAIMS = ["shipped.loop_phi_grad.n5", "paths.symmetric_monodromy.n2", "paths.many_rows.n3", "shipped.guard_boundary.n2",
           "shipped.guard_boundary.n3", "checker.codegen_metrics", "paths.kappa_rows.n2", "checker.exact",
-          "library.emit_typed", "library.emit", "library.reference_verify", "library.input_kinds", "paths.contexts"]
+          "library.emit_typed", "library.emit", "library.reference_verify", "library.input_kinds", "paths.contexts",
+          "paths.dq_edge.n9"]
 
 
 def fails(cid: str, *, crash: bool = False) -> bool:
@@ -185,6 +186,49 @@ def test_context_primitives(monkeypatch, where, func, old, new):
     cls, name = func.split(".")
     monkeypatch.setattr(getattr(module, cls), name, planted(getattr(getattr(module, cls), name), old, new))
     assert fails("paths.contexts", crash=True)
+
+
+def test_complex_log1p_near_zero(monkeypatch):
+    # the complex float64 context's log1p was numpy's (log(1 + x): 6e-9 relative at |x| = 1e-8), found by
+    # paths.contexts' elementary functions
+    from symbt.numeric.core import context
+
+    monkeypatch.setattr(context.FloatContext, "log1p", lambda self, x: np.log1p(x))
+    assert fails("paths.contexts", crash=True)
+
+
+@pytest.mark.parametrize("func, old, new", [
+    ("Dual.__rsub__", "return Dual(o - self.v, -self.d)", "return Dual(o - self.v, self.d)"),      # lohner_checks:71
+    ("Dual.__truediv__", "return Dual(self.v / o, self.d * (1 / arb(o)))",
+     "return Dual(self.v / o, self.d * arb(o))"),                                                 # lohner_checks:87
+    ("_dlog", "x.d * (1 / x.v)", "x.d * (1 / (1 + x.v))"),                                        # lohner_checks:120
+])
+def test_dual_rules(monkeypatch, func, old, new):
+    # lohner_checks:71, :87, :120 (uncovered in seed 16: the dual numbers' rules no Jacobian of a step reaches)
+    pytest.importorskip("flint")
+    from symbt.numeric.multiprec import lohner_checks as L
+
+    if "." in func:
+        cls, name = func.split(".")
+        monkeypatch.setattr(getattr(L, cls), name, planted(getattr(getattr(L, cls), name), old, new))
+    else:
+        mutant = planted(getattr(L, func), old, new)
+        monkeypatch.setattr(L, func, mutant)
+        monkeypatch.setattr(L._DualContext, "log", staticmethod(mutant))
+    assert fails("paths.contexts", crash=True)
+
+
+@pytest.mark.parametrize("old, new", [
+    ("np.subtract(q[:, 1:], q[:, :-1], out=d[:, :-1])", "np.subtract(q[:, 0:], q[:, :-1], out=d[:, :-1])"),
+    ("np.subtract(q[:, 0], q[:, -1], out=d[:, -1])", "np.subtract(q[:, 1], q[:, -1], out=d[:, -1])"),
+    ("np.abs(d, out=d).max(axis=1)", "np.abs(d, out=d).min(axis=1)"),
+])
+def test_range_test_past_eight_sites(monkeypatch, old, new):
+    # rows:255-257 (uncovered in seed 16: the numpy route's array form of the range test runs from 9 sites on)
+    from symbt.numeric.float64 import rows
+
+    monkeypatch.setattr(rows, "_largest_step", planted(rows._largest_step, old, new))
+    assert fails("paths.dq_edge.n9", crash=True)
 
 
 # --------------------------------------------------------------------------- planted bugs only a test sees
@@ -370,3 +414,20 @@ def test_side_by_side_shape_guard_is_equivalent():
     assert "monodromy_and_abs(a, r)" in inspect.getsource(__import__("symbt.numeric.core.step",
                                                                      fromlist=["eigen_slopes"]).eigen_slopes)
 
+
+
+@pytest.mark.parametrize("old, new", [("if N <= 8:", "if not (N <= 8):"), ("if N <= 8:", "if N < 8:"),
+                                      ("if N <= 8:", "if N >= 8:"), ("for j in range(1, N):", "for j in range(0, N):")])
+def test_largest_step_forms_are_equivalent(old, new):
+    # rows:249, :251 (`_largest_step`'s switch between its two forms, and the loop form's first site taken twice):
+    # both forms take max_j |q_{j+1} - q_j| of the same rounded differences (a subtraction, abs, max: exact
+    # operations after the subtraction), so any N gives the same floats, NaN rows included
+    from symbt.numeric.float64 import rows
+
+    mutant = planted(rows._largest_step, old, new)
+    rng = np.random.default_rng(249)
+    for N in (2, 3, 8, 9, 12):
+        q = rng.uniform(-800, 800, (40, N))
+        q[3, N // 2] = np.nan
+        q[5] = 1e300 * np.array([(-1) ** j for j in range(N)])
+        assert np.array_equal(rows._largest_step(q), mutant(q), equal_nan=True)

@@ -15,14 +15,18 @@ tie ``Re(ref conj g) = 0``, a ball that straddles 0) changes nothing they look a
   ``align(g, ref) = (+-g, plus)`` with ``plus`` iff ``Re(ref conj g) >= 0`` and ``half_plane(a, g)`` iff
   ``Re(a conj g) >= 0``, at ``g != 0`` (real contexts: ``g > 0``, the principal root they are given) and at
   ``ref``, ``a`` = 0 (the tie is ``>= 0``); ``select`` on one bool and (float) on a mixed mask; ``all_positive``
-  over rows (NaN fails); ``acosh_half_abs(t, g, e) = arccosh(|t| 2^e / 2)`` against ``mpmath.acosh`` at 40
-  digits (float64 within 4 ulps, the others within ``1e-25`` at 140 bits).  The Arb contexts are skipped
-  without python-flint (said in the detail).
+  over rows (NaN fails); ``acosh_half_abs(t, g, e) = arccosh(|t| 2^e / 2)`` and the elementary functions
+  ``exp``, ``log``, ``log1p``, ``sqrt`` (principal branches; ``log1p`` near 0 and near -1) against mpmath at 40
+  digits (float64 within 4 ulps, the others within ``1e-25`` at 140 bits); the Jacobian's dual numbers
+  (:class:`~symbt.numeric.multiprec.lohner_checks.Dual`, the context ``DUAL``) through ``+ - * /`` with constants
+  on either side and ``exp``, ``log``, ``log1p``, ``sqrt``: value and gradient against ``mpmath.diff`` of the
+  same expressions.  The Arb contexts are skipped without python-flint (said in the detail).
 
-  Written against the table, the claim found four primitives that did not meet it, in branches no step takes:
-  the complex float64 context's ``ldexp`` (numpy's takes no complex values) and ``positive`` (``Re x > 0``, where
-  the mpmath and Arb contexts decide "real and positive"), the mpmath context's ``ldexp`` of an mpc, and the
-  interval context's ``acosh_half_abs``, which ignored the scale ``e``.
+  Written against the table, the claim found five primitives that did not meet it: the complex float64
+  context's ``log1p`` (numpy's complex ``log1p`` is ``log(1 + x)``: 6e-9 relative at ``|x| = 1e-8``; the complex
+  continuation's positions take it), and, in branches no step takes, its ``ldexp`` (numpy's takes no complex
+  values) and ``positive`` (``Re x > 0``, where the mpmath and Arb contexts decide "real and positive"), the
+  mpmath context's ``ldexp`` of an mpc, and the interval context's ``acosh_half_abs``, which ignored the scale.
 """
 from __future__ import annotations
 
@@ -56,6 +60,8 @@ class _Ctx:
     complex_: bool
     tol: float              # acosh_half_abs's relative tolerance
     exact: Callable[[Any], Any] = lambda v: mp.mpf(complex(np.asarray(v).ravel()[0]).real)  # a real value, in full
+    #: a complex value, in full
+    exact_c: Callable[[Any], Any] = lambda v: mp.mpc(complex(np.asarray(v).ravel()[0]))
     #: the outcome of a division by an exact zero, as the context documents it (an interval: the whole line)
     by_zero: Callable[[Any, complex], bool] = lambda v, a: bool(v != v) if a == 0 else bool(np.isinf(abs(v)))
 
@@ -70,10 +76,12 @@ def _contexts() -> tuple[list[_Ctx], str]:
                 False, 4 * 2.0 ** -53),
            _Ctx("COMPLEX", COMPLEX, lambda x: np.array([complex(x)]), lambda v: complex(np.asarray(v).ravel()[0]),
                 True, 4 * 2.0 ** -53),
-           _Ctx("MP (mpf)", MP, lambda x: mp.mpf(x.real), lambda v: complex(v), False, 1e-25, lambda v: v),
-           _Ctx("MP (mpc)", MP, lambda x: mp.mpc(x.real, x.imag), lambda v: complex(v), True, 1e-25, lambda v: v),
+           _Ctx("MP (mpf)", MP, lambda x: mp.mpf(x.real), lambda v: complex(v), False, 1e-25, lambda v: v,
+                lambda v: v),
+           _Ctx("MP (mpc)", MP, lambda x: mp.mpc(x.real, x.imag), lambda v: complex(v), True, 1e-25, lambda v: v,
+                lambda v: v),
            _Ctx("IV", IV, lambda x: mp.iv.mpf(x.real), lambda v: complex(float(v.mid)), False, 1e-25,
-                lambda v: mp.mpf(v.mid), lambda v, a: bool(mp.isinf(v.a) and mp.isinf(v.b)))]
+                lambda v: mp.mpf(v.mid), lambda v: mp.mpf(v.mid), lambda v, a: bool(mp.isinf(v.a) and mp.isinf(v.b)))]
     try:
         from flint import acb, arb
 
@@ -91,9 +99,14 @@ def _contexts() -> tuple[list[_Ctx], str]:
         ball = v.real if isinstance(v, acb) else v
         return mp.mpf(ball.mid().str(40, radius=False))
 
-    out += [_Ctx("ARB_MID", ARB_MID, lambda x: arb(x.real), arb_back, False, 1e-25, arb_exact),
-            _Ctx("ARB_CERTAIN", ARB_CERTAIN, lambda x: arb(x.real), arb_back, False, 1e-25, arb_exact),
-            _Ctx("ACB", ACB, lambda x: acb(x.real, x.imag), acb_back, True, 1e-25, arb_exact)]
+    def arb_exact_c(v: Any) -> Any:
+        if isinstance(v, acb):
+            return mp.mpc(arb_exact(v.real), arb_exact(v.imag))
+        return arb_exact(v)
+
+    out += [_Ctx("ARB_MID", ARB_MID, lambda x: arb(x.real), arb_back, False, 1e-25, arb_exact, arb_exact_c),
+            _Ctx("ARB_CERTAIN", ARB_CERTAIN, lambda x: arb(x.real), arb_back, False, 1e-25, arb_exact, arb_exact_c),
+            _Ctx("ACB", ACB, lambda x: acb(x.real, x.imag), acb_back, True, 1e-25, arb_exact, arb_exact_c)]
     return out, "Arb contexts included"
 
 
@@ -186,6 +199,58 @@ def _float_rows() -> list[str]:
     return bad
 
 
+def _elementary(c: _Ctx) -> list[str]:
+    """exp, log, log1p, sqrt (principal branches) against mpmath at 40 digits: float64 within 4 ulps of the value's
+    size, the others within 1e-25 (at 140 bits)."""
+    bad = []
+    real = (0.75, 3.0, 1e-3, 25.0)
+    # complex: the principal branches, and log1p near 0 (where log(1 + x) loses digits) and near -1
+    points = [complex(v) for v in real] + ([1 + 2j, -1 + 0.5j, -4 + 0j, 0.5 - 3j, 1e-8 + 1e-9j, -1e-10 + 1e-6j,
+                                            -0.999 + 0.001j] if c.complex_ else [])
+    fns = (("exp", mp.exp), ("log", mp.log), ("log1p", mp.log1p), ("sqrt", mp.sqrt))
+    with np.errstate(all="ignore"), mp.workdps(40), _iv_prec(140), _ball_prec(140):
+        for name, ref in fns:
+            for x in points:
+                got = c.exact_c(getattr(c.ctx, name)(c.mk(x)))
+                want = ref(mp.mpc(x.real, x.imag) if c.complex_ else mp.mpf(x.real))
+                if not abs(got - want) <= c.tol * abs(want):
+                    bad.append(f"{name}({x}) = {mp.nstr(got, 17)} (want {mp.nstr(want, 17)})")
+    return bad
+
+
+def _dual_rules() -> list[str]:
+    """The Jacobian's dual numbers (value, gradient) through the arithmetic and the elementary functions the
+    step uses, against mpmath.diff of the same expressions (40 digits): f(x, y) at (3/4, 5/2)."""
+    from flint import arb, arb_mat
+
+    from ..numeric.multiprec.lohner_checks import DUAL, Dual
+
+    exprs = (("x + y * 2 - 1", lambda x, y, L: x + y * 2 - 1), ("3 - x", lambda x, y, L: 3 - x),
+             ("-x * y", lambda x, y, L: -x * y), ("x / y", lambda x, y, L: x / y), ("x / 4", lambda x, y, L: x / 4),
+             ("2 / x", lambda x, y, L: 2 / x), ("exp(x y)", lambda x, y, L: L.exp(x * y)),
+             ("log(x + y)", lambda x, y, L: L.log(x + y)), ("log1p(x / y)", lambda x, y, L: L.log1p(x / y)),
+             ("sqrt(x + y)", lambda x, y, L: L.sqrt(x + y)))
+
+    class _MP:
+        exp, log, log1p, sqrt = mp.exp, mp.log, mp.log1p, mp.sqrt
+
+    bad = []
+    with mp.workdps(40), _ball_prec(140):
+        X = Dual(arb(0.75), arb_mat([[1, 0]]))
+        Y = Dual(arb(2.5), arb_mat([[0, 1]]))
+        for text, f in exprs:
+            d = f(X, Y, DUAL)
+            want_v = f(mp.mpf(0.75), mp.mpf(2.5), _MP)
+            want_d = [mp.diff(lambda a, b: f(a, b, _MP), (mp.mpf(0.75), mp.mpf(2.5)), (1, 0)),
+                      mp.diff(lambda a, b: f(a, b, _MP), (mp.mpf(0.75), mp.mpf(2.5)), (0, 1))]
+            got = [d.v] + [d.d[0, k] for k in range(2)]
+            for g, w in zip(got, [want_v] + want_d):
+                if not abs(mp.mpf(g.mid().str(40, radius=False)) - w) <= mp.mpf(10) ** -25 * max(1, abs(w)):
+                    bad.append(f"the dual {text}: {g.str(12, radius=False)} (want {mp.nstr(w, 12)})")
+                    break
+    return bad
+
+
 def _ball_decisions() -> list[str]:
     """Where a ball or an interval straddles 0: a midpoint decision, a refusal to decide, or 'not certain'."""
     from flint import arb
@@ -220,10 +285,10 @@ def contexts() -> Outcome:
     ctxs, note = _contexts()
     bad: list[str] = []
     for c in ctxs:
-        bad += [f"{c.name}: {b}" for b in _check_context(c)]
+        bad += [f"{c.name}: {b}" for b in _check_context(c) + _elementary(c)]
     bad += _float_rows()
     if "absent" not in note:
-        bad += _ball_decisions()
+        bad += _ball_decisions() + _dual_rules()
     detail = f"{len(ctxs)} contexts ({', '.join(c.name for c in ctxs)}); {note}."
     if bad:
         return failed("the contexts' primitives vs the interface table", detail="; ".join(bad[:6]) + ". " + detail)

@@ -1,5 +1,5 @@
 r"""Lines the claims did not reach (issue 21, seed 16: ``codegen.kernels:166``, ``context:178``, ``step:367``,
-``kernels:320``).
+``kernels:320``, and the input validation no claim ran).
 
 * ``shipped.loop_phi_grad.n5`` -- the loop form's (``N >= 4``) gradient of the real :math:`\Phi`, ``phi_grad``
   (float64) and ``phi_grad_mp`` (mpmath, 30 digits), against central differences of
@@ -37,6 +37,14 @@ r"""Lines the claims did not reach (issue 21, seed 16: ``codegen.kernels:166``, 
   ``ILLCOND`` to ``OK`` at some ``lam2 = 2 + delta`` (bisection); ``toda{N}.bt_step`` refuses at ``delta / 1.02``
   and at ``delta 1.02`` returns the literal map within ``16 N u S_i`` (the two estimates round differently; the
   estimate moves ~2 % over that margin).
+* ``library.input_kinds`` -- the public numeric entry points (``bt_step``, ``bt_orbit``, ``phi``,
+  ``spectral_trace``, ``invariants``, ``flow_coefficients``, ``FlowField``) on malformed input: text in every
+  form (str, numpy strings, bytes, an object array or a nested list holding text), complex input in every form,
+  dates (numpy would cast them to day counts), a NaN or an inf in one member of a batch of 100 -- each refused
+  with :class:`~symbt.numeric.InvalidInputError` naming the cause; object, int and float32 arrays and int lists
+  of the same numbers give the float arrays' result bit for bit, an object array of mpf the mpf lists'.
+  ``certified_orbit``, which takes its input exactly, reads decimal strings and Fractions as the numbers they
+  name (the float result bit for bit) and refuses bytes, dates, nesting, complex and non-finite values by name.
 """
 from __future__ import annotations
 
@@ -342,6 +350,39 @@ def _entry_points() -> dict[str, Any]:
             "FlowField": lambda p, q: FlowField(p, q, 10.0, 5.0)}
 
 
+def _certified_inputs(dates: np.ndarray) -> list[str]:
+    """certified_orbit takes its input exactly: decimal strings and Fractions are numbers there (its docstring);
+    bytes, dates, nesting, complex and non-finite values are refused, each by name."""
+    from fractions import Fraction
+
+    from ..numeric import InvalidInputError, certified_orbit
+
+    def run(p: Any) -> Any:
+        return certified_orbit(p, list(_Q), 10.0, 5.0, 1)
+
+    bad = []
+    cplx = "complex input is not supported"
+    for kind, p, words in (("bytes in a list", [b"-20", 10.0, 1.0], "unsupported number type bytes"),
+                           ("a datetime64 array", dates, "unsupported number type"),
+                           ("a nested list", [list(_P)], "flat sequence"),
+                           ("a Python complex", [-20 + 0j, 10.0, 1.0], cplx), ("mpc", [mp.mpc(v) for v in _P], cplx),
+                           ("an mpf inf", [mp.mpf(-20), mp.inf, mp.mpf(1)], "non-finite"),
+                           ("a float nan", [-20.0, math.nan, 1.0], "non-finite")):
+        try:
+            run(p)
+            bad.append(f"certified_orbit accepted {kind}")
+        except InvalidInputError as exc:
+            if words not in str(exc):
+                bad.append(f"certified_orbit on {kind}: {exc}")
+    want = run(list(_P))
+    for kind, p in (("decimal strings", [str(int(v)) for v in _P]), ("Fractions", [Fraction(int(v)) for v in _P]),
+                    ("a numpy str array", np.array([str(int(v)) for v in _P]))):
+        got = run(p)
+        if any(list(a) != list(b) for a, b in zip(got, want)):
+            bad.append(f"certified_orbit on {kind} differs from the same numbers as floats")
+    return bad
+
+
 @claim("library.input_kinds", equation="bt_step", source_equation="imptransf", scene="library",
        where="symbt/numeric/core/inputs.py: float_array, _has_text, _is_complex, _kind, the finiteness test of "
              "prepare's batches; every public entry point",
@@ -349,9 +390,18 @@ def _entry_points() -> dict[str, Any]:
                  "(str, numpy strings, bytes, an object array or a nested list holding text) and complex input "
                  "(Python, numpy, mpc, object) with InvalidInputError naming it; the batch entry points refuse a "
                  "NaN or an inf anywhere in a batch of 100 states; dates (datetime64) are refused, not as text; "
+                 "certified_orbit takes decimal strings and Fractions exactly and refuses bytes, dates, nesting, "
+                 "complex and non-finite values by name; "
                  "object, int, float32 arrays and a list of int holding the same numbers give the float array's "
                  "result bit for bit, an object array of mpf the mpf list's")
 def input_kinds() -> Outcome:
+    from ._shipped import without_numba
+
+    with without_numba():               # the default run compiles no numba kernel (seconds on a cold cache)
+        return _input_kinds()
+
+
+def _input_kinds() -> Outcome:
     from ..numeric import InvalidInputError
 
     bad: list[str] = []
@@ -389,6 +439,7 @@ def input_kinds() -> Outcome:
             except InvalidInputError as exc:
                 if "finite" not in str(exc):
                     bad.append(f"{name} on {bad_value} in a batch: {exc}")
+    bad += _certified_inputs(dates)
     floats = entries["bt_step"](np.array(_P), np.array(_Q))
     for kind, p in (("object", np.array(_P, dtype=object)), ("int", np.array(_P, dtype=np.int64)),
                     ("float32", np.array(_P, dtype=np.float32)), ("list of int", [int(v) for v in _P])):

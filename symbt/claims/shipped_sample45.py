@@ -410,17 +410,20 @@ def root_slope_claim() -> Outcome:
                    evidence="sampled", n_scope="all", detail=detail, printed="within half an ulp")
 
 
-#: paths.dq_edge: p = 0, a neighbour distance of exactly MAX_DQ_FLOAT64 (q_2 - q_1 = -700), lam0, mu
-DQ_EDGE = ((0.5, -0.25, 0.125), (0.0, -700.0, -350.0), 1e3, 10.0)
+def dq_edge_state(N: int) -> tuple:
+    """paths.dq_edge's state: a neighbour distance of exactly MAX_DQ_FLOAT64 (q_2 - q_1 = -700), the others 350
+    or 0; lam0, mu."""
+    return (0.5, -0.25, 0.125) + (0.0,) * (N - 3), (0.0, -700.0) + (-350.0,) * (N - 2), 1e3, 10.0
 
 
-@claim("paths.dq_edge", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+@claim("paths.dq_edge", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3, 9),
        where="symbt/numeric/float64/kernels_block.py: the re-anchoring's range test |dq| <= MAX_DQ_FLOAT64; "
-             "rows.py: the numpy route's per-row range test",
+             "rows.py: the numpy route's per-row range test (past 8 sites: one array of the differences)",
        statement="the block kernel (run_block, one step, both branches) and bt_step (one state and a batch of two, "
-                 "backends python and numpy) at p = (1/2, -1/4, 1/8), "
-                 "q = (0, -700, -350) (N={N}; a neighbour distance of exactly MAX_DQ_FLOAT64 = 700, the documented "
-                 "largest), lam0 = 1000, mu = 10: "
+                 "backends python and numpy) at p = (1/2, -1/4, 1/8, 0, ...), "
+                 "q = (0, -700, -350, ..., -350) (N={N}; a neighbour distance of exactly MAX_DQ_FLOAT64 = 700, the "
+                 "documented largest; and the state turned by one site, the 700 between site N and site 1), "
+                 "lam0 = 1000, mu = 10: "
                  "status OK and the state within 1e-9 (1 + |x|) of the mpmath step at 40 digits (the literal map "
                  "loses every digit there); with q_2 one ulp further (|dq| > 700) status RANGE, and bt_step a "
                  "NumericRangeError naming the range")
@@ -431,11 +434,13 @@ def dq_edge(N: int) -> Outcome:
     from ..numeric.float64.kernels_block import run_block
     from ..numeric.float64.rows import _mp_verdict
 
-    p, q, l0, m = DQ_EDGE
+    p0, q, l0, m = dq_edge_state(N)
     bad, worst = [], 0.0
-    for b in (1, -1):
+    # the 700 between sites 1 and 2, and (the state turned by one site) between site N and site 1
+    for b, turn in ((1, 0), (-1, 0), (1, 1), (-1, 1)):
         for q2, want in ((q[1], OK), (math.nextafter(q[1], -math.inf), RANGE)):
-            qq = (q[0], q2, q[2])
+            p = tuple(np.roll(p0, -turn).tolist())
+            qq = tuple(np.roll((q[0], q2, *q[2:]), -turn).tolist())
             st = np.zeros(1, np.int64)
             outP, outQ = np.empty((2, 1, N)), np.empty((2, 1, N))
             run_block(np.array([p]), np.array([qq]), np.array([l0 + m]), np.array([l0 - m]), np.array([2 * m]), b, 1,
