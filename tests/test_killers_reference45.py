@@ -214,16 +214,18 @@ def _random_state(rng: random.Random, N: int) -> tuple[list, list]:
 @pytest.mark.parametrize("old, new", [
     ("if abs(r.imag) < small]", "if r.imag < small]"),          # trace:134 abs (seed 4)
     ("if abs(r.imag) < small]", "if abs(r.imag) > small]"),     # trace:134 compare (seed 5)
+    ("if abs(r.imag) < small]", "if abs(r.imag) <= small]"),    # trace:138 compare (seed 17)
+    ("    if len(d) > 1:\n", "    if not (len(d) > 1):\n"),   # trace:137 branch (seed 17): no critical point at all
 ])
 def test_trace_gap_critical_points_are_equivalent(old, new):
-    # trace:134 (seeds 4, 5): which critical points of tr L enter trace_gap's candidates.  Proof: for a real state
-    # tr L(lam) -+ 2 has all its 2N roots real (the periodic and antiperiodic spectra of a real symmetric Jacobi
-    # matrix), so tr' (degree N - 1) has its N - 1 roots real, one in each closed gap, where |tr| >= 2 and |tr|
-    # rises to its one maximum there.  An interval [lo, hi] that reaches trace_gap's candidates holds no root of
-    # tr = +-2; it lies in one band (no critical point inside) or in one gap (|tr| rising to its maximum at the
-    # critical point), so no critical point inside [lo, hi] is below the ends' least |tr| - 2: they never decide.
-    # Checked: the premise (tr' has only real roots, at |tr| >= 2) on random states, N = 2..4, and the planted
-    # mutant's trace_gap bit for bit on intervals in gaps, bands and across them
+    # trace:134 (seeds 4, 5; :137-138 in seed 17): which critical points of tr L enter trace_gap's candidates.
+    # Proof: for a real state tr L(lam) -+ 2 has all its 2N roots real (the periodic and antiperiodic spectra of a
+    # real symmetric Jacobi matrix), so tr' (degree N - 1) has its N - 1 roots real, one in each closed gap, where
+    # |tr| >= 2 and |tr| rises to its one maximum there.  An interval [lo, hi] that reaches trace_gap's candidates
+    # holds no root of tr = +-2; it lies in one band (no critical point inside) or in one gap (|tr| rising to its
+    # maximum at the critical point), so no critical point inside [lo, hi] is below the ends' least |tr| - 2: they
+    # never decide. Checked: the premise (tr' has only real roots, at |tr| >= 2) on random states, N = 2..4, and the
+    # planted mutant's trace_gap bit for bit on intervals in gaps, bands and across them
     T = pytest.importorskip("symbt.reference.trace")
     bad = planted(T.trace_gap, old, new)
     rng = random.Random("ref45 trace_gap")

@@ -84,13 +84,17 @@ def test_exact_route_names_kills_the_reduction_modulo_i_squared_plus_one(monkeyp
 
 # --------------------------------------------------------------------------- proven equivalent
 
-def test_odd_draw_at_the_top_of_its_range_is_equivalent():
+@pytest.mark.parametrize("new", ["v = v + 1 if v + 1 <= hi else v + 1",      # screen:54 sign (seed 11)
+                                 "v = v + 1 if v + 0 <= hi else v - 1",      # screen:54 constant (seed 17)
+                                 "v = v + 1 if v + 1 <= hi else v - 0"])     # screen:54 constant (seed 17)
+def test_odd_draw_at_the_top_of_its_range_is_equivalent(new):
     # screen:54 (`v - 1` -> `v + 1` where an odd draw at the top moves down): every range the sampler draws from ends
-    # on odd numbers (1..9, -9..-1, -9..9), so an even draw v < hi has v + 1 <= hi and the else branch is never taken;
-    # the mutant draws the same values for every seed (checked on 2000 seeds x each range), a wrong move is seen
+    # on odd numbers (1..9, -9..-1, -9..9), so an even draw v < hi has v + 1 <= hi and the else branch is never taken
+    # (nor does `v + 0 <= hi`, true wherever `v + 1 <= hi` is, change the test); the mutant draws the same values for
+    # every seed (checked on 2000 seeds x each range), a wrong move is seen
     from symbt.proof import screen
 
-    mutant = planted(screen.sample_symbol, "v = v + 1 if v + 1 <= hi else v - 1", "v = v + 1 if v + 1 <= hi else v + 1")
+    mutant = planted(screen.sample_symbol, "v = v + 1 if v + 1 <= hi else v - 1", new)
     wrong = planted(screen.sample_symbol, "v = v + 1 if v + 1 <= hi else v - 1", "v = v - 1 if v + 1 <= hi else v - 1")
     syms = [sp.Symbol("n", integer=True, odd=True, **kw) for kw in ({"positive": True}, {"negative": True}, {})]
     differs = 0

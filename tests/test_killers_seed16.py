@@ -1,8 +1,11 @@
-"""Seed 16's survivors (docs/mutation.md, "Seed 16"): planted bugs that the new claims and facts now see, the
-proofs of the mutants marked equivalent, and two planted bugs only a test sees.  Unpatched, every claim verifies."""
+"""Seeds 16 and 17's survivors (docs/mutation.md, "Seed 16", "Seed 17"): planted bugs that the new claims and facts
+now see, the proofs of the mutants marked equivalent, and planted bugs only a test sees.  Unpatched, every claim
+verifies."""
 from __future__ import annotations
 
 import inspect
+import math
+import random
 
 import mpmath as mp
 import numpy as np
@@ -16,7 +19,8 @@ load_all()
 CLAIMS = ["shipped.loop_phi_grad.n5", "paths.symmetric_monodromy.n2", "paths.many_rows.n3", "shipped.guard_boundary.n2",
           "shipped.guard_boundary.n3", "checker.codegen_metrics", "paths.kappa_rows.n2", "checker.exact",
           "library.emit_typed", "library.emit", "library.reference_verify", "library.input_kinds", "paths.contexts",
-          "paths.dq_edge.n9"]
+          "paths.dq_edge.n9", "paths.lohner_unsound.n3", "paths.ball_schedule.n3", "paths.panels",
+          "library.inverse_fields"]
 
 
 def fails(cid: str, *, crash: bool = False) -> bool:
@@ -216,6 +220,19 @@ def test_dual_rules(monkeypatch, func, old, new):
         monkeypatch.setattr(L, func, mutant)
         monkeypatch.setattr(L._DualContext, "log", staticmethod(mutant))
     assert fails("paths.contexts", crash=True)
+
+
+@pytest.mark.parametrize("old, new", [
+    ("        if self.unsound:\n            J, err", "        if not self.unsound:\n            J, err"),   # lohner:328
+    ("J, err = J.mid(), arb_mat(self.n, 1)", "J, err = J.mid(), arb_mat(self.n, 0)"),                      # lohner:329
+])
+def test_lohner_unsound_variant(monkeypatch, old, new):
+    # lohner:328-329 (uncovered in seed 16: no claim ran the unsound variant, the control of the containment test)
+    pytest.importorskip("flint")
+    from symbt.numeric.multiprec import lohner
+
+    monkeypatch.setattr(lohner.LohnerSet, "step", planted(lohner.LohnerSet.step, old, new))
+    assert fails("paths.lohner_unsound.n3", crash=True)
 
 
 @pytest.mark.parametrize("old, new", [
@@ -431,3 +448,148 @@ def test_largest_step_forms_are_equivalent(old, new):
         q[3, N // 2] = np.nan
         q[5] = 1e300 * np.array([(-1) ** j for j in range(N)])
         assert np.array_equal(rows._largest_step(q), mutant(q), equal_nan=True)
+
+
+# --------------------------------------------------------------------------- seed 17
+
+def test_panels_group_scale_is_a_size(monkeypatch):
+    # coefficients:213 (`_group_scale(np.abs(i32))` -> `i32`): a group's scale taken as the signed maximum, the tiny
+    # peak's own where its partner row is negative
+    from symbt.numeric.flow import coefficients
+
+    monkeypatch.setattr(coefficients, "adaptive_panels", planted(
+        coefficients.adaptive_panels, "scale = _group_scale(np.abs(i32), groups)", "scale = _group_scale(i32, groups)"))
+    from symbt.claims import shipped_seed6
+
+    monkeypatch.setattr(shipped_seed6, "adaptive_panels", coefficients.adaptive_panels, raising=False)
+    assert fails("paths.panels")
+
+
+def test_certified_two_sites(monkeypatch):
+    # certified:126 (`len(P) < 2` -> `<= 2`): two sites refused by the certified orbit; no claim ran one at N = 2
+    from symbt.numeric.multiprec import certified
+
+    monkeypatch.setattr(certified, "_state", planted(certified._state, "len(P) < 2:", "len(P) <= 2:"))
+    assert fails("library.input_kinds", crash=True)
+
+
+def test_cauchy_schwarz_only_with_all_three_fitted(monkeypatch):
+    # inverse:171 (`{0, 1, 2} <= used` -> `{0, 0, 2}`): the refusal where c_1 is not fitted
+    from symbt.reference import inverse
+
+    monkeypatch.setattr(inverse, "solve_parameters", planted(inverse.solve_parameters, "if {0, 1, 2} <= used",
+                                                             "if {0, 0, 2} <= used"))
+    assert fails("library.inverse_fields")
+
+
+def test_reduction_to_the_fixed_point(monkeypatch):
+    # flint_exact:180 (`if num == before: break` inverted): one round of reductions where a second is needed
+    from symbt.proof import flint_exact
+
+    mutant = planted(flint_exact.rational_zero, "            if num == before:", "            if not (num == before):")
+    monkeypatch.setattr(flint_exact, "rational_zero", mutant)
+    assert fails("checker.exact")
+
+
+def test_invariants_zero_from_another_site_is_equivalent():
+    # invariants:76 (`zero = 0.0 * P[0]` -> `P[1]`): the zero of the batch's shape (or an mpf zero) from another site
+    # of the same shape; P is finite (validated), so 0.0 * P[1] is a zero too, at most of the other sign, and a
+    # signed zero is not a different number: the invariants compare equal, batches and mpf alike
+    from symbt.numeric.flow import invariants
+
+    mutant = planted(invariants._invariants, "zero = 0.0 * P[0]", "zero = 0.0 * P[1]")
+    rng = np.random.default_rng(76)
+    for N in (2, 3, 5):
+        p = rng.normal(size=(7, N))
+        p[0, 0], p[1, :] = 0.0, -np.abs(p[1, :])
+        q = rng.normal(size=(7, N))
+        assert all(np.array_equal(a, b) for a, b in zip(invariants._invariants(p, q), mutant(p, q)))
+        with mp.workdps(30):
+            pm, qm = [mp.mpf(v) for v in p[2]], [mp.mpf(v) for v in q[2]]
+            assert invariants._invariants(pm, qm) == mutant(pm, qm)
+
+
+def test_transfer_gradient_first_suffix_from_the_identity_is_equivalent():
+    # field:84 (`if j == N - 1` -> `N - 0`: never true): the suffix product's first update then runs the general
+    # formula from B_N = I: 1 a + 0 r = a, -s 1 = -s, 0 a + 1 r = r, -s 0 = 0 -- the same entries for finite a, r
+    # (FlowField's r = exp(dq), |dq| <= 700), at most a zero of the other sign; the gradients compare equal
+    from symbt.numeric.flow import field
+
+    mutant = planted(field.transfer_gradient, "            if j == N - 1:\n                b00",
+                     "            if j == N - 0:\n                b00")
+    rng = np.random.default_rng(84)
+    for N in range(2, 8):
+        for _ in range(30):
+            a, r, s = list(rng.normal(size=N)), list(rng.uniform(0.1, 3, size=N)), float(rng.uniform(0.5, 2))
+            assert mutant(a, r, s) == field.transfer_gradient(a, r, s)
+        with mp.workdps(30):
+            am, rm = [mp.mpf(v) for v in a], [mp.mpf(v) for v in r]
+            assert mutant(am, rm, mp.mpf(s)) == field.transfer_gradient(am, rm, mp.mpf(s))
+
+
+def test_sample_case_separation_tie_is_equivalent():
+    # elliptic:436 (`abs(sa - sb) < 0.05` -> `<=`): a draw is redrawn when its two ends are closer than 0.05; the
+    # two tests differ only where two random doubles differ by exactly 0.05: the same cases for every seed tried
+    from symbt.reference import elliptic as E
+
+    mutant = planted(E.sample_case, "if abs(sa - sb) < 0.05:", "if abs(sa - sb) <= 0.05:")
+    for reg in E._ZONES:
+        for seed in range(300):
+            assert mutant(reg, random.Random(seed)) == E.sample_case(reg, random.Random(seed))
+
+
+def test_spread_tuples_single_pair_is_equivalent(monkeypatch):
+    # inline:424 (`pairs[0][0] is n.targets[0]` -> `pairs[0][1] is ...`): an assignment whose target is no spread
+    # tuple is then rebuilt as the one assignment `Assign([t], v)` of its single pair instead of returned as it is:
+    # the same statement (unless the target is the value, which _same drops: `x = x`, a no-op).  Checked: the
+    # fused kernels built with the mutant have the very same bytecode, constants and names
+    from symbt.numeric.core import inline
+    from symbt.numeric.float64 import kernels
+
+    def code(fn):
+        c = fn.__code__
+        return c.co_code, c.co_consts, c.co_names, c.co_varnames
+
+    want = {k: code(f) for k, f in kernels.python_kernels.__wrapped__().items()}
+    original = inline._SpreadTuples.visit_Assign
+    monkeypatch.setattr(inline._SpreadTuples, "visit_Assign", planted(
+        original, "pairs[0][0] is n.targets[0]", "pairs[0][1] is n.targets[0]"))
+    got = {k: code(f) for k, f in kernels.python_kernels.__wrapped__().items()}
+    assert got == want
+    # the control: the method does run in this build -- doubling the statements it returns as they are changes it
+    monkeypatch.setattr(inline._SpreadTuples, "visit_Assign", planted(
+        original, "pairs[0][0] is n.targets[0]:\n        return n",
+        "pairs[0][0] is n.targets[0]:\n        return [n, n]"))
+    assert {k: code(f) for k, f in kernels.python_kernels.__wrapped__().items()} != want
+
+
+@pytest.mark.parametrize("old, new", [("max(1, i1 - i0)", "max(0, i1 - i0)"),            # certified:181
+                                      ("extra = finite[-1][1] + _MARGIN", "extra = finite[-0][1] + _MARGIN")])  # :185
+def test_ball_schedule_forms_are_equivalent(old, new):
+    # certified:181 (`max(1, i1 - i0)` -> `max(0, ...)`): with two finite excesses or more, i0 < i1 (indices of one
+    # list, ascending), so i1 - i0 >= 1 either way; certified:185 (`finite[-1]` -> `finite[-0]`): that branch has
+    # exactly one finite excess, finite[0] is finite[-1].  Checked on random histories with 0, 1, 2 and more
+    # finite entries (-inf where a radius is 0)
+    from symbt.numeric.multiprec import certified
+
+    mutant = planted(certified._next_prec, old, new)
+    rng = random.Random(181)
+    for _ in range(2000):
+        k = rng.randint(0, 30)
+        hist = [rng.choice([-math.inf, rng.uniform(-60, 20)]) for _ in range(k)]
+        prec, n = rng.randint(60, 400), rng.randint(max(k, 1), 200)
+        assert mutant(prec, hist, k, n) == certified._next_prec(prec, hist, k, n)
+
+
+@pytest.mark.parametrize("old, new", [
+    ("4 * rate + _MARGIN", "4 * rate - _MARGIN"),
+    ("elif finite:", "elif not finite:"),
+    ("prec + prec // 4 + 32)", "prec + prec // 4 - 32)"),
+])
+def test_ball_schedule(monkeypatch, old, new):
+    # certified:183 (uncovered in seed 17: no claim ran the ball path's schedule), :184, :186
+    pytest.importorskip("flint")
+    from symbt.numeric.multiprec import certified
+
+    monkeypatch.setattr(certified, "_next_prec", planted(certified._next_prec, old, new))
+    assert fails("paths.ball_schedule.n3", crash=True)

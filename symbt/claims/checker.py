@@ -55,6 +55,7 @@ import sympy as sp
 
 from ..proof import Verdict, decide
 from ..proof.cells import CellTable
+from ..proof.exact import exact_zero
 from ._facts import facts_verified as _ok
 from .base import Outcome, claim, failed, scene
 
@@ -109,7 +110,8 @@ def screen_controls() -> Outcome:
 @claim("checker.exact", equation="checker", scene="checker",
        where="symbt.proof.decide, exact layer; symbt.proof.Verdict.sampled",
        statement="1/(x^2+1) = 1/(x^2+1) + 1e-60 is false by proof, noted as numerically tiny; so is + 1e-46 (below "
-                 "the screen's tolerance 1e-42 at 50 digits), and + 1e-30 is not noted tiny; a sampled verdict's "
+                 "the screen's tolerance 1e-42 at 50 digits), and + 1e-30 is not noted tiny; u^4 = 2v + 3 under "
+                 "v^2 = 2, u^2 = v + 1 (two rounds of reduction) is proved on both exact routes; a sampled verdict's "
                  "digits are -log10(residual) to one decimal, capped at the working precision; a negative residual "
                  "does not hold")
 def exact_controls() -> Outcome:
@@ -126,6 +128,15 @@ def exact_controls() -> Outcome:
             return failed(d2.method, residual=d2.residual,
                           detail=f"1/(x^2+1) vs 1/(x^2+1) + 1e-{e}: holds={d2.holds}, definite={d2.definite}, "
                                  f"note={d2.note!r} (want: false by proof, {'' if tiny else 'not '}noted tiny)")
+    # relations that need two rounds of reduction: listed v first, u^4 -> (v + 1)^2 brings back the v^2 that the
+    # first round had nothing to reduce; both exact routes must go on to the fixed point
+    u_, v_ = sp.symbols("u v", positive=True)
+    chain = {v_: v_ ** 2 - 2, u_: u_ ** 2 - v_ - 1}
+    for route in ("flint", "sympy"):
+        zero, how, _ = exact_zero(u_ ** 4 - 2 * v_ - 3, chain, route=route)
+        if zero is not True:
+            return failed(how or route, detail=f"u^4 = 2v + 3 under v^2 = 2, u^2 = v + 1: the {route} route gave "
+                                               f"{zero} (want True: two rounds of reduction)")
     v = Verdict.sampled(1e-60, tol=1e-20, method="control", dps=30)
     if not v.holds or v.digits != 30:
         return failed("Verdict.sampled", detail=f"residual 1e-60 at 30 digits: digits={v.digits} (want 30)")

@@ -155,7 +155,8 @@ def _c_quad(p: list, q: list, l0: mp.mpf, mu: mp.mpf, b: int) -> list:
                  ">= 2, (6, 0.3, +1) to 1e-12, kappa = 1; c = [c_0..c_N] at the "
                  "answer (N = 2: by mpmath quad of the literal trace; N = 3: the coefficients the target was made "
                  "from), kappa = sum c_k t_k / "
-                 "sum t_k^2 and residual = max |c_k - t_k| (k < N) within 1e-12 of the size")
+                 "sum t_k^2 and residual = max |c_k - t_k| (k < N) within 1e-12 of the size; with indices (0, 2) a "
+                 "c_1 that violates Cauchy-Schwarz is not read ((6, 0.3) found from c_0, c_2)")
 def inverse_fields(deep: bool = False) -> Outcome:
     from ..reference.inverse import solve_parameters
     from ..reference.spectral import flow_coefficients_mp
@@ -206,6 +207,18 @@ def inverse_fields(deep: bool = False) -> Outcome:
                 why.append(f"residual {mp.nstr(r['residual'], 8)}, by the definition {mp.nstr(resid, 8)}")
             if why:
                 bad.append(f"N={N}, {mode}: " + ", ".join(why))
+        # the Cauchy-Schwarz refusal needs c_0, c_1, c_2 all fitted: with indices (0, 2) a c_1 that violates it is
+        # not read, and (6, 0.3, +1) is found from its own c_0, c_2
+        ps, qs, l0s, ms = INVF_DIR
+        c = coeffs[(ps, qs, l0s, ms, 1)]
+        bogus = [c[0], 10 * mp.sqrt(abs(c[0] * c[2])), c[2]]            # c_0 c_2 <= c_1^2
+        try:
+            r = solve_parameters([mp.mpf(v) for v in ps], [mp.mpf(v) for v in qs], bogus, indices=(0, 2),
+                                 guess=(mp.mpf(l0s), mp.mpf(ms)))
+            if r is None or abs(r["lam0"] - mp.mpf(l0s)) > tol * abs(mp.mpf(l0s)) or abs(r["mu"] - mp.mpf(ms)) > tol:
+                bad.append(f"indices (0, 2) with c_1 ignored: {r and (r['lam0'], r['mu'])}")
+        except ValueError as exc:
+            bad.append(f"indices (0, 2): refused although c_1 is not fitted: {exc}")
     detail = ("N = 2 from the small-mu start at branch -1; N = 3 by direction to c/2, by least squares to c (and "
               "exact on 3 indices under --deep): "
               "iterations, (lam0, mu, b), c (by quad for N = 2), kappa and residual by their definitions (accepted "

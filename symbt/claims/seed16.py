@@ -42,9 +42,11 @@ r"""Lines the claims did not reach (issue 21, seed 16: ``codegen.kernels:166``, 
   form (str, numpy strings, bytes, an object array or a nested list holding text), complex input in every form,
   dates (numpy would cast them to day counts), a NaN or an inf in one member of a batch of 100 -- each refused
   with :class:`~symbt.numeric.InvalidInputError` naming the cause; object, int and float32 arrays and int lists
-  of the same numbers give the float arrays' result bit for bit, an object array of mpf the mpf lists'.
+  of the same numbers give the float arrays' result bit for bit, an object array of mpf the mpf lists'
+  (``bt_step``, ``flow_coefficients``, which gives zeros at ``mu = 0`` in either arithmetic).
   ``certified_orbit``, which takes its input exactly, reads decimal strings and Fractions as the numbers they
-  name (the float result bit for bit) and refuses bytes, dates, nesting, complex and non-finite values by name.
+  name (the float result bit for bit), refuses bytes, dates, nesting, complex and non-finite values, one site and
+  unequal lengths by name, and at two sites encloses the literal step.
 """
 from __future__ import annotations
 
@@ -352,7 +354,8 @@ def _entry_points() -> dict[str, Any]:
 
 def _certified_inputs(dates: np.ndarray) -> list[str]:
     """certified_orbit takes its input exactly: decimal strings and Fractions are numbers there (its docstring);
-    bytes, dates, nesting, complex and non-finite values are refused, each by name."""
+    bytes, dates, nesting, complex and non-finite values, one site and unequal lengths are refused, each by name;
+    two sites enclose the literal step."""
     from fractions import Fraction
 
     from ..numeric import InvalidInputError, certified_orbit
@@ -374,6 +377,23 @@ def _certified_inputs(dates: np.ndarray) -> list[str]:
         except InvalidInputError as exc:
             if words not in str(exc):
                 bad.append(f"certified_orbit on {kind}: {exc}")
+    for kind, p, q, words in (("one site", [1.0], [0.0], "N >= 2"), ("unequal lengths", list(_P), [0.0, 1.0],
+                                                                            "equal lengths")):
+        try:
+            certified_orbit(p, q, 10.0, 5.0, 1)
+            bad.append(f"certified_orbit accepted {kind}")
+        except InvalidInputError as exc:
+            if words not in str(exc):
+                bad.append(f"certified_orbit on {kind}: {exc}")
+    # two sites, the smallest lattice: an enclosure of the literal step (60 digits)
+    from ..reference.literal import reference_step
+
+    P2, Q2, Pr, Qr = certified_orbit([0.5, -0.25], [0.0, 0.5], 3.0, 0.5, 1)
+    with mp.workdps(60):
+        ref = reference_step([0.5, -0.25], [0.0, 0.5], 3.0, 0.5)
+        if not all(abs(m - x) <= r for m, x, r in zip(list(P2[-1]) + list(Q2[-1]), ref[0] + ref[1],
+                                                        list(Pr[-1]) + list(Qr[-1]))):
+            bad.append("certified_orbit at N = 2 does not enclose the literal step")
     want = run(list(_P))
     for kind, p in (("decimal strings", [str(int(v)) for v in _P]), ("Fractions", [Fraction(int(v)) for v in _P]),
                     ("a numpy str array", np.array([str(int(v)) for v in _P]))):
@@ -390,10 +410,12 @@ def _certified_inputs(dates: np.ndarray) -> list[str]:
                  "(str, numpy strings, bytes, an object array or a nested list holding text) and complex input "
                  "(Python, numpy, mpc, object) with InvalidInputError naming it; the batch entry points refuse a "
                  "NaN or an inf anywhere in a batch of 100 states; dates (datetime64) are refused, not as text; "
-                 "certified_orbit takes decimal strings and Fractions exactly and refuses bytes, dates, nesting, "
-                 "complex and non-finite values by name; "
+                 "certified_orbit takes decimal strings and Fractions exactly, refuses bytes, dates, nesting, "
+                 "complex and non-finite values, one site and unequal lengths by name, and at N = 2 encloses the "
+                 "literal step; "
                  "object, int, float32 arrays and a list of int holding the same numbers give the float array's "
-                 "result bit for bit, an object array of mpf the mpf list's")
+                 "result bit for bit, an object array of mpf the mpf list's (bt_step, flow_coefficients); "
+                 "flow_coefficients at mu = 0 is zeros in either arithmetic")
 def input_kinds() -> Outcome:
     from ._shipped import without_numba
 
@@ -448,10 +470,19 @@ def _input_kinds() -> Outcome:
             bad.append(f"bt_step on an {kind} array of the same numbers differs from the float arrays")
     with mp.workdps(30):
         mps = [mp.mpf(v) for v in _P], [mp.mpf(v) for v in _Q]
-        want = entries["bt_step"](*mps)
-        got = entries["bt_step"](np.array(mps[0], dtype=object), np.array(mps[1], dtype=object))
-        if not (isinstance(got[0][0], mp.mpf) and list(got[0]) == list(want[0]) and list(got[1]) == list(want[1])):
-            bad.append("bt_step on object arrays of mpf differs from the mpf lists' result")
+        objs = np.array(mps[0], dtype=object), np.array(mps[1], dtype=object)
+        for name in ("bt_step", "flow_coefficients"):
+            want, got = entries[name](*mps), entries[name](*objs)
+            flat_w, flat_g = np.ravel(np.array(want, dtype=object)), np.ravel(np.array(got, dtype=object))
+            if not (isinstance(flat_g[0], mp.mpf) and flat_g.tolist() == flat_w.tolist()):
+                bad.append(f"{name} on object arrays of mpf differs from the mpf lists' result")
+    # flow_coefficients documents zeros at mu = 0, in either arithmetic
+    from ..numeric import flow_coefficients
+
+    for args in ((list(_P), list(_Q), 10.0, 0.0), ([mp.mpf(v) for v in _P], [mp.mpf(v) for v in _Q], mp.mpf(10), 0)):
+        c = flow_coefficients(*args)
+        if len(c) != len(_P) or any(v != 0 for v in c):
+            bad.append(f"flow_coefficients at mu = 0 ({type(args[0][0]).__name__}): {list(c)}")
     detail = (f"{len(entries)} entry points x {len(kinds) + 2} malformed kinds; 3 non-finite values in batches of "
               "100 for 5 batch entry points; object, int, float32 arrays, int lists, object arrays of mpf.")
     if bad:

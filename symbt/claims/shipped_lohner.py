@@ -52,6 +52,18 @@ things the intersection hides, each against central differences of the literal m
   its documented rule: the schedule changes only how many passes a certified orbit takes, never its rigour);
   and the orbit it returns meets the target.
 
+* ``paths.lohner_unsound.n3`` -- the checker of certified orbits checked: the Lohner passes
+  (:func:`~symbt.numeric.multiprec.lohner.lohner_pass`, both frames) of the paper's state, 40 steps at 160 bits,
+  contain the literal orbit at 300 digits at every stored step, and the deliberately unsound variant
+  (``unsound=True``: the rounding errors and the Jacobian's radius dropped, no intersection with the ball image)
+  misses it at every step taken -- so a containment test that passes is not passing by default.
+* ``paths.ball_schedule.n3`` -- the plain ball path's precision schedule
+  (:func:`~symbt.numeric.multiprec.certified.certified_orbit` with ``method="ball"``): first passes forced low so
+  that they stop early, at step 1, at step 2 and at the last step, from an inexact and an exact input (whose first
+  excess is ``-inf``); the second pass (``info["passes"]``) must run at the precision of the stated rule computed
+  from the same first pass's excess history (a consistency check of the code with its rule, as ``paths.next_prec``
+  for the Lohner path), and the radii meet the target plus the rounding of the returned midpoints.
+
 Shown to fail on planted bugs in ``tests/test_killers_numeric.py``.
 """
 from __future__ import annotations
@@ -325,3 +337,120 @@ def next_precision(N: int) -> Outcome:
                       + detail)
     return Outcome("verified", "numeric: lohner_certified's schedule vs its documented rule (consistency)",
                    evidence="sampled", detail=detail, printed="the second pass at the documented precision")
+
+
+#: paths.lohner_unsound: steps, the balls' precision (bits) and the reference's digits
+UNSOUND_STEPS, UNSOUND_PREC, UNSOUND_DPS = 40, 160, 300
+
+
+@claim("paths.lohner_unsound", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       requires=("flint",),
+       where="symbt/numeric/multiprec/lohner.py: lohner_pass, LohnerSet (its deliberately unsound variant: the "
+             "rounding errors and the Jacobian's radius dropped)",
+       statement="the Lohner passes of the paper's state (N={N}, 40 steps, 160 bits, frames product and qr) contain "
+                 "the literal orbit at 300 digits at every stored step; the deliberately unsound variant (rounding "
+                 "errors and the Jacobian's radius dropped, the intersection with the ball image skipped) misses "
+                 "it at every step taken (40 of the 41 stored states; the first is the exact input) -- the "
+                 "containment test is not vacuous")
+def lohner_unsound(N: int) -> Outcome:
+    if importlib.util.find_spec("flint") is None:
+        return skipped("python-flint is not installed (.[certified])")
+    import math
+
+    from flint import arb
+
+    from ..numeric.multiprec.arb import flint_prec
+    from ..numeric.multiprec.lohner import lohner_pass
+    from ..paper import LAM0_EXAMPLE, MU_EXAMPLE, P_EXAMPLE, Q_EXAMPLE
+    from ..reference.literal import reference_step
+
+    p, q, l0, m = list(P_EXAMPLE), list(Q_EXAMPLE), LAM0_EXAMPLE, MU_EXAMPLE[0]
+    with mp.workdps(UNSOUND_DPS):
+        P, Q = [mp.mpf(v) for v in p], [mp.mpf(v) for v in q]
+        ref = [P + Q]
+        for _ in range(UNSOUND_STEPS):
+            P, Q = reference_step(P, Q, mp.mpf(l0), mp.mpf(m))
+            ref.append(P + Q)
+    misses: dict[tuple[str, bool], int] = {}
+    for frame in ("product", "qr"):
+        for unsound in (False, True):
+            with flint_prec(UNSOUND_PREC):
+                run = lohner_pass([arb(x) for x in p], [arb(x) for x in q], arb(l0), arb(m), UNSOUND_STEPS, 1,
+                                  set(range(UNSOUND_STEPS + 1)), lambda xs: -math.inf, unsound=unsound, frame=frame)
+            with flint_prec(1100):
+                misses[frame, unsound] = sum(
+                    any(not ball.contains(arb(mp.nstr(x, UNSOUND_DPS))) for x, ball in zip(r, Pb + Qb))
+                    for r, (Pb, Qb) in zip(ref, run.stored))
+    bad = [f"frame {f}: the sound pass misses the literal orbit at {k} steps" for (f, u), k in misses.items()
+           if not u and k]
+    bad += [f"frame {f}: the unsound variant misses it at only {k} of the {UNSOUND_STEPS} steps taken"
+            for (f, u), k in misses.items() if u and not k >= UNSOUND_STEPS]
+    detail = "; ".join(f"{f} {'unsound' if u else 'sound'}: {k} misses" for (f, u), k in misses.items()) + "."
+    if bad:
+        return failed("numeric: the Lohner passes and their unsound variant vs the literal orbit",
+                      detail="; ".join(bad) + ". " + detail)
+    return Outcome("verified", "numeric: the Lohner passes and their unsound variant vs the literal orbit "
+                   "(300 digits)", evidence="sampled", n_scope=[N], detail=detail,
+                   printed="sound contains, unsound misses")
+
+
+#: paths.ball_schedule: (q_3, the first pass's forced bits): a first pass that stops early, the same from an exact input
+#: (its first excess is -inf: the growth is measured from step 1), ones that stop at step 1 and at step 2 (one and two
+#: finite excesses) and one that misses the target only at the last step (the floor p + p // 4 + 32 decides); steps,
+#: target radius
+BALL_CASES, BALL_STEPS, BALL_TOL = (("0.9", 170), (1, 170), (1, 60), (1, 130), ("0.9", 255)), 60, 1e-40
+
+
+def ball_rule(first: int, hist: list, n: int) -> int:
+    """The next pass's bits by the rule the claim states (from the first pass's excess history)."""
+    import math
+
+    finite = [(i, e) for i, e in enumerate(hist) if math.isfinite(e)]
+    extra = 0.0
+    if len(finite) >= 2:
+        (i0, e0), (i1, e1) = finite[0], finite[-1]
+        rate = max(0.0, (e1 - e0) / max(1, i1 - i0))
+        extra = e1 + 1.15 * rate * (n - i1) + 4 * rate + 24
+    elif finite:
+        extra = finite[-1][1] + 24
+    return max(int(first + extra) + 1, first + first // 4 + 32)
+
+
+@claim("paths.ball_schedule", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       requires=("flint",),
+       where="symbt/numeric/multiprec/certified.py: the plain ball path's precision schedule (_next_prec)",
+       statement="certified_orbit(method='ball') on the paper's state (N={N}; q_3 = 0.9 and q_3 = 1, exact), 60 "
+                 "steps, tol 1e-40, first pass forced to 170, 60, 130 or 255 bits: the second pass runs at "
+                 "max(floor(p + x) + 1, p + p // 4 + 32), x = e1 + 1.15 r (n - i1) + 4 r + 24 with r = max(0, (e1 - "
+                 "e0) / (i1 - i0)) the growth (bits per step) between the first and the last finite excess (i0, "
+                 "e0), (i1, e1) of the same first pass, x = e1 + 24 with one finite excess; the returned radii are "
+                 "within the target plus the rounding of the midpoints to mp.prec")
+def ball_schedule(N: int) -> Outcome:
+    if importlib.util.find_spec("flint") is None:
+        return skipped("python-flint is not installed (.[certified])")
+    from ..numeric import certified_orbit
+    from ..numeric.multiprec import certified
+
+    n, bad, notes = BALL_STEPS, [], []
+    for q3, first in BALL_CASES:
+        p, q = [-20, 10, 1], [1, 0, q3]
+        info: dict[str, object] = {}
+        with mp.workdps(40):
+            P, Q, Pr, Qr = certified_orbit(p, q, 10, 5, n, tol=BALL_TOL, prec=first, method="ball", info=info)
+            ok, _, hist, done = certified._run(p, q, 10, 5, n, 1, {n}, first, BALL_TOL, mp.mp.prec)
+            ulp = mp.mpf(2) ** -mp.mp.prec
+        want = ball_rule(first, hist, n)
+        passes = list(info.get("passes", []))         # type: ignore[call-overload]
+        if ok or passes[:2] != [first, want] or info.get("method") != "ball":
+            bad.append(f"q_3 = {q3}, first {first} bits: passes {passes} (method {info.get('method')}, first pass "
+                       f"ok {ok} after {done} steps), the rule gives {want}")
+        # the target is the balls' radius; the returned radius adds the rounding of the midpoint to mp.prec
+        worst = max(float(r / (BALL_TOL + abs(x) * ulp)) for xs, rs in zip(P + Q, Pr + Qr) for x, r in zip(xs, rs))
+        if not worst <= 1:
+            bad.append(f"q_3 = {q3}: a returned radius {worst:.3g} times the target plus the output's rounding")
+        notes.append(f"q_3 = {q3}, {first} bits: stopped at step {done}, passes {passes}")
+    detail = "; ".join(notes) + "."
+    if bad:
+        return failed("numeric: the ball path's schedule vs its rule", detail="; ".join(bad) + " " + detail)
+    return Outcome("verified", "numeric: the ball path's schedule vs its rule (consistency)", evidence="sampled",
+                   n_scope=[N], detail=detail, printed="the second pass at the documented precision")

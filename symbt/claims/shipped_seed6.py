@@ -10,13 +10,14 @@ r"""Documented rules of the float64 library that no other claim pinned (scene ``
   ~1e-15 off there), ``p~`` in ``out[0]`` and ``q~`` in ``out[1]``.
 
 * ``paths.panels`` -- :func:`~symbt.numeric.flow.coefficients.adaptive_panels` (the panels of
-  :func:`symbt.numeric.flow_coefficients`) on three integrands over ``[-1, 3]`` -- ``1/sqrt(x + 1 + 2**-10)`` (near
-  a singularity), ``sin(60 x) e^x`` (panels whose integrals cancel: there the width share decides), a tiny peak
-  ``1e-6 / sqrt(|x - 0.3| + 1e-4)`` -- alone and with the peak grouped with the first row: the panels tile
+  :func:`symbt.numeric.flow_coefficients`) on four integrands over ``[-1, 3]`` -- ``1/sqrt(x + 1 + 2**-10)`` (near
+  a singularity), ``sin(60 x) e^x`` (panels whose integrals cancel; its integral is negative), a tiny peak
+  ``1e-6 / sqrt(|x - 0.3| + 1e-4)``, ``-1/sqrt(3 + 2**-10 - x)`` (negative, near the other end) -- alone and with
+  the peak grouped with the fourth row (a group's scale is its largest *size*, here a negative row's): the panels tile
   ``[-1, 3]``, every panel meets the documented test (16- and 32-point Gauss--Legendre agree to ``rtol`` relative
   to ``max(|local integral|, scale * width / (b - a))``, ``scale`` the row's whole integral or its group's
   largest) and no panel's bisection parent does (the panels are the coarsest bisection that passes), evaluated
-  here with numpy's own Gauss--Legendre nodes; grouping the peak with the first row takes fewer panels; past
+  here with numpy's own Gauss--Legendre nodes; grouping the peak with the fourth row takes fewer panels; past
   ``max_intervals`` it raises :class:`~symbt.numeric.QuadratureError`.  (All ends are dyadic: the bisection points
   are exact, so the parents are recomputed exactly.)
 * ``paths.q_low.n3`` -- ``bt_orbit(..., q_low=True)`` (the low parts of the carried positions, docs/numeric.md "Long
@@ -82,12 +83,14 @@ def rows_out(N: int) -> Outcome:
 
 
 #: paths.panels: the interval (dyadic ends), the tolerance, the panels allowed, the grouping (the peak with row 0)
-PANELS_A, PANELS_B, PANELS_RTOL, PANELS_MAX, PANELS_GROUPS = -1.0, 3.0, 1e-12, 400, (0, 1, 0)
+PANELS_A, PANELS_B, PANELS_RTOL, PANELS_MAX, PANELS_GROUPS = -1.0, 3.0, 1e-12, 400, (0, 1, 2, 2)
 
 
 def _panel_rows(x: np.ndarray) -> np.ndarray:
+    # the peak (third row) is grouped with the fourth, which is negative: the group's scale is the larger size
+    # |integral| (a signed maximum would pick the tiny peak's own)
     return np.stack([1 / np.sqrt(x + 1.0009765625), np.sin(60 * x) * np.exp(x),
-                     1e-6 / np.sqrt(np.abs(x - 0.3) + 1e-4)])
+                     1e-6 / np.sqrt(np.abs(x - 0.3) + 1e-4), -1 / np.sqrt(3.0009765625 - x)])
 
 
 def _panel_rule(lo: float, hi: float) -> tuple[np.ndarray, np.ndarray]:
@@ -128,9 +131,10 @@ def panel_faults(panels: list[tuple[float, float]], groups: tuple[int, ...] | No
 
 @claim("paths.panels", equation="flow", source_equation="eqdisc", scene="numeric-paths",
        where="symbt/numeric/flow/coefficients.py: adaptive_panels",
-       statement="adaptive_panels on three integrands over [-1, 3] (near a singularity, cancelling panels, a tiny "
-                 "peak), alone and with the peak grouped with the first row: the panels tile the interval, each "
-                 "passes the documented 16/32-point test against max(|local|, scale * width share) and no "
+       statement="adaptive_panels on four integrands over [-1, 3] (near a singularity at either end, the second "
+                 "negative, cancelling panels, a tiny peak), alone and with the peak grouped with the negative one: "
+                 "the panels tile the interval, each passes the documented 16/32-point test against "
+                 "max(|local|, scale * width share) and no "
                  "bisection parent does (numpy's Gauss-Legendre nodes); grouping takes fewer panels; past "
                  "max_intervals QuadratureError")
 def panels() -> Outcome:

@@ -223,7 +223,7 @@ class RingValue:
         """Value at ``env`` (Symbol -> number; ``E_j = exp(q_j)`` via ``exp``); ``memo`` shares the
         powers of the generators between values at the same point."""
         T, m = self.ring, self.ring.m
-        lam_ = env.get(lam, 0) if self.lam is None else _value(self.lam, env)   # 0: poly free of lambda
+        lam_ = env.get(lam) if self.lam is None else _value(self.lam, env)   # None: read only by a lambda term
         memo = {} if memo is None else memo
         key = ("ringpowers", str(self.lam))
         if key not in memo:

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 7295127969f66884c151511ba338ddf83c8db9ed791bf9cf21a4837efe80c8fc
-# symbt-codegen-content-sha256: 7dc2fda41d78dbad229c1d045718aeb19f5d1376d55d84294625fce128913fc4
+# symbt-codegen-derivation-sha256: b1f9126a8242b0fe78e4011097b1ce5a55f5fb85177456ec4b77180b4333854c
+# symbt-codegen-content-sha256: 367bb733860b9b68ef28b999445b77e1f9d8390a36de83076f6269c709d053d7
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

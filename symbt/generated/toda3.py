@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 7295127969f66884c151511ba338ddf83c8db9ed791bf9cf21a4837efe80c8fc
-# symbt-codegen-content-sha256: e7cc2eb9907149efefda413d0d8b39b683be158bf419cfdf8713b7bae6d31fd8
+# symbt-codegen-derivation-sha256: b1f9126a8242b0fe78e4011097b1ce5a55f5fb85177456ec4b77180b4333854c
+# symbt-codegen-content-sha256: cfaf410588e811c6395caccd4876835caf694aa318bd499fad78fc138a6d53c6
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
