@@ -52,3 +52,13 @@ def mutated(module: str, before: str, after: str, *, same_classes: bool = False)
             if isinstance(value, type) and value.__module__ == module and isinstance(getattr(mod, name, None), type):
                 setattr(copy, name, getattr(mod, name))
     return copy
+
+
+def claim_fails(cid: str, *, crash: bool = False) -> bool:
+    """The claim ``cid`` fails -- by its own comparison, unless ``crash`` (the planted bug raises where the claim
+    runs it, which ``symbt mutate`` also counts as a kill)."""
+    from symbt.claims import REGISTRY, load_all
+
+    load_all()
+    out = REGISTRY[cid].run()
+    return out.status == "failed" and (crash or out.method != "exception")

@@ -9,6 +9,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 import sympy as sp
+from planting import claim_fails as fails
 from planting import planted
 
 from symbt.claims import REGISTRY, load_all
@@ -16,11 +17,6 @@ from symbt.claims import REGISTRY, load_all
 load_all()
 
 CLAIMS = ["library.defaults", "paths.dq_range.n3", "checker.screen_arithmetic", "checker.exact_route_names"]
-
-
-def fails(cid: str, *, crash: bool = False) -> bool:
-    out = REGISTRY[cid].run()
-    return out.status == "failed" and (crash or out.method != "exception")
 
 
 @pytest.mark.parametrize("cid", CLAIMS)

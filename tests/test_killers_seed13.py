@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 import pytest
+from planting import claim_fails as fails
 from planting import planted
 
 from symbt.claims import REGISTRY, load_all
@@ -16,11 +17,6 @@ CLAIMS = ["paths.dq_edge.n3", "paths.side_by_side.n3", "library.guard_far_trace"
           "paths.scaled_trace.n5", "paths.band_edge.n3", "paths.existence_iv.n3", "shipped.orbit.n3",
           "library.addition", "library.state_ranges", "paths.complex.n3", "paths.transfer_gradient.n4",
           "paths.transfer_gradient.n5", "paths.mixed_block.n3", "shipped.loop_integrand.n5", "checker.screen_relations"]
-
-
-def fails(cid: str, *, crash: bool = False) -> bool:
-    out = REGISTRY[cid].run()
-    return out.status == "failed" and (crash or out.method != "exception")
 
 
 @pytest.mark.parametrize("cid", CLAIMS)

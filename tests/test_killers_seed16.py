@@ -10,6 +10,7 @@ import random
 import mpmath as mp
 import numpy as np
 import pytest
+from planting import claim_fails as fails
 from planting import planted
 
 from symbt.claims import REGISTRY, load_all
@@ -21,11 +22,6 @@ CLAIMS = ["shipped.loop_phi_grad.n5", "paths.symmetric_monodromy.n2", "paths.man
           "library.emit_typed", "library.emit", "library.reference_verify", "library.input_kinds", "paths.contexts",
           "paths.dq_edge.n9", "paths.lohner_unsound.n3", "paths.ball_schedule.n3", "paths.panels",
           "library.inverse_fields"]
-
-
-def fails(cid: str, *, crash: bool = False) -> bool:
-    out = REGISTRY[cid].run()
-    return out.status == "failed" and (crash or out.method != "exception")
 
 
 @pytest.mark.parametrize("cid", CLAIMS)
