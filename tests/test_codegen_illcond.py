@@ -16,32 +16,20 @@ import pytest
 from test_codegen_edges import CC, CStep, _compile
 
 import symbt.codegen as cg
+from symbt.claims.seed16 import GUARD_MU as MU
+from symbt.claims.seed16 import cheap_flip
 from symbt.generated import toda2, toda3
-from symbt.numeric.core.limits import ILLCOND, KAPPA_MAX, OK
-from symbt.numeric.float64.kernels import cheap_kernels
+from symbt.numeric.core.limits import KAPPA_MAX
 
-MU = 0.5
 ILL_C = 5          # SYMBT_TODA_ILL_CONDITIONED
 
 
-def kernel_status(N, delta):
-    """Status of symbt.numeric's fused kernel at the free chain, lambda_2 = 2 + delta, lambda_1 = lambda_2 + 2 mu."""
-    step = cheap_kernels()["step"]      # the emitted guard is the cheap estimate (no sharp tier)
-    lam2 = 2.0 + delta
-    lam1 = lam2 + 2 * MU
-    p, r = np.zeros(N), np.ones(N)
-    w = [np.empty(N) for _ in range(4)]
-    return step(p, r, (np.ones(N), np.zeros(N)), lam1, lam2, 2 * MU, 1, *w, np.zeros(4))
-
-
 def flip(N):
-    """``delta`` where the kernel's status turns from ILLCOND (closer to the edge) to OK (bisection in log)."""
-    lo, hi = 1e-12, 1e-2
-    assert kernel_status(N, lo) == ILLCOND and kernel_status(N, hi) == OK      # the premise
-    for _ in range(60):
-        mid = float(np.sqrt(lo * hi))
-        lo, hi = (mid, hi) if kernel_status(N, mid) == ILLCOND else (lo, mid)
-    return hi
+    """``delta`` where the kernel's status turns from ILLCOND (closer to the edge) to OK (the bisection of the claim
+    shipped.guard_boundary, which checks the shipped closed forms there)."""
+    d = cheap_flip(N)
+    assert d is not None                # the premise: ILLCOND at 1e-12, OK at 1e-2
+    return d
 
 
 def _args(N, delta):

@@ -31,8 +31,7 @@ tie ``Re(ref conj g) = 0``, a ball that straddles 0) changes nothing they look a
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -110,17 +109,6 @@ def _contexts() -> tuple[list[_Ctx], str]:
     return out, "Arb contexts included"
 
 
-@contextmanager
-def _iv_prec(bits: int) -> Iterator[None]:
-    """mpmath.iv's working precision ``bits`` inside (it has no workprec of its own)."""
-    old = mp.iv.prec
-    mp.iv.prec = bits
-    try:
-        yield
-    finally:
-        mp.iv.prec = old
-
-
 def _ball_prec(bits: int) -> Any:
     """python-flint's working precision ``bits`` inside (a no-op without python-flint)."""
     try:
@@ -137,10 +125,12 @@ def _cond(c: Any) -> bool:
 
 
 def _check_context(c: _Ctx) -> list[str]:
+    from ..numeric.core.context import iv_prec
+
     bad: list[str] = []
     samples = [complex(v) for v in (COMPLEXES if c.complex_ else REALS)]
     ctx, mk, back = c.ctx, c.mk, c.back
-    with np.errstate(all="ignore"), mp.workdps(40), _iv_prec(140), _ball_prec(140):
+    with np.errstate(all="ignore"), mp.workdps(40), iv_prec(140), _ball_prec(140):
         for a in samples:
             for b in samples:
                 r = back(ctx.re_dot(mk(a), mk(b)))
@@ -202,13 +192,15 @@ def _float_rows() -> list[str]:
 def _elementary(c: _Ctx) -> list[str]:
     """exp, log, log1p, sqrt (principal branches) against mpmath at 40 digits: float64 within 4 ulps of the value's
     size, the others within 1e-25 (at 140 bits)."""
+    from ..numeric.core.context import iv_prec
+
     bad = []
     real = (0.75, 3.0, 1e-3, 25.0)
     # complex: the principal branches, and log1p near 0 (where log(1 + x) loses digits) and near -1
     points = [complex(v) for v in real] + ([1 + 2j, -1 + 0.5j, -4 + 0j, 0.5 - 3j, 1e-8 + 1e-9j, -1e-10 + 1e-6j,
                                             -0.999 + 0.001j] if c.complex_ else [])
     fns = (("exp", mp.exp), ("log", mp.log), ("log1p", mp.log1p), ("sqrt", mp.sqrt))
-    with np.errstate(all="ignore"), mp.workdps(40), _iv_prec(140), _ball_prec(140):
+    with np.errstate(all="ignore"), mp.workdps(40), iv_prec(140), _ball_prec(140):
         for name, ref in fns:
             for x in points:
                 got = c.exact_c(getattr(c.ctx, name)(c.mk(x)))

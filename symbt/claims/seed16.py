@@ -78,16 +78,6 @@ def _reference_gradient(p: Any, q: Any, lam0: float, mu: float, b: int) -> list[
     return [mp.diff(phi, xs, tuple(int(i == k) for i in range(2 * N))) for k in range(2 * N)]
 
 
-def _trace_partials(lam: float, p: Any, q: Any) -> list[mp.mpf]:
-    """``d tr L(lam) / d(p, q)`` by central differences of the literal trace (current precision)."""
-    from ..reference.literal import literal_trace
-
-    N = len(p)
-    xs = [mp.mpf(v) for v in p + q]
-    return [mp.diff(lambda *x: literal_trace(lam, list(x[:N]), list(x[N:])), xs,
-                    tuple(int(i == k) for i in range(2 * N))) for k in range(2 * N)]
-
-
 @claim("shipped.loop_phi_grad", equation="toda{N}.phi_grad", source_equation="newkmu", scene="shipped",
        sizes=(5,), parts=scale_parts,
        where="symbt codegen --n {N}: toda{N}.py (loop form): phi_grad, phi_grad_mp",
@@ -98,6 +88,7 @@ def _trace_partials(lam: float, p: Any, q: Any) -> list[mp.mpf]:
 def loop_phi_grad(N: int, parts: Parts) -> Outcome:
     from ..reference.literal import literal_trace
     from ..reference.spectral import phi_gradient
+    from ..reference.trace import trace_gradient
     from .shipped_emitted import emitted_module
 
     mod = emitted_module(N)
@@ -125,7 +116,8 @@ def loop_phi_grad(N: int, parts: Parts) -> Outcome:
                     t = literal_trace(lam, p, q)
                     g = mp.sqrt(t * t - 4)
                     tabs = _abs_trace(lam, p, q)
-                    dt = _trace_partials(lam, p, q)
+                    dp, dq = trace_gradient(lam, p, q)      # the polynomial's: a scale for the bound only
+                    dt = dp + dq
                     for k in range(2 * N):
                         dabs = tabs / abs(lam + p[k]) if k < N else 2 * tabs
                         T = abs(dt[k]) / g
@@ -273,6 +265,20 @@ def _cheap_status(N: int, delta: float) -> int:
                                        lam2, 2 * GUARD_MU, 1, *w, np.zeros(4)))
 
 
+def cheap_flip(N: int) -> float | None:
+    """``delta`` where :func:`_cheap_status` turns from ``ILLCOND`` (nearer the band edge) to ``OK``, by 60
+    bisections in log between 1e-12 and 1e-2; ``None`` if the ends do not straddle it (no flip there)."""
+    from ..numeric.core.limits import ILLCOND, OK
+
+    lo, hi = 1e-12, 1e-2
+    if (_cheap_status(N, lo), _cheap_status(N, hi)) != (ILLCOND, OK):
+        return None
+    for _ in range(60):
+        mid = float(np.sqrt(lo * hi))
+        lo, hi = (mid, hi) if _cheap_status(N, mid) == ILLCOND else (lo, mid)
+    return hi
+
+
 @claim("shipped.guard_boundary", equation="toda{N}.bt_step", source_equation="imptransf", scene="shipped",
        sizes=(2, 3), parts=scale_parts,
        where="symbt/generated/toda{N}.py: bt_step's conditioning guard; symbt/numeric/float64/kernels.py: "
@@ -287,15 +293,11 @@ def guard_boundary(N: int, parts: Parts) -> Outcome:
     from ..numeric.core.limits import ILLCOND, KAPPA_MAX, OK
     from ._shipped import EPS, ratios, step_constant, step_ref
 
-    lo, hi = 1e-12, 1e-2
-    ends = (_cheap_status(N, lo), _cheap_status(N, hi))
-    if ends != (ILLCOND, OK):
+    flip = cheap_flip(N)
+    if flip is None:
+        ends = (_cheap_status(N, 1e-12), _cheap_status(N, 1e-2))
         return failed("the cheap estimate on the free chain", detail=f"statuses {ends} at delta = 1e-12, 1e-2 "
-                      f"(want ILLCOND, OK: the estimate must flip in between)")
-    for _ in range(60):
-        mid = float(np.sqrt(lo * hi))
-        lo, hi = (mid, hi) if _cheap_status(N, mid) == ILLCOND else (lo, mid)
-    flip = hi
+                      f"(want ILLCOND = {ILLCOND}, OK = {OK}: the estimate must flip in between)")
     mod = importlib.import_module(f"symbt.generated.toda{N}")     # the shipped file (codegen.check: = its render)
     bad: list[str] = []
     if not 1e-9 < flip * KAPPA_MAX < 1e3:

@@ -39,14 +39,15 @@ from __future__ import annotations
 
 import math
 import operator
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
 from typing import Any, Protocol, TypeAlias
 
 import mpmath
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["Context", "FloatContext", "MPContext", "IVContext", "FLOAT", "COMPLEX", "MP", "IV",
+__all__ = ["Context", "FloatContext", "MPContext", "IVContext", "FLOAT", "COMPLEX", "MP", "IV", "iv_prec",
            "Value", "Cond", "Exponent", "FloatValue", "FloatParam", "MPValue"]
 
 
@@ -399,6 +400,22 @@ class IVContext(MPContext):
 
     def isfinite_all(self, xs: Sequence[MPValue]) -> bool:
         return all(mpmath.isfinite(x.a) and mpmath.isfinite(x.b) for x in xs)
+
+
+@contextmanager
+def iv_prec(bits: int) -> Iterator[None]:
+    """``mpmath.iv``'s working precision ``bits`` inside (mpmath's interval context has no ``workprec``).
+
+    >>> with iv_prec(200):
+    ...     mpmath.iv.prec
+    200
+    """
+    old = mpmath.iv.prec
+    mpmath.iv.prec = bits
+    try:
+        yield
+    finally:
+        mpmath.iv.prec = old
 
 
 FLOAT = FloatContext(np.float64)

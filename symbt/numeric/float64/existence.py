@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING
 
 import mpmath
 
-from ..core.context import IV
+from ..core.context import IV, iv_prec
 from ..core.limits import OK, POSITIVITY, TRACE1, TRACE2
 from ..core.monodromy import monodromy, neighbour_ratios
 from ..core.step import eigen_slopes
@@ -103,11 +103,8 @@ def decide_existence(p: npt.NDArray[np.float64], q: npt.NDArray[np.float64], lam
     start = time.monotonic()
     end = start + BUDGET_S if deadline is None else min(deadline, start + BUDGET_S)
     while bits <= MAX_BITS:
-        old, mpmath.iv.prec = mpmath.iv.prec, bits         # mpmath.iv has no workprec
-        try:
+        with iv_prec(bits):
             verdict = _at(p, q, lam0, mu, branch, shift)
-        finally:
-            mpmath.iv.prec = old
         if verdict is not None:
             return verdict, bits
         if time.monotonic() > end:
