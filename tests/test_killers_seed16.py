@@ -406,14 +406,18 @@ def test_abel_sheet_at_a_branch_point_is_equivalent():
                 assert E.abel(s, w, m) == mutant(s, w, m)
 
 
-def test_side_by_side_shape_guard_is_equivalent():
-    # condition:446 (`am.shape != rm.shape` -> `==`): every batch of FEW_ROWS < R <= SIDE_BY_SIDE_ROWS rows then
-    # takes the two calls, whose results are the side-by-side form's bit for bit (its docstring; paths.side_by_side),
-    # and no caller passes a and r of different shapes (eigen_slopes' a_j = lam + p_j and r_j = exp(dq_j) share the
-    # batch's shape).  Checked bit for bit on side_by_side's batches, renormalised rows included
+@pytest.mark.parametrize("old, new", [("am.shape != rm.shape", "am.shape == rm.shape"),
+                                      ("am.ndim != 2", "am.ndim == 2")])
+def test_side_by_side_shape_guard_is_equivalent(old, new):
+    # condition:446 (`am.shape != rm.shape` -> `==`; seed 18: `am.ndim != 2` -> `==`): every batch of
+    # FEW_ROWS < R <= SIDE_BY_SIDE_ROWS rows then takes the two calls, whose results are the side-by-side form's bit
+    # for bit (its docstring; paths.side_by_side), and no caller passes a and r of different shapes or other than
+    # one row array per site (eigen_slopes' a_j = lam + p_j and r_j = exp(dq_j) share the batch's shape; up to
+    # FEW_ROWS rows, scalars included, _few_rows answers first).  Checked bit for bit on side_by_side's batches,
+    # renormalised rows included
     from symbt.numeric.core import condition
 
-    mutant = planted(condition.monodromy_and_abs, "am.shape != rm.shape", "am.shape == rm.shape")
+    mutant = planted(condition.monodromy_and_abs, old, new)
     rng = np.random.default_rng(446)
     for R, scale in ((20, 1.0), (300, 1.0), (64, 1e170)):
         a = [rng.uniform(-3, 3, R) * scale for _ in range(3)]

@@ -49,6 +49,23 @@ def test_ensemble_rows_against_50_digits_and_single_orbits(N, backend):
             assert np.array_equal(P[:, i], single[0]) and np.array_equal(Q[:, i], single[1])
 
 
+@pytest.mark.skipif(not numba_available(), reason="numba is not installed")
+def test_numba_ensemble_at_block_edges():
+    # batches of one block - 1, one block and one block + 1 states (blocks of 64 at N = 3): each row the bits of the
+    # distinct states' batch, in the compiled kernel (paths.many_rows checks the plain-Python one).  Seed 18's
+    # kernels_block:338 (`nb = (M + block + 1) // block`: one block past M, of negative length) passed both: the
+    # block count is now a ceiling division, whose mutants give no blocks at all
+    from symbt.numeric.float64.orbit import _block_rows
+
+    p, q, lam0, mu = gap_ensemble(3, 5, 338)
+    block = _block_rows(3)
+    Pd, Qd = bt_orbit(p, q, lam0, mu, 3, backend="numba")
+    for M in (block - 1, block, block + 1):
+        idx = np.arange(M) % 5
+        P, Q = bt_orbit(p[idx], q[idx], lam0[idx], mu[idx], 3, backend="numba")
+        assert np.array_equal(P, Pd[:, idx]) and np.array_equal(Q, Qd[:, idx])
+
+
 def test_ensemble_shapes_every_and_mu_zero_rows():
     p = np.broadcast_to(P0, (2, 3, 3)) + 0.001 * np.arange(6).reshape(2, 3, 1)
     q = np.broadcast_to(Q0, (2, 3, 3)).copy()

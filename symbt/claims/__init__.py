@@ -54,6 +54,7 @@ CLAIM_MODULES = (
     "seed11",
     "seed13",
     "seed16",
+    "seed18",
     "contexts",
     "shipped_condition_file",
     "shipped_core",

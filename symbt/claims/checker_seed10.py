@@ -34,7 +34,9 @@ from .base import Outcome, claim
        statement="exact_route('sympy') is 'sympy'; 'auto' reads SYMBT_EXACT first, else is 'flint' exactly when "
                  "python-flint imports; the method names the route taken (FLINT fmpq_mpoly or together/cancel); "
                  "both routes prove (x + 1)^2 = x^2 + 2x + 1 and (x + i)(x - i) = x^2 + 1 and refute them off by 1 "
-                 "and (1 + i)^2 x = 2x")
+                 "and (1 + i)^2 x = 2x; unevaluated, (e^q)^(1/2) + e^(q/3) for a real q is S^3 + S^2 in S = e^(q/6), "
+                 "(e^q)^(1/2) = e^(q/2) (q real) and (e^q)^2 = e^(2q) are proved exactly, and for a complex q "
+                 "(e^q)^(1/2) is left alone")
 def exact_routes() -> Outcome:
     from ..proof.exact import exact_route, exact_zero
 
@@ -67,6 +69,18 @@ def exact_routes() -> Outcome:
     q = sp.Symbol("q")
     names_of = describe_variables(exponentials_as_monomials(sp.exp(q) + sp.E)[1])
     got.append(("the exponentials' names for e^q + e", names_of, "exp_1=e, exp_q=e^q"))
+    # a power of an exponential, as written (SymPy's own evaluation would combine it): read as one for an integer
+    # power, for a rational one exactly when the exponent is real (the principal power)
+    qr = sp.Symbol("q", real=True)
+    half, square = sp.Pow(sp.exp(qr), sp.S.Half, evaluate=False), sp.Pow(sp.exp(q), 2, evaluate=False)
+    (rat,), variables = exponentials_as_monomials(half + sp.exp(qr / 3))
+    S, d = variables[qr]
+    got.append(("(e^q)^(1/2) + e^(q/3), q real: (d, the monomials)", (d, sp.expand(rat - S ** 3 - S ** 2)), (6, 0)))
+    for diff, what in ((half - sp.exp(qr / 2), "(e^q)^(1/2) = e^(q/2), q real"),
+                       (square - sp.exp(2 * q), "(e^q)^2 = e^(2q), q complex")):
+        got.append((f"{what}: proved by the exact layer", exact_zero(diff, {})[0], True))
+    (rat_c,), variables_c = exponentials_as_monomials(sp.Pow(sp.exp(q), sp.S.Half, evaluate=False))
+    got.append(("(e^q)^(1/2), q complex: no exponential variable", q in variables_c, False))
     zero, method, _ = exact_zero((x + 1) ** 2 - (x ** 2 + 2 * x + 1), {})
     got.append(("the default route's method", names["flint" if flint else "sympy"] in method, True))
     bad = _bad("the exact routes", got)

@@ -99,7 +99,8 @@ def _planted_measure(pt: dict[str, Any]) -> Any:
                  "of three points and at each alone); xy_vs_printed reports 1e-40 for y off by that where y < 0; "
                  "interpret's Quotient(-3, b) is -3, -3/2, -inf at b = 1, 2, 0, its Max(-3, 2) 2 and Min(-3, 2) "
                  "-3; phi_grad_vs_fd on "
-                 "a linear Phi of slope 1/4 whose gradient is off by 1e-30 returns 1e-30 to within 1e-40")
+                 "a linear Phi of slope 1/4 whose gradient is off by 1e-30 returns 1e-30 to within 1e-40; the points "
+                 "of every N = 2, 3 function without a map take both signs in each coordinate of p, q and c")
 def codegen_metrics() -> Outcome:
     from ..codegen import verify
     from ..codegen.derive import interface
@@ -124,7 +125,9 @@ def codegen_metrics() -> Outcome:
     problems = []
     # the value reported is the mpmath flavour's output 1 at the point reported
     named = next((pt for pt in pts if repr(pt) == bad.get("point")), None)
-    if named is None or bad.get("mp") != mp.nstr(off_mp(**named)[1], 30):
+    with mp.workdps(verify.MP_DPS):      # compare's precision (at 15 digits the 30 printed would differ)
+        named_mp = mp.nstr(off_mp(**named)[1], 30) if named is not None else None
+    if named is None or bad.get("mp") != named_mp:
         problems.append(f"the reported mpmath value {bad.get('mp')} is not output 1 at the reported point")
     if res["ok"] or bad.get("output") != 1 or "mp" not in bad:
         problems.append(f"compare with the mpmath flavour off by 1e-40 in output 1: ok={res['ok']}, reported {bad}")
@@ -160,6 +163,19 @@ def codegen_metrics() -> Outcome:
     if not abs(r - GRAD_OFF) <= mp.mpf(10) ** -40:
         problems.append(f"phi_grad_vs_fd on a gradient off by 1e-30 (slopes 1/4): {mp.nstr(r, 5)}, want 1e-30 "
                         "(|mp.diff - g| / max(1, |g|))")
+    # the points of a function without a map (no lam0) span both signs of every coordinate of p, q and c: a
+    # form wrong in one sign cell of its arguments is sampled there
+    for N in (2, 3):
+        for name, fs in interface(N).items():
+            kinds = {a.name for a in fs.args}
+            if kinds & {"lam0", "lam", "tr1"}:
+                continue
+            fpts = verify.points(fs, N)
+            for kind in sorted(kinds & {"p", "q", "c"}):
+                for i in range(N):
+                    signs = {v[kind][i] > 0 for v in fpts}
+                    if signs != {True, False}:
+                        problems.append(f"verify.points of toda{N}.{name}: {kind}[{i}] takes one sign only")
     detail = (f"mpmath flavour off by 1e-40: ok={res['ok']}, worst_mp {mp.nstr(res['worst_mp'], 3)} (planted "
               f"{mp.nstr(want, 3)}), reported output {bad.get('output')}; phi_grad_vs_fd: {mp.nstr(r, 5)}")
     if problems:

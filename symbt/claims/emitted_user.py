@@ -102,7 +102,8 @@ def _c_probe(path: Path, e: Any, keep: list[Any]) -> Any:
              "check.compare)",
        statement="a typed declaration (array argument, sign, named outputs, a guard, a Piecewise) emitted as numpy, "
                  "mpmath and C equals formulas written out by hand (float64 within 2 eps relative, mpmath within "
-                 "1e-45), refuses where its guard fails, and compare samples every cell of it")
+                 "1e-45), refuses where its guard fails, and compare samples every cell of it; a one-column or one-row "
+                 "Matrix keeps its shape")
 def emit_typed() -> Outcome:
     from ..codegen.user.check import Comparison, c_status, compare, compiler, load_python
     from ..codegen.user.declare import EmitError, emit
@@ -127,6 +128,14 @@ def emit_typed() -> Outcome:
         except EmitError as exc:
             if words not in str(exc):
                 bad.append(f"{given!r}: the message does not say {words!r}: {exc}")
+    # a matrix of one column or one row is a matrix, not an empty one
+    for given, shape in ((sp.Matrix([xs, 1]), (2, 1)), (sp.Matrix([[xs, 1]]), (1, 2))):
+        try:
+            got_shape = emit("shape_probe", given, args=(xs,), module=MODULE, register=False).shape
+            if got_shape != shape:
+                bad.append(f"a {shape} matrix was declared with shape {got_shape}")
+        except EmitError as exc:
+            bad.append(f"a {shape} matrix was refused: {exc}")
     worst = {"numpy": mp.mpf(0), "mpmath": mp.mpf(0), "c": mp.mpf(0)}
     cc = compiler()
     flavours = ("numpy", "mpmath", "c") if cc is not None else ("numpy", "mpmath")

@@ -235,7 +235,8 @@ def field_sources(N: int) -> Outcome:
 @claim("library.spectral", equation="newkmu", scene="library", N=2,
        where="symbt.reference.spectral (phi_real, phi_gradient, flow_coefficients_mp's band check) and "
              "symbt.reference.samples.admissible_states",
-       statement="admissible_states(N, s) gives states with s tr L(lambda_i) > 2.2 and a real map for b = +-1; "
+       statement="admissible_states(N, s) gives states with s tr L(lambda_i) > 2.2 and a real map for b = +-1 "
+                 "(RuntimeError for 5 states from max_proposals = 3); "
                  "phi_real = sum_k ln|(eta_k + mu)/(eta_k - mu)| of the literal map; phi_gradient = central "
                  "differences of phi_real; flow_coefficients_mp refuses an interval that contains a band (N=2)")
 def spectral_routines() -> Outcome:
@@ -245,6 +246,12 @@ def spectral_routines() -> Outcome:
 
     N = 2
     worst, where = mp.mpf(0), None
+    # the sampler gives up after max_proposals proposals (three cannot give five admissible states)
+    try:
+        admissible_states(N, 1, 5, max_proposals=3)
+        return failed("admissible_states", detail="five states from three proposals")
+    except RuntimeError:
+        pass
     with mp.workdps(DPS):
         for s in (1, -1):
             for p, q, l0, m in admissible_states(N, s, 1):
@@ -329,7 +336,8 @@ def symbol_assumptions() -> Outcome:
 @claim("library.linear", equation="l1l2", scene="library",
        where="symbt.symbolic.linear.solve_linear (the eigen-equations and transports of the derivations)",
        statement="solve_linear gives -b/a for a x + b = 0, no root for the constant equation a + 1 = 0 and for "
-                 "(a - a) x + 1 = 0, and sympy.solve's roots for x^2 = 4")
+                 "(a - a) x + 1 = 0, and sympy.solve's roots for x^2 = 4; a x + b = 0 and x - b = 0 are solved "
+                 "without calling sympy.solve")
 def linear_solutions() -> Outcome:
     from ..symbolic.linear import solve_linear
 
@@ -339,6 +347,19 @@ def linear_solutions() -> Outcome:
              ("0 x + 1 = 0", solve_linear(sp.Add(a * xx, -a * xx, 1, evaluate=False), xx), []),
              ("x^2 = 4", sorted(solve_linear(sp.Eq(xx ** 2, 4), xx)), [-2, 2])]
     bad = [f"{what}: {got} (want {want})" for what, got, want in cases if got != want]
+    # the point of the module: a linear equation, monic or not, never reaches sympy.solve
+    from unittest import mock
+
+    def no_solve(*args: object, **kwargs: object) -> None:
+        raise AssertionError("sympy.solve called")
+    with mock.patch.object(sp, "solve", no_solve):
+        for what, eq, want in (("a x + b = 0", a * xx + bb, [-bb / a]), ("x - b = 0", xx - bb, [bb])):
+            try:
+                got = solve_linear(eq, xx)
+                if got != want:
+                    bad.append(f"{what} without sympy.solve: {got} (want {want})")
+            except AssertionError:
+                bad.append(f"{what}: solve_linear called sympy.solve")
     if bad:
         return failed("solve_linear", detail="; ".join(bad))
     return Outcome("verified", "exact: solve_linear on equations of known roots", evidence="proof", n_scope="all",

@@ -27,10 +27,6 @@ r"""Lines the claims did not reach (issue 21, seed 16: ``codegen.kernels:166``, 
   (the block kernel, in plain Python) -- returns the same bits (documented: one order of operations) and is the
   literal map within ``16 N u S_i`` (``shipped.step``'s bound), as is the general path of the orbit (numpy rows;
   its positions in double-double, so other last bits).
-* ``paths.many_rows.n3`` -- past ``SIDE_BY_SIDE_ROWS`` rows ``step_core(FLOAT)`` and ``float_status`` work site
-  by site (lists over the sites, not stacked arrays): ``paths.threshold``'s scans (both sides of ``KAPPA_MAX``)
-  repeated to 2304 rows give the bits and statuses of the same rows in batches of one scan (a consistency check
-  of the two forms of one computation).
 * ``shipped.guard_boundary.n{2,3}`` -- the shipped closed form's conditioning guard against the estimate it
   prints, written separately in :func:`~symbt.numeric.float64.kernels.cheap_kernels` (the fused step without the
   sharp tier): on the free chain (``p = q = 0``, a band edge at ``lam = 2``) the kernel's status flips from
@@ -199,53 +195,6 @@ def symmetric_monodromy(N: int) -> Outcome:
         return failed("the float64 routes at A = D", detail="; ".join(bad) + ". " + detail)
     return Outcome("verified", "numeric: every float64 route at an exact A = D, bit for bit (consistency) and vs "
                    "the literal map", evidence="sampled", n_scope=[N], residual=worst, detail=detail)
-
-
-@claim("paths.many_rows", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
-       where="symbt/numeric/core/step.py: step_core past SIDE_BY_SIDE_ROWS rows (_over_sites site by site, "
-             "float_status's condition test per site); core/condition.py: monodromy_and_abs's two calls",
-       statement="step_core(FLOAT) and float_status on paths.threshold's scans (N={N}; per branch, repeated past "
-                 "SIDE_BY_SIDE_ROWS rows) give the bits and statuses of the same rows in batches of one scan "
-                 "(the stacked form), the statuses both OK and ILLCOND")
-def many_rows(N: int) -> Outcome:
-    from ..numeric.core.condition import SIDE_BY_SIDE_ROWS
-    from ..numeric.core.context import FLOAT
-    from ..numeric.core.limits import ILLCOND, OK
-    from ..numeric.core.step import float_status, step_core
-    from .shipped_routes import threshold_states
-
-    def run(rows: list, b: int) -> tuple[np.ndarray, np.ndarray]:
-        pa, qa = np.array([st[0] for st in rows]), np.array([st[1] for st in rows])
-        l0, m = np.array([st[2] for st in rows]), np.array([st[3] for st in rows])
-        with np.errstate(all="ignore"):
-            Pn, Qn, aux = step_core(FLOAT, list(pa.T.copy()), list(qa.T.copy()), l0, m, b, check_real=False)
-            status = float_status(aux, Pn, Qn)
-        return np.concatenate([np.array(Pn), np.array(Qn)]).T, np.asarray(status)
-
-    bad: list[str] = []
-    counts = []
-    for b in (1, -1):
-        scans = [list(sts) for _, bb, sts in threshold_states() if bb == b]
-        one = [st for sts in scans for st in sts]
-        rows = one * (SIDE_BY_SIDE_ROWS // len(one) + 1)
-        X, st = run(rows, b)
-        parts = [run(sts, b) for sts in scans]
-        Xs = np.concatenate([x for x, _ in parts] * (len(rows) // len(one)))
-        sts = np.concatenate([s for _, s in parts] * (len(rows) // len(one)))
-        if not (np.array_equal(X, Xs, equal_nan=True) and np.array_equal(st, sts)):
-            rows_off = np.flatnonzero(np.any((X != Xs) & ~(np.isnan(X) & np.isnan(Xs)), axis=1) | (st != sts))
-            bad.append(f"branch {b}: {rows_off.size} of {len(rows)} rows differ (first {rows_off[:3].tolist()})")
-        counts.append((len(rows), int(np.sum(st == OK)), int(np.sum(st == ILLCOND))))
-        if not (np.any(st == OK) and np.any(st == ILLCOND)):
-            bad.append(f"branch {b}: the statuses are not both OK and ILLCOND (the test would not see the estimate)")
-    detail = "; ".join(f"{n} rows ({ok} OK, {ill} ILLCOND)" for n, ok, ill in counts) + \
-        f" (SIDE_BY_SIDE_ROWS = {SIDE_BY_SIDE_ROWS})."
-    if bad:
-        return failed("numeric: step_core past SIDE_BY_SIDE_ROWS rows vs batches of one scan",
-                      detail="; ".join(bad) + ". " + detail)
-    return Outcome("verified", "numeric: step_core past SIDE_BY_SIDE_ROWS rows vs batches of one scan, bit for bit "
-                   "(consistency)", evidence="sampled", n_scope=[N], detail=detail,
-                   printed="the same bits and statuses")
 
 
 #: shipped.guard_boundary: mu, and the relative margin in delta = lam2 - 2 on either side of the kernel's flip (the

@@ -295,7 +295,8 @@ NEXT_STEPS, NEXT_TARGET, NEXT_BITS, NEXT_FIRST = 60, 1e-40, 133, 135
        statement="lohner_certified on the paper's state (N={N}), 60 steps, target 1e-40, first pass forced to 135 "
                  "bits: the second pass runs at max(floor(p + e + 1.5 g log2(n/i) + 16) + 1, p + 32) (its "
                  "docstring's rule, e, i, g from the same first pass by lohner_pass and growth_law) and the "
-                 "returned orbit meets the target")
+                 "returned orbit meets the target; unforced, 10 steps, the first pass runs at 133 + 24 + 5 bitlen(10) "
+                 "bits")
 def next_precision(N: int) -> Outcome:
     if importlib.util.find_spec("flint") is None:
         return skipped("python-flint is not installed (.[certified])")
@@ -331,6 +332,12 @@ def next_precision(N: int) -> Outcome:
                    f"excess {e:.3g}, degree {g})")
     if not excess(stored[-1][0] + stored[-1][1]) <= 0:
         bad.append("the returned orbit does not meet the target radius")
+    # without a forced first precision the first pass runs at target_bits + 24 + 5 bitlen(n) (the docstring's rule)
+    short: list[int] = []
+    lohner_certified(state, 10, 1, {10}, excess, NEXT_BITS, None, 4096, short)
+    if short[:1] != [NEXT_BITS + 24 + 5 * (10).bit_length()]:
+        bad.append(f"10 steps, no precision given: passes {short}, the documented first pass "
+                   f"{NEXT_BITS + 24 + 5 * (10).bit_length()} bits")
     detail = f"first pass {NEXT_FIRST} bits stopped at step {i} (excess {e:.3g} bits, degree {g}); passes {passes}."
     if bad:
         return failed("numeric: lohner_certified's schedule vs its documented rule", detail="; ".join(bad) + " "

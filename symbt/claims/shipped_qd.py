@@ -194,6 +194,41 @@ def _qd_statuses(N: int, parts: Parts) -> list[str]:
             rule = prec + 16 + 2 * n.bit_length() <= parts.printed["qd_bits"]
             if qd_fits(prec, n) != rule:
                 bad.append(f"qd_fits({prec}, {n}) = {qd_fits(prec, n)}, the documented rule says {rule}")
+    # backend="auto" on mpf input takes the quad-double path exactly where qd_fits(prec, steps) (a stand-in
+    # row, available and ready, that records its calls and answers with the mpmath row's result)
+    from dataclasses import replace
+
+    from ..numeric import backends as BK
+    from ..numeric import bt_orbit, bt_step
+
+    taken: list[str] = []
+    qd_row, mp_row = BK.BACKENDS["qd"], BK.BACKENDS["mpmath"]
+
+    def record_step(pr: Any, allow_complex: bool) -> Any:
+        taken.append("step")
+        return mp_row.step(pr, allow_complex)
+
+    def record_orbit(pr: Any) -> Any:
+        taken.append("orbit")
+        return mp_row.orbit(pr)
+    BK.BACKENDS["qd"] = replace(qd_row, available=lambda: True, ready=lambda: True, step=record_step,
+                                   orbit=record_orbit)
+    try:
+        for steps in (1, 3):
+            edge = parts.printed["qd_bits"] - 16 - 2 * steps.bit_length()
+            for prec in (edge, edge + 1):
+                taken.clear()
+                with mp.workprec(prec):
+                    st = ([mp.mpf(-20), mp.mpf(10)] + [mp.mpf(1)] * (N - 2), [mp.mpf(1)] + [mp.mpf(0)] * (N - 1))
+                    if steps == 1:
+                        bt_step(*st, mp.mpf(10), mp.mpf(5))
+                    else:
+                        bt_orbit(*st, mp.mpf(10), mp.mpf(5), steps)
+                if bool(taken) != (prec == edge):
+                    bad.append(f"auto, {steps} step(s) at {prec} bits: quad-double taken {bool(taken)}, qd_fits "
+                               f"says {prec == edge}")
+    finally:
+        BK.BACKENDS["qd"] = qd_row
     # qd_orbit_mp refuses an input beyond 2**600 with NumericRangeError before any kernel runs (so with and
     # without numba alike; without_numba: the default verify compiles nothing)
     from ..numeric import NumericRangeError
@@ -220,7 +255,8 @@ def _qd_statuses(N: int, parts: Parts) -> list[str]:
                  "(three at the wide state) = the literal orbit (80 digits) within 16 N n 2^-209 S_i in every "
                  "branch x sign(mu) x sign(tr) "
                  "cell and at a neighbour distance in (250, 300]; beyond 300 it gives the state back (RANGE), "
-                 "without a real map it says so; to_qd splits exactly; qd_fits follows its rule; qd_orbit_mp "
+                 "without a real map it says so; to_qd splits exactly; qd_fits follows its rule and backend='auto' "
+                 "takes the quad-double path (when ready) exactly where it admits the steps; qd_orbit_mp "
                  "refuses an input of 2^601 (NumericRangeError) (N={N})")
 def qd_paths(N: int, parts: Parts) -> Outcome:
     tally = Tally()

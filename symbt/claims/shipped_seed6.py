@@ -87,10 +87,12 @@ PANELS_A, PANELS_B, PANELS_RTOL, PANELS_MAX, PANELS_GROUPS = -1.0, 3.0, 1e-12, 4
 
 
 def _panel_rows(x: np.ndarray) -> np.ndarray:
-    # the peak (third row) is grouped with the fourth, which is negative: the group's scale is the larger size
-    # |integral| (a signed maximum would pick the tiny peak's own)
+    # the peak (third row) is grouped with the fourth; both are negative: the group's scale is the larger size
+    # |integral| (a signed maximum would pick the tiny peak's own), and a panel at the peak, whose local integral
+    # is far above its share of the whole, is judged against |local| (a signed local would judge it against the
+    # share alone: seed 18)
     return np.stack([1 / np.sqrt(x + 1.0009765625), np.sin(60 * x) * np.exp(x),
-                     1e-6 / np.sqrt(np.abs(x - 0.3) + 1e-4), -1 / np.sqrt(3.0009765625 - x)])
+                     -1e-6 / np.sqrt(np.abs(x - 0.3) + 1e-4), -1 / np.sqrt(3.0009765625 - x)])
 
 
 def _panel_rule(lo: float, hi: float) -> tuple[np.ndarray, np.ndarray]:
@@ -132,8 +134,8 @@ def panel_faults(panels: list[tuple[float, float]], groups: tuple[int, ...] | No
 @claim("paths.panels", equation="flow", source_equation="eqdisc", scene="numeric-paths",
        where="symbt/numeric/flow/coefficients.py: adaptive_panels",
        statement="adaptive_panels on four integrands over [-1, 3] (near a singularity at either end, the second "
-                 "negative, cancelling panels, a tiny peak), alone and with the peak grouped with the negative one: "
-                 "the panels tile the interval, each passes the documented 16/32-point test against "
+                 "negative, cancelling panels, a tiny negative peak), alone and with the peak grouped with the "
+                 "negative one: the panels tile the interval, each passes the documented 16/32-point test against "
                  "max(|local|, scale * width share) and no "
                  "bisection parent does (numpy's Gauss-Legendre nodes); grouping takes fewer panels; past "
                  "max_intervals QuadratureError")

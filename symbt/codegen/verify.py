@@ -77,10 +77,15 @@ def points(spec: FunctionSpec, N: int) -> list[dict[str, Any]]:
             t1, t2 = (rng.choice((1, -1)) * rng.uniform(2.2, 40) for _ in range(2))
             pts.append(dict(tr1=t1, tr2=t2, branch=rng.choice((1, -1))))
     else:
-        for _ in range(6):
-            pt = dict(p=[rng.uniform(-3, 3) for _ in range(N)], q=[rng.uniform(-1.5, 1.5) for _ in range(N)])
+        # coordinate i of p, q, c takes the sign of bit (i + 0, 1, 2) mod 3 of the point's index: each takes
+        # both signs over the six points (six uniform draws left one sign out for toda2.hamiltonian_fields)
+        def signed(k: int, bit: int, hi: float) -> float:
+            v = rng.uniform(0, hi)
+            return v if (k >> (bit % 3)) & 1 else -v
+        for k in range(6):
+            pt = dict(p=[signed(k, i, 3) for i in range(N)], q=[signed(k, i + 1, 1.5) for i in range(N)])
             if "c" in kinds:
-                pt["c"] = [rng.uniform(-1, 1) for _ in range(N)]
+                pt["c"] = [signed(k, i + 2, 1) for i in range(N)]
             pts.append(pt)
     return pts
 

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b1f9126a8242b0fe78e4011097b1ce5a55f5fb85177456ec4b77180b4333854c
-# symbt-codegen-content-sha256: 367bb733860b9b68ef28b999445b77e1f9d8390a36de83076f6269c709d053d7
+# symbt-codegen-derivation-sha256: 7bae1597f3ed8d24a5083f7bf806b2b66847554cb3696681e363be7d5638ac11
+# symbt-codegen-content-sha256: 5caff30e1d5a4c3b72d735af12108fbaa07e7fd68b5f0de9a6697d8c66682da5
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b1f9126a8242b0fe78e4011097b1ce5a55f5fb85177456ec4b77180b4333854c
-# symbt-codegen-content-sha256: c5edf7ee02a501531baf1451a545b00eb4f03c2c9922065f325863b36114715b
+# symbt-codegen-derivation-sha256: 7bae1597f3ed8d24a5083f7bf806b2b66847554cb3696681e363be7d5638ac11
+# symbt-codegen-content-sha256: 39cddf6fc72f1980090a21774a6b36ca8a22c6d2e624aa72a4f2a3ee8d89f0d5
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: b1f9126a8242b0fe78e4011097b1ce5a55f5fb85177456ec4b77180b4333854c
-# symbt-codegen-content-sha256: cfaf410588e811c6395caccd4876835caf694aa318bd499fad78fc138a6d53c6
+# symbt-codegen-derivation-sha256: 7bae1597f3ed8d24a5083f7bf806b2b66847554cb3696681e363be7d5638ac11
+# symbt-codegen-content-sha256: c2fe27c8a88f380424f415a82f8a7529b33c5b1359e4548bc90f3a672030e28e
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

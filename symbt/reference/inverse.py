@@ -48,6 +48,16 @@ def _linearise(F: Residual, J: Jacobian, x: list[mp.mpf]) -> tuple[list[mp.mpf],
     return None if r is None else (r, mp.matrix(J(x)))
 
 
+def _solve(Jm: mp.matrix, r: Sequence[mp.mpf]) -> mp.matrix:
+    """The Newton step ``dx`` with ``Jm dx = -r``: Householder QR, square or not (least squares when the
+    equations outnumber the unknowns; mpmath's ``lu_solve`` would square the condition through the normal
+    equations there).  A singular ``Jm`` raises ``ZeroDivisionError``."""
+    try:
+        return mp.qr_solve(Jm, -mp.matrix(r))[0]
+    except ValueError as exc:              # mpmath: "matrix is numerically singular"
+        raise ZeroDivisionError(str(exc)) from exc
+
+
 def _newton(F: Residual, J: Jacobian, x0: Sequence[MPLike], tol: mp.mpf,
             maxit: int = 40) -> tuple[list[mp.mpf], int] | None:
     x = [mp.mpmathify(v) for v in x0]
@@ -58,7 +68,7 @@ def _newton(F: Residual, J: Jacobian, x0: Sequence[MPLike], tol: mp.mpf,
         r, Jm = lin
         if max(abs(v) for v in r) < tol:  # converged: one more (quadratically convergent) step, then stop
             try:
-                dx = mp.lu_solve(Jm, -mp.matrix(r))
+                dx = _solve(Jm, r)
                 xn = [a + d for a, d in zip(x, dx)]
                 rn = F(xn)
                 if rn is not None and max(abs(v) for v in rn) <= max(abs(v) for v in r):
@@ -67,7 +77,7 @@ def _newton(F: Residual, J: Jacobian, x0: Sequence[MPLike], tol: mp.mpf,
                 pass
             return x, it + 1
         try:
-            dx = mp.lu_solve(Jm, -mp.matrix(r)) if Jm.rows == Jm.cols else mp.qr_solve(Jm, -mp.matrix(r))[0]
+            dx = _solve(Jm, r)
         except ZeroDivisionError:
             return None
         # damping: the residual norm must decrease (Armijo-like) where F is defined

@@ -115,13 +115,15 @@ def literal_step(p: Sequence[MPLike], q: Sequence[MPLike], lam0: MPLike, mu: MPL
     :math:`\\lambda_1` and :math:`\\lambda_2` (to study the mixed choices).
     Returns ``(p_new, q_new, info)``; ``info`` holds ``x, y, eta, tr1, tr2,
     gamma1, gamma2, E_new`` (lists over sites where relevant).  Values may be
-    complex where the real map does not exist.
+    complex where the real map does not exist.  A branch or sign other than +1 or -1 raises ``ValueError``.
     """
     p = [mp.mpmathify(v) for v in p]
     q = [mp.mpmathify(v) for v in q]
     lam0, mu = mp.mpmathify(lam0), mp.mpmathify(mu)
     s1, s2 = gamma_signs if gamma_signs is not None else (branch, branch)
-    if s1 in (1, -1) and s2 in (1, -1) and all(type(v) is mp.mpf for v in (*p, *q, lam0, mu)):
+    if s1 not in (1, -1) or s2 not in (1, -1):
+        raise ValueError(f"literal_step: the signs of the square roots must be +1 or -1, not {s1}, {s2}")
+    if all(type(v) is mp.mpf for v in (*p, *q, lam0, mu)):
         try:
             return _literal_step_real(p, q, lam0, mu, s1, s2)
         except _libmp.ComplexResult:  # a square root or logarithm of a negative number: the complex route below

@@ -36,15 +36,15 @@ def _real_map(p: list[mp.mpf], q: list[mp.mpf], lam0: mp.mpf, mu: mp.mpf,
     return True, info
 
 
-def admissible_states(N: int, trace_sign: int, count: int,
-                      seed: int = 0) -> list[tuple[list[mp.mpf], list[mp.mpf], mp.mpf, mp.mpf]]:
+def admissible_states(N: int, trace_sign: int, count: int, seed: int = 0, max_proposals: int = 20000
+                      ) -> list[tuple[list[mp.mpf], list[mp.mpf], mp.mpf, mp.mpf]]:
     """``count`` tuples ``(p, q, lam0, mu)`` (lists of mpf) with sign(tr L(lambda_i)) = ``trace_sign``.
 
     The stream is ``random.Random(1000 N + 10 seed + (trace_sign > 0))`` (the two signs draw from different
     streams); each proposal draws ``p_j`` uniform on [-3, 3], then ``q_j`` on [-1.5, 1.5], ``lam0`` on [-5, 5] and
     ``mu`` on [0.05, 0.8], each rounded to 6 decimals, and the admissible proposals are kept in order (so a
     sample can be reproduced from this description, and ``count`` states are the first ``count`` of more).
-    ``RuntimeError`` after 20000 proposals without ``count`` admissible ones.
+    ``RuntimeError`` after ``max_proposals`` proposals without ``count`` admissible ones.
 
     >>> len(admissible_states(2, 1, 2))
     2
@@ -55,7 +55,7 @@ def admissible_states(N: int, trace_sign: int, count: int,
     with mp.workdps(max(mp.mp.dps, 30)):
         while len(out) < count:
             tries += 1
-            if tries > 20000:
+            if tries > max_proposals:
                 raise RuntimeError(f"no admissible state found for N={N}, sign={trace_sign}")
             p = [f"{rng.uniform(-3, 3):.6f}" for _ in range(N)]
             q = [f"{rng.uniform(-1.5, 1.5):.6f}" for _ in range(N)]

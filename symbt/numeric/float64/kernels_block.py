@@ -335,7 +335,7 @@ def ensemble(P0: F64, Q0: F64, lam1: F64, lam2: F64, two_mu: F64, branch: int, n
     ([0, 0, 0], True)
     """
     M = P0.shape[0]
-    nb = (M + block - 1) // block
+    nb = -(-M // block)         # ceil(M / block): the last block may be partial
     for b in prange(nb):
         i0 = b * block
         i1 = min(M, i0 + block)

@@ -1,0 +1,162 @@
+"""Seed 18's survivors (docs/mutation.md, "Seed 18"): planted bugs that the new facts now see, and the proofs of the
+mutants marked equivalent.  Unpatched, every claim verifies."""
+from __future__ import annotations
+
+import inspect
+import math
+import random
+from fractions import Fraction
+
+import mpmath as mp
+import pytest
+from planting import claim_fails as fails
+from planting import planted
+
+from symbt.claims import REGISTRY, load_all
+
+load_all()
+
+CLAIMS = ["checker.exact_route_names", "checker.codegen_metrics", "library.emit_typed", "library.linear",
+          "library.spectral", "paths.qd.n2", "paths.qd.n3", "paths.many_rows.n3", "paths.next_prec.n3",
+          "paths.panels"]
+
+
+@pytest.mark.parametrize("cid", CLAIMS)
+def test_unpatched_verified(cid):
+    assert REGISTRY[cid].run().status == "verified"
+
+
+# --------------------------------------------------------------------------- planted bugs the facts see
+
+def test_rational_power_of_an_exponential(monkeypatch):
+    # exponentials:132 (`if r.is_Rational` -> `if not ...`): (e^q)^(1/2) as written is no exponential any more
+    from symbt.proof import exponentials as E
+
+    monkeypatch.setattr(E, "_exponent", planted(E._exponent, "        if r.is_Rational:",
+                                                "        if not (r.is_Rational):"))
+    assert fails("checker.exact_route_names")
+
+
+def test_one_column_matrix(monkeypatch):
+    # declare:121 (`c == 0` -> `c == 1`): a column vector refused as an empty matrix
+    from symbt.codegen.user import declare
+
+    monkeypatch.setattr(declare, "_elements", planted(declare._elements, "if r == 0 or c == 0:",
+                                                      "if r == 0 or c == 1:"))
+    assert fails("library.emit_typed")
+
+
+def test_linear_without_sympy_solve(monkeypatch):
+    # linear:37 (`!= 0` -> `!= 1`, and the test negated): a linear equation sent to sympy.solve
+    from symbt.symbolic import linear
+
+    for new in ("if sp.cancel(c1) != 1:", "if not (sp.cancel(c1) != 0):"):
+        monkeypatch.setattr(linear, "solve_linear", planted(linear.solve_linear, "if sp.cancel(c1) != 0:", new))
+        assert fails("library.linear"), new
+        monkeypatch.undo()
+
+
+def test_sampler_gives_up(monkeypatch):
+    # samples:57 (`tries += 1` -> `+= 0`): the sampler never gives up; here the count of proposals is read back
+    from symbt.reference import samples
+
+    calls = []
+    real = samples._real_map
+
+    def counting(*args):
+        calls.append(1)
+        return real(*args)
+    monkeypatch.setattr(samples, "_real_map", counting)
+    with pytest.raises(RuntimeError):
+        samples.admissible_states(2, 1, 5, max_proposals=3)
+    assert len(calls) <= 2 * 3          # at most two maps (both branches) per proposal
+
+
+def test_first_pass_precision(monkeypatch):
+    # lohner:484 (`+ 5 bitlen(n)` -> `-`): the unforced first pass below the documented precision
+    from symbt.numeric.multiprec import lohner
+
+    monkeypatch.setattr(lohner, "lohner_certified", planted(
+        lohner.lohner_certified, "target_bits + 24 + _BITS_PER_OCTAVE", "target_bits + 24 - _BITS_PER_OCTAVE"))
+    import symbt.claims.shipped_lohner as S
+    monkeypatch.setattr(S, "lohner_certified", lohner.lohner_certified, raising=False)
+    assert fails("paths.next_prec.n3")
+
+
+def test_points_take_both_signs(monkeypatch):
+    # codegen.verify's points without a map: one sign of a coordinate only (seed 18's `uniform(-0, 1)` for c, now
+    # the bit rule) -- the fact in checker.codegen_metrics
+    from symbt.codegen import verify
+
+    monkeypatch.setattr(verify, "points", planted(verify.points, "return v if (k >> (bit % 3)) & 1 else -v",
+                                                  "return v"))
+    assert fails("checker.codegen_metrics")
+
+
+def test_literal_step_refuses_other_signs():
+    # literal_step's signs: +-1 only (a 0 would have taken the generic route with a vanishing root)
+    from symbt.reference.literal import literal_step
+
+    for kw in ({"branch": 0}, {"gamma_signs": (1, 0)}, {"gamma_signs": (2, -1)}):
+        with pytest.raises(ValueError, match="must be \\+1 or -1"):
+            literal_step([-20, 10, 1], [1, 0, 0.9], 10, 5, **kw)
+
+
+def test_newton_step_on_a_singular_jacobian():
+    from symbt.reference.inverse import _solve
+
+    with pytest.raises(ZeroDivisionError):
+        _solve(mp.matrix([[1, 2], [2, 4]]), [mp.mpf(1), mp.mpf(1)])
+    # least squares where the equations outnumber the unknowns: the exact solution of a consistent system
+    dx = _solve(mp.matrix([[1, 0], [0, 1], [1, 1]]), [mp.mpf(-1), mp.mpf(-2), mp.mpf(-3)])
+    assert abs(dx[0] - 1) < mp.mpf(10) ** -14 and abs(dx[1] - 2) < mp.mpf(10) ** -14
+
+
+# --------------------------------------------------------------------------- the equivalences' proofs
+
+def test_zero_trace_stops_at_the_trace_test():
+    # marked equivalent: fused:142 (`tt[0] < 0.0` -> `<=`): tt[i] is the trace's leading double, and slopes returns OK
+    # only when hi(disc) > 0 for disc = (t - two)(t + two); at t = +-0 that is -two^2 <= 0, so slopes returns the
+    # trace code first and the sign test never sees a zero.  The premise on states whose trace is exactly 0 at lam1 or
+    # lam2 (p = (2, 1), q = 0: tr L(0) = 2 * 1 - 2 = 0 in floating point), every float64 route
+    from symbt.numeric import NoRealMapError, bt_step
+
+    for lam0, mu, which in ((-2.0, 2.0, "lam1"), (2.0, -2.0, "lam1"), (2.0, 2.0, "lam2")):
+        for be in ("python", "numpy"):
+            with pytest.raises(NoRealMapError) as info:
+                bt_step([2.0, 1.0], [0.0, 0.0], lam0, mu, backend=be)
+            assert info.value.condition == "trace" and which in str(info.value)
+    from symbt.numeric.core import fused
+
+    src = inspect.getsource(fused)
+    assert "if not hi(disc) > 0.0:\n        return code" in src       # the test that answers first
+
+
+def _exact(t):
+    return sum(Fraction(v) for v in t)
+
+
+def test_mul_d_last_term_below_the_format():
+    # qd_arith:270 (`q2 + p2` -> `q2 - p2` in mul_d), a survivor, not marked: p2 is the third output of
+    # three_sum(s2, q1, p2), the rounding error of t2 + t3 (two rounding errors of sums of terms below u^2 |a b|),
+    # so the sign flip moves the result by 2 |p2|, about u^4 |a b| at most: below the 2^-209 relative the
+    # quad-double carries (QD_BITS), where no claim can see it -- yet it can change a last bit, so it is no
+    # equivalence.  What holds: both products within 2^-209 |a b| of the exact one
+    from symbt.numeric.multiprec import qd_arith as Q
+
+    mutant = planted(Q.mul_d, "return renorm5(p0, s1, s2, q1, q2 + p2)", "return renorm5(p0, s1, s2, q1, q2 - p2)")
+    rng = random.Random(270)
+    worst = 0.0
+    for k in range(4000):
+        if k % 2:
+            a = tuple(math.ldexp(rng.uniform(-1, 1), -53 * i) for i in range(4))
+        else:
+            a = tuple(math.ldexp((-1) ** i * rng.uniform(0.5, 1), -52 * i) for i in range(4))
+        a = Q.renorm5(*a, 0.0)
+        b = rng.uniform(-4, 4)
+        exact = _exact(a) * Fraction(b)
+        if exact == 0:
+            continue
+        for f in (Q.mul_d, mutant):
+            worst = max(worst, abs(float((_exact(f(a, b)) - exact) / exact)))
+    assert 0 < worst < 2.0 ** -209
