@@ -195,7 +195,7 @@ def test_addition_third_killed(monkeypatch, old, new):
     ("_newton", "lambda rn, lam: _norm(rn) < r0 * (1 - lam / 4) + tol",
      "lambda rn, lam: _norm(rn) < r0 * (1 - lam) + tol"),                                              # inverse:75
     ("_newton", "return x, it + 1", "return x, it + 0"),                                               # inverse:68
-    ("_newton", "else mp.qr_solve(Jm, -mp.matrix(r))[0]", "else mp.qr_solve(Jm, mp.matrix(r))[0]"),     # inverse:70
+    ("_solve", "return mp.qr_solve(Jm, -mp.matrix(r))[0]", "return mp.qr_solve(Jm, mp.matrix(r))[0]"),  # inverse:70
     ("_newton", "if rn is not None and max(abs(v) for v in rn) <= max(abs(v) for v in r):",
      "if rn is not None and max(abs(v) for v in rn) >= max(abs(v) for v in r):"),
     ("_gauss_newton", "if step is None:", "if not (step is None):"),

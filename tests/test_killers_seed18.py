@@ -18,7 +18,7 @@ load_all()
 
 CLAIMS = ["checker.exact_route_names", "checker.codegen_metrics", "library.emit_typed", "library.linear",
           "library.spectral", "paths.qd.n2", "paths.qd.n3", "paths.many_rows.n3", "paths.next_prec.n3",
-          "paths.panels"]
+          "paths.panels", "library.qd_marker"]
 
 
 @pytest.mark.parametrize("cid", CLAIMS)
@@ -91,6 +91,33 @@ def test_points_take_both_signs(monkeypatch):
     monkeypatch.setattr(verify, "points", planted(verify.points, "return v if (k >> (bit % 3)) & 1 else -v",
                                                   "return v"))
     assert fails("checker.codegen_metrics")
+
+
+def test_qd_marker(monkeypatch):
+    # qd.py's cache marker (lines no default claim ran: the default run loads no numba, so nothing asked whether
+    # the compiled kernel was ready).  Only a mutant that writes nothing is planted here: one that misses the
+    # temporary NUMBA_CACHE_DIR would write its marker into the package's own __pycache__ (symbt mutate runs
+    # mutants in a copy, where that is harmless; all 12 of those lines' mutants are killed there)
+    pytest.importorskip("numba")
+    from symbt.numeric.multiprec import qd
+
+    monkeypatch.setattr(qd, "qd_ready", planted(qd.qd_ready, ".strip() == want:", ".strip() != want:"))
+    assert fails("library.qd_marker")
+
+
+@pytest.mark.parametrize("old, new, cid", [
+    ("if work > max_prec:\n            break\n        passes.append(work)\n        ok,",
+     "if work >= max_prec:\n            break\n        passes.append(work)\n        ok,", "paths.ball_schedule.n3"),
+    ("else max(1, math.ceil(-math.log2(tol)))", "else min(1, math.ceil(-math.log2(tol)))", "paths.next_prec.n3")])
+def test_certified_schedule(monkeypatch, old, new, cid):
+    # certified:283 (the ball path refuses to run at max_prec itself), certified:273 (the target bits handed to the
+    # Lohner schedule): lines the sample did not draw, found beside it
+    pytest.importorskip("flint")
+    import symbt.numeric as N
+    from symbt.numeric.multiprec import certified
+
+    monkeypatch.setattr(N, "certified_orbit", planted(certified.certified_orbit, old, new))
+    assert fails(cid, crash=True)
 
 
 def test_literal_step_refuses_other_signs():

@@ -14,7 +14,8 @@ tie ``Re(ref conj g) = 0``, a ball that straddles 0) changes nothing they look a
   wholly above 0, a certain ball straddling 0 raises ``Uncertain``, a midpoint ball by its midpoint);
   ``align(g, ref) = (+-g, plus)`` with ``plus`` iff ``Re(ref conj g) >= 0`` and ``half_plane(a, g)`` iff
   ``Re(a conj g) >= 0``, at ``g != 0`` (real contexts: ``g > 0``, the principal root they are given) and at
-  ``ref``, ``a`` = 0 (the tie is ``>= 0``); ``select`` on one bool and (float) on a mixed mask; ``all_positive``
+  ``ref``, ``a`` = 0 (the tie is ``>= 0``); ``out_of_range`` false on moderate values; ``select`` on one bool and
+  (float) on a mixed mask; ``all_positive``
   over rows (NaN fails); ``acosh_half_abs(t, g, e) = arccosh(|t| 2^e / 2)`` and the elementary functions
   ``exp``, ``log``, ``log1p``, ``sqrt`` (principal branches; ``log1p`` near 0 and near -1) against mpmath at 40
   digits (float64 within 4 ulps, the others within ``1e-25`` at 140 bits); the Jacobian's dual numbers
@@ -157,6 +158,8 @@ def _check_context(c: _Ctx) -> list[str]:
             want_pos = a.imag == 0 and a.real > 0
             if _cond(ctx.positive(mk(a))) != want_pos:
                 bad.append(f"positive({a}) is {not want_pos}")
+            if _cond(ctx.out_of_range(mk(a), mk(a))):      # a moderate value is in every context's range
+                bad.append(f"out_of_range({a}) is true")
             for c_ in (True, False):        # select: lazy where the condition is one bool
                 if back(ctx.select(c_, lambda: mk(a), lambda: mk(a + 1))) != (a if c_ else a + 1):
                     bad.append(f"select({c_}) does not pick {'f' if c_ else 'g'}")
@@ -272,7 +275,8 @@ def _ball_decisions() -> list[str]:
        statement="every arithmetic context's div, ldexp, re_dot, positive, align, half_plane and acosh_half_abs on "
                  "exact dyadic samples (zeros and the tie Re(ref conj g) = 0 included; complex samples for the "
                  "complex contexts) equal the interface table's definitions evaluated in Python's complex "
-                 "arithmetic (acosh: mpmath at 40 digits); straddling balls and intervals are decided as documented")
+                 "arithmetic (acosh: mpmath at 40 digits); straddling balls and intervals are decided as documented; "
+                 "out_of_range is false on every moderate sample")
 def contexts() -> Outcome:
     ctxs, note = _contexts()
     bad: list[str] = []

@@ -351,6 +351,21 @@ def _certified_inputs(dates: np.ndarray) -> list[str]:
         got = run(p)
         if any(list(a) != list(b) for a, b in zip(got, want)):
             bad.append(f"certified_orbit on {kind} differs from the same numbers as floats")
+    # no precision admitted (prec above max_prec): "lohner" says so by name; "auto" records why Lohner gave up,
+    # then the ball path (its own refusal)
+    from ..numeric import NumericRangeError
+
+    for method in ("lohner", "auto"):
+        info: dict = {}
+        try:
+            certified_orbit(list(_P), list(_Q), 10.0, 5.0, 1, prec=200, max_prec=100, method=method, info=info)
+            bad.append(f"certified_orbit(method={method!r}) with prec 200 > max_prec 100 returned")
+        except NumericRangeError as exc:
+            lohner_named = str(exc).startswith("certified orbit (Lohner):")
+            fell_back = (info.get("method"), "max_prec = 100" in str(info.get("fallback", "")), info["passes"])
+            if (lohner_named, fell_back) != ((True, (None, False, [])) if method == "lohner"
+                                             else (False, ("ball", True, []))):
+                bad.append(f"method={method!r}, no precision admitted: {exc}; info {info}")
     return bad
 
 
@@ -363,7 +378,8 @@ def _certified_inputs(dates: np.ndarray) -> list[str]:
                  "NaN or an inf anywhere in a batch of 100 states; dates (datetime64) are refused, not as text; "
                  "certified_orbit takes decimal strings and Fractions exactly, refuses bytes, dates, nesting, "
                  "complex and non-finite values, one site and unequal lengths by name, and at N = 2 encloses the "
-                 "literal step; "
+                 "literal step; with prec above max_prec it raises NumericRangeError, by the Lohner method's name "
+                 "for method='lohner', after recording Lohner's refusal and trying the ball path for 'auto'; "
                  "object, int, float32 arrays and a list of int holding the same numbers give the float array's "
                  "result bit for bit, an object array of mpf the mpf list's (bt_step, flow_coefficients); "
                  "flow_coefficients at mu = 0 is zeros in either arithmetic")

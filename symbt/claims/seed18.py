@@ -10,10 +10,11 @@ r"""Paths the claims did not reach (issue 21, seed 18).
 """
 from __future__ import annotations
 
+import mpmath as mp
 import numpy as np
 
 from ._shipped import without_numba
-from .base import Outcome, claim, failed
+from .base import Outcome, claim, failed, skipped
 
 
 @claim("paths.many_rows", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
@@ -86,3 +87,151 @@ def many_rows(N: int) -> Outcome:
     return Outcome("verified", "numeric: step_core past SIDE_BY_SIDE_ROWS rows vs batches of one scan, bit for bit "
                    "(consistency)", evidence="sampled", n_scope=[N], detail=detail,
                    printed="the same bits and statuses")
+
+
+@claim("library.qd_marker", equation="bt_step", source_equation="imptransf", scene="library", requires=("numba",),
+       where="symbt/numeric/multiprec/qd.py: _marker_dirs, _digest, qd_ready, _mark_ready (the compiled quad-double "
+             "kernel's cache marker, which decides whether backend='auto' takes it)",
+       statement="with NUMBA_CACHE_DIR and HOME in a temporary directory and no kernel loaded in the process: the "
+                 "marker is looked for in NUMBA_CACHE_DIR, the package's __pycache__ and ~/.cache/symbt, in that "
+                 "order; the digest is the SHA-256 of qd.py, qd_arith.py, qd_step.py, core/limits.py, core/fused.py, "
+                 "core/compile.py and numba's version; qd_ready is true exactly when one of them holds the digest "
+                 "(a stale marker is not), or when a kernel with signatures is loaded; _mark_ready writes the "
+                 "digest into the first, made if missing, over a stale marker if there")
+def qd_marker() -> Outcome:
+    import hashlib
+    import importlib.util
+    import os
+    import tempfile
+    from importlib.metadata import version
+    from pathlib import Path
+
+    from ..numeric.multiprec import qd
+
+    if importlib.util.find_spec("numba") is None:
+        return skipped("numba is not installed (.[fast]): the marker digests its version")
+    here = Path(qd.__file__).parent
+    core = here.parent / "core"
+    h = hashlib.sha256()
+    for path in (here / "qd.py", here / "qd_arith.py", here / "qd_step.py", core / "limits.py", core / "fused.py",
+                 core / "compile.py"):
+        h.update(path.read_bytes())
+    h.update(version("numba").encode())
+    digest = h.hexdigest()
+    bad: list[str] = []
+    saved_env = {k: os.environ.get(k) for k in ("NUMBA_CACHE_DIR", "HOME")}
+    loaded = qd._compiled.pop("qd_orbit", None)
+    with tempfile.TemporaryDirectory(prefix="symbt-qd-marker-") as tmp:
+        cache, home = Path(tmp) / "numba", Path(tmp) / "home"
+        os.environ["NUMBA_CACHE_DIR"], os.environ["HOME"] = str(cache), str(home)
+        try:
+            dirs = qd._marker_dirs()
+            want_dirs = [cache, here / "__pycache__", home / ".cache" / "symbt"]
+            if dirs != want_dirs:
+                bad.append(f"marker dirs {dirs}, documented {want_dirs}")
+            if qd._digest() != digest:
+                bad.append("the digest is not the SHA-256 of the six sources and numba's version")
+            # the package's own __pycache__ is outside the claim's control: read, not written
+            pkg = here / "__pycache__" / qd._MARKER
+            pkg_ready = pkg.is_file() and pkg.read_text(encoding="utf-8").strip() == digest
+            if qd.qd_ready() != pkg_ready:
+                bad.append(f"no marker in the temporary dirs: qd_ready {qd.qd_ready()}, the package's marker "
+                           f"says {pkg_ready}")
+            cache.mkdir(parents=True)
+            (cache / qd._MARKER).write_text("0" * 64 + "\n", encoding="utf-8")
+            if qd.qd_ready() != pkg_ready:
+                bad.append("a stale marker in NUMBA_CACHE_DIR made qd_ready true")
+            # a kernel loaded in the process (a dispatcher with signatures) is ready whatever the markers say
+            for sigs, want in (([("float64[:]",)], True), ([], pkg_ready)):
+                qd._compiled["qd_orbit"] = type("Loaded", (), {"signatures": sigs})()
+                if qd.qd_ready() != want:
+                    bad.append(f"a loaded kernel with {len(sigs)} signatures: qd_ready {not want}")
+                del qd._compiled["qd_orbit"]
+            # _mark_ready into a NUMBA_CACHE_DIR that does not exist yet, two levels down: made, then written
+            fresh = Path(tmp) / "a" / "b"
+            os.environ["NUMBA_CACHE_DIR"] = str(fresh)
+            qd._mark_ready()
+            marker = fresh / qd._MARKER
+            if not (marker.is_file() and marker.read_text(encoding="utf-8") == digest + "\n"):
+                bad.append("_mark_ready did not write the digest into a new NUMBA_CACHE_DIR")
+            if not qd.qd_ready():
+                bad.append("qd_ready is false after _mark_ready")
+            if marker.is_file():
+                marker.write_text("0" * 64 + "\n", encoding="utf-8")      # stale again, the directory there
+                qd._mark_ready()
+            if not (marker.is_file() and marker.read_text(encoding="utf-8") == digest + "\n"):
+                bad.append("_mark_ready did not rewrite a stale marker in an existing NUMBA_CACHE_DIR")
+            if list(fresh.glob("*.tmp")):
+                bad.append("_mark_ready left its temporary file")
+        finally:
+            for k, v in saved_env.items():
+                if v is None:
+                    os.environ.pop(k, None)
+                else:
+                    os.environ[k] = v
+            if loaded is not None:
+                qd._compiled["qd_orbit"] = loaded
+    if bad:
+        return failed("the quad-double cache marker", detail="; ".join(bad))
+    return Outcome("verified", "exact: the quad-double cache marker vs its documented rule (digest recomputed)",
+                   evidence="proof", n_scope="all",
+                   detail=f"digest {digest[:12]}...; the package's own marker {'current' if pkg_ready else 'absent'}")
+
+
+#: paths.lohner_reorth: steps per size (the small frame checks its condition every _COND_EVERY = 32 steps, a frame
+#: past _SMALL = 24 coordinates at every step), the balls' precision, the reference's digits
+REORTH_STEPS, REORTH_PREC, REORTH_DPS = {3: 40, 13: 3}, 160, 80
+
+
+@claim("paths.lohner_reorth", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths",
+       sizes=(3, 13), requires=("flint",),
+       where="symbt/numeric/multiprec/lohner.py: LohnerSet's frames re-orthogonalised (_small_frame at 2N <= 24, "
+             "_frame_of beyond) past MAX_FRAME_COND",
+       statement="LohnerSet on an admissible state (N={N}, exact input, 160 bits; 40 steps at N = 3, 3 at N = 13) "
+                 "with MAX_FRAME_COND lowered to 1 (restored after) re-orthogonalises at every condition check -- "
+                 "every 32nd step of the small frame, every step beyond 24 coordinates -- and at its own threshold "
+                 "never on these runs; either way every hull contains the literal orbit (80 digits)")
+def lohner_reorth(N: int) -> Outcome:
+    from flint import arb
+
+    from ..numeric.multiprec import lohner
+    from ..numeric.multiprec.arb import flint_prec
+    from ..reference.literal import reference_step
+    from ..reference.samples import admissible_states
+
+    n = REORTH_STEPS[N]
+    with mp.workdps(30):
+        st = admissible_states(N, 1, 1)[0]
+    p, q, l0, m = [float(v) for v in st[0]], [float(v) for v in st[1]], float(st[2]), float(st[3])
+    ref = []
+    with mp.workdps(REORTH_DPS):
+        a, b = [mp.mpf(v) for v in p], [mp.mpf(v) for v in q]
+        for _ in range(n):
+            a, b = reference_step(a, b, mp.mpf(l0), mp.mpf(m))
+            ref.append(a + b)
+    bad: list[str] = []
+    counts = {}
+    saved = lohner.MAX_FRAME_COND
+    for threshold in (1.0, saved):
+        lohner.MAX_FRAME_COND = threshold
+        try:
+            with flint_prec(REORTH_PREC):
+                S = lohner.LohnerSet([arb(v) for v in p + q])
+                for i in range(n):
+                    S.step(arb(l0), arb(m), 1)
+                    with flint_prec(REORTH_DPS * 4):
+                        if not all(h.contains(arb(mp.nstr(x, REORTH_DPS))) for h, x in zip(S.hull, ref[i])):
+                            bad.append(f"threshold {threshold:g}: the hull at step {i + 1} misses the literal orbit")
+                            break
+        finally:
+            lohner.MAX_FRAME_COND = saved
+        counts[threshold] = S.reorthogonalised
+    want = n if 2 * N > lohner._SMALL else n // lohner._COND_EVERY
+    if counts[1.0] != want or counts[saved] != 0:
+        bad.append(f"re-orthogonalised {counts[1.0]} times at threshold 1 (every check: {want}), {counts[saved]} "
+                   f"at {saved:g} (none expected)")
+    detail = f"{n} steps; re-orthogonalised {counts[1.0]} times at threshold 1, {counts[saved]} at {saved:g}."
+    if bad:
+        return failed("numeric: Lohner frames re-orthogonalised", detail="; ".join(bad[:3]) + " " + detail)
+    return Outcome("verified", "numeric: Lohner sets with re-orthogonalised frames vs the literal orbit (80 digits)",
+                   evidence="sampled", n_scope=[N], detail=detail)

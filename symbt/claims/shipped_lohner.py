@@ -296,7 +296,8 @@ NEXT_STEPS, NEXT_TARGET, NEXT_BITS, NEXT_FIRST = 60, 1e-40, 133, 135
                  "bits: the second pass runs at max(floor(p + e + 1.5 g log2(n/i) + 16) + 1, p + 32) (its "
                  "docstring's rule, e, i, g from the same first pass by lohner_pass and growth_law) and the "
                  "returned orbit meets the target; unforced, 10 steps, the first pass runs at 133 + 24 + 5 bitlen(10) "
-                 "bits")
+                 "bits, and through certified_orbit at max(1, ceil(-log2 tol)) + 24 + 5 bitlen(10) for tol 1e-40 "
+                 "and 4")
 def next_precision(N: int) -> Outcome:
     if importlib.util.find_spec("flint") is None:
         return skipped("python-flint is not installed (.[certified])")
@@ -332,12 +333,22 @@ def next_precision(N: int) -> Outcome:
                    f"excess {e:.3g}, degree {g})")
     if not excess(stored[-1][0] + stored[-1][1]) <= 0:
         bad.append("the returned orbit does not meet the target radius")
-    # without a forced first precision the first pass runs at target_bits + 24 + 5 bitlen(n) (the docstring's rule)
+    # without a forced first precision the first pass runs at target_bits + 24 + 5 bitlen(n) (the docstring's rule),
+    # target_bits = max(1, ceil(-log2 tol)) through certified_orbit (tol 1e-40: 133; tol 4: 1)
+    from ..numeric import certified_orbit
+
     short: list[int] = []
     lohner_certified(state, 10, 1, {10}, excess, NEXT_BITS, None, 4096, short)
     if short[:1] != [NEXT_BITS + 24 + 5 * (10).bit_length()]:
         bad.append(f"10 steps, no precision given: passes {short}, the documented first pass "
                    f"{NEXT_BITS + 24 + 5 * (10).bit_length()} bits")
+    for tol, bits in ((NEXT_TARGET, NEXT_BITS), (4.0, 1)):
+        info: dict = {}
+        with mp.workdps(30):
+            certified_orbit([-20, 10, 1], [1, 0, 0.9], 10, 5, 10, tol=tol, method="lohner", info=info)
+        if info["passes"][:1] != [bits + 24 + 5 * (10).bit_length()]:
+            bad.append(f"certified_orbit, tol {tol:g}: first pass {info['passes'][:1]}, documented "
+                       f"{bits + 24 + 5 * (10).bit_length()} bits")
     detail = f"first pass {NEXT_FIRST} bits stopped at step {i} (excess {e:.3g} bits, degree {g}); passes {passes}."
     if bad:
         return failed("numeric: lohner_certified's schedule vs its documented rule", detail="; ".join(bad) + " "
@@ -431,7 +442,8 @@ def ball_rule(first: int, hist: list, n: int) -> int:
                  "max(floor(p + x) + 1, p + p // 4 + 32), x = e1 + 1.15 r (n - i1) + 4 r + 24 with r = max(0, (e1 - "
                  "e0) / (i1 - i0)) the growth (bits per step) between the first and the last finite excess (i0, "
                  "e0), (i1, e1) of the same first pass, x = e1 + 24 with one finite excess; the returned radii are "
-                 "within the target plus the rounding of the midpoints to mp.prec")
+                 "within the target plus the rounding of the midpoints to mp.prec; capped at max_prec = its second "
+                 "pass, a run that succeeds there runs there")
 def ball_schedule(N: int) -> Outcome:
     if importlib.util.find_spec("flint") is None:
         return skipped("python-flint is not installed (.[certified])")
@@ -456,6 +468,17 @@ def ball_schedule(N: int) -> Outcome:
         if not worst <= 1:
             bad.append(f"q_3 = {q3}: a returned radius {worst:.3g} times the target plus the output's rounding")
         notes.append(f"q_3 = {q3}, {first} bits: stopped at step {done}, passes {passes}")
+        if len(passes) == 2:
+            # max_prec is a precision the path may use: the same run capped at its second pass
+            capped: dict[str, object] = {}
+            with mp.workdps(40):
+                try:
+                    certified_orbit(p, q, 10, 5, n, tol=BALL_TOL, prec=first, max_prec=want, method="ball",
+                                    info=capped)
+                except ArithmeticError as exc:
+                    bad.append(f"q_3 = {q3}: capped at max_prec = {want}, its second pass, it raised {exc}")
+            if capped.get("passes") not in (None, passes):
+                bad.append(f"q_3 = {q3}: capped at max_prec = {want}: passes {capped.get('passes')}")
     detail = "; ".join(notes) + "."
     if bad:
         return failed("numeric: the ball path's schedule vs its rule", detail="; ".join(bad) + " " + detail)

@@ -100,9 +100,9 @@ def _invariant_ref(p: tuple, q: tuple) -> tuple:
 @claim("shipped.invariants", equation="tra", scene="shipped",
        parts=scale_parts, sizes=(2, 3, 5),
        where="symbt/numeric/flow/invariants.py: invariants, spectral_trace",
-       statement="symbt.numeric.invariants (float64 one state and batch, mpmath 30 digits) and spectral_trace at "
-                 "lambda0 +- mu = the polynomial trace (closed-walk expansion, 50 digits) within 16 N u S, every "
-                 "cell (N={N})")
+       statement="symbt.numeric.invariants (float64 one state and batch, mpmath 30 digits) and spectral_trace "
+                 "(float64, mpmath) at lambda0 +- mu = the polynomial trace (closed-walk expansion, 50 digits) "
+                 "within 16 N u S, every cell (N={N})")
 def invariants(N: int, parts: Parts, deep: bool = False) -> Outcome:
     from ..numeric import invariants as inv
     from ..numeric import spectral_trace
@@ -129,6 +129,11 @@ def invariants(N: int, parts: Parts, deep: bool = False) -> Outcome:
             v = scaled([float(spectral_trace(lam, np.array(st[0]), np.array(st[1])))], parts.printed["scale"])[0]
             r = _ratio(v, tr, C * EPS * S_tr)
             tally.add("spectral_trace", cell, st, b, r, 0.0, agree)
+            with mp.workdps(MP_DPS):
+                vm = spectral_trace(mp.mpf(lam), [mp.mpf(x) for x in st[0]], [mp.mpf(x) for x in st[1]])
+                u_mp = 2.0 ** -mp.mp.prec
+            r = _ratio(scaled([vm], parts.printed["scale"])[0], tr, C * u_mp * S_tr)
+            tally.add("spectral_trace (mpmath)", cell, st, b, r, 0.0, agree)
     return tally.outcome(method=f"numeric: vs the polynomial trace ({REF_DPS} digits), bound 16 N u S",
                          printed=f"|invariants - polynomial| <= {C} u S_k; |spectral_trace - polynomial| <= {C} eps S")
 

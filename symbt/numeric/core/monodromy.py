@@ -56,12 +56,8 @@ def neighbour_ratios(ctx: Context, q: Sequence[Value]) -> list[Value]:
     N = len(q)
     dq = [q[(j + 1) % N] - q[j] for j in range(N)]
     if not ctx.is_exact_scale:
-        re = np.real(dq)
-        if re.ndim == 2 and re.size:    # (sites, rows): every site's span in two reductions, the same floats
-            spans = np.maximum(re.max(axis=1), -re.min(axis=1)).tolist()
-        else:
-            spans = [float(max(np.max(d), -np.min(d))) if np.size(d) else 0.0 for d in re]
-        worst = max(spans)
+        re = np.real(dq).reshape(N, -1)     # (sites, rows): one state is one row
+        worst = float(np.max(np.maximum(re.max(axis=1), -re.min(axis=1)))) if re.size else 0.0
         if worst > MAX_DQ_FLOAT64:
             raise NumericRangeError(
                 "|q_{j+1} - q_j| = %.4g exceeds the float64 range of the scaled "

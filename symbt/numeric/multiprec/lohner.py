@@ -275,17 +275,13 @@ class LohnerSet:
         """``(Bf, B, enclosure of B^-1, near)``: ``near`` if ``B`` is ``F`` itself (``B^-1 J B_old ~ I``)."""
         if not np.all(np.isfinite(F)):
             raise JacobianBlowup("the frame matrix is not finite")
-        if self.frame == "product":
-            self.steps += 1
+        if self.frame == "product":       # past _SMALL coordinates (smaller product frames: _small_frame)
             X = None
-            if self.n > _SMALL or self.steps % _COND_EVERY == 0:      # the condition grows slowly (n**2 here)
-                try:
-                    X = np.linalg.inv(F)
-                    cond = np.linalg.norm(F, 1) * np.linalg.norm(X, 1)
-                except np.linalg.LinAlgError:
-                    cond = math.inf
-            else:
-                cond = 0.0
+            try:                           # every step: the inverse is needed anyway (frame_inverse)
+                X = np.linalg.inv(F)
+                cond = np.linalg.norm(F, 1) * np.linalg.norm(X, 1)
+            except np.linalg.LinAlgError:
+                cond = math.inf
             if cond < MAX_FRAME_COND:
                 B = arb_mat(F.tolist())
                 return F, B, frame_inverse(B, X), True
