@@ -8,7 +8,9 @@ import random
 from fractions import Fraction
 
 import mpmath as mp
+import numpy as np
 import pytest
+import sympy as sp
 from planting import claim_fails as fails
 from planting import planted
 
@@ -187,3 +189,55 @@ def test_mul_d_last_term_below_the_format():
         for f in (Q.mul_d, mutant):
             worst = max(worst, abs(float((_exact(f(a, b)) - exact) / exact)))
     assert 0 < worst < 2.0 ** -209
+
+
+# --------------------------------------------------------------------------- seed 19
+
+def test_anchor_range_test_order_is_equivalent():
+    # marked equivalent: kernels:369 (`abs(qh[j]) < 1e300` -> `abs(qh[j - 1])` in _anchor1's second loop): over the
+    # loop j = 0 .. N-1 the mutant tests qh[N-1], qh[0], .., qh[N-2] -- every position once, as the original does --
+    # and both return RANGE as soon as one test fails; the dq and p tests are the same per j, and r (a work array)
+    # is only read after OK.  So the status is the same, and r too where it is OK.  Checked on random states with
+    # one position (or none) past 1e300, each position in turn, and with a dq or p failure beside it
+    from symbt.numeric.float64 import kernels as K
+
+    mutant = planted(K._anchor1, "abs(qh[j]) < 1e300):", "abs(qh[j - 1]) < 1e300):")
+    rng = np.random.default_rng(369)
+    for N in (2, 3, 5):
+        for bad_at in [None] + list(range(N)):
+            for p_bad in (None, 0, N - 1):
+                qh, ql = rng.uniform(-5, 5, N), rng.uniform(-1e-17, 1e-17, N)
+                if bad_at is not None:
+                    qh[:] = 2e300                   # every dq 0, one position still past the range test's bound
+                    qh[bad_at] = 3e300
+                p = rng.uniform(-5, 5, N)
+                if p_bad is not None:
+                    p[p_bad] = 2e300
+                fh, fl = rng.uniform(0.5, 2, N), np.zeros(N)
+                outs = []
+                for fn in (K._anchor1, mutant):
+                    args = [x.copy() for x in (qh, ql, fh, fl)] + [np.zeros(N), p.copy()]
+                    st = fn(*args)
+                    outs.append((st, args[4].tolist() if st == K.OK else None, [a.tolist() for a in args[:4]]))
+                assert outs[0] == outs[1], (N, bad_at, p_bad)
+
+
+def test_zero_argument_c_function():
+    # codegen.user.check's C evaluator passes an empty input array for a function of no arguments (user.check:205,
+    # `max(n_in, 1)` -> `max(n_in, 0)`, seed 19: the guard went, an empty ctypes array is a valid pointer the
+    # function never reads)
+    import tempfile
+    from pathlib import Path
+
+    from symbt.codegen.user import check as C
+    from symbt.codegen.user.declare import emit
+    from symbt.codegen.user.files import generate
+
+    if C.compiler() is None:
+        pytest.skip("no C compiler")
+    e = emit("zero_args", sp.Integer(3) + sp.pi, args=(), module="zero_args_probe", register=False)
+    with tempfile.TemporaryDirectory() as d:
+        out = Path(d)
+        generate([e], out, out, target="c")
+        keep: list = []
+        assert C._evaluator(e, "c", out / "zero_args_probe.c", keep)([]) == [3 + math.pi]

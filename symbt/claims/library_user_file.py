@@ -33,6 +33,7 @@ Each claim checks a documented property of :mod:`symbt.codegen.user` against a r
 """
 from __future__ import annotations
 
+import math
 import sys
 import tempfile
 from pathlib import Path
@@ -83,17 +84,30 @@ def _python_value(text: str, flavour: str, pt: tuple[float, float, float]) -> An
     return eval(text, ns, vals)    # noqa: S307 -- the printer's own text of fixed expressions
 
 
+def _longest_chain(text: str) -> int:
+    """The deepest left-nested chain of additions in the Python text, in terms (``a + b + c``: three;
+    ``(a + b) + (c + d)``: three too -- the parentheses of a left operand add no depth)."""
+    import ast
+
+    def terms(node: ast.AST) -> int:         # a left-nested Add chain, not crossing parentheses of sub-sums
+        return terms(node.left) + 1 if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Add) else 1
+    tree = ast.parse(text, mode="eval")
+    return max((terms(n) for n in ast.walk(tree) if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Add)),
+               default=1)
+
+
 @claim("library.user_printer", equation="checker", scene="library",
        where="symbt.codegen.user.printing (UserPrinter, rewritten, optimized)",
        statement="the numpy and mpmath texts of UserPrinter over its vocabulary evaluate to the expressions' values "
-                 "(evalf, 30 digits) within 1e-13 / 1e-25 relative; rewritten equals SymPy's optimize with the "
+                 "(evalf, 30 digits) within 1e-13 / 1e-25 relative, a sum of 105 terms nested at most LONG_SUM + 1 "
+                 "deep (two balanced partial sums); rewritten equals SymPy's optimize with the "
                  "expm1 and log1p rules; optimized keeps a declaration with optimize=False as declared")
 def user_printer() -> Outcome:
     from sympy.codegen.cfunctions import expm1, log1p
     from sympy.codegen.rewriting import expm1_opt, log1p_opt, optimize
 
     from ..codegen.user.declare import emit
-    from ..codegen.user.printing import UserPrinter, optimized, rewritten
+    from ..codegen.user.printing import LONG_SUM, UserPrinter, optimized, rewritten
 
     bad: list[str] = []
     worst = {"numpy": 0.0, "mpmath": mp.mpf(0)}
@@ -109,6 +123,12 @@ def user_printer() -> Outcome:
                 bad.append(f"{flavour}: {b} printed {pr.text(b)!r}")
         for e, ws in zip(exprs, wants):
             text = pr.text(e)
+            # partial sums of at most LONG_SUM terms, combined as a balanced tree: the compiler's nesting depth is
+            # at most LONG_SUM + ceil(log2(number of partial sums)) (a plain chain: the number of terms)
+            depth = LONG_SUM + math.ceil(math.log2(math.ceil(len(LONG.args) / LONG_SUM)))
+            if e is LONG and not _longest_chain(text) <= depth:
+                bad.append(f"{flavour}: the {len(LONG.args)}-term sum printed nested {_longest_chain(text)} deep "
+                           f"(balanced partial sums of LONG_SUM = {LONG_SUM} terms: at most {depth})")
             for pt, want in zip(POINTS, ws):
                 if isinstance(e, sp.Piecewise):
                     taken.add(next(k for k, (_, c) in enumerate(e.args)

@@ -235,3 +235,36 @@ def lohner_reorth(N: int) -> Outcome:
         return failed("numeric: Lohner frames re-orthogonalised", detail="; ".join(bad[:3]) + " " + detail)
     return Outcome("verified", "numeric: Lohner sets with re-orthogonalised frames vs the literal orbit (80 digits)",
                    evidence="sampled", n_scope=[N], detail=detail)
+
+
+@claim("library.importable", equation="bt_step", source_equation="imptransf", scene="library",
+       where="symbt/numeric/core/errors.py: importable (what the optional features ask before they run)",
+       statement="importable is true for an importable module, false for a missing one and for one whose import "
+                 "raises (a broken installation: a temporary package that raises on import), and keeps its answer")
+def importable_modules() -> Outcome:
+    import sys
+    import tempfile
+    from pathlib import Path
+
+    from ..numeric.core import errors
+
+    bad: list[str] = []
+    with tempfile.TemporaryDirectory(prefix="symbt-importable-") as tmp:
+        name = "symbt_broken_probe_" + Path(tmp).name.replace("-", "_")
+        (Path(tmp) / f"{name}.py").write_text("raise RuntimeError('a broken installation')\n", encoding="utf-8")
+        sys.path.insert(0, tmp)
+        try:
+            got = {"math": errors.importable("math"), "missing": errors.importable(name + "_missing"),
+                   "broken": errors.importable(name)}
+            again = errors.importable(name)
+        finally:
+            sys.path.remove(tmp)
+            sys.modules.pop(name, None)
+            for key in (name, name + "_missing"):
+                errors._IMPORTABLE.pop(key, None)
+    if got != {"math": True, "missing": False, "broken": False} or again is not False:
+        bad.append(f"importable: {got}, asked again for the broken one: {again}")
+    if bad:
+        return failed("importable", detail="; ".join(bad))
+    return Outcome("verified", "exact: importable on an importable, a missing and a broken module", evidence="proof",
+                   n_scope="all", detail=f"{got}")

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 7bae1597f3ed8d24a5083f7bf806b2b66847554cb3696681e363be7d5638ac11
-# symbt-codegen-content-sha256: 5caff30e1d5a4c3b72d735af12108fbaa07e7fd68b5f0de9a6697d8c66682da5
+# symbt-codegen-derivation-sha256: ce8900f85ac39234e4d2e19164523366c92ac8f894748ecd107457d8cf031fe0
+# symbt-codegen-content-sha256: 3305dfe3440e078cba0a0652a74700328ab8af1966ab2031b1afe8101bc979ff
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

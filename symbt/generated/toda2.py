@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 7bae1597f3ed8d24a5083f7bf806b2b66847554cb3696681e363be7d5638ac11
-# symbt-codegen-content-sha256: 39cddf6fc72f1980090a21774a6b36ca8a22c6d2e624aa72a4f2a3ee8d89f0d5
+# symbt-codegen-derivation-sha256: ce8900f85ac39234e4d2e19164523366c92ac8f894748ecd107457d8cf031fe0
+# symbt-codegen-content-sha256: 1ec919c2e0feafdaa3e7248d554d500393822f1b7676cef70c95c94b02cc400d
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

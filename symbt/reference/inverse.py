@@ -71,7 +71,7 @@ def _newton(F: Residual, J: Jacobian, x0: Sequence[MPLike], tol: mp.mpf,
                 dx = _solve(Jm, r)
                 xn = [a + d for a, d in zip(x, dx)]
                 rn = F(xn)
-                if rn is not None and max(abs(v) for v in rn) <= max(abs(v) for v in r):
+                if rn is not None and _norm(rn) <= _norm(r):      # the line search's measure
                     x = xn
             except ZeroDivisionError:
                 pass

@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 596ccb158a6c538810c9b385ea26905929b81fd1aa4e8e07f11ea66010c2f473
-// symbt-codegen-content-sha256: 9510243eaed08ba79fc2c83d71e27650130af6c038896d8999a5f17b2df851d2
+// symbt-codegen-derivation-sha256: 5e87ea82491081f04eaaa65212bd096d3fb2a55d93eeba76ffd4ed081a0bad73
+// symbt-codegen-content-sha256: bff83b72a7af114394495dc56da1265662a91715b13afe9f31aa1c439b67954a
 #include <math.h>
 #include "drag_numeric.h"
 

@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 596ccb158a6c538810c9b385ea26905929b81fd1aa4e8e07f11ea66010c2f473
-// symbt-codegen-content-sha256: 1ff2232ce48e188cb4c08872bf0b1db2fc7731d896db36b8f3efd9141c971211
+// symbt-codegen-derivation-sha256: 5e87ea82491081f04eaaa65212bd096d3fb2a55d93eeba76ffd4ed081a0bad73
+// symbt-codegen-content-sha256: d7300819d49b1ffc3198c59680e95a2cd0afed3810424522f0d6f3880d05bef9
 #ifndef SYMBT_EMITTED_DRAG_NUMERIC_H
 #define SYMBT_EMITTED_DRAG_NUMERIC_H
 

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: drag_numeric (declared in drag_emit)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 596ccb158a6c538810c9b385ea26905929b81fd1aa4e8e07f11ea66010c2f473
-# symbt-codegen-content-sha256: fd166a11a87857c0b37cf5d3fa815c6d477e6bd63b660d9906b73528aea7e1ed
+# symbt-codegen-derivation-sha256: 5e87ea82491081f04eaaa65212bd096d3fb2a55d93eeba76ffd4ed081a0bad73
+# symbt-codegen-content-sha256: b02daaaf5ae80f0df920a7088e1871f7719a9210bc2d11cc245b816a45002e1f
 """drag_numeric: functions emitted by `symbt codegen` from drag_emit.
 
 Each function has a numpy float64 flavour (vectorised over broadcast arguments) and an
