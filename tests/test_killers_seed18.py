@@ -241,3 +241,74 @@ def test_zero_argument_c_function():
         generate([e], out, out, target="c")
         keep: list = []
         assert C._evaluator(e, "c", out / "zero_args_probe.c", keep)([]) == [3 + math.pi]
+
+
+def _extreme_sweeps(count):
+    """Transfer sweeps of 12 sites with neighbour ratios e^x, x uniform on [-690, 690]: far beyond any state's."""
+    rng = np.random.default_rng(1)
+    for _ in range(count):
+        a = [rng.uniform(-1, 1, 4) * 10.0 ** rng.uniform(-300, 300) * 0 for _ in range(12)]
+        r = [np.exp(rng.uniform(-690, 690, 4)) for _ in range(12)]
+        yield a, r, np.full(4, 2.0 ** float(rng.integers(-500, 500)))
+
+
+def test_renormalised_gradient_is_finite_where_the_products_are(monkeypatch):
+    # field:101 (seed 19, a survivor of verify: a signed maximum for the renormalisation's scale) -- in range the
+    # scale is a power of two and the bits are the same, so no state a claim uses tells them apart; on extreme
+    # sweeps the mutant's unrenormalised entries overflow into NaN where the exact products (mpmath, 60 digits)
+    # are finite, and the original's do not
+    from symbt.numeric.flow import field as F
+
+    def nan_where_finite(fn):
+        count = 0
+        for a, r, inv_s in _extreme_sweeps(12):
+            with np.errstate(all="ignore"):
+                da, dr = fn(a, r, inv_s)
+            for row in range(4):
+                with mp.workdps(60):
+                    ra, rr = F.transfer_gradient([mp.mpf(float(x[row])) for x in a],
+                                                 [mp.mpf(float(x[row])) for x in r], mp.mpf(float(inv_s[row])))
+                for got, want in zip(list(da[:, row]) + list(dr[:, row]), ra + rr):
+                    if mp.isfinite(want) and abs(want) < mp.mpf(2) ** 1000 and np.isnan(got):
+                        count += 1
+        return count
+
+    assert nan_where_finite(F._gradient_renormalised) == 0
+    assert nan_where_finite(planted(F._gradient_renormalised, "m = np.maximum(m, np.abs(x))",
+                                    "m = np.maximum(m, x)")) > 0
+
+
+def test_trace_gap_searches_the_critical_points(monkeypatch):
+    # trace:136 (seed 19, a survivor of verify: the derivative's coefficients) -- trace_gap's critical points are
+    # the roots of d tr / d lambda; they change its value only where polyroots misses a double root of tr = +-2,
+    # which no claim's state reaches, so this test reads the polynomial handed to polyroots and compares it with
+    # mpmath's derivative of the trace at four points
+    from symbt.reference import trace as T
+
+    asked = []
+    real = mp.polyroots
+
+    def recording(c, **kw):
+        asked.append([mp.mpf(v) for v in c])
+        return real(c, **kw)
+    monkeypatch.setattr(T.mp, "polyroots", recording)
+    p, q = [mp.mpf(-2), mp.mpf("0.5"), mp.mpf(1)], [mp.mpf(0), mp.mpf("0.3"), mp.mpf("-0.2")]
+    T.trace_gap(p, q, 1, 2)                          # inside the gap around the critical point 1.55 (tr = -8)
+    coeffs = T.hamiltonians(p, q)[::-1]            # highest first, as trace_gap passes them
+    assert len(asked) == 3 and len(asked[2]) == len(coeffs) - 1
+    for x in (mp.mpf(0), mp.mpf(1), mp.mpf("-1.5"), mp.mpf(3)):   # the derivative, by mpmath's differentiation
+        want = mp.diff(lambda t: mp.polyval(coeffs, t), x)
+        assert abs(mp.polyval(asked[2], x) - want) <= mp.mpf(10) ** -10 * max(1, abs(want))
+
+
+def test_scale_is_a_forward_difference():
+    # codegen.verify:215 (seed 19, a survivor of verify: a backward difference) -- _scale's docstring says forward
+    # differences; at a kink (max(x, 0) at 0) the two sides differ: slope 1 forward, 0 backward.  No sample point
+    # sits on a kink, so only this test sees it
+    from types import SimpleNamespace
+
+    from symbt.codegen import verify
+
+    spec = SimpleNamespace(args=[SimpleNamespace(name="x", kind="scalar")])
+    S = verify._scale(spec, lambda x: [max(mp.mpf(x), 0)], {"x": 0.0}, [mp.mpf(0)], [mp.mpf(0)])
+    assert S == [1]
