@@ -20,7 +20,8 @@ load_all()
 
 CLAIMS = ["checker.exact_route_names", "checker.codegen_metrics", "library.emit_typed", "library.linear",
           "library.spectral", "paths.qd.n2", "paths.qd.n3", "paths.many_rows.n3", "paths.next_prec.n3",
-          "paths.panels", "library.qd_marker"]
+          "paths.panels", "library.qd_marker", "library.importable", "paths.lohner_reorth.n3",
+          "paths.lohner_reorth.n13", "library.user_printer", "library.F_forms"]
 
 
 @pytest.mark.parametrize("cid", CLAIMS)
@@ -192,6 +193,27 @@ def test_mul_d_last_term_below_the_format():
 
 
 # --------------------------------------------------------------------------- seed 19
+
+@pytest.mark.parametrize("method, cid", [("_small_frame", "paths.lohner_reorth.n3"),
+                                         ("_frame_of", "paths.lohner_reorth.n13")])
+def test_reorthogonalisation_counted(monkeypatch, method, cid):
+    # lohner:292 (and the small frame's twin): the re-orthogonalisation counter, which no claim's frame reached
+    pytest.importorskip("flint")
+    from symbt.numeric.multiprec import lohner
+
+    monkeypatch.setattr(lohner.LohnerSet, method, planted(getattr(lohner.LohnerSet, method),
+                                                          "self.reorthogonalised += 1", "self.reorthogonalised += 0"))
+    assert fails(cid)
+
+
+def test_broken_module_is_not_importable(monkeypatch):
+    # errors:111 (seed 19, on no line a claim ran: a module whose import raises counted importable)
+    from symbt.numeric.core import errors
+
+    monkeypatch.setattr(errors, "importable", planted(errors.importable, "                ok = False",
+                                                      "                ok = True"))
+    assert fails("library.importable")
+
 
 def test_anchor_range_test_order_is_equivalent():
     # marked equivalent: kernels:369 (`abs(qh[j]) < 1e300` -> `abs(qh[j - 1])` in _anchor1's second loop): over the
