@@ -21,7 +21,8 @@ load_all()
 CLAIMS = ["checker.exact_route_names", "checker.codegen_metrics", "library.emit_typed", "library.linear",
           "library.spectral", "paths.qd.n2", "paths.qd.n3", "paths.many_rows.n3", "paths.next_prec.n3",
           "paths.panels", "library.qd_marker", "library.importable", "paths.lohner_reorth.n3",
-          "paths.lohner_reorth.n13", "library.user_printer", "library.F_forms"]
+          "paths.lohner_reorth.n13", "library.user_printer", "library.F_forms", "shipped.loop_xy.n5",
+          "paths.enclosures.n3", "library.input_kinds"]
 
 
 @pytest.mark.parametrize("cid", CLAIMS)
@@ -334,3 +335,37 @@ def test_scale_is_a_forward_difference():
     spec = SimpleNamespace(args=[SimpleNamespace(name="x", kind="scalar")])
     S = verify._scale(spec, lambda x: [max(mp.mpf(x), 0)], {"x": 0.0}, [mp.mpf(0)], [mp.mpf(0)])
     assert S == [1]
+
+
+# --------------------------------------------------------------------------- seed 20
+
+def test_few_rows_range_test_index_permutation_is_equivalent():
+    # marked equivalent: condition:387 (`x[i]` -> `x[i - 1]` over i in range(4) of 4-tuples): the indices 3, 0, 1, 2
+    # -- the same four columns -- and np.max, which propagates a NaN wherever it is (seed 20 found Python's max,
+    # which depended on the order with a NaN column: now np.max), gives the same value for every order.  Checked
+    # on rows with NaN, inf and huge entries in each column in turn
+    from symbt.numeric.core import condition as C
+
+    src = inspect.getsource(C)
+    line = next(ln for ln in src.splitlines() if "big = float(np.max([_range_stats(" in ln)
+    assert "for i in range(4)" in line and "ents.append((A, B, C, D))" in src
+    stats = C._range_stats
+    rng = np.random.default_rng(387)
+    for _ in range(200):
+        ents = [tuple(rng.choice([1.0, -3e300, np.inf, np.nan, 2.0 ** -600, 0.0], 4)) for _ in range(3)]
+        orig = float(np.max([stats([x[i] for x in ents]) for i in range(4)]))
+        mut = float(np.max([stats([x[i - 1] for x in ents]) for i in range(4)]))
+        assert orig == mut or (math.isnan(orig) and math.isnan(mut))
+
+
+def test_panels_sorted_by_either_end_is_equivalent():
+    # marked equivalent: coefficients:230 (`done.sort(key=min)` -> `max`): the panels are disjoint pieces of a
+    # bisection of [a, b] (or [b, a]), so ordering them by their left or right ends gives the same order.  Checked
+    # on the panels of paths.panels' rows and of a reversed interval, both flavours of rows
+    from symbt.claims.shipped_seed6 import PANELS_A, PANELS_B, PANELS_MAX, PANELS_RTOL, _panel_rows
+    from symbt.numeric.flow import coefficients as Cf
+
+    mutant = planted(Cf.adaptive_panels, "done.sort(key=lambda t: min(t))", "done.sort(key=lambda t: max(t))")
+    for a, b in ((PANELS_A, PANELS_B), (PANELS_B, PANELS_A), (-0.5, 2.0)):
+        got = Cf.adaptive_panels(_panel_rows, a, b, PANELS_RTOL, PANELS_MAX)
+        assert mutant(_panel_rows, a, b, PANELS_RTOL, PANELS_MAX) == got and len(got) > 10

@@ -103,7 +103,7 @@ def _c_probe(path: Path, e: Any, keep: list[Any]) -> Any:
        statement="a typed declaration (array argument, sign, named outputs, a guard, a Piecewise) emitted as numpy, "
                  "mpmath and C equals formulas written out by hand (float64 within 2 eps relative, mpmath within "
                  "1e-45), refuses where its guard fails, and compare samples every cell of it; a one-column or one-row "
-                 "Matrix keeps its shape")
+                 "Matrix keeps its shape; the method text names each flavour's bound")
 def emit_typed() -> Outcome:
     from ..codegen.user.check import Comparison, c_status, compare, compiler, load_python
     from ..codegen.user.declare import EmitError, emit
@@ -128,6 +128,13 @@ def emit_typed() -> Outcome:
         except EmitError as exc:
             if words not in str(exc):
                 bad.append(f"{given!r}: the message does not say {words!r}: {exc}")
+    # the verdict's method names the bound of its flavour (what a reader of the report checks the error against)
+    from ..codegen.user.check import F64_TOL_ULPS, method_text
+    for fl, words in (("mpmath", "1e-45 x condition (mpmath at 50 digits)"),
+                      ("numpy", f"{F64_TOL_ULPS} ulp x condition (float64)"),
+                      ("c", f"{F64_TOL_ULPS} ulp x condition (float64)")):
+        if words not in method_text(fl) or fl not in method_text(fl):
+            bad.append(f"method_text({fl!r}) does not name its flavour and the bound {words!r}: {method_text(fl)}")
     # a matrix of one column or one row is a matrix, not an empty one
     for given, shape in ((sp.Matrix([xs, 1]), (2, 1)), (sp.Matrix([[xs, 1]]), (1, 2))):
         try:

@@ -246,6 +246,10 @@ def spectral_routines() -> Outcome:
 
     N = 2
     worst, where = mp.mpf(0), None
+    # a proposal whose literal step raises is not admissible (no information): a sign other than +-1
+    from ..reference.samples import _real_map
+    if _real_map([mp.mpf(1), mp.mpf(2)], [mp.mpf(0), mp.mpf(0)], mp.mpf(5), mp.mpf(1), 0) != (False, None):
+        return failed("admissible_states", detail="a proposal whose literal step raises was admitted")
     # the sampler gives up after max_proposals proposals (three cannot give five admissible states)
     try:
         admissible_states(N, 1, 5, max_proposals=3)

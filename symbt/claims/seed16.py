@@ -382,7 +382,8 @@ def _certified_inputs(dates: np.ndarray) -> list[str]:
                  "for method='lohner', after recording Lohner's refusal and trying the ball path for 'auto'; "
                  "object, int, float32 arrays and a list of int holding the same numbers give the float array's "
                  "result bit for bit, an object array of mpf the mpf list's (bt_step, flow_coefficients); "
-                 "flow_coefficients at mu = 0 is zeros in either arithmetic")
+                 "flow_coefficients at mu = 0 is zeros in either arithmetic; bt_orbit on mpf input repeats the "
+                 "input at mu = 0 and is the literal orbit at mu = 1")
 def input_kinds() -> Outcome:
     from ._shipped import without_numba
 
@@ -438,6 +439,17 @@ def _input_kinds() -> Outcome:
     with mp.workdps(30):
         mps = [mp.mpf(v) for v in _P], [mp.mpf(v) for v in _Q]
         objs = np.array(mps[0], dtype=object), np.array(mps[1], dtype=object)
+        # mpmath orbits: mu = 0 repeats the input; mu = 1 moves it (the literal orbit, 1e-25)
+        from ..numeric import bt_orbit
+        from ..reference.literal import reference_step
+
+        P0, _ = bt_orbit(*mps, mp.mpf(10), mp.mpf(0), 2)
+        P1, Q1 = bt_orbit(*mps, mp.mpf(10), mp.mpf(1), 2)
+        a, b = mps
+        for _ in range(2):
+            a, b = reference_step(a, b, mp.mpf(10), mp.mpf(1))
+        if P0[-1] != mps[0] or not max(abs(x - y) for x, y in zip(P1[-1] + Q1[-1], a + b)) <= mp.mpf(10) ** -25:
+            bad.append("bt_orbit on mpf input: mu = 0 does not repeat the input, or mu = 1 is not the literal orbit")
         for name in ("bt_step", "flow_coefficients"):
             want, got = entries[name](*mps), entries[name](*objs)
             flat_w, flat_g = np.ravel(np.array(want, dtype=object)), np.ravel(np.array(got, dtype=object))

@@ -13,8 +13,8 @@ from __future__ import annotations
 import mpmath as mp
 import numpy as np
 
-from ._shipped import without_numba
-from .base import Outcome, claim, failed, skipped
+from ._shipped import scale_parts, scaled, without_numba
+from .base import Outcome, Parts, claim, failed, skipped
 
 
 @claim("paths.many_rows", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
@@ -268,3 +268,34 @@ def importable_modules() -> Outcome:
         return failed("importable", detail="; ".join(bad))
     return Outcome("verified", "exact: importable on an importable, a missing and a broken module", evidence="proof",
                    n_scope="all", detail=f"{got}")
+
+
+@claim("shipped.loop_xy", equation="toda{N}.dapp_xy", source_equation="xy", scene="shipped", sizes=(5,),
+       parts=scale_parts,
+       where="symbt codegen --n {N}: toda{N}.py (loop form): dapp_xy_mp",
+       statement="the loop form's Dapp x and y (N={N}, mpmath at 50 digits) = eq. xy as printed (literal_step's "
+                 "x and y_1 at 70 digits) within a relative 1e-45, both branches, on codegen.verify's states (as "
+                 "codegen.xy checks the closed forms)")
+def loop_xy(N: int, parts: Parts) -> Outcome:
+    from ..codegen import verify
+    from ..reference.literal import literal_step
+    from .shipped_emitted import emitted_module
+
+    mod = emitted_module(N)
+    s = parts.printed["scale"]
+    worst, count = mp.mpf(0), 0
+    for p, q, l0, m in verify.map_states(N):
+        for b in (1, -1):
+            with mp.workdps(70):
+                info = literal_step(p, q, l0, m, b)[2]
+            with mp.workdps(verify.MP_DPS):
+                x, y = scaled(list(mod.dapp_xy_mp(p, q, l0, m, b)), s)
+            with mp.workdps(70):
+                worst = max(worst, abs(x - info["x_formula"]) / abs(info["x_formula"]),
+                            abs(y - info["y"][0]) / abs(info["y"][0]))
+            count += 1
+    detail = f"{count} (state, branch) pairs; worst relative difference {mp.nstr(worst, 3)}."
+    if not worst <= verify.MP_TOL:
+        return failed("numeric: the loop form's dapp_xy vs eq. xy as printed", residual=float(worst), detail=detail)
+    return Outcome("verified", "numeric: the loop form's dapp_xy vs eq. xy as printed (literal_step, 70 digits)",
+                   evidence="sampled", n_scope=[N], residual=float(worst), detail=detail)

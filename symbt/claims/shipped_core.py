@@ -150,7 +150,8 @@ DISJOINT = ((1, ("1.75", "0.125"), "H_0 at stored states 0 and 1"),
        statement="common_invariants on exact balls of H_0, H_1 at three stored states: the intersection = the "
                  "one computed with fractions (wider by 16 radius roundings at most); an enclosure of H_0 at "
                  "state 1 (or 2) disjoint from state 0's: InconsistentEnclosure naming H_0 and the states 0 and 1 "
-                 "(0 and 2)")
+                 "(0 and 2); invariant_enclosures of a certified orbit (N = 4, 2 steps) contain the initial "
+                 "state's H_k from the polynomial trace at every stored state")
 def enclosures(N: int) -> Outcome:
     if importlib.util.find_spec("flint") is None:
         return skipped("python-flint is not installed (.[certified])")
@@ -187,6 +188,31 @@ def enclosures(N: int) -> Outcome:
                 bad.append(f"H_0 disjoint at state {at}: {exc}")
         except Exception as exc:  # any other error fails the claim
             bad.append(f"H_0 disjoint at state {at}: {type(exc).__name__} {exc}")
+    # invariant_enclosures of a certified orbit (an admissible N = 4 state -- at N = 3 the recursion's last B is
+    # never read --, exact input, 2 steps at 30 digits) against the coefficients of the polynomial trace of the
+    # initial state (reference.trace at 60 digits): every stored state's enclosure of each H_k contains them (the
+    # exact orbit preserves them)
+    import mpmath as mp
+
+    from ..numeric import certified_orbit
+    from ..numeric.multiprec.lohner_checks import invariant_enclosures
+    from ..reference.samples import admissible_states
+    from ..reference.trace import hamiltonians
+
+    with mp.workdps(30):
+        p4, q4, l4, m4 = admissible_states(4, 1, 1)[0]       # six-decimal numbers: exact as strings
+        text = [[mp.nstr(v, 20) for v in p4], [mp.nstr(v, 20) for v in q4], mp.nstr(l4, 20), mp.nstr(m4, 20)]
+        orbit = certified_orbit(text[0], text[1], text[2], text[3], 2)
+    with mp.workdps(60):
+        H = hamiltonians([mp.mpf(v) for v in text[0]], [mp.mpf(v) for v in text[1]])
+    from ..numeric.multiprec.arb import flint_prec
+
+    for i, row in enumerate(invariant_enclosures(*orbit)):
+        for k, (ball_k, h) in enumerate(zip(row, H)):
+            with flint_prec(256):              # the reference as a ball far narrower than the enclosure
+                ref = arb(mp.nstr(h, 60))
+            if not ball_k.contains(ref):
+                bad.append(f"invariant_enclosures: H_{k} at stored state {i} misses the polynomial trace's")
     if bad:
         return failed("exact: common_invariants vs intervals of fractions", detail="; ".join(bad))
     return Outcome("verified", "exact: common_invariants vs intervals of fractions, and its refusals",

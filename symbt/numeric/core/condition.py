@@ -384,7 +384,7 @@ def _product_on_floats(am: F64, rm: F64) -> tuple[list[tuple[float, float, float
             aj, rj = ak[j], rk[j]
             A, B, C, D = aj * A - C, aj * B - D, rj * A, rj * B
         ents.append((A, B, C, D))
-    big = max(_range_stats([x[i] for x in ents]) for i in range(4))
+    big = float(np.max([_range_stats([x[i] for x in ents]) for i in range(4)]))   # NaN anywhere: NaN
     if big < 2.0 ** 500 and math.isfinite(big):
         return ents, 0
     # per row: a non-finite entry, or the largest magnitude outside [2**-500, 2**500]
