@@ -6,7 +6,19 @@ r"""Paths the claims did not reach (issue 21, seed 18).
   of the two forms of one computation).  And ``bt_orbit``'s block ensemble (the python backend: the kernel numba
   compiles, in plain Python) over one block - 1, one block and one block + 1 states gives each state's bits in a
   batch of the distinct states alone: a last block that is partial, full, or one state long (seed 18: a block
-  count rounded up once too often made a batch of ``block - 1`` states fail as a whole).
+  count rounded up once too often added a block of negative length past the batch, which both kernels happened to
+  tolerate; the count is a ceiling division now).
+* ``library.qd_marker`` -- the compiled quad-double kernel's cache marker, which decides whether
+  ``backend="auto"`` takes it: in a temporary ``NUMBA_CACHE_DIR`` and ``HOME``, the digest recomputed from the six
+  sources and numba's version, a stale marker not ready, a loaded kernel ready, the marker written into a
+  directory made for it and over a stale one.
+* ``paths.lohner_reorth.n{3,13}`` -- Lohner frames re-orthogonalised (``MAX_FRAME_COND`` lowered to 1): every
+  hull still contains the literal orbit at 80 digits, and the counter counts the condition checks.
+* ``library.importable`` -- ``importable`` on an importable, a missing and a broken module (one that raises on
+  import).
+* ``shipped.loop_xy.n5`` -- the loop form's Dapp x and y against eq. xy as printed, through
+  :func:`symbt.codegen.verify.xy_vs_printed` (as ``codegen.xy`` for the closed forms; seed 20: a sign error in
+  the loop form's ``dapp_y`` passed every default claim).
 """
 from __future__ import annotations
 
