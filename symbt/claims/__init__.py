@@ -55,6 +55,7 @@ CLAIM_MODULES = (
     "seed13",
     "seed16",
     "seed18",
+    "seed21",
     "contexts",
     "shipped_condition_file",
     "shipped_core",

@@ -20,7 +20,11 @@ module): whole functions of :mod:`symbt.reference.taylor` and :mod:`symbt.refere
 * ``library.flow_steps`` -- :func:`~symbt.reference.taylor.hamiltonian_flow`'s step rule scales by ``max(1, |x|)``
   (the linear flow of ``H_1`` takes 6 steps from a state of size 5 and 29 from one of size 1, at order 2 and
   ``tol = 0.05``), ``max_steps`` allows exactly that many steps, ``t = 0`` takes none and the still flow of
-  ``H_2 = 1`` one; :func:`~symbt.reference.taylor.hamilton_equations` pads a short ``c`` with zeros.
+  ``H_2 = 1`` one; :func:`~symbt.reference.taylor.hamilton_equations` pads a short ``c`` with zeros.  And the rule's
+  minimum over both estimates, where the last coefficient's is the smaller (the linear flow has no second
+  coefficient): the flow of ``H_0`` (written by hand, checked against the literal trace) from ``p = (1, -1)/1000``,
+  ``q = 0`` takes one step to ``t = h1 (1 - 1e-6)`` and two to ``h1 (1 + 1e-6)``, ``h1 = 0.7 min((tol/n_2)^(1/2),
+  tol/n_1) = 3.5`` from its first two Taylor coefficients by SymPy (seed 21: the rule with ``max`` passed).
 * ``library.newton_rule`` -- the Newton loop of :func:`~symbt.reference.inverse.solve_parameters` on a toy residual
   ``-x^3`` (iterates ``(2/3)^n`` exactly): the stop at the first iterate below ``tol``, ``iterations``, the extra
   step, least-squares steps, giving up after ``maxit``; Gauss-Newton's stop on an inconsistent linear pair.
@@ -36,6 +40,7 @@ from collections.abc import Sequence
 from typing import Any
 
 import mpmath as mp
+import sympy as sp
 
 from ..reference import elliptic as E
 from ..reference.literal import literal_trace
@@ -233,6 +238,30 @@ def inverse_fields(deep: bool = False) -> Outcome:
 STEPS_DPS, STEPS_TOL = 20, mp.mpf("5e-2")
 
 
+#: library.flow_steps: (p, q) near the equilibrium of H_0, where the second-order estimate of the step is the smaller
+FIRST_STEP_STATE = ([mp.mpf(1) / 1000, -mp.mpf(1) / 1000], [mp.mpf(0), mp.mpf(0)])
+
+
+def _first_step() -> mp.mpf:
+    """``0.7 min((tol/n_2)^(1/2), tol/n_1)`` at :data:`FIRST_STEP_STATE` (order 2): ``n_k`` the largest k-th Taylor
+    coefficient of ``(q, p, e^{q_2 - q_1}, e^{q_1 - q_2})`` along the flow of ``H_0 = p_1 p_2 - e^{q_2 - q_1} -
+    e^{q_1 - q_2}`` (N = 2, written by hand and checked against the literal trace at 0), by SymPy's derivatives;
+    the state's size is below 1, so the scale is 1."""
+    q1, q2, p1, p2 = sp.symbols("q1 q2 p1 p2", real=True)
+    H0 = p1 * p2 - sp.exp(q2 - q1) - sp.exp(q1 - q2)
+    at = dict(zip((p1, p2, q1, q2), (sp.Rational(1, 1000), sp.Rational(-1, 1000), 0, 0)))
+    if abs(mp.mpf(sp.N(H0.subs(at), 30)) - literal_trace(mp.mpf(0), *FIRST_STEP_STATE)) > mp.mpf(10) ** (5 - STEPS_DPS):
+        raise AssertionError("H_0 written by hand is not the literal trace at lambda = 0")
+
+    def along(F: sp.Expr) -> sp.Expr:       # dF/dt = {F, H_0}: qdot = dH/dp, pdot = -dH/dq
+        return sum(sp.diff(F, q) * sp.diff(H0, p) - sp.diff(F, p) * sp.diff(H0, q) for q, p in ((q1, p1), (q2, p2)))
+    xs = [q1, q2, p1, p2, sp.exp(q2 - q1), sp.exp(q1 - q2)]
+    n1 = max(abs(along(F).subs(at)) for F in xs)
+    n2 = max(abs((along(along(F)) / 2).subs(at)) for F in xs)
+    tol = sp.Rational(mp.nstr(STEPS_TOL, 15))
+    return mp.mpf(sp.Rational(7, 10) * min(sp.sqrt(tol / n2), tol / n1))
+
+
 @claim("library.flow_steps", equation="flow", scene="library", N=2,
        where="symbt.reference.taylor.hamiltonian_flow (its step rule's scale, max_steps, t = 0, a still flow) and "
              "hamilton_equations (a short c)",
@@ -241,7 +270,9 @@ STEPS_DPS, STEPS_TOL = 20, mp.mpf("5e-2")
                  "steps, exactly (q_j(1) = q_j + 1); with max_steps = 29 the second runs and with 28 it raises "
                  "RuntimeError; t = 0 takes no step and returns the state; the flow of H_2 = 1 takes one step and "
                  "moves nothing; hamilton_equations(3, c) with c = (c_0, c_1) equals it with c padded by zeros and "
-                 "with sign = 1 given (the default: the forward flow)")
+                 "with sign = 1 given (the default: the forward flow); the flow of H_0 from p = (1, -1)/1000, q = 0 "
+                 "takes one step to t = h1 (1 - 1e-6) and two to h1 (1 + 1e-6), h1 = 0.7 min((tol/n_2)^(1/2), "
+                 "tol/n_1) from its Taylor coefficients by SymPy (the second-order estimate the smaller)")
 def flow_steps() -> Outcome:
     bad: list[str] = []
     with mp.workdps(STEPS_DPS):
@@ -267,6 +298,13 @@ def flow_steps() -> Outcome:
             out = hamiltonian_flow(p, q, c, t)
             if out.steps != steps or [*out[0], *out[1]] != [*p, *q]:
                 bad.append(f"c = {c}, t = {t}: {out.steps} steps (want {steps}), state moved")
+        # the rule's min over both estimates, where the last coefficient's is the smaller: the flow of H_0 near its
+        # equilibrium, the first and second Taylor coefficients by SymPy from H_0 written by hand
+        h1 = _first_step()
+        got = [hamiltonian_flow(*FIRST_STEP_STATE, [1, 0, 0], h1 * (1 + s * mp.mpf(10) ** -6), tol=STEPS_TOL,
+                                order=2).steps for s in (-1, 1)]
+        if got != [1, 2]:
+            bad.append(f"H_0 flow: {got} steps for t = h1 (1 -+ 1e-6), h1 = {mp.nstr(h1, 6)} by the rule (want [1, 2])")
         c3 = [mp.mpf("0.7"), mp.mpf("-0.4")]
         if not hamilton_equations(3, c3) == hamilton_equations(3, c3 + [0, 0]) == hamilton_equations(3, c3, 1):
             bad.append("hamilton_equations with c = (c_0, c_1) differs from c padded by zeros, or from the forward "

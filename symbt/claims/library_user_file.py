@@ -10,7 +10,8 @@ Each claim checks a documented property of :mod:`symbt.codegen.user` against a r
   (every piece taken at some point), ``true``/``false``, roots, negative and symbolic powers and a sum of 105 terms
   (printed in balanced chunks of :data:`~symbt.codegen.user.printing.LONG_SUM`): the printed text evaluated by
   Python at three points equals the expression's value (SymPy ``evalf`` at 30 digits) within ``1e-13`` relative
-  (float64: a few correctly rounded operations on well-conditioned arguments) and ``1e-25`` (mpmath at 30 digits);
+  (float64: a few correctly rounded operations on well-conditioned arguments) and ``1e-25`` (mpmath at 30 digits),
+  and the C flavour's text of each has no ``**`` (C has no power operator) and names neither numpy nor mpmath;
   :func:`~symbt.codegen.user.printing.rewritten` equals SymPy's ``optimize(x, [expm1_opt, log1p_opt])`` on small
   expressions (structurally); :func:`~symbt.codegen.user.printing.optimized` leaves a declaration with
   ``optimize=False`` as declared.
@@ -99,7 +100,8 @@ def _longest_chain(text: str) -> int:
 @claim("library.user_printer", equation="checker", scene="library",
        where="symbt.codegen.user.printing (UserPrinter, rewritten, optimized)",
        statement="the numpy and mpmath texts of UserPrinter over its vocabulary evaluate to the expressions' values "
-                 "(evalf, 30 digits) within 1e-13 / 1e-25 relative, a sum of 105 terms nested at most LONG_SUM + 1 "
+                 "(evalf, 30 digits) within 1e-13 / 1e-25 relative (the C text has no ** and names neither numpy "
+                 "nor mpmath), a sum of 105 terms nested at most LONG_SUM + 1 "
                  "deep (two balanced partial sums); rewritten equals SymPy's optimize with the "
                  "expm1 and log1p rules; optimized keeps a declaration with optimize=False as declared")
 def user_printer() -> Outcome:
@@ -123,6 +125,9 @@ def user_printer() -> Outcome:
                 bad.append(f"{flavour}: {b} printed {pr.text(b)!r}")
         for e, ws in zip(exprs, wants):
             text = pr.text(e)
+            c_text = UserPrinter("c", names).text(e)
+            if flavour == "numpy" and ("**" in c_text or "np." in c_text or "mpmath." in c_text):
+                bad.append(f"c: {e} printed {c_text[:60]!r} (C has no ** operator, no numpy or mpmath)")
             # partial sums of at most LONG_SUM terms, combined as a balanced tree: the compiler's nesting depth is
             # at most LONG_SUM + ceil(log2(number of partial sums)) (a plain chain: the number of terms)
             depth = LONG_SUM + math.ceil(math.log2(math.ceil(len(LONG.args) / LONG_SUM)))

@@ -34,7 +34,9 @@ function over the cells of its branches, against a route that shares no code wit
   range (the unscaled product overflows), below ``2**-500``, with the largest entry negative (``a_1 = -1e300``),
   and at N = 3 a row whose product of absolute values is past ``2**500`` while the monodromy itself is
   ``[[0, 1], [-1, 0]]`` (only the second product renormalised) and one whose largest entry after the second site is
-  a negative ``C`` with the others ``2**-1023`` below it.  Against the exact
+  a negative ``C`` with the others ``2**-1023`` below it; at N = 2, 3 a row whose largest entry after the last site
+  is a negative ``D`` (about ``-2**600``, every other entry far smaller: renormalised by the wrong one, the entries
+  and the exponent come out other bits, seed 21).  Against the exact
   rational products of the double inputs: ``2**e (A, B; C, D)`` within ``3 N u |m_N| ... |m_1|`` entrywise plus
   ``2**-500`` of its largest entry (underflow in the scaled arithmetic, whose largest entry is at least
   ``2**-500``), the trace of the absolute product within a relative ``3 N u`` plus the same; and
@@ -229,8 +231,8 @@ def kappa_cells_rows(N: int) -> Outcome:
 def product_rows(N: int) -> tuple[tuple[tuple[float, ...], tuple[float, ...], str], ...]:
     """``(a, r, label)``: the distinct rows of ``paths.abs_products`` (site values ``a_j`` and ``r_j``).
 
-    >>> [label for _a, _r, label in product_rows(3)][3:]
-    ['past the double range', 'below 2**-500', 'largest entry negative', 'absolute part only', 'C the largest']
+    >>> [label for _a, _r, label in product_rows(3)][4:]
+    ['below 2**-500', 'largest entry negative', 'absolute part only', 'C the largest', 'D the largest']
     """
     rng = np.random.default_rng(7 + N)
 
@@ -251,6 +253,10 @@ def product_rows(N: int) -> tuple[tuple[tuple[float, ...], tuple[float, ...], st
         # after the second site C = -0.94 is the largest entry, the others below 2**-1022: renormalised by a
         # smaller one, C becomes -0.94 * 2**1023 and the third site's a_3 A - C leaves the double range
         rows.append((np.array([-1.7e308, 2.0 ** -1023, -1.5e308]), np.array([1e-20, 1.0, 1.0]), "C the largest"))
+    # after the last site D = -2**600 (N = 2: -2**599) is the largest entry, the largest positive one far below it:
+    # renormalised by that one's power of two instead of D's, the entries and the exponent come out other bits
+    a_d, r_d = {2: ((0.25, 1.0), (1.0, 2.0 ** 600)), 3: ((1.0, 1.0, 0.5), (1.0, 1.0, 2.0 ** 600))}[N]
+    rows.append((np.array(a_d), np.array(r_d), "D the largest"))
     return tuple((tuple(float(x) for x in a), tuple(float(x) for x in r), lab) for a, r, lab in rows)
 
 
@@ -307,7 +313,7 @@ def abs_products(N: int) -> Outcome:
 
     rows = product_rows(N)
     far = [k for k, (_a, _r, lab) in enumerate(rows) if lab in ("past 2**500", "past the double range")]
-    neg = [k for k, (_a, _r, lab) in enumerate(rows) if lab == "largest entry negative"]
+    neg = [k for k, (_a, _r, lab) in enumerate(rows) if lab in ("largest entry negative", "D the largest")]
     batches = [[0], neg, [k % len(rows) for k in range(7)], [k % len(rows) for k in range(16)],
                [0, 1] * 8 + [1], [far[k % 2] for k in range(20)], [k % len(rows) for k in range(40)]]
     if N == 2:

@@ -33,7 +33,9 @@ unchecked (scene ``numeric-paths``; issue 21 item 4, docs/mutation.md "Seeds 4 a
 * ``paths.jacobian_dual.n3`` -- :func:`~symbt.numeric.multiprec.lohner_checks.jacobian_dual` (the step on dual
   numbers) at the paper's state, both branches: its image encloses the literal map at 50 digits and every entry of
   its Jacobian is within ``1e-12 (1 + |J|)`` of a central finite difference of the literal map at 50 digits
-  (step ``1e-15``: truncation ``~1e-30``), an independent route.
+  (step ``1e-15``: truncation ``~1e-30``), an independent route; where both traces are positive (``lam0 = 30``,
+  ``mu = 5``) it computes the map and its image encloses it (the paper's state has both negative; seed 21: a sign
+  test that took two positive traces for opposite ones refused there).
 
 Shown to fail on planted bugs in ``tests/test_killers_numeric5.py``.
 """
@@ -165,13 +167,18 @@ def mp_verdict(N: int) -> Outcome:
                    evidence="sampled", detail=detail, printed="TRACE1, TRACE2, OK as the bands say")
 
 
+#: paths.jacobian_dual: lam0, mu with both traces positive at the paper's state (24200 and 4489.5)
+POSITIVE_TRACES = (30.0, 5.0)
+
+
 @claim("paths.jacobian_dual", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
        requires=("flint",),
        where="symbt/numeric/multiprec/lohner_checks.py: jacobian_dual (the step on dual numbers)",
        statement="jacobian_dual at the paper's state (N={N}), both branches, 30 digits: its image encloses the literal "
                  "map (50 digits) and every Jacobian entry is within 1e-12 (1 + |J|) of the central finite difference "
                  "of the literal map at 50 digits (step 1e-15); at lam0 = -2, mu = +-1.215 (lam1 or lam2 in the band "
-                 "near -0.785, by the literal trace at 30 digits) NoRealMapError with condition 'trace'")
+                 "near -0.785, by the literal trace at 30 digits) NoRealMapError with condition 'trace'; at lam0 = "
+                 "30, mu = 5 (both traces positive) the image encloses the literal map, both branches")
 def jacobian_dual(N: int) -> Outcome:
     if importlib.util.find_spec("flint") is None:
         return skipped("python-flint is not installed (.[certified])")
@@ -227,6 +234,25 @@ def jacobian_dual(N: int) -> Outcome:
                 seen = f"{type(exc).__name__}: {exc}"
         if not in_band or seen != "trace":
             bad.append(f"lam0 = -2, mu = {mu}: lam0 +- mu in a band {in_band}, jacobian_dual gave {seen}")
+    # both traces positive (the paper's state has both negative): the map exists, the image encloses it
+    l0, m = POSITIVE_TRACES
+    for b in (1, -1):
+        with mp.workdps(50):
+            P, Q = [mp.mpf(v) for v in p], [mp.mpf(v) for v in q]
+            signs = [mp.sign(literal_trace(mp.mpf(l0) + s * m, P, Q)) for s in (1, -1)]
+            pt, qt, _ = literal_step(P, Q, mp.mpf(l0), mp.mpf(m), b)
+        with mp.workdps(30):
+            try:
+                img, _J = jd([arb(v) for v in list(p) + list(q)], arb(l0), arb(m), b)
+            except Exception as exc:  # noqa: BLE001 -- any refusal is the finding: the map exists
+                bad.append(f"lam0 = {l0}, mu = {m}, branch {b} (trace signs {signs}): {type(exc).__name__}: {exc}")
+                continue
+        with mp.workdps(50):
+            if signs != [1, 1] or not all(abs(mp.mpf(c.mid().str(40, radius=False)) - y)
+                                          <= mp.mpf(c.rad().str(5, radius=False)) + mp.mpf(10) ** -40
+                                          for c, y in zip(img, list(pt) + list(qt))):
+                bad.append(f"lam0 = {l0}, mu = {m}, branch {b}: trace signs {signs}, the image does not enclose "
+                           "the literal map")
     detail = (f"worst |J - finite difference| {worst:.3g} over 2 x {(2 * N) ** 2} entries; {refused} of 2 states "
               "with a spectral parameter in a band refused.")
     if bad:

@@ -172,7 +172,7 @@ class _TraceRing:
     def __init__(self, N: int) -> None:
         m = self.m = toda_model(N)
         self.N = N
-        self.inv = sp.symbols(f"Einv1:{N + 1}", positive=True)
+        self.inv = sp.symbols(f"Einv1:{N + 1}")      # ring generators: no assumptions read
         self.c = coefficient_symbols(N)
         self.R, *g = sp.ring([m.lam, *m.p, *m.E, *self.inv, *self.c], sp.ZZ)
         self.lam, self.p, self.E = g[0], g[1:N + 1], g[N + 1:2 * N + 1]

@@ -38,8 +38,8 @@ def transported(m: TodaModel, lam_: sp.Expr, u0: sp.Expr, forward: sp.Basic) -> 
     fwd = [u0]
     for j in range(N - 1):
         fwd.append(-Quotient(r[j], a[j] + fwd[j]))
-    bwd: list[Any] = [None] * N
-    bwd[0] = nxt = u0
+    bwd: list[Any] = [None] * N        # bwd[0] is u0 itself: never read
+    nxt = u0
     for j in range(N - 1, 0, -1):
         nxt = bwd[j] = -a[j] - Quotient(r[j], nxt)
     return [u0] + [sp.Piecewise((fwd[j], forward), (bwd[j], True)) for j in range(1, N)]
@@ -122,7 +122,7 @@ def illcond_guards(m: TodaModel, guard: Any, traces: tuple[sp.Expr, sp.Expr], u:
         Ma = sp.eye(2)
         for j in range(N):
             Ma = sp.Matrix([[A(lam_ + p[j]), 1], [sp.exp(m.q[(j + 1) % N] - m.q[j]), 0]]) * Ma
-        k = Quotient(Ma[0, 0] + Ma[1, 1], A(disc(t))) * sp.Add(A(t), 2, evaluate=False)    # T (|t| + 2) / |t^2 - 4|
+        k = Quotient(Ma[0, 0] + Ma[1, 1], A(disc(t))) * (A(t) + 2)    # T (|t| + 2) / |t^2 - 4|
         kt0.append(k)
         kta.append(k * sp.Max(*(Quotient(A(lam_) + A(p[j]), A(lam_ + p[j])) for j in range(N)), evaluate=False))
     ill_t = tuple(guard("illcond", f"tr L(lam{i + 1})", ill(kt0[i], K), 0) for i in range(2))

@@ -54,7 +54,7 @@ def _value(o: Output) -> sp.Expr | list[sp.Expr]:
         return o.exprs[0]
     if len(o.shape) == 1:
         return list(o.exprs)
-    return sp.Matrix(o.shape[0], o.shape[1], list(o.exprs))
+    return sp.Matrix(*o.shape, list(o.exprs))
 
 
 def declaration(s: FunctionSpec, N: int) -> Emission:

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: ce8900f85ac39234e4d2e19164523366c92ac8f894748ecd107457d8cf031fe0
-# symbt-codegen-content-sha256: 3305dfe3440e078cba0a0652a74700328ab8af1966ab2031b1afe8101bc979ff
+# symbt-codegen-derivation-sha256: 546bc4ac670b3b0d0e7dcdb67f3eda023e981dcc64e00b725ab264846ee0b61a
+# symbt-codegen-content-sha256: ffec5c991350e13587c780c6a94a1df732bfaa1db3acae682ae6b8f2ece221e2
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: ce8900f85ac39234e4d2e19164523366c92ac8f894748ecd107457d8cf031fe0
-# symbt-codegen-content-sha256: 1ec919c2e0feafdaa3e7248d554d500393822f1b7676cef70c95c94b02cc400d
+# symbt-codegen-derivation-sha256: 546bc4ac670b3b0d0e7dcdb67f3eda023e981dcc64e00b725ab264846ee0b61a
+# symbt-codegen-content-sha256: 2e07b50067c60f7fb5a2fa7543046b09c36f0b33a65e45e87b7ea4e68be99708
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

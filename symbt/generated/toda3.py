@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: ce8900f85ac39234e4d2e19164523366c92ac8f894748ecd107457d8cf031fe0
-# symbt-codegen-content-sha256: bdb9541b5ded39ca722bcecaa745606653191502abd5d538c64c3fba7f7e050b
+# symbt-codegen-derivation-sha256: 546bc4ac670b3b0d0e7dcdb67f3eda023e981dcc64e00b725ab264846ee0b61a
+# symbt-codegen-content-sha256: 6376d078a75ec18185533ec77411dbf895bcdce1c7749f479f695f1a507ee807
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

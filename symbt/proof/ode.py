@@ -139,9 +139,8 @@ def _residual_terms(ode: Any, solution: Any) -> tuple[sp.Symbol, list[list[Any]]
 
 class OdeResidual:
     """The residual of a closed form in an ODE at one point (made by :func:`ode_residual`): called with the
-    point's values by name; ``variables`` are the names it needs."""
-
-    takes_point = True      # Domain.evaluate passes the whole point
+    point's values by name (``Domain.evaluate`` passes the whole point: ``**point`` takes it); ``variables`` are the
+    names it needs."""
 
     def __init__(self, symbols: list[sp.Symbol], terms: list[list[Any]]) -> None:
         self.variables = tuple(s.name for s in symbols)

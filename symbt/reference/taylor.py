@@ -128,9 +128,9 @@ class _TaylorSystem:
 
 
 class FlowResult(tuple[Any, ...]):
-    """``(p, q)`` with attributes ``steps`` and ``order``."""
-    steps: int = 0
-    order: int = 0
+    """``(p, q)`` with attributes ``steps`` and ``order`` (set by :func:`hamiltonian_flow`)."""
+    steps: int
+    order: int
 
 
 def hamiltonian_flow(p: Sequence[MPLike], q: Sequence[MPLike], c: Sequence[MPLike], t: MPLike, *,

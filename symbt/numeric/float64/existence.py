@@ -55,13 +55,11 @@ def _sign(x: mpmath.ctx_iv.ivmpf) -> int | None:
     return 0 if x.a == 0 and x.b == 0 else None
 
 
-def _at(p: npt.NDArray[np.float64], q: npt.NDArray[np.float64], lam0: float, mu: float, branch: int,
-        shift: tuple[float, float]) -> int | None:
+def _at(p: npt.NDArray[np.float64], q: npt.NDArray[np.float64], lam0: float, mu: float, branch: int) -> int | None:
     """The verdict at the current ``mpmath.iv.prec``: ``OK``, a no-real-map code, or None (undecided)."""
     iv = mpmath.iv
-    c = iv.mpf(shift[0]) + iv.mpf(shift[1])
     P = [iv.mpf(float(v)) for v in p]
-    Q = [iv.mpf(float(v)) + c for v in q]
+    Q = [iv.mpf(float(v)) for v in q]
     l0, m = iv.mpf(float(lam0)), iv.mpf(float(mu))
     r = neighbour_ratios(IV, Q)
     signs, bands = [], []
@@ -92,19 +90,17 @@ def _at(p: npt.NDArray[np.float64], q: npt.NDArray[np.float64], lam0: float, mu:
 
 
 def decide_existence(p: npt.NDArray[np.float64], q: npt.NDArray[np.float64], lam0: float, mu: float, branch: int,
-                     shift: tuple[float, float] = (0.0, 0.0), bits: int = 256,
-                     deadline: float | None = None) -> tuple[int | None, int]:
+                     bits: int = 256, deadline: float | None = None) -> tuple[int | None, int]:
     """``(verdict, bits)``: ``OK`` (the real map certainly exists), ``TRACE1``/``TRACE2``/``POSITIVITY``
     (certainly not; the codes of :mod:`symbt.numeric.core.limits`) or ``None`` (undecided up to
     :data:`MAX_BITS` or :data:`BUDGET_S`), and the interval precision that decided it.  The state is
-    ``(p, q + shift[0] + shift[1])`` with the exact binary values of its floats.  ``deadline`` (a
-    ``time.monotonic()`` value) ends the doubling earlier: a batch shares one budget, each of its states
-    then tried at least at the first precision."""
+    ``(p, q)`` with the exact binary values of its floats.  ``deadline`` (a ``time.monotonic()`` value) ends the
+    doubling earlier: a batch shares one budget, each of its states then tried at least at the first precision."""
     start = time.monotonic()
     end = start + BUDGET_S if deadline is None else min(deadline, start + BUDGET_S)
     while bits <= MAX_BITS:
         with iv_prec(bits):
-            verdict = _at(p, q, lam0, mu, branch, shift)
+            verdict = _at(p, q, lam0, mu, branch)
         if verdict is not None:
             return verdict, bits
         if time.monotonic() > end:

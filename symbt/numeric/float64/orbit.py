@@ -217,10 +217,9 @@ def _general_block(p0: F64, q0: F64, lam0: FloatParam, mu: FloatParam, branch: i
             if i == 1:               # the given input exactly (not its rounded re-centred copy)
                 ep, eq, est = escalate_rows(pin, q0[rows_ill], _take(L0, ill), _take(MU, ill), branch)
                 eq = eq - c_hi[rows_ill][:, None]
-            else:                    # the carried state: relative coordinates plus the centre, added exactly
+            else:                    # the carried state's relative coordinates (the map commutes with q -> q + c)
                 ep, eq, est = escalate_rows(pin, np.stack([x[ill] for x in Qs], axis=-1), _take(L0, ill),
-                                            _take(MU, ill), branch,
-                                            np.stack([c_hi[rows_ill], c_lo[rows_ill]], axis=-1))
+                                            _take(MU, ill), branch)
             Pn = [np.array(np.broadcast_to(x, st.shape)) for x in Pn]
             Qn = [np.array(np.broadcast_to(x, st.shape)) for x in Qn]
             for j in range(N):

@@ -43,15 +43,13 @@ __all__ = ["float_rows_step", "raise_for_rows", "escalate_rows", "ESCALATION_DIG
 ESCALATION_DIGITS = (40, 80, 160, 320)
 
 
-def _mp_verdict(p: F64, q: F64, lam0: float, mu: float, branch: int, dps: int,
-                shift: tuple[float, float] = (0.0, 0.0)) -> tuple[int, list[MPValue]]:
-    """One state ``(p, q + shift)`` at ``dps`` digits through the mpmath step: ``(status, p~ + (q~ - shift))``."""
+def _mp_verdict(p: F64, q: F64, lam0: float, mu: float, branch: int, dps: int) -> tuple[int, list[MPValue]]:
+    """One state ``(p, q)`` at ``dps`` digits through the mpmath step: ``(status, p~ + q~)``."""
     import mpmath
 
     with mpmath.workdps(dps):
-        c = mpmath.mpf(shift[0]) + mpmath.mpf(shift[1])
         P = [mpmath.mpf(float(v)) for v in p]            # float64 values are exact binary numbers
-        Q = [mpmath.mpf(float(v)) + c for v in q]
+        Q = [mpmath.mpf(float(v)) for v in q]
         try:
             Pn, Qn = mp_step(MP, P, Q, mpmath.mpf(float(lam0)), mpmath.mpf(float(mu)), branch, False)
         except NoRealMapError as err:
@@ -60,11 +58,10 @@ def _mp_verdict(p: F64, q: F64, lam0: float, mu: float, branch: int, dps: int,
             return (TRACE2 if "lam2" in str(err) else TRACE1), []
         except NumericRangeError:
             return RANGE, []
-        return OK, list(Pn) + [v - c for v in Qn]
+        return OK, list(Pn) + list(Qn)
 
 
-def escalate_rows(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: int,
-                  shift: F64 | None = None) -> tuple[F64, F64, I64]:
+def escalate_rows(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: int) -> tuple[F64, F64, I64]:
     """Recompute ill-conditioned float64 states (rows of ``pa, qa``) at higher precision.
 
     Each row goes through the mpmath step (:func:`~symbt.numeric.core.step.mp_step` on the exact binary values of
@@ -75,8 +72,8 @@ def escalate_rows(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: in
     arithmetic (the no-real-map status where it certainly holds; where the map certainly exists the higher
     precisions compute it; undecided: ``RANGE``).  A row not decided at the last precision gets ``RANGE``
     (:class:`NumericRangeError`).
-    ``shift`` (optional, ``(M, 2)``): the state is ``q + shift[:, 0] + shift[:, 1]`` (an orbit's carried
-    centre of mass, added exactly) and the returned ``q~`` is relative to it.
+    The map commutes with ``q -> q + c`` (it reads ``q`` through ``e^{q_{j+1} - q_j}`` only), so an orbit hands
+    over its relative coordinates and adds its carried centre of mass to the result itself.
 
     >>> pt, qt, st = escalate_rows(np.array([[0.0, 0.0]]), np.array([[0.0, 0.0]]), 0.0, 2.0 ** -30, 1)
     >>> st.tolist()                               # tr L(+-2**-30) = 2**-60 - 2: inside the band
@@ -90,16 +87,15 @@ def escalate_rows(pa: F64, qa: F64, lam0: FloatParam, mu: FloatParam, branch: in
     deadline = time.monotonic() + existence.BUDGET_S     # one existence budget for the batch, not per state
     for k in range(M):
         l0, m = float(_take(lam0, k)), float(_take(mu, k))
-        sh = (0.0, 0.0) if shift is None else (float(shift[k, 0]), float(shift[k, 1]))
         exists = None                  # the interval verdict, once a no-real-map verdict asked for it
         for dps in ESCALATION_DIGITS:
-            st, vals = _mp_verdict(pa[k], qa[k], l0, m, branch, dps, sh)
-            st2, vals2 = _mp_verdict(pa[k], qa[k], l0, m, branch, dps + 20, sh)
+            st, vals = _mp_verdict(pa[k], qa[k], l0, m, branch, dps)
+            st2, vals2 = _mp_verdict(pa[k], qa[k], l0, m, branch, dps + 20)
             if st != st2:
                 continue
             if st not in (OK, RANGE):  # agreement is not proof (chunks 86, 162, 188 of docs/fuzz.md)
                 if exists is None:
-                    exists = decide_existence(pa[k], qa[k], l0, m, branch, sh, deadline=deadline)[0]
+                    exists = decide_existence(pa[k], qa[k], l0, m, branch, deadline=deadline)[0]
                 if exists == OK:       # the map exists: a higher precision computes it
                     continue
                 status[k] = RANGE if exists is None else exists

@@ -332,8 +332,6 @@ class LohnerSet:
                 Jf = _floats(Jm)
                 with np.errstate(all="ignore"):      # overflow or a singular frame is decided, not warned
                     Bf, Bn, Binv, near = self._frame_of(Jf @ self.Bf)
-            if self.unsound:
-                Binv = Binv.mid()
             rhs = err
             if self.has_r0:
                 if not small:
@@ -425,7 +423,7 @@ def growth_law(lograd: Sequence[float], first: int = 100) -> dict[str, Any]:
     xy = [(math.log2(i), lograd[i]) for i in pts if i >= 1 and math.isfinite(lograd[i])]
     out: dict[str, Any] = {"degree": None, "steps": (first, last),
                            "log2_radius": (lograd[first] if last >= first else None, lograd[last])}
-    if len(xy) >= 2 and xy[-1][0] > xy[0][0]:
+    if len(xy) >= 2:                 # distinct steps: their logarithms differ
         x = np.array([a for a, _ in xy])
         y = np.array([b for _, b in xy])
         x -= x.mean()
