@@ -145,3 +145,22 @@ def test_taylor_step_takes_the_smaller_estimate(monkeypatch, old, new):
 
     monkeypatch.setattr(flows, "hamiltonian_flow", planted(taylor.hamiltonian_flow, old, new))
     assert fails("library.flow_steps")
+
+
+def test_inlined_globals_of_one_name(monkeypatch):
+    # inline:334 (the clash test negated): both bodies' TABLE bound to one name, one body reads the other's table
+    from symbt.numeric.core import inline
+
+    monkeypatch.setattr(inline._Bodies, "global_name", planted(
+        inline._Bodies.global_name, "if name in self.globals and self.globals[name] is not v:",
+        "if not (name in self.globals and self.globals[name] is not v):"))
+    assert fails("paths.inline_globals")
+
+
+def test_flint_route_without_flint(monkeypatch):
+    # exact:33 (uncovered: `route == "flint"` negated): without python-flint, 'auto' raised instead of using SymPy
+    from symbt.proof import exact
+
+    monkeypatch.setattr(exact, "exact_route", planted(exact.exact_route, 'if route == "flint":',
+                                                      'if route != "flint":'))
+    assert fails("checker.exact_route_names", crash=True)

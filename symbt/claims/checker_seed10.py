@@ -3,7 +3,9 @@ r"""Two rules of the proof engine that no claim ran (scene ``checker``; issue 21
 
 * ``checker.exact_route_names`` -- :func:`symbt.proof.exact.exact_route`: ``"sympy"`` asked is ``"sympy"``; ``"auto"``
   reads ``SYMBT_EXACT`` first (``sympy`` there gives ``"sympy"``), else takes ``"flint"`` exactly when python-flint
-  imports (found here by ``importlib``, not by the code under test); the exact layer's method names the route it
+  imports (found here by ``importlib``, not by the code under test), and without it (the import check answering no
+  for the length of the fact) ``"flint"`` asked is an ``ImportError`` naming python-flint while ``"auto"`` is
+  ``"sympy"`` (seed 21); the exact layer's method names the route it
   took -- "one fraction in FLINT fmpq_mpoly" or "together/cancel" -- and both routes prove
   :math:`(x + 1)^2 = x^2 + 2x + 1` and :math:`(x + i)(x - i) = x^2 + 1` (the flint route's generator
   :math:`i`, reduced modulo :math:`i^2 + 1`) and refute :math:`(x + 1)^2 = x^2 + 2x + 2` and
@@ -32,7 +34,8 @@ from .base import Outcome, claim
 @claim("checker.exact_route_names", equation="checker", scene="checker",
        where="symbt.proof.exact: exact_route and the route exact_zero takes",
        statement="exact_route('sympy') is 'sympy'; 'auto' reads SYMBT_EXACT first, else is 'flint' exactly when "
-                 "python-flint imports; the method names the route taken (FLINT fmpq_mpoly or together/cancel); "
+                 "python-flint imports (without it, 'flint' is an ImportError naming python-flint); the method names "
+                 "the route taken (FLINT fmpq_mpoly or together/cancel); "
                  "both routes prove (x + 1)^2 = x^2 + 2x + 1 and (x + i)(x - i) = x^2 + 1 and refute them off by 1 "
                  "and (1 + i)^2 x = 2x; unevaluated, (e^q)^(1/2) + e^(q/3) for a real q is S^3 + S^2 in S = e^(q/6), "
                  "(e^q)^(1/2) = e^(q/2) (q real) and (e^q)^2 = e^(2q) are proved exactly, and for a complex q "
@@ -52,6 +55,20 @@ def exact_routes() -> Outcome:
         os.environ.pop("SYMBT_EXACT", None)
         if saved is not None:
             os.environ["SYMBT_EXACT"] = saved
+    # python-flint missing (its import check answering no for the length of this fact): 'flint' asked for is an
+    # ImportError that says what to install, 'auto' falls back to SymPy
+    from ..proof import exact as exact_module
+    found = exact_module._flint_imports
+    exact_module._flint_imports = lambda: False      # type: ignore[assignment]
+    try:
+        try:
+            asked: str = exact_route("flint")
+        except ImportError as exc:
+            asked = "ImportError naming python-flint" if "python-flint" in str(exc) else f"ImportError: {exc}"
+        got.append(("without python-flint: exact_route('flint'), exact_route('auto')",
+                    (asked, exact_route("auto")), ("ImportError naming python-flint", "sympy")))
+    finally:
+        exact_module._flint_imports = found
     x = sp.Symbol("x")
     names = {"flint": "one fraction in FLINT fmpq_mpoly", "sympy": "together/cancel"}
     for route in (["flint"] if flint else []) + ["sympy"]:

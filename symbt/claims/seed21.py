@@ -18,6 +18,10 @@ r"""What the samples of seeds 20 and 21 found unread (issue 21).
   within a tenth of its distance to the flow at ``rtol = 1e-9`` (plus 16 u of the state's size), and the looser
   flow's error is that distance within a factor 2 -- the integrations converge, and to the map, not to something
   near it.  ``FlowField.nfev`` counts the calls scipy reports (seed 21: the counter could stand still).
+* ``paths.inline_globals`` -- :func:`symbt.numeric.core.inline.inlined` with two bodies *of one name* from two
+  modules, each reading its own global ``TABLE`` (temporary files): the inlined function gives the plain calls'
+  values (``2x + 3x``) and calls neither body (seed 21: renaming every global by its function's name bound both
+  tables to one name).
 """
 from __future__ import annotations
 
@@ -152,3 +156,42 @@ def field_ivp(N: int) -> Outcome:
     if bad:
         return failed(method, detail="; ".join(bad[:3]))
     return Outcome("verified", method, evidence="sampled", n_scope=[N], detail="; ".join(notes))
+
+
+#: paths.inline_globals: two modules defining ``scaled`` over their own ``TABLE``, and a function calling both
+INLINE_PROBES = {
+    "m1": "TABLE = (2.0, 0.0)\n\n\ndef scaled(x):\n    y = x * TABLE[0]\n    return y\n",
+    "m2": "TABLE = (3.0, 0.0)\n\n\ndef scaled(x):\n    y = x * TABLE[0]\n    return y\n",
+    "outer": "def both(x):\n    a = s1(x)\n    b = s2(x)\n    return a + b\n",
+}
+
+
+@claim("paths.inline_globals", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths",
+       where="symbt/numeric/core/inline.py: inlined's binding of a body's globals (names shared by two modules)",
+       statement="inlined with two bodies of one name from two modules, each reading its own global TABLE (2 and "
+                 "3), gives the plain calls' values 5 x at x = 1, -0.5, 3 and calls neither body")
+def inline_globals() -> Outcome:
+    import importlib.util
+    import tempfile
+
+    from ..numeric.core.inline import FLOAT64_INLINE, inlined
+
+    with tempfile.TemporaryDirectory(prefix="symbt-inline-") as tmp:
+        mods = {}
+        for name, text in INLINE_PROBES.items():
+            path = Path(tmp) / f"symbt_inline_probe_{name}.py"
+            path.write_text(text, encoding="utf-8")
+            spec = importlib.util.spec_from_file_location(path.stem, path)
+            assert spec is not None and spec.loader is not None
+            mods[name] = importlib.util.module_from_spec(spec)
+            spec.loader.exec_module(mods[name])
+        g = inlined(mods["outer"].both, "both_inline", {**FLOAT64_INLINE, "s1": "body", "s2": "body"},
+                    {"s1": mods["m1"].scaled, "s2": mods["m2"].scaled})
+    got = {x: g(x) for x in (1.0, -0.5, 3.0)}
+    bad = [f"x = {x}: {v}, the plain calls {5 * x}" for x, v in got.items() if v != 5 * x]
+    if {"s1", "s2"} & set(g.__code__.co_names):
+        bad.append("a body is still called")
+    if bad:
+        return failed("exact: inlined vs the plain calls", detail="; ".join(bad))
+    return Outcome("verified", "exact: inlined vs the plain calls (consistency of the rewrite)", evidence="sampled",
+                   n_scope="all", detail=f"{got}")
