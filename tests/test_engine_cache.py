@@ -125,3 +125,26 @@ def test_verify_rejects_bad_jobs():
     for jobs in (0, -3, 1.5, True):
         with pytest.raises(ValueError, match="jobs"):
             symbt.verify(["tn2"], jobs=jobs)
+
+
+@pytest.mark.parametrize("cid, helper_module", [
+    ("paths.many_rows.n3", "symbt.claims.shipped_routes"),     # `from .shipped_routes import ...` inside the claim
+    ("shipped.loop_xy.n5", "symbt.claims.shipped_emitted"),    # the same, in another function of the module
+    ("library.fresh_toda2", "symbt.claims._shipped"),          # a helper bound at module level
+])
+def test_a_helper_module_imported_anywhere_keys_the_claim(monkeypatch, cid, helper_module):
+    # the key covers the sibling modules a claim imports helpers from -- also inside a function, where the helper is
+    # used: an edit there must not leave the cached outcome standing
+    import inspect
+
+    load_all()
+    claim = REGISTRY[cid]
+    assert helper_module in [m.__name__ for m in cache._claim_modules_used(inspect.getmodule(claim.func))]
+    before = cache.claim_key(claim)
+    real = inspect.getsource
+
+    def edited(obj):
+        text = real(obj)
+        return text + "\n# an edit\n" if getattr(obj, "__name__", "") == helper_module else text
+    monkeypatch.setattr(inspect, "getsource", edited)
+    assert cache.claim_key(claim) != before

@@ -43,7 +43,7 @@ def test_escalation_returns_the_less_precise_run(monkeypatch):
     # 2**-64 s, so the documented agreement holds, but the returned run is the less precise one: q~_1 (~1e-23)
     # comes back wrong in its 11th digit
     monkeypatch.setattr(rows, "escalate_rows", planted(rows.escalate_rows,
-                                                       "branch, dps + 20, sh)", "branch, dps - 20, sh)"))
+                                                       "branch, dps + 20)", "branch, dps - 20)"))
     assert status("paths.escalation.n3") == "failed"
 
 

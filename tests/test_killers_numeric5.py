@@ -279,14 +279,13 @@ def test_mark_ready_writes_the_digest(tmp_path, monkeypatch):
 
 # --------------------------------------------------------------------------- paths.growth_law
 
-def test_growth_law_compares_a_step_with_a_radius(monkeypatch):
-    # mutant lohner:432 (constant): `xy[-1][0] > xy[0][1]` compares the last log2 step with the first log2 radius:
-    # no fit where the radii are large (the original's test always holds for two distinct steps)
+def test_growth_law_needs_two_points(monkeypatch):
+    # the fit's guard (`len(xy) >= 2`; seed 21 removed a second test, `xy[-1][0] > xy[0][0]`, which always holds for
+    # two distinct steps): asking for three points leaves a two-point law without its degree (paths.edges)
     from symbt.numeric.multiprec import lohner
 
-    monkeypatch.setattr(lohner, "growth_law", planted(lohner.growth_law, "xy[-1][0] > xy[0][0]",
-                                                      "xy[-1][0] > xy[0][1]"))
-    assert status("paths.growth_law") == "failed"
+    monkeypatch.setattr(lohner, "growth_law", planted(lohner.growth_law, "if len(xy) >= 2:", "if len(xy) >= 3:"))
+    assert status("paths.edges.n3") == "failed"
 
 
 def test_growth_law_window_from_the_start(monkeypatch):

@@ -10,7 +10,8 @@ from symbt.claims import REGISTRY, load_all
 
 load_all()
 
-CLAIMS = ["library.fresh_toda2"]
+CLAIMS = ["library.fresh_toda2", "library.emissions_of", "paths.field_ivp.n3", "paths.inline_globals", "paths.qd_decompose",
+          "checker.undefined_points"]
 
 
 @pytest.mark.parametrize("cid", CLAIMS)
@@ -164,3 +165,44 @@ def test_flint_route_without_flint(monkeypatch):
     monkeypatch.setattr(exact, "exact_route", planted(exact.exact_route, 'if route == "flint":',
                                                       'if route != "flint":'))
     assert fails("checker.exact_route_names", crash=True)
+
+
+def test_undefined_value_is_no_test(monkeypatch):
+    # screen:87 (uncovered: `_finite` True for a value mpmath cannot read): the screen crashed on SymPy's None
+    from symbt.proof import screen
+
+    monkeypatch.setattr(screen, "_finite", planted(screen._finite, "        return False", "        return True"))
+    assert fails("checker.undefined_points")
+
+
+def test_decompose_equal_exponents_either_order():
+    # qd:249 (`es[pos - 1] < e` -> `<=`), marked equivalent: components of equal exponent change places, their shift
+    # is 0 and ((a << 0) + b) = ((b << 0) + a): the integers differ, the value they encode does not
+    from fractions import Fraction
+
+    import numpy as np
+
+    from symbt.claims.seed21 import decompose_rows
+    from symbt.numeric.multiprec import qd
+
+    mutant = planted(qd._decompose, "es[pos - 1] < e:", "es[pos - 1] <= e:")
+    x = np.concatenate([decompose_rows(90), [[1.5, -1.25, 2.0 ** -60, 1.0], [3.0, 3.0, 3.0, 3.0]]])
+    ours, theirs = np.zeros((len(x), 8), np.int64), np.zeros((len(x), 8), np.int64)
+    qd._decompose(x, ours)
+    mutant(x, theirs)
+
+    def value(ints):
+        m0, m1, m2, m3, s1, s2, s3, e = ints
+        return Fraction((((((m0 << s1) + m1) << s2) + m2) << s3) + m3) * Fraction(2) ** e
+    assert not np.array_equal(ours, theirs)                          # the order of equal exponents does differ
+    assert [value(r) for r in ours.tolist()] == [value(r) for r in theirs.tolist()] \
+        == [sum(Fraction(float(v)) for v in row) for row in x]
+
+
+def test_decompose_plain_shift(monkeypatch):
+    # a planted bug in the read-out: one shift off by one -- the exact sum sees it
+    from symbt.numeric.multiprec import qd
+
+    monkeypatch.setattr(qd, "_decompose", planted(qd._decompose, "out[i, 3 + c] = es[c - 1] - es[c]",
+                                                  "out[i, 3 + c] = es[c - 1] - es[c] + 1"))
+    assert fails("paths.qd_decompose")

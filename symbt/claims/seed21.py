@@ -18,6 +18,14 @@ r"""What the samples of seeds 20 and 21 found unread (issue 21).
   within a tenth of its distance to the flow at ``rtol = 1e-9`` (plus 16 u of the state's size), and the looser
   flow's error is that distance within a factor 2 -- the integrations converge, and to the map, not to something
   near it.  ``FlowField.nfev`` counts the calls scipy reports (seed 21: the counter could stand still).
+* ``checker.undefined_points`` -- :func:`symbt.decide` on a side undefined at half its points (``Piecewise((x,
+  x > 0))`` with no piece for ``x <= 0``, SymPy's ``None`` there): ``= x`` holds by the screen at points with
+  ``x > 0`` only (an undefined value is no test of the identity, never a crash), and ``= x + 10^-20`` is false
+  there (seed 21: a value ``mpmath.isfinite`` cannot read taken as finite crashed the screen).
+* ``paths.qd_decompose`` -- the quad-double read-out's ``_decompose`` (numba compiles it for ``from_qd``; here its
+  plain-Python source runs): 400 quad-doubles -- random exact components in any order, of both signs, with zeros,
+  equal exponents and exponents near ``2**+-600`` -- give integer mantissas below ``2**53`` and shifts
+  with ``sum x = ((((m0 << s1) + m1) << s2) + m2 << s3) + m3) 2**e`` exactly (Python's integers and fractions).
 * ``paths.inline_globals`` -- :func:`symbt.numeric.core.inline.inlined` with two bodies *of one name* from two
   modules, each reading its own global ``TABLE`` (temporary files): the inlined function gives the plain calls'
   values (``2x + 3x``) and calls neither body (seed 21: renaming every global by its function's name bound both
@@ -26,6 +34,7 @@ r"""What the samples of seeds 20 and 21 found unread (issue 21).
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import mpmath as mp
 import numpy as np
@@ -195,3 +204,106 @@ def inline_globals() -> Outcome:
         return failed("exact: inlined vs the plain calls", detail="; ".join(bad))
     return Outcome("verified", "exact: inlined vs the plain calls (consistency of the rewrite)", evidence="sampled",
                    n_scope="all", detail=f"{got}")
+
+
+@claim("checker.undefined_points", equation="checker", scene="checker",
+       where="symbt.proof.screen: a point where a side has no value (a Piecewise with no piece that applies)",
+       statement="decide(Piecewise((x, x > 0)), x) (x real) holds by the numeric screen, every point it reports "
+                 "at x > 0; decide(Piecewise((x, x > 0)), x + 10^-20) is false with a counterexample at x > 0")
+def undefined_points() -> Outcome:
+    from ..proof import decide
+
+    x = sp.Symbol("x", real=True)
+    half = sp.Piecewise((x, x > 0))
+    bad = []
+    try:
+        same, off = decide(half, x), decide(half, x + sp.Rational(1, 10 ** 20))
+    except Exception as exc:  # noqa: BLE001 -- a crash on an undefined point is the finding
+        return failed("decide on a partly undefined side", detail=f"{type(exc).__name__}: {exc}")
+    xs = [mp.mpf(pt["x"]) for pt in same.points]
+    if not (same.holds and same.evidence == "sampled" and xs and min(xs) > 0):
+        bad.append(f"= x: holds {same.holds} ({same.method}), points {[mp.nstr(v, 3) for v in xs]}")
+    cx = (off.counterexample or {}).get("x")
+    if off.holds or off.inconclusive or cx is None or not mp.mpf(cx) > 0:
+        bad.append(f"= x + 1e-20: holds {off.holds}, inconclusive {off.inconclusive}, counterexample {cx}")
+    if bad:
+        return failed("decide on a partly undefined side", detail="; ".join(bad))
+    return Outcome("verified", "decide on a partly undefined side: the screen's points and counterexample",
+                   evidence="sampled", n_scope="all",
+                   detail=f"{len(xs)} points, all x > 0; the near miss refuted at x = {cx}")
+
+
+def decompose_rows(k: int, seed: int = 21) -> np.ndarray:
+    """``k`` quad-doubles for ``paths.qd_decompose``: four components each, in a random order, with zeros, equal
+    exponents and exponents from ``2**-600`` to ``2**600`` (every third row an edge case)."""
+    rng = np.random.default_rng(seed)
+    rows = []
+    for i in range(k):
+        top = int(rng.integers(-600, 600))
+        exps = top - np.sort(rng.integers(0, 200, 4))
+        vals = rng.choice([-1.0, 1.0], 4) * rng.uniform(1, 2, 4) * np.ldexp(1.0, exps)
+        if i % 3 == 0:
+            vals[rng.integers(0, 4, int(rng.integers(1, 4)))] = 0.0       # zeros
+        elif i % 3 == 1:
+            vals[1] = -vals[0] / 2 if i % 2 else vals[0]                    # an equal exponent
+        rows.append(rng.permutation(vals))
+    return np.array(rows)
+
+
+@claim("paths.qd_decompose", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths",
+       where="symbt/numeric/multiprec/qd.py: _decompose (the quad-double read-out, run as plain Python)",
+       statement="_decompose on 400 quad-doubles (random components in any order, both signs, zeros, equal "
+                 "exponents, exponents up to 2**+-600) gives mantissas below 2**53 and shifts >= 0 with sum x = "
+                 "((((m0 << s1) + m1) << s2) + m2 << s3) + m3) 2**e exactly")
+def qd_decompose() -> Outcome:
+    from fractions import Fraction
+
+    from ..numeric.multiprec.qd import _decompose
+
+    x = decompose_rows(400)
+    out = np.zeros((x.shape[0], 8), np.int64)
+    _decompose(x, out)
+    bad = []
+    for row, (m0, m1, m2, m3, s1, s2, s3, e) in zip(x, out.tolist()):
+        value = Fraction((((((m0 << s1) + m1) << s2) + m2) << s3) + m3) * Fraction(2) ** e \
+            if min(s1, s2, s3) >= 0 else None
+        if value != sum(Fraction(float(v)) for v in row) or max(abs(m0), abs(m1), abs(m2), abs(m3)) >= 2 ** 53:
+            bad.append(f"{row.tolist()}: {(m0, m1, m2, m3, s1, s2, s3, e)}")
+    if bad:
+        return failed("exact: the integers against the components' exact sum", detail="; ".join(bad[:2]))
+    return Outcome("verified", "exact: the integers against the components' exact sum (fractions)",
+                   evidence="sampled", n_scope="all", detail=f"{x.shape[0]} quad-doubles")
+
+
+#: paths.jacobian_dual: lam0, mu with both traces positive at the paper's state (24200 and 4489.5)
+POSITIVE_TRACES = (30.0, 5.0)
+
+
+def positive_traces_enclosed(jd: Any, p: tuple[float, ...], q: tuple[float, ...]) -> list[str]:
+    """For ``paths.jacobian_dual``: at :data:`POSITIVE_TRACES` (both traces positive, by the literal trace at 50
+    digits) ``jd`` (:func:`~symbt.numeric.multiprec.lohner_checks.jacobian_dual`) computes the map at both branches
+    and its image encloses the literal map (50 digits); what fails, as sentences."""
+    from flint import arb
+
+    from ..reference.literal import literal_step, literal_trace
+
+    l0, m = POSITIVE_TRACES
+    bad = []
+    for b in (1, -1):
+        with mp.workdps(50):
+            P, Q = [mp.mpf(v) for v in p], [mp.mpf(v) for v in q]
+            signs = [mp.sign(literal_trace(mp.mpf(l0) + s * m, P, Q)) for s in (1, -1)]
+            pt, qt, _ = literal_step(P, Q, mp.mpf(l0), mp.mpf(m), b)
+        with mp.workdps(30):
+            try:
+                img, _J = jd([arb(v) for v in list(p) + list(q)], arb(l0), arb(m), b)
+            except Exception as exc:  # noqa: BLE001 -- any refusal is the finding: the map exists
+                bad.append(f"lam0 = {l0}, mu = {m}, branch {b} (trace signs {signs}): {type(exc).__name__}: {exc}")
+                continue
+        with mp.workdps(50):
+            if signs != [1, 1] or not all(abs(mp.mpf(c.mid().str(40, radius=False)) - y)
+                                          <= mp.mpf(c.rad().str(5, radius=False)) + mp.mpf(10) ** -40
+                                          for c, y in zip(img, list(pt) + list(qt))):
+                bad.append(f"lam0 = {l0}, mu = {m}, branch {b}: trace signs {signs}, the image does not enclose "
+                           "the literal map")
+    return bad

@@ -313,8 +313,9 @@ def abs_products(N: int) -> Outcome:
 
     rows = product_rows(N)
     far = [k for k, (_a, _r, lab) in enumerate(rows) if lab in ("past 2**500", "past the double range")]
-    neg = [k for k, (_a, _r, lab) in enumerate(rows) if lab in ("largest entry negative", "D the largest")]
-    batches = [[0], neg, [k % len(rows) for k in range(7)], [k % len(rows) for k in range(16)],
+    neg = [k for k, (_a, _r, lab) in enumerate(rows) if lab == "largest entry negative"]
+    big_d = [k for k, (_a, _r, lab) in enumerate(rows) if lab == "D the largest"]
+    batches = [[0], neg, big_d, [k % len(rows) for k in range(7)], [k % len(rows) for k in range(16)],
                [0, 1] * 8 + [1], [far[k % 2] for k in range(20)], [k % len(rows) for k in range(40)]]
     if N == 2:
         batches.append([k % len(rows) for k in range(2049)])

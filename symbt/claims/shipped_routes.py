@@ -34,7 +34,8 @@ general path, which is right for every state, so accuracy claims cannot see a sl
   the same batches (the numpy rows of :mod:`symbt.numeric.float64.rows`, which escalate the ``ILLCOND`` row
   themselves): each member within ``16 N eps S_i`` of the literal step and equal to its single-state step.
 * ``paths.edges.n3`` -- :func:`~symbt.numeric.multiprec.lohner.growth_law` without two usable points
-  (one recorded step, or every radius zero) returns ``degree = None`` as documented, and the float64
+  (one recorded step, or every radius zero) returns ``degree = None`` as documented, with exactly two the slope
+  between them (``log2 rad = 5, 8`` at steps 1, 2: degree 3), and the float64
   context's ``out_of_range`` (the monodromy's rescaling trigger) on complex rows against its documented
   per-entry rule ``|x| > 2**500 or nan`` (the large side), evaluated entry by entry with Python's ``abs``;
   and the float64 range limit ``MAX_DQ_FLOAT64`` (700, the largest neighbour distance ``|q_{j+1} - q_j|``,
@@ -303,7 +304,8 @@ EDGE_BATCHES = (((-2.0 ** 600, 1.0), (1.0 + 0j, 3j), (0.5, -(2.0 ** 501) * 1j), 
 @claim("paths.edges", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
        where="symbt/numeric/multiprec/lohner.py: growth_law; symbt/numeric/core/context.py: out_of_range; "
              "core/monodromy.py: neighbour_ratios' range check",
-       statement="growth_law without two usable points (one recorded step; radii all zero) gives degree None; the "
+       statement="growth_law without two usable points (one recorded step; radii all zero) gives degree None, with "
+                 "two (log2 rad = 5, 8 at steps 1, 2) their slope 3; the "
                  "float64 context's out_of_range on complex rows = the documented per-entry rule (|x| > 2^500 or "
                  "nan); invariants and phi finite at |q2 - q1| = 700, NumericRangeError at 700.1")
 def edges(N: int) -> Outcome:
@@ -319,6 +321,9 @@ def edges(N: int) -> Outcome:
             continue
         if law["degree"] is not None:
             bad.append(f"growth_law({lograd}) gave degree {law['degree']}")
+    two = growth_law([-math.inf, 5.0, 8.0])          # exactly two usable points: the slope between them
+    if two["degree"] != 3.0:
+        bad.append(f"growth_law([-inf, 5, 8]) gave degree {two['degree']}, the slope between its points 3")
     ctx = FloatContext(np.complex128)
     for rows in EDGE_BATCHES:
         cols = [np.array([r[k] for r in rows], dtype=complex) for k in range(2)]

@@ -167,10 +167,6 @@ def mp_verdict(N: int) -> Outcome:
                    evidence="sampled", detail=detail, printed="TRACE1, TRACE2, OK as the bands say")
 
 
-#: paths.jacobian_dual: lam0, mu with both traces positive at the paper's state (24200 and 4489.5)
-POSITIVE_TRACES = (30.0, 5.0)
-
-
 @claim("paths.jacobian_dual", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
        requires=("flint",),
        where="symbt/numeric/multiprec/lohner_checks.py: jacobian_dual (the step on dual numbers)",
@@ -234,25 +230,8 @@ def jacobian_dual(N: int) -> Outcome:
                 seen = f"{type(exc).__name__}: {exc}"
         if not in_band or seen != "trace":
             bad.append(f"lam0 = -2, mu = {mu}: lam0 +- mu in a band {in_band}, jacobian_dual gave {seen}")
-    # both traces positive (the paper's state has both negative): the map exists, the image encloses it
-    l0, m = POSITIVE_TRACES
-    for b in (1, -1):
-        with mp.workdps(50):
-            P, Q = [mp.mpf(v) for v in p], [mp.mpf(v) for v in q]
-            signs = [mp.sign(literal_trace(mp.mpf(l0) + s * m, P, Q)) for s in (1, -1)]
-            pt, qt, _ = literal_step(P, Q, mp.mpf(l0), mp.mpf(m), b)
-        with mp.workdps(30):
-            try:
-                img, _J = jd([arb(v) for v in list(p) + list(q)], arb(l0), arb(m), b)
-            except Exception as exc:  # noqa: BLE001 -- any refusal is the finding: the map exists
-                bad.append(f"lam0 = {l0}, mu = {m}, branch {b} (trace signs {signs}): {type(exc).__name__}: {exc}")
-                continue
-        with mp.workdps(50):
-            if signs != [1, 1] or not all(abs(mp.mpf(c.mid().str(40, radius=False)) - y)
-                                          <= mp.mpf(c.rad().str(5, radius=False)) + mp.mpf(10) ** -40
-                                          for c, y in zip(img, list(pt) + list(qt))):
-                bad.append(f"lam0 = {l0}, mu = {m}, branch {b}: trace signs {signs}, the image does not enclose "
-                           "the literal map")
+    from .seed21 import positive_traces_enclosed  # the paper's state has both traces negative
+    bad += positive_traces_enclosed(jd, p, q)
     detail = (f"worst |J - finite difference| {worst:.3g} over 2 x {(2 * N) ** 2} entries; {refused} of 2 states "
               "with a spectral parameter in a band refused.")
     if bad:

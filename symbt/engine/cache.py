@@ -3,7 +3,8 @@
 Results are cached as JSON (no pickle) in ``$SYMBT_CACHE_DIR`` (default
 ``$XDG_CACHE_HOME/symbt`` or ``~/.cache/symbt``), one file per claim, keyed by a
 SHA-256 of the claim's id, the source of its module (and of the sibling claim
-modules whose helpers it uses), the sources of the layers below the claims, and
+modules whose helpers it uses -- imported at module level or inside a function,
+transitively), the sources of the layers below the claims, and
 the versions of Python and of the libraries a result can depend on
 (:func:`library_versions`, read from the installed distributions' metadata
 without importing them).
@@ -121,13 +122,55 @@ def library_versions() -> str:
     return " ".join(parts)
 
 
+@cache
+def _sibling_imports(name: str) -> frozenset[str]:
+    """The claim modules ``symbt.claims.<name>``'s source imports from, at module level or inside a function (a
+    helper imported where it is used): ``from .x import``, ``from . import x``, ``from symbt.claims.x import``."""
+    import ast
+    import importlib
+    import inspect
+
+    try:
+        tree = ast.parse(inspect.getsource(importlib.import_module(name)))
+    except (ImportError, OSError, SyntaxError, TypeError):
+        return frozenset()
+    out = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            module = node.module or ""
+            if node.level == 1:
+                out |= {module.split(".")[0]} if module else {a.name for a in node.names}
+            elif node.level == 0 and module.startswith("symbt.claims."):
+                out.add(module.split(".")[2])
+    return frozenset(f"symbt.claims.{x}" for x in out)
+
+
 def _claim_modules_used(mod: ModuleType) -> list[ModuleType]:
-    """The claim's module and the sibling claim modules whose helpers it imports."""
-    used: dict[str, ModuleType | None] = {mod.__name__: mod}
-    for obj in vars(mod).values():
-        name = getattr(obj, "__module__", None)
-        if isinstance(name, str) and name.startswith("symbt.claims.") and name not in used:
-            used[name] = sys.modules.get(name)
+    """The claim's module and the sibling claim modules whose helpers it uses: the objects bound at its module
+    level and the modules it imports from anywhere in its source (helpers imported inside a function too),
+    transitively -- a cached outcome is reused only if none of their sources changed."""
+    import importlib
+
+    used: dict[str, ModuleType | None] = {}
+    todo = [mod.__name__]
+    while todo:
+        name = todo.pop()
+        if name in used:
+            continue
+        m = mod if name == mod.__name__ else sys.modules.get(name)
+        if m is None:
+            try:
+                m = importlib.import_module(name)
+            except ImportError:
+                m = None
+        used[name] = m
+        if m is None:
+            continue
+        for obj in vars(m).values():
+            owner = getattr(obj, "__module__", None)
+            if isinstance(owner, str) and owner.startswith("symbt.claims.") and owner not in used:
+                todo.append(owner)
+        todo.extend(sibling for sibling in _sibling_imports(name) if sibling not in used)
     return [m for k in sorted(used) if (m := used[k]) is not None]
 
 
