@@ -10,8 +10,8 @@ from symbt.claims import REGISTRY, load_all
 
 load_all()
 
-CLAIMS = ["library.fresh_toda2", "library.emissions_of", "paths.field_ivp.n3", "paths.inline_globals", "paths.qd_decompose",
-          "checker.undefined_points"]
+CLAIMS = ["library.fresh_toda2", "library.emissions_of", "paths.field_ivp.n3", "paths.inline_globals",
+          "paths.qd_decompose", "checker.undefined_points"]
 
 
 @pytest.mark.parametrize("cid", CLAIMS)
