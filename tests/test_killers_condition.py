@@ -307,8 +307,9 @@ def test_range_stats_signed(monkeypatch):
 
 def test_side_by_side_and_sharp_rows_routes():
     # the documented routes by row count (cost only: every route gives the same bits): monodromy_and_abs runs the
-    # two products side by side from FEW_ROWS + 1 to SIDE_BY_SIDE_ROWS rows (N >= 2: checked at N = 2 and 3, which
-    # kills condition:446's `N > 2` and `FEW_ROWS > ...`, seed 32) and as two calls beyond;
+    # two products on Python floats up to FEW_ROWS rows, side by side from FEW_ROWS + 1 to SIDE_BY_SIDE_ROWS rows
+    # (N >= 2: checked at N = 2 and 3, which kills condition:446's `N > 2` and `FEW_ROWS > ...`, seed 32) and as two
+    # calls beyond;
     # sharp_trace_kappa_rows runs the scalar source on Python floats up to FEW_ROWS rows and numpy beyond
     few, side = condition.FEW_ROWS, condition.SIDE_BY_SIDE_ROWS
     calls: list[str] = []
@@ -327,7 +328,7 @@ def test_side_by_side_and_sharp_rows_routes():
         mp_.setattr(condition, "SHARP_ON_FLOATS", sharp)
         seen = {}
         for N in (2, 3):
-            for R in (few + 1, side, side + 1):
+            for R in (1, few, few + 1, side, side + 1):
                 calls.clear()
                 a = [np.linspace(1.0, 2.0, R) + j for j in range(N)]
                 condition.monodromy_and_abs(a, [np.full(R, 0.5 + j) for j in range(N)])
@@ -337,7 +338,9 @@ def test_side_by_side_and_sharp_rows_routes():
             P, Rr = np.tile([-20.0, 10.0, 1.0], (R, 1)), np.tile([0.5, 2.0, 1.0], (R, 1))
             condition.sharp_trace_kappa_rows(P, Rr, np.full(R, 15.0), np.zeros(R))
             seen[("scalar", R)] = calls.count("scalar") == R
-    assert seen == {**{("side by side", N, R): R <= side for N in (2, 3) for R in (few + 1, side, side + 1)},
+    # up to FEW_ROWS rows both products on Python floats (no numpy monodromy either; seed 22: condition:361 sent
+    # every batch to the general form)
+    assert seen == {**{("side by side", N, R): R <= side for N in (2, 3) for R in (1, few, few + 1, side, side + 1)},
                     ("scalar", 1): True, ("scalar", few): True, ("scalar", few + 1): False}
 
 

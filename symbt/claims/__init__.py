@@ -56,6 +56,7 @@ CLAIM_MODULES = (
     "seed16",
     "seed18",
     "seed21",
+    "seed22",
     "contexts",
     "shipped_condition_file",
     "shipped_core",

@@ -11,7 +11,8 @@ r"""The checks of the emitted code, checked: their metrics and the printer's pow
      |dH_1/dx_i|`` computed here from the literal trace (``mpmath.diff``), not by ``verify``'s own scale;
   2. :func:`~symbt.codegen.verify.xy_vs_printed` reports the relative error ``1e-40`` of a probe whose ``y`` is
      off by that where ``y`` is negative; :func:`~symbt.codegen.verify.interpret` divides ``Quotient(a, b)``
-     IEEE-style: ``a/b``, and ``sgn(a) inf`` at ``b = 0`` only (``b = 1`` and ``2`` divide);
+     IEEE-style: ``a/b``, and ``sgn(a) inf`` at ``b = 0`` only (``b = 1`` and ``2`` divide), and evaluates the six
+     relations as Python compares (``(-3, 2)`` and ``(2, 2)``; seed 22: ``!=`` read as ``==``);
   3. :func:`~symbt.codegen.verify.phi_grad_vs_fd` measures ``|mp.diff(Phi) - g| / max(1, |g|)`` (its docstring):
      on a probe module whose ``Phi`` is linear with every slope ``1/4`` and whose gradient is off by ``1e-30`` in
      one entry, it returns ``1e-30`` to within ``1e-40`` (numerical differentiation of a linear function at 50
@@ -98,7 +99,7 @@ def _planted_measure(pt: dict[str, Any]) -> Any:
                  "within a relative 1e-6 of 1e-40 |f_1|/S_1 (at the worst "
                  "of three points and at each alone); xy_vs_printed reports 1e-40 for y off by that where y < 0; "
                  "interpret's Quotient(-3, b) is -3, -3/2, -inf at b = 1, 2, 0, its Max(-3, 2) 2 and Min(-3, 2) "
-                 "-3; phi_grad_vs_fd on "
+                 "-3, its six relations Python's comparisons at (-3, 2) and (2, 2); phi_grad_vs_fd on "
                  "a linear Phi of slope 1/4 whose gradient is off by 1e-30 returns 1e-30 to within 1e-40; the points "
                  "of every N = 2, 3 function without a map take both signs in each coordinate of p, q and c")
 def codegen_metrics() -> Outcome:
@@ -159,6 +160,13 @@ def codegen_metrics() -> Outcome:
     mm = [verify.interpret(f(a_, b_, evaluate=False), env, {}) for f in (sp.Max, sp.Min)]
     if mm != [2, -3]:
         problems.append(f"interpret(Max(-3, 2)), interpret(Min(-3, 2)): {mm}")
+    # the six relations (a guard's or a Piecewise's condition) at a < b and a = a, against Python's own comparisons
+    for u, v in ((-3, 2), (2, 2)):
+        pair = {a_: mp.mpf(u), b_: mp.mpf(v)}
+        got = [bool(verify.interpret(rel(a_, b_, evaluate=False), pair, {}))
+               for rel in (sp.Ge, sp.Gt, sp.Le, sp.Lt, sp.Eq, sp.Ne)]
+        if got != [u >= v, u > v, u <= v, u < v, u == v, u != v]:
+            problems.append(f"interpret of >=, >, <=, <, ==, != at ({u}, {v}): {got}")
     r = verify.phi_grad_vs_fd(cast(ModuleType, _probe_phi(2)), 2)
     if not abs(r - GRAD_OFF) <= mp.mpf(10) ** -40:
         problems.append(f"phi_grad_vs_fd on a gradient off by 1e-30 (slopes 1/4): {mp.nstr(r, 5)}, want 1e-30 "

@@ -3,7 +3,8 @@ r"""Defaults, a range message and an edge rule that no claim pinned (issue 21, s
 
 * ``library.defaults`` -- :func:`symbt.proof.solves_ode`'s default is the ordinary sample, not ``deep`` (as many
   points per cell as ``deep=False``, fewer than ``deep=True``); :func:`symbt.reference.elliptic.step2`'s default
-  branch is ``+1`` (the same step as ``branch=1``, another than ``branch=-1``).
+  branch is ``+1`` (the same step as ``branch=1``, another than ``branch=-1``); the float64 orbit's
+  (``float_orbit``) are ``every=1`` and ``branch=1``: the explicit call's bits, ``n + 1`` rows (seed 22).
 * ``paths.dq_range.n3`` -- :class:`symbt.numeric.FlowField` and ``flow_quadrature`` at ``q = (0, -800, -400)``: the
   neighbour distance ``-800`` is beyond the float64 range while the other two are ``400``; both refuse with a
   :class:`~symbt.numeric.NumericRangeError` naming ``|q_{j+1} - q_j| = 800`` -- the cause, not a later non-finite
@@ -26,9 +27,11 @@ from .base import Outcome, claim
 
 
 @claim("library.defaults", equation="checker", scene="library",
-       where="symbt.proof.solves_ode (deep), symbt.reference.elliptic.step2 (branch)",
+       where="symbt.proof.solves_ode (deep), symbt.reference.elliptic.step2 (branch), "
+             "symbt.numeric.float64.orbit.float_orbit (every, branch)",
        statement="solves_ode's default samples as deep=False (as many per cell; deep=True takes more); step2's default "
-                 "branch is +1 (the same step as branch=1, not that of branch=-1)")
+                 "branch is +1 (the same step as branch=1, not that of branch=-1); float_orbit's defaults are every=1 "
+                 "and branch=1 (the explicit call's bits, n + 1 rows)")
 def defaults() -> Outcome:
     from ..proof.ode import solves_ode
     from ..reference.elliptic import step2
@@ -47,6 +50,14 @@ def defaults() -> Outcome:
         default, plus, minus = (step2(p, q, l0, m, *b)[:2] for b in ((), (1,), (-1,)))
         got.append(("step2's default branch: that of branch=1, not of branch=-1",
                     (default == plus, default != minus), (True, True)))
+    # the float64 orbit's defaults (every = 1: every state, n + 1 rows; branch = 1), bit for bit the explicit call
+    from ..numeric.float64.orbit import float_orbit
+    from ._shipped import without_numba
+    with without_numba():
+        orbit = float_orbit([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0, 3)
+        explicit = float_orbit([-20.0, 10.0, 1.0], [1.0, 0.0, 0.9], 10.0, 5.0, 3, every=1, branch=1)
+    got.append(("float_orbit's defaults: every=1 (4 rows for 3 steps), branch=1",
+                (orbit[0].shape[0], all(np.array_equal(a, b) for a, b in zip(orbit, explicit))), (4, True)))
     bad = _bad("the defaults", got)
     return bad or _ok("the defaults against explicit calls", f"{len(got)} facts", "proof")
 

@@ -137,7 +137,7 @@ def _shift(m: TodaModel, expr: Any, expand: bool = False) -> sp.Basic:
 
     def exp_of(powers: dict[int, int]) -> sp.Expr:
         arg = sp.Add(*[k * (m.q[j] - m.q[0]) for j, k in sorted(powers.items()) if j > 0 and k])
-        return sp.exp(sp.expand(arg)) if arg != 0 else sp.Integer(1)
+        return sp.exp(sp.expand(arg))           # exp(0) is SymPy's 1
 
     def rec(e: sp.Basic) -> sp.Basic:
         if e in index:
@@ -228,7 +228,7 @@ class RingValue:
         key = ("ringpowers", str(self.lam))
         if key not in memo:
             gens = [lam_] + [env[x] for x in m.p] + [exp(env[x]) for x in m.q] + [exp(-env[x]) for x in m.q]
-            memo[key] = (gens + [env.get(x, 0) for x in T.c], {})
+            memo[key] = (gens + [env.get(x) for x in T.c], {})      # None: a c_k the value has no term in
         gens, powers = memo[key]
         total = 0
         for coeff, factors in self._terms():

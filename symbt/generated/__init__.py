@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 546bc4ac670b3b0d0e7dcdb67f3eda023e981dcc64e00b725ab264846ee0b61a
-# symbt-codegen-content-sha256: ffec5c991350e13587c780c6a94a1df732bfaa1db3acae682ae6b8f2ece221e2
+# symbt-codegen-derivation-sha256: ac12ed4793f7987b456beca2bac805d7605b26f588125e3864c41773d1833a6d
+# symbt-codegen-content-sha256: 4d089180907710b2f3465742f52da010b2bcbb7ca8b827402ef90fd776f9ed79
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 546bc4ac670b3b0d0e7dcdb67f3eda023e981dcc64e00b725ab264846ee0b61a
-# symbt-codegen-content-sha256: 2e07b50067c60f7fb5a2fa7543046b09c36f0b33a65e45e87b7ea4e68be99708
+# symbt-codegen-derivation-sha256: ac12ed4793f7987b456beca2bac805d7605b26f588125e3864c41773d1833a6d
+# symbt-codegen-content-sha256: 85d6c8ed1aa544976526e87e9a182d420cbef91d25642f3c426194a2fe0ec0e2
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 546bc4ac670b3b0d0e7dcdb67f3eda023e981dcc64e00b725ab264846ee0b61a
-# symbt-codegen-content-sha256: 6376d078a75ec18185533ec77411dbf895bcdce1c7749f479f695f1a507ee807
+# symbt-codegen-derivation-sha256: ac12ed4793f7987b456beca2bac805d7605b26f588125e3864c41773d1833a6d
+# symbt-codegen-content-sha256: 47732b0ce15a6af91ab62b8aeff467a7f6261607a9d69c5ae29dc978c9d21ef2
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

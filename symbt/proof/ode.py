@@ -79,9 +79,7 @@ def _unknowns(eqs: list[Any]) -> tuple[sp.Symbol, list[Any]]:
         raise ValueError(f"solves_ode: the unknowns must be functions of one and the same variable, got "
                          f"{', '.join(sorted(map(str, found)))}")
     t = next(iter(args))[0]
-    order = [d.expr for e in eqs if isinstance(e, sp.Equality) and isinstance(e.lhs, sp.Derivative)
-             for d in [e.lhs]]
-    return t, sorted(found, key=lambda u: (order.index(u) if u in order else len(order), str(u)))
+    return t, sorted(found, key=str)    # by name: a tuple solution is paired in the equations' order (_solution)
 
 
 def _solution(solution: Any, unknowns: list[Any], eqs: list[Any]) -> dict[Any, Any]:

@@ -475,7 +475,7 @@ def lohner_certified(state: Callable[[], tuple[list[Any], list[Any], Any, Any]],
     >>> len(stored), prec == passes[-1], float(stored[1][0][0].rad()) < 1e-40
     (2, True, True)
     """
-    work = int(prec) if prec is not None else target_bits + 24 + _BITS_PER_OCTAVE * max(1, n).bit_length()
+    work = int(prec) if prec is not None else target_bits + 24 + _BITS_PER_OCTAVE * int(n).bit_length()
     for _ in range(_ATTEMPTS):
         if work > max_prec:
             break
