@@ -30,6 +30,10 @@ r"""What the samples of seeds 20 and 21 found unread (issue 21).
   modules, each reading its own global ``TABLE`` (temporary files): the inlined function gives the plain calls'
   values (``2x + 3x``) and calls neither body (seed 21: renaming every global by its function's name bound both
   tables to one name).
+
+And :func:`positive_traces_enclosed`, a fact of ``paths.jacobian_dual.n3`` (``claims/shipped_sample45.py``): where both
+traces are positive the dual-number step computes the map and encloses it (seed 21: a sign test on dual numbers took
+two positive traces for opposite ones).
 """
 from __future__ import annotations
 
@@ -56,7 +60,8 @@ def _body(text: str) -> str:
 @claim("library.fresh_toda2", equation="checker", scene="library", N=2,
        where="symbt/generated/toda2.py vs symbt.codegen.emit.module_body(2) rendered now",
        statement="the shipped toda2.py below its provenance header is the text module_body(2) renders now (a "
-                 "consistency check of the emitted text; skipped under a SymPy other than the header's)")
+                 "consistency check of the emitted text; skipped under a SymPy other than the header's); form_of is "
+                 "the closed form for N = 2, 3 and the transfer-matrix form for N = 4, 5, 6")
 def fresh_toda2() -> Outcome:
     import sympy
 
