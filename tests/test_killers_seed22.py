@@ -11,7 +11,8 @@ from symbt.claims import REGISTRY, load_all
 
 load_all()
 
-CLAIMS = ["checker.ode_system", "paths.field_nomap.n3", "checker.codegen_metrics", "library.defaults"]
+CLAIMS = ["checker.ode_system", "paths.field_nomap.n3", "checker.codegen_metrics", "library.defaults",
+          "checker.matrix_scalar", "checker.scope_counts", "library.spectral"]
 
 
 @pytest.mark.parametrize("cid", CLAIMS)
@@ -79,3 +80,30 @@ def test_F_odd_either_sign_canonical():
             assert mutant(z, m) == ours and E._F_m(-z, m) == -ours
         w = mp.mpc("0.3", "0.4")                         # complex arguments are not touched by either
         assert mutant(w, mp.mpf("0.5")) == E._F_m(w, mp.mpf("0.5"))
+
+
+def test_matrix_side_named(monkeypatch):
+    # decider:136 (seed 23: the condition negated): the message named the scalar side as the matrix
+    from symbt.proof import decider
+
+    monkeypatch.setattr(decider, "match_shapes", planted(decider.match_shapes, 'if lm else ("rhs", "lhs")',
+                                                         'if not (lm) else ("rhs", "lhs")'))
+    assert fails("checker.matrix_scalar")
+
+
+def test_sampler_refuses_a_map_across_a_band(monkeypatch):
+    # samples:35 (seed 23: `return False, info` -> True): a proposal with some Etilde_j <= 0 admitted
+    from symbt.reference import samples
+
+    monkeypatch.setattr(samples, "_real_map", planted(samples._real_map, "        return False, info",
+                                                      "        return True, info"))
+    assert fails("library.spectral")
+
+
+def test_scope_names_a_cell_holding_once(monkeypatch):
+    # cells:161 (seed 23: `0 < r.printed_holds` -> `1 <`): a cell holding at one sample left out of the sentence
+    from symbt.proof.cells import CellTable
+
+    monkeypatch.setattr(CellTable, "scope", planted(CellTable.scope, "if 0 < r.printed_holds < r.n]",
+                                                    "if 1 < r.printed_holds < r.n]"))
+    assert fails("checker.scope_counts")

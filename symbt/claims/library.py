@@ -250,6 +250,11 @@ def spectral_routines() -> Outcome:
     from ..reference.samples import _real_map
     if _real_map([mp.mpf(1), mp.mpf(2)], [mp.mpf(0), mp.mpf(0)], mp.mpf(5), mp.mpf(1), 0) != (False, None):
         return failed("admissible_states", detail="a proposal whose literal step raises was admitted")
+    # nor one whose lam1, lam2 lie across a band (some Etilde_j <= 0: the paper's state at lam0 = -2, mu = 2.5)
+    across = _real_map([mp.mpf(-20), mp.mpf(10), mp.mpf(1)], [mp.mpf(1), mp.mpf(0), mp.mpf("0.9")], mp.mpf(-2),
+                       mp.mpf("2.5"), 1)
+    if across[0] or across[1] is None or min(across[1]["E_new"]) > 0:
+        return failed("admissible_states", detail="a proposal with some Etilde_j <= 0 was admitted")
     # the sampler gives up after max_proposals proposals (three cannot give five admissible states)
     try:
         admissible_states(N, 1, 5, max_proposals=3)

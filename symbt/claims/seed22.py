@@ -1,4 +1,4 @@
-r"""What the sample of seed 22 found unread (issue 21).
+r"""What the samples of seeds 22 and 23 found unread (issue 21).
 
 * ``checker.ode_system`` -- :func:`symbt.proof.solves_ode` on a system whose equations name the unknowns in an order
   other than their names' (``y' = -x``, ``x' = y``): a tuple solution is read in the order of the equations, as
@@ -13,6 +13,13 @@ r"""What the sample of seed 22 found unread (issue 21).
   and ``FlowField`` raise :class:`~symbt.numeric.NoRealMapError` with the condition ``bt_step`` gives -- ``trace``,
   then ``positivity`` -- and at ``lam0 = 10, mu = 5`` none refuses (seed 22: the quadrature's own band test alone
   named a positivity case ``trace``).
+* ``checker.matrix_scalar`` -- :func:`symbt.decide` with a matrix on one side and a nonzero scalar on the other
+  refuses with a ``ValueError`` naming the matrix side, its shape and the scalar (seed 23: the sides swapped in
+  the message).
+* ``checker.scope_counts`` -- :meth:`symbt.proof.cells.CellTable.scope` on a table written by hand (residuals below
+  and above the tolerance): a cell holding at 3 of 3 samples is named among the exact cells, one holding at 1 of 3
+  with its count ``(1/3)``, one at 0 of 3 among the failing ones (seed 23: a cell holding at a single sample was
+  dropped from the sentence).
 """
 from __future__ import annotations
 
@@ -93,3 +100,47 @@ def field_nomap(N: int) -> Outcome:
         return failed("numeric: the flow routes' refusals vs the literal traces", detail="; ".join(bad[:4]))
     return Outcome("verified", "numeric: the flow routes' refusals vs the literal traces (40 digits)",
                    evidence="sampled", n_scope=[N], detail="; ".join(seen))
+
+
+@claim("checker.matrix_scalar", equation="checker", scene="checker",
+       where="symbt.proof.decider: a matrix side against a scalar side",
+       statement="decide(Matrix([x, 1]), 1) and decide(1, Matrix([x, 1])) raise ValueError naming the matrix side "
+                 "(lhs, then rhs), its shape 2x1 and the scalar 1")
+def matrix_scalar() -> Outcome:
+    from ..proof import decide
+
+    x = sp.Symbol("x")
+    col = sp.Matrix([x, 1])
+    got = []
+    for lhs, rhs, side in ((col, sp.Integer(1), "lhs"), (sp.Integer(1), col, "rhs")):
+        other = "rhs" if side == "lhs" else "lhs"
+        try:
+            decide(lhs, rhs)
+            got.append(f"{side}: no error")
+        except ValueError as exc:
+            if f"{side} is a 2x1 matrix and {other} the scalar 1" not in str(exc):
+                got.append(f"{side}: {exc}")
+    if got:
+        return failed("exact: the refusal's words", detail="; ".join(got))
+    return Outcome("verified", "exact: the refusal's words", evidence="proof", n_scope="all",
+                   detail="both sides named")
+
+
+@claim("checker.scope_counts", equation="checker", scene="checker",
+       where="symbt.proof.cells: CellTable.scope (the generated scope sentence)",
+       statement="a CellTable (tol 0.5) whose cells hold at 3, 1 and 0 of 3 samples (residuals 0 and 1 written by "
+                 "hand) has the scope 'printed statement holds exactly in cells {side=a} and holds at some samples "
+                 "of {side=b} (1/3) and fails in {side=c}'")
+def scope_counts() -> Outcome:
+    from ..proof.cells import CellTable
+
+    table = CellTable(tol=0.5)
+    for side, residuals in (("a", (0, 0, 0)), ("b", (0, 1, 1)), ("c", (1, 1, 1))):
+        for r in residuals:
+            table.add({"side": side}, printed=r)
+    want = ("printed statement holds exactly in cells {side=a} and holds at some samples of {side=b} (1/3) and "
+            "fails in {side=c}")
+    if table.scope() != want:
+        return failed("exact: the sentence against cell counts written by hand", detail=f"{table.scope()!r}")
+    return Outcome("verified", "exact: the sentence against cell counts written by hand", evidence="proof",
+                   n_scope="all", detail="3 cells: exact, partly (1/3), failing")

@@ -134,7 +134,7 @@ class Verdict:
         digits: float | None
         if worst > 0 and math.isfinite(worst):
             digits = -math.log10(worst) if dps is None else min(-math.log10(worst), float(dps))
-        elif worst > 0:
+        elif math.isinf(worst):
             digits = 0.0
         else:
             digits = None if dps is None else float(dps)
