@@ -37,6 +37,7 @@ two positive traces for opposite ones).
 """
 from __future__ import annotations
 
+from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
@@ -238,6 +239,15 @@ def undefined_points() -> Outcome:
                    detail=f"{len(xs)} points, all x > 0; the near miss refuted at x = {cx}")
 
 
+def decomposed_value(ints: list[int]) -> Fraction | None:
+    """The number ``_decompose``'s integers ``(m0, m1, m2, m3, s1, s2, s3, e)`` stand for (``None`` if a shift is
+    negative): ``((((m0 << s1) + m1) << s2) + m2 << s3) + m3) 2**e``, in Python's integers and fractions."""
+    m0, m1, m2, m3, s1, s2, s3, e = ints
+    if min(s1, s2, s3) < 0:
+        return None
+    return Fraction((((((m0 << s1) + m1) << s2) + m2) << s3) + m3) * Fraction(2) ** e
+
+
 def decompose_rows(k: int, seed: int = 21) -> np.ndarray:
     """``k`` quad-doubles for ``paths.qd_decompose``: four components each, in a random order, with zeros, equal
     exponents and exponents from ``2**-600`` to ``2**600`` (every third row an edge case)."""
@@ -261,19 +271,15 @@ def decompose_rows(k: int, seed: int = 21) -> np.ndarray:
                  "exponents, exponents up to 2**+-600) gives mantissas below 2**53 and shifts >= 0 with sum x = "
                  "((((m0 << s1) + m1) << s2) + m2 << s3) + m3) 2**e exactly")
 def qd_decompose() -> Outcome:
-    from fractions import Fraction
-
     from ..numeric.multiprec.qd import _decompose
 
     x = decompose_rows(400)
     out = np.zeros((x.shape[0], 8), np.int64)
     _decompose(x, out)
     bad = []
-    for row, (m0, m1, m2, m3, s1, s2, s3, e) in zip(x, out.tolist()):
-        value = Fraction((((((m0 << s1) + m1) << s2) + m2) << s3) + m3) * Fraction(2) ** e \
-            if min(s1, s2, s3) >= 0 else None
-        if value != sum(Fraction(float(v)) for v in row) or max(abs(m0), abs(m1), abs(m2), abs(m3)) >= 2 ** 53:
-            bad.append(f"{row.tolist()}: {(m0, m1, m2, m3, s1, s2, s3, e)}")
+    for row, ints in zip(x, out.tolist()):
+        if decomposed_value(ints) != sum(Fraction(float(v)) for v in row) or max(map(abs, ints[:4])) >= 2 ** 53:
+            bad.append(f"{row.tolist()}: {tuple(ints)}")
     if bad:
         return failed("exact: the integers against the components' exact sum", detail="; ".join(bad[:2]))
     return Outcome("verified", "exact: the integers against the components' exact sum (fractions)",
@@ -282,6 +288,13 @@ def qd_decompose() -> Outcome:
 
 #: paths.jacobian_dual: lam0, mu with both traces positive at the paper's state (24200 and 4489.5)
 POSITIVE_TRACES = (30.0, 5.0)
+
+
+def encloses(balls: Any, values: list[Any]) -> bool:
+    """Every ball (Arb) contains its value (mpf, at the current precision): ``|mid - y| <= rad + 1e-40``, the balls'
+    midpoints read to 40 digits and radii to 5 (the slack covers that reading)."""
+    return all(abs(mp.mpf(c.mid().str(40, radius=False)) - y) <= mp.mpf(c.rad().str(5, radius=False))
+               + mp.mpf(10) ** -40 for c, y in zip(balls, values))
 
 
 def positive_traces_enclosed(jd: Any, p: tuple[float, ...], q: tuple[float, ...]) -> list[str]:
@@ -306,9 +319,7 @@ def positive_traces_enclosed(jd: Any, p: tuple[float, ...], q: tuple[float, ...]
                 bad.append(f"lam0 = {l0}, mu = {m}, branch {b} (trace signs {signs}): {type(exc).__name__}: {exc}")
                 continue
         with mp.workdps(50):
-            if signs != [1, 1] or not all(abs(mp.mpf(c.mid().str(40, radius=False)) - y)
-                                          <= mp.mpf(c.rad().str(5, radius=False)) + mp.mpf(10) ** -40
-                                          for c, y in zip(img, list(pt) + list(qt))):
+            if signs != [1, 1] or not encloses(img, list(pt) + list(qt)):
                 bad.append(f"lam0 = {l0}, mu = {m}, branch {b}: trace signs {signs}, the image does not enclose "
                            "the literal map")
     return bad
