@@ -32,7 +32,7 @@ def test_unpatched_verified(check):
 # ------------------------------------------------------------------------------------------ library.abel_cell
 
 @pytest.mark.parametrize("old, new", [
-    ("a, sg = abs(s), (1 if s >= 0 else -1)", "a, sg = abs(s), (1 if not (s >= 0) else -1)"),       # elliptic:223
+    ("u0 = mp.sign(s) * v", "u0 = -mp.sign(s) * v"),                                             # elliptic:232
     ("W = mp.sqrt((1 - s * s) * (1 - m * s * s))", "W = mp.sqrt((1 - s * s) * (0 - m * s * s))"),  # elliptic:224
     ("_F_m(1 / (mp.sqrt(m) * a), m), -W", "_F_m(1 / (mp.sqrt(m) * a), m), W"),                   # elliptic:231
     ("v, cd = K + 1j * _F_m(t, 1 - m), -W", "v, cd = K - 1j * _F_m(t, 1 - m), -W"),

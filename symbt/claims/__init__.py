@@ -57,6 +57,7 @@ CLAIM_MODULES = (
     "seed18",
     "seed21",
     "seed22",
+    "seed23",
     "contexts",
     "shipped_condition_file",
     "shipped_core",

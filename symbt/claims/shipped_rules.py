@@ -384,17 +384,22 @@ def batch_range(N: int) -> Outcome:
                    evidence="sampled", detail=detail, printed="NumericRangeError for the batch")
 
 
+#: paths.existence_iv: a state without a real map whose Etilde_j (-0.23, -0.015, 0.012) are near 0
+NEAR_EDGE = ((-4.82, 2.88, -1.34), (0.47, -2.95, -2.72), -5.11, 3.82)
+
+
 @claim("paths.existence_iv", equation="bt_step", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
        where="symbt/numeric/float64/existence.py: decide_existence (the escalation's interval verdict)",
        statement="decide_existence (interval arithmetic, 256 bits up), N={N}: OK at the paper's state (traces "
                  "-2021, -1332: both negative) and at its mirror p -> -p, lam0 -> -lam0 (traces positive), both "
                  "branches; the no-real-map status (POSITIVITY) at the states without a real map of shipped.nomap, "
                  "as the literal route decides them (50 digits with guard digits), also through escalate_rows with "
-                 "the paper's state as a second row (whose status is its own, as alone)")
+                 "the paper's state as a second row (whose status is its own, as alone); POSITIVITY near the "
+                 "positivity edge (a state whose Etilde_j are -0.23, -0.015, 0.012 by the literal route)")
 def existence_iv(N: int) -> Outcome:
     from ..numeric.core.limits import OK, POSITIVITY
     from ..numeric.float64.existence import decide_existence
-    from .shipped_emitted import nomap_states
+    from .shipped_emitted import _no_map, nomap_states
 
     paper = ((-20.0, 10.0, 1.0), (1.0, 0.0, 0.9), 10.0, 5.0)
     mirror = ((20.0, -10.0, -1.0), (1.0, 0.0, 0.9), -10.0, -5.0)
@@ -402,6 +407,10 @@ def existence_iv(N: int) -> Outcome:
     cases += [(st, b, POSITIVITY, "no map (%s)" % (cond[0] if isinstance(cond, tuple) else cond))
               for st, b, cond in nomap_states(N)]
     bad, seen = [], []
+    if N == 3:          # seed 23: the seeded states' Etilde_j are far below 0; a halved 2 mu in the test missed this
+        cases.append((NEAR_EDGE, 1, POSITIVITY, "near the positivity edge"))
+        if _no_map(NEAR_EDGE, 1) != ("E~ <= 0", True):
+            bad.append(f"the literal route finds {_no_map(NEAR_EDGE, 1)} at the near-edge state, want E~ <= 0")
     for st, b, want, name in cases:
         got, bits = decide_existence(np.array(st[0]), np.array(st[1]), float(st[2]), float(st[3]), b)
         seen.append(f"{name}, branch {b}: {got} at {bits} bits")

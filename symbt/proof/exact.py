@@ -63,14 +63,27 @@ def reduce_modulo(numerator: sp.Expr, relations: Mapping[sp.Symbol, sp.Expr]) ->
     replaces the numerator; passes are repeated until nothing changes, so a
     relation may involve other constrained symbols (``e2 - e1``, ``e1**2 - x``).
     The remainder differs from the numerator by a multiple of the relation, so
-    a zero remainder proves that the numerator vanishes wherever the relations do.
+    a zero remainder proves that the numerator vanishes wherever the relations do.  A relation that is not a
+    polynomial of degree at least 1 in its symbol raises ``ValueError``: dividing by it would prove anything
+    (the remainder of a division by a constant is 0).
+
+    >>> x, y = sp.symbols("x y")
+    >>> reduce_modulo(x**3 + y, {x: x**2 - y})
+    x*y + y
     """
     out = sp.expand(numerator)
     rels = {sym: sp.expand(rel) for sym, rel in relations.items()}
+    for sym, rel in rels.items():
+        try:
+            degree = sp.degree(rel, sym)
+        except sp.PolynomialError:
+            degree = None
+        if degree is None or degree < 1:
+            raise ValueError(f"relation {rel} = 0 is not a polynomial of degree 1 or more in {sym}")
     for _ in range(len(rels) + 2):
         before = out
         for sym, rel in rels.items():
-            if not out.has(sym) or sp.degree(rel, sym) < 1:
+            if not out.has(sym):
                 continue
             out = sp.expand(sp.rem(out, rel, sym))
         if out == before:

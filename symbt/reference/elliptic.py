@@ -220,7 +220,7 @@ def abel(s: MPNumber, w: MPNumber, m: mp.mpf) -> MPNumber:
     K = mp.ellipk(m)
     s = mp.mpmathify(s)
     if isinstance(s, mp.mpf):
-        a, sg = abs(s), (1 if s >= 0 else -1)
+        a = abs(s)
         W = mp.sqrt((1 - s * s) * (1 - m * s * s))
         if a <= 1:
             v, cd = _F_m(a, m), W
@@ -229,7 +229,7 @@ def abel(s: MPNumber, w: MPNumber, m: mp.mpf) -> MPNumber:
             v, cd = K + 1j * _F_m(t, 1 - m), -W
         else:
             v, cd = 1j * mp.ellipk(1 - m) + _F_m(1 / (mp.sqrt(m) * a), m), -W
-        u0 = sg * v
+        u0 = mp.sign(s) * v      # s = 0: v = F(0) = 0 either way
     else:  # complex s: u0 = s R_F(1-s^2, 1-m s^2, 1) (principal), cn dn(u0) = sqrt(1-s^2) sqrt(1-m s^2)
         u0 = _F_m(s, m)
         cd = mp.sqrt(1 - s * s) * mp.sqrt(1 - m * s * s)

@@ -1,0 +1,86 @@
+"""Seed 23's survivors (docs/mutation.md, "Seed 23"): planted bugs that the new claims now see, and the proof of a
+rewrite that removed a tie.  Unpatched, every claim verifies."""
+from __future__ import annotations
+
+import mpmath as mp
+import pytest
+from planting import claim_fails as fails
+from planting import planted
+
+from symbt.claims import REGISTRY, load_all
+
+load_all()
+
+CLAIMS = ["checker.relation_degree", "checker.inclusive_bounds", "library.source_lines"]
+
+
+@pytest.mark.parametrize("cid", CLAIMS)
+def test_unpatched_verified(cid):
+    assert REGISTRY[cid].run().status == "verified"
+
+
+def test_a_relation_constant_in_its_symbol_is_refused(monkeypatch):
+    # exact:73 (a degree test at `< 0`): the constant relation divides, and x y reduces to 0
+    from symbt.proof import exact
+
+    monkeypatch.setattr(exact, "reduce_modulo", planted(exact.reduce_modulo, "degree < 1:", "degree < 0:"))
+    assert fails("checker.relation_degree")
+
+
+@pytest.mark.parametrize(("old", "new"), [("(err is None or err <= t)", "(err is None or err < t)"),
+                                          ("holds = r <= t and", "holds = r < t and")])
+def test_verdict_tolerance_is_inclusive(monkeypatch, old, new):
+    # verdict:131 (the estimated error at the tolerance taken as too large)
+    from symbt.proof.verdict import Verdict
+
+    monkeypatch.setattr(Verdict, "sampled", classmethod(planted(Verdict.sampled.__func__, old, new)))
+    assert fails("checker.inclusive_bounds")
+
+
+@pytest.mark.parametrize(("old", "new"), [("if rp >= row.printed_worst:", "if rp > row.printed_worst:"),
+                                          ("if rp <= self.tol:", "if rp < self.tol:")])
+def test_cell_table_edges(monkeypatch, old, new):
+    # cells:106 (an all-zero cell names no worst point), and a sample at the tolerance counted as failing
+    from symbt.proof.cells import CellTable
+
+    monkeypatch.setattr(CellTable, "add", planted(CellTable.add, old, new))
+    assert fails("checker.inclusive_bounds")
+
+
+def test_block_kernels_keep_their_source_lines(monkeypatch):
+    # block_python:109 (the kernels' lines shifted by one)
+    from symbt.numeric.float64 import block_python
+
+    monkeypatch.setattr(block_python, "_rewritten", planted(block_python._rewritten, "co_firstlineno - 1)",
+                                                            "co_firstlineno - 0)"))
+    monkeypatch.setattr(block_python, "_KERNELS", block_python._build())
+    assert fails("library.source_lines")
+
+
+@pytest.mark.parametrize(("fn", "old", "new"), [("inlined", "co_firstlineno - 1)", "co_firstlineno - 2)"),
+                                                ("_index", "n.slice.value >= 0:", "n.slice.value > 0:")])
+def test_inliner_lines_and_spread_tuples(monkeypatch, fn, old, new):
+    # inline:363 (a tuple read at index 0 left built) and the inlined function's lines
+    from symbt.numeric.core import inline
+
+    monkeypatch.setattr(inline, fn, planted(getattr(inline, fn), old, new))
+    assert fails("library.source_lines")
+
+
+def test_abel_at_zero_is_zero():
+    # elliptic:223's tie went with the rewrite `u0 = sign(s) v`: at s = 0 both factors are 0 (F(0) = 0), and
+    # mpmath has no signed zero, so the old `1 if s >= 0 else -1` and any other choice of sign give the same u0
+    from symbt.reference.elliptic import _F_m, abel
+
+    for m in (mp.mpf("0.25"), mp.mpf("0.9")):
+        assert _F_m(mp.mpf(0), m) == 0
+        assert abel(mp.mpf(0), mp.mpf(1), m) == 0
+        assert -mp.mpf(0) == mp.mpf(0) and str(-mp.mpf(0)) == "0.0"
+
+
+def test_existence_near_the_positivity_edge(monkeypatch):
+    # existence:84 (the interval test's 2 mu halved): says OK wherever every Etilde_j > -1
+    from symbt.numeric.float64 import existence
+
+    monkeypatch.setattr(existence, "_at", planted(existence._at, "IV.div(2 * m, a - b)", "IV.div(m, a - b)"))
+    assert fails("paths.existence_iv.n3")
