@@ -50,11 +50,11 @@ def test_the_scene_has_the_claims_named_here():
                              "paths.members.n3", "paths.mixed_block.n3", "paths.mp_verdict.n3", "paths.next_prec.n3",
                              "paths.panels", "paths.python_kernel.n3", "paths.q_low.n3", "paths.qd.n2", "paths.qd.n3",
                              "paths.qd_decompose", "paths.qd_tables", "paths.range_edge.n2", "paths.renorm_top.n2",
-                             "paths.root_slope", "paths.rows_out.n3", "paths.scaled_trace.n4", "paths.scaled_trace.n5",
-                             "paths.side_by_side.n3", "paths.spectral_overflow.n3", "paths.step_core.n3",
-                             "paths.stored.n3", "paths.symmetric_monodromy.n2", "paths.threshold.n3",
-                             "paths.tiny_mu.n3", "paths.track_hooks", "paths.transfer_gradient.n4",
-                             "paths.transfer_gradient.n5", "paths.zero_radius.n3"]
+                             "paths.root_slope", "paths.rows_apart.n3", "paths.rows_out.n3", "paths.scaled_trace.n4",
+                             "paths.scaled_trace.n5", "paths.side_by_side.n3", "paths.spectral_overflow.n3",
+                             "paths.step_core.n3", "paths.stored.n3", "paths.symmetric_monodromy.n2",
+                             "paths.threshold.n3", "paths.tiny_mu.n3", "paths.track_hooks",
+                             "paths.transfer_gradient.n4", "paths.transfer_gradient.n5", "paths.zero_radius.n3"]
 
 
 @pytest.mark.parametrize("cid", NUMERIC_PATHS)

@@ -195,12 +195,14 @@ def test_exact_route_names_kills_the_exponential_names(monkeypatch):
 
 
 def test_magnitude_of_a_zeroth_power_is_equivalent():
-    # magnitude:32 (`exp > 0` -> `exp >= 0`): SymPy evaluates b**0 to 1, so a Pow with exponent 0 exists only
-    # unevaluated, and then m(b)**0 = |b**0| = 1 (mpmath: 0**0 = 1 too); every other power is unchanged
+    # magnitude:32 (then `exp > 0` -> `exp >= 0`; the test is `is_positive` now, no mark needed): SymPy evaluates
+    # b**0 to 1, so a Pow with exponent 0 exists only unevaluated, and then m(b)**0 = |b**0| = 1 (mpmath: 0**0 = 1
+    # too); every other power is unchanged
     from symbt.proof import magnitude as M
     from symbt.proof.lambdify import plain_lambdify
 
-    mutant = planted(M.magnitude, "expr.exp.is_Integer and expr.exp > 0:", "expr.exp.is_Integer and expr.exp >= 0:")
+    mutant = planted(M.magnitude, "expr.exp.is_Integer and expr.exp.is_positive:",
+                     "expr.exp.is_Integer and expr.exp.is_nonnegative:")
     x, y = sp.symbols("x y")
     assert (x - y) ** 0 == 1 and not isinstance((x - y) ** 0, sp.Pow)
     zeroth = sp.Pow(x - y, 0, evaluate=False)

@@ -11,7 +11,8 @@ from symbt.claims import REGISTRY, load_all
 
 load_all()
 
-CLAIMS = ["checker.relation_degree", "checker.inclusive_bounds", "library.source_lines"]
+CLAIMS = ["checker.relation_degree", "checker.inclusive_bounds", "library.source_lines", "checker.magnitude_moduli",
+          "library.reference_edges", "paths.rows_apart.n3"]
 
 
 @pytest.mark.parametrize("cid", CLAIMS)
@@ -84,3 +85,51 @@ def test_existence_near_the_positivity_edge(monkeypatch):
 
     monkeypatch.setattr(existence, "_at", planted(existence._at, "IV.div(2 * m, a - b)", "IV.div(m, a - b)"))
     assert fails("paths.existence_iv.n3")
+
+
+@pytest.mark.parametrize(("old", "new"), [("sp.Abs(expr, evaluate=False)", "sp.Abs(expr, evaluate=True)"),
+                                          ("return sp.Pow(magnitude(expr.base), expr.exp, evaluate=False)",
+                                           "return sp.Pow(magnitude(expr.base), expr.exp, evaluate=True)")])
+def test_magnitude_stays_a_modulus(monkeypatch, old, new):
+    # magnitude:42 (an evaluated Abs of a positive symbol is the symbol)
+    from symbt.proof import magnitude as M
+
+    monkeypatch.setattr(M, "magnitude", planted(M.magnitude, old, new))
+    assert fails("checker.magnitude_moduli")
+
+
+def test_magnitude_has_no_power_one():
+    # magnitude:40's old `exp > 0` mutated to `> 1` differed only at exponent 1, which SymPy never builds as a
+    # Pow (x**1 is x); the test is now `is_positive`, which names what it means
+    import sympy as sp
+
+    x = sp.Symbol("x")
+    assert not isinstance(x ** 1, sp.Pow) and isinstance(x ** 2, sp.Pow)
+
+
+@pytest.mark.parametrize(("module", "fn", "old", "new"), [
+    ("symbt.reference.elliptic", "shift", "abs(T1) >= 2 and abs(T2) >= 2:", "abs(T1) >= 2 and abs(T2) > 2:"),
+    ("symbt.reference.spectral", "flow_coefficients_jacobian", "for k in range(len(p) + 1)]",
+     "for k in range(len(p) + 0)]"),
+    ("symbt.reference.spectral", "flow_coefficients_jacobian", "-branch * (f(lp, k) + f(lm, k))",
+     "-branch * (f(lp, k) - f(lm, k))"),
+    ("symbt.reference.inverse", "solve_parameters", "mp.sqrt(abs(t0 ** 2 - 4))", "mp.sqrt(t0 ** 2 - 4)"),
+])
+def test_reference_edges(monkeypatch, module, fn, old, new):
+    # elliptic:270 (a band edge taken as inside a band), spectral:82 (the last pair dropped), inverse:178
+    import importlib
+
+    mod = importlib.import_module(module)
+    monkeypatch.setattr(mod, fn, planted(getattr(mod, fn), old, new))
+    if module == "symbt.reference.spectral":            # inverse binds it by name
+        monkeypatch.setattr("symbt.reference.inverse." + fn, getattr(mod, fn))
+    assert fails("library.reference_edges")
+
+
+def test_rows_apart_keep_their_own_centre(monkeypatch):
+    # orbit:246 (the compensated centre of mass written one row off once a row has left)
+    from symbt.numeric.float64 import orbit
+
+    monkeypatch.setattr(orbit, "_general_block", planted(orbit._general_block, "c_hi[alive], c_lo[alive] = t, lo",
+                                                         "c_hi[alive], c_lo[alive - 1] = t, lo"))
+    assert fails("paths.rows_apart.n3")

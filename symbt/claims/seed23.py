@@ -15,6 +15,24 @@ r"""What the samples of seeds 23 and 24 found unread (issue 21).
   :func:`symbt.numeric.core.inline.inlined` start at their source function's first line in its file.  And the
   inliner spreads a body's tuple read by constant index, ``t[0]`` included, into one local per element: the inlined
   code subscripts nothing and gives the plain call's value (seed 23: index 0 left the tuple built).
+* ``checker.magnitude_moduli`` -- :func:`symbt.proof.magnitude.magnitude`, the size the screen divides by, stays a
+  modulus whatever the symbols' assumptions (a relation's root can be complex at a sample): ``magnitude(p)`` for a
+  positive ``p`` is 5 at ``p = 3 + 4i``, ``magnitude(eta^2)`` is 1 at ``eta = i`` (seed 24: an evaluated ``Abs``
+  dropped the modulus of a positive symbol).
+* ``library.reference_edges`` -- three edges of :mod:`symbt.reference` checked against routes outside it: the
+  one-step shift of the elliptic solution at a band edge (``I1 = 0, I2 = 7, lam0 = 4, mu = 1``: ``T2 = 2``,
+  ``T1 = 18`` exactly) has the real phase ``dtheta1_real = -branch arccosh(9)`` (mpmath's ``acosh``), as its
+  docstring says (None only where some ``|T| < 2``); :func:`~symbt.reference.spectral.flow_coefficients_jacobian`
+  gives all ``N + 1`` pairs ``(dc_k/dlam0, dc_k/dmu)``, each within ``1e-12`` of central differences of the
+  quadrature route ``flow_coefficients_mp`` (both branches); and
+  :func:`~symbt.reference.inverse.solve_parameters` from a target whose small-mu start ``c_1/c_0 = 2`` lies in a
+  band (``tr = 0.74`` there) refuses with ``ValueError`` (seed 24: the start's square root of a negative number
+  made it complex, and the refusal a ``TypeError``).
+* ``paths.rows_apart.n3`` -- the general float64 orbit (``general_orbit``, what ``backend="numpy"`` runs for an
+  ensemble) with a row that has no real map beside two rows far from the origin (``q + 300.3``, ``q - 211.7``):
+  the first is refused at step 1 with the positivity code, and every stored state of the others, low parts of the
+  positions included, is bit for bit that of each row alone (a consistency check; seed 24: the compensated centre
+  of mass written to the neighbouring row once a row had left the batch).
 """
 from __future__ import annotations
 
@@ -22,6 +40,8 @@ import dis
 import inspect
 from typing import Any
 
+import mpmath as mp
+import numpy as np
 import sympy as sp
 
 from .base import Outcome, claim, failed
@@ -118,3 +138,106 @@ def source_lines() -> Outcome:
         return failed(f"{len(bad)} of {len(names) + 3} facts", detail="; ".join(bad))
     return Outcome("verified", f"{len(names)} block kernels and an inlined function at their source's lines; "
                    "the tuple spread", evidence="proof", n_scope="all")
+
+
+@claim("checker.magnitude_moduli", equation="checker", scene="checker",
+       where="symbt.proof.magnitude.magnitude (the screen's scale)",
+       statement="magnitude(p) for a positive symbol p is 5 at p = 3 + 4i; magnitude(eta^2) for a real eta is 1 at "
+                 "eta = i (moduli, whatever the assumptions)")
+def magnitude_moduli() -> Outcome:
+    from ..proof.magnitude import magnitude
+
+    p, eta = sp.Symbol("p", positive=True), sp.Symbol("eta", real=True)
+    got = [complex(sp.N(magnitude(p).subs(p, 3 + 4 * sp.I))), complex(sp.N(magnitude(eta ** 2).subs(eta, sp.I)))]
+    if got != [5, 1]:
+        return failed("exact: moduli written by hand", detail=f"got {got}, want [5, 1]")
+    return Outcome("verified", "exact: moduli written by hand", evidence="proof", n_scope="all", detail=f"{got}")
+
+
+#: library.reference_edges: an N = 2 state, a real (lam0, mu) in its outer gap, a target's c_1/c_0 in a band
+EDGE_STATE, EDGE_PARAMS, EDGE_BAND_RATIO = (("1", "-1"), ("0", "0.5")), ("3.5", "0.3"), 2
+
+
+def _defined(cs: list[Any]) -> list[Any]:
+    """The coefficients, each defined (``flow_coefficients_mp`` gives None where one is not)."""
+    if any(c is None for c in cs):
+        raise ArithmeticError(f"a flow coefficient undefined at a real parameter: {cs}")
+    return cs
+
+
+@claim("library.reference_edges", equation="checker", scene="library", N=2,
+       where="symbt.reference: elliptic.shift at a band edge, spectral.flow_coefficients_jacobian, "
+             "inverse.solve_parameters' start",
+       statement="shift(I1 = 0, I2 = 7, lam0 = 4, mu = 1) (T2 = 2, T1 = 18) has dtheta1_real = -branch arccosh(9) "
+                 "(mpmath acosh, 30 digits); flow_coefficients_jacobian at p = (1, -1), q = (0, 1/2), lam0 = 3.5, mu = "
+                 "0.3 gives N + 1 pairs, each within 1e-12 of central differences (h = 1e-8) of flow_coefficients_mp, "
+                 "both branches; solve_parameters from the target (c_0, 2 c_0) (its start lam0 = 2 in a band) raises "
+                 "ValueError")
+def reference_edges() -> Outcome:
+    from ..reference.elliptic import shift
+    from ..reference.inverse import solve_parameters
+    from ..reference.spectral import flow_coefficients_jacobian, flow_coefficients_mp
+
+    bad: list[str] = []
+    with mp.workdps(30):
+        for b in (1, -1):
+            real = shift(mp.mpf(0), mp.mpf(7), mp.mpf(4), mp.mpf(1), b)["dtheta1_real"]
+            if real is None or not abs(real + b * mp.acosh(9)) <= mp.mpf(10) ** -25:
+                bad.append(f"shift at T2 = 2, branch {b}: dtheta1_real {real}, want {mp.nstr(-b * mp.acosh(9), 20)}")
+        p, q = [[mp.mpf(v) for v in x] for x in EDGE_STATE]
+        l0, mu = (mp.mpf(v) for v in EDGE_PARAMS)
+        h = mp.mpf("1e-8")
+        for b in (1, -1):
+            J = flow_coefficients_jacobian(p, q, l0, b * mu, b)
+            around = [[_defined(flow_coefficients_mp(p, q, l0 + s * h, b * mu, b)) for s in (1, -1)],
+                      [_defined(flow_coefficients_mp(p, q, l0, b * mu + s * h, b)) for s in (1, -1)]]
+            fd = [tuple((c[0][k] - c[1][k]) / (2 * h) for c in around) for k in range(len(p) + 1)]
+            if len(J) != len(fd) or any(abs(a - e) > mp.mpf(10) ** -12 * max(1, abs(e))
+                                        for pair, want in zip(J, fd) for a, e in zip(pair, want)):
+                bad.append(f"jacobian, branch {b}: {len(J)} pairs {[[mp.nstr(v, 8) for v in x] for x in J]}, "
+                           f"central differences {[[mp.nstr(v, 8) for v in x] for x in fd]}")
+        c0 = _defined(flow_coefficients_mp(p, q, l0, mu, 1))[0]
+        try:
+            r = solve_parameters(p, q, [c0, EDGE_BAND_RATIO * c0])
+            bad.append(f"solve_parameters from a start in a band: answered {r}")
+        except ValueError:
+            pass
+        except Exception as exc:          # noqa: BLE001 -- any other error is the finding
+            bad.append(f"solve_parameters from a start in a band: {type(exc).__name__}: {exc}")
+    if bad:
+        return failed("numeric: mpmath acosh, central differences, the documented refusal", detail="; ".join(bad))
+    return Outcome("verified", "numeric: mpmath acosh, central differences, the documented refusal",
+                   evidence="sampled", n_scope=[2], detail="3 edges, both branches")
+
+
+@claim("paths.rows_apart", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
+       where="symbt/numeric/float64/orbit.py: general_orbit (backend='numpy' ensembles) after a row leaves",
+       statement="general_orbit (N={N}, 4 steps, low parts kept) of three rows -- a state without a real map "
+                 "(paths.existence_iv's near-edge state), the paper's state at q + 300.3 and its reverse at q - "
+                 "211.7 (mu = 5, 4) -- refuses the first at step 1 (positivity) and stores the others bit for bit "
+                 "as each row alone (a consistency check)")
+def rows_apart(N: int) -> Outcome:
+    from ..numeric.core.limits import OK, POSITIVITY
+    from ..numeric.float64.orbit import general_orbit
+    from .shipped_rules import NEAR_EDGE
+
+    def run(pa: np.ndarray, qa: np.ndarray, l0: np.ndarray, m: np.ndarray) -> tuple[Any, ...]:
+        P, Q = np.empty((5, len(pa), N)), np.empty((5, len(pa), 2 * N))
+        st, step = general_orbit(pa, qa, l0, m, 1, 4, 1, P, Q, np.arange(len(pa)))
+        return P, Q, st.tolist(), step.tolist()
+
+    p, q = np.array([-20.0, 10.0, 1.0]), np.array([1.0, 0.0, 0.9])
+    pa, qa = np.array([NEAR_EDGE[0], p, p[::-1]]), np.array([NEAR_EDGE[1], q + 300.3, q - 211.7])
+    l0, m = np.array([NEAR_EDGE[2], 10.0, 10.0]), np.array([NEAR_EDGE[3], 5.0, 4.0])
+    P, Q, st, step = run(pa, qa, l0, m)
+    bad = [] if (st[0], step[0]) == (POSITIVITY, 1) else [f"the no-map row: status {st[0]} at step {step[0]}"]
+    for k in (1, 2):
+        P1, Q1, s1, _ = run(pa[k:k + 1], qa[k:k + 1], l0[k:k + 1], m[k:k + 1])
+        if not (st[k] == s1[0] == OK and np.array_equal(P[:, k], P1[:, 0]) and np.array_equal(Q[:, k], Q1[:, 0])):
+            bad.append(f"row {k}: status {st[k]} (alone {s1[0]}), largest difference from alone "
+                       f"{float(np.abs(Q[:, k] - Q1[:, 0]).max()):.3g}")
+    if bad:
+        return failed("numeric: each row against itself alone", detail="; ".join(bad))
+    return Outcome("verified", "numeric: each row against itself alone (consistency)", evidence="sampled",
+                   detail="the no-map row refused at step 1; two rows bit for bit as alone",
+                   printed="every row = itself alone")

@@ -300,8 +300,8 @@ def _with_guards(spec: FunctionSpec, extra: tuple[Guard, ...], ill_t: tuple[Guar
 
 
 def _check_dacosh() -> None:
-    # d/dT arccosh(T/2) = 1/sqrt(T^2 - 4) for T > 2 (both sides positive: compare squares exactly)
-    T = sp.Symbol("T", positive=True)
+    # d/dT arccosh(T/2) = 1/sqrt(T^2 - 4) for T > 2 (both sides positive: squares compared, no assumption on T)
+    T = sp.Symbol("T")
     if sp.cancel(sp.diff(sp.acosh(T / 2), T) ** 2 - 1 / (T ** 2 - 4)) != 0:
         raise AssertionError("d/dT arccosh(T/2) != 1/sqrt(T^2 - 4)")
 

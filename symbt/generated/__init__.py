@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: ac12ed4793f7987b456beca2bac805d7605b26f588125e3864c41773d1833a6d
-# symbt-codegen-content-sha256: 4d089180907710b2f3465742f52da010b2bcbb7ca8b827402ef90fd776f9ed79
+# symbt-codegen-derivation-sha256: a01c657fb3b94bdcfb66810b64615cb83716d08a13e0e2afdbc6dca95d843916
+# symbt-codegen-content-sha256: 9aaac9d234edc7a3e574174fc9e00f71ef4d92a95fb9766c87cb89318f40d6ca
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: ac12ed4793f7987b456beca2bac805d7605b26f588125e3864c41773d1833a6d
-# symbt-codegen-content-sha256: 85d6c8ed1aa544976526e87e9a182d420cbef91d25642f3c426194a2fe0ec0e2
+# symbt-codegen-derivation-sha256: a01c657fb3b94bdcfb66810b64615cb83716d08a13e0e2afdbc6dca95d843916
+# symbt-codegen-content-sha256: 98bd7da5d90608a6924615a5eead8e7607cd0e66535366c71b18370eaa259c2c
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

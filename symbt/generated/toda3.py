@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: ac12ed4793f7987b456beca2bac805d7605b26f588125e3864c41773d1833a6d
-# symbt-codegen-content-sha256: 47732b0ce15a6af91ab62b8aeff467a7f6261607a9d69c5ae29dc978c9d21ef2
+# symbt-codegen-derivation-sha256: a01c657fb3b94bdcfb66810b64615cb83716d08a13e0e2afdbc6dca95d843916
+# symbt-codegen-content-sha256: 0640d568bdce1de41fecd7a2511b82b0429814d852f464853370521e1a16536f
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

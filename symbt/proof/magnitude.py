@@ -37,7 +37,7 @@ def magnitude(expr: sp.Expr) -> sp.Expr:
         return sp.Max(*(magnitude(a) for a in expr.args), evaluate=False)
     if isinstance(expr, sp.Mul):
         return sp.Mul(*(magnitude(a) for a in expr.args), evaluate=False)
-    if isinstance(expr, sp.Pow) and expr.exp.is_Integer and expr.exp > 0:
+    if isinstance(expr, sp.Pow) and expr.exp.is_Integer and expr.exp.is_positive:
         return sp.Pow(magnitude(expr.base), expr.exp, evaluate=False)
     return sp.Abs(expr, evaluate=False)
 
