@@ -12,7 +12,7 @@ from symbt.claims import REGISTRY, load_all
 load_all()
 
 CLAIMS = ["checker.relation_degree", "checker.inclusive_bounds", "library.source_lines", "checker.magnitude_moduli",
-          "library.reference_edges", "paths.rows_apart.n3"]
+          "library.reference_edges", "paths.rows_apart.n3", "library.project_roots"]
 
 
 @pytest.mark.parametrize("cid", CLAIMS)
@@ -133,3 +133,32 @@ def test_rows_apart_keep_their_own_centre(monkeypatch):
     monkeypatch.setattr(orbit, "_general_block", planted(orbit._general_block, "c_hi[alive], c_lo[alive] = t, lo",
                                                          "c_hi[alive], c_lo[alive - 1] = t, lo"))
     assert fails("paths.rows_apart.n3")
+
+
+@pytest.mark.parametrize(("old", "new"), [('== "symbt")', '!= "symbt")'),
+                                          ('(root / "symbt" / "__init__.py").is_file()',
+                                           '(root / "symbt" / "__init__.py").exists() or True')])
+def test_project_roots(monkeypatch, old, new):
+    # codegen.project:47 (the name test negated: no claim had reached it), and the package test dropped
+    from symbt.codegen import project
+
+    monkeypatch.setattr(project, "is_project", planted(project.is_project, old, new))
+    assert fails("library.project_roots")
+
+
+def test_screen_scale_zero_only_where_both_sides_are_zero():
+    # screen:384's old branch for scale 0 built its own PointCheck with `lv - rv` (mutated to `lv + rv`: the same
+    # there); one construction now.  Scale 0 happens only where both sides are exactly 0 (so lv - rv = lv + rv = 0)
+    import itertools
+
+    import sympy as sp
+
+    from symbt.proof import screen as S
+
+    values = [mp.mpf(0), mp.mpf("1e-30"), mp.mpf(-2), mp.mpc(0, 1)]
+    for lv, rv, m in itertools.product(values, values, [mp.mpf(0), mp.mpf("1e-20"), mp.mpf(3), mp.inf]):
+        assert (S._scale(lv, rv, lambda m=m: m) == 0) == (lv == rv == 0 and m == 0), (lv, rv, m)
+    x = sp.Symbol("x")
+    zero = sp.Mul(x, 0, evaluate=False)
+    r = S.screen(zero, zero, {}, 30, 3, 1, {})
+    assert r.status == "verified" and r.residual == 0

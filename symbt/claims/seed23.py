@@ -33,11 +33,17 @@ r"""What the samples of seeds 23 and 24 found unread (issue 21).
   the first is refused at step 1 with the positivity code, and every stored state of the others, low parts of the
   positions included, is bit for bit that of each row alone (a consistency check; seed 24: the compensated centre
   of mass written to the neighbouring row once a row had left the batch).
+* ``library.project_roots`` -- :func:`symbt.codegen.project.find_project` (which checkout ``symbt codegen`` acts on)
+  in throw-away directories: from two levels below a directory holding a ``pyproject.toml`` named ``symbt`` and a
+  ``symbt/`` package it finds that directory; named ``other``, or without the package, none (seed 24: the name
+  test negated, which no claim had reached).
 """
 from __future__ import annotations
 
 import dis
 import inspect
+import tempfile
+from pathlib import Path
 from typing import Any
 
 import mpmath as mp
@@ -241,3 +247,29 @@ def rows_apart(N: int) -> Outcome:
     return Outcome("verified", "numeric: each row against itself alone (consistency)", evidence="sampled",
                    detail="the no-map row refused at step 1; two rows bit for bit as alone",
                    printed="every row = itself alone")
+
+
+@claim("library.project_roots", equation="checker", scene="library",
+       where="symbt.codegen.project.find_project, is_project",
+       statement="in a temporary tree, find_project from root/a/b is root when root holds pyproject.toml with "
+                 "[project] name = 'symbt' and symbt/__init__.py; None when the name is 'other' or the package is "
+                 "missing")
+def project_roots() -> Outcome:
+    from ..codegen.project import find_project
+
+    got = {}
+    cases = (("symbt", "symbt", True), ("other name", "other", True), ("no package", "symbt", False))
+    for case, name, package in cases:
+        with tempfile.TemporaryDirectory() as d:
+            root = Path(d).resolve()
+            (root / "pyproject.toml").write_text(f'[project]\nname = "{name}"\n', encoding="utf-8")
+            if package:
+                (root / "symbt").mkdir()
+                (root / "symbt" / "__init__.py").write_text("", encoding="utf-8")
+            (root / "a" / "b").mkdir(parents=True)
+            found = find_project(root / "a" / "b")
+            got[case] = "root" if found == root else found
+    want = {"symbt": "root", "other name": None, "no package": None}
+    if got != want:
+        return failed("exact: directories written by hand", detail=f"got {got}, want {want}")
+    return Outcome("verified", "exact: directories written by hand", evidence="proof", n_scope="all", detail=f"{got}")

@@ -378,10 +378,9 @@ def screen(lhs: sp.Expr, rhs: sp.Expr, relations: Mapping[sp.Symbol, sp.Expr], d
                 continue  # a pole or an undefined value: not a test of the identity
             scale = _scale(lv, rv, _sizer(f_size, allv))
             point = {str(s): _fmt(v) for s, v in zip(args, allv)}
-            if scale:
-                checks.append(PointCheck(abs(lv - rv) / scale, (el + er) / scale, point, allv, picks, lv - rv, scale))
-            else:   # every side and term exactly 0: agrees (its quadratures' error counted as it is)
-                checks.append(PointCheck(mpmath.mpf(0), el + er, point, allv, picks, lv - rv, scale))
+            # scale 0: both sides and every term exactly 0 -- agrees (its quadratures' error counted as it is)
+            rel, err = (abs(lv - rv) / scale, (el + er) / scale) if scale else (mpmath.mpf(0), el + er)
+            checks.append(PointCheck(rel, err, point, allv, picks, lv - rv, scale))
     if not checks:
         raise ValueError(f"no admissible sample point in {attempts} draws "
                          "(every point hit a pole or an undefined value)")
