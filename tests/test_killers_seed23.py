@@ -12,7 +12,8 @@ from symbt.claims import REGISTRY, load_all
 load_all()
 
 CLAIMS = ["checker.relation_degree", "checker.inclusive_bounds", "library.source_lines", "checker.magnitude_moduli",
-          "library.reference_edges", "paths.rows_apart.n3", "library.project_roots"]
+          "library.reference_edges", "paths.rows_apart.n3", "library.project_roots", "checker.matrix_methods",
+          "library.verify_points", "library.fresh_toda2"]
 
 
 @pytest.mark.parametrize("cid", CLAIMS)
@@ -114,6 +115,12 @@ def test_magnitude_has_no_power_one():
     ("symbt.reference.spectral", "flow_coefficients_jacobian", "-branch * (f(lp, k) + f(lm, k))",
      "-branch * (f(lp, k) - f(lm, k))"),
     ("symbt.reference.inverse", "solve_parameters", "mp.sqrt(abs(t0 ** 2 - 4))", "mp.sqrt(t0 ** 2 - 4)"),
+    # seed 25: spectral:40 (a strict band test divides by zero at the edge), :70 (the quadrature checks anyway),
+    # :76 (the Jacobian's default branch)
+    ("symbt.reference.spectral", "phi_gradient", "if abs(t) <= 2:", "if abs(t) < 2:"),
+    ("symbt.reference.spectral", "flow_coefficients_mp", "branch=branch, ks=want, check=False)",
+     "branch=branch, ks=want, check=True)"),
+    ("symbt.reference.spectral", "flow_coefficients_jacobian", "branch: int = 1)", "branch: int = 0)"),
 ])
 def test_reference_edges(monkeypatch, module, fn, old, new):
     # elliptic:270 (a band edge taken as inside a band), spectral:82 (the last pair dropped), inverse:178
@@ -121,7 +128,7 @@ def test_reference_edges(monkeypatch, module, fn, old, new):
 
     mod = importlib.import_module(module)
     monkeypatch.setattr(mod, fn, planted(getattr(mod, fn), old, new))
-    if module == "symbt.reference.spectral":            # inverse binds it by name
+    if module == "symbt.reference.spectral" and fn != "phi_gradient":            # inverse binds them by name
         monkeypatch.setattr("symbt.reference.inverse." + fn, getattr(mod, fn))
     assert fails("library.reference_edges")
 
@@ -162,3 +169,32 @@ def test_screen_scale_zero_only_where_both_sides_are_zero():
     zero = sp.Mul(x, 0, evaluate=False)
     r = S.screen(zero, zero, {}, 30, 3, 1, {})
     assert r.status == "verified" and r.residual == 0
+
+
+def test_matrix_method_names_every_entry(monkeypatch):
+    # decider:184 (the second entry's method; a 1x1 matrix then raises IndexError) and the first entry's only
+    from symbt.proof import decider
+
+    for new in ("parts[1].method", "parts[0].method"):
+        monkeypatch.setattr(decider, "decide", planted(decider.decide,
+                                                       '" | ".join(dict.fromkeys(d.method for d in parts))', new))
+        assert fails("checker.matrix_methods", crash=True)
+        monkeypatch.undo()
+
+
+def test_verify_points_both_parameters(monkeypatch):
+    # codegen.verify:73 (lam0 - mu sampled twice)
+    from symbt.codegen import verify
+
+    monkeypatch.setattr(verify, "points", planted(verify.points, "for lv in (l0 + m, l0 - m):",
+                                                  "for lv in (l0 - m, l0 - m):"))
+    assert fails("library.verify_points")
+
+
+def test_codegen_names_what_it_wrote(monkeypatch):
+    # codegen.cli:131 (`if not args.quiet` negated: the report printed only under --quiet)
+    from symbt.codegen import cli
+
+    monkeypatch.setattr(cli, "main", planted(cli.main, "    if not args.quiet:\n        for p in paths:",
+                                             "    if args.quiet:\n        for p in paths:"))
+    assert fails("library.fresh_toda2")

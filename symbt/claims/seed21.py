@@ -1,8 +1,10 @@
 r"""What the samples of seeds 20 and 21 found unread (issue 21).
 
 * ``library.fresh_toda2`` -- the shipped ``symbt/generated/toda2.py`` below its provenance header is the text
-  :func:`symbt.codegen.emit.module_body` renders now.  A consistency check (the file against a fresh rendering of
-  its own derivation), and the only one in the default run that reads the emitted *text*: ``symbt codegen
+  ``symbt codegen --installed --n 2 --out DIR`` writes now (into a throw-away directory, in this process), and the
+  command names the two files it wrote (seed 25: its report under ``--quiet`` negated, which no claim had run).  A
+  consistency check (the file against a fresh rendering of its own derivation; the body only -- the header's hash
+  is ``--check``'s), and the only one in the default run that reads the emitted *text*: ``symbt codegen
   --check`` compares the derivation's hash, the value claims compare numbers, and a changed docstring or a guard
   printed in another form passes both (seed 20: the numpy docstrings' shape words, the error list of ``bt_step``).
   Skipped when the installed SymPy is not the one the header names (another SymPy may print other text).  And
@@ -59,15 +61,20 @@ def _body(text: str) -> str:
 
 
 @claim("library.fresh_toda2", equation="checker", scene="library", N=2,
-       where="symbt/generated/toda2.py vs symbt.codegen.emit.module_body(2) rendered now",
-       statement="the shipped toda2.py below its provenance header is the text module_body(2) renders now (a "
-                 "consistency check of the emitted text; skipped under a SymPy other than the header's); form_of is "
-                 "the closed form for N = 2, 3 and the transfer-matrix form for N = 4, 5, 6")
+       where="symbt/generated/toda2.py vs `symbt codegen --installed --n 2 --out DIR` run now",
+       statement="the shipped toda2.py below its provenance header is the text `symbt codegen --installed --n 2 "
+                 "--out DIR` writes now, and the command names the two files it wrote (a consistency check of the "
+                 "emitted text; skipped under a SymPy other than the header's); form_of is the closed form for N = "
+                 "2, 3 and the transfer-matrix form for N = 4, 5, 6")
 def fresh_toda2() -> Outcome:
+    import contextlib
+    import io
+    import tempfile
+
     import sympy
 
     from .. import generated
-    from ..codegen.emit import module_body
+    from ..codegen.cli import main as codegen_main
     from ..codegen.provenance import read_header
 
     method = "exact: the shipped file's text against a fresh rendering (consistency)"
@@ -76,7 +83,15 @@ def fresh_toda2() -> Outcome:
     made_with = read_header(text).get("sympy")
     if made_with != sympy.__version__:
         return skipped(f"{path.name} was rendered with SymPy {made_with}, this is {sympy.__version__}")
-    body, rendered = _body(text), module_body(2)
+    # the body only: the header's hash of the derivation sources is `symbt codegen --check`'s business
+    with tempfile.TemporaryDirectory() as d, contextlib.redirect_stdout(io.StringIO()) as said:
+        out = Path(d).resolve()
+        status = codegen_main(["--installed", "--n", "2", "--out", str(out)])
+        rendered = _body((out / "toda2.py").read_text(encoding="utf-8")) if status == 0 else ""
+    wrote = [f"wrote {out / name}" for name in ("__init__.py", "toda2.py")]
+    if status != 0 or said.getvalue().splitlines() != wrote:
+        return failed(method, detail=f"symbt codegen exit {status}, said {said.getvalue()!r}, want {wrote}")
+    body = _body(text)
     shipped, fresh = body.splitlines(), rendered.splitlines()
     if body != rendered:
         k = next((i for i, (a, b) in enumerate(zip(shipped, fresh)) if a != b), min(len(shipped), len(fresh)))

@@ -27,12 +27,24 @@ r"""What the samples of seeds 23 and 24 found unread (issue 21).
   quadrature route ``flow_coefficients_mp`` (both branches); and
   :func:`~symbt.reference.inverse.solve_parameters` from a target whose small-mu start ``c_1/c_0 = 2`` lies in a
   band (``tr = 0.74`` there) refuses with ``ValueError`` (seed 24: the start's square root of a negative number
-  made it complex, and the refusal a ``TypeError``).
+  made it complex, and the refusal a ``TypeError``).  At an exact band edge of the free chain (``p = q = 0``,
+  N = 2: ``tr L(lam) = lam^2 - 2``, so ``tr = 2`` at ``lam = 2``): ``flow_coefficients_mp`` over ``[2, 3]`` with
+  ``check=False`` integrates through the edge's integrable singularity to the closed forms
+  ``c_0 = -b arccos(2/3)/2``, ``c_1 = -b arccosh(3/2)``, ``c_2 = -b sqrt 5`` (within ``1e-8`` at 15 digits; seed 25: the
+  quadrature asked to check anyway), with the default ``check`` it refuses, and ``phi_gradient`` there refuses with
+  ``NoRealFlowError`` (seed 25: a strict test divided by zero); the Jacobian's default branch is +1 (seed 25).
 * ``paths.rows_apart.n3`` -- the general float64 orbit (``general_orbit``, what ``backend="numpy"`` runs for an
   ensemble) with a row that has no real map beside two rows far from the origin (``q + 300.3``, ``q - 211.7``):
   the first is refused at step 1 with the positivity code, and every stored state of the others, low parts of the
   positions included, is bit for bit that of each row alone (a consistency check; seed 24: the compensated centre
   of mass written to the neighbouring row once a row had left the batch).
+* ``checker.matrix_methods`` -- :func:`symbt.decide` on matrices says how each entry was proved: a 1x1 matrix is
+  proved with its entry's method, and ``[(x + 1)^2, cosh^2 x - sinh^2 x] = [x^2 + 2x + 1, 1]`` names both entries'
+  exact methods (the second rewrites ``exp``), in entry order (seed 25: the method taken from the second entry;
+  before, a matrix named its first entry's method only).
+* ``library.verify_points`` -- :func:`symbt.codegen.verify.points`, where the emitted functions of ``lam`` are
+  compared with their source, samples both spectral parameters ``lam0 + mu`` and ``lam0 - mu`` of every state
+  it draws (N = 2, 3; seed 25: ``lam0 - mu`` twice).  A check of the verifier's coverage, not of a value.
 * ``library.project_roots`` -- :func:`symbt.codegen.project.find_project` (which checkout ``symbt codegen`` acts on)
   in throw-away directories: from two levels below a directory holding a ``pyproject.toml`` named ``symbt`` and a
   ``symbt/`` package it finds that directory; named ``other``, or without the package, none (seed 24: the name
@@ -171,14 +183,50 @@ def _defined(cs: list[Any]) -> list[Any]:
     return cs
 
 
+def _free_chain_edge() -> list[str]:
+    """library.reference_edges at the free chain's band edge lam = 2 (N = 2): what differs from the closed forms."""
+    import warnings
+
+    from ..reference.spectral import NoRealFlowError, flow_coefficients_mp, phi_gradient
+
+    bad = []
+    zero, l0, mu = [mp.mpf(0)] * 2, mp.mpf("2.5"), mp.mpf("0.5")
+    for b in (1, -1):
+        want = [-b * mp.acos(mp.mpf(2) / 3) / 2, -b * mp.acosh(mp.mpf(3) / 2), -b * mp.sqrt(5)]
+        # at 15 digits: tanh-sinh at the inverse-square-root end meets the closed forms to ~4e-10 (it warns that
+        # its estimate is above the working precision); 1e-8 leaves a factor 25
+        try:
+            with warnings.catch_warnings(), mp.workdps(15):
+                warnings.simplefilter("ignore", RuntimeWarning)
+                got = flow_coefficients_mp(zero, zero, l0, mu, b, check=False)
+        except Exception as exc:          # noqa: BLE001 -- a refusal asked not to check is the finding
+            bad.append(f"free chain over [2, 3] with check=False, branch {b}: {type(exc).__name__}: {exc}")
+            continue
+        if any(g is None or abs(g - w) > mp.mpf(10) ** -8 for g, w in zip(got, want)):
+            bad.append(f"free chain over [2, 3], branch {b}: c = {got}, closed forms {want}")
+    for name, call in (("flow_coefficients_mp", lambda: flow_coefficients_mp(zero, zero, l0, mu, 1)),
+                       ("phi_gradient", lambda: phi_gradient(zero, zero, l0, mu, 1))):
+        try:
+            call()
+            bad.append(f"{name} at the band edge lam = 2: no refusal")
+        except NoRealFlowError:
+            pass
+        except Exception as exc:          # noqa: BLE001 -- any other error is the finding
+            bad.append(f"{name} at the band edge lam = 2: {type(exc).__name__}: {exc}")
+    return bad
+
+
 @claim("library.reference_edges", equation="checker", scene="library", N=2,
        where="symbt.reference: elliptic.shift at a band edge, spectral.flow_coefficients_jacobian, "
              "inverse.solve_parameters' start",
        statement="shift(I1 = 0, I2 = 7, lam0 = 4, mu = 1) (T2 = 2, T1 = 18) has dtheta1_real = -branch arccosh(9) "
                  "(mpmath acosh, 30 digits); flow_coefficients_jacobian at p = (1, -1), q = (0, 1/2), lam0 = 3.5, mu = "
                  "0.3 gives N + 1 pairs, each within 1e-12 of central differences (h = 1e-8) of flow_coefficients_mp, "
-                 "both branches; solve_parameters from the target (c_0, 2 c_0) (its start lam0 = 2 in a band) raises "
-                 "ValueError")
+                 "both branches, and branch +1 by default; solve_parameters from the target (c_0, 2 c_0) (its start "
+                 "lam0 = 2 in a band) raises ValueError; on the free chain (N = 2) over [2, 3] (tr = 2 at lam = 2), "
+                 "flow_coefficients_mp with check=False (15 digits) = -b (arccos(2/3)/2, arccosh(3/2), sqrt 5) within "
+                 "1e-8, and "
+                 "flow_coefficients_mp (checked) and phi_gradient raise NoRealFlowError")
 def reference_edges() -> Outcome:
     from ..reference.elliptic import shift
     from ..reference.inverse import solve_parameters
@@ -202,6 +250,9 @@ def reference_edges() -> Outcome:
                                         for pair, want in zip(J, fd) for a, e in zip(pair, want)):
                 bad.append(f"jacobian, branch {b}: {len(J)} pairs {[[mp.nstr(v, 8) for v in x] for x in J]}, "
                            f"central differences {[[mp.nstr(v, 8) for v in x] for x in fd]}")
+        if flow_coefficients_jacobian(p, q, l0, mu) != flow_coefficients_jacobian(p, q, l0, mu, 1):
+            bad.append("flow_coefficients_jacobian's default branch is not +1")
+        bad += _free_chain_edge()
         c0 = _defined(flow_coefficients_mp(p, q, l0, mu, 1))[0]
         try:
             r = solve_parameters(p, q, [c0, EDGE_BAND_RATIO * c0])
@@ -273,3 +324,46 @@ def project_roots() -> Outcome:
     if got != want:
         return failed("exact: directories written by hand", detail=f"got {got}, want {want}")
     return Outcome("verified", "exact: directories written by hand", evidence="proof", n_scope="all", detail=f"{got}")
+
+
+@claim("checker.matrix_methods", equation="checker", scene="checker",
+       where="symbt.proof.decider.decide on matrices (the method of a proved matrix)",
+       statement="decide(Matrix([[(x + 1)^2]]), Matrix([[x^2 + 2x + 1]])) is proved with the scalar decision's method; "
+                 "decide([(x + 1)^2, cosh^2 x - sinh^2 x], [x^2 + 2x + 1, 1]) is proved with both entries' (distinct) "
+                 "methods in entry order, joined by ' | '")
+def matrix_methods() -> Outcome:
+    from ..proof import decide
+
+    x = sp.Symbol("x")
+    lhs, rhs = [(x + 1) ** 2, sp.cosh(x) ** 2 - sp.sinh(x) ** 2], [x ** 2 + 2 * x + 1, sp.Integer(1)]
+    each = [decide(a, b) for a, b in zip(lhs, rhs)]
+    one = decide(sp.Matrix([[lhs[0]]]), sp.Matrix([[rhs[0]]]))
+    two = decide(sp.Matrix(lhs), sp.Matrix(rhs))
+    got = [(one.verdict, one.method), (two.verdict, two.method)]
+    want = [("proved", each[0].method), ("proved", f"{each[0].method} | {each[1].method}")]
+    if got != want or each[0].method == each[1].method:
+        return failed("exact: entries decided one by one", detail=f"got {got}, want {want}")
+    return Outcome("verified", "exact: entries decided one by one", evidence="proof", n_scope="all",
+                   detail=f"{two.method}")
+
+
+@claim("library.verify_points", equation="checker", scene="library",
+       where="symbt.codegen.verify.points (the functions of lam: spectral_trace, ck_integrand)",
+       statement="for N = 2, 3 the points at which codegen.verify compares each emitted function of lam with its "
+                 "source are lam0 + mu and lam0 - mu of every state of map_states(N), each once with its state "
+                 "(a check of the verifier's coverage)")
+def verify_points() -> Outcome:
+    from ..codegen.verify import interface, map_states, points
+
+    bad = []
+    for N in (2, 3):
+        want = sorted((lv, tuple(p), tuple(q)) for p, q, l0, m in map_states(N) for lv in (l0 + m, l0 - m))
+        for name, spec in interface(N).items():
+            if "lam" in {a.name for a in spec.args}:
+                got = sorted((pt["lam"], tuple(pt["p"]), tuple(pt["q"])) for pt in points(spec, N))
+                if got != want:
+                    bad.append(f"N={N}, {name}: {len(got)} points, want the {len(want)} of lam0 +- mu")
+    if bad:
+        return failed("exact: the sampled parameters against the states", detail="; ".join(bad))
+    return Outcome("verified", "exact: the sampled parameters against the states (coverage)", evidence="proof",
+                   n_scope=[2, 3], detail="spectral_trace and ck_integrand, N = 2, 3")

@@ -158,7 +158,9 @@ def decide(lhs: sp.Expr, rhs: sp.Expr = 0, *, relations: Mapping[sp.Symbol, sp.E
     tolerance ``10**-(digits - 8)`` would be 1 or more and every statement would pass.
     Each side must be something SymPy reads as an expression or matrix (:func:`read_side`: ``TypeError`` or
     ``ValueError`` naming it); a matrix beside a scalar other than 0, or matrices of different shapes, are a
-    ``ValueError`` (:func:`match_shapes`).
+    ``ValueError`` (:func:`match_shapes`).  A matrix is decided entry by entry: false if an entry is (the worst),
+    else inconclusive if an entry is, else proved (its method: the entries' distinct exact methods in entry
+    order, joined by `` | ``) or holding by the screen.
     """
     if isinstance(digits, int) and digits < MIN_DIGITS:
         raise ValueError(f"decide: digits must be at least {MIN_DIGITS} (the numeric screen's tolerance "
@@ -181,7 +183,7 @@ def decide(lhs: sp.Expr, rhs: sp.Expr = 0, *, relations: Mapping[sp.Symbol, sp.E
         res = max((d.residual or 0.0) for d in parts)
         all_exact = all(d.exact for d in parts)
         if all_exact:
-            return Verdict.from_proof(parts[0].method)
+            return Verdict.from_proof(" | ".join(dict.fromkeys(d.method for d in parts)))
         numeric = [d for d in parts if not d.exact]
         errors = [d.error for d in numeric if d.error is not None]
         return Verdict(True, "sampled", numeric[0].method, residual=res,
