@@ -65,6 +65,13 @@ import sympy as sp
 from .base import Outcome, claim, failed
 
 
+def _by_hand(method: str, got: Any, want: Any, detail: str | None = None) -> Outcome:
+    """The outcome of a comparison with values written out by hand: verified iff ``got == want``."""
+    if got != want:
+        return failed(method, detail=f"got {got}, want {want}")
+    return Outcome("verified", method, evidence="proof", n_scope="all", detail=f"{got}" if detail is None else detail)
+
+
 @claim("checker.relation_degree", equation="checker", scene="checker",
        where="symbt.proof.exact.reduce_modulo: the relations' degree in their own symbols",
        statement="reduce_modulo(x y, {x: y - 1}) and reduce_modulo(x y, {x: 2}) raise ValueError (a division by "
@@ -82,10 +89,7 @@ def relation_degree() -> Outcome:
             got[name] = "ValueError"
     got["x^2 - y"] = sp.expand(reduce_modulo(x ** 3 + y, {x: x ** 2 - y}) - (x * y + y)) == 0
     want: dict[str, Any] = {"y - 1": "ValueError", "2": "ValueError", "x^2 - y": True}
-    if got != want:
-        return failed("exact: relations written out by hand", detail=f"got {got}, want {want}")
-    return Outcome("verified", "exact: relations written out by hand", evidence="proof", n_scope="all",
-                   detail=f"{got}")
+    return _by_hand("exact: relations written out by hand", got, want)
 
 
 @claim("checker.inclusive_bounds", equation="checker", scene="checker",
@@ -107,10 +111,7 @@ def inclusive_bounds() -> Outcome:
     worst, point = zeros.worst()
     got["all-zero cell's worst"] = (worst, (point or {}).get("x") in ("0", "1", "2"))
     want: dict[str, Any] = {"verdict at tol": True, "cell at tol": (1, True), "all-zero cell's worst": (0.0, True)}
-    if got != want:
-        return failed("exact: values at the tolerance written by hand", detail=f"got {got}, want {want}")
-    return Outcome("verified", "exact: values at the tolerance written by hand", evidence="proof", n_scope="all",
-                   detail=f"{got}")
+    return _by_hand("exact: values at the tolerance written by hand", got, want)
 
 
 def _pair(a: float, b: float) -> tuple[float, float]:
@@ -167,9 +168,7 @@ def magnitude_moduli() -> Outcome:
 
     p, eta = sp.Symbol("p", positive=True), sp.Symbol("eta", real=True)
     got = [complex(sp.N(magnitude(p).subs(p, 3 + 4 * sp.I))), complex(sp.N(magnitude(eta ** 2).subs(eta, sp.I)))]
-    if got != [5, 1]:
-        return failed("exact: moduli written by hand", detail=f"got {got}, want [5, 1]")
-    return Outcome("verified", "exact: moduli written by hand", evidence="proof", n_scope="all", detail=f"{got}")
+    return _by_hand("exact: moduli written by hand", got, [5, 1])
 
 
 #: library.reference_edges: an N = 2 state, a real (lam0, mu) in its outer gap, a target's c_1/c_0 in a band
@@ -321,9 +320,7 @@ def project_roots() -> Outcome:
             found = find_project(root / "a" / "b")
             got[case] = "root" if found == root else found
     want = {"symbt": "root", "other name": None, "no package": None}
-    if got != want:
-        return failed("exact: directories written by hand", detail=f"got {got}, want {want}")
-    return Outcome("verified", "exact: directories written by hand", evidence="proof", n_scope="all", detail=f"{got}")
+    return _by_hand("exact: directories written by hand", got, want)
 
 
 @claim("checker.matrix_methods", equation="checker", scene="checker",
@@ -341,10 +338,9 @@ def matrix_methods() -> Outcome:
     two = decide(sp.Matrix(lhs), sp.Matrix(rhs))
     got = [(one.verdict, one.method), (two.verdict, two.method)]
     want = [("proved", each[0].method), ("proved", f"{each[0].method} | {each[1].method}")]
-    if got != want or each[0].method == each[1].method:
-        return failed("exact: entries decided one by one", detail=f"got {got}, want {want}")
-    return Outcome("verified", "exact: entries decided one by one", evidence="proof", n_scope="all",
-                   detail=f"{two.method}")
+    if each[0].method == each[1].method:
+        return failed("exact: entries decided one by one", detail=f"one method for both entries: {each[0].method}")
+    return _by_hand("exact: entries decided one by one", got, want, detail=two.method)
 
 
 @claim("library.verify_points", equation="checker", scene="library",

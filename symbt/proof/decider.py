@@ -160,7 +160,7 @@ def decide(lhs: sp.Expr, rhs: sp.Expr = 0, *, relations: Mapping[sp.Symbol, sp.E
     ``ValueError`` naming it); a matrix beside a scalar other than 0, or matrices of different shapes, are a
     ``ValueError`` (:func:`match_shapes`).  A matrix is decided entry by entry: false if an entry is (the worst),
     else inconclusive if an entry is, else proved (its method: the entries' distinct exact methods in entry
-    order, joined by `` | ``) or holding by the screen.
+    order, joined by a vertical bar) or holding by the screen.
     """
     if isinstance(digits, int) and digits < MIN_DIGITS:
         raise ValueError(f"decide: digits must be at least {MIN_DIGITS} (the numeric screen's tolerance "
