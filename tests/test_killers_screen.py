@@ -170,10 +170,9 @@ def plant_screen(monkeypatch, old: str, new: str) -> None:
 
 SCREEN = [   # (mutant, old, new) in screen.screen
     ("screen:335 first precision", "with mpmath.workdps(digits + 10):", "with mpmath.workdps(digits - 10):"),
-    ("screen:350 no scale", "            if scale:\n                checks.append(PointCheck(abs(lv - rv) / scale",
-     "            if not scale:\n                checks.append(PointCheck(abs(lv - rv) / scale"),
-    ("screen:350 absolute residual", "checks.append(PointCheck(abs(lv - rv) / scale, (el + er) / scale",
-     "checks.append(PointCheck(abs(lv - rv), (el + er) / scale"),
+    ("screen:350 no scale", "(el + er) / scale) if scale else", "(el + er) / scale) if not scale else"),
+    ("screen:350 absolute residual", "rel, err = (abs(lv - rv) / scale, (el + er) / scale)",
+     "rel, err = (abs(lv - rv), (el + er) / scale)"),
     ("screen:365 counterexample", "pc.residual > SAFETY * pc.error", "pc.residual < SAFETY * pc.error"),
     ("screen:374 clear point", "if pc.residual <= clear and pc.error <= clear:",
      "if not (pc.residual <= clear and pc.error <= clear):"),
