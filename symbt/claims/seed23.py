@@ -229,12 +229,16 @@ def _free_chain_edge() -> list[str]:
 def reference_edges() -> Outcome:
     from ..reference.elliptic import shift
     from ..reference.inverse import solve_parameters
+    from ..reference.literal import literal_trace
     from ..reference.spectral import flow_coefficients_jacobian, flow_coefficients_mp
 
     bad: list[str] = []
     with mp.workdps(30):
         for b in (1, -1):
-            real = shift(mp.mpf(0), mp.mpf(7), mp.mpf(4), mp.mpf(1), b)["dtheta1_real"]
+            sh = shift(mp.mpf(0), mp.mpf(7), mp.mpf(4), mp.mpf(1), b)
+            if (sh["T1"], sh["T2"]) != (18, 2):       # the premise: an exact band edge
+                bad.append(f"shift's traces {sh['T1']}, {sh['T2']}, want 18, 2 exactly")
+            real = sh["dtheta1_real"]
             if real is None or not abs(real + b * mp.acosh(9)) <= mp.mpf(10) ** -25:
                 bad.append(f"shift at T2 = 2, branch {b}: dtheta1_real {real}, want {mp.nstr(-b * mp.acosh(9), 20)}")
         p, q = [[mp.mpf(v) for v in x] for x in EDGE_STATE]
@@ -253,6 +257,9 @@ def reference_edges() -> Outcome:
             bad.append("flow_coefficients_jacobian's default branch is not +1")
         bad += _free_chain_edge()
         c0 = _defined(flow_coefficients_mp(p, q, l0, mu, 1))[0]
+        start = literal_trace(mp.mpf(EDGE_BAND_RATIO), p, q)      # the premise: the start lam0 = c_1/c_0 in a band
+        if not abs(start) < 2:
+            bad.append(f"the start lam0 = {EDGE_BAND_RATIO}: tr = {mp.nstr(start, 5)}, not in a band")
         try:
             r = solve_parameters(p, q, [c0, EDGE_BAND_RATIO * c0])
             bad.append(f"solve_parameters from a start in a band: answered {r}")
