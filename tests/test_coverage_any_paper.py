@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 import sys
 import textwrap
+from pathlib import Path
 
 import pytest
 
@@ -66,7 +67,7 @@ REASONS = {"eq-energy": "a definition", "eq-newton": "follows from eq-qdot and i
 
 
 @pytest.fixture
-def fresh():
+def fresh(tmp_path_factory):
     """Undo what loading a user's claims module does to the process (registry, modules, active project)."""
     from symbt.claims.base import REGISTRY, SCENES
     from symbt.engine import project as proj
@@ -79,8 +80,14 @@ def fresh():
         REGISTRY.update(reg)
         SCENES.clear()
         SCENES.update(scenes)
+        # only the user's modules (files of the tests' projects) go: a library module first imported during the
+        # test (a symbt submodule, sympy's) must stay, or the next import makes a second copy beside the old one
+        # that the package attribute and other modules keep (monkeypatches and isinstance then see different ones)
+        base = tmp_path_factory.getbasetemp().resolve()
         for name in set(sys.modules) - mods:
-            del sys.modules[name]
+            file = getattr(sys.modules[name], "__file__", None)
+            if file is not None and Path(file).resolve().is_relative_to(base):
+                del sys.modules[name]
         sys.path[:] = path
         proj._ACTIVE[:] = active
         proj._OWNERS.clear()

@@ -399,3 +399,27 @@ def test_illcond_max_evaluated_is_equivalent():
                                                                "sp.Max(kta[0], kta[0], evaluate=False)"),
                  transport.__file__, "exec"), wrong)
     assert guards(type("M", (), {"illcond_guards": staticmethod(wrong["illcond_guards"])})) != guards(transport)
+
+
+def test_illcond_piecewise_evaluated_is_equivalent():
+    # transport:118 (seed 26), `ill`'s `sp.Piecewise(..., evaluate=False)` -> `evaluate=True`: the one condition is
+    # an unevaluated `big > small` of symbolic estimates, which Piecewise cannot decide, so it keeps both pieces:
+    # every guard is the same expression (and with a piece's value changed, another mutant, it is not: the
+    # comparison sees `ill`)
+    from planting import mutated
+
+    from symbt.codegen import transport
+    from symbt.symbolic.toda import toda_model
+
+    def guards(module) -> list[str]:
+        m = toda_model(3)
+        t = sp.symbols("t1 t2", real=True)
+        u, w, d = (list(sp.symbols(f"{c}1:4", real=True)) for c in "uwd")
+        ill_t, ill_s = module.illcond_guards(m, lambda c, label, e, stage: e, t, u, w, d, lambda x: (x - 2) * (x + 2))
+        return [sp.srepr(g) for g in ill_t + ill_s]
+
+    before = "                            evaluate=False)"
+    assert guards(mutated("symbt.codegen.transport", before, before.replace("False", "True"))) == guards(transport)
+    line = "        return sp.Piecewise((-1, sp.StrictGreaterThan(big, small, evaluate=False)), (1, True),"
+    assert guards(mutated("symbt.codegen.transport", line, line.replace("(1, True)", "(0, True)"))) != \
+        guards(transport)

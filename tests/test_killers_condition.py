@@ -243,7 +243,8 @@ def test_zero_terms_shift_is_equivalent():
 @pytest.mark.parametrize("before, after", [
     (SHAPES, SHAPES.replace("not 0 < am.shape[1] <= FEW_ROWS", "not 0 > am.shape[1] <= FEW_ROWS")),
     (SHAPES, SHAPES.replace("<= FEW_ROWS", "< FEW_ROWS")),
-], ids=["never-few", "few-edge"])
+    (SHAPES, SHAPES.replace("not 0 < am.shape[1]", "not 1 < am.shape[1]")),         # seed 26: one row
+], ids=["never-few", "few-edge", "one-row"])
 def test_few_rows_on_python_floats(monkeypatch, before, after):
     # condition:367's range of the few-rows form mutated: the general form (numpy, monodromy) gives the same bits, so
     # only the route changes -- a cost (a numpy operation on a few elements costs ~20 Python float operations).

@@ -39,6 +39,7 @@ def test_unpatched_verified(check):
     ("elif m * a * a < 1:", "elif m * a * a > 1:"),
     ("return u0 if abs(cd - w) <= abs(cd + w) else 2 * K - u0",
      "return u0 if abs(cd - w) <= abs(cd + w) else 2 * K + u0"),
+    ("        if a <= 1:\n", "        if a < 1:\n"),                                              # elliptic:225 (26)
 ])
 def test_abel_killed(monkeypatch, old, new):
     monkeypatch.setattr(E, "abel", planted(E.abel, old, new))

@@ -118,6 +118,13 @@ def test_addition_residual_signed_w_term_killed(monkeypatch):
     assert status(L.addition_w) == "failed"
 
 
+def test_addition_residual_w_scale_killed(monkeypatch):
+    # elliptic:372 (seeds 24 and 26): the second term's scale max(1, wt), 1 where w~ < -1
+    bad = planted(E.addition_residual, "abs(cn * dn - wt) / max(1, abs(wt))", "abs(cn * dn - wt) / max(1, wt)")
+    monkeypatch.setattr(E, "addition_residual", bad)
+    assert status(L.addition_w) == "failed"
+
+
 # --------------------------------------------------------------------------- reference.trace: library.trace_band
 
 def test_trace_gap_derivative_shifted_killed(monkeypatch):

@@ -191,6 +191,18 @@ def test_verify_points_both_parameters(monkeypatch):
     assert fails("library.verify_points")
 
 
+@pytest.mark.parametrize("old, new", [
+    ("q=[signed(k, i + 1, 1.5)", "q=[signed(k, i + 0, 1.5)"),           # codegen.verify:86 (seed 26): q signed as p
+    ('pt["c"] = [signed(k, i + 2, 1)', 'pt["c"] = [signed(k, i + 1, 1)'),   # c signed as q
+    ("return v if (k >> (bit % 3)) & 1 else -v", "return v"),            # every coordinate positive
+])
+def test_verify_points_sign_patterns(monkeypatch, old, new):
+    from symbt.codegen import verify
+
+    monkeypatch.setattr(verify, "points", planted(verify.points, old, new))
+    assert fails("library.verify_points")
+
+
 def test_codegen_names_what_it_wrote(monkeypatch):
     # codegen.cli:131 (`if not args.quiet` negated: the report printed only under --quiet)
     from symbt.codegen import cli

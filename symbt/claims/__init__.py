@@ -58,6 +58,7 @@ CLAIM_MODULES = (
     "seed21",
     "seed22",
     "seed23",
+    "seed26",
     "contexts",
     "shipped_condition_file",
     "shipped_core",

@@ -17,7 +17,10 @@ Scene ``library``:
      :math:`\ln 2` to 1e-45, ``third_mp(0)`` is :math:`1/3` to 1e-48;
   3. *independent formulas*: :math:`\sinh, \cosh` against :math:`(e^x \mp e^{-x})/2` by ``math.exp``,
      ``Max``/``Min`` against Python's ``max``/``min``, the rotation :math:`R` against :math:`R^T R = x^2 I`, within
-     16 ulp of the value's size; ``half(0.5, 1.5) = -0.25`` exactly.
+     16 ulp of the value's size; ``half(0.5, 1.5) = -0.25`` exactly;
+  4. *the docstrings*: each function's states the shape it returns -- ``batch + S`` (numpy), "a scalar" or
+     ``shape S`` (mpmath) -- read against the values returned at one point (seed 25's ``user.render:60``: the
+     mpmath docstring's words for a scalar and a shape, which nothing read).
 
   The C target (where a C compiler is present; else the detail says it was not compiled): the module
   compiles (a first term with a coefficient in (0, 1) printed ``x/2.0``, never ``--x/2.0``) and ``compare``
@@ -43,6 +46,7 @@ from types import ModuleType
 from typing import cast
 
 import mpmath as mp
+import numpy as np
 import sympy as sp
 
 from .base import Outcome, claim, failed
@@ -102,7 +106,8 @@ def _c_warnings(source: Path) -> str:
                  "(compare, numpy and mpmath; a file off by 1e-9 is rejected), with printed numbers (softplus(0) = "
                  "ln 2) and with independent formulas (sinh, cosh by exp; Max, Min; R^T R = x^2 I); a stale file "
                  "is replaced; the C target (where a compiler is present) compiles without a warning under -Wall "
-                 "-Wextra, with sgn() exactly where a sign is printed")
+                 "-Wextra, with sgn() exactly where a sign is printed; each function's docstring names the shape "
+                 "it returns")
 def emitted_user_functions() -> Outcome:
     from ..codegen.user.check import compare, compiler, load_python
     from ..codegen.user.declare import emit
@@ -185,6 +190,16 @@ def emitted_user_functions() -> Outcome:
             want_g = [[xv * xv, 0.0], [0.0, xv * xv]]
             if any(abs(gram[i][j] - want_g[i][j]) > 4 * eps * xv * xv for i in (0, 1) for j in (0, 1)):
                 bad.append(f"rot({xv}, {yv})^T rot = {gram}, not x^2 I")
+        # 4. each function's docstring names the shape it returns (numpy: batch + shape; mpmath: a scalar or the
+        # shape), read against the values returned at one point
+        for e in ems:
+            pt = [0.5] * len(e.arg_names)
+            S = np.shape(getattr(mod, e.name)(*pt))
+            Sm = np.shape(np.array(getattr(mod, e.name + "_mp")(*pt), dtype=object))
+            docs = (getattr(mod, e.name).__doc__ or "", getattr(mod, e.name + "_mp").__doc__ or "")
+            if f"batch + {S}" not in docs[0] or ("a scalar" if Sm == () else f"shape {Sm}") not in docs[1]:
+                bad.append(f"{e.name} returns shape {S} (mpmath {Sm}); its docstrings say {docs[0][-80:]!r}, "
+                           f"{docs[1][-70:]!r}")
     if bad:
         return failed("symbt.emit -> generate -> compare / independent formulas", detail="; ".join(bad))
     return Outcome("verified", "numeric: emitted numpy and mpmath flavours vs the SymPy source at 60 digits "
@@ -193,7 +208,7 @@ def emitted_user_functions() -> Outcome:
                    detail=f"{len(ems)} declarations emitted over a stale file; compare accepts both flavours of "
                           "each (6 points per cell) and rejects a file off by 1e-9; softplus(0) = ln 2, "
                           "third_mp(0) = 1/3, half(0.5, 1.5) = -0.25; sinh, cosh, Max, Min and R^T R = x^2 I at 3 "
-                          f"points within 16 ulp; {c_note}")
+                          f"points within 16 ulp; docstrings name the shapes returned; {c_note}")
 
 
 @claim("library.guards", equation="xy", scene="library", N=2,

@@ -8,7 +8,9 @@ that does not share their derivation.
   gaps ``1 < |s| < 1/k``, ``|s| >= 1/k``; both signs, both band edges ``s = +-1``) and at complex ``s``, on both
   sheets (``+-w``): ``sn u = s`` and ``cn u dn u = w`` by mpmath's ``ellipfun`` (not the Carlson integrals abel
   sums), and ``u`` in the closed period cell ``-K <= Re u <= 3K``, ``|Im u| <= K'`` its docstring states, with
-  ``K, K'`` by the arithmetic-geometric mean; :func:`~symbt.reference.elliptic.lattice_residual` of
+  ``K, K'`` by the arithmetic-geometric mean; for real ``|s| <= 1`` (the real oval, ``s = +-1`` included) ``u`` is
+  real, an ``mpf`` (the module docstring: ``v = F(|s|)``; seed 26: at ``|s| = 1`` the gap's form ``K + i F(0)``, a
+  complex number); :func:`~symbt.reference.elliptic.lattice_residual` of
   ``e + 4K a + 2iK' b`` is ``|e|`` for lattice vectors of every sign.
 * ``library.F_forms`` -- :func:`~symbt.reference.elliptic.F` is Legendre's ``ellipf(asin z, k^2)`` on ``[-1, 1]``
   (both signs; the library sums Carlson's form) and refuses ``|z| > 1``; :func:`~symbt.reference.elliptic.F_real`
@@ -70,7 +72,8 @@ LATTICE = ((1, 0), (-2, 1), (0, -1), (3, 2), (-1, -3))
        statement="abel(s, +-w, m) (m = 3/7, 15 digits) at real s in every zone (|s| <= 1, both gaps, |s| >= 1/k; both "
                  "signs, s = +-1) and at complex s: sn u = s and cn u dn u = w by mpmath ellipfun within "
                  "10^(4 - dps) max(1, |s|, |w|), u in the period cell -K <= Re u <= 3K, |Im u| <= K' (K, K' by the "
-                 "AGM); lattice_residual(e + 4Ka + 2iK'b) = |e| for 5 lattice vectors")
+                 "AGM), u real (an mpf) for real |s| <= 1; lattice_residual(e + 4Ka + 2iK'b) = |e| for 5 lattice "
+                 "vectors")
 def abel_cell() -> Outcome:
     bad: list[str] = []
     n, worst = 0, mp.mpf(0)
@@ -96,6 +99,9 @@ def abel_cell() -> Outcome:
                 worst = max(worst, err)
                 if not err <= tol:
                     bad.append(f"s = {mp.nstr(s, 6)}, w = {mp.nstr(w, 6)}: sn, cn dn off by {mp.nstr(err, 3)}")
+                if isinstance(s, mp.mpf) and abs(s) <= 1 and not isinstance(u, mp.mpf):
+                    bad.append(f"s = {mp.nstr(s, 6)}, w = {mp.nstr(w, 6)}: u = {mp.nstr(u, 8)} is not real (|s| <= 1: "
+                               "v = F(|s|), a real integral)")
                 slack = 1 + tol
                 if not (-K * slack <= mp.re(u) <= 3 * K * slack and abs(mp.im(u)) <= Kp * slack):
                     bad.append(f"s = {mp.nstr(s, 6)}, w = {mp.nstr(w, 6)}: u = {mp.nstr(u, 8)} outside the cell "

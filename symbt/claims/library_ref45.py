@@ -28,7 +28,9 @@ r"""The independent routes checked, 5: documented rules of :mod:`symbt.reference
   ``c_0 c_2 > c_1^2`` applies only when ``c_0, c_1, c_2`` are all targets.
 * ``library.addition_w`` -- :func:`symbt.reference.elliptic.addition_residual`'s second term: with ``E~`` moved to
   ``(E~_1 f, E~_2 / f)`` (the product kept, so the third term is unchanged) the residual is the move of
-  ``w~ = 2 sinh(ln(E~_1/E~_2))/sqrt(I_2^2 - 4)`` over ``max(1, |w~|)``, for ``f = 1 + 1e-6`` and ``1 - 1e-6``.
+  ``w~ = 2 sinh(ln(E~_1/E~_2))/sqrt(I_2^2 - 4)`` over ``max(1, |w~|)``, for ``f = 1 + 1e-6`` and ``1 - 1e-6`` and
+  for the ``f`` that put ``w~`` at ``-3``, ``1/2`` and ``3`` (seeds 24 and 26: the scale ``max(1, w~)``, 1 where
+  ``w~ < -1``, which small moves of a state with ``|w~| < 1`` never reach).
 
 * ``library.trace_band`` -- :func:`symbt.reference.trace.trace_gap` on an interval inside one band or one gap is
   ``min(|tr L(lo)|, |tr L(hi)|) - 2`` by the literal trace (N = 2, 3, every band and gap), as its docstring says:
@@ -302,13 +304,16 @@ def inverse_targets() -> Outcome:
 
 #: library.addition_w: digits, the relative move of E~_1 (E~_2 moved inversely), the case's rng seed
 ADDW_DPS, ADDW_F, ADDW_SEED = 20, mp.mpf("1e-6"), "ref3 addition inner"
+#: library.addition_w: the values w~ is moved to (beyond -1, inside, beyond 1)
+ADDW_TO = (-3, mp.mpf("0.5"), 3)
 
 
 @claim("library.addition_w", equation="addform", scene="library", N=2,
        where="symbt.reference.elliptic.addition_residual (its second term, w~ = cn dn)",
-       statement="with E~ moved to (E~_1 f, E~_2 / f), f = 1 +- 1e-6 (the product kept), addition_residual at a "
-                 "step2 step is |w~(f) - w~(1)| / max(1, |w~(f)|) within twice the unmoved residual, w~ = "
-                 "2 sinh(ln(E~_1/E~_2)) / sqrt(I2^2 - 4) (I2 by the literal trace); an inner case, both branches")
+       statement="with E~ moved to (E~_1 f, E~_2 / f), f = 1 +- 1e-6 and the f that put w~ at -3, 1/2, 3 (the "
+                 "product kept), addition_residual at a step2 step is |w~(f) - w~(1)| / max(1, |w~(f)|) within twice "
+                 "the unmoved residual times max(1, |w~(1)|), w~ = 2 sinh(ln(E~_1/E~_2)) / sqrt(I2^2 - 4) (I2 by the "
+                 "literal trace); an inner case, both branches")
 def addition_w() -> Outcome:
     bad: list[str] = []
     with mp.workdps(ADDW_DPS):
@@ -324,19 +329,25 @@ def addition_w() -> Outcome:
             pt, _, info = E.step2(P, Q, L0, M, br)
             Et = info["E_new"]
             res0 = E.addition_residual(P, Q, L0, M, br, pt=pt, Et=Et)
-            for f in (1 + ADDW_F, 1 - ADDW_F):
+            w0 = w(*Et)
+            # f = 1 +- 1e-6, and the f that put w~ at each of ADDW_TO: 2 sinh(ln rho) = w~ D for rho = E~_1/E~_2
+            fs = [1 + ADDW_F, 1 - ADDW_F] + [mp.sqrt(mp.exp(mp.asinh(wt * mp.sqrt(I2 ** 2 - 4) / 2)) * Et[1] / Et[0])
+                                            for wt in ADDW_TO]
+            for f in fs:
                 moved = [Et[0] * f, Et[1] / f]
                 w1 = w(*moved)
-                want = abs(w1 - w(*Et)) / max(1, abs(w1))
+                want = abs(w1 - w0) / max(1, abs(w1))
                 got = E.addition_residual(P, Q, L0, M, br, pt=pt, Et=moved)
-                if not abs(got - want) <= 2 * res0 + mp.mpf(10) ** (2 - ADDW_DPS):
-                    bad.append(f"b = {br}, f = {mp.nstr(f, 8)}: residual {mp.nstr(got, 6)}, want {mp.nstr(want, 6)}")
+                # cn dn at the shifted u is w0 to res0 max(1, |w0|) (the unmoved residual's second term)
+                if not abs(got - want) <= 2 * res0 * max(1, abs(w0)) + mp.mpf(10) ** (2 - ADDW_DPS):
+                    bad.append(f"b = {br}, w~ {mp.nstr(w0, 4)} -> {mp.nstr(w1, 4)}: residual {mp.nstr(got, 6)}, "
+                               f"want {mp.nstr(want, 6)}")
     if bad:
         return failed("addition_residual's second term", detail="; ".join(bad))
     return Outcome("verified", f"numeric: {ADDW_DPS} digits, w~ from E~ by sinh, I2 by the literal trace",
                    evidence="sampled", n_scope=[2],
-                   detail="an inner case, both branches, E~ moved by a relative +-1e-6 (product kept): the residual "
-                          "is the move of w~")
+                   detail="an inner case, both branches, E~ moved by a relative +-1e-6 and to w~ = -3, 1/2, 3 "
+                          "(product kept): the residual is the move of w~")
 
 
 #: library.trace_band: states (N = 2, 3), digits, how far inside each band or gap the interval's ends are

@@ -44,7 +44,10 @@ r"""What the samples of seeds 23 and 24 found unread (issue 21).
   before, a matrix named its first entry's method only).
 * ``library.verify_points`` -- :func:`symbt.codegen.verify.points`, where the emitted functions of ``lam`` are
   compared with their source, samples both spectral parameters ``lam0 + mu`` and ``lam0 - mu`` of every state
-  it draws (N = 2, 3; seed 25: ``lam0 - mu`` twice).  A check of the verifier's coverage, not of a value.
+  it draws (N = 2, 3; seed 25: ``lam0 - mu`` twice), and at the points of the functions of ``p, q`` (and ``c``) --
+  ``invariants``, ``hamiltonian_fields``, ``flow_field`` -- every coordinate takes both signs and every two of one
+  site (``p_i, q_i``, ...) are alike in sign at one point and opposite at another (seed 26: ``q``'s signs those of
+  ``p``, so ``p_i q_i`` was never negative).  A check of the verifier's coverage, not of a value.
 * ``library.project_roots`` -- :func:`symbt.codegen.project.find_project` (which checkout ``symbt codegen`` acts on)
   in throw-away directories: from two levels below a directory holding a ``pyproject.toml`` named ``symbt`` and a
   ``symbt/`` package it finds that directory; named ``other``, or without the package, none (seed 24: the name
@@ -351,10 +354,11 @@ def matrix_methods() -> Outcome:
 
 
 @claim("library.verify_points", equation="checker", scene="library",
-       where="symbt.codegen.verify.points (the functions of lam: spectral_trace, ck_integrand)",
+       where="symbt.codegen.verify.points (spectral_trace, ck_integrand; invariants, hamiltonian_fields, flow_field)",
        statement="for N = 2, 3 the points at which codegen.verify compares each emitted function of lam with its "
-                 "source are lam0 + mu and lam0 - mu of every state of map_states(N), each once with its state "
-                 "(a check of the verifier's coverage)")
+                 "source are lam0 + mu and lam0 - mu of every state of map_states(N), each once with its state; at "
+                 "those of the functions of p, q (and c) every coordinate takes both signs and every two of one "
+                 "site are alike in sign at some point and opposite at another (a check of the verifier's coverage)")
 def verify_points() -> Outcome:
     from ..codegen.verify import interface, map_states, points
 
@@ -366,7 +370,26 @@ def verify_points() -> Outcome:
                 got = sorted((pt["lam"], tuple(pt["p"]), tuple(pt["q"])) for pt in points(spec, N))
                 if got != want:
                     bad.append(f"N={N}, {name}: {len(got)} points, want the {len(want)} of lam0 +- mu")
+            elif not {a.name for a in spec.args} & {"lam0", "lam", "tr1"}:
+                bad += [f"N={N}, {name}: {b}" for b in _sign_faults(points(spec, N), N)]
     if bad:
-        return failed("exact: the sampled parameters against the states", detail="; ".join(bad))
-    return Outcome("verified", "exact: the sampled parameters against the states (coverage)", evidence="proof",
-                   n_scope=[2, 3], detail="spectral_trace and ck_integrand, N = 2, 3")
+        return failed("exact: the sampled points against the states and sign patterns", detail="; ".join(bad))
+    return Outcome("verified", "exact: the sampled points against the states and sign patterns (coverage)",
+                   evidence="proof", n_scope=[2, 3],
+                   detail="spectral_trace and ck_integrand at lam0 +- mu; invariants, hamiltonian_fields and "
+                          "flow_field: every p_i, q_i, c_i of both signs, every two of one site alike and opposite")
+
+
+def _sign_faults(pts: list[dict[str, Any]], N: int) -> list[str]:
+    """What the points of a function of ``p, q`` (and ``c``) leave out: a coordinate of one sign only, or two
+    coordinates of one site (``p_i, q_i``, ...) never alike or never opposite in sign (with ``p_i`` and
+    ``q_i`` always alike, ``|p_i q_i|`` and ``p_i q_i`` could not be told apart)."""
+    names = [k for k in ("p", "q", "c") if k in pts[0]]
+    bad = []
+    for i in range(N):
+        signs = {k: [pt[k][i] > 0 for pt in pts] for k in names}
+        bad += [f"{k}_{i + 1} of one sign" for k in names if len(set(signs[k])) < 2]
+        for a, b in ((a, b) for n, a in enumerate(names) for b in names[n + 1:]):
+            if len({x == y for x, y in zip(signs[a], signs[b])}) < 2:
+                bad.append(f"{a}_{i + 1}, {b}_{i + 1} {'always' if signs[a] == signs[b] else 'never'} alike")
+    return bad

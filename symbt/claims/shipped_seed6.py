@@ -17,9 +17,10 @@ r"""Documented rules of the float64 library that no other claim pinned (scene ``
   ``[-1, 3]``, every panel meets the documented test (16- and 32-point Gauss--Legendre agree to ``rtol`` relative
   to ``max(|local integral|, scale * width / (b - a))``, ``scale`` the row's whole integral or its group's
   largest) and no panel's bisection parent does (the panels are the coarsest bisection that passes), evaluated
-  here with numpy's own Gauss--Legendre nodes; grouping the peak with the fourth row takes fewer panels; past
-  ``max_intervals`` it raises :class:`~symbt.numeric.QuadratureError`.  (All ends are dyadic: the bisection points
-  are exact, so the parents are recomputed exactly.)
+  here with numpy's own Gauss--Legendre nodes; grouping the peak with the fourth row takes fewer panels; the
+  budget is exact: with ``max_intervals`` the number of panels needed it gives the same panels, with one fewer it
+  raises :class:`~symbt.numeric.QuadratureError` (seed 26: the count started at 0, one panel past the budget).
+  (All ends are dyadic: the bisection points are exact, so the parents are recomputed exactly.)
 * ``paths.q_low.n3`` -- ``bt_orbit(..., q_low=True)`` (the low parts of the carried positions, docs/numeric.md "Long
   orbits"), kernel and general path, both branches, 3 steps of the paper's state moved to ``q + 1e6 + 0.1`` (where
   a double's rounding is ``ulp(1e6) = 1.2e-10``): ``P`` and ``Q`` bit for bit those of ``q_low=False``, ``|Q_low|
@@ -137,23 +138,29 @@ def panel_faults(panels: list[tuple[float, float]], groups: tuple[int, ...] | No
                  "negative, cancelling panels, a tiny negative peak), alone and with the peak grouped with the "
                  "negative one: the panels tile the interval, each passes the documented 16/32-point test against "
                  "max(|local|, scale * width share) and no "
-                 "bisection parent does (numpy's Gauss-Legendre nodes); grouping takes fewer panels; past "
-                 "max_intervals QuadratureError")
+                 "bisection parent does (numpy's Gauss-Legendre nodes); grouping takes fewer panels; "
+                 "max_intervals = the panels needed gives them, one fewer QuadratureError")
 def panels() -> Outcome:
     from ..numeric import QuadratureError
     from ..numeric.flow.coefficients import adaptive_panels
 
     bad, counts = [], []
+    alone: list[tuple[float, float]] = []
     for groups in (None, PANELS_GROUPS):
         got = adaptive_panels(_panel_rows, PANELS_A, PANELS_B, PANELS_RTOL, PANELS_MAX,
                               None if groups is None else np.array(groups))
         counts.append(len(got))
+        alone = got if groups is None else alone
         bad += [f"{'grouped' if groups else 'alone'}: {b}" for b in panel_faults(got, groups)]
     if not counts[1] < counts[0]:
         bad.append(f"grouped {counts[1]} panels, alone {counts[0]}: the group's scale did not relax the peak")
+    # the budget is exact: the panels needed fit max_intervals = their number, one fewer raises
+    if adaptive_panels(_panel_rows, PANELS_A, PANELS_B, PANELS_RTOL, counts[0]) != alone:
+        bad.append(f"max_intervals = {counts[0]}, the panels needed, did not give the same panels")
     try:
-        adaptive_panels(_panel_rows, PANELS_A, PANELS_B, PANELS_RTOL, counts[0] // 2)
-        bad.append(f"max_intervals {counts[0] // 2} (of {counts[0]} needed) did not raise QuadratureError")
+        got = adaptive_panels(_panel_rows, PANELS_A, PANELS_B, PANELS_RTOL, counts[0] - 1)
+        bad.append(f"max_intervals {counts[0] - 1} (of {counts[0]} needed) gave {len(got)} panels, no "
+                   "QuadratureError")
     except QuadratureError:
         pass
     detail = f"{counts[0]} panels alone, {counts[1]} grouped; each passes, no parent does."

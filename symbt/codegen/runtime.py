@@ -62,6 +62,9 @@ class IllConditionedError(NumericRangeError):
 
 _WHY = {"trace": "|tr L(%s)| <= 2, the spectral parameter lies in a band",
         "positivity": "%s = E - x <= 0 (lam1 and lam2 lie in different spectral gaps)"}
+#: the likely causes of a non-finite value, named in NumericRangeError's message (a module of a user's
+#: expressions sets its own after this runtime)
+_RANGE_CAUSE = "overflow, |q_i - q_j| too large, or a degenerate eigenvector"
 _ILLCOND = ("ill-conditioned: %s beyond the float64 condition limit KAPPA_MAX = @@KAPPA@@ (the result would "
             "not be trusted); symbt.numeric recomputes such states at higher precision, or call the _mp "
             "flavour at more digits")
@@ -164,8 +167,8 @@ def _finish(errors, bad, batch, outs):
     if errors == "raise":
         if not fin.all():
             where, txt = _where(~fin, batch)
-            raise NumericRangeError("non-finite value in the float64 evaluation (overflow, |q_i - q_j| too "
-                                    "large, or a degenerate eigenvector); use the mpmath flavour" + txt)
+            raise NumericRangeError("non-finite value in the float64 evaluation (" + _RANGE_CAUSE + "); use "
+                                    "the mpmath flavour" + txt)
         return outs
     bad = ~fin
     res = []

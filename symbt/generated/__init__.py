@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: a01c657fb3b94bdcfb66810b64615cb83716d08a13e0e2afdbc6dca95d843916
-# symbt-codegen-content-sha256: 9aaac9d234edc7a3e574174fc9e00f71ef4d92a95fb9766c87cb89318f40d6ca
+# symbt-codegen-derivation-sha256: 50a67d8b3526836d80aeffd88000a36b86b8cec83b33fcc3fd626c62d48087dc
+# symbt-codegen-content-sha256: 6b4f98c685ebe2dcd41fb460e155bf2071ec8ebfbf8f8bad7b4b4aebc584a017
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: a01c657fb3b94bdcfb66810b64615cb83716d08a13e0e2afdbc6dca95d843916
-# symbt-codegen-content-sha256: 98bd7da5d90608a6924615a5eead8e7607cd0e66535366c71b18370eaa259c2c
+# symbt-codegen-derivation-sha256: 50a67d8b3526836d80aeffd88000a36b86b8cec83b33fcc3fd626c62d48087dc
+# symbt-codegen-content-sha256: 0c4438803639ce8e372911ee17634f173e3f8d996a05ad3eac2c3f2019313763
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading
@@ -61,6 +61,9 @@ class IllConditionedError(NumericRangeError):
 
 _WHY = {"trace": "|tr L(%s)| <= 2, the spectral parameter lies in a band",
         "positivity": "%s = E - x <= 0 (lam1 and lam2 lie in different spectral gaps)"}
+#: the likely causes of a non-finite value, named in NumericRangeError's message (a module of a user's
+#: expressions sets its own after this runtime)
+_RANGE_CAUSE = "overflow, |q_i - q_j| too large, or a degenerate eigenvector"
 _ILLCOND = ("ill-conditioned: %s beyond the float64 condition limit KAPPA_MAX = 16777216 (the result would "
             "not be trusted); symbt.numeric recomputes such states at higher precision, or call the _mp "
             "flavour at more digits")
@@ -163,8 +166,8 @@ def _finish(errors, bad, batch, outs):
     if errors == "raise":
         if not fin.all():
             where, txt = _where(~fin, batch)
-            raise NumericRangeError("non-finite value in the float64 evaluation (overflow, |q_i - q_j| too "
-                                    "large, or a degenerate eigenvector); use the mpmath flavour" + txt)
+            raise NumericRangeError("non-finite value in the float64 evaluation (" + _RANGE_CAUSE + "); use "
+                                    "the mpmath flavour" + txt)
         return outs
     bad = ~fin
     res = []

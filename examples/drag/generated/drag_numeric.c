@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 5e87ea82491081f04eaaa65212bd096d3fb2a55d93eeba76ffd4ed081a0bad73
-// symbt-codegen-content-sha256: bff83b72a7af114394495dc56da1265662a91715b13afe9f31aa1c439b67954a
+// symbt-codegen-derivation-sha256: fcc3707b549d07ffff70a8c6dc56ba646905b0c288da2a7b5fbe65d0f8de751a
+// symbt-codegen-content-sha256: ef91845a8f27fa85dc662ca4d858c2b69ca32b4995e30992c852389314a12ba3
 #include <math.h>
 #include "drag_numeric.h"
 

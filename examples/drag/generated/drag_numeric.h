@@ -2,8 +2,8 @@
 // symbt-codegen-generator: 2
 // symbt-codegen-target: drag_numeric (declared in drag_emit), C99
 // symbt-codegen-sympy: 1.14.0
-// symbt-codegen-derivation-sha256: 5e87ea82491081f04eaaa65212bd096d3fb2a55d93eeba76ffd4ed081a0bad73
-// symbt-codegen-content-sha256: d7300819d49b1ffc3198c59680e95a2cd0afed3810424522f0d6f3880d05bef9
+// symbt-codegen-derivation-sha256: fcc3707b549d07ffff70a8c6dc56ba646905b0c288da2a7b5fbe65d0f8de751a
+// symbt-codegen-content-sha256: 5d450dc1147b544629d46ff0c168aa7770978fae27e1c15d561d26cb6bf3b891
 #ifndef SYMBT_EMITTED_DRAG_NUMERIC_H
 #define SYMBT_EMITTED_DRAG_NUMERIC_H
 

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: drag_numeric (declared in drag_emit)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 5e87ea82491081f04eaaa65212bd096d3fb2a55d93eeba76ffd4ed081a0bad73
-# symbt-codegen-content-sha256: b02daaaf5ae80f0df920a7088e1871f7719a9210bc2d11cc245b816a45002e1f
+# symbt-codegen-derivation-sha256: fcc3707b549d07ffff70a8c6dc56ba646905b0c288da2a7b5fbe65d0f8de751a
+# symbt-codegen-content-sha256: 8b54d3c32089945717641c5c47f7a614274ddaa571e97c02bfc38b21a5d22832
 """drag_numeric: functions emitted by `symbt codegen` from drag_emit.
 
 Each function has a numpy float64 flavour (vectorised over broadcast arguments) and an

@@ -147,7 +147,7 @@ def _typed_head(module: str, emissions: list[Emission], sources: str, names: lis
                       RUNTIME.rstrip("\n"), "", "",
                       "class DomainError(ArithmeticError):",
                       '    """An mpmath flavour divided by zero (the point is outside the function\'s domain)."""',
-                      "", "", f"_WHY = {why!r}"])
+                      "", "", f"_WHY = {why!r}", "_RANGE_CAUSE = 'an overflow or a non-finite intermediate'"])
 
 
 def python_module(module: str, emissions: list[Emission], sources: str,
