@@ -107,10 +107,10 @@ ROOTS = [   # (mutant, function, old, new, crash): crash -- the mutant raises wh
     ("screen:101 one root twice", "_generic_roots", "[(-a[1] - disc) / (2 * a[0]), (-a[1] + disc)",
      "[(-a[1] + disc) / (2 * a[0]), (-a[1] + disc)", False),
     ("screen:104 degree shift", "_generic_roots", "x ** (degree - i)", "x ** (degree - i - 1)", True),
-    ("screen:115 degree bound", "_roots", "not 1 <= poly.degree() <= MAX_RELATION_DEGREE",
-     "not 1 <= poly.degree() >= MAX_RELATION_DEGREE", True),
-    ("screen:115 degree 1 refused", "_roots", "not 1 <= poly.degree()", "not 1 < poly.degree()", True),
-    ("screen:115 non-polynomial", "_roots", "if poly is None or", "if poly is not None and", True),
+    # the degree rule (screen:115 before it went to symbt.proof.relations, which the screen calls)
+    ("relations degree bound", "relation_poly", "poly.degree() > max_degree", "poly.degree() < max_degree", True),
+    ("relations degree 1 refused", "relation_poly", "poly.degree() < 1", "poly.degree() <= 1", True),
+    ("relations non-polynomial", "relation_poly", "if poly is None or", "if poly is not None and", True),
     ("screen:134 order", "_solve_order", "if all(r.free_symbols <= known for r in roots):",
      "if not (all(r.free_symbols <= known for r in roots)):", True),
 ]
@@ -137,10 +137,11 @@ def test_relations_max_degree_lowered(monkeypatch):
 
 
 def test_quartic_refused_is_seen_by_the_deep_variant_only(monkeypatch):
-    # screen:115 `<= MAX_RELATION_DEGREE` -> `< MAX_RELATION_DEGREE`: quartics refused; the default variant stops at
-    # cubics (the generic quartic's closed form costs 0.7 s), so only `symbt verify --deep` sees it
-    monkeypatch.setattr(screen_module, "_roots", planted(
-        screen_module._roots, "poly.degree() <= MAX_RELATION_DEGREE", "poly.degree() < MAX_RELATION_DEGREE"))
+    # screen:115 `<= MAX_RELATION_DEGREE` -> `< MAX_RELATION_DEGREE` (now relation_poly's `> max_degree` -> `>=`):
+    # quartics refused; the default variant stops at cubics (the generic quartic's closed form costs 0.7 s), so
+    # only `symbt verify --deep` sees it
+    monkeypatch.setattr(screen_module, "relation_poly", planted(
+        screen_module.relation_poly, "poly.degree() > max_degree", "poly.degree() >= max_degree"))
     assert outcome("checker.screen_relations").status == "verified"
     out = REGISTRY["checker.screen_relations"].run(deep=True)
     assert out.status == "failed"

@@ -533,8 +533,8 @@ def test_relation_of_degree_zero_refused_by_its_degree(monkeypatch):
     # of degree 0 -- still refused, but as unsolvable, not for its degree
     from symbt.proof import screen as screen_module
 
-    monkeypatch.setattr(screen_module, "_roots", planted(screen_module._roots, "not 1 <= poly.degree()",
-                                                         "not 0 <= poly.degree()"))
+    monkeypatch.setattr(screen_module, "relation_poly", planted(screen_module.relation_poly, "poly.degree() < 1",
+                                                                "poly.degree() < 0"))
     assert fails("checker.screen_relations")
 
 

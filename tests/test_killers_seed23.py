@@ -22,10 +22,11 @@ def test_unpatched_verified(cid):
 
 
 def test_a_relation_constant_in_its_symbol_is_refused(monkeypatch):
-    # exact:73 (a degree test at `< 0`): the constant relation divides, and x y reduces to 0
+    # exact:73 (a degree test at `< 0`; the test is now symbt.proof.relations.relation_poly's, which reduce_modulo
+    # calls): the constant relation divides, and x y reduces to 0
     from symbt.proof import exact
 
-    monkeypatch.setattr(exact, "reduce_modulo", planted(exact.reduce_modulo, "degree < 1:", "degree < 0:"))
+    monkeypatch.setattr(exact, "relation_poly", planted(exact.relation_poly, "poly.degree() < 1", "poly.degree() < 0"))
     assert fails("checker.relation_degree")
 
 

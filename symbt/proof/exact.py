@@ -8,6 +8,7 @@ from functools import cache
 import sympy as sp
 
 from .exponentials import describe_variables, exponentials_as_monomials
+from .relations import relation_poly
 
 __all__ = ["reduce_modulo", "exact_zero", "is_rational_in_symbols", "exact_route", "ROUTES"]
 
@@ -74,12 +75,7 @@ def reduce_modulo(numerator: sp.Expr, relations: Mapping[sp.Symbol, sp.Expr]) ->
     out = sp.expand(numerator)
     rels = {sym: sp.expand(rel) for sym, rel in relations.items()}
     for sym, rel in rels.items():
-        try:
-            degree = sp.degree(rel, sym)
-        except sp.PolynomialError:
-            degree = None
-        if degree is None or degree < 1:
-            raise ValueError(f"relation {rel} = 0 is not a polynomial of degree 1 or more in {sym}")
+        relation_poly(rel, sym)
     for _ in range(len(rels) + 2):
         before = out
         for sym, rel in rels.items():

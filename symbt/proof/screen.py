@@ -13,6 +13,7 @@ import sympy as sp
 
 from .lambdify import plain_lambdify
 from .magnitude import EVALUATION_ERRORS, floored_scale, magnitude, size_or_inf
+from .relations import relation_poly
 from .verdict import SAFETY
 
 __all__ = ["screen", "sample_symbol", "ScreenResult", "PointCheck", "tracked_quad", "high_precision"]
@@ -115,9 +116,7 @@ def _roots(rel: sp.Expr, s: sp.Symbol) -> list[sp.Expr]:
     coefficient like ``exp(1000001 q / 1000000)`` (a polynomial of degree 1000001 in
     ``exp(q / 1000000)``).
     """
-    poly = sp.sympify(rel).as_poly(s)
-    if poly is None or not 1 <= poly.degree() <= MAX_RELATION_DEGREE:
-        raise ValueError(f"relation {rel} = 0 is not a polynomial of degree 1..{MAX_RELATION_DEGREE} in {s}")
+    poly = relation_poly(rel, s, MAX_RELATION_DEGREE)
     a, generic = _generic_roots(poly.degree())
     coeffs = dict(zip(a, poly.all_coeffs()))
     return [r.xreplace(coeffs) for r in generic]
