@@ -99,6 +99,29 @@ def test_no_trace_at_the_sampler_margin(monkeypatch):
     assert not [t for t in read if isinstance(t, mp.mpf) and abs(t) == 2.2]
 
 
+def test_branch_minus_never_fails_positivity_on_the_streams(monkeypatch):
+    # the fact behind the equivalence mark samples:74 (`_real_map(*state, -1)[0]` -> `[1]`: the info dict, truthy
+    # where [0] is False only when the -1 step ran but some E~_j <= 0): on the streams the claims draw from (as
+    # above), every state the -1 test reads with a real +1 map and traces beyond 2.2 has no such -1 step -- the
+    # -1 map is real or it raised (info None) -- so both read the same truth value and keep the same states
+    real = samples._real_map
+    minus: list = []
+
+    def recording(*args):
+        ok, info = real(*args)
+        if args[-1] == -1:
+            minus.append((ok, info is not None))
+        return ok, info
+    monkeypatch.setattr(samples, "_real_map", recording)
+    for N in range(2, 9):
+        for s in (1, -1):
+            for seed in (0, 1, 2, 11):
+                with mp.workdps(30):
+                    samples.admissible_states(N, s, 8, seed=seed)
+    assert len(minus) > 400
+    assert all(ok == has_info for ok, has_info in minus)
+
+
 def test_regime_of_the_lower_parameter(monkeypatch):
     # regime() classifies lambda_- = lam0 - mu by (lam0 - mu - I1)/r instead of + I1 (mutant elliptic:298)
     monkeypatch.setattr(elliptic, "regime", _regime_wrong_minus)

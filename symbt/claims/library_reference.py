@@ -14,7 +14,9 @@ no claim, so a slip there changed no verdict (scene ``library``):
 * ``library.angle`` -- :func:`symbt.reference.elliptic.global_u`, the global angle of the N = 2 chain, at
   states in all four quadrants of :math:`(P, C)` (both signs of :math:`p_2 - p_1` and of
   :math:`q_1 - q_2`): :math:`\operatorname{sn} u = P`, :math:`\operatorname{cn} u = C` by mpmath's
-  ``ellipfun`` (Jacobi's functions, not the library's Carlson integrals) and :math:`u \in (-2K, 2K]`; and the
+  ``ellipfun`` (Jacobi's functions, not the library's Carlson integrals) and :math:`u \in (-2K, 2K]`, also at
+  :math:`P = 0` (:math:`p_1 = p_2`) with :math:`C = -1`, the interval's closed end :math:`u = 2K` (seed 27: a
+  strict test there gave :math:`-2K`, outside it), and :math:`C = 1`; and the
   states the elliptic claims are built from: :func:`~symbt.reference.elliptic.state_on_level` has the actions
   :math:`(I_1, I_2)` (by :func:`~symbt.reference.elliptic.actions`), :math:`q_1 \mp q_2` and the sign of
   :math:`p_1 - p_2` asked for, and :func:`~symbt.reference.elliptic.sample_state` the signs of :math:`q_1 - q_2`
@@ -101,14 +103,17 @@ def inverse_round_trip() -> Outcome:
 
 #: (p, q) of N = 2 in every quadrant of (P, C) = (sign(p2 - p1), sign(q1 - q2))
 ANGLE_STATES = (("0.7", "-0.4", "0.3", "-0.5"), ("-0.7", "0.4", "0.3", "-0.5"),
-                ("0.7", "-0.4", "-0.6", "0.2"), ("-0.7", "0.4", "-0.6", "0.2"), ("1.3", "0.2", "-1.1", "0.4"))
+                ("0.7", "-0.4", "-0.6", "0.2"), ("-0.7", "0.4", "-0.6", "0.2"), ("1.3", "0.2", "-1.1", "0.4"),
+                # P = 0 exactly (p1 = p2): C = -1 is the interval's end u = 2K (-2K excluded), C = 1 is u = 0
+                ("0.5", "0.5", "-0.6", "0.2"), ("0.5", "0.5", "0.3", "-0.5"))
 
 
 @claim("library.angle", equation="th1th2", scene="library", N=2,
        where="symbt.reference.elliptic.global_u (the global angle of N = 2)",
        statement="global_u(p, q) = u with sn u = P, cn u = C (mpmath ellipfun) and -2K < u <= 2K, at states in all "
-                 "four quadrants of (P, C); state_on_level(I1, I2, x, theta1, s) has actions (I1, I2), q1 - q2 = x, "
-                 "q1 + q2 = theta1, sign(p1 - p2) = s; sample_state gives the signs of q1 - q2 and p2 - p1 asked for")
+                 "four quadrants of (P, C) and at P = 0 with C = -1 (u = 2K) and C = 1; state_on_level(I1, I2, x, "
+                 "theta1, s) has actions (I1, I2), q1 - q2 = x, q1 + q2 = theta1, sign(p1 - p2) = s; sample_state "
+                 "gives the signs of q1 - q2 and p2 - p1 asked for")
 def angle_quadrants() -> Outcome:
     worst, where = mp.mpf(0), None
     quadrants = set()
@@ -127,8 +132,9 @@ def angle_quadrants() -> Outcome:
                               detail=f"u = {mp.nstr(u, 10)} outside (-2K, 2K], K = {mp.nstr(K, 10)}")
             if res > worst:
                 worst, where = res, {"p": [p1, p2], "q": [q1, q2]}
-    if len(quadrants) != 4:
-        return failed("control", detail=f"the states cover the quadrants {sorted(quadrants)}, not all four")
+    if not {(a, b) for a in (1, -1) for b in (1, -1)} <= quadrants or (0, -1) not in quadrants:
+        return failed("control", detail=f"the states cover the quadrants {sorted(quadrants)}, not all four and "
+                                        "P = 0 with C < 0")
     # the states the elliptic claims are built from: on the level set asked for, with the signs asked for
     with mp.workdps(30):
         for I1, I2, x, th, sg in (("0.4", "3.5", "0.6", "0.2", 1), ("-1.1", "6", "-1.2", "-0.7", -1)):

@@ -35,9 +35,11 @@ r"""What the samples of seeds 23 and 24 found unread (issue 21).
   ``NoRealFlowError`` (seed 25: a strict test divided by zero); the Jacobian's default branch is +1 (seed 25).
 * ``paths.rows_apart.n3`` -- the general float64 orbit (``general_orbit``, what ``backend="numpy"`` runs for an
   ensemble) with a row that has no real map beside two rows far from the origin (``q + 300.3``, ``q - 211.7``):
-  the first is refused at step 1 with the positivity code, and every stored state of the others, low parts of the
-  positions included, is bit for bit that of each row alone (a consistency check; seed 24: the compensated centre
-  of mass written to the neighbouring row once a row had left the batch).
+  the first is refused at step 1 with the positivity code, a fourth row whose neighbours are ``MAX_DQ_FLOAT64 + 50``
+  apart with the range code (it leaves the batch before the step, which would raise on it), and every stored state
+  of the others, low parts of the positions included, is bit for bit that of each row alone (a consistency check;
+  seed 24: the compensated centre of mass written to the neighbouring row once a row had left the batch; seed 27:
+  the range test's branch inverted).
 * ``checker.matrix_methods`` -- :func:`symbt.decide` on matrices says how each entry was proved: a 1x1 matrix is
   proved with its entry's method, and ``[(x + 1)^2, cosh^2 x - sinh^2 x] = [x^2 + 2x + 1, 1]`` names both entries'
   exact methods (the second rewrites ``exp``), in entry order (seed 25: the method taken from the second entry;
@@ -278,12 +280,13 @@ def reference_edges() -> Outcome:
 
 @claim("paths.rows_apart", equation="bt_orbit", source_equation="imptransf", scene="numeric-paths", sizes=(3,),
        where="symbt/numeric/float64/orbit.py: general_orbit (backend='numpy' ensembles) after a row leaves",
-       statement="general_orbit (N={N}, 4 steps, low parts kept) of three rows -- a state without a real map "
+       statement="general_orbit (N={N}, 4 steps, low parts kept) of four rows -- a state without a real map "
                  "(paths.existence_iv's near-edge state), the paper's state at q + 300.3 and its reverse at q - "
-                 "211.7 (mu = 5, 4) -- refuses the first at step 1 (positivity) and stores the others bit for bit "
-                 "as each row alone (a consistency check)")
+                 "211.7 (mu = 5, 4), a state with |q_2 - q_1| = MAX_DQ_FLOAT64 + 50 -- refuses the first at step 1 "
+                 "(positivity) and the last (range), and stores the others bit for bit as each row alone (a "
+                 "consistency check)")
 def rows_apart(N: int) -> Outcome:
-    from ..numeric.core.limits import OK, POSITIVITY
+    from ..numeric.core.limits import MAX_DQ_FLOAT64, OK, POSITIVITY, RANGE
     from ..numeric.float64.orbit import general_orbit
     from .shipped_rules import NEAR_EDGE
 
@@ -293,10 +296,13 @@ def rows_apart(N: int) -> Outcome:
         return P, Q, st.tolist(), step.tolist()
 
     p, q = np.array([-20.0, 10.0, 1.0]), np.array([1.0, 0.0, 0.9])
-    pa, qa = np.array([NEAR_EDGE[0], p, p[::-1]]), np.array([NEAR_EDGE[1], q + 300.3, q - 211.7])
-    l0, m = np.array([NEAR_EDGE[2], 10.0, 10.0]), np.array([NEAR_EDGE[3], 5.0, 4.0])
+    wide = np.array([0.0, MAX_DQ_FLOAT64 + 50, 0.0])         # beyond the scaled formulation's float64 range
+    pa, qa = np.array([NEAR_EDGE[0], p, p[::-1], p]), np.array([NEAR_EDGE[1], q + 300.3, q - 211.7, wide])
+    l0, m = np.array([NEAR_EDGE[2], 10.0, 10.0, 10.0]), np.array([NEAR_EDGE[3], 5.0, 4.0, 5.0])
     P, Q, st, step = run(pa, qa, l0, m)
     bad = [] if (st[0], step[0]) == (POSITIVITY, 1) else [f"the no-map row: status {st[0]} at step {step[0]}"]
+    if (st[3], step[3]) != (RANGE, 1):
+        bad.append(f"the wide row: status {st[3]} at step {step[3]}, not the range code at step 1")
     for k in (1, 2):
         P1, Q1, s1, _ = run(pa[k:k + 1], qa[k:k + 1], l0[k:k + 1], m[k:k + 1])
         if not (st[k] == s1[0] == OK and np.array_equal(P[:, k], P1[:, 0]) and np.array_equal(Q[:, k], Q1[:, 0])):
@@ -305,7 +311,8 @@ def rows_apart(N: int) -> Outcome:
     if bad:
         return failed("numeric: each row against itself alone", detail="; ".join(bad))
     return Outcome("verified", "numeric: each row against itself alone (consistency)", evidence="sampled",
-                   detail="the no-map row refused at step 1; two rows bit for bit as alone",
+                   detail="the no-map row and the wide row refused at step 1 (positivity, range); two rows bit "
+                          "for bit as alone",
                    printed="every row = itself alone")
 
 

@@ -126,16 +126,19 @@ def trace_gap(p: Sequence[MPLike], q: Sequence[MPLike], lo: MPLike, hi: MPLike) 
     if lo > hi:
         lo, hi = hi, lo
     coeffs = H[::-1]
-    small = mp.mpf(10) ** (-mp.mp.dps // 2)
+    # every root of tr = +-2 is real (the periodic and antiperiodic spectra of a real symmetric Jacobi matrix), and
+    # so is every root of tr' (N - 1 of them, one between each two neighbouring roots of tr = 2: Rolle); polyroots'
+    # imaginary parts are rounding -- up to about 10^(-dps/2) at a double root, a closed gap -- so the real parts
+    # are taken, none dropped
     for shift in (2, -2):  # a root of tr = +-2 in [lo, hi] means |tr| <= 2 there: not admissible
         c = list(coeffs)
         c[-1] -= shift
-        if any(abs(r.imag) < small and lo <= r.real <= hi for r in mp.polyroots(c, maxsteps=200, extraprec=60)):
+        if any(lo <= r.real <= hi for r in mp.polyroots(c, maxsteps=200, extraprec=60)):
             return mp.mpf(0)
     cands = [lo, hi]
     d = [coeffs[i] * (len(coeffs) - 1 - i) for i in range(len(coeffs) - 1)]
     if len(d) > 1:
-        cands += [r.real for r in mp.polyroots(d, maxsteps=200, extraprec=60) if abs(r.imag) < small]
+        cands += [r.real for r in mp.polyroots(d, maxsteps=200, extraprec=60)]
     cands = [x for x in cands if lo <= x <= hi]
     return min(abs(mp.polyval(coeffs, x)) - 2 for x in cands)
 
