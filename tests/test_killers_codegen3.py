@@ -376,6 +376,18 @@ def test_transport_extra_forward_slope_is_equivalent():
                                                                                                            fw)]
 
 
+def _illcond_guard_texts(module) -> list[str]:
+    """The srepr of every trace and site guard of ``module.illcond_guards`` at N = 3 (symbols for the traces,
+    slopes and denominators)."""
+    from symbt.symbolic.toda import toda_model
+
+    m = toda_model(3)
+    t = sp.symbols("t1 t2", real=True)
+    u, w, d = (list(sp.symbols(f"{c}1:4", real=True)) for c in "uwd")
+    ill_t, ill_s = module.illcond_guards(m, lambda c, label, e, stage: e, t, u, w, d, lambda x: (x - 2) * (x + 2))
+    return [sp.srepr(g) for g in ill_t + ill_s]
+
+
 def test_illcond_max_evaluated_is_equivalent():
     # transport:129 (seed 9), `sp.Max(kta[0], kta[1], evaluate=True)`: SymPy cannot order the two symbolic
     # condition estimates, so it keeps the same Max of the same two arguments: every guard is the same expression
@@ -383,15 +395,8 @@ def test_illcond_max_evaluated_is_equivalent():
     from planting import mutated
 
     from symbt.codegen import transport
-    from symbt.symbolic.toda import toda_model
 
-    def guards(module) -> list[str]:
-        m = toda_model(3)
-        t = sp.symbols("t1 t2", real=True)
-        u, w, d = (list(sp.symbols(f"{c}1:4", real=True)) for c in "uwd")
-        ill_t, ill_s = module.illcond_guards(m, lambda c, label, e, stage: e, t, u, w, d, lambda x: (x - 2) * (x + 2))
-        return [sp.srepr(g) for g in ill_t + ill_s]
-
+    guards = _illcond_guard_texts
     before = "    kt = sp.Max(kta[0], kta[1], evaluate=False)"
     assert guards(mutated("symbt.codegen.transport", before, before.replace("False", "True"))) == guards(transport)
     wrong = transport.__dict__.copy()
@@ -409,15 +414,8 @@ def test_illcond_piecewise_evaluated_is_equivalent():
     from planting import mutated
 
     from symbt.codegen import transport
-    from symbt.symbolic.toda import toda_model
 
-    def guards(module) -> list[str]:
-        m = toda_model(3)
-        t = sp.symbols("t1 t2", real=True)
-        u, w, d = (list(sp.symbols(f"{c}1:4", real=True)) for c in "uwd")
-        ill_t, ill_s = module.illcond_guards(m, lambda c, label, e, stage: e, t, u, w, d, lambda x: (x - 2) * (x + 2))
-        return [sp.srepr(g) for g in ill_t + ill_s]
-
+    guards = _illcond_guard_texts
     before = "                            evaluate=False)"
     assert guards(mutated("symbt.codegen.transport", before, before.replace("False", "True"))) == guards(transport)
     line = "        return sp.Piecewise((-1, sp.StrictGreaterThan(big, small, evaluate=False)), (1, True),"

@@ -76,18 +76,15 @@ def test_carlson_no_guard_bits(monkeypatch):
     assert status(library_samples.carlson_against_mpmath) == "failed"
 
 
-def test_no_trace_at_the_sampler_margin(monkeypatch):
-    # the fact behind the equivalence marks samples:62 (`> 2.2` vs `>= 2.2`, mutants-equivalent.toml): the two
-    # comparisons differ only at a trace equal to the double 2.2; no trace the comparison reads, on the streams
-    # the claims draw from (N = 2..8, both signs, seeds 0-2 and 11, up to 8 states: a stream is read in order, so
-    # fewer states read a prefix), equals it
+def _read_the_streams(monkeypatch, record) -> None:
+    """Draw the states of the streams the claims read (N = 2..8, both signs, seeds 0-2 and 11, up to 8 states: a
+    stream is read in order, so fewer states read a prefix), calling ``record(args, ok, info)`` at every
+    ``_real_map`` the sampler calls."""
     real = samples._real_map
-    read: list = []
 
     def recording(*args):
         ok, info = real(*args)
-        if ok and args[-1] == 1:
-            read.extend((info["tr1"], info["tr2"]))
+        record(args, ok, info)
         return ok, info
     monkeypatch.setattr(samples, "_real_map", recording)
     for N in range(2, 9):
@@ -95,6 +92,19 @@ def test_no_trace_at_the_sampler_margin(monkeypatch):
             for seed in (0, 1, 2, 11):
                 with mp.workdps(30):
                     samples.admissible_states(N, s, 8, seed=seed)
+
+
+def test_no_trace_at_the_sampler_margin(monkeypatch):
+    # the fact behind the equivalence marks samples:62 (`> 2.2` vs `>= 2.2`, mutants-equivalent.toml): the two
+    # comparisons differ only at a trace equal to the double 2.2; no trace the comparison reads, on the streams
+    # the claims draw from (N = 2..8, both signs, seeds 0-2 and 11, up to 8 states: a stream is read in order, so
+    # fewer states read a prefix), equals it
+    read: list = []
+
+    def record(args, ok, info):
+        if ok and args[-1] == 1:
+            read.extend((info["tr1"], info["tr2"]))
+    _read_the_streams(monkeypatch, record)
     assert len(read) > 1000
     assert not [t for t in read if isinstance(t, mp.mpf) and abs(t) == 2.2]
 
@@ -104,20 +114,12 @@ def test_branch_minus_never_fails_positivity_on_the_streams(monkeypatch):
     # where [0] is False only when the -1 step ran but some E~_j <= 0): on the streams the claims draw from (as
     # above), every state the -1 test reads with a real +1 map and traces beyond 2.2 has no such -1 step -- the
     # -1 map is real or it raised (info None) -- so both read the same truth value and keep the same states
-    real = samples._real_map
     minus: list = []
 
-    def recording(*args):
-        ok, info = real(*args)
+    def record(args, ok, info):
         if args[-1] == -1:
             minus.append((ok, info is not None))
-        return ok, info
-    monkeypatch.setattr(samples, "_real_map", recording)
-    for N in range(2, 9):
-        for s in (1, -1):
-            for seed in (0, 1, 2, 11):
-                with mp.workdps(30):
-                    samples.admissible_states(N, s, 8, seed=seed)
+    _read_the_streams(monkeypatch, record)
     assert len(minus) > 400
     assert all(ok == has_info for ok, has_info in minus)
 

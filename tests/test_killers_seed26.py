@@ -3,6 +3,7 @@ extended ones) now see.  Unpatched, every claim verifies."""
 from __future__ import annotations
 
 import mpmath as mp
+import numpy as np
 import pytest
 from planting import claim_fails as fails
 from planting import planted
@@ -149,3 +150,92 @@ def test_carlson_loop_runs_in_gmpy2_where_installed(monkeypatch):
         v = elliptic.carlson_rf(mp.mpf(1), mp.mpf(2), mp.mpf(3))
         assert abs(v - mp.elliprf(1, 2, 3)) < mp.mpf(10) ** -28
     assert calls, "the Carlson loop did not enter gmpy2's context"
+
+
+# --------------------------------------------------------------------------- seed 28
+
+def test_the_qd_orbit_stores_its_input_first(monkeypatch):
+    # qd_step:190 (seed 28, `outQ[0] = Q` -> `outQ[1] = Q`): the first stored positions not written (row 1 is
+    # overwritten by the first step), so the orbit's first row is whatever the buffer held
+    from symbt.numeric.multiprec import qd_step
+
+    monkeypatch.setattr(qd_step, "qd_orbit", planted(qd_step.qd_orbit, "    outQ[0] = Q\n", "    outQ[1] = Q\n"))
+    assert fails("paths.qd.n2")
+
+
+def test_the_finiteness_test_of_a_sum_is_the_same_with_a_difference():
+    # the fact behind the equivalence mark orbit:201 (`np.add.reduce(Ps) + np.add.reduce(Qs)` -> `-`): the sum is
+    # only tested for finiteness; Qs are coordinates relative to the centre of mass, within (N - 1) MAX_DQ_FLOAT64 of
+    # each other or the row is already out (the line before), so |sum Qs| is far below half an ulp of any sum of Ps
+    # that could overflow, and x + y, x - y are non-finite together (inf - inf and inf + -inf are both NaN).
+    # Rows at the edges: sums of Ps near and past the float64 maximum, inf and NaN in P or Q, huge equal q, a wide row
+    import warnings
+
+    from symbt.numeric.float64 import orbit
+
+    N, n = 3, 3
+    pa = np.array([[-20.0, 10.0, 1.0], [1.7e308, 0.0, 0.0], [8e307, 8e307, 8e307], [np.inf, 0, 0], [np.nan, 1, 2],
+                   [-1.7e308, 1e308, 0.0], [1.0, 2.0, 3.0], [1.0, 2.0, 3.0], [1e308, 1e308, -1e308]])
+    qa = np.array([[1.0, 0.0, 0.9], [0, 0, 0], [0, 0, 0], [0, 0, 0], [0, 0, 0], [0, 1, 2], [np.nan, 0, 0],
+                   [1e300, 1e300, 1e300], [0, 650, 0]])
+    m = len(pa)
+
+    def run(block):
+        P, Q = np.full((n + 1, m, N), 7.0), np.full((n + 1, m, 2 * N), 7.0)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            orbit._general_block, real = block, orbit._general_block
+            try:
+                st, step = orbit.general_orbit(pa, qa, np.full(m, 10.0), np.full(m, 5.0), 1, n, 1, P, Q,
+                                               np.arange(m))
+            finally:
+                orbit._general_block = real
+        return P, Q, st.tolist(), step.tolist()
+
+    a = run(orbit._general_block)
+    b = run(planted(orbit._general_block, "np.add.reduce(Ps) + np.add.reduce(Qs)",
+                    "np.add.reduce(Ps) - np.add.reduce(Qs)"))
+    assert a[2] == b[2] and a[3] == b[3] and 4 in a[2] and 0 in a[2]
+    assert np.array_equal(a[0], b[0], equal_nan=True) and np.array_equal(a[1], b[1], equal_nan=True)
+
+
+def test_the_exact_layer_refuses_a_relation_constant_in_its_symbol(monkeypatch):
+    # flint_exact:121 (seed 28, `d < 1` -> `d < 0`): FLINT's reduction divided by a relation of degree 0 in its
+    # symbol and proved x y = 0 from {x: y - 1}; the exact layer now refuses such a relation on every route before
+    # either divides -- without that test, FLINT's route (where installed) proves it
+    pytest.importorskip("flint")
+    from symbt.proof import exact
+
+    monkeypatch.setattr(exact, "exact_zero", planted(exact.exact_zero, "        relation_poly(rel, sym)\n",
+                                                     "        pass\n"))
+    assert fails("checker.relation_degree")
+
+
+def test_the_codegen_verifier_refuses_to_compare_at_no_point():
+    # codegen.verify:230 (seed 28, `nout = 0` -> 1): only an empty list of points read the initial value -- and such
+    # a comparison passed, comparing nothing; it is now refused
+    import symbt.generated.toda2 as toda2
+    from symbt.codegen.verify import compare
+
+    with pytest.raises(ValueError, match="no point"):
+        compare(toda2, 2, "invariants", pts=[])
+    assert compare(toda2, 2, "invariants")["nout"] == 2
+
+
+def test_the_real_phase_at_a_band_edge_of_the_upper_parameter(monkeypatch):
+    # elliptic:270 (seed 28, `abs(T1) >= 2` -> `> 2`): at T1 = 2 exactly the real phase was None
+    from symbt.reference import elliptic
+
+    monkeypatch.setattr(elliptic, "shift", planted(elliptic.shift, "and abs(T1) >= 2 and", "and abs(T1) > 2 and"))
+    assert fails("library.reference_edges")
+
+
+def test_the_reference_verification_reads_moduli(monkeypatch):
+    # literal:292 (seed 28, `abs(a - b)` -> `a - b`): a reference whose largest disagreement is negative passed
+    from symbt.claims import library_ref45
+    from symbt.reference import literal
+
+    # the claim's module binds reference_step at its import
+    monkeypatch.setattr(library_ref45, "reference_step", planted(literal.reference_step, "diff = max(abs(a - b) for",
+                                                                 "diff = max(a - b for"))
+    assert fails("library.reference_verify", crash=True)     # (complex differences at one state: a TypeError)

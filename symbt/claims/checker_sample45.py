@@ -226,11 +226,11 @@ def value_words() -> Outcome:
     # value types compare and show what they are, not how they were computed
     same = [sign(e, name="s", labels=("lo", "hi")) for e in ("t - t0", "t0 - t")]
     got.append(("splits making the same cells", (same[0] == same[1], len(set(same))), (True, 1)))
-    pc = PointCheck(0.25, 0.0, {"x": "1"}, values=[sp.Integer(7)], roots=[1], diff=0.25)
+    pc = PointCheck(0.25, 0.0, {"x": "1"}, values=[sp.Integer(7)], roots=[1], diff=0.25, scale=1)
     text = repr(pc)
     got.append(("PointCheck's repr", [f"{k}=" in text for k in ("residual", "error", "point", "rechecked", "values",
-                                                                "roots", "diff")],
-                [True, True, True, True, False, False, False]))
+                                                                "roots", "diff", "scale")],
+                [True, True, True, True, False, False, False, False]))
     bad = _bad("symbt.proof values and words", got)
     return bad or _ok("as_range, Domain(where=...), mutants, mutate_value, why_no_mutants against their stated rules",
                       f"{len(got)} facts: a range's draws, refused ranges, draws outside, swap and tuple mutants, "

@@ -9,7 +9,9 @@ r"""The independent routes checked, 5: documented rules of :mod:`symbt.reference
   :func:`~symbt.reference.literal.reference_step` with ``verify=True`` (the
   repeat with 25 more digits) returns, without raising, the step that :func:`~symbt.reference.literal.literal_step`
   computes at 200 more digits, to ``10^-dps`` relative, on states with traces ~1e3 and ~1e45 (there the forward
-  transport loses ~90 digits: the default guard ``20 + 2 log10 |tr| + 2N`` must cover them).
+  transport loses ~90 digits: the default guard ``20 + 2 log10 |tr| + 2N`` must cover them); without guard digits
+  it raises "not converged" at traces ~1e30 and at the paper's state, both branches (seed 28: the check of signed
+  differences, which the paper's state on branch -1 passes: its largest disagreement is negative).
 * ``library.printed_forms`` -- :func:`symbt.reference.elliptic.theta2_printed` is ``F(P, k)/sqrt(I_2 + 2)`` and
   :func:`~symbt.reference.elliptic.printed_shift` is ``(acosh(T_-/2) - acosh(T_+/2),
   (F(s_-) - F(s_+))/sqrt(I_2 + 2))`` with ``T_+- = tr L(lam0 +- mu)`` by the literal trace, ``F`` by mpmath's
@@ -78,7 +80,8 @@ SITE_LISTS = ("x", "y", "z", "eta", "E_new")
                  "N = 2, 3) on its real and its complex route (mpc inputs), the two equal to 1e-50 at 220 digits "
                  "(p~, q~ and every info list); reference_step(verify=True) at 20 digits returns without raising "
                  "the step literal_step gives at 220 digits, to 1e-20 relative, on states with traces ~1e3 and "
-                 "~1e45 (its default guard), and raises 'not converged' without guard digits at traces ~1e30")
+                 "~1e45 (its default guard), and raises 'not converged' without guard digits at traces ~1e30 and at "
+                 "the paper's state, both branches")
 def reference_verify() -> Outcome:
     bad: list[str] = []
     worst = mp.mpf(0)
@@ -112,14 +115,19 @@ def reference_verify() -> Outcome:
                 bad.append(f"N={N}: reference_step off by {mp.nstr(err, 3)} (relative)")
     # the check itself: without guard digits the forward transport at traces ~1e30 loses ~60 of 20 digits,
     # and the repetition at 25 more digits disagrees -- verify=True must say so
+    # -- and the paper's state, both branches: with branch -1 its largest disagreement is negative (-3.5e-19 against
+    # +3.6e-20 the other way), so a check of signed differences would pass it
+    unconverged = ((("0.3", "-0.2", "0.1"), ("0", "0.5", "0.2"), mp.mpf(10) ** 10, mp.mpf(10) ** 9),
+                   (("-20", "10", "1"), ("1", "0", "0.9"), 10, 5))
     with mp.workdps(REF_DPS):
-        p3, q3 = ["0.3", "-0.2", "0.1"], ["0", "0.5", "0.2"]
-        try:
-            reference_step(p3, q3, mp.mpf(10) ** 10, mp.mpf(10) ** 9, guard=0, verify=True)
-            bad.append("reference_step(guard=0, verify=True) at traces ~1e30 returned (want: not converged)")
-        except AssertionError as exc:
-            if "not converged" not in str(exc):
-                bad.append(f"reference_step(guard=0, verify=True): {exc}")
+        for (p3, q3, l3, m3), b in ((st, b) for st in unconverged for b in (1, -1)):
+            try:
+                reference_step(p3, q3, l3, m3, branch=b, guard=0, verify=True)
+                bad.append(f"reference_step(guard=0, verify=True) at p = {p3}, branch {b} returned (want: not "
+                           "converged)")
+            except AssertionError as exc:
+                if "not converged" not in str(exc):
+                    bad.append(f"reference_step(guard=0, verify=True): {exc}")
     if bad:
         return failed("literal_step at 60 digits", detail="; ".join(bad))
     return Outcome("verified", f"numeric: literal_step at {REF_EXTRA} more digits", evidence="sampled",

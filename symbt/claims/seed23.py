@@ -2,9 +2,11 @@ r"""What the samples of seeds 23 and 24 found unread (issue 21).
 
 * ``checker.relation_degree`` -- :func:`symbt.proof.reduce_modulo` refuses (``ValueError``) a relation that is not a
   polynomial of degree 1 or more in its own symbol (``{x: y - 1}``, ``{x: 2}``): the remainder of a division by
-  something constant in ``x`` is 0, so such a relation would "prove" any statement, ``x y = 0`` included; a
-  relation of degree 2 reduces ``x^3 + y`` to ``x y + y`` (written out by hand).  Seed 23: a degree test at ``< 0``
-  let the constant relation through.
+  something constant in ``x`` is 0, so such a relation would "prove" any statement, ``x y = 0`` included -- and so
+  does the exact layer, :func:`symbt.proof.exact.exact_zero`, on the sympy route and on FLINT's where python-flint is
+  installed (seed 28: FLINT's reduction divided by a relation of degree 0 and proved ``x y = 0``, the relation
+  tested only later, in the screen); a relation of degree 2 reduces ``x^3 + y`` to ``x y + y`` (written out by
+  hand).  Seed 23: a degree test at ``< 0`` let the constant relation through.
 * ``checker.inclusive_bounds`` -- the tolerances are inclusive, as their docstrings say: a sampled
   :class:`~symbt.proof.verdict.Verdict` whose residual and estimated error both *equal* the tolerance holds; a
   :class:`~symbt.proof.cells.CellTable` sample at the tolerance counts as holding, and a cell whose residuals are all
@@ -21,7 +23,8 @@ r"""What the samples of seeds 23 and 24 found unread (issue 21).
   dropped the modulus of a positive symbol).
 * ``library.reference_edges`` -- three edges of :mod:`symbt.reference` checked against routes outside it: the
   one-step shift of the elliptic solution at a band edge (``I1 = 0, I2 = 7, lam0 = 4, mu = 1``: ``T2 = 2``,
-  ``T1 = 18`` exactly) has the real phase ``dtheta1_real = -branch arccosh(9)`` (mpmath's ``acosh``), as its
+  ``T1 = 18`` exactly) has the real phase ``dtheta1_real = -branch arccosh(9)`` (mpmath's ``acosh``), and with
+  ``lam0 = 2`` (``T1 = 2``, ``T2 = -6``; seed 28: a strict test at ``T1``) ``-branch arccosh(3)``, as its
   docstring says (None only where some ``|T| < 2``); :func:`~symbt.reference.spectral.flow_coefficients_jacobian`
   gives all ``N + 1`` pairs ``(dc_k/dlam0, dc_k/dmu)``, each within ``1e-12`` of central differences of the
   quadrature route ``flow_coefficients_mp`` (both branches); and
@@ -60,6 +63,8 @@ from __future__ import annotations
 import dis
 import inspect
 import tempfile
+from collections.abc import Callable
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -78,22 +83,31 @@ def _by_hand(method: str, got: Any, want: Any, detail: str | None = None) -> Out
 
 
 @claim("checker.relation_degree", equation="checker", scene="checker",
-       where="symbt.proof.exact.reduce_modulo: the relations' degree in their own symbols",
+       where="symbt.proof.exact.reduce_modulo, exact_zero (both routes): the relations' degree in their own symbols",
        statement="reduce_modulo(x y, {x: y - 1}) and reduce_modulo(x y, {x: 2}) raise ValueError (a division by "
-                 "something constant in x leaves remainder 0: it would prove x y = 0); reduce_modulo(x^3 + y, "
+                 "something constant in x leaves remainder 0: it would prove x y = 0), and so does the exact layer "
+                 "(exact_zero) on the sympy route and on FLINT's where installed; reduce_modulo(x^3 + y, "
                  "{x: x^2 - y}) = x y + y")
 def relation_degree() -> Outcome:
     from ..proof import reduce_modulo
+    from ..proof.exact import exact_route, exact_zero
 
     x, y = sp.symbols("x y")
     got: dict[str, Any] = {}
+    want: dict[str, Any] = {}
+    # reduce_modulo, and the exact layer on each route it has here (FLINT's reduction divides too)
+    routes = sorted({"sympy", exact_route("auto")})
     for name, rel in (("y - 1", y - 1), ("2", sp.Integer(2))):
-        try:
-            got[name] = f"reduced to {reduce_modulo(x * y, {x: rel})}"
-        except ValueError:
-            got[name] = "ValueError"
+        calls: list[tuple[str, Callable[[], object]]] = [("reduce_modulo", partial(reduce_modulo, x * y, {x: rel}))]
+        calls += [(f"exact_zero[{rt}]", partial(exact_zero, x * y, {x: rel}, rt)) for rt in routes]
+        for what, call in calls:
+            try:
+                got[f"{what}, {name}"] = f"gave {call()}"
+            except ValueError:
+                got[f"{what}, {name}"] = "ValueError"
+            want[f"{what}, {name}"] = "ValueError"
     got["x^2 - y"] = sp.expand(reduce_modulo(x ** 3 + y, {x: x ** 2 - y}) - (x * y + y)) == 0
-    want: dict[str, Any] = {"y - 1": "ValueError", "2": "ValueError", "x^2 - y": True}
+    want["x^2 - y"] = True
     return _by_hand("exact: relations written out by hand", got, want)
 
 
@@ -223,13 +237,13 @@ def _free_chain_edge() -> list[str]:
 @claim("library.reference_edges", equation="checker", scene="library", N=2,
        where="symbt.reference: elliptic.shift at a band edge, spectral.flow_coefficients_jacobian, "
              "inverse.solve_parameters' start",
-       statement="shift(I1 = 0, I2 = 7, lam0 = 4, mu = 1) (T2 = 2, T1 = 18) has dtheta1_real = -branch arccosh(9) "
-                 "(mpmath acosh, 30 digits); flow_coefficients_jacobian at p = (1, -1), q = (0, 1/2), lam0 = 3.5, mu = "
-                 "0.3 gives N + 1 pairs, each within 1e-12 of central differences (h = 1e-8) of flow_coefficients_mp, "
-                 "both branches, and branch +1 by default; solve_parameters from the target (c_0, 2 c_0) (its start "
-                 "lam0 = 2 in a band) raises ValueError; on the free chain (N = 2) over [2, 3] (tr = 2 at lam = 2), "
-                 "flow_coefficients_mp with check=False (15 digits) = -b (arccos(2/3)/2, arccosh(3/2), sqrt 5) within "
-                 "1e-8, and "
+       statement="shift(I1 = 0, I2 = 7, lam0 = 4, mu = 1) (T2 = 2, T1 = 18) has dtheta1_real = -branch arccosh(9), and"
+                 " with lam0 = 2 (T1 = 2, T2 = -6) -branch arccosh(3) (mpmath acosh, 30 digits); "
+                 "flow_coefficients_jacobian at p = (1, -1), q = (0, 1/2), lam0 = 3.5, mu = 0.3 gives N + 1 pairs, "
+                 "each within 1e-12 of central differences (h = 1e-8) of flow_coefficients_mp, both branches, and "
+                 "branch +1 by default; solve_parameters from the target (c_0, 2 c_0) (its start lam0 = 2 in a band) "
+                 "raises ValueError; on the free chain (N = 2) over [2, 3] (tr = 2 at lam = 2), flow_coefficients_mp "
+                 "with check=False (15 digits) = -b (arccos(2/3)/2, arccosh(3/2), sqrt 5) within 1e-8, and "
                  "flow_coefficients_mp (checked) and phi_gradient raise NoRealFlowError")
 def reference_edges() -> Outcome:
     from ..reference.elliptic import shift
@@ -239,13 +253,17 @@ def reference_edges() -> Outcome:
 
     bad: list[str] = []
     with mp.workdps(30):
-        for b in (1, -1):
-            sh = shift(mp.mpf(0), mp.mpf(7), mp.mpf(4), mp.mpf(1), b)
-            if (sh["T1"], sh["T2"]) != (18, 2):       # the premise: an exact band edge
-                bad.append(f"shift's traces {sh['T1']}, {sh['T2']}, want 18, 2 exactly")
-            real = sh["dtheta1_real"]
-            if real is None or not abs(real + b * mp.acosh(9)) <= mp.mpf(10) ** -25:
-                bad.append(f"shift at T2 = 2, branch {b}: dtheta1_real {real}, want {mp.nstr(-b * mp.acosh(9), 20)}")
+        # an exact band edge at either parameter: T = (lam +- 0)^2 - 7 (I1 = 0, I2 = 7); the real phase
+        # branch (sgn(T2) arccosh(|T2|/2) - sgn(T1) arccosh(|T1|/2)) by mpmath's acosh
+        for lam0, traces, edge_free in ((4, (18, 2), -mp.acosh(9)), (2, (2, -6), -mp.acosh(3))):
+            for b in (1, -1):
+                sh = shift(mp.mpf(0), mp.mpf(7), mp.mpf(lam0), mp.mpf(1), b)
+                if (sh["T1"], sh["T2"]) != traces:       # the premise: an exact band edge
+                    bad.append(f"shift's traces {sh['T1']}, {sh['T2']}, want {traces} exactly")
+                real = sh["dtheta1_real"]
+                if real is None or not abs(real - b * edge_free) <= mp.mpf(10) ** -25:
+                    bad.append(f"shift at T = {traces}, branch {b}: dtheta1_real {real}, want "
+                               f"{mp.nstr(b * edge_free, 20)}")
         p, q = [[mp.mpf(v) for v in x] for x in EDGE_STATE]
         l0, mu = (mp.mpf(v) for v in EDGE_PARAMS)
         h = mp.mpf("1e-8")

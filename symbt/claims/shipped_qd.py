@@ -83,7 +83,8 @@ def qd_value(row: Any) -> Any:
 
 
 def run_qd(st: tuple, b: int, n: int, every: int = 1) -> tuple[int, int, list]:
-    """``qd_orbit`` (plain Python) of the mpf state ``st``: ``(status, step, final state as exact mpf)``."""
+    """``qd_orbit`` (plain Python) of the mpf state ``st``: ``(status, step, final state as exact mpf)``; status
+    ``-2`` if a completed orbit's first stored state is not the input itself (a row it must hold exactly)."""
     from ..numeric.float64.kernels import orbit_rows
     from ..numeric.multiprec.qd import to_qd
     from ..numeric.multiprec.qd_step import qd_orbit
@@ -95,6 +96,9 @@ def run_qd(st: tuple, b: int, n: int, every: int = 1) -> tuple[int, int, list]:
     rows = orbit_rows(n, every)
     outP, outQ = np.zeros((rows, N, 4)), np.zeros((rows, N, 4))
     code, step = qd_orbit(P0, Q0, spec, b, n, every, outP, outQ)
+    first = [qd_value(outP[0, j]) for j in range(N)] + [qd_value(outQ[0, j]) for j in range(N)]
+    if code == 0 and first != list(st[0]) + list(st[1]):
+        return -2, 0, []            # the orbit's first stored state is not the input (exact: 200-bit inputs)
     last = rows - 1
     return (int(code), int(step),
             [qd_value(outP[last, j]) for j in range(N)] + [qd_value(outQ[last, j]) for j in range(N)])

@@ -222,15 +222,16 @@ def _scale(spec: FunctionSpec, fn_mp: Callable[..., Any], pt: Mapping[str, Any],
 
 
 def compare(mod: ModuleType, N: int, name: str, pts: Sequence[dict[str, Any]] | None = None) -> dict[str, Any]:
-    """Emitted ``name`` (numpy and mpmath flavours of ``mod``) vs its SymPy source; see the module doc."""
+    """Emitted ``name`` (numpy and mpmath flavours of ``mod``) vs its SymPy source; see the module doc.  An empty
+    ``pts`` raises ``ValueError`` (a comparison at no point would pass)."""
     spec = interface(N)[name]
     fn, fn_mp = getattr(mod, name), getattr(mod, name + "_mp")
     worst_f, worst_m, bad = 0.0, mp.mpf(0), None
     pts = points(spec, N) if pts is None else pts
-    nout = 0
+    if not pts:                     # no point: nothing compared, and nothing could fail
+        raise ValueError(f"codegen.verify.compare({name}): no point to compare at")
     for pt in pts:
         ref = evaluate_source(N, name, pt)
-        nout = len(ref)
         with mp.workdps(MP_DPS):
             fm = _flat(fn_mp(**pt))
         S = _scale(spec, fn_mp, pt, ref, fm)
@@ -250,6 +251,7 @@ def compare(mod: ModuleType, N: int, name: str, pts: Sequence[dict[str, Any]] | 
                     if em > MP_TOL:
                         bad = dict(point=repr(pt), output=k, ref=mp.nstr(r, 30), mp=mp.nstr(fm[k], 30))
     ok = worst_f <= F64_TOL_ULPS and worst_m <= MP_TOL
+    nout = len(ref)                 # the outputs of every point (of the last one read)
     return dict(ok=ok, worst_f64=worst_f, worst_mp=worst_m, npts=len(pts), nout=nout, bad=bad,
                 detail=(f"{len(pts)} points x {nout} outputs; numpy: max |f64 - ref| = {worst_f:.2f} eps*S "
                         f"(tolerance {F64_TOL_ULPS}); mpmath at {MP_DPS} digits: max |mp - ref|/S = "

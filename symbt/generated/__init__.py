@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: package
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 50a67d8b3526836d80aeffd88000a36b86b8cec83b33fcc3fd626c62d48087dc
-# symbt-codegen-content-sha256: 6b4f98c685ebe2dcd41fb460e155bf2071ec8ebfbf8f8bad7b4b4aebc584a017
+# symbt-codegen-derivation-sha256: 553126d2bab4414934e3a910ea17ad9297726fa3127eb02d5bae9fd183ace8a8
+# symbt-codegen-content-sha256: 75c908cd8fa4ffebdd2d24ffadc7d3a1634914e2df89693475cce7acd1da0d2c
 """Generated numeric modules (``symbt codegen``); see docs/codegen.md.
 
 Each ``toda{N}`` module holds numpy and mpmath (``*_mp``) functions emitted from

@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda2 (N=2, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 50a67d8b3526836d80aeffd88000a36b86b8cec83b33fcc3fd626c62d48087dc
-# symbt-codegen-content-sha256: 0c4438803639ce8e372911ee17634f173e3f8d996a05ad3eac2c3f2019313763
+# symbt-codegen-derivation-sha256: 553126d2bab4414934e3a910ea17ad9297726fa3127eb02d5bae9fd183ace8a8
+# symbt-codegen-content-sha256: d444ed843f4d2d8800a38510ea00c975a80110bf24b04175497bec676bcaa86b
 """Generated numeric code for the N=2 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

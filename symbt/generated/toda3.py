@@ -2,8 +2,8 @@
 # symbt-codegen-generator: 2
 # symbt-codegen-target: toda3 (N=3, closed form)
 # symbt-codegen-sympy: 1.14.0
-# symbt-codegen-derivation-sha256: 50a67d8b3526836d80aeffd88000a36b86b8cec83b33fcc3fd626c62d48087dc
-# symbt-codegen-content-sha256: be5d851f242a94ada1da028dc4599c07d1ba36b91e692d16c4a19bb5cf93d359
+# symbt-codegen-derivation-sha256: 553126d2bab4414934e3a910ea17ad9297726fa3127eb02d5bae9fd183ace8a8
+# symbt-codegen-content-sha256: 3e0834be9a4e44aafaa47962a0d78dacd439aa47eea4c1e8dd5fdcaed8d07427
 """Generated numeric code for the N=3 periodic Toda lattice, closed form (do not edit; run `symbt codegen`).
 
 Two flavours of every function: ``name(...)`` (numpy, float64, vectorised over leading

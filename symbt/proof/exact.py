@@ -106,12 +106,16 @@ def exact_zero(diff: sp.Expr, relations: Mapping[sp.Symbol, sp.Expr],
     Exponentials become monomials first (:func:`~.exponentials.exponentials_as_monomials`,
     rational exponents included), in ``diff`` and in the relations alike.
     ``route`` (see :func:`exact_route`): both routes compute the same normal
-    form, FLINT's about 50 times faster on the claims' differences.
+    form, FLINT's about 50 times faster on the claims' differences.  A relation
+    that is not a polynomial of degree at least 1 in its symbol raises
+    ``ValueError`` (:func:`~.relations.relation_poly`), on either route.
     """
     (rat, *rewritten), variables = exponentials_as_monomials(diff, *relations.values())
     if not is_rational_in_symbols(rat):
         return None, "", False
     relations = dict(zip(relations, rewritten))
+    for sym, rel in relations.items():     # both routes divide by them: each a polynomial of degree >= 1 in its symbol
+        relation_poly(rel, sym)
     zero = None
     if exact_route(route) == "flint":
         from .flint_exact import rational_zero

@@ -117,8 +117,8 @@ def _reduce(num: Any, rel: Any, v: int, gen: Any) -> Any:
     over the field of fractions of the other variables (what ``sympy.rem`` computes), which is zero
     if and only if that remainder is (polynomials over Q form an integral domain).
     """
-    d = rel.degrees()[v]
-    if d < 1 or num.degrees()[v] < d:
+    d = rel.degrees()[v]                 # >= 1: exact_zero refuses any other relation first
+    if num.degrees()[v] < d:
         return num
     ctx = num.context()
     lead, tail = {}, {}

@@ -235,9 +235,9 @@ class PointCheck:
     point: dict[str, str]
     values: list[Any] = field(repr=False, default_factory=list)
     roots: list[int] = field(repr=False, default_factory=list)
-    diff: Any = field(repr=False, default=0)
-    scale: Any = field(repr=False, default=1)
     rechecked: bool = False
+    diff: Any = field(repr=False, kw_only=True)         # no defaults: the re-evaluation reads both
+    scale: Any = field(repr=False, kw_only=True)
 
 
 @dataclass
@@ -379,7 +379,7 @@ def screen(lhs: sp.Expr, rhs: sp.Expr, relations: Mapping[sp.Symbol, sp.Expr], d
             point = {str(s): _fmt(v) for s, v in zip(args, allv)}
             # scale 0: both sides and every term exactly 0 -- agrees (its quadratures' error counted as it is)
             rel, err = (abs(lv - rv) / scale, (el + er) / scale) if scale else (mpmath.mpf(0), el + er)
-            checks.append(PointCheck(rel, err, point, allv, picks, lv - rv, scale))
+            checks.append(PointCheck(rel, err, point, allv, picks, diff=lv - rv, scale=scale))
     if not checks:
         raise ValueError(f"no admissible sample point in {attempts} draws "
                          "(every point hit a pole or an undefined value)")

@@ -64,10 +64,9 @@ def _at(p: npt.NDArray[np.float64], q: npt.NDArray[np.float64], lam0: float, mu:
     r = neighbour_ratios(IV, Q)
     signs, bands = [], []
     for code, lam in ((TRACE1, l0 + m), (TRACE2, l0 - m)):
-        A, _, _, D, e = monodromy(IV, [lam + x for x in P], r)
+        A, _, _, D, _ = monodromy(IV, [lam + x for x in P], r)     # intervals are never renormalised: e = 0
         t = A + D
-        two = IV.ldexp(2.0, -e) if e else iv.mpf(2)
-        s = _sign((t - two) * (t + two))
+        s = _sign((t - 2) * (t + 2))
         bands.append(None if s is None else OK if s > 0 else code)      # |t| = 2 exactly: no real map
         signs.append(_sign(t))
     for verdict in bands:                  # a certain band at either parameter decides, the other undecided or not
