@@ -1,5 +1,6 @@
-"""Seeds 26 and 27's survivors (docs/mutation.md, "Seed 26", "Seed 27"): planted bugs that the new claims (and the
-extended ones) now see.  Unpatched, every claim verifies."""
+"""Seeds 26, 27 and 28's survivors (docs/mutation.md, "Seed 26", "Seed 27", "Seed 28"): planted bugs that the new
+claims (and the extended ones) now see, tests of routes and costs, and the fact behind an equivalence mark.
+Unpatched, every claim verifies."""
 from __future__ import annotations
 
 import mpmath as mp
@@ -13,7 +14,7 @@ from symbt.claims import REGISTRY, load_all
 
 load_all()
 
-CLAIMS = ["library.forced_backend", "library.emit_range"]
+CLAIMS = ["library.forced_backend", "library.emit_range", "library.deep_band", "library.degenerate_step"]
 
 
 @pytest.mark.parametrize("cid", CLAIMS)
