@@ -38,7 +38,7 @@ Seed 27:
 
 Shown to fail on planted bugs in ``tests/test_killers_seed26.py``.
 
->>> emit_range().status
+>>> emit_range.run().status
 'verified'
 """
 from __future__ import annotations
